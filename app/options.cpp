@@ -1,0 +1,86 @@
+#include "app/options.hpp"
+
+#include <unistd.h>
+
+#include <cmath>
+
+#include "core/error.hpp"
+
+#ifndef DAMPBOUND_SOURCE_DIR
+#define DAMPBOUND_SOURCE_DIR "."
+#endif
+
+namespace dampbound::app {
+
+namespace {
+CLI::Validator number_check(bool allow_zero) {
+  return CLI::Validator(
+      [allow_zero](std::string& s) -> std::string {
+        double x = 0;
+        try {
+          size_t used = 0;
+          x = std::stod(s, &used);
+          if (used != s.size()) return "'" + s + "' is not a number";
+        } catch (...) {
+          return "'" + s + "' is not a number";
+        }
+        if (!std::isfinite(x)) return "must be finite, got " + s;
+        if (allow_zero ? x < 0 : x <= 0) return allow_zero ? "must be >= 0" : "must be > 0";
+        return {};
+      },
+      allow_zero ? "NUMBER>=0" : "NUMBER>0");
+}
+}  // namespace
+
+const CLI::Validator& finite_positive() {
+  static const CLI::Validator v = number_check(false);
+  return v;
+}
+const CLI::Validator& finite_non_negative() {
+  static const CLI::Validator v = number_check(true);
+  return v;
+}
+
+void ParamFlags::add_to(CLI::App* cmd, bool with_rules) {
+  m_opt = cmd->add_option("--m", m, "node mass (mass unit; all nodes, times their mass_scale)")
+              ->check(finite_positive());
+  kappa_opt = cmd->add_option("--kappa", kappa, "spring and anchor stiffness (mass unit/s^2)")
+                  ->check(finite_positive());
+  gamma_opt = cmd->add_option("--gamma", gamma, "user's viscous damping (mass unit/s)")
+                  ->check(finite_non_negative());
+  dt_opt = cmd->add_option("--dt", dt, "time step (s)")->check(finite_positive());
+  policy_opt = cmd->add_option("--policy", policy, "damping policy (SPEC 4)")
+                   ->check(CLI::IsMember({"fixed", "clamp", "upper", "lower"}));
+  factor_opt = cmd->add_option("--factor", factor, "multiplier of the upper bound for --policy upper")
+                   ->check(finite_non_negative());
+  integrator_opt =
+      cmd->add_option("--integrator", integrator, "time integrator (default: the paper's)")
+          ->check(CLI::IsMember(
+              {"semi-implicit-euler", "forward-euler", "verlet", "rk4", "implicit-euler"}));
+  if (with_rules)
+    max_iter_opt = cmd->add_option("--max-iter", max_iter, "iteration limit of the protocol")
+                       ->check(CLI::Range(1, 100000000));
+}
+
+void ParamFlags::apply(Params& p, StopRules& rules) const {
+  if (m_opt && m_opt->count()) p.m = m;
+  if (kappa_opt && kappa_opt->count()) p.kappa = kappa;
+  if (gamma_opt && gamma_opt->count()) p.gamma = gamma;
+  if (dt_opt && dt_opt->count()) p.dt = dt;
+  if (factor_opt && factor_opt->count()) p.factor = factor;
+  if (policy_opt && policy_opt->count()) p.policy = *parse_policy(policy);
+  if (integrator_opt && integrator_opt->count()) p.integrator = *parse_integrator(integrator);
+  if (max_iter_opt && max_iter_opt->count()) rules.max_iterations = max_iter;
+}
+
+SceneSpec load_scene_arg(const std::string& arg) {
+  if (arg.find('/') == std::string::npos && ::access(arg.c_str(), F_OK) != 0) {
+    std::string name = arg;
+    if (name.size() < 5 || name.substr(name.size() - 5) != ".toml") name += ".toml";
+    const std::string shipped = std::string(DAMPBOUND_SOURCE_DIR) + "/scenes/" + name;
+    if (::access(shipped.c_str(), F_OK) == 0) return load_scene(shipped);
+  }
+  return load_scene(arg);
+}
+
+}  // namespace dampbound::app

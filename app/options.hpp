@@ -1,0 +1,35 @@
+#pragma once
+// Flags shared by the subcommands that run a scene: parameter overrides and scene loading.
+#include <CLI/CLI.hpp>
+
+#include <string>
+
+#include "core/scene.hpp"
+
+namespace dampbound::app {
+
+/// CLI11 validators that reject NaN and infinity as well as out-of-range values.
+const CLI::Validator& finite_positive();
+const CLI::Validator& finite_non_negative();
+
+/// --m --kappa --gamma --dt --policy --factor --integrator --max-iter: each overrides the
+/// scene's value when given.
+struct ParamFlags {
+  double m = 0, kappa = 0, gamma = 0, dt = 0, factor = 1;
+  std::string policy, integrator;
+  int max_iter = 0;
+  CLI::Option *m_opt = nullptr, *kappa_opt = nullptr, *gamma_opt = nullptr, *dt_opt = nullptr,
+              *factor_opt = nullptr, *policy_opt = nullptr, *integrator_opt = nullptr,
+              *max_iter_opt = nullptr;
+
+  /// Adds the flags to `cmd`. `with_rules` adds --max-iter.
+  void add_to(CLI::App* cmd, bool with_rules = true);
+  /// Overrides what was given on the command line.
+  void apply(Params& params, StopRules& rules) const;
+};
+
+/// Loads a scene file; a file name without a slash that does not exist is also looked up in
+/// the scenes/ folder of the source tree, with ".toml" appended when missing.
+SceneSpec load_scene_arg(const std::string& arg);
+
+}  // namespace dampbound::app

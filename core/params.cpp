@@ -1,0 +1,52 @@
+#include "core/params.hpp"
+
+#include <cmath>
+
+namespace dampbound {
+
+const char* to_string(DampingPolicy p) {
+  switch (p) {
+    case DampingPolicy::fixed: return "fixed";
+    case DampingPolicy::clamp: return "clamp";
+    case DampingPolicy::upper: return "upper";
+    case DampingPolicy::lower: return "lower";
+  }
+  return "?";
+}
+
+const char* to_string(Integrator i) {
+  switch (i) {
+    case Integrator::semi_implicit_euler: return "semi-implicit-euler";
+    case Integrator::forward_euler: return "forward-euler";
+    case Integrator::verlet: return "verlet";
+    case Integrator::rk4: return "rk4";
+    case Integrator::implicit_euler: return "implicit-euler";
+  }
+  return "?";
+}
+
+std::optional<DampingPolicy> parse_policy(const std::string& s) {
+  for (auto p : {DampingPolicy::fixed, DampingPolicy::clamp, DampingPolicy::upper,
+                 DampingPolicy::lower})
+    if (s == to_string(p)) return p;
+  return std::nullopt;
+}
+
+std::optional<Integrator> parse_integrator(const std::string& s) {
+  for (auto i : {Integrator::semi_implicit_euler, Integrator::forward_euler, Integrator::verlet,
+                 Integrator::rk4, Integrator::implicit_euler})
+    if (s == to_string(i)) return i;
+  return std::nullopt;
+}
+
+std::string validate(const Params& p) {
+  auto positive = [](double x) { return std::isfinite(x) && x > 0; };
+  if (!positive(p.m)) return "m must be a finite number > 0";
+  if (!positive(p.kappa)) return "kappa must be a finite number > 0";
+  if (!std::isfinite(p.gamma) || p.gamma < 0) return "gamma must be a finite number >= 0";
+  if (!positive(p.dt)) return "dt must be a finite number > 0";
+  if (!std::isfinite(p.factor) || p.factor < 0) return "factor must be a finite number >= 0";
+  return {};
+}
+
+}  // namespace dampbound

@@ -1,0 +1,51 @@
+#pragma once
+// The user's parameters (paper eq. 1): mass m, stiffness kappa, damping gamma, time step dt,
+// and how the effective damping is chosen from gamma each step (SPEC 4).
+#include <optional>
+#include <string>
+
+namespace dampbound {
+
+/// How the effective damping of node i at step t is chosen from the user's gamma (SPEC 4).
+enum class DampingPolicy {
+  fixed,  ///< gamma as given
+  clamp,  ///< gamma clamped into [gamma_lo_i, gamma_hi_i]; gamma_hi_i when the interval is empty
+  upper,  ///< factor * gamma_hi_i (0 when gamma_hi_i is infinite)
+  lower,  ///< gamma_lo_i
+};
+
+/// The time integrator. The paper's semi-implicit Euler (SPEC 2) is the default and the
+/// reference; the others are options for comparison (SPEC 2, "welcome as options").
+enum class Integrator {
+  semi_implicit_euler,  ///< paper eqs. 3-4: v += a dt; x += v_new dt
+  forward_euler,        ///< x += v_old dt; v += a dt
+  verlet,               ///< velocity Verlet (central differences)
+  rk4,                  ///< classic 4th-order Runge-Kutta on (x, v)
+  implicit_euler,       ///< backward Euler, one Newton step with CG (Baraff-Witkin)
+};
+
+/// Uniform parameters; per-node and per-spring scales from the scene multiply them.
+struct Params {
+  double m = 0.001;      ///< node mass (mass unit)
+  double kappa = 0.001;  ///< spring and anchor stiffness (mass unit / s^2)
+  double gamma = 0.002;  ///< user's viscous damping (mass unit / s)
+  double dt = 0.05;      ///< time step (s)
+  DampingPolicy policy = DampingPolicy::fixed;
+  double factor = 1.0;  ///< multiplier of gamma_hi for DampingPolicy::upper
+  Integrator integrator = Integrator::semi_implicit_euler;
+};
+
+/// The defaults: the paper's Fig. 1 setting at gamma = 2*sqrt(m*kappa).
+inline Params default_params() { return Params{}; }
+
+const char* to_string(DampingPolicy p);
+const char* to_string(Integrator i);
+/// Parses "fixed" | "clamp" | "upper" | "lower"; nullopt when unknown.
+std::optional<DampingPolicy> parse_policy(const std::string& s);
+/// Parses "semi-implicit-euler" | "forward-euler" | "verlet" | "rk4" | "implicit-euler".
+std::optional<Integrator> parse_integrator(const std::string& s);
+
+/// Empty when the parameters are usable, else a message naming the offending parameter.
+std::string validate(const Params& p);
+
+}  // namespace dampbound

@@ -1,0 +1,64 @@
+#include "core/scene.hpp"
+
+namespace dampbound {
+
+Model make_grid(const GridSpec& g) {
+  Model m;
+  auto index = [&](int a, int b) { return a * g.nz + b; };
+  for (int a = 0; a < g.nx; ++a)
+    for (int b = 0; b < g.nz; ++b) {
+      const int i = add_node(m, Vec3(a * g.spacing, 0, b * g.spacing));
+      if (g.anchors) m.anchor_scale[static_cast<size_t>(i)] = 1;
+    }
+  for (int a = 0; a < g.nx; ++a)
+    for (int b = 0; b < g.nz; ++b) {
+      if (a + 1 < g.nx) add_spring(m, index(a, b), index(a + 1, b));
+      if (b + 1 < g.nz) add_spring(m, index(a, b), index(a, b + 1));
+      if (g.diagonals && a + 1 < g.nx && b + 1 < g.nz) add_spring(m, index(a, b), index(a + 1, b + 1));
+    }
+  return m;
+}
+
+Model make_model(const SceneSpec& scene, const Params& params) {
+  Model m = scene.model;
+  set_params(m, params);
+  return m;
+}
+
+State initial_state(const SceneSpec& scene) {
+  State s = rest_state(scene.model);
+  for (const Perturbation& p : scene.perturbations) {
+    s.x[static_cast<size_t>(p.node)] += p.displacement;
+    s.v[static_cast<size_t>(p.node)] += p.velocity;
+  }
+  return s;
+}
+
+namespace {
+double cross2(double ax, double ay, double bx, double by) { return ax * by - ay * bx; }
+
+/// Proper or touching intersection of segments pq and rs in the plane.
+bool segments_cross(const double p[2], const double q[2], const double r[2], const double s[2]) {
+  const double d1 = cross2(q[0] - p[0], q[1] - p[1], r[0] - p[0], r[1] - p[1]);
+  const double d2 = cross2(q[0] - p[0], q[1] - p[1], s[0] - p[0], s[1] - p[1]);
+  const double d3 = cross2(s[0] - r[0], s[1] - r[1], p[0] - r[0], p[1] - r[1]);
+  const double d4 = cross2(s[0] - r[0], s[1] - r[1], q[0] - r[0], q[1] - r[1]);
+  // Collinear segments (d1 = d2 = 0) run along each other: that is no crossing.
+  return d1 * d2 <= 0 && d3 * d4 <= 0 && !(d1 == 0 && d2 == 0);
+}
+}  // namespace
+
+std::vector<int> springs_crossing(const Model& model, const std::vector<Vec3>& x,
+                                  const double from[2], const double to[2]) {
+  std::vector<int> out;
+  for (int k = 0; k < model.spring_count(); ++k) {
+    const Spring& s = model.springs[static_cast<size_t>(k)];
+    const Vec3& a = x[static_cast<size_t>(s.i)];
+    const Vec3& b = x[static_cast<size_t>(s.j)];
+    const double p[2] = {a.x(), a.z()}, q[2] = {b.x(), b.z()};
+    if (segments_cross(p, q, from, to)) out.push_back(k);
+  }
+  return out;
+}
+
+}  // namespace dampbound

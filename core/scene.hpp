@@ -1,0 +1,93 @@
+#pragma once
+// Scene descriptions (plain data) and their TOML file format (README "Scene files").
+// A scene is a topology with per-element scales, default parameters, a perturbation, stop
+// rules, the watched node, and optionally cuts, named runs and expectations.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/model.hpp"
+#include "core/protocol.hpp"
+
+namespace dampbound {
+
+/// Moves a node away from rest and/or gives it a velocity at t = 0.
+struct Perturbation {
+  int node = 0;
+  Vec3 displacement = Vec3::Zero();  ///< cm
+  Vec3 velocity = Vec3::Zero();      ///< cm / s
+};
+
+/// A cut at a given iteration: removes every spring whose current position, projected on the
+/// xz-plane, crosses the segment from (x0, z0) to (x1, z1) (paper sec. 5, topology change).
+struct CutEvent {
+  int iteration = 0;  ///< applied after this many steps (0 = before the first step)
+  double from[2] = {0, 0};
+  double to[2] = {0, 0};
+};
+
+/// A named variant of the scene's parameters: what figure overlays and check runs.
+struct RunSpec {
+  std::string label;
+  Params params;
+  StopRules rules;
+};
+
+/// What `check` asserts about a run's result; unset fields are not checked.
+struct Expectation {
+  std::string run;  ///< label of a RunSpec; empty = the scene's own parameters
+  int line = 0;     ///< line in the scene file, for messages
+  std::optional<Outcome> outcome;
+  std::optional<int> iterations_min, iterations_max;
+  std::optional<double> max_displacement_below;  ///< final max displacement < this (cm)
+  std::optional<long long> unstabilisable_max;   ///< unstabilisable node-steps <= this
+  std::optional<long long> violations_max;       ///< violating node-steps <= this
+  std::optional<long long> violations_min;       ///< violating node-steps >= this
+};
+
+/// A generated grid in the xz-plane (SPEC 5): node (a, b) at (a h, 0, b h), index a*nz + b.
+struct GridSpec {
+  int nx = 0, nz = 0;
+  double spacing = 0;
+  bool diagonals = true;
+  bool anchors = true;
+};
+
+struct SceneSpec {
+  std::string name;
+  std::string description;
+  std::string path;               ///< file it was loaded from ("" when built in code)
+  Model model;                    ///< topology and scales; set_params not yet applied
+  std::optional<GridSpec> grid;   ///< set when the geometry is a generated grid
+  Params params = default_params();
+  StopRules rules = default_stop_rules();
+  std::vector<Perturbation> perturbations;
+  int watched = 0;
+  std::vector<CutEvent> cuts;
+  std::vector<RunSpec> runs;
+  std::vector<Expectation> expectations;
+};
+
+/// Builds the grid's nodes, springs (a,b)-(a+1,b), (a,b)-(a,b+1), one diagonal
+/// (a,b)-(a+1,b+1) per cell, rest length = initial length, and anchors (SPEC 5).
+Model make_grid(const GridSpec& grid);
+
+/// Loads and validates a scene file. Throws InputError("FILE:LINE: message") on any
+/// malformed or inconsistent content (unknown key, missing value, NaN, negative mass,
+/// spring to a missing node, duplicate spring, ...).
+SceneSpec load_scene(const std::string& path);
+
+/// Parses scene text; `path` is used in messages only.
+SceneSpec parse_scene(const std::string& text, const std::string& path);
+
+/// Model with set_params(params) applied.
+Model make_model(const SceneSpec& scene, const Params& params);
+
+/// The rest state with the scene's perturbations applied.
+State initial_state(const SceneSpec& scene);
+
+/// Indices of springs whose xz-projection at positions x crosses the cut's segment.
+std::vector<int> springs_crossing(const Model& model, const std::vector<Vec3>& x,
+                                  const double from[2], const double to[2]);
+
+}  // namespace dampbound

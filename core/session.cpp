@@ -1,0 +1,72 @@
+#include "core/session.hpp"
+
+#include <stdexcept>
+#include <utility>
+
+namespace dampbound {
+
+Session::Session(SceneSpec scene, const Params& params, const StopRules& rules)
+    : scene_(std::move(scene)), params_(params), rules_(rules) {
+  watched_ = scene_.watched;
+  reset();
+}
+
+Session::Session(SceneSpec scene) : Session(scene, scene.params, scene.rules) {}
+
+const StepStats& Session::step_once() {
+  for (const CutEvent& c : scene_.cuts)
+    if (c.iteration == state_.iteration) cut(springs_crossing(model_, state_.x, c.from, c.to));
+  trace_.push_back(step(model_, params_, state_, ws_, watched_));
+  accumulate(result_, trace_.back(), rules_);
+  return trace_.back();
+}
+
+const RunResult& Session::run_to_end(const StepObserver& on_step) {
+  while (running()) {
+    const StepStats& st = step_once();
+    if (on_step) on_step(st);
+  }
+  return result_;
+}
+
+void Session::set_params(const Params& params) {
+  const std::string err = validate(params);
+  if (!err.empty()) throw std::invalid_argument(err);
+  params_ = params;
+  dampbound::set_params(model_, params_);
+}
+
+void Session::set_watched(int node) {
+  if (node < 0 || node >= model_.node_count()) throw std::out_of_range("watched node");
+  watched_ = node;
+}
+
+void Session::reset() {
+  model_ = make_model(scene_, params_);
+  state_ = initial_state(scene_);
+  trace_.clear();
+  result_ = RunResult{};
+  springs_cut_ = 0;
+}
+
+void Session::perturb() {
+  for (const Perturbation& p : scene_.perturbations) {
+    state_.x[static_cast<size_t>(p.node)] += p.displacement;
+    state_.v[static_cast<size_t>(p.node)] += p.velocity;
+  }
+}
+
+void Session::displace(int node, const Vec3& offset) {
+  if (node < 0 || node >= model_.node_count()) throw std::out_of_range("node");
+  if (!model_.fixed[static_cast<size_t>(node)]) state_.x[static_cast<size_t>(node)] += offset;
+}
+
+int Session::cut(const std::vector<int>& springs) {
+  const int before = model_.spring_count();
+  remove_springs(model_, springs, params_);
+  const int removed = before - model_.spring_count();
+  springs_cut_ += removed;
+  return removed;
+}
+
+}  // namespace dampbound

@@ -1,0 +1,66 @@
+#pragma once
+// A running experiment: a scene's model, its state, the parameters, the trace and the verdict.
+// The GUI, `run`, `figure` and `check` all drive a Session, and a Session calls the one step().
+#include <string>
+#include <vector>
+
+#include "core/protocol.hpp"
+#include "core/scene.hpp"
+
+namespace dampbound {
+
+class Session {
+ public:
+  /// Starts from the scene's perturbed state with the given parameters and stop rules.
+  Session(SceneSpec scene, const Params& params, const StopRules& rules);
+  /// Starts with the scene's own parameters and stop rules.
+  explicit Session(SceneSpec scene);
+
+  /// One step: applies the scene's cuts due at this iteration, calls step(), records the
+  /// stats in the trace and updates the result. The first non-running verdict is latched.
+  const StepStats& step_once();
+
+  /// Steps until the verdict is no longer running; returns the result.
+  const RunResult& run_to_end(const StepObserver& on_step = {});
+
+  /// New parameters take effect at the next step; the state and any cuts are kept.
+  void set_params(const Params& params);
+  void set_rules(const StopRules& rules) { rules_ = rules; }
+  /// Watch another node (an index); the trace keeps what was watched before.
+  void set_watched(int node);
+  /// Back to the scene's topology (cuts undone) and perturbed state; clears trace and result.
+  void reset();
+  /// Applies the scene's perturbation again on top of the current state.
+  void perturb();
+  /// Moves one node by hand (the GUI's drag); velocities are kept.
+  void displace(int node, const Vec3& offset);
+  /// Removes springs now (a cut); bounds react at the next step. Returns how many.
+  int cut(const std::vector<int>& springs);
+
+  const SceneSpec& scene() const { return scene_; }
+  const Model& model() const { return model_; }
+  const State& state() const { return state_; }
+  const StepWorkspace& workspace() const { return ws_; }
+  const Params& params() const { return params_; }
+  const StopRules& rules() const { return rules_; }
+  int watched() const { return watched_; }
+  const std::vector<StepStats>& trace() const { return trace_; }
+  const RunResult& result() const { return result_; }
+  bool running() const { return result_.outcome == Outcome::running; }
+  /// Springs removed by cuts since the last reset.
+  int springs_cut() const { return springs_cut_; }
+
+ private:
+  SceneSpec scene_;
+  Params params_;
+  StopRules rules_;
+  Model model_;
+  State state_;
+  StepWorkspace ws_;
+  int watched_ = 0;
+  std::vector<StepStats> trace_;
+  RunResult result_;
+  int springs_cut_ = 0;
+};
+
+}  // namespace dampbound

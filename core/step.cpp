@@ -1,0 +1,66 @@
+#include "core/step.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include "core/forces.hpp"
+#include "core/integrate.hpp"
+
+namespace dampbound {
+
+StepStats step(const Model& model, const Params& params, State& state, StepWorkspace& ws,
+               int watched) {
+  const size_t n = model.rest.size();
+  StepStats st;
+  st.zero_length_springs = internal_forces(model, state.x, ws.force);
+  ws.upper_bound.resize(n);
+  ws.gamma_eff.resize(n);
+  ws.status.resize(n);
+
+  // Bounds and effective damping from the state at t (SPEC 3-4).
+  for (size_t i = 0; i < n; ++i) {
+    if (model.fixed[i]) {
+      ws.upper_bound[i] = std::numeric_limits<double>::infinity();
+      ws.gamma_eff[i] = 0;
+      ws.status[i] = NodeStatus::fixed;
+      continue;
+    }
+    const double hi = upper_bound(state.v[i], ws.force[i], model.mass[i], params.dt);
+    const DampingChoice c =
+        effective_damping(params.policy, model.gamma[i], model.lower_bound[i], hi, params.factor);
+    ws.upper_bound[i] = hi;
+    ws.gamma_eff[i] = c.gamma;
+    ws.status[i] = c.status;
+    st.violating += c.violating;
+    st.unstabilisable += c.unstabilisable;
+    st.clamped += c.status == NodeStatus::clamped;
+  }
+  const size_t w = static_cast<size_t>(watched);
+  st.watched_lower = model.lower_bound[w];
+  st.watched_upper = ws.upper_bound[w];
+  st.watched_gamma = model.gamma[w];
+  st.watched_gamma_eff = ws.gamma_eff[w];
+
+  st.zero_length_springs += advance(model, params, state, ws);
+  state.time += params.dt;
+  st.iteration = ++state.iteration;
+  st.time = state.time;
+
+  // Displacements after the step; a non-finite coordinate makes the step non-finite.
+  double max_d = 0;
+  for (size_t i = 0; i < n; ++i) {
+    const double d = (state.x[i] - model.rest[i]).norm();
+    if (!std::isfinite(d)) {
+      st.finite = false;
+      max_d = std::numeric_limits<double>::infinity();
+    } else if (d > max_d) {
+      max_d = d;
+    }
+  }
+  st.max_displacement = max_d;
+  const double dw = (state.x[w] - model.rest[w]).norm();
+  st.watched_displacement = std::isfinite(dw) ? dw : std::numeric_limits<double>::infinity();
+  return st;
+}
+
+}  // namespace dampbound

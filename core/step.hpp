@@ -1,0 +1,45 @@
+#pragma once
+// One step of the simulation: bounds from the state at t, the policy's effective damping,
+// then the integrator (paper eqs. 3-4 by default). Every mode (GUI, run, figure, check,
+// sweep tests) calls this one function.
+#include <vector>
+
+#include "core/bounds.hpp"
+#include "core/model.hpp"
+
+namespace dampbound {
+
+/// Per-node values of the last step, kept between steps to avoid allocation; the GUI reads
+/// `status` to colour nodes.
+struct StepWorkspace {
+  std::vector<Vec3> force;          ///< F_i at t (internal force, SPEC 1)
+  std::vector<double> upper_bound;  ///< gamma_hi_i at t (eq. 6)
+  std::vector<double> gamma_eff;    ///< effective damping used this step
+  std::vector<NodeStatus> status;
+  std::vector<Vec3> scratch[8];  ///< integrator temporaries
+};
+
+/// What one step reports (SPEC 3, issue "core"): the watched node's bounds and displacement
+/// and the whole model's maximum displacement and counts.
+struct StepStats {
+  int iteration = 0;   ///< steps completed, counting from 1
+  double time = 0;     ///< s, after the step
+  double watched_displacement = 0;  ///< |x_c - X_c| after the step (cm)
+  double watched_lower = 0;         ///< gamma_lo of the watched node
+  double watched_upper = 0;         ///< gamma_hi of the watched node at t (may be +inf)
+  double watched_gamma = 0;         ///< the user's gamma of the watched node
+  double watched_gamma_eff = 0;     ///< its effective gamma this step
+  double max_displacement = 0;      ///< max_i |x_i - X_i| after the step (cm); inf if not finite
+  int violating = 0;                ///< free nodes whose effective gamma is outside the bounds
+  int unstabilisable = 0;           ///< free nodes with gamma_lo > gamma_hi
+  int clamped = 0;                  ///< free nodes whose gamma the policy changed, within bounds
+  int zero_length_springs = 0;      ///< springs skipped for having no direction
+  bool finite = true;               ///< every coordinate finite after the step
+};
+
+/// Advances `state` by params.dt. Uses model's per-node m_i, gamma_i, lower_bound (from
+/// set_params) and params.dt, policy, factor and integrator. `watched` is a node index.
+StepStats step(const Model& model, const Params& params, State& state, StepWorkspace& ws,
+               int watched);
+
+}  // namespace dampbound

@@ -1,0 +1,46 @@
+#pragma once
+// Internal to plot.cpp: the drawing primitives of the plot widget (text, data layers,
+// legend). Not part of the ui/ API; other code uses draw_plot().
+#include "ui/plot.hpp"
+
+#include <imgui.h>
+
+#include <string>
+
+namespace dampbound::ui::detail {
+
+/// A font at a pixel size (size includes io.FontGlobalScale).
+struct TextFont {
+  ImFont* font = nullptr;
+  float size = 13.0f;
+};
+
+/// Size of text in pixels.
+ImVec2 text_size(const TextFont& f, const std::string& s);
+/// Draws text with its top-left corner at pos.
+void draw_text(ImDrawList* dl, const TextFont& f, ImVec2 pos, ImU32 col, const std::string& s);
+/// Draws text rotated 90 degrees counter-clockwise (reading upwards), centred at c.
+void draw_text_vertical(ImDrawList* dl, const TextFont& f, ImVec2 c, ImU32 col,
+                        const std::string& s);
+/// Size of a tick label: "10" with a superscript exponent for pow10 ticks.
+ImVec2 tick_label_size(const TextFont& f, const Tick& t);
+/// Draws a tick label with its top-left corner at pos.
+void draw_tick_label(ImDrawList* dl, const TextFont& f, ImVec2 pos, ImU32 col, const Tick& t);
+
+/// Heat map cells (run-length merged, at most one cell per pixel), clipped to the area.
+void draw_heatmap(ImDrawList* dl, const PlotLayout& lay, const PlotHeatmap& hm);
+/// A shaded band between y_lo and y_hi, clipped to the area.
+void draw_band(ImDrawList* dl, const PlotLayout& lay, const PlotBand& band);
+/// A (maybe dashed) polyline through pixel points, drawn without miter spikes.
+void draw_polyline(ImDrawList* dl, const std::vector<ImVec2>& pts, ImU32 col, float thickness,
+                   bool dashed);
+/// A series: projected, clipped, decimated, drawn.
+void draw_series(ImDrawList* dl, const PlotLayout& lay, const PlotSeries& s);
+
+/// Legend box (series, bands, lines, heat map categories) at the spec's position.
+void draw_legend(ImDrawList* dl, const PlotLayout& lay, const PlotSpec& spec,
+                 const PlotStyle& style, const TextFont& f);
+/// Size of the legend box; (0, 0) when nothing has a label.
+ImVec2 legend_size(const PlotSpec& spec, const TextFont& f);
+
+}  // namespace dampbound::ui::detail
