@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# Installs every build and test dependency from Debian 12's packages. Nothing is downloaded
+# from anywhere else.
+set -euo pipefail
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+PACKAGES=(
+  cmake ninja-build g++ pkg-config git
+  libeigen3-dev libspectra-dev libtomlplusplus-dev libcli11-dev libstb-dev
+  libimgui-dev libglfw3-dev libgl-dev libegl-dev libegl-mesa0 libgl1-mesa-dri
+  libgtest-dev libbenchmark-dev
+  xvfb xauth fonts-dejavu-core
+)
+missing=()
+for p in "${PACKAGES[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  export DEBIAN_FRONTEND=noninteractive
+  $SUDO apt-get update -qq
+  $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+echo "dependencies: all ${#PACKAGES[@]} packages installed"

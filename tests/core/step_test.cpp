@@ -1,0 +1,136 @@
+// The paper's step (SPEC 2) against the closed-form solution of its own recurrence.
+#include "core/step.hpp"
+
+#include <gtest/gtest.h>
+
+#include <complex>
+#include <cstring>
+
+#include "core/session.hpp"
+#include "test_util.hpp"
+
+namespace dampbound {
+namespace {
+
+// For one anchored node (lambda = kappa/m, c = gamma/m) the step gives
+// x_{n+1} = (2 - c dt - lambda dt^2) x_n - (1 - c dt) x_{n-1}, x_1 = x_0 (1 - lambda dt^2),
+// so x_n = A z1^n + B z2^n with z1, z2 the roots of z^2 - (2 - c dt - lambda dt^2) z + 1 - c dt.
+double closed_form(double x0, double lambda, double c, double dt, int n) {
+  using C = std::complex<double>;
+  const double b = 2 - c * dt - lambda * dt * dt, q = 1 - c * dt;
+  const C disc = std::sqrt(C(b * b - 4 * q));
+  const C z1 = (b + disc) / 2.0, z2 = (b - disc) / 2.0;
+  const double x1 = x0 * (1 - lambda * dt * dt);
+  const C B = (x1 - x0 * z1) / (z2 - z1), A = x0 - B;
+  return (A * std::pow(z1, n) + B * std::pow(z2, n)).real();
+}
+
+struct OscCase {
+  double m, kappa, gamma, dt;
+};
+
+class StepClosedForm : public ::testing::TestWithParam<OscCase> {};
+
+TEST_P(StepClosedForm, MatchesRecurrence) {
+  const OscCase k = GetParam();
+  Params p;
+  p.m = k.m, p.kappa = k.kappa, p.gamma = k.gamma, p.dt = k.dt;
+  Model model = test::single_oscillator(p);
+  State s = rest_state(model);
+  const double x0 = 0.7;
+  s.x[0].y() = x0;
+  StepWorkspace ws;
+  for (int n = 1; n <= 300; ++n) {
+    step(model, p, s, ws, 0);
+    const double expected = closed_form(x0, k.kappa / k.m, k.gamma / k.m, k.dt, n);
+    ASSERT_NEAR(s.x[0].y(), expected, 1e-9 * (1 + std::abs(expected))) << "n=" << n;
+    ASSERT_EQ(s.x[0].x(), 0.0);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Oscillators, StepClosedForm,
+                         ::testing::Values(OscCase{0.001, 0.001, 0.0, 0.05},     // undamped
+                                           OscCase{0.001, 0.001, 0.0005, 0.05},  // under
+                                           OscCase{0.001, 0.001, 0.002, 0.05},   // critical
+                                           OscCase{0.001, 0.001, 0.01, 0.05},    // over
+                                           OscCase{0.005, 0.1, 0.01, 0.05}));
+
+TEST(Step, UsesNewVelocityForPosition) {
+  // One step by hand: a = (F - gamma v)/m, v1 = v0 + a dt, x1 = x0 + v1 dt (eqs. 3-4).
+  Params p;
+  p.m = 2, p.kappa = 3, p.gamma = 0.5, p.dt = 0.1;
+  Model model = test::single_oscillator(p);
+  State s = rest_state(model);
+  s.x[0] = Vec3(1, 0, 0);
+  s.v[0] = Vec3(0.4, 0, 0);
+  StepWorkspace ws;
+  const StepStats st = step(model, p, s, ws, 0);
+  const double a = (-3 * 1.0 - 0.5 * 0.4) / 2;
+  const double v1 = 0.4 + a * 0.1, x1 = 1 + v1 * 0.1;
+  EXPECT_DOUBLE_EQ(s.v[0].x(), v1);
+  EXPECT_DOUBLE_EQ(s.x[0].x(), x1);
+  EXPECT_EQ(st.iteration, 1);
+  EXPECT_DOUBLE_EQ(st.time, 0.1);
+  EXPECT_DOUBLE_EQ(st.watched_displacement, std::abs(x1));
+}
+
+TEST(Step, FixedNodeNeverMoves) {
+  SceneSpec scene = load_scene(test::source_path("scenes/two-node.toml"));
+  Session session(scene);
+  for (int k = 0; k < 50; ++k) session.step_once();
+  EXPECT_EQ(session.state().x[0], Vec3::Zero());
+  EXPECT_EQ(session.workspace().status[0], NodeStatus::fixed);
+  EXPECT_NE(session.state().x[1], scene.model.rest[1]);
+}
+
+TEST(Step, ExternalForceAccelerates) {
+  Params p;
+  p.m = 2, p.gamma = 0, p.dt = 0.5;
+  Model model;
+  add_node(model, Vec3::Zero());
+  model.external_force[0] = Vec3(0, -4, 0);
+  set_params(model, p);
+  State s = rest_state(model);
+  StepWorkspace ws;
+  step(model, p, s, ws, 0);
+  EXPECT_DOUBLE_EQ(s.v[0].y(), -1.0);   // a = -2, v = -1
+  EXPECT_DOUBLE_EQ(s.x[0].y(), -0.5);   // x = v_new dt
+}
+
+TEST(Step, ZeroLengthSpringIsCountedNotNaN) {
+  Params p;
+  Model model;
+  add_node(model, Vec3::Zero());
+  add_node(model, Vec3(1, 0, 0));
+  add_spring(model, 0, 1);
+  set_params(model, p);
+  State s = rest_state(model);
+  s.x[1] = s.x[0];  // both nodes on the same point: no direction
+  StepWorkspace ws;
+  const StepStats st = step(model, p, s, ws, 1);
+  EXPECT_EQ(st.zero_length_springs, 1);
+  EXPECT_TRUE(st.finite);
+  EXPECT_TRUE(s.x[1].allFinite());
+}
+
+TEST(Step, DeterministicTraces) {
+  SceneSpec scene = load_scene(test::source_path("scenes/paper-plane.toml"));
+  Params p = scene.params;
+  p.gamma = 0.0007;
+  p.policy = DampingPolicy::clamp;
+  Session a(scene, p, scene.rules), b(scene, p, scene.rules);
+  a.run_to_end();
+  b.run_to_end();
+  ASSERT_EQ(a.trace().size(), b.trace().size());
+  for (size_t k = 0; k < a.trace().size(); ++k) {
+    const StepStats &x = a.trace()[k], &y = b.trace()[k];
+    ASSERT_EQ(std::memcmp(&x.watched_displacement, &y.watched_displacement, sizeof(double)), 0);
+    ASSERT_EQ(std::memcmp(&x.watched_upper, &y.watched_upper, sizeof(double)), 0);
+    ASSERT_EQ(std::memcmp(&x.max_displacement, &y.max_displacement, sizeof(double)), 0);
+    ASSERT_EQ(x.violating, y.violating);
+  }
+  for (size_t i = 0; i < a.state().x.size(); ++i) ASSERT_EQ(a.state().x[i], b.state().x[i]);
+}
+
+}  // namespace
+}  // namespace dampbound
