@@ -358,6 +358,10 @@ void read_expectations(const Reader& r, const toml::table& root, SceneSpec& s) {
       x.violations_max = static_cast<long long>(r.non_negative(*n, "violations_max"));
     if (auto* n = t.get("violations_min"))
       x.violations_min = static_cast<long long>(r.non_negative(*n, "violations_min"));
+    if (!x.outcome && !x.iterations_min && !x.max_displacement_below && !x.unstabilisable_max &&
+        !x.violations_max && !x.violations_min)
+      r.fail(t, "[[expect]] asserts nothing: give outcome, iterations, max_displacement_below, "
+                "unstabilisable_max, violations_max or violations_min");
     s.expectations.push_back(x);
   }
 }
