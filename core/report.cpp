@@ -7,11 +7,24 @@
 
 namespace dampbound {
 
-void write_trace_csv(std::ostream& out, const std::vector<StepStats>& trace) {
-  out << "iteration,time,displacement,lower_bound,upper_bound,gamma,gamma_effective,"
+namespace {
+/// Quotes a CSV field when it holds a comma, a quote or a newline.
+std::string csv_field(const std::string& s) {
+  if (s.find_first_of(",\"\n") == std::string::npos) return s;
+  std::string q = "\"";
+  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+}  // namespace
+
+void write_trace_csv(std::ostream& out, const std::vector<StepStats>& trace,
+                     const std::string& run_label, bool header) {
+  const std::string prefix = run_label.empty() ? "" : csv_field(run_label) + ",";
+  if (header)
+    out << (run_label.empty() ? "" : "run,") << "iteration,time,displacement,lower_bound,upper_bound,gamma,gamma_effective,"
          "max_displacement,violating,unstabilisable,clamped,zero_length_springs\n";
   for (const StepStats& s : trace)
-    out << s.iteration << ',' << format_number(s.time) << ','
+    out << prefix << s.iteration << ',' << format_number(s.time) << ','
         << format_number(s.watched_displacement) << ',' << format_number(s.watched_lower) << ','
         << format_number(s.watched_upper) << ',' << format_number(s.watched_gamma) << ','
         << format_number(s.watched_gamma_eff) << ',' << format_number(s.max_displacement) << ','

@@ -1,0 +1,85 @@
+#include "core/figures.hpp"
+
+#include <ostream>
+
+#include "core/io.hpp"
+#include "core/report.hpp"
+#include "core/session.hpp"
+
+namespace dampbound {
+
+namespace {
+FigureRun make_run(const std::string& label, const Params& p, const StopRules& r) {
+  FigureRun run;
+  run.label = label;
+  run.params = p;
+  run.rules = r;
+  return run;
+}
+}  // namespace
+
+void run_figure(const SceneSpec& scene, FigureData& figure) {
+  for (FigureRun& run : figure.runs) {
+    Session session(scene, run.params, run.rules);
+    run.result = session.run_to_end();
+    run.trace = session.trace();
+  }
+  figure.watched = scene.watched;
+  if (!figure.runs.empty())
+    figure.restore_threshold =
+        figure.runs.front().rules.restore_fraction * figure.runs.front().rules.reference;
+}
+
+FigureData figure_fig1(const SceneSpec& plane) {
+  FigureData f;
+  f.name = "fig1";
+  f.title = "Fig. 1: kappa = m = 0.001, dt = 0.05 s, fixed gamma (lower bound 0.002)";
+  Params p = plane.params;
+  p.m = 0.001, p.kappa = 0.001, p.dt = 0.05, p.policy = DampingPolicy::fixed;
+  StopRules r = plane.rules;
+  r.max_iterations = 1000;
+  for (double gamma : {0.0005, 0.001, 0.002}) {
+    p.gamma = gamma;
+    f.runs.push_back(make_run("gamma = " + format_number(gamma), p, r));
+  }
+  run_figure(plane, f);
+  return f;
+}
+
+FigureData figure_fig2(const SceneSpec& plane) {
+  FigureData f;
+  f.name = "fig2";
+  f.title = "Fig. 2: kappa = 0.1, m = 0.005, dt = 0.05 s, gamma = factor x upper bound (eq. 6)";
+  f.log_y = true;
+  Params p = plane.params;
+  p.m = 0.005, p.kappa = 0.1, p.dt = 0.05, p.policy = DampingPolicy::upper;
+  StopRules r = plane.rules;
+  r.max_iterations = 10000;
+  for (double factor : {1.0, 1.05}) {
+    p.factor = factor;
+    f.runs.push_back(make_run("gamma = " + format_number(factor) + " x upper", p, r));
+  }
+  run_figure(plane, f);
+  return f;
+}
+
+FigureData figure_scene(const SceneSpec& scene) {
+  FigureData f;
+  f.name = scene.name.empty() ? "scene" : scene.name;
+  f.title = scene.description.empty() ? f.name : scene.description;
+  if (scene.runs.empty())
+    f.runs.push_back(make_run(f.name, scene.params, scene.rules));
+  for (const RunSpec& r : scene.runs) f.runs.push_back(make_run(r.label, r.params, r.rules));
+  run_figure(scene, f);
+  return f;
+}
+
+void write_figure_csv(std::ostream& out, const FigureData& figure) {
+  bool header = true;
+  for (const FigureRun& run : figure.runs) {
+    write_trace_csv(out, run.trace, run.label, header);
+    header = false;
+  }
+}
+
+}  // namespace dampbound
