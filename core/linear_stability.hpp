@@ -2,17 +2,51 @@
 // Exact linear stability of a step (SPEC 7): linearise the internal forces at a state
 // (tangent stiffness K), take the largest eigenvalue lambda_max of M^-1 K with an iterative
 // solver (never a dense decomposition of a large mesh), and from it the exact damping
-// interval and the largest stable dt.
+// interval and the largest stable dt. Per-integrator mode analysis is in
+// linear_stability_modes.hpp; docs/criteria.md has the derivations.
+#include <Eigen/SparseCore>
 #include <vector>
 
 #include "core/model.hpp"
 
 namespace dampbound {
 
+using SparseMatrix = Eigen::SparseMatrix<double>;
+
+/// The 3-block of each node among the free nodes (block b = rows 3b..3b+2), -1 for a fixed
+/// node. Fixed nodes never move, so they have no degree of freedom in any linear analysis.
+std::vector<int> free_blocks(const Model& model, int* free_count = nullptr);
+
+/// Tangent stiffness K = -dF/dx over the free nodes (3 n_free square, symmetric), at
+/// positions x. Per spring (i, j), l = |x_j - x_i|, d = (x_j - x_i)/l:
+///   B = kappa_ij [ (1 - l0/l) I + (l0/l) d d^T ],  K_ii += B, K_jj += B, K_ij = K_ji -= B;
+/// per anchor K_ii += kappa_a,i I. At rest (l = l0) B = kappa d d^T. A spring of zero length
+/// is skipped, as in internal_forces (SPEC 1). `clamp_compression` replaces (1 - l0/l) by
+/// max(0, 1 - l0/l) so that K stays positive semi-definite (what implicit Euler solves with;
+/// exact at rest and under tension).
+SparseMatrix tangent_stiffness(const Model& model, const std::vector<Vec3>& x,
+                               bool clamp_compression = false);
+
+/// M^-1/2 K M^-1/2 over the free nodes: symmetric, with the eigenvalues of M^-1 K.
+SparseMatrix mass_weighted(const Model& model, const SparseMatrix& K);
+
+/// Largest and smallest algebraic eigenvalue of a symmetric sparse matrix: Lanczos
+/// (Spectra::SymEigsSolver), dense only below 13 rows. Tolerance 1e-10 relative.
+double largest_eigenvalue(const SparseMatrix& A);
+double smallest_eigenvalue(const SparseMatrix& A);
+
 /// Largest eigenvalue of M^-1 K, K the tangent stiffness of springs and anchors at positions
 /// x (at rest only spring directions and anchors contribute), over the free nodes.
 /// Units 1/s^2. Iterative (Lanczos / Spectra); exact to ~1e-10 relative.
 double max_stiffness_eigenvalue(const Model& model, const std::vector<Vec3>& x);
+
+/// Both ends of the spectrum of M^-1 K at x (1/s^2): what the per-mode analysis of any
+/// integrator needs when gamma/m is uniform.
+struct StiffnessSpectrum {
+  double lambda_min = 0;
+  double lambda_max = 0;
+};
+StiffnessSpectrum stiffness_spectrum(const Model& model, const std::vector<Vec3>& x);
 
 /// The exact limits of the paper's semi-implicit Euler step for uniform c = gamma/m
 /// (SPEC 7): stable iff 0 < c dt < 2 and lambda dt^2 < 4 - 2 c dt for every mode.
@@ -24,5 +58,18 @@ struct LinearLimits {
 
 /// Limits for mass m and step dt from lambda_max.
 LinearLimits linear_limits(double lambda_max, double m, double dt);
+
+/// Largest stable dt of the semi-implicit step for uniform c = gamma/m: the root of
+/// lambda_max dt^2 + 2 c dt = 4, dt = (sqrt(c^2 + 4 lambda_max) - c) / lambda_max.
+double semi_implicit_dt_max(double lambda_max, double c);
+
+/// Non-uniform damping (gamma_i/m_i not all equal) for the semi-implicit step. With all
+/// c_i = gamma_i/m_i > 0 and K positive definite, the step is stable iff
+///   S = dt^2 M^-1/2 K M^-1/2 + 2 dt M^-1 Gamma  has every eigenvalue < 4
+/// (an eigenvalue of the amplification matrix can leave the unit disc only through z = -1,
+/// where det(4M - 2 dt Gamma - dt^2 K) = 0; docs/criteria.md). Returns lambda_max(S).
+/// `gamma` holds gamma_i per node (fixed nodes ignored).
+double semi_implicit_stability_index(const Model& model, const SparseMatrix& K_weighted,
+                                     const std::vector<double>& gamma, double dt);
 
 }  // namespace dampbound
