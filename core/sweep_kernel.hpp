@@ -1,0 +1,89 @@
+#pragma once
+// The batched sweep kernel: many trials of one scene stepped together, one trial per SIMD
+// lane (structure of arrays), each with its own m, kappa, gamma, dt and factor. It mirrors
+// step() (core/step.cpp) operation by operation in the same order, so on the same trial it
+// gives the same trajectory bit for bit (the build has -ffp-contract=off), and the same
+// outcome, iteration and counts as Session::run_to_end. A lane whose trial is over (restored,
+// diverged, not restored) is refilled with the next trial at once.
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include "core/protocol.hpp"
+#include "core/scene.hpp"
+
+namespace dampbound {
+
+/// What varies from trial to trial in a sweep (units as in Params).
+struct TrialParams {
+  double m = 0.001;
+  double kappa = 0.001;
+  double gamma = 0;
+  double dt = 0.05;
+  double factor = 1;
+};
+
+/// What a sweep keeps of a trial: RunResult without the time.
+struct TrialResult {
+  Outcome outcome = Outcome::running;
+  int iterations = 0;
+  double max_displacement = 0;  ///< cm, at the last iteration; inf when not finite
+  long long violations = 0;     ///< node-steps outside [gamma_lo, gamma_hi]
+  long long unstabilisable = 0;  ///< node-steps with gamma_lo > gamma_hi
+  long long clamped = 0;
+  long long zero_length_springs = 0;
+};
+
+/// The same numbers from a RunResult (Session::run_to_end, run_protocol).
+TrialResult to_trial_result(const RunResult& r);
+
+/// Params of a scene with a trial's values and the sweep's policy filled in.
+Params trial_params(const Params& base, DampingPolicy policy, const TrialParams& t);
+
+/// Hands out the next trial: fills `id` and `params`, or returns false when none is left.
+/// Called from the kernel's own thread only.
+using TrialSource = std::function<bool(std::size_t& id, TrialParams& params)>;
+/// Receives a finished trial.
+using TrialSink = std::function<void(std::size_t id, const TrialResult& result)>;
+
+/// Why the batched kernel cannot run a scene ("" when it can): cuts (topology changes
+/// mid-run) and integrators other than the paper's semi-implicit Euler and forward Euler.
+std::string batch_kernel_unsupported(const SceneSpec& scene);
+
+class BatchKernel {
+ public:
+  static constexpr int kLanes = 8;
+
+  /// Topology, scales, external forces, fixed nodes and initial state from `scene`; the
+  /// integrator from scene.params. Throws std::invalid_argument when
+  /// batch_kernel_unsupported(scene) is not empty.
+  BatchKernel(const SceneSpec& scene, DampingPolicy policy, const StopRules& rules);
+  ~BatchKernel();
+  BatchKernel(const BatchKernel&) = delete;
+  BatchKernel& operator=(const BatchKernel&) = delete;
+
+  /// Steps trials from `source` until it is empty and every lane has finished; each result
+  /// goes to `sink` as soon as its trial ends. Returns the lane-steps taken by real trials.
+  std::uint64_t run(const TrialSource& source, const TrialSink& sink);
+
+  /// Springs plus anchors evaluated per trial step (the benchmark's unit of work).
+  long long spring_evaluations_per_step() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// Convenience for tests and small sweeps: runs `trials` with the batched kernel on one
+/// thread and returns their results in order.
+std::vector<TrialResult> run_batched(const SceneSpec& scene, DampingPolicy policy,
+                                     const StopRules& rules,
+                                     const std::vector<TrialParams>& trials);
+
+/// The reference: each trial through Session::run_to_end (the one step() of core).
+TrialResult run_reference(const SceneSpec& scene, DampingPolicy policy, const StopRules& rules,
+                          const TrialParams& trial);
+
+}  // namespace dampbound

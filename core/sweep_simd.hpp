@@ -1,0 +1,61 @@
+#pragma once
+// Lane vectors for the batched sweep kernel (core/sweep_kernel.cpp): one double per trial,
+// kLanes trials side by side. GCC/Clang vector extensions give + - * / and comparisons lane by
+// lane with IEEE rounding, exactly like the scalar code of step(); sqrt goes through the
+// matching SIMD instruction (also correctly rounded). With AVX-512 a vector is one zmm
+// register; on narrower machines the compiler splits it into ymm/xmm operations.
+#include <cmath>
+#include <cstdint>
+#if defined(__x86_64__) || defined(__i386__)
+#include <immintrin.h>
+#endif
+
+namespace dampbound::simd {
+
+/// Trials per vector: 8 doubles = 64 bytes = one AVX-512 register.
+constexpr int kLanes = 8;
+
+typedef double vd __attribute__((vector_size(kLanes * sizeof(double))));
+typedef std::int64_t vl __attribute__((vector_size(kLanes * sizeof(std::int64_t))));
+
+/// Every lane = x (keeps the sign of a zero, unlike `vd{} + x`).
+inline vd splat(double x) {
+  vd r;
+  for (int l = 0; l < kLanes; ++l) r[l] = x;
+  return r;
+}
+
+inline vl splat_int(std::int64_t x) {
+  vl r;
+  for (int l = 0; l < kLanes; ++l) r[l] = x;
+  return r;
+}
+
+/// Correctly rounded square root of every lane (IEEE 754, same as std::sqrt).
+inline vd sqrt(vd x) {
+#if defined(__AVX512F__)
+  // The masked form with every lane selected: GCC 12's _mm512_sqrt_pd reads an undefined
+  // register and trips -Wmaybe-uninitialized.
+  const __m512d v = reinterpret_cast<__m512d>(x);
+  return reinterpret_cast<vd>(_mm512_mask_sqrt_pd(v, static_cast<__mmask8>(0xFF), v));
+#elif defined(__AVX__)
+  vd r;
+  __m256d lo, hi;
+  __builtin_memcpy(&lo, &x, sizeof lo);
+  __builtin_memcpy(&hi, reinterpret_cast<const char*>(&x) + sizeof lo, sizeof hi);
+  lo = _mm256_sqrt_pd(lo);
+  hi = _mm256_sqrt_pd(hi);
+  __builtin_memcpy(&r, &lo, sizeof lo);
+  __builtin_memcpy(reinterpret_cast<char*>(&r) + sizeof lo, &hi, sizeof hi);
+  return r;
+#else
+  vd r;
+  for (int l = 0; l < kLanes; ++l) r[l] = std::sqrt(x[l]);
+  return r;
+#endif
+}
+
+/// Lane-wise `mask ? a : b` (mask lanes are all ones or zero, as comparisons give).
+inline vd select(vl mask, vd a, vd b) { return mask ? a : b; }
+
+}  // namespace dampbound::simd
