@@ -5,6 +5,7 @@
 
 #include <cfloat>
 #include <cmath>
+#include <set>
 #include <stdexcept>
 
 #include "core/session.hpp"
@@ -46,6 +47,58 @@ bool all_equal(const std::vector<double>& v) {
   for (double x : v)
     if (x != v.front()) return false;
   return true;
+}
+
+/// The order in which the kernel applies the springs. Each node's force must receive its
+/// springs' contributions in the list order of step() (floating-point addition is not
+/// associative), but springs on different nodes may be interleaved freely. Consecutive
+/// springs of the list often share a node, which chains each spring's force update on the
+/// previous one through memory; this picks, among the springs whose nodes have no earlier
+/// spring pending, the first one that shares no node with the last few applied, so the
+/// CPU can overlap their square roots and divisions.
+std::vector<SpringData> schedule_springs(const std::vector<SpringData>& list, size_t nodes) {
+  constexpr int kWindow = 6;
+  const size_t count = list.size();
+  std::vector<std::vector<size_t>> incident(nodes);
+  for (size_t s = 0; s < count; ++s) {
+    incident[static_cast<size_t>(list[s].i)].push_back(s);
+    if (list[s].j != list[s].i) incident[static_cast<size_t>(list[s].j)].push_back(s);
+  }
+  std::vector<size_t> next(nodes, 0);
+  auto is_ready = [&](size_t s) {
+    const size_t i = static_cast<size_t>(list[s].i), j = static_cast<size_t>(list[s].j);
+    return incident[i][next[i]] == s && incident[j][next[j]] == s;
+  };
+  std::set<size_t> ready;
+  for (size_t s = 0; s < count; ++s)
+    if (is_ready(s)) ready.insert(s);
+  std::vector<SpringData> out;
+  out.reserve(count);
+  std::vector<long> last_used(nodes, -kWindow - 1);
+  while (!ready.empty()) {
+    const long t = static_cast<long>(out.size());
+    size_t pick = *ready.begin();
+    for (size_t s : ready) {
+      if (t - last_used[static_cast<size_t>(list[s].i)] > kWindow &&
+          t - last_used[static_cast<size_t>(list[s].j)] > kWindow) {
+        pick = s;
+        break;
+      }
+    }
+    ready.erase(pick);
+    out.push_back(list[pick]);
+    for (int end : {list[pick].i, list[pick].j}) {
+      const size_t e = static_cast<size_t>(end);
+      last_used[e] = t;
+      if (next[e] < incident[e].size() && incident[e][next[e]] == pick) ++next[e];
+    }
+    for (int end : {list[pick].i, list[pick].j}) {
+      const size_t e = static_cast<size_t>(end);
+      if (next[e] < incident[e].size() && is_ready(incident[e][next[e]]))
+        ready.insert(incident[e][next[e]]);
+    }
+  }
+  return out;
 }
 
 }  // namespace
@@ -133,6 +186,7 @@ struct BatchKernel::Impl {
       a = std::max(a, sp.kappa_scale);
       b = std::max(b, sp.kappa_scale);
     }
+    springs = schedule_springs(springs, n);
     uniform = n > 0 && all_equal(mass_scale) && all_equal(gamma_scale) &&
               all_equal(kappa_max_scale);
     blocks.resize(n);

@@ -1,0 +1,105 @@
+// Spring evaluations per second (springs plus anchors, per trial step) of the batched sweep
+// kernel and of the plain step(), on the paper-plane scene (SPEC 5: 3745 springs + 1296
+// anchors = 5041 per trial step). Trials are kept running (no restore, no divergence) so
+// every lane is busy: m = kappa = 0.001, gamma = 0.25 * lower bound.
+#include <benchmark/benchmark.h>
+
+#include <atomic>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "core/bounds.hpp"
+#include "core/scene.hpp"
+#include "core/step.hpp"
+#include "core/sweep_kernel.hpp"
+
+namespace {
+
+using namespace dampbound;
+
+const SceneSpec& paper_plane() {
+  static const SceneSpec s =
+      load_scene(std::string(DAMPBOUND_SOURCE_DIR) + "/scenes/paper-plane.toml");
+  return s;
+}
+
+TrialParams busy_trial(int k) {
+  TrialParams t;
+  t.m = 0.001 + 1e-6 * k;
+  t.kappa = 0.001;
+  t.gamma = 0.25 * lower_bound(t.m, t.kappa);
+  return t;
+}
+
+/// `steps` iterations of kLanes trials per kernel, `threads` kernels side by side.
+void BM_BatchedKernel(benchmark::State& state) {
+  const int threads = static_cast<int>(state.range(0));
+  const auto policy = static_cast<DampingPolicy>(state.range(1));
+  const int steps = 200;
+  StopRules rules = paper_plane().rules;
+  rules.max_iterations = steps;
+  long long per_step = 0;
+  std::uint64_t lane_steps_total = 0;
+  for (auto _ : state) {
+    std::atomic<std::uint64_t> lane_steps{0};
+    std::vector<std::thread> pool;
+    for (int t = 0; t < threads; ++t)
+      pool.emplace_back([&, t] {
+        BatchKernel kernel(paper_plane(), policy, rules);
+        per_step = kernel.spring_evaluations_per_step();
+        int handed = 0;
+        const std::uint64_t n = kernel.run(
+            [&](std::size_t& id, TrialParams& p) {
+              if (handed == BatchKernel::kLanes) return false;
+              id = static_cast<std::size_t>(handed);
+              p = busy_trial(t * 100 + handed++);
+              return true;
+            },
+            [](std::size_t, const TrialResult&) {});
+        lane_steps += n;
+      });
+    for (auto& th : pool) th.join();
+    lane_steps_total += lane_steps.load();
+  }
+  state.counters["spring_evals_per_s"] = benchmark::Counter(
+      static_cast<double>(lane_steps_total) * static_cast<double>(per_step),
+      benchmark::Counter::kIsRate);
+  state.counters["trial_steps_per_s"] =
+      benchmark::Counter(static_cast<double>(lane_steps_total), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_BatchedKernel)
+    ->ArgNames({"threads", "policy"})
+    ->Args({1, static_cast<int>(DampingPolicy::fixed)})
+    ->Args({2, static_cast<int>(DampingPolicy::fixed)})
+    ->Args({2, static_cast<int>(DampingPolicy::upper)})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+/// The plain step() of core, one trial, one thread.
+void BM_PlainStep(benchmark::State& state) {
+  const SceneSpec& scene = paper_plane();
+  Params params = scene.params;
+  const TrialParams t = busy_trial(0);
+  params.m = t.m;
+  params.kappa = t.kappa;
+  params.gamma = t.gamma;
+  const Model model = make_model(scene, params);
+  State s = initial_state(scene);
+  StepWorkspace ws;
+  long long steps = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(step(model, params, s, ws, scene.watched));
+    ++steps;
+  }
+  const double per_step = model.spring_count() + model.anchor_count();
+  state.counters["spring_evals_per_s"] =
+      benchmark::Counter(static_cast<double>(steps) * per_step, benchmark::Counter::kIsRate);
+  state.counters["trial_steps_per_s"] =
+      benchmark::Counter(static_cast<double>(steps), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_PlainStep)->Unit(benchmark::kMicrosecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();
