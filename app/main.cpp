@@ -49,7 +49,8 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "dampbound: error: %s\n", e.what());
     return 2;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "dampbound: internal error: %s\n", e.what());
+    // Environment failures (no EGL, no display, a file system error): one line, exit 3.
+    std::fprintf(stderr, "dampbound: error: %s\n", e.what());
     return 3;
   }
   return 2;

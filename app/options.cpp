@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <cstdio>
 
 #include "core/error.hpp"
 
@@ -71,6 +72,17 @@ void ParamFlags::apply(Params& p, StopRules& rules) const {
   if (policy_opt && policy_opt->count()) p.policy = *parse_policy(policy);
   if (integrator_opt && integrator_opt->count()) p.integrator = *parse_integrator(integrator);
   if (max_iter_opt && max_iter_opt->count()) rules.max_iterations = max_iter;
+}
+
+void parse_size(const std::string& text, const char* flag, int& width, int& height) {
+  int w = 0, h = 0;
+  char x = 0, extra = 0;
+  if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || x != 'x' || w < 64 ||
+      h < 64 || w > 8192 || h > 8192)
+    throw InputError(std::string(flag) + ": '" + text +
+                     "' is not a size WxH with each side in 64..8192");
+  width = w;
+  height = h;
 }
 
 SceneSpec load_scene_arg(const std::string& arg) {

@@ -28,6 +28,9 @@ struct ParamFlags {
   void apply(Params& params, StopRules& rules) const;
 };
 
+/// Parses "WxH" (e.g. 1200x700) given to `flag`; InputError naming the flag otherwise.
+void parse_size(const std::string& text, const char* flag, int& width, int& height);
+
 /// Loads a scene file; a file name without a slash that does not exist is also looked up in
 /// the scenes/ folder of the source tree, with ".toml" appended when missing.
 SceneSpec load_scene_arg(const std::string& arg);
