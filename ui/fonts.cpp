@@ -1,5 +1,6 @@
 #include "ui/fonts.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -58,7 +59,9 @@ LoadedFonts load_fonts(const FontOptions& options) {
   if (options.prefer_ttf && !options.ttf_path.empty()) {
     fonts.body = add_ttf(options.ttf_path, options.size_px);
     if (fonts.body != nullptr) {
-      fonts.title = add_ttf(options.ttf_path, std::round(options.size_px * options.title_scale));
+      const float title_px = std::round(options.size_px * options.title_scale);
+      if (!options.title_ttf_path.empty()) fonts.title = add_ttf(options.title_ttf_path, title_px);
+      if (fonts.title == nullptr) fonts.title = add_ttf(options.ttf_path, title_px);
       if (fonts.title == nullptr) fonts.title = fonts.body;
       fonts.ttf = true;
     }

@@ -17,9 +17,11 @@ struct FontOptions {
   float title_scale = 1.3f;   ///< title font = size_px * title_scale
   bool prefer_ttf = true;     ///< false: always the built-in font
   std::string ttf_path = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
+  /// Title face; when missing the body face is used at the title size.
+  std::string title_ttf_path = "/usr/share/fonts/truetype/dejavu/DejaVuSans-Bold.ttf";
 };
 
-/// Defaults: 16 px DejaVu Sans, 1.3x for titles.
+/// Defaults: 16 px DejaVu Sans, titles 1.3x in DejaVu Sans Bold.
 FontOptions default_font_options();
 
 /// Fonts loaded into the current ImGui context's atlas.

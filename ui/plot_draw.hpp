@@ -2,6 +2,7 @@
 // Internal to plot.cpp: the drawing primitives of the plot widget (text, data layers,
 // legend). Not part of the ui/ API; other code uses draw_plot().
 #include "ui/plot.hpp"
+#include "ui/plot_geometry.hpp"
 
 #include <imgui.h>
 

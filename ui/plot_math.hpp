@@ -1,6 +1,7 @@
 #pragma once
-// The pure geometry of a plot: data ranges, tick values and labels, the data <-> pixel map,
-// clipping and decimation. No GL context, no ImGui context: unit-tested in plot_test.cpp.
+// The pure maths of a plot axis: data ranges, tick values and labels, the data <-> pixel map.
+// No GL context, no ImGui context: unit-tested in plot_test.cpp. Clipping and decimation of
+// what is drawn are in plot_geometry.hpp.
 #include "ui/plot_spec.hpp"
 
 #include <string>
@@ -92,33 +93,5 @@ std::vector<Tick> axis_ticks(const Range& r, bool log, int target);
 /// Label of value v among ticks `step` apart on an axis whose largest |value| is `magnitude`:
 /// fixed decimals enough for the step, or d.de±k form for very large or very small numbers.
 std::string format_tick(double v, double step, double magnitude);
-
-/// Clips segment a-b to rect (Liang-Barsky). Returns false when it lies fully outside;
-/// otherwise a and b are moved onto the clipped ends.
-bool clip_segment(double& ax, double& ay, double& bx, double& by, const PixelRect& rect);
-
-/// Maps series points to pixels and splits them into polylines: an invalid point ends a
-/// polyline, each segment is clipped to `clip`, and a segment that leaves `clip` ends the
-/// polyline at the border (the next visible piece starts a new one).
-std::vector<std::vector<ImVec2>> project_polylines(const std::vector<double>& x,
-                                                   const std::vector<double>& y,
-                                                   const AxisMap& mx, const AxisMap& my,
-                                                   const PixelRect& clip);
-
-/// Min/max decimation in pixel space: each run of consecutive points within one pixel column
-/// (floor(x)) becomes its first, lowest, highest and last point, in their original order, so
-/// every extreme survives. Output has at most 4 points per run.
-std::vector<ImVec2> decimate_columns(const std::vector<ImVec2>& pts);
-
-/// Clips a convex polygon to rect (Sutherland-Hodgman); the result is convex, maybe empty.
-std::vector<ImVec2> clip_polygon(const std::vector<ImVec2>& poly, const PixelRect& rect);
-
-/// Splits a polyline where it turns back by more than ~120 degrees, so that thick-line joins
-/// (miters) never spike; consecutive pieces share their joint point.
-std::vector<std::vector<ImVec2>> split_sharp_turns(const std::vector<ImVec2>& pts);
-
-/// Pieces of the polyline that are "on" in a dash pattern of `on` px drawn, `off` px skipped.
-std::vector<std::vector<ImVec2>> dash_polyline(const std::vector<ImVec2>& pts, float on,
-                                               float off);
 
 }  // namespace dampbound::ui

@@ -79,8 +79,9 @@ struct AxisSpec {
   std::optional<double> max;
 };
 
-/// Where the legend box goes. Outside puts it right of the plot area, shrinking it.
-enum class LegendPos { TopRight, TopLeft, BottomRight, BottomLeft, Outside, Hidden };
+/// Where the legend box goes. Auto picks the inside corner that hides the least data;
+/// Outside puts it right of the plot area, shrinking the area.
+enum class LegendPos { Auto, TopRight, TopLeft, BottomRight, BottomLeft, Outside, Hidden };
 
 /// Everything one plot shows. Drawing order: heatmap, bands, grid, lines, series, legend.
 struct PlotSpec {
@@ -92,7 +93,7 @@ struct PlotSpec {
   std::vector<PlotHLine> hlines;
   std::vector<PlotVLine> vlines;
   PlotHeatmap heatmap;
-  LegendPos legend = LegendPos::TopRight;
+  LegendPos legend = LegendPos::Auto;
 };
 
 /// The i-th colour of a 10-colour qualitative palette (wraps around), opaque.

@@ -1,0 +1,136 @@
+#include "ui/glfw_host.hpp"
+
+#include <imgui.h>
+#include <backends/imgui_impl_glfw.h>
+
+#include <GL/gl.h>
+#include <GLFW/glfw3.h>
+
+#include <chrono>
+#include <mutex>
+#include <stdexcept>
+
+namespace dampbound::ui {
+
+namespace {
+
+std::mutex g_glfw_mutex;
+int g_glfw_users = 0;
+std::string g_glfw_error;  ///< the last message GLFW reported
+
+void on_glfw_error(int /*code*/, const char* description) {
+  g_glfw_error = description != nullptr ? description : "unknown GLFW error";
+}
+
+/// glfwInit once for all hosts; glfwTerminate when the last one goes.
+void acquire_glfw() {
+  std::lock_guard<std::mutex> lock(g_glfw_mutex);
+  if (g_glfw_users == 0) {
+    g_glfw_error.clear();
+    glfwSetErrorCallback(on_glfw_error);
+    if (glfwInit() != GLFW_TRUE) {
+      throw std::runtime_error("GLFW: cannot open a window: " +
+                               (g_glfw_error.empty() ? std::string("glfwInit failed") : g_glfw_error));
+    }
+  }
+  ++g_glfw_users;
+}
+
+void release_glfw() {
+  std::lock_guard<std::mutex> lock(g_glfw_mutex);
+  if (--g_glfw_users == 0) glfwTerminate();
+}
+
+}  // namespace
+
+WindowOptions default_window_options() { return WindowOptions{}; }
+
+struct GlfwHost::Impl {
+  WindowOptions options;
+  GLFWwindow* window = nullptr;
+  std::unique_ptr<FrameRenderer> renderer;
+  bool platform_backend = false;
+  std::string renderer_name;
+};
+
+GlfwHost::GlfwHost(const WindowOptions& options) : impl_(std::make_unique<Impl>()) {
+  impl_->options = options;
+  acquire_glfw();
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+  glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+  glfwWindowHint(GLFW_VISIBLE, options.visible ? GLFW_TRUE : GLFW_FALSE);
+  impl_->window = glfwCreateWindow(options.width, options.height, options.title.c_str(), nullptr, nullptr);
+  if (impl_->window == nullptr) {
+    const std::string why = g_glfw_error.empty() ? "glfwCreateWindow failed" : g_glfw_error;
+    release_glfw();
+    throw std::runtime_error("GLFW: cannot open an OpenGL 3.3 window: " + why);
+  }
+  glfwMakeContextCurrent(impl_->window);
+  glfwSwapInterval(options.vsync ? 1 : 0);
+  try {
+    impl_->renderer = std::make_unique<FrameRenderer>(options.render);
+  } catch (...) {
+    glfwDestroyWindow(impl_->window);
+    release_glfw();
+    throw;
+  }
+  impl_->platform_backend = ImGui_ImplGlfw_InitForOpenGL(impl_->window, true);
+  impl_->renderer_name = gl_string(GL_RENDERER);
+}
+
+GlfwHost::~GlfwHost() {
+  glfwMakeContextCurrent(impl_->window);
+  ImGui::SetCurrentContext(impl_->renderer->context());
+  if (impl_->platform_backend) ImGui_ImplGlfw_Shutdown();
+  impl_->renderer.reset();
+  glfwDestroyWindow(impl_->window);
+  release_glfw();
+}
+
+WindowRun GlfwHost::run(const FrameFn& fn) {
+  using Clock = std::chrono::steady_clock;
+  WindowRun result;
+  GLFWwindow* win = impl_->window;
+  const WindowOptions& opt = impl_->options;
+  const double t0 = glfwGetTime();
+  const auto wall0 = Clock::now();
+  FrameInfo info;
+  while (glfwWindowShouldClose(win) == GLFW_FALSE) {
+    glfwPollEvents();
+    // Another host (e.g. an EGL export) may have taken the thread's context meanwhile.
+    glfwMakeContextCurrent(win);
+    int fb_w = 0, fb_h = 0, w = 0, h = 0;
+    glfwGetFramebufferSize(win, &fb_w, &fb_h);
+    glfwGetWindowSize(win, &w, &h);
+    if (fb_w <= 0 || fb_h <= 0) {  // minimised
+      glfwWaitEventsTimeout(0.05);
+      continue;
+    }
+    ImGui::SetCurrentContext(impl_->renderer->context());
+    if (impl_->platform_backend) ImGui_ImplGlfw_NewFrame();
+    info.index = result.frames;
+    info.width = w;
+    info.height = h;
+    info.time_s = glfwGetTime() - t0;
+    impl_->renderer->frame(info, fn, impl_->platform_backend ? 0.0f : 1.0f / 60.0f, fb_w, fb_h);
+    if (result.frames == opt.screenshot_frame) {
+      glReadBuffer(GL_BACK);
+      result.screenshot = read_pixels(fb_w, fb_h);
+    }
+    glfwSwapBuffers(win);
+    ++result.frames;
+    if (info.close) glfwSetWindowShouldClose(win, GLFW_TRUE);
+    if (opt.max_frames > 0 && result.frames >= opt.max_frames) break;
+  }
+  if (result.frames > 0) {
+    result.mean_frame_ms =
+        std::chrono::duration<double, std::milli>(Clock::now() - wall0).count() / result.frames;
+  }
+  return result;
+}
+
+const std::string& GlfwHost::gl_renderer() const { return impl_->renderer_name; }
+
+}  // namespace dampbound::ui

@@ -1,0 +1,263 @@
+#include "ui/plot.hpp"
+
+#include "ui/fonts.hpp"
+#include "ui/plot_draw.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace dampbound::ui {
+
+using detail::TextFont;
+
+ImU32 palette_color(int i) {
+  // A qualitative 10-colour palette (blue, orange, green, red, purple, brown, pink, grey,
+  // olive, cyan), readable on white and on dark grey.
+  static const ImU32 kColors[10] = {
+      IM_COL32(31, 119, 180, 255), IM_COL32(255, 127, 14, 255), IM_COL32(44, 160, 44, 255),
+      IM_COL32(214, 39, 40, 255),  IM_COL32(148, 103, 189, 255), IM_COL32(140, 86, 75, 255),
+      IM_COL32(227, 119, 194, 255), IM_COL32(127, 127, 127, 255), IM_COL32(188, 189, 34, 255),
+      IM_COL32(23, 190, 207, 255)};
+  return kColors[((i % 10) + 10) % 10];
+}
+
+ImU32 with_alpha(ImU32 color, int alpha) {
+  const ImU32 a = static_cast<ImU32>(std::clamp(alpha, 0, 255));
+  return (color & ~IM_COL32_A_MASK) | (a << IM_COL32_A_SHIFT);
+}
+
+PlotStyle plot_style_light() {
+  PlotStyle s;
+  s.background = IM_COL32(255, 255, 255, 255);
+  s.plot_background = IM_COL32(255, 255, 255, 255);
+  s.frame = IM_COL32(60, 60, 60, 255);
+  s.grid = IM_COL32(0, 0, 0, 38);
+  s.grid_minor = IM_COL32(0, 0, 0, 16);
+  s.text = IM_COL32(20, 20, 20, 255);
+  s.legend_background = IM_COL32(255, 255, 255, 230);
+  s.legend_border = IM_COL32(0, 0, 0, 90);
+  s.crosshair = IM_COL32(0, 0, 0, 110);
+  return s;
+}
+
+PlotStyle plot_style_dark() {
+  PlotStyle s;
+  s.background = 0;
+  s.plot_background = IM_COL32(28, 30, 34, 255);
+  s.frame = IM_COL32(160, 160, 165, 255);
+  s.grid = IM_COL32(255, 255, 255, 36);
+  s.grid_minor = IM_COL32(255, 255, 255, 14);
+  s.text = IM_COL32(225, 225, 228, 255);
+  s.legend_background = IM_COL32(22, 24, 28, 225);
+  s.legend_border = IM_COL32(255, 255, 255, 70);
+  s.crosshair = IM_COL32(255, 255, 255, 110);
+  return s;
+}
+
+PlotStyle plot_style_current() {
+  return current_theme_is_dark() ? plot_style_dark() : plot_style_light();
+}
+
+namespace {
+
+/// Body and title fonts at their drawn sizes (io.FontGlobalScale included).
+TextFont body_font(const PlotStyle& style) {
+  const float scale = ImGui::GetIO().FontGlobalScale;
+  if (style.font != nullptr) return {style.font, style.font->FontSize * scale};
+  return {ImGui::GetFont(), ImGui::GetFontSize()};
+}
+
+TextFont heading_font(const PlotStyle& style) {
+  ImFont* f = style.title_font != nullptr ? style.title_font : title_font();
+  return {f, f->FontSize * ImGui::GetIO().FontGlobalScale};
+}
+
+float max_label_width(const TextFont& f, const std::vector<Tick>& ticks) {
+  float w = 0.0f;
+  for (const auto& t : ticks) {
+    if (t.major) w = std::max(w, detail::tick_label_size(f, t).x);
+  }
+  return w;
+}
+
+/// True when neighbouring labelled x ticks leave at least `gap` pixels between labels.
+bool x_labels_fit(const TextFont& f, const std::vector<Tick>& ticks, const AxisMap& mx,
+                  float gap) {
+  double prev_px = 0.0, prev_half = 0.0;
+  bool have = false;
+  for (const auto& t : ticks) {
+    if (!t.major) continue;
+    const double px = mx.to_px(t.value);
+    const double half = 0.5 * detail::tick_label_size(f, t).x;
+    if (have && px - prev_px < prev_half + half + gap) return false;
+    prev_px = px;
+    prev_half = half;
+    have = true;
+  }
+  return true;
+}
+
+}  // namespace
+
+PlotLayout layout_plot(ImVec2 top_left, ImVec2 size, const PlotSpec& spec,
+                       const PlotStyle& style) {
+  const TextFont f = body_font(style);
+  const TextFont tf = heading_font(style);
+  const float fs = f.size;
+  const float pad = std::round(0.6f * fs);
+  const float tick_len = std::round(0.35f * fs);
+  PlotLayout lay;
+  lay.frame = {top_left.x, top_left.y, top_left.x + size.x, top_left.y + size.y};
+  const PixelRect& fr = lay.frame;
+
+  const double top = fr.y0 + pad + (spec.title.empty() ? 0.0 : tf.size + 0.6 * pad);
+  const double x_tick_h = spec.x.log ? std::round(1.3f * fs) : fs;
+  double bottom = fr.y1 - pad - (spec.x.label.empty() ? 0.0 : fs + 0.4 * pad) - x_tick_h -
+                  tick_len - 0.3 * pad;
+  bottom = std::max(bottom, top + 10.0);
+  const Range xr = plot_x_range(spec);
+  const Range yr = plot_y_range(spec, xr);
+
+  lay.y = AxisMap{yr, spec.y.log, bottom, top};
+  lay.y_ticks = axis_ticks(yr, spec.y.log, std::max(2, static_cast<int>((bottom - top) / (2.8 * fs))));
+  const double ylab_w = max_label_width(f, lay.y_ticks);
+  const double left = fr.x0 + pad + (spec.y.label.empty() ? 0.0 : fs + 0.6 * pad) + ylab_w +
+                      tick_len + 0.3 * pad;
+  const ImVec2 legend = detail::legend_size(spec, f);
+  const double outside = spec.legend == LegendPos::Outside && legend.x > 0.0f ? legend.x + pad : 0.0;
+  // Room on the right for half of the last x tick label.
+  const double right = std::max(fr.x1 - pad - outside - 1.2 * fs, left + 10.0);
+
+  lay.x = AxisMap{xr, spec.x.log, left, right};
+  int target = std::max(2, static_cast<int>((right - left) / (5.0 * fs)));
+  for (int iter = 0; iter < 8; ++iter) {
+    lay.x_ticks = axis_ticks(xr, spec.x.log, target);
+    if (target <= 2 || x_labels_fit(f, lay.x_ticks, lay.x, fs)) break;
+    target = std::max(2, target * 2 / 3);
+  }
+  lay.area = {left, top, right, bottom};
+  return lay;
+}
+
+PlotLayout draw_plot(ImDrawList* dl, ImVec2 top_left, ImVec2 size, const PlotSpec& spec,
+                     const PlotStyle& style) {
+  const PlotLayout lay = layout_plot(top_left, size, spec, style);
+  const TextFont f = body_font(style);
+  const TextFont tf = heading_font(style);
+  const float fs = f.size;
+  const float pad = std::round(0.6f * fs);
+  const float tick_len = std::round(0.35f * fs);
+  const PixelRect& a = lay.area;
+  const PixelRect& fr = lay.frame;
+  const ImVec2 amin(static_cast<float>(a.x0), static_cast<float>(a.y0));
+  const ImVec2 amax(static_cast<float>(a.x1), static_cast<float>(a.y1));
+  auto fl = [](double v) { return static_cast<float>(v); };
+  auto crisp = [](double v) { return static_cast<float>(std::floor(v) + 0.5); };
+
+  dl->PushClipRect(ImVec2(fl(fr.x0), fl(fr.y0)), ImVec2(fl(fr.x1), fl(fr.y1)), true);
+  if (style.background != 0) {
+    dl->AddRectFilled(ImVec2(fl(fr.x0), fl(fr.y0)), ImVec2(fl(fr.x1), fl(fr.y1)), style.background);
+  }
+  dl->AddRectFilled(amin, amax, style.plot_background);
+
+  // Data layers, clipped to the data area.
+  dl->PushClipRect(amin, amax, true);
+  detail::draw_heatmap(dl, lay, spec.heatmap);
+  for (const auto& b : spec.bands) detail::draw_band(dl, lay, b);
+  for (const auto& t : lay.x_ticks) {
+    const float x = crisp(lay.x.to_px(t.value));
+    dl->AddLine(ImVec2(x, amin.y), ImVec2(x, amax.y), t.major ? style.grid : style.grid_minor);
+  }
+  for (const auto& t : lay.y_ticks) {
+    const float y = crisp(lay.y.to_px(t.value));
+    dl->AddLine(ImVec2(amin.x, y), ImVec2(amax.x, y), t.major ? style.grid : style.grid_minor);
+  }
+  for (const auto& v : spec.vlines) {
+    const double x = lay.x.to_px(v.x);
+    if (std::isnan(x)) continue;
+    detail::draw_polyline(dl, {ImVec2(fl(x), amin.y), ImVec2(fl(x), amax.y)}, v.color,
+                          v.thickness, v.dashed);
+  }
+  for (const auto& h : spec.hlines) {
+    const double y = lay.y.to_px(h.y);
+    if (std::isnan(y)) continue;
+    detail::draw_polyline(dl, {ImVec2(amin.x, fl(y)), ImVec2(amax.x, fl(y))}, h.color,
+                          h.thickness, h.dashed);
+  }
+  for (const auto& s : spec.series) detail::draw_series(dl, lay, s);
+  dl->PopClipRect();
+
+  dl->AddRect(ImVec2(amin.x - 0.5f, amin.y - 0.5f), ImVec2(amax.x + 0.5f, amax.y + 0.5f),
+              style.frame);
+  // Ticks and their labels.
+  for (const auto& t : lay.x_ticks) {
+    const double px = lay.x.to_px(t.value);
+    if (px < a.x0 - 0.5 || px > a.x1 + 0.5) continue;
+    const float x = crisp(px);
+    const float len = t.major ? tick_len : std::round(0.6f * tick_len);
+    dl->AddLine(ImVec2(x, amax.y), ImVec2(x, amax.y + len), style.frame);
+    if (!t.major) continue;
+    const ImVec2 ts = detail::tick_label_size(f, t);
+    detail::draw_tick_label(dl, f, ImVec2(x - ts.x * 0.5f, amax.y + tick_len + 0.3f * pad),
+                            style.text, t);
+  }
+  for (const auto& t : lay.y_ticks) {
+    const double py = lay.y.to_px(t.value);
+    if (py < a.y0 - 0.5 || py > a.y1 + 0.5) continue;
+    const float y = crisp(py);
+    const float len = t.major ? tick_len : std::round(0.6f * tick_len);
+    dl->AddLine(ImVec2(amin.x - len, y), ImVec2(amin.x, y), style.frame);
+    if (!t.major) continue;
+    const ImVec2 ts = detail::tick_label_size(f, t);
+    detail::draw_tick_label(dl, f, ImVec2(amin.x - tick_len - 0.3f * pad - ts.x, y - ts.y * 0.5f),
+                            style.text, t);
+  }
+  // Axis labels and title, centred on the data area.
+  const float cx = 0.5f * (amin.x + amax.x);
+  if (!spec.x.label.empty()) {
+    const ImVec2 ts = detail::text_size(f, spec.x.label);
+    detail::draw_text(dl, f, ImVec2(cx - ts.x * 0.5f, fl(fr.y1) - pad - ts.y), style.text,
+                      spec.x.label);
+  }
+  if (!spec.y.label.empty()) {
+    detail::draw_text_vertical(dl, f, ImVec2(fl(fr.x0) + pad + 0.5f * fs, 0.5f * (amin.y + amax.y)),
+                               style.text, spec.y.label);
+  }
+  if (!spec.title.empty()) {
+    const ImVec2 ts = detail::text_size(tf, spec.title);
+    detail::draw_text(dl, tf, ImVec2(cx - ts.x * 0.5f, fl(fr.y0) + pad), style.text, spec.title);
+  }
+  detail::draw_legend(dl, lay, spec, style, f);
+  dl->PopClipRect();
+  return lay;
+}
+
+PlotLayout plot_widget(const char* id, const PlotSpec& spec, ImVec2 size, const PlotStyle& style) {
+  const ImVec2 avail = ImGui::GetContentRegionAvail();
+  if (size.x <= 0.0f) size.x = avail.x;
+  if (size.y <= 0.0f) size.y = avail.y;
+  size = ImVec2(std::max(size.x, 50.0f), std::max(size.y, 50.0f));
+  const ImVec2 tl = ImGui::GetCursorScreenPos();
+  ImGui::InvisibleButton(id, size);
+  const bool hovered = ImGui::IsItemHovered();
+  ImDrawList* dl = ImGui::GetWindowDrawList();
+  const PlotLayout lay = draw_plot(dl, tl, size, spec, style);
+  const ImVec2 mouse = ImGui::GetIO().MousePos;
+  if (hovered && lay.area.contains(mouse.x, mouse.y)) {
+    const PixelRect& a = lay.area;
+    const ImVec2 amin(static_cast<float>(a.x0), static_cast<float>(a.y0));
+    const ImVec2 amax(static_cast<float>(a.x1), static_cast<float>(a.y1));
+    dl->PushClipRect(amin, amax, true);
+    const float cx = std::floor(mouse.x) + 0.5f, cy = std::floor(mouse.y) + 0.5f;  // crisp 1 px
+    dl->AddLine(ImVec2(cx, amin.y), ImVec2(cx, amax.y), style.crosshair);
+    dl->AddLine(ImVec2(amin.x, cy), ImVec2(amax.x, cy), style.crosshair);
+    dl->PopClipRect();
+    ImGui::BeginTooltip();
+    ImGui::Text("x = %.6g\ny = %.6g", lay.x.from_px(mouse.x), lay.y.from_px(mouse.y));
+    ImGui::EndTooltip();
+  }
+  return lay;
+}
+
+}  // namespace dampbound::ui
