@@ -371,7 +371,8 @@ struct BatchKernel::Impl {
     }
   }
 
-  std::uint64_t run(const TrialSource& source, const TrialSink& sink) {
+  std::uint64_t run(const TrialSource& source, const TrialSink& sink,
+                    const std::atomic<bool>* cancel) {
     auto refill = [&](int l) {
       std::size_t trial = 0;
       TrialParams p;
@@ -389,6 +390,7 @@ struct BatchKernel::Impl {
       int live = 0;
       for (int l = 0; l < kLanes; ++l) live += active[l];
       if (live == 0) break;
+      if (cancel && cancel->load(std::memory_order_relaxed)) break;
       step(sc);
       lane_steps += static_cast<std::uint64_t>(live);
       const vd max_d = simd::sqrt(sc.max_sq);
@@ -425,8 +427,9 @@ BatchKernel::BatchKernel(const SceneSpec& scene, DampingPolicy policy, const Sto
 
 BatchKernel::~BatchKernel() = default;
 
-std::uint64_t BatchKernel::run(const TrialSource& source, const TrialSink& sink) {
-  return impl_->run(source, sink);
+std::uint64_t BatchKernel::run(const TrialSource& source, const TrialSink& sink,
+                               const std::atomic<bool>* cancel) {
+  return impl_->run(source, sink, cancel);
 }
 
 long long BatchKernel::spring_evaluations_per_step() const {

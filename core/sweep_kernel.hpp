@@ -5,6 +5,7 @@
 // gives the same trajectory bit for bit (the build has -ffp-contract=off), and the same
 // outcome, iteration and counts as Session::run_to_end. A lane whose trial is over (restored,
 // diverged, not restored) is refilled with the next trial at once.
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -66,7 +67,10 @@ class BatchKernel {
 
   /// Steps trials from `source` until it is empty and every lane has finished; each result
   /// goes to `sink` as soon as its trial ends. Returns the lane-steps taken by real trials.
-  std::uint64_t run(const TrialSource& source, const TrialSink& sink);
+  /// When `cancel` becomes true the run returns at the next step; unfinished trials are
+  /// dropped without reaching the sink.
+  std::uint64_t run(const TrialSource& source, const TrialSink& sink,
+                    const std::atomic<bool>* cancel = nullptr);
 
   /// Springs plus anchors evaluated per trial step (the benchmark's unit of work).
   long long spring_evaluations_per_step() const;

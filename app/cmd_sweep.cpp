@@ -1,0 +1,228 @@
+// dampbound sweep [SCENE]: the paper's experiment at scale (SPEC 5, 6): every combination of
+// m, kappa, gamma (or zeta), dt and factor, one CSV row per trial. docs/sweeps.md.
+#include <signal.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iterator>
+#include <memory>
+#include <sstream>
+
+#include "app/commands.hpp"
+#include "app/options.hpp"
+#include "core/error.hpp"
+#include "core/io.hpp"
+#include "core/sweep_map.hpp"
+#include "core/sweep_progress.hpp"
+#include "core/sweep_runner.hpp"
+#include "core/sweep_summary.hpp"
+
+namespace dampbound::app {
+namespace {
+
+std::atomic<bool> g_interrupted{false};
+
+extern "C" void on_interrupt(int) {
+  g_interrupted.store(true);
+  // A second Ctrl-C kills at once; the journal still holds everything synced so far.
+  ::signal(SIGINT, SIG_DFL);
+  ::signal(SIGTERM, SIG_DFL);
+}
+
+struct SweepArgs {
+  std::string scene = "paper-plane";
+  std::string preset, m, kappa, zeta, gamma, dt, factor, policy, output, shard = "1/1", map;
+  std::string progress = "auto";
+  double progress_interval = 10;
+  int max_iter = 0, threads = 0;
+  bool resume = false, no_similarity = false, plain = false;
+  CLI::Option* max_iter_opt = nullptr;
+};
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+/// The sweep's definition: preset, then flags, then the scene's own values.
+SweepSpec make_spec(const SweepArgs& a, const SceneSpec& scene) {
+  std::string m = format_number(scene.params.m), kappa = format_number(scene.params.kappa);
+  std::string gamma = format_number(scene.params.gamma), zeta;
+  std::string dt = format_number(scene.params.dt), factor = format_number(scene.params.factor);
+  DampingPolicy policy = scene.params.policy;
+  StopRules rules = scene.rules;
+  if (a.preset == "paper-lower" || a.preset == "paper-upper") {
+    m = kappa = "0.0001:0.1:0.0001";
+    dt = "0.05";
+    if (a.preset == "paper-lower") {
+      zeta = "0.25,0.5,1";
+      policy = DampingPolicy::fixed;
+      factor = "1";
+      rules.max_iterations = 1000;
+    } else {
+      policy = DampingPolicy::upper;
+      factor = "1,1.05";
+      rules.max_iterations = 10000;
+    }
+  } else if (!a.preset.empty()) {
+    throw InputError("--preset: unknown preset '" + a.preset + "' (paper-lower, paper-upper)");
+  }
+  if (!a.m.empty()) m = a.m;
+  if (!a.kappa.empty()) kappa = a.kappa;
+  if (!a.zeta.empty()) zeta = a.zeta;
+  if (!a.gamma.empty()) {
+    gamma = a.gamma;
+    zeta.clear();
+  }
+  if (!a.dt.empty()) dt = a.dt;
+  if (!a.factor.empty()) factor = a.factor;
+  if (!a.policy.empty()) policy = *parse_policy(a.policy);
+  if (a.max_iter_opt && a.max_iter_opt->count()) rules.max_iterations = a.max_iter;
+
+  SweepSpec s;
+  s.m = parse_axis("--m", m, AxisDomain::positive);
+  s.kappa = parse_axis("--kappa", kappa, AxisDomain::positive);
+  s.gamma_mode = zeta.empty() ? GammaMode::absolute : GammaMode::zeta;
+  s.gamma = zeta.empty() ? parse_axis("--gamma", gamma, AxisDomain::non_negative)
+                         : parse_axis("--zeta", zeta, AxisDomain::non_negative);
+  s.dt = parse_axis("--dt", dt, AxisDomain::positive);
+  s.factor = parse_axis("--factor", factor, AxisDomain::non_negative);
+  s.policy = policy;
+  s.rules = rules;
+  s.allow_similarity = !a.no_similarity;
+  return s;
+}
+
+int run(const SweepArgs& a) {
+  SceneSpec scene = load_scene_arg(a.scene);
+  SweepRequest rq;
+  rq.scene_text = read_text(scene.path);
+  rq.spec = make_spec(a, scene);
+  parse_shard(a.shard, rq.shard, rq.shards);
+  auto writable = [](const std::string& flag, const std::string& path) {
+    try {
+      check_writable(path);
+    } catch (const InputError& e) {
+      throw InputError(flag + ": " + e.what());
+    }
+  };
+  writable("-o", a.output);
+  if (!a.map.empty()) {
+    if (!map_renderer())
+      throw InputError("--map: this build has no headless EGL host (DAMPBOUND_EGL=OFF)");
+    writable("--map", a.map);
+  }
+  rq.scene = std::move(scene);
+  rq.output = a.output;
+  rq.resume = a.resume;
+  rq.threads = a.threads;
+  rq.use_kernel = !a.plain;
+  rq.cancel = &g_interrupted;
+  const bool terminal = a.progress == "bar" || (a.progress == "auto" && ::isatty(2));
+  auto printer = std::make_shared<ProgressPrinter>(stderr, terminal, a.progress_interval);
+  if (a.progress != "none") rq.progress = [printer](const SweepProgress& p) { printer->update(p); };
+
+  struct sigaction sa {};
+  sa.sa_handler = on_interrupt;
+  ::sigaction(SIGINT, &sa, nullptr);
+  ::sigaction(SIGTERM, &sa, nullptr);
+  const SweepReport rep = run_sweep(rq);
+  ::signal(SIGINT, SIG_DFL);
+  ::signal(SIGTERM, SIG_DFL);
+
+  if (rep.cancelled) {
+    std::fprintf(stderr,
+                 "dampbound: interrupted: %llu of %llu classes are done and kept in %s.journal; "
+                 "run the same command with --resume to finish\n",
+                 static_cast<unsigned long long>(rep.classes_resumed + rep.classes_run),
+                 static_cast<unsigned long long>(rep.classes), a.output.c_str());
+    return 130;
+  }
+  const SweepHeader& h = rep.header;
+  std::printf("sweep        %s (%s), sweep id %s, part %d/%d\n", h.scene_name.c_str(),
+              h.definition.c_str(), h.sweep_id.c_str(), h.shard, h.shards);
+  if (rep.already_complete) {
+    std::printf("complete     %s already holds this sweep; nothing to do\n", a.output.c_str());
+  } else {
+    std::printf("trials       %llu in %llu classes (similarity %s); %llu classes run now, %llu "
+                "from the journal\n",
+                static_cast<unsigned long long>(rep.trials),
+                static_cast<unsigned long long>(rep.classes), h.similarity.c_str(),
+                static_cast<unsigned long long>(rep.classes_run),
+                static_cast<unsigned long long>(rep.classes_resumed));
+    const double s = std::max(rep.seconds, 1e-9);
+    std::printf("time         %.1f s, %.0f trials/s, %.3g trial-steps/s, %.3g spring "
+                "evaluations/s (%s)\n",
+                rep.seconds, static_cast<double>(rep.trials - 0) / s,
+                static_cast<double>(rep.lane_steps) / s,
+                static_cast<double>(rep.lane_steps) *
+                    static_cast<double>(rep.spring_evaluations_per_step) / s,
+                rep.batched ? "batched kernel" : ("Session per trial: " + rep.plain_reason).c_str());
+  }
+  std::printf("output       %s\n", a.output.c_str());
+  double lambda_unit = NAN;
+  try {
+    lambda_unit = unit_stiffness_eigenvalue(rq.scene);
+  } catch (const std::exception& e) {
+    std::printf("warning      no lambda_max for the exact linear limit: %s\n", e.what());
+  }
+  const std::string policy = to_string(rq.spec.policy);
+  for (const std::string& line : summary_lines(rep.rows, policy, lambda_unit))
+    std::printf("%s\n", line.c_str());
+  if (!a.map.empty()) {
+    SweepTable table;
+    table.header = h;
+    table.rows = rep.rows;
+    map_renderer()(build_stability_map(table, lambda_unit), a.map);
+    std::printf("map          %s\n", a.map.c_str());
+  }
+  return 0;
+}
+
+std::function<int()> setup(CLI::App& root) {
+  auto a = std::make_shared<SweepArgs>();
+  CLI::App* cmd = root.add_subcommand(
+      "sweep",
+      "Run the paper's protocol over a grid of m, kappa, gamma (or zeta), dt and factor; one "
+      "CSV row per trial. Trials sharing kappa/m, gamma/m and dt run once (SPEC 6).");
+  cmd->add_option("scene", a->scene, "scene file or shipped scene name (default paper-plane)");
+  cmd->add_option("--preset", a->preset,
+                  "paper-lower (SPEC 5: m, kappa 0.0001..0.1 step 0.0001, zeta 0.25,0.5,1, "
+                  "1000 iterations) or paper-upper (policy upper, factor 1,1.05, 10000 "
+                  "iterations); other flags override it");
+  cmd->add_option("--m", a->m, "masses: A:B:STEP and/or a comma list (mass unit)");
+  cmd->add_option("--kappa", a->kappa, "stiffnesses: A:B:STEP and/or a list (mass unit/s^2)");
+  auto* z = cmd->add_option("--zeta", a->zeta,
+                            "gamma as fractions of the lower bound 2 sqrt(m kappa): a list");
+  auto* g = cmd->add_option("--gamma", a->gamma, "absolute gamma: A:B:STEP and/or a list");
+  z->excludes(g);
+  cmd->add_option("--dt", a->dt, "time steps (s): a list");
+  cmd->add_option("--factor", a->factor, "factors of the upper bound (policy upper): a list");
+  cmd->add_option("--policy", a->policy, "damping policy (SPEC 4)")
+      ->check(CLI::IsMember({"fixed", "clamp", "upper", "lower"}));
+  a->max_iter_opt = cmd->add_option("--max-iter", a->max_iter, "iteration limit of the protocol")
+                        ->check(CLI::Range(1, 100000000));
+  cmd->add_option("-o,--output", a->output, "the results CSV (written atomically at the end)")
+      ->required();
+  cmd->add_option("--threads", a->threads, "worker threads (default: one per CPU)")
+      ->check(CLI::Range(1, 1024));
+  cmd->add_flag("--resume", a->resume, "finish an interrupted sweep from OUTPUT.journal");
+  cmd->add_option("--shard", a->shard, "run part K of N (classes c with c % N == K-1)");
+  cmd->add_option("--map", a->map, "also draw the stability map into this PNG");
+  cmd->add_flag("--no-similarity", a->no_similarity, "run every trial, even equivalent ones");
+  cmd->add_flag("--plain", a->plain, "step each trial with Session (the plain step()), no SIMD");
+  cmd->add_option("--progress", a->progress, "auto (bar on a terminal, else lines), bar, lines, none")
+      ->check(CLI::IsMember({"auto", "bar", "lines", "none"}));
+  cmd->add_option("--progress-interval", a->progress_interval,
+                  "seconds between progress lines when not on a terminal (default 10)")
+      ->check(CLI::Range(0.0, 86400.0));
+  return [a] { return run(*a); };
+}
+
+const bool registered = register_command("sweep", setup);
+
+}  // namespace
+}  // namespace dampbound::app

@@ -1,0 +1,208 @@
+#include "core/sweep_journal.hpp"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cinttypes>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <unordered_set>
+
+#include "core/error.hpp"
+
+namespace dampbound {
+
+namespace {
+
+std::string directory_of(const std::string& path) {
+  const auto slash = path.find_last_of('/');
+  return slash == std::string::npos ? "." : (slash == 0 ? "/" : path.substr(0, slash));
+}
+
+void sync_directory(const std::string& path) {
+  const int fd = ::open(directory_of(path).c_str(), O_RDONLY | O_DIRECTORY);
+  if (fd >= 0) {
+    ::fsync(fd);
+    ::close(fd);
+  }
+}
+
+std::uint32_t fnv1a32(const char* p, size_t n) {
+  std::uint32_t h = 2166136261u;
+  for (size_t k = 0; k < n; ++k) {
+    h ^= static_cast<unsigned char>(p[k]);
+    h *= 16777619u;
+  }
+  return h;
+}
+
+void write_all(int fd, const std::string& bytes, const std::string& path) {
+  size_t done = 0;
+  while (done < bytes.size()) {
+    const ssize_t w = ::write(fd, bytes.data() + done, bytes.size() - done);
+    if (w < 0 && errno == EINTR) continue;
+    if (w <= 0) throw InputError(path + ": write failed: " + std::strerror(errno));
+    done += static_cast<size_t>(w);
+  }
+}
+
+char outcome_code(Outcome o) {
+  switch (o) {
+    case Outcome::restored: return 'r';
+    case Outcome::diverged: return 'd';
+    case Outcome::not_restored: return 'n';
+    case Outcome::running: break;
+  }
+  return '?';
+}
+
+}  // namespace
+
+void write_durably(const std::string& path, const std::function<void(std::FILE*)>& fill) {
+  const std::string tmp = path + ".tmp." + std::to_string(::getpid());
+  std::FILE* f = std::fopen(tmp.c_str(), "wb");
+  if (!f) throw InputError(path + ": cannot write the file (" + std::strerror(errno) + ")");
+  static thread_local std::vector<char> buffer(1 << 20);
+  std::setvbuf(f, buffer.data(), _IOFBF, buffer.size());
+  bool ok = true;
+  try {
+    fill(f);
+  } catch (...) {
+    std::fclose(f);
+    std::remove(tmp.c_str());
+    throw;
+  }
+  ok = std::fflush(f) == 0 && !std::ferror(f) && ::fsync(fileno(f)) == 0;
+  ok = std::fclose(f) == 0 && ok;
+  if (!ok) {
+    std::remove(tmp.c_str());
+    throw InputError(path + ": write failed (disk full?)");
+  }
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+    std::remove(tmp.c_str());
+    throw InputError(path + ": cannot move the finished file into place");
+  }
+  sync_directory(path);
+}
+
+std::string journal_line(const JournalEntry& e) {
+  const TrialResult& r = e.result;
+  char body[256];
+  const int n = std::snprintf(body, sizeof body, "%" PRIu32 " %c %d %a %lld %lld %lld %lld", e.cls,
+                              outcome_code(r.outcome), r.iterations, r.max_displacement,
+                              r.violations, r.unstabilisable, r.clamped, r.zero_length_springs);
+  char line[300];
+  std::snprintf(line, sizeof line, "%s %08" PRIx32 "\n", body,
+                fnv1a32(body, static_cast<size_t>(n)));
+  return line;
+}
+
+bool parse_journal_line(const std::string& line, JournalEntry& e) {
+  const size_t space = line.find_last_of(' ');
+  if (space == std::string::npos || line.size() - space != 9) return false;
+  char* end = nullptr;
+  const unsigned long sum = std::strtoul(line.c_str() + space + 1, &end, 16);
+  if (*end != '\0' || sum != fnv1a32(line.data(), space)) return false;
+  char code = 0;
+  char disp[64];
+  JournalEntry x;
+  TrialResult& r = x.result;
+  if (std::sscanf(line.c_str(), "%" SCNu32 " %c %d %63s %lld %lld %lld %lld", &x.cls, &code,
+                  &r.iterations, disp, &r.violations, &r.unstabilisable, &r.clamped,
+                  &r.zero_length_springs) != 8)
+    return false;
+  r.max_displacement = std::strtod(disp, nullptr);
+  switch (code) {
+    case 'r': r.outcome = Outcome::restored; break;
+    case 'd': r.outcome = Outcome::diverged; break;
+    case 'n': r.outcome = Outcome::not_restored; break;
+    default: return false;
+  }
+  e = x;
+  return true;
+}
+
+JournalContents read_journal(const std::string& path, const std::string& header,
+                             std::uint64_t classes) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path + ": cannot read the journal");
+  JournalContents jc;
+  std::string line;
+  if (!std::getline(in, line) || line != header)
+    throw InputError("--resume: " + path +
+                     " belongs to another sweep or another shard (its first line is not '" +
+                     header + "'); remove it to start over");
+  if (in.eof()) return jc;  // the header itself was cut short: start the journal afresh
+  jc.valid_bytes = line.size() + 1;
+  std::unordered_set<std::uint32_t> seen;
+  // Only whole lines (ending in '\n') with a good checksum count; the first bad one ends
+  // the valid prefix (what follows it was written after the last completed sync).
+  while (std::getline(in, line)) {
+    JournalEntry e;
+    if (in.eof() || !parse_journal_line(line, e)) {
+      ++jc.dropped_lines;
+      break;
+    }
+    if (e.cls >= classes)
+      throw InputError(path + ": class " + std::to_string(e.cls) + " is not in this sweep");
+    jc.valid_bytes += line.size() + 1;
+    if (seen.insert(e.cls).second)
+      jc.entries.push_back(e);
+    else
+      ++jc.dropped_lines;
+  }
+  while (std::getline(in, line)) ++jc.dropped_lines;
+  return jc;
+}
+
+Journal::Journal(std::string path, const std::string& header, std::uint64_t resume_valid_bytes)
+    : path_(std::move(path)) {
+  if (resume_valid_bytes > 0) {
+    fd_ = ::open(path_.c_str(), O_WRONLY | O_CLOEXEC);
+    if (fd_ < 0 || ::ftruncate(fd_, static_cast<off_t>(resume_valid_bytes)) != 0 ||
+        ::lseek(fd_, 0, SEEK_END) < 0)
+      throw InputError(path_ + ": cannot reopen the journal (" + std::strerror(errno) + ")");
+    ::fsync(fd_);
+    return;
+  }
+  fd_ = ::open(path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd_ < 0)
+    throw InputError(path_ + ": cannot create the journal (" + std::strerror(errno) + ")");
+  write_all(fd_, header + "\n", path_);
+  ::fsync(fd_);
+  sync_directory(path_);
+}
+
+Journal::~Journal() {
+  if (fd_ >= 0) {
+    try {
+      sync();
+    } catch (...) {
+    }
+    ::close(fd_);
+  }
+}
+
+void Journal::add(const JournalEntry& e) { buffer_ += journal_line(e); }
+
+void Journal::sync() {
+  if (fd_ < 0 || buffer_.empty()) return;
+  write_all(fd_, buffer_, path_);
+  buffer_.clear();
+  if (::fdatasync(fd_) != 0)
+    throw InputError(path_ + ": cannot sync the journal (" + std::strerror(errno) + ")");
+}
+
+void Journal::remove() {
+  if (fd_ >= 0) ::close(fd_);
+  fd_ = -1;
+  buffer_.clear();
+  ::unlink(path_.c_str());
+  sync_directory(path_);
+}
+
+}  // namespace dampbound

@@ -1,0 +1,69 @@
+#include "core/sweep_progress.hpp"
+
+#include <cinttypes>
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+namespace dampbound {
+
+std::string format_duration(double s) {
+  if (!std::isfinite(s) || s < 0) return "?";
+  const long t = std::lround(s);
+  char buf[32];
+  if (t >= 3600)
+    std::snprintf(buf, sizeof buf, "%ldh%02ldm", t / 3600, (t / 60) % 60);
+  else if (t >= 60)
+    std::snprintf(buf, sizeof buf, "%ldm%02lds", t / 60, t % 60);
+  else
+    std::snprintf(buf, sizeof buf, "%lds", t);
+  return buf;
+}
+
+ProgressPrinter::ProgressPrinter(std::FILE* out, bool terminal, double interval_s)
+    : out_(out), terminal_(terminal), interval_s_(interval_s) {}
+
+void ProgressPrinter::update(const SweepProgress& p) {
+  const double run_s = std::max(p.elapsed_s, 1e-9);
+  const std::uint64_t new_classes = p.classes_done - p.classes_resumed;
+  // Trials per second counts the trials covered by the classes finished in this run.
+  const double trial_rate = static_cast<double>(p.trials_done - p.trials_resumed) / run_s;
+  const double class_rate = static_cast<double>(new_classes) / run_s;
+  const double left = class_rate > 0
+                          ? static_cast<double>(p.classes_total - p.classes_done) / class_rate
+                          : NAN;
+  const double frac = p.trials_total ? static_cast<double>(p.trials_done) /
+                                           static_cast<double>(p.trials_total)
+                                     : 1.0;
+  char rate[32];
+  if (trial_rate >= 1e4)
+    std::snprintf(rate, sizeof rate, "%.1fk", trial_rate / 1e3);
+  else
+    std::snprintf(rate, sizeof rate, "%.0f", trial_rate);
+  if (terminal_) {
+    if (!p.final && p.elapsed_s - last_draw_ < 0.2) return;
+    last_draw_ = p.elapsed_s;
+    const int width = 30;
+    const int filled = static_cast<int>(frac * width);
+    std::string bar(static_cast<size_t>(filled), '#');
+    bar.resize(width, '.');
+    std::fprintf(out_,
+                 "\r[%s] %5.1f%%  %" PRIu64 "/%" PRIu64 " trials  %s trials/s  %s %s   ",
+                 bar.c_str(), 100 * frac, p.trials_done, p.trials_total, rate,
+                 p.final ? "took" : "left", format_duration(p.final ? p.elapsed_s : left).c_str());
+    if (p.final) std::fputc('\n', out_);
+    std::fflush(out_);
+    return;
+  }
+  if (!p.final && p.elapsed_s - last_print_ < interval_s_) return;
+  last_print_ = p.elapsed_s;
+  std::fprintf(out_,
+               "sweep: %.1f%% %" PRIu64 "/%" PRIu64 " trials, %" PRIu64 "/%" PRIu64
+               " classes, %s trials/s, %s %s\n",
+               100 * frac, p.trials_done, p.trials_total, p.classes_done, p.classes_total, rate,
+               format_duration(p.final ? p.elapsed_s : left).c_str(),
+               p.final ? "elapsed" : "left");
+  std::fflush(out_);
+}
+
+}  // namespace dampbound

@@ -1,0 +1,80 @@
+#pragma once
+// A whole sweep: grid -> similarity classes -> this shard's classes -> (resume: minus those in
+// the journal) -> threads of batched kernels -> journal -> CSV written atomically.
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "core/scene.hpp"
+#include "core/sweep_csv.hpp"
+#include "core/sweep_grid.hpp"
+
+namespace dampbound {
+
+/// Where a running sweep stands (for the progress display).
+struct SweepProgress {
+  std::uint64_t trials_total = 0;    ///< trials of this shard
+  std::uint64_t trials_done = 0;     ///< trials whose class has finished (resumed included)
+  std::uint64_t classes_total = 0;   ///< classes of this shard
+  std::uint64_t classes_done = 0;    ///< resumed included
+  std::uint64_t classes_resumed = 0;  ///< found in the journal at the start
+  std::uint64_t trials_resumed = 0;   ///< trials of those classes
+  double elapsed_s = 0;              ///< wall time of this run
+  bool final = false;
+};
+
+struct SweepRequest {
+  SceneSpec scene;
+  std::string scene_text;  ///< the scene file's bytes (part of the sweep's identity)
+  SweepSpec spec;
+  std::string output;      ///< the CSV; the journal is OUTPUT.journal
+  bool resume = false;
+  int shard = 1, shards = 1;
+  int threads = 0;          ///< 0: one per hardware thread
+  bool use_kernel = true;   ///< false: every trial through Session (the plain step())
+  std::function<void(const SweepProgress&)> progress;  ///< ~5 times a second and at the end
+  const std::atomic<bool>* cancel = nullptr;            ///< set by a signal handler
+};
+
+struct SweepReport {
+  SweepHeader header;
+  std::uint64_t trials = 0;            ///< trials of this shard (rows written)
+  std::uint64_t classes = 0;           ///< classes of this shard
+  std::uint64_t classes_run = 0;       ///< stepped in this run
+  std::uint64_t classes_resumed = 0;   ///< taken from the journal
+  std::uint64_t lane_steps = 0;        ///< trial-steps taken in this run
+  long long spring_evaluations_per_step = 0;
+  std::uint64_t outcome_trials[4] = {0, 0, 0, 0};  ///< per Outcome, over this shard's trials
+  double seconds = 0;
+  bool cancelled = false;       ///< interrupted: the journal holds what was done
+  bool already_complete = false;  ///< --resume found the finished CSV and nothing to do
+  bool batched = true;          ///< the batched kernel ran (else Session per trial)
+  std::string plain_reason;     ///< why not, when not
+  std::vector<SweepRow> rows;   ///< this shard's rows (for the summary and the map)
+};
+
+/// "K/N" -> (K, N), 1 <= K <= N. Throws InputError naming --shard.
+void parse_shard(const std::string& text, int& shard, int& shards);
+
+/// Checks, before any work, that the grid's classes fit in memory and its CSV and journal on
+/// the output's disk. Throws InputError naming the flags.
+void check_sweep_resources(const SweepGrid& grid, const std::string& output, int shards);
+
+/// The sweep's identity: hash of the scene bytes and the definition (16 hex digits).
+std::string sweep_id(const std::string& scene_text, const std::string& definition);
+
+/// The definition in words, as in the CSV header.
+std::string sweep_definition(const SweepSpec& spec);
+
+/// Runs (or resumes) the sweep. Throws InputError for a journal of another sweep, or an
+/// existing journal without `resume`.
+SweepReport run_sweep(const SweepRequest& request);
+
+/// Rows of the trials of `shard` of `shards` in trial order, from the class results.
+std::vector<SweepRow> sweep_rows(const SweepGrid& grid, const TrialClasses& classes,
+                                 const std::vector<TrialResult>& class_results, int shard,
+                                 int shards);
+
+}  // namespace dampbound

@@ -1,0 +1,159 @@
+// The sweep journal (torn lines, duplicates, another sweep's journal), the durable CSV write
+// and the merge checks.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "core/error.hpp"
+#include "core/sweep_csv.hpp"
+#include "core/sweep_journal.hpp"
+
+namespace dampbound {
+namespace {
+
+std::string temp_path(const std::string& name) {
+  return ::testing::TempDir() + "dampbound_" + std::to_string(::getpid()) + "_" + name;
+}
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+JournalEntry entry(std::uint32_t cls, Outcome o, int it, double d) {
+  JournalEntry e;
+  e.cls = cls;
+  e.result.outcome = o;
+  e.result.iterations = it;
+  e.result.max_displacement = d;
+  e.result.violations = 1234567890123;
+  e.result.unstabilisable = 7;
+  e.result.clamped = 3;
+  e.result.zero_length_springs = 0;
+  return e;
+}
+
+TEST(SweepJournal, LineRoundTripsExactly) {
+  const JournalEntry e = entry(42, Outcome::not_restored, 1000, 0.1 + 0.2);
+  JournalEntry back;
+  std::string line = journal_line(e);
+  ASSERT_EQ(line.back(), '\n');
+  line.pop_back();
+  ASSERT_TRUE(parse_journal_line(line, back));
+  EXPECT_EQ(back.cls, 42u);
+  EXPECT_EQ(back.result.outcome, Outcome::not_restored);
+  EXPECT_EQ(back.result.max_displacement, 0.1 + 0.2);
+  EXPECT_EQ(back.result.violations, 1234567890123);
+  JournalEntry inf_e = entry(1, Outcome::diverged, 9, HUGE_VAL);
+  line = journal_line(inf_e);
+  line.pop_back();
+  ASSERT_TRUE(parse_journal_line(line, back));
+  EXPECT_TRUE(std::isinf(back.result.max_displacement));
+  // Any torn or altered line fails its checksum.
+  for (size_t cut = 1; cut < line.size(); cut += 3)
+    EXPECT_FALSE(parse_journal_line(line.substr(0, cut), back)) << cut;
+  std::string altered = line;
+  altered[2] = altered[2] == '1' ? '2' : '1';
+  EXPECT_FALSE(parse_journal_line(altered, back));
+}
+
+TEST(SweepJournal, ResumeDropsTornTailAndDuplicates) {
+  const std::string path = temp_path("journal");
+  const std::string header = "dampbound-journal v1 sweep=abc 1/1 classes=10";
+  {
+    Journal j(path, header);
+    j.add(entry(3, Outcome::restored, 34, 0.04));
+    j.add(entry(5, Outcome::diverged, 12, HUGE_VAL));
+    j.add(entry(3, Outcome::restored, 34, 0.04));  // a duplicate
+    j.sync();
+  }
+  // A kill -9 in the middle of a write: half a line at the end.
+  const std::string torn = journal_line(entry(7, Outcome::restored, 50, 0.01));
+  {
+    std::ofstream out(path, std::ios::app | std::ios::binary);
+    out << torn.substr(0, torn.size() / 2);
+  }
+  JournalContents jc = read_journal(path, header, 10);
+  ASSERT_EQ(jc.entries.size(), 2u);
+  EXPECT_EQ(jc.entries[0].cls, 3u);
+  EXPECT_EQ(jc.entries[1].cls, 5u);
+  EXPECT_EQ(jc.dropped_lines, 2u);  // the duplicate and the torn line
+  {
+    Journal j(path, header, jc.valid_bytes);  // cuts the torn tail off, then appends
+    j.add(entry(7, Outcome::restored, 50, 0.01));
+    j.sync();
+  }
+  jc = read_journal(path, header, 10);
+  ASSERT_EQ(jc.entries.size(), 3u);
+  EXPECT_EQ(jc.entries[2].cls, 7u);
+  EXPECT_EQ(jc.dropped_lines, 1u);  // only the duplicate now
+  // Another sweep's journal is refused, and so is a class outside the sweep.
+  EXPECT_THROW(read_journal(path, "dampbound-journal v1 sweep=xyz 1/1 classes=10", 10),
+               InputError);
+  EXPECT_THROW(read_journal(path, header, 6), InputError);
+  std::remove(path.c_str());
+}
+
+TEST(SweepJournal, DurableWriteReplacesWhole) {
+  const std::string path = temp_path("durable.txt");
+  write_durably(path, [](std::FILE* f) { std::fputs("one\n", f); });
+  EXPECT_EQ(slurp(path), "one\n");
+  EXPECT_THROW(write_durably(path, [](std::FILE*) { throw InputError("stop"); }), InputError);
+  EXPECT_EQ(slurp(path), "one\n");  // a failed write leaves the old file as it was
+  EXPECT_THROW(write_durably("/nonexistent-dir/x.csv", [](std::FILE*) {}), InputError);
+  std::remove(path.c_str());
+}
+
+/// A two-part sweep CSV written by hand with the real writer.
+std::string write_part(const std::string& name, const std::string& id, int shard, int shards,
+                       const std::vector<std::uint64_t>& trials, std::uint64_t total) {
+  const std::string path = temp_path(name);
+  SweepHeader h;
+  h.sweep_id = id;
+  h.scene_name = "test";
+  h.definition = "m=1 policy=fixed max-iter=10";
+  h.trials = total;
+  h.classes = total;
+  h.similarity = "on";
+  h.shard = shard;
+  h.shards = shards;
+  write_durably(path, [&](std::FILE* f) {
+    write_sweep_header(f, h);
+    for (std::uint64_t t : trials)
+      std::fprintf(f, "%llu,0.001,0.001,0.002,1,0.05,fixed,1,%llu,1,restored,34,0.04,0,0,0,0\n",
+                   static_cast<unsigned long long>(t), static_cast<unsigned long long>(t));
+  });
+  return path;
+}
+
+TEST(SweepMerge, JoinsPartsAndRefusesBadSets) {
+  const std::string a = write_part("p1.csv", "id1", 1, 2, {0, 2, 4}, 5);
+  const std::string b = write_part("p2.csv", "id1", 2, 2, {1, 3}, 5);
+  const std::string whole = write_part("whole.csv", "id1", 1, 1, {0, 1, 2, 3, 4}, 5);
+  const std::string out = temp_path("merged.csv");
+  merge_sweep_parts({b, a}, out);
+  EXPECT_EQ(slurp(out), slurp(whole));
+  const SweepTable t = read_sweep_csv(out);
+  ASSERT_EQ(t.rows.size(), 5u);
+  EXPECT_EQ(t.rows[3].trial, 3u);
+  EXPECT_EQ(t.rows[3].outcome, Outcome::restored);
+
+  const std::string other = write_part("p2x.csv", "id2", 2, 2, {1, 3}, 5);
+  const std::string dup = write_part("p2d.csv", "id1", 2, 2, {1, 2, 3}, 5);
+  const std::string gap = write_part("p2g.csv", "id1", 2, 2, {1}, 5);
+  EXPECT_THROW(merge_sweep_parts({a, other}, out), InputError);  // another sweep
+  EXPECT_THROW(merge_sweep_parts({a}, out), InputError);         // a part missing
+  EXPECT_THROW(merge_sweep_parts({a, a}, out), InputError);      // a part twice
+  EXPECT_THROW(merge_sweep_parts({a, dup}, out), InputError);    // a trial twice
+  EXPECT_THROW(merge_sweep_parts({a, gap}, out), InputError);    // a trial missing
+  for (const std::string& p : {a, b, whole, other, dup, gap, out}) std::remove(p.c_str());
+}
+
+}  // namespace
+}  // namespace dampbound
