@@ -36,10 +36,11 @@ struct SweepArgs {
   std::string scene = "paper-plane";
   std::string preset, m, kappa, zeta, gamma, dt, factor, policy, output, shard = "1/1", map;
   std::string progress = "auto";
-  double progress_interval = 10;
+  double progress_interval = 10, sync_interval = 1;
   int max_iter = 0, threads = 0;
   bool resume = false, no_similarity = false, plain = false;
-  CLI::Option* max_iter_opt = nullptr;
+  CLI::Option *max_iter_opt = nullptr, *m_opt = nullptr, *kappa_opt = nullptr, *zeta_opt = nullptr,
+              *gamma_opt = nullptr, *dt_opt = nullptr, *factor_opt = nullptr, *policy_opt = nullptr;
 };
 
 std::string read_text(const std::string& path) {
@@ -70,24 +71,29 @@ SweepSpec make_spec(const SweepArgs& a, const SceneSpec& scene) {
   } else if (!a.preset.empty()) {
     throw InputError("--preset: unknown preset '" + a.preset + "' (paper-lower, paper-upper)");
   }
-  if (!a.m.empty()) m = a.m;
-  if (!a.kappa.empty()) kappa = a.kappa;
-  if (!a.zeta.empty()) zeta = a.zeta;
-  if (!a.gamma.empty()) {
-    gamma = a.gamma;
-    zeta.clear();
+  auto given = [](const CLI::Option* o) { return o && o->count() > 0; };
+  if (given(a.m_opt)) m = a.m;
+  if (given(a.kappa_opt)) kappa = a.kappa;
+  bool use_zeta = !zeta.empty();
+  if (given(a.zeta_opt)) {
+    zeta = a.zeta;
+    use_zeta = true;
   }
-  if (!a.dt.empty()) dt = a.dt;
-  if (!a.factor.empty()) factor = a.factor;
-  if (!a.policy.empty()) policy = *parse_policy(a.policy);
-  if (a.max_iter_opt && a.max_iter_opt->count()) rules.max_iterations = a.max_iter;
+  if (given(a.gamma_opt)) {
+    gamma = a.gamma;
+    use_zeta = false;
+  }
+  if (given(a.dt_opt)) dt = a.dt;
+  if (given(a.factor_opt)) factor = a.factor;
+  if (given(a.policy_opt)) policy = *parse_policy(a.policy);
+  if (given(a.max_iter_opt)) rules.max_iterations = a.max_iter;
 
   SweepSpec s;
   s.m = parse_axis("--m", m, AxisDomain::positive);
   s.kappa = parse_axis("--kappa", kappa, AxisDomain::positive);
-  s.gamma_mode = zeta.empty() ? GammaMode::absolute : GammaMode::zeta;
-  s.gamma = zeta.empty() ? parse_axis("--gamma", gamma, AxisDomain::non_negative)
-                         : parse_axis("--zeta", zeta, AxisDomain::non_negative);
+  s.gamma_mode = use_zeta ? GammaMode::zeta : GammaMode::absolute;
+  s.gamma = use_zeta ? parse_axis("--zeta", zeta, AxisDomain::non_negative)
+                     : parse_axis("--gamma", gamma, AxisDomain::non_negative);
   s.dt = parse_axis("--dt", dt, AxisDomain::positive);
   s.factor = parse_axis("--factor", factor, AxisDomain::non_negative);
   s.policy = policy;
@@ -120,6 +126,7 @@ int run(const SweepArgs& a) {
   rq.resume = a.resume;
   rq.threads = a.threads;
   rq.use_kernel = !a.plain;
+  rq.sync_interval_s = a.sync_interval;
   rq.cancel = &g_interrupted;
   const bool terminal = a.progress == "bar" || (a.progress == "auto" && ::isatty(2));
   auto printer = std::make_shared<ProgressPrinter>(stderr, terminal, a.progress_interval);
@@ -147,20 +154,21 @@ int run(const SweepArgs& a) {
   if (rep.already_complete) {
     std::printf("complete     %s already holds this sweep; nothing to do\n", a.output.c_str());
   } else {
-    std::printf("trials       %llu in %llu classes (similarity %s); %llu classes run now, %llu "
-                "from the journal\n",
-                static_cast<unsigned long long>(rep.trials),
-                static_cast<unsigned long long>(rep.classes), h.similarity.c_str(),
-                static_cast<unsigned long long>(rep.classes_run),
-                static_cast<unsigned long long>(rep.classes_resumed));
+    std::printf(
+        "trials       %llu in %llu classes (similarity %s); %llu classes run now, %llu "
+        "from the journal\n",
+        static_cast<unsigned long long>(rep.trials), static_cast<unsigned long long>(rep.classes),
+        h.similarity.c_str(), static_cast<unsigned long long>(rep.classes_run),
+        static_cast<unsigned long long>(rep.classes_resumed));
     const double s = std::max(rep.seconds, 1e-9);
-    std::printf("time         %.1f s, %.0f trials/s, %.3g trial-steps/s, %.3g spring "
-                "evaluations/s (%s)\n",
-                rep.seconds, static_cast<double>(rep.trials - 0) / s,
-                static_cast<double>(rep.lane_steps) / s,
-                static_cast<double>(rep.lane_steps) *
-                    static_cast<double>(rep.spring_evaluations_per_step) / s,
-                rep.batched ? "batched kernel" : ("Session per trial: " + rep.plain_reason).c_str());
+    std::printf(
+        "time         %.1f s, %.0f trials/s, %.3g trial-steps/s, %.3g spring "
+        "evaluations/s (%s)\n",
+        rep.seconds, static_cast<double>(rep.trials - 0) / s,
+        static_cast<double>(rep.lane_steps) / s,
+        static_cast<double>(rep.lane_steps) * static_cast<double>(rep.spring_evaluations_per_step) /
+            s,
+        rep.batched ? "batched kernel" : ("Session per trial: " + rep.plain_reason).c_str());
   }
   std::printf("output       %s\n", a.output.c_str());
   double lambda_unit = NAN;
@@ -193,16 +201,19 @@ std::function<int()> setup(CLI::App& root) {
                   "paper-lower (SPEC 5: m, kappa 0.0001..0.1 step 0.0001, zeta 0.25,0.5,1, "
                   "1000 iterations) or paper-upper (policy upper, factor 1,1.05, 10000 "
                   "iterations); other flags override it");
-  cmd->add_option("--m", a->m, "masses: A:B:STEP and/or a comma list (mass unit)");
-  cmd->add_option("--kappa", a->kappa, "stiffnesses: A:B:STEP and/or a list (mass unit/s^2)");
-  auto* z = cmd->add_option("--zeta", a->zeta,
-                            "gamma as fractions of the lower bound 2 sqrt(m kappa): a list");
-  auto* g = cmd->add_option("--gamma", a->gamma, "absolute gamma: A:B:STEP and/or a list");
+  a->m_opt = cmd->add_option("--m", a->m, "masses: A:B:STEP and/or a comma list (mass unit)");
+  a->kappa_opt =
+      cmd->add_option("--kappa", a->kappa, "stiffnesses: A:B:STEP and/or a list (mass unit/s^2)");
+  auto* z = a->zeta_opt = cmd->add_option(
+      "--zeta", a->zeta, "gamma as fractions of the lower bound 2 sqrt(m kappa): a list");
+  auto* g = a->gamma_opt =
+      cmd->add_option("--gamma", a->gamma, "absolute gamma: A:B:STEP and/or a list");
   z->excludes(g);
-  cmd->add_option("--dt", a->dt, "time steps (s): a list");
-  cmd->add_option("--factor", a->factor, "factors of the upper bound (policy upper): a list");
-  cmd->add_option("--policy", a->policy, "damping policy (SPEC 4)")
-      ->check(CLI::IsMember({"fixed", "clamp", "upper", "lower"}));
+  a->dt_opt = cmd->add_option("--dt", a->dt, "time steps (s): a list");
+  a->factor_opt =
+      cmd->add_option("--factor", a->factor, "factors of the upper bound (policy upper): a list");
+  a->policy_opt = cmd->add_option("--policy", a->policy, "damping policy (SPEC 4)")
+                      ->check(CLI::IsMember({"fixed", "clamp", "upper", "lower"}));
   a->max_iter_opt = cmd->add_option("--max-iter", a->max_iter, "iteration limit of the protocol")
                         ->check(CLI::Range(1, 100000000));
   cmd->add_option("-o,--output", a->output, "the results CSV (written atomically at the end)")
@@ -214,11 +225,15 @@ std::function<int()> setup(CLI::App& root) {
   cmd->add_option("--map", a->map, "also draw the stability map into this PNG");
   cmd->add_flag("--no-similarity", a->no_similarity, "run every trial, even equivalent ones");
   cmd->add_flag("--plain", a->plain, "step each trial with Session (the plain step()), no SIMD");
-  cmd->add_option("--progress", a->progress, "auto (bar on a terminal, else lines), bar, lines, none")
+  cmd->add_option("--progress", a->progress,
+                  "auto (bar on a terminal, else lines), bar, lines, none")
       ->check(CLI::IsMember({"auto", "bar", "lines", "none"}));
   cmd->add_option("--progress-interval", a->progress_interval,
                   "seconds between progress lines when not on a terminal (default 10)")
       ->check(CLI::Range(0.0, 86400.0));
+  cmd->add_option("--sync-interval", a->sync_interval,
+                  "seconds between fsyncs of the journal of finished classes (default 1)")
+      ->check(CLI::Range(0.0, 3600.0));
   return [a] { return run(*a); };
 }
 

@@ -62,9 +62,9 @@ void BM_BatchedKernel(benchmark::State& state) {
     for (auto& th : pool) th.join();
     lane_steps_total += lane_steps.load();
   }
-  state.counters["spring_evals_per_s"] = benchmark::Counter(
-      static_cast<double>(lane_steps_total) * static_cast<double>(per_step),
-      benchmark::Counter::kIsRate);
+  state.counters["spring_evals_per_s"] =
+      benchmark::Counter(static_cast<double>(lane_steps_total) * static_cast<double>(per_step),
+                         benchmark::Counter::kIsRate);
   state.counters["trial_steps_per_s"] =
       benchmark::Counter(static_cast<double>(lane_steps_total), benchmark::Counter::kIsRate);
 }

@@ -17,7 +17,9 @@ namespace {
 
 constexpr const char* kMagic = "# dampbound sweep v1";
 
-std::string outcome_text(Outcome o) { return to_string(o); }
+std::string outcome_text(Outcome o) {
+  return to_string(o);
+}
 
 bool parse_outcome(const std::string& s, Outcome& o) {
   for (Outcome c : {Outcome::restored, Outcome::diverged, Outcome::not_restored})
@@ -135,8 +137,8 @@ SweepTable read_sweep_csv(const std::string& path, bool keep_lines) {
     ++lineno;
     if (!columns) {
       if (lineno == 1) {
-        if (line != kMagic) fail("not a dampbound sweep CSV (first line is not '" +
-                                 std::string(kMagic) + "')");
+        if (line != kMagic)
+          fail("not a dampbound sweep CSV (first line is not '" + std::string(kMagic) + "')");
         magic = true;
         continue;
       }
@@ -145,13 +147,20 @@ SweepTable read_sweep_csv(const std::string& path, bool keep_lines) {
         if (colon == std::string::npos) continue;
         const std::string key = line.substr(2, colon - 2), value = line.substr(colon + 2);
         SweepHeader& h = t.header;
-        if (key == "sweep-id") h.sweep_id = value;
-        else if (key == "scene") h.scene_path = value;
-        else if (key == "scene-name") h.scene_name = value;
-        else if (key == "definition") h.definition = value;
-        else if (key == "trials") h.trials = std::strtoull(value.c_str(), nullptr, 10);
-        else if (key == "classes") h.classes = std::strtoull(value.c_str(), nullptr, 10);
-        else if (key == "similarity") h.similarity = value;
+        if (key == "sweep-id")
+          h.sweep_id = value;
+        else if (key == "scene")
+          h.scene_path = value;
+        else if (key == "scene-name")
+          h.scene_name = value;
+        else if (key == "definition")
+          h.definition = value;
+        else if (key == "trials")
+          h.trials = std::strtoull(value.c_str(), nullptr, 10);
+        else if (key == "classes")
+          h.classes = std::strtoull(value.c_str(), nullptr, 10);
+        else if (key == "similarity")
+          h.similarity = value;
         else if (key == "shard" && std::sscanf(value.c_str(), "%d/%d", &h.shard, &h.shards) != 2)
           fail("bad shard line");
         continue;
@@ -168,7 +177,8 @@ SweepTable read_sweep_csv(const std::string& path, bool keep_lines) {
     r.trial = std::strtoull(f[0].c_str(), &end, 10);
     if (f[0].empty() || *end) fail("bad trial index '" + f[0] + "'");
     double* nums[] = {&r.m, &r.kappa, &r.gamma, &r.zeta, &r.dt};
-    for (int k = 0; k < 5; ++k) *nums[k] = std::strtod(f[static_cast<size_t>(k) + 1].c_str(), nullptr);
+    for (int k = 0; k < 5; ++k)
+      *nums[k] = std::strtod(f[static_cast<size_t>(k) + 1].c_str(), nullptr);
     r.factor = std::strtod(f[7].c_str(), nullptr);
     if (!parse_outcome(f[10], r.outcome)) fail("bad outcome '" + f[10] + "'");
     r.iterations = std::atoi(f[11].c_str());
@@ -190,8 +200,8 @@ void merge_sweep_parts(const std::vector<std::string>& parts, const std::string&
   for (size_t k = 0; k < tables.size(); ++k) {
     const SweepHeader& h = tables[k].header;
     if (h.sweep_id != first.sweep_id)
-      throw InputError(parts[k] + ": belongs to sweep " + h.sweep_id + ", not " +
-                       first.sweep_id + " (" + parts[0] + ")");
+      throw InputError(parts[k] + ": belongs to sweep " + h.sweep_id + ", not " + first.sweep_id +
+                       " (" + parts[0] + ")");
     if (h.shards != first.shards || h.trials != first.trials)
       throw InputError(parts[k] + ": is part of a split into " + std::to_string(h.shards) +
                        ", not " + std::to_string(first.shards));
@@ -205,9 +215,8 @@ void merge_sweep_parts(const std::vector<std::string>& parts, const std::string&
   }
   for (size_t s = 0; s < part_of.size(); ++s)
     if (part_of[s] < 0)
-      throw InputError("merge: part " + std::to_string(s + 1) + "/" +
-                       std::to_string(first.shards) + " of sweep " + first.sweep_id +
-                       " is missing");
+      throw InputError("merge: part " + std::to_string(s + 1) + "/" + std::to_string(first.shards) +
+                       " of sweep " + first.sweep_id + " is missing");
   std::vector<const std::string*> by_trial(static_cast<size_t>(first.trials), nullptr);
   for (size_t k = 0; k < tables.size(); ++k)
     for (size_t r = 0; r < tables[k].rows.size(); ++r) {

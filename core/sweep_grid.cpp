@@ -50,13 +50,16 @@ bool common(const Decimal& a, const Decimal& b, std::int64_t& ia, std::int64_t& 
 std::string Decimal::text() const {
   std::string s = std::to_string(digits < 0 ? -digits : digits);
   if (scale > 0) {
-    if (static_cast<int>(s.size()) <= scale) s.insert(0, static_cast<size_t>(scale + 1) - s.size(), '0');
+    if (static_cast<int>(s.size()) <= scale)
+      s.insert(0, static_cast<size_t>(scale + 1) - s.size(), '0');
     s.insert(s.size() - static_cast<size_t>(scale), ".");
   }
   return digits < 0 ? "-" + s : s;
 }
 
-double Decimal::value() const { return std::strtod(text().c_str(), nullptr); }
+double Decimal::value() const {
+  return std::strtod(text().c_str(), nullptr);
+}
 
 Decimal parse_decimal(const std::string& text, const std::string& flag) {
   const std::string what = "'" + text + "' is not a decimal number";
@@ -95,8 +98,7 @@ Decimal parse_decimal(const std::string& text, const std::string& flag) {
     mantissa.pop_back();
     --fraction;
   }
-  if (mantissa.size() > 17)
-    bad(flag, "'" + text + "' has more than 17 significant digits");
+  if (mantissa.size() > 17) bad(flag, "'" + text + "' has more than 17 significant digits");
   std::int64_t digits = mantissa.empty() ? 0 : std::stoll(mantissa);
   long scale = fraction - exponent;
   if (scale < 0) {
@@ -163,8 +165,10 @@ SweepGrid::SweepGrid(SweepSpec spec) : spec_(std::move(spec)) {
   std::uint64_t n = 1;
   for (const Axis* a : {&spec_.dt, &spec_.factor, &spec_.gamma, &spec_.m, &spec_.kappa}) {
     if (a->values.empty()) bad(a->flag, "no values");
-    if (a->values.size() > kMaxTrials / n) n = kMaxTrials + 1;  // saturate, then complain
-    else n *= a->values.size();
+    if (a->values.size() > kMaxTrials / n)
+      n = kMaxTrials + 1;  // saturate, then complain
+    else
+      n *= a->values.size();
     if (n > kMaxTrials)
       bad("--m/--kappa/--gamma/--zeta/--dt/--factor",
           "the grid has more than 4294967295 trials, too many for one sweep (use smaller "
@@ -288,9 +292,8 @@ TrialClasses find_classes(const SweepGrid& grid, const std::string& scene_reason
   if (absolute)
     for (const Decimal& d : s.gamma.values) scale = std::max(scale, d.scale);
   std::vector<std::int64_t> ia, ib, ic;
-  if (tc.reason.empty() &&
-      (!integers(s.m, scale, ia) || !integers(s.kappa, scale, ib) ||
-       (absolute && !integers(s.gamma, scale, ic))))
+  if (tc.reason.empty() && (!integers(s.m, scale, ia) || !integers(s.kappa, scale, ib) ||
+                            (absolute && !integers(s.gamma, scale, ic))))
     tc.reason = "the values have too many digits for exact integer classes";
   tc.class_of.resize(n);
   if (!tc.reason.empty()) {
@@ -308,8 +311,11 @@ TrialClasses find_classes(const SweepGrid& grid, const std::string& scene_reason
   classes.reserve(static_cast<size_t>(std::min<std::uint64_t>(n, 1u << 24)));
   for (std::uint64_t t = 0; t < n; ++t) {
     const SweepGrid::Index ix = grid.index(t);
-    ClassKey k{ia[ix.m], ib[ix.kappa], absolute ? ic[ix.gamma] : 0,
-               uses_gamma && !absolute ? gid[ix.gamma] : -1, did[ix.dt],
+    ClassKey k{ia[ix.m],
+               ib[ix.kappa],
+               absolute ? ic[ix.gamma] : 0,
+               uses_gamma && !absolute ? gid[ix.gamma] : -1,
+               did[ix.dt],
                s.policy == DampingPolicy::upper ? fid[ix.factor] : -1};
     // kappa/m = b/a and gamma/m = c/a: proportional triples are one class (SPEC 6).
     const std::int64_t g = std::gcd(std::gcd(k.a, k.b), k.c);

@@ -88,8 +88,8 @@ std::string similarity_unavailable(const SceneSpec& scene);
 
 /// Similarity classes of a grid.
 struct TrialClasses {
-  bool similarity = false;  ///< false: every trial is its own class
-  std::string reason;       ///< why similarity is off, when it is
+  bool similarity = false;                    ///< false: every trial is its own class
+  std::string reason;                         ///< why similarity is off, when it is
   std::vector<std::uint32_t> class_of;        ///< per trial
   std::vector<std::uint64_t> representative;  ///< per class: its first trial (the one run)
   std::size_t count() const { return representative.size(); }

@@ -52,10 +52,14 @@ void write_all(int fd, const std::string& bytes, const std::string& path) {
 
 char outcome_code(Outcome o) {
   switch (o) {
-    case Outcome::restored: return 'r';
-    case Outcome::diverged: return 'd';
-    case Outcome::not_restored: return 'n';
-    case Outcome::running: break;
+    case Outcome::restored:
+      return 'r';
+    case Outcome::diverged:
+      return 'd';
+    case Outcome::not_restored:
+      return 'n';
+    case Outcome::running:
+      break;
   }
   return '?';
 }
@@ -117,10 +121,17 @@ bool parse_journal_line(const std::string& line, JournalEntry& e) {
     return false;
   r.max_displacement = std::strtod(disp, nullptr);
   switch (code) {
-    case 'r': r.outcome = Outcome::restored; break;
-    case 'd': r.outcome = Outcome::diverged; break;
-    case 'n': r.outcome = Outcome::not_restored; break;
-    default: return false;
+    case 'r':
+      r.outcome = Outcome::restored;
+      break;
+    case 'd':
+      r.outcome = Outcome::diverged;
+      break;
+    case 'n':
+      r.outcome = Outcome::not_restored;
+      break;
+    default:
+      return false;
   }
   e = x;
   return true;
@@ -187,7 +198,9 @@ Journal::~Journal() {
   }
 }
 
-void Journal::add(const JournalEntry& e) { buffer_ += journal_line(e); }
+void Journal::add(const JournalEntry& e) {
+  buffer_ += journal_line(e);
+}
 
 void Journal::sync() {
   if (fd_ < 0 || buffer_.empty()) return;

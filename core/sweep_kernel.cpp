@@ -187,8 +187,8 @@ struct BatchKernel::Impl {
       b = std::max(b, sp.kappa_scale);
     }
     springs = schedule_springs(springs, n);
-    uniform = n > 0 && all_equal(mass_scale) && all_equal(gamma_scale) &&
-              all_equal(kappa_max_scale);
+    uniform =
+        n > 0 && all_equal(mass_scale) && all_equal(gamma_scale) && all_equal(kappa_max_scale);
     blocks.resize(n);
     if (!uniform) node_params.resize(n);
     for (int l = 0; l < kLanes; ++l) park(l);
@@ -364,10 +364,18 @@ struct BatchKernel::Impl {
   void step(StepCounts& sc) {
     sc.zero_length = spring_pass();
     switch (policy) {
-      case DampingPolicy::fixed: node_pass_p<DampingPolicy::fixed>(sc); break;
-      case DampingPolicy::clamp: node_pass_p<DampingPolicy::clamp>(sc); break;
-      case DampingPolicy::upper: node_pass_p<DampingPolicy::upper>(sc); break;
-      case DampingPolicy::lower: node_pass_p<DampingPolicy::lower>(sc); break;
+      case DampingPolicy::fixed:
+        node_pass_p<DampingPolicy::fixed>(sc);
+        break;
+      case DampingPolicy::clamp:
+        node_pass_p<DampingPolicy::clamp>(sc);
+        break;
+      case DampingPolicy::upper:
+        node_pass_p<DampingPolicy::upper>(sc);
+        break;
+      case DampingPolicy::lower:
+        node_pass_p<DampingPolicy::lower>(sc);
+        break;
     }
   }
 

@@ -30,8 +30,8 @@ struct TrialParams {
 struct TrialResult {
   Outcome outcome = Outcome::running;
   int iterations = 0;
-  double max_displacement = 0;  ///< cm, at the last iteration; inf when not finite
-  long long violations = 0;     ///< node-steps outside [gamma_lo, gamma_hi]
+  double max_displacement = 0;   ///< cm, at the last iteration; inf when not finite
+  long long violations = 0;      ///< node-steps outside [gamma_lo, gamma_hi]
   long long unstabilisable = 0;  ///< node-steps with gamma_lo > gamma_hi
   long long clamped = 0;
   long long zero_length_springs = 0;

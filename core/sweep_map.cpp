@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 
 #include "core/error.hpp"
@@ -150,15 +151,14 @@ StabilityMap build_stability_map(const SweepTable& table, double lambda_unit,
   }
   const Binning bx = make_binning(xs, opt.ratio_bins, true);
   const Binning by = make_binning(ys, 40, false);
-  fill_cells(ratio, bx, by, rows, [&](const SweepRow& r) {
-    return std::pair<double, double>(r.kappa / r.m, yval(r));
-  });
+  fill_cells(ratio, bx, by, rows,
+             [&](const SweepRow& r) { return std::pair<double, double>(r.kappa / r.m, yval(r)); });
   if (gamma_policy)
-    ratio.lines.push_back(horizontal("paper: lower bound, zeta = 1 (eq. 5)", MapLineKind::paper,
-                                     1.0, ratio));
+    ratio.lines.push_back(
+        horizontal("paper: lower bound, zeta = 1 (eq. 5)", MapLineKind::paper, 1.0, ratio));
   if (upper)
-    ratio.lines.push_back(horizontal("paper: upper bound, factor = 1 (eq. 6)",
-                                     MapLineKind::paper, 1.0, ratio));
+    ratio.lines.push_back(
+        horizontal("paper: upper bound, factor = 1 (eq. 6)", MapLineKind::paper, 1.0, ratio));
   if (have_lambda) {
     if (gamma_policy) {
       MapLine l{"exact linear limit gamma_max (SPEC 7)", MapLineKind::exact_linear, {}, {}};
@@ -203,10 +203,13 @@ StabilityMap build_stability_map(const SweepTable& table, double lambda_unit,
                [](const SweepRow& r) { return std::pair<double, double>(r.m, r.kappa); });
     if (have_lambda) {
       const double x0 = p.x_edges.front(), x1 = p.x_edges.back();
-      const double r = gamma_policy ? critical_ratio(s, lambda_unit, dt)
-                                    : 4 / (lambda_unit * dt * dt);
-      p.lines.push_back({gamma_policy ? "exact linear limit: kappa/m = " + format_number(r)
-                                      : "dt = 2/sqrt(lambda_max): kappa/m = " + format_number(r),
+      const double r =
+          gamma_policy ? critical_ratio(s, lambda_unit, dt) : 4 / (lambda_unit * dt * dt);
+      char ratio_text[32];
+      std::snprintf(ratio_text, sizeof ratio_text, "%.4g", r);
+      p.lines.push_back({gamma_policy
+                             ? std::string("exact linear limit: kappa/m = ") + ratio_text
+                             : std::string("dt = 2/sqrt(lambda_max): kappa/m = ") + ratio_text,
                          gamma_policy ? MapLineKind::exact_linear : MapLineKind::dt_limit,
                          {x0, x1},
                          {r * x0, r * x1}});

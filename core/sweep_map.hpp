@@ -38,7 +38,7 @@ struct MapPanel {
 struct StabilityMap {
   std::string title;
   std::vector<MapPanel> panels;
-  int max_iterations = 0;  ///< the protocol's limit (restored cells are shaded up to it)
+  int max_iterations = 0;            ///< the protocol's limit (restored cells are shaded up to it)
   std::vector<std::string> summary;  ///< outcome counts and prediction checks
 };
 

@@ -1,7 +1,7 @@
 #include "core/sweep_progress.hpp"
 
-#include <cinttypes>
 #include <algorithm>
+#include <cinttypes>
 #include <cmath>
 #include <string>
 
@@ -29,12 +29,11 @@ void ProgressPrinter::update(const SweepProgress& p) {
   // Trials per second counts the trials covered by the classes finished in this run.
   const double trial_rate = static_cast<double>(p.trials_done - p.trials_resumed) / run_s;
   const double class_rate = static_cast<double>(new_classes) / run_s;
-  const double left = class_rate > 0
-                          ? static_cast<double>(p.classes_total - p.classes_done) / class_rate
-                          : NAN;
-  const double frac = p.trials_total ? static_cast<double>(p.trials_done) /
-                                           static_cast<double>(p.trials_total)
-                                     : 1.0;
+  const double left =
+      class_rate > 0 ? static_cast<double>(p.classes_total - p.classes_done) / class_rate : NAN;
+  const double frac = p.trials_total
+                          ? static_cast<double>(p.trials_done) / static_cast<double>(p.trials_total)
+                          : 1.0;
   char rate[32];
   if (trial_rate >= 1e4)
     std::snprintf(rate, sizeof rate, "%.1fk", trial_rate / 1e3);
@@ -47,8 +46,7 @@ void ProgressPrinter::update(const SweepProgress& p) {
     const int filled = static_cast<int>(frac * width);
     std::string bar(static_cast<size_t>(filled), '#');
     bar.resize(width, '.');
-    std::fprintf(out_,
-                 "\r[%s] %5.1f%%  %" PRIu64 "/%" PRIu64 " trials  %s trials/s  %s %s   ",
+    std::fprintf(out_, "\r[%s] %5.1f%%  %" PRIu64 "/%" PRIu64 " trials  %s trials/s  %s %s   ",
                  bar.c_str(), 100 * frac, p.trials_done, p.trials_total, rate,
                  p.final ? "took" : "left", format_duration(p.final ? p.elapsed_s : left).c_str());
     if (p.final) std::fputc('\n', out_);
@@ -61,8 +59,7 @@ void ProgressPrinter::update(const SweepProgress& p) {
                "sweep: %.1f%% %" PRIu64 "/%" PRIu64 " trials, %" PRIu64 "/%" PRIu64
                " classes, %s trials/s, %s %s\n",
                100 * frac, p.trials_done, p.trials_total, p.classes_done, p.classes_total, rate,
-               format_duration(p.final ? p.elapsed_s : left).c_str(),
-               p.final ? "elapsed" : "left");
+               format_duration(p.final ? p.elapsed_s : left).c_str(), p.final ? "elapsed" : "left");
   std::fflush(out_);
 }
 

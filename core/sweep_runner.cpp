@@ -83,9 +83,7 @@ std::uint64_t run_classes(const SweepRequest& rq, const SweepGrid& grid,
               p = grid.params(classes.representative[cls]);
               return true;
             },
-            [&](std::size_t id, const TrialResult& r) {
-              give(static_cast<std::uint32_t>(id), r);
-            },
+            [&](std::size_t id, const TrialResult& r) { give(static_cast<std::uint32_t>(id), r); },
             rq.cancel);
       } else {
         std::uint32_t cls = 0;
@@ -113,7 +111,8 @@ std::uint64_t run_classes(const SweepRequest& rq, const SweepGrid& grid,
     bool finished = false;
     {
       std::unique_lock<std::mutex> lock(mu);
-      cv.wait_for(lock, std::chrono::milliseconds(200), [&] { return running == 0; });
+      cv.wait_for(lock, std::chrono::milliseconds(rq.sync_interval_s < 0.2 ? 20 : 200),
+                  [&] { return running == 0; });
       finished = running == 0;
       batch.swap(pending);
     }
@@ -173,8 +172,8 @@ SweepReport run_sweep(const SweepRequest& rq) {
   rep.trials = pr.trials_total;
   rep.classes = pr.classes_total;
 
-  const std::string identity = h.sweep_id + " " + std::to_string(rq.shard) + "/" +
-                               std::to_string(rq.shards);
+  const std::string identity =
+      h.sweep_id + " " + std::to_string(rq.shard) + "/" + std::to_string(rq.shards);
   if (rq.resume && !journal_exists && csv_identity(rq.output) == identity) {
     rep.already_complete = true;
     for (SweepRow& r : read_sweep_csv(rq.output).rows) {
@@ -185,16 +184,15 @@ SweepReport run_sweep(const SweepRequest& rq) {
     return rep;
   }
 
-  const std::string journal_header = "dampbound-journal v1 sweep=" + identity +
-                                     " classes=" + std::to_string(classes.count());
+  const std::string journal_header =
+      "dampbound-journal v1 sweep=" + identity + " classes=" + std::to_string(classes.count());
   std::unique_ptr<Journal> journal;
   if (rq.resume && journal_exists) {
     const JournalContents jc = read_journal(journal_path, journal_header, classes.count());
     for (const JournalEntry& e : jc.entries) {
       if (!in_shard(e.cls))
-        throw InputError(journal_path + ": class " + std::to_string(e.cls) +
-                         " is not in shard " + std::to_string(rq.shard) + "/" +
-                         std::to_string(rq.shards));
+        throw InputError(journal_path + ": class " + std::to_string(e.cls) + " is not in shard " +
+                         std::to_string(rq.shard) + "/" + std::to_string(rq.shards));
       results[e.cls] = e.result;
       finished[e.cls] = 1;
       ++pr.classes_resumed;
@@ -231,7 +229,7 @@ SweepReport run_sweep(const SweepRequest& rq) {
         pr.trials_done += multiplicity[c];
       },
       [&](bool last) {
-        if (last || seconds_since(last_sync) >= 1.0) {
+        if (last || seconds_since(last_sync) >= rq.sync_interval_s) {
           journal->sync();
           last_sync = Clock::now();
         }
@@ -244,8 +242,7 @@ SweepReport run_sweep(const SweepRequest& rq) {
     rep.cancelled = true;
     return rep;
   }
-  rep.spring_evaluations_per_step =
-      rq.scene.model.spring_count() + rq.scene.model.anchor_count();
+  rep.spring_evaluations_per_step = rq.scene.model.spring_count() + rq.scene.model.anchor_count();
   write_durably(rq.output, [&](std::FILE* f) {
     write_sweep_header(f, h);
     write_sweep_rows(f, grid, classes, results, rq.shard, rq.shards);

@@ -15,13 +15,13 @@ namespace dampbound {
 
 /// Where a running sweep stands (for the progress display).
 struct SweepProgress {
-  std::uint64_t trials_total = 0;    ///< trials of this shard
-  std::uint64_t trials_done = 0;     ///< trials whose class has finished (resumed included)
-  std::uint64_t classes_total = 0;   ///< classes of this shard
-  std::uint64_t classes_done = 0;    ///< resumed included
+  std::uint64_t trials_total = 0;     ///< trials of this shard
+  std::uint64_t trials_done = 0;      ///< trials whose class has finished (resumed included)
+  std::uint64_t classes_total = 0;    ///< classes of this shard
+  std::uint64_t classes_done = 0;     ///< resumed included
   std::uint64_t classes_resumed = 0;  ///< found in the journal at the start
   std::uint64_t trials_resumed = 0;   ///< trials of those classes
-  double elapsed_s = 0;              ///< wall time of this run
+  double elapsed_s = 0;               ///< wall time of this run
   bool final = false;
 };
 
@@ -29,30 +29,31 @@ struct SweepRequest {
   SceneSpec scene;
   std::string scene_text;  ///< the scene file's bytes (part of the sweep's identity)
   SweepSpec spec;
-  std::string output;      ///< the CSV; the journal is OUTPUT.journal
+  std::string output;  ///< the CSV; the journal is OUTPUT.journal
   bool resume = false;
   int shard = 1, shards = 1;
-  int threads = 0;          ///< 0: one per hardware thread
-  bool use_kernel = true;   ///< false: every trial through Session (the plain step())
+  int threads = 0;               ///< 0: one per hardware thread
+  bool use_kernel = true;        ///< false: every trial through Session (the plain step())
+  double sync_interval_s = 1.0;  ///< how often finished classes are fsynced to the journal
   std::function<void(const SweepProgress&)> progress;  ///< ~5 times a second and at the end
-  const std::atomic<bool>* cancel = nullptr;            ///< set by a signal handler
+  const std::atomic<bool>* cancel = nullptr;           ///< set by a signal handler
 };
 
 struct SweepReport {
   SweepHeader header;
-  std::uint64_t trials = 0;            ///< trials of this shard (rows written)
-  std::uint64_t classes = 0;           ///< classes of this shard
-  std::uint64_t classes_run = 0;       ///< stepped in this run
-  std::uint64_t classes_resumed = 0;   ///< taken from the journal
-  std::uint64_t lane_steps = 0;        ///< trial-steps taken in this run
+  std::uint64_t trials = 0;           ///< trials of this shard (rows written)
+  std::uint64_t classes = 0;          ///< classes of this shard
+  std::uint64_t classes_run = 0;      ///< stepped in this run
+  std::uint64_t classes_resumed = 0;  ///< taken from the journal
+  std::uint64_t lane_steps = 0;       ///< trial-steps taken in this run
   long long spring_evaluations_per_step = 0;
   std::uint64_t outcome_trials[4] = {0, 0, 0, 0};  ///< per Outcome, over this shard's trials
   double seconds = 0;
-  bool cancelled = false;       ///< interrupted: the journal holds what was done
+  bool cancelled = false;         ///< interrupted: the journal holds what was done
   bool already_complete = false;  ///< --resume found the finished CSV and nothing to do
-  bool batched = true;          ///< the batched kernel ran (else Session per trial)
-  std::string plain_reason;     ///< why not, when not
-  std::vector<SweepRow> rows;   ///< this shard's rows (for the summary and the map)
+  bool batched = true;            ///< the batched kernel ran (else Session per trial)
+  std::string plain_reason;       ///< why not, when not
+  std::vector<SweepRow> rows;     ///< this shard's rows (for the summary and the map)
 };
 
 /// "K/N" -> (K, N), 1 <= K <= N. Throws InputError naming --shard.

@@ -58,12 +58,12 @@ void check_sweep_resources(const SweepGrid& grid, const std::string& output, int
   const double disk = part * 170 + part * 60;
   const auto slash = output.find_last_of('/');
   const std::string dir = slash == std::string::npos ? "." : output.substr(0, slash + 1);
-  struct statvfs fs{};
+  struct statvfs fs {};
   if (::statvfs(dir.c_str(), &fs) == 0) {
     const double free_bytes = static_cast<double>(fs.f_bavail) * static_cast<double>(fs.f_frsize);
     if (disk > free_bytes)
-      throw InputError("-o: " + output + " would need about " + gigabytes(disk) +
-                       " of disk for " + std::to_string(grid.trials()) + " trials, but only " +
+      throw InputError("-o: " + output + " would need about " + gigabytes(disk) + " of disk for " +
+                       std::to_string(grid.trials()) + " trials, but only " +
                        gigabytes(free_bytes) + " is free");
   }
 }

@@ -56,6 +56,8 @@ inline vd sqrt(vd x) {
 }
 
 /// Lane-wise `mask ? a : b` (mask lanes are all ones or zero, as comparisons give).
-inline vd select(vl mask, vd a, vd b) { return mask ? a : b; }
+inline vd select(vl mask, vd a, vd b) {
+  return mask ? a : b;
+}
 
 }  // namespace dampbound::simd

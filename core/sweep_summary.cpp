@@ -53,34 +53,40 @@ std::vector<PredictionCheck> check_predictions(const std::vector<SweepRow>& rows
   const auto diverged = [](const SweepRow& r) { return r.outcome == Outcome::diverged; };
   const auto not_diverged = [](const SweepRow& r) { return r.outcome != Outcome::diverged; };
   if (policy == "fixed") {
-    check("gamma < lower bound (zeta < 1, eq. 5) => not restored (paper sec. 4)",
-          [](const SweepRow& r) { return r.zeta < 1; }, not_restored);
-    check("gamma >= lower bound (zeta >= 1) => restored within the limit (paper Fig. 1)",
-          [](const SweepRow& r) { return r.zeta >= 1; }, restored);
+    check(
+        "gamma < lower bound (zeta < 1, eq. 5) => not restored (paper sec. 4)",
+        [](const SweepRow& r) { return r.zeta < 1; }, not_restored);
+    check(
+        "gamma >= lower bound (zeta >= 1) => restored within the limit (paper Fig. 1)",
+        [](const SweepRow& r) { return r.zeta >= 1; }, restored);
   }
   if (policy == "fixed" && std::isfinite(lambda_unit) && lambda_unit > 0) {
     auto unstable = [lambda_unit](const SweepRow& r) {
       return linearly_unstable(r.m, r.kappa, r.gamma, r.dt, lambda_unit);
     };
-    check("linearly unstable (gamma >= 2m/dt - m lambda_max dt/2, SPEC 7) => diverged",
-          unstable, diverged);
-    check("linearly stable (SPEC 7) => not diverged",
-          [&](const SweepRow& r) { return !unstable(r); }, not_diverged);
+    check("linearly unstable (gamma >= 2m/dt - m lambda_max dt/2, SPEC 7) => diverged", unstable,
+          diverged);
+    check(
+        "linearly stable (SPEC 7) => not diverged", [&](const SweepRow& r) { return !unstable(r); },
+        not_diverged);
   }
   if (policy == "upper") {
-    check("factor <= 1 (damping at the upper bound, eq. 6) => restored (paper Fig. 2)",
-          [](const SweepRow& r) { return r.factor <= 1; }, restored);
-    check("factor > 1 (damping above the upper bound) => diverged (paper Fig. 2)",
-          [](const SweepRow& r) { return r.factor > 1; }, diverged);
+    check(
+        "factor <= 1 (damping at the upper bound, eq. 6) => restored (paper Fig. 2)",
+        [](const SweepRow& r) { return r.factor <= 1; }, restored);
+    check(
+        "factor > 1 (damping above the upper bound) => diverged (paper Fig. 2)",
+        [](const SweepRow& r) { return r.factor > 1; }, diverged);
   }
   if (policy == "lower" || policy == "clamp")
-    check("damping kept within the bounds (policy " + policy + ") => restored (paper sec. 5)",
-          [](const SweepRow&) { return true; }, restored);
+    check(
+        "damping kept within the bounds (policy " + policy + ") => restored (paper sec. 5)",
+        [](const SweepRow&) { return true; }, restored);
   return out;
 }
 
-std::vector<std::string> summary_lines(const std::vector<SweepRow>& rows,
-                                       const std::string& policy, double lambda_unit) {
+std::vector<std::string> summary_lines(const std::vector<SweepRow>& rows, const std::string& policy,
+                                       double lambda_unit) {
   std::uint64_t n[4] = {0, 0, 0, 0};
   for (const SweepRow& r : rows) ++n[static_cast<size_t>(r.outcome)];
   std::vector<std::string> lines;

@@ -36,7 +36,7 @@ std::vector<PredictionCheck> check_predictions(const std::vector<SweepRow>& rows
 std::string definition_value(const std::string& definition, const std::string& key);
 
 /// The lines printed after a sweep: outcome counts and the prediction checks.
-std::vector<std::string> summary_lines(const std::vector<SweepRow>& rows,
-                                       const std::string& policy, double lambda_unit);
+std::vector<std::string> summary_lines(const std::vector<SweepRow>& rows, const std::string& policy,
+                                       double lambda_unit);
 
 }  // namespace dampbound

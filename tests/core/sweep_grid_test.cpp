@@ -1,4 +1,6 @@
 // Sweep axes, decimals, trial enumeration and the exact similarity classes of SPEC 6.
+#include "core/sweep_grid.hpp"
+
 #include <gtest/gtest.h>
 
 #include <numeric>
@@ -7,7 +9,6 @@
 
 #include "core/bounds.hpp"
 #include "core/error.hpp"
-#include "core/sweep_grid.hpp"
 
 namespace dampbound {
 namespace {
@@ -58,8 +59,7 @@ TEST(SweepAxis, BadInputNamesTheFlag) {
     const std::string m = message(spec, AxisDomain::positive);
     EXPECT_EQ(m.rfind("--kappa: ", 0), 0u) << spec << " -> " << m;
   }
-  EXPECT_NE(message("0.1:0.01:0.01", AxisDomain::positive).find("empty range"),
-            std::string::npos);
+  EXPECT_NE(message("0.1:0.01:0.01", AxisDomain::positive).find("empty range"), std::string::npos);
   EXPECT_NE(message("0.01:0.1:0", AxisDomain::positive).find("step"), std::string::npos);
   EXPECT_EQ(message("0:1:0.5", AxisDomain::non_negative), "no error");
 }
@@ -70,8 +70,8 @@ SweepSpec small_spec(const std::string& m, const std::string& kappa, GammaMode m
   s.m = parse_axis("--m", m, AxisDomain::positive);
   s.kappa = parse_axis("--kappa", kappa, AxisDomain::positive);
   s.gamma_mode = mode;
-  s.gamma = parse_axis(mode == GammaMode::zeta ? "--zeta" : "--gamma", gamma,
-                       AxisDomain::non_negative);
+  s.gamma =
+      parse_axis(mode == GammaMode::zeta ? "--zeta" : "--gamma", gamma, AxisDomain::non_negative);
   s.dt = parse_axis("--dt", "0.05", AxisDomain::positive);
   s.factor = parse_axis("--factor", "1", AxisDomain::non_negative);
   return s;
@@ -89,8 +89,8 @@ TEST(SweepGrid, EnumeratesKappaFastest) {
 
 TEST(SweepClasses, ReducedFractionsOnTheIntegerGrid) {
   // m = a q, kappa = b q with q = 0.001, a, b = 1..12: classes are the distinct b/a per zeta.
-  const SweepGrid g(small_spec("0.001:0.012:0.001", "0.001:0.012:0.001", GammaMode::zeta,
-                               "0.25,0.5"));
+  const SweepGrid g(
+      small_spec("0.001:0.012:0.001", "0.001:0.012:0.001", GammaMode::zeta, "0.25,0.5"));
   const TrialClasses c = find_classes(g, similarity_unavailable(shipped("paper-plane")));
   ASSERT_TRUE(c.similarity) << c.reason;
   std::set<std::pair<int, int>> fractions;
@@ -115,8 +115,7 @@ TEST(SweepClasses, ReducedFractionsOnTheIntegerGrid) {
 
 TEST(SweepClasses, AbsoluteGammaUsesTheReducedTriple) {
   // (m, kappa, gamma) = (1, 2, 1) q and (2, 4, 2) q are one class; (2, 4, 1) q is not.
-  const SweepGrid g(small_spec("0.001,0.002", "0.002,0.004", GammaMode::absolute,
-                               "0.001,0.002"));
+  const SweepGrid g(small_spec("0.001,0.002", "0.002,0.004", GammaMode::absolute, "0.001,0.002"));
   const TrialClasses c = find_classes(g, "");
   ASSERT_TRUE(c.similarity);
   auto trial = [&](int gi, int mi, int ki) {

@@ -1,5 +1,7 @@
 // The sweep journal (torn lines, duplicates, another sweep's journal), the durable CSV write
 // and the merge checks.
+#include "core/sweep_journal.hpp"
+
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -10,7 +12,6 @@
 
 #include "core/error.hpp"
 #include "core/sweep_csv.hpp"
-#include "core/sweep_journal.hpp"
 
 namespace dampbound {
 namespace {
@@ -94,8 +95,7 @@ TEST(SweepJournal, ResumeDropsTornTailAndDuplicates) {
   EXPECT_EQ(jc.entries[2].cls, 7u);
   EXPECT_EQ(jc.dropped_lines, 1u);  // only the duplicate now
   // Another sweep's journal is refused, and so is a class outside the sweep.
-  EXPECT_THROW(read_journal(path, "dampbound-journal v1 sweep=xyz 1/1 classes=10", 10),
-               InputError);
+  EXPECT_THROW(read_journal(path, "dampbound-journal v1 sweep=xyz 1/1 classes=10", 10), InputError);
   EXPECT_THROW(read_journal(path, header, 6), InputError);
   std::remove(path.c_str());
 }

@@ -1,6 +1,8 @@
 // The batched kernel against the one step() of core: the same trials through
 // BatchKernel and through Session::run_to_end must give the same outcome, iteration, counts
 // and (bit for bit) the same final maximum displacement.
+#include "core/sweep_kernel.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,7 +12,6 @@
 
 #include "core/bounds.hpp"
 #include "core/scene.hpp"
-#include "core/sweep_kernel.hpp"
 
 namespace dampbound {
 namespace {
@@ -19,7 +20,9 @@ SceneSpec shipped(const std::string& name) {
   return load_scene(std::string(DAMPBOUND_SOURCE_DIR) + "/scenes/" + name + ".toml");
 }
 
-bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+bool same_bits(double a, double b) {
+  return std::memcmp(&a, &b, sizeof a) == 0;
+}
 
 std::string describe(const TrialParams& t, DampingPolicy p) {
   return "m=" + std::to_string(t.m) + " kappa=" + std::to_string(t.kappa) +
@@ -29,8 +32,8 @@ std::string describe(const TrialParams& t, DampingPolicy p) {
 
 /// Runs every trial both ways and compares; returns how many ended in each outcome so the
 /// caller can check the sample really covers restored, diverged and not restored.
-std::array<int, 4> expect_same(const SceneSpec& scene, DampingPolicy policy,
-                               const StopRules& rules, const std::vector<TrialParams>& trials) {
+std::array<int, 4> expect_same(const SceneSpec& scene, DampingPolicy policy, const StopRules& rules,
+                               const std::vector<TrialParams>& trials) {
   const std::vector<TrialResult> batched = run_batched(scene, policy, rules, trials);
   std::array<int, 4> seen{};
   for (size_t k = 0; k < trials.size(); ++k) {
@@ -68,8 +71,8 @@ TEST(SweepKernel, TwoNodeSceneEveryPolicyMatchesStep) {
         trials.push_back(t);
       }
   std::array<int, 4> seen{};
-  for (DampingPolicy p : {DampingPolicy::fixed, DampingPolicy::clamp, DampingPolicy::upper,
-                          DampingPolicy::lower}) {
+  for (DampingPolicy p :
+       {DampingPolicy::fixed, DampingPolicy::clamp, DampingPolicy::upper, DampingPolicy::lower}) {
     const auto s = expect_same(scene, p, rules, trials);
     for (size_t k = 0; k < 4; ++k) seen[k] += s[k];
   }
@@ -126,8 +129,8 @@ TEST(SweepKernel, IrregularSceneMatchesStep) {
     trials.push_back(t);
   }
   long long zero_length = 0;
-  for (DampingPolicy p : {DampingPolicy::fixed, DampingPolicy::clamp, DampingPolicy::upper,
-                          DampingPolicy::lower}) {
+  for (DampingPolicy p :
+       {DampingPolicy::fixed, DampingPolicy::clamp, DampingPolicy::upper, DampingPolicy::lower}) {
     expect_same(scene, p, rules, trials);
     zero_length += run_batched(scene, p, rules, {trials[0]})[0].zero_length_springs;
   }

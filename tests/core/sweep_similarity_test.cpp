@@ -19,14 +19,13 @@ namespace dampbound {
 namespace {
 
 TEST(SweepSimilarity, EquivalentTrialsAgreeThroughSession) {
-  SceneSpec scene =
-      load_scene(std::string(DAMPBOUND_SOURCE_DIR) + "/scenes/paper-plane.toml");
+  SceneSpec scene = load_scene(std::string(DAMPBOUND_SOURCE_DIR) + "/scenes/paper-plane.toml");
   StopRules rules = scene.rules;
   rules.max_iterations = 150;
   SweepSpec s;
   s.m = parse_axis("--m", "0.001:0.006:0.001", AxisDomain::positive);
-  s.kappa = parse_axis("--kappa", "0.001,0.002,0.003,0.004,0.006,0.008,0.6,0.9",
-                       AxisDomain::positive);
+  s.kappa =
+      parse_axis("--kappa", "0.001,0.002,0.003,0.004,0.006,0.008,0.6,0.9", AxisDomain::positive);
   s.gamma_mode = GammaMode::zeta;
   s.gamma = parse_axis("--zeta", "0.3,1", AxisDomain::non_negative);
   s.dt = parse_axis("--dt", "0.05", AxisDomain::positive);

@@ -1,0 +1,189 @@
+// dampbound map RESULTS.csv -o FILE.png: the stability map of a sweep (core/sweep_map.hpp)
+// drawn with the plot widget through the headless EGL host. Also the renderer behind
+// `sweep --map`, which this file registers at start-up.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+
+#include "app/commands.hpp"
+#include "app/options.hpp"
+#include "core/error.hpp"
+#include "core/io.hpp"
+#include "core/sweep_map.hpp"
+#include "core/sweep_summary.hpp"
+#include "ui/egl_host.hpp"
+#include "ui/plot.hpp"
+
+namespace dampbound::app {
+namespace {
+
+const ImU32 kNotRestored = IM_COL32(253, 190, 133, 255);
+const ImU32 kDiverged = IM_COL32(203, 24, 29, 255);
+const ImU32 kFast = IM_COL32(199, 233, 192, 255);
+const ImU32 kSlow = IM_COL32(0, 90, 50, 255);
+
+/// Restored cells: light green when restored in few iterations, dark green near the limit
+/// (log scale of the mean iteration).
+ImU32 restored_color(double iterations, int max_iterations) {
+  const double t =
+      max_iterations > 1
+          ? std::clamp(std::log(std::max(iterations, 1.0)) / std::log(max_iterations), 0.0, 1.0)
+          : 0.0;
+  auto mix = [t](int shift) {
+    const double a = (kFast >> shift) & 0xFF, b = (kSlow >> shift) & 0xFF;
+    return static_cast<unsigned>(std::lround(a + (b - a) * t));
+  };
+  return IM_COL32(mix(IM_COL32_R_SHIFT), mix(IM_COL32_G_SHIFT), mix(IM_COL32_B_SHIFT), 255);
+}
+
+ui::PlotSpec panel_plot(const MapPanel& p, int max_iterations, bool with_legend) {
+  ui::PlotSpec s;
+  s.title = p.title;
+  s.x.label = p.x_label;
+  s.x.log = p.x_log;
+  s.x.min = p.x_edges.front();
+  s.x.max = p.x_edges.back();
+  s.y.label = p.y_label;
+  s.y.min = p.y_edges.front();
+  s.y.max = p.y_edges.back();
+  s.heatmap.x_edges = p.x_edges;
+  s.heatmap.y_edges = p.y_edges;
+  s.heatmap.cell_color.resize(p.cells.size(), 0);
+  for (size_t c = 0; c < p.cells.size(); ++c) {
+    switch (p.cells[c]) {
+      case MapCell::empty:
+        break;
+      case MapCell::restored:
+        s.heatmap.cell_color[c] = restored_color(p.iterations[c], max_iterations);
+        break;
+      case MapCell::not_restored:
+        s.heatmap.cell_color[c] = kNotRestored;
+        break;
+      case MapCell::diverged:
+        s.heatmap.cell_color[c] = kDiverged;
+        break;
+    }
+  }
+  if (with_legend) {
+    const std::string n = std::to_string(max_iterations);
+    s.heatmap.legend = {{"restored in few iterations", kFast},
+                        {"restored near the limit (" + n + ")", kSlow},
+                        {"not restored in " + n + " iterations", kNotRestored},
+                        {"diverged", kDiverged}};
+  }
+  for (const MapLine& l : p.lines) {
+    ui::PlotSeries ser;
+    ser.label = with_legend || l.kind != MapLineKind::paper ? l.label : "";
+    ser.x = l.x;
+    ser.y = l.y;
+    switch (l.kind) {
+      case MapLineKind::paper:
+        ser.color = IM_COL32(0, 0, 0, 255);
+        ser.dashed = true;
+        ser.thickness = 3.0f;
+        break;
+      case MapLineKind::exact_linear:
+        ser.color = IM_COL32(31, 80, 200, 255);
+        ser.thickness = 3.0f;
+        break;
+      case MapLineKind::dt_limit:
+        ser.color = IM_COL32(148, 40, 180, 255);
+        ser.dashed = true;
+        ser.thickness = 2.5f;
+        break;
+    }
+    s.series.push_back(ser);
+  }
+  s.legend = with_legend ? ui::LegendPos::Outside : ui::LegendPos::BottomRight;
+  return s;
+}
+
+/// The kappa/m panel across the top (its legend beside it), the (m, kappa) panels side by
+/// side below: every part of the image holds a plot.
+void render_map(const StabilityMap& map, const std::string& png, int width, int height) {
+  std::vector<ui::PlotSpec> plots;
+  for (size_t k = 0; k < map.panels.size(); ++k)
+    plots.push_back(panel_plot(map.panels[k], map.max_iterations, k == 0));
+  plots.front().title = map.title + " - " + plots.front().title;
+  const int below = static_cast<int>(plots.size()) - 1;
+  if (width <= 0) width = below >= 3 ? 2100 : 1800;
+  if (height <= 0) height = below > 0 ? 1400 : 800;
+  const ui::PlotStyle style = ui::plot_style_light();
+  ui::EglHost host;
+  const ui::Image img = host.render_frames(width, height, [&](ui::FrameInfo& info) {
+    ImDrawList* dl = ImGui::GetBackgroundDrawList();
+    const float w = static_cast<float>(info.width), h = static_cast<float>(info.height);
+    dl->AddRectFilled(ImVec2(0, 0), ImVec2(w, h), style.background);
+    const float top = below > 0 ? std::floor(0.45f * h) : h;
+    ui::draw_plot(dl, ImVec2(0, 0), ImVec2(w, top), plots.front(), style);
+    for (int k = 0; k < below; ++k) {
+      const float cw = std::floor(w / static_cast<float>(below));
+      ui::draw_plot(dl, ImVec2(cw * static_cast<float>(k), top), ImVec2(cw, h - top),
+                    plots[static_cast<size_t>(k) + 1], style);
+    }
+  });
+  ui::write_png_atomic(img, png);
+}
+
+struct MapArgs {
+  std::string csv, output, scene, size;
+  double dt = 0;
+  CLI::Option* dt_opt = nullptr;
+};
+
+int run(const MapArgs& a) {
+  int width = 0, height = 0;
+  if (!a.size.empty()) parse_size(a.size, "--size", width, height);
+  try {
+    check_writable(a.output);
+  } catch (const InputError& e) {
+    throw InputError(std::string("-o: ") + e.what());
+  }
+  const SweepTable table = read_sweep_csv(a.csv);
+  const std::string scene_path = a.scene.empty() ? table.header.scene_path : a.scene;
+  double lambda_unit = NAN;
+  try {
+    lambda_unit = unit_stiffness_eigenvalue(load_scene_arg(scene_path));
+  } catch (const std::exception& e) {
+    std::printf("warning      no exact linear limit (scene %s: %s)\n", scene_path.c_str(),
+                e.what());
+  }
+  MapOptions opt;
+  if (a.dt_opt->count()) opt.dt = a.dt;
+  const StabilityMap map = build_stability_map(table, lambda_unit, opt);
+  render_map(map, a.output, width, height);
+  std::printf("map          %s -> %s (%zu panels, lambda_max = %s * kappa/m 1/s^2)\n",
+              a.csv.c_str(), a.output.c_str(), map.panels.size(),
+              format_number(lambda_unit).c_str());
+  for (const std::string& line : map.summary) std::printf("%s\n", line.c_str());
+  return 0;
+}
+
+std::function<int()> setup(CLI::App& root) {
+  auto a = std::make_shared<MapArgs>();
+  CLI::App* cmd = root.add_subcommand(
+      "map",
+      "Draw the stability map of a sweep CSV (headless, EGL): outcome over kappa/m and zeta "
+      "(or factor), and over m and kappa per zeta, with the paper's boundary and the exact "
+      "linear one (SPEC 7); print how often the predictions held.");
+  cmd->add_option("results", a->csv, "a sweep CSV (dampbound sweep -o)")->required();
+  cmd->add_option("-o,--output", a->output, "PNG file to write")->required();
+  cmd->add_option("--scene", a->scene,
+                  "scene for lambda_max (default: the one named in the CSV header)");
+  a->dt_opt = cmd->add_option("--dt", a->dt, "which dt to draw when the sweep has several")
+                  ->check(finite_positive());
+  cmd->add_option("--size", a->size, "image size WxH in pixels (default from the panel count)");
+  return [a] { return run(*a); };
+}
+
+const bool registered = register_command("map", setup);
+const bool hooked = [] {
+  map_renderer() = [](const StabilityMap& map, const std::string& png) {
+    render_map(map, png, 0, 0);
+  };
+  return true;
+}();
+
+}  // namespace
+}  // namespace dampbound::app
