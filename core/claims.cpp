@@ -1,6 +1,7 @@
 #include "core/claims.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <ostream>
 
 #include "core/io.hpp"
@@ -98,6 +99,27 @@ std::vector<Claim> fig2_claims(const FigureData& fig, const AfterRestore& after)
   above.measured = "factor 1.05: " + outcome_text(r1);
   above.verdict = r1.outcome == Outcome::diverged ? Verdict::holds : Verdict::does_not_hold;
   out.push_back(above);
+  return out;
+}
+
+std::vector<Claim> sweep_claims(const std::vector<PredictionCheck>& checks,
+                                const std::string& source, const std::string& grid) {
+  std::vector<Claim> out;
+  for (const PredictionCheck& p : checks) {
+    if (p.claim.find("paper") == std::string::npos || p.of == 0) continue;
+    Claim c;
+    c.source = source;
+    c.paper = p.claim;
+    const double pct = 100.0 * static_cast<double>(p.held) / static_cast<double>(p.of);
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.1f%%", pct);
+    c.measured = "held in " + std::to_string(p.held) + " of " + std::to_string(p.of) +
+                 " trials (" + buf + ") on " + grid;
+    c.verdict = p.held == p.of ? Verdict::holds
+                : p.held == 0  ? Verdict::does_not_hold
+                               : Verdict::partly;
+    out.push_back(c);
+  }
   return out;
 }
 

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/figures.hpp"
+#include "core/sweep_summary.hpp"
 
 namespace dampbound {
 
@@ -39,6 +40,12 @@ std::vector<Claim> fig1_claims(const FigureData& fig1);
 
 /// Fig. 2: at the upper bound stable within 652 iterations and after; 5% above, unstable.
 std::vector<Claim> fig2_claims(const FigureData& fig2, const AfterRestore& at_bound);
+
+/// A sweep's prediction checks (core/sweep_summary.hpp) as claims of the paper's sec. 4:
+/// holds when it held in every trial, partly when in some, does not hold when in none.
+/// Checks whose text does not mention the paper (dampbound's own, e.g. SPEC 7) are skipped.
+std::vector<Claim> sweep_claims(const std::vector<PredictionCheck>& checks,
+                                const std::string& source, const std::string& grid);
 
 /// Markdown table of the claims.
 void write_claims_table(std::ostream& out, const std::vector<Claim>& claims);

@@ -1,0 +1,23 @@
+# dampbound reproduce on a tiny grid: the report, its figures and maps, every claim judged.
+. "$(dirname "$0")/lib.inc"
+
+expect_exit 0 "$DB" reproduce -o "$WORK/rep" --grid 4 --threads 2
+for f in report.md fig1.png fig2.png fig1.csv fig2.csv map-lower.png map-upper.png \
+         sweep-lower.csv sweep-upper.csv; do
+  [ -s "$WORK/rep/$f" ] && ok || bad "reproduce did not write $f"
+done
+report=$(cat "$WORK/rep/report.md")
+rows=$(grep -cE '^\| [0-9]+ \|' "$WORK/rep/report.md")
+[ "$rows" -eq 8 ] && ok || bad "report has $rows claim rows, wanted 8"
+expect_match "$report" '34 iterations .*\| gamma = 0\.002: (restored|not_restored|diverged) at iteration [0-9]+' "Fig. 1 claim measured"
+expect_match "$report" '652 iterations .*\| factor 1\.0: (restored|not_restored|diverged) at iteration [0-9]+' "Fig. 2 claim measured"
+expect_match "$report" '\*\*(holds|does not hold|partly)\*\*' "verdicts"
+expect_match "$report" 'held in [0-9]+ of [0-9]+ trials' "sweep claims counted"
+# Nothing half-written is left behind.
+left=$(find "$WORK/rep" -name '*.tmp*' -o -name '*.journal' | wc -l)
+[ "$left" -eq 0 ] && ok || bad "temporary files left: $left"
+# A folder that cannot be made: exit 2, one line naming it.
+expect_exit 2 "$DB" reproduce -o /nonexistent-dir/sub --skip-sweeps
+expect_one_line "$ERR" "unwritable -o"
+expect_match "$ERR" '/nonexistent-dir/sub' "names the folder"
+finish
