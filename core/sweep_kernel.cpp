@@ -5,7 +5,6 @@
 
 #include <cfloat>
 #include <cmath>
-#include <set>
 #include <stdexcept>
 
 #include "core/session.hpp"
@@ -49,90 +48,7 @@ bool all_equal(const std::vector<double>& v) {
   return true;
 }
 
-/// The order in which the kernel applies the springs. Each node's force must receive its
-/// springs' contributions in the list order of step() (floating-point addition is not
-/// associative), but springs on different nodes may be interleaved freely. Consecutive
-/// springs of the list often share a node, which chains each spring's force update on the
-/// previous one through memory; this picks, among the springs whose nodes have no earlier
-/// spring pending, the first one that shares no node with the last few applied, so the
-/// CPU can overlap their square roots and divisions.
-std::vector<SpringData> schedule_springs(const std::vector<SpringData>& list, size_t nodes) {
-  constexpr int kWindow = 6;
-  const size_t count = list.size();
-  std::vector<std::vector<size_t>> incident(nodes);
-  for (size_t s = 0; s < count; ++s) {
-    incident[static_cast<size_t>(list[s].i)].push_back(s);
-    if (list[s].j != list[s].i) incident[static_cast<size_t>(list[s].j)].push_back(s);
-  }
-  std::vector<size_t> next(nodes, 0);
-  auto is_ready = [&](size_t s) {
-    const size_t i = static_cast<size_t>(list[s].i), j = static_cast<size_t>(list[s].j);
-    return incident[i][next[i]] == s && incident[j][next[j]] == s;
-  };
-  std::set<size_t> ready;
-  for (size_t s = 0; s < count; ++s)
-    if (is_ready(s)) ready.insert(s);
-  std::vector<SpringData> out;
-  out.reserve(count);
-  std::vector<long> last_used(nodes, -kWindow - 1);
-  while (!ready.empty()) {
-    const long t = static_cast<long>(out.size());
-    size_t pick = *ready.begin();
-    for (size_t s : ready) {
-      if (t - last_used[static_cast<size_t>(list[s].i)] > kWindow &&
-          t - last_used[static_cast<size_t>(list[s].j)] > kWindow) {
-        pick = s;
-        break;
-      }
-    }
-    ready.erase(pick);
-    out.push_back(list[pick]);
-    for (int end : {list[pick].i, list[pick].j}) {
-      const size_t e = static_cast<size_t>(end);
-      last_used[e] = t;
-      if (next[e] < incident[e].size() && incident[e][next[e]] == pick) ++next[e];
-    }
-    for (int end : {list[pick].i, list[pick].j}) {
-      const size_t e = static_cast<size_t>(end);
-      if (next[e] < incident[e].size() && is_ready(incident[e][next[e]]))
-        ready.insert(incident[e][next[e]]);
-    }
-  }
-  return out;
-}
-
 }  // namespace
-
-TrialResult to_trial_result(const RunResult& r) {
-  TrialResult t;
-  t.outcome = r.outcome;
-  t.iterations = r.iterations;
-  t.max_displacement = r.max_displacement;
-  t.violations = r.violations;
-  t.unstabilisable = r.unstabilisable;
-  t.clamped = r.clamped;
-  t.zero_length_springs = r.zero_length_springs;
-  return t;
-}
-
-Params trial_params(const Params& base, DampingPolicy policy, const TrialParams& t) {
-  Params p = base;
-  p.m = t.m;
-  p.kappa = t.kappa;
-  p.gamma = t.gamma;
-  p.dt = t.dt;
-  p.factor = t.factor;
-  p.policy = policy;
-  return p;
-}
-
-std::string batch_kernel_unsupported(const SceneSpec& scene) {
-  if (!scene.cuts.empty()) return "the scene cuts springs during the run";
-  const Integrator in = scene.params.integrator;
-  if (in != Integrator::semi_implicit_euler && in != Integrator::forward_euler)
-    return std::string("integrator ") + to_string(in);
-  return {};
-}
 
 struct BatchKernel::Impl {
   size_t n = 0;
@@ -179,14 +95,14 @@ struct BatchKernel::Impl {
     // kappa_i of eq. 5 = max incident stiffness = kappa * (max incident scale): x -> kappa*x
     // rounds monotonically, so the max of the products is the product of the max.
     kappa_max_scale = anchor_scale;
-    for (const Spring& sp : mo.springs) {
+    for (int k : spring_schedule(mo)) {
+      const Spring& sp = mo.springs[static_cast<size_t>(k)];
       springs.push_back({sp.i, sp.j, sp.rest_length, sp.kappa_scale});
       auto& a = kappa_max_scale[static_cast<size_t>(sp.i)];
       auto& b = kappa_max_scale[static_cast<size_t>(sp.j)];
       a = std::max(a, sp.kappa_scale);
       b = std::max(b, sp.kappa_scale);
     }
-    springs = schedule_springs(springs, n);
     uniform =
         n > 0 && all_equal(mass_scale) && all_equal(gamma_scale) && all_equal(kappa_max_scale);
     blocks.resize(n);
@@ -444,29 +360,6 @@ long long BatchKernel::spring_evaluations_per_step() const {
   long long anchors = 0;
   for (double s : impl_->anchor_scale) anchors += s > 0;
   return static_cast<long long>(impl_->springs.size()) + anchors;
-}
-
-std::vector<TrialResult> run_batched(const SceneSpec& scene, DampingPolicy policy,
-                                     const StopRules& rules,
-                                     const std::vector<TrialParams>& trials) {
-  std::vector<TrialResult> out(trials.size());
-  BatchKernel kernel(scene, policy, rules);
-  std::size_t next = 0;
-  kernel.run(
-      [&](std::size_t& id, TrialParams& p) {
-        if (next >= trials.size()) return false;
-        id = next;
-        p = trials[next++];
-        return true;
-      },
-      [&](std::size_t id, const TrialResult& r) { out[id] = r; });
-  return out;
-}
-
-TrialResult run_reference(const SceneSpec& scene, DampingPolicy policy, const StopRules& rules,
-                          const TrialParams& trial) {
-  Session session(scene, trial_params(scene.params, policy, trial), rules);
-  return to_trial_result(session.run_to_end());
 }
 
 }  // namespace dampbound

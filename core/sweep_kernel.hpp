@@ -80,6 +80,14 @@ class BatchKernel {
   std::unique_ptr<Impl> impl_;
 };
 
+/// The order in which the kernel applies the springs (indices into model.springs). Each
+/// node's force must receive its springs' contributions in the list order of step()
+/// (floating-point addition is not associative), so for every node its springs keep their
+/// relative order; springs on different nodes are interleaved so that consecutive ones share
+/// no node, which keeps one spring's force update from waiting on the previous one's through
+/// memory and lets the CPU overlap their square roots and divisions.
+std::vector<int> spring_schedule(const Model& model);
+
 /// Convenience for tests and small sweeps: runs `trials` with the batched kernel on one
 /// thread and returns their results in order.
 std::vector<TrialResult> run_batched(const SceneSpec& scene, DampingPolicy policy,

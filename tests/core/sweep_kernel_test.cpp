@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <random>
@@ -195,6 +196,39 @@ TEST(SweepKernel, PaperPlaneBorderlineTrialsMatchStep) {
   }
   for (DampingPolicy p : {DampingPolicy::clamp, DampingPolicy::upper, DampingPolicy::lower})
     expect_same(scene, p, rules, few);
+}
+
+TEST(SweepKernel, SpringScheduleKeepsEachNodesOrder) {
+  const SceneSpec scene = shipped("paper-plane");
+  const Model& m = scene.model;
+  const std::vector<int> order = spring_schedule(m);
+  ASSERT_EQ(order.size(), m.springs.size());
+  std::vector<int> seen(m.springs.size(), 0);
+  for (int k : order) ++seen[static_cast<size_t>(k)];
+  EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), static_cast<long>(seen.size()));
+  // For every node, its springs appear in increasing list order.
+  std::vector<int> last(m.rest.size(), -1);
+  int neighbours_sharing = 0;
+  for (size_t p = 0; p < order.size(); ++p) {
+    const Spring& s = m.springs[static_cast<size_t>(order[p])];
+    for (int node : {s.i, s.j}) {
+      EXPECT_LT(last[static_cast<size_t>(node)], order[p]);
+      last[static_cast<size_t>(node)] = order[p];
+    }
+    if (p > 0) {
+      const Spring& q = m.springs[static_cast<size_t>(order[p - 1])];
+      neighbours_sharing += s.i == q.i || s.i == q.j || s.j == q.i || s.j == q.j;
+    }
+  }
+  // The list order shares a node between most neighbours; the schedule rarely does.
+  int list_sharing = 0;
+  for (size_t p = 1; p < m.springs.size(); ++p) {
+    const Spring& s = m.springs[p];
+    const Spring& q = m.springs[p - 1];
+    list_sharing += s.i == q.i || s.i == q.j || s.j == q.i || s.j == q.j;
+  }
+  EXPECT_GT(list_sharing, static_cast<int>(order.size() / 2));
+  EXPECT_LT(neighbours_sharing, list_sharing / 20);
 }
 
 }  // namespace
