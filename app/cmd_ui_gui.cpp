@@ -1,0 +1,136 @@
+// dampbound gui [SCENE]: the interactive tuner window (Dear ImGui + GLFW + OpenGL 3.3). With
+// --frames N it plays N frames and exits (screenshots, frame-time measurement, tests).
+#include <cstdio>
+#include <cstdlib>
+#include <memory>
+#include <string>
+
+#include "app/commands.hpp"
+#include "app/options.hpp"
+#include "core/error.hpp"
+#include "core/io.hpp"
+
+#if defined(DAMPBOUND_HAVE_GLFW)
+#include "ui/glfw_host.hpp"
+#include "ui/gui_app.hpp"
+#include "ui/image.hpp"
+#endif
+
+#ifndef DAMPBOUND_SOURCE_DIR
+#define DAMPBOUND_SOURCE_DIR "."
+#endif
+
+namespace dampbound::app {
+namespace {
+
+struct GuiArgs {
+  std::string scene, screenshot, size, config_dir;
+  int frames = 0, steps_per_frame = 0;
+  bool stats = false, play = false, demo = false;
+  ParamFlags flags;
+};
+
+#if defined(DAMPBOUND_HAVE_GLFW)
+bool have_display() {
+  const char* x = std::getenv("DISPLAY");
+  const char* w = std::getenv("WAYLAND_DISPLAY");
+  return (x != nullptr && *x != '\0') || (w != nullptr && *w != '\0');
+}
+
+void print_stats(const GuiArgs& a, ui::GuiApp& app, const ui::WindowRun& run,
+                 const std::string& renderer, int width, int height) {
+  const Session& s = app.tuner().session();
+  const double wall_s = run.mean_frame_ms * run.frames / 1000.0;
+  const double sps = wall_s > 0 ? static_cast<double>(app.tuner().total_steps()) / wall_s : 0.0;
+  std::printf(
+      "{\"frames\":%d,\"iterations\":%d,\"outcome\":\"%s\",\"outcome_iteration\":%d,"
+      "\"steps_per_frame\":%d,\"mean_frame_ms\":%s,\"fps\":%s,\"steps_per_second\":%s,"
+      "\"step_ms_per_frame\":%s,\"width\":%d,\"height\":%d,\"scene\":%s,\"gamma\":%s,"
+      "\"policy\":\"%s\",\"pins\":%zu,\"renderer\":%s}\n",
+      run.frames, s.state().iteration, to_string(s.result().outcome), s.result().iterations,
+      app.tuner().playback().steps_per_frame, json_number(run.mean_frame_ms).c_str(),
+      json_number(run.mean_frame_ms > 0 ? 1000.0 / run.mean_frame_ms : 0.0).c_str(),
+      json_number(sps).c_str(),
+      json_number(run.frames > 0 ? app.tuner().step_seconds() * 1e3 / run.frames : 0.0).c_str(),
+      width, height, json_string(s.scene().name).c_str(), json_number(s.params().gamma).c_str(),
+      to_string(s.params().policy), app.tuner().pins().size(), json_string(renderer).c_str());
+  (void)a;
+}
+#endif
+
+int run(GuiArgs& a) {
+#if !defined(DAMPBOUND_HAVE_GLFW)
+  (void)a;
+  throw std::runtime_error("gui: this dampbound was built without GLFW (DAMPBOUND_GUI=OFF)");
+#else
+  if (!a.screenshot.empty() && a.frames <= 0)
+    throw InputError("--screenshot needs --frames N (the screenshot is taken after frame N)");
+  int width = 0, height = 0;
+  if (!a.size.empty()) parse_size(a.size, "--size", width, height);
+  if (!a.screenshot.empty()) check_writable(a.screenshot);
+  ui::GuiOptions o;
+  o.config_dir = ui::config_dir(a.config_dir);
+  o.scenes_dir = std::string(DAMPBOUND_SOURCE_DIR) + "/scenes";
+  if (!a.scene.empty()) o.scene = load_scene_arg(a.scene);
+  const ParamFlags flags = a.flags;
+  o.overrides = [flags](Params& p, StopRules& r) { flags.apply(p, r); };
+  o.steps_per_frame = a.steps_per_frame;
+  o.play = a.play || a.frames > 0;
+  o.demo = a.demo;
+  if (!have_display())
+    throw std::runtime_error(
+        "gui: no display (DISPLAY is not set): run it under `xvfb-run -a`, or use `dampbound "
+        "figure` for headless plots");
+  ui::GuiApp app(std::move(o));
+  if (width == 0) {
+    const auto remembered = app.remembered_window_size();
+    width = remembered.first > 0 ? remembered.first : 1600;
+    height = remembered.second > 0 ? remembered.second : 1000;
+  }
+  ui::WindowOptions w;
+  w.width = width;
+  w.height = height;
+  w.title = "dampbound - damping bounds tuner";
+  w.vsync = a.frames <= 0;  // measured runs draw as fast as they can
+  w.max_frames = a.frames;
+  w.screenshot_frame = a.screenshot.empty() ? -1 : a.frames - 1;
+  ui::GlfwHost host(w);
+  const ui::WindowRun run = host.run(app.frame_fn());
+  app.save();
+  app.release_gl();
+  if (!a.screenshot.empty()) {
+    if (!run.screenshot) throw std::runtime_error("gui: the window closed before the screenshot");
+    ui::write_png_atomic(*run.screenshot, a.screenshot);
+  }
+  if (a.stats) print_stats(a, app, run, host.gl_renderer(), width, height);
+  return 0;
+#endif
+}
+
+std::function<int()> setup(CLI::App& root) {
+  auto a = std::make_shared<GuiArgs>();
+  CLI::App* cmd = root.add_subcommand(
+      "gui",
+      "The interactive tuner: a window to tune m, kappa, gamma (mass unit/s) and dt (s) and "
+      "watch, live, whether the mesh stays stable and where the paper's bounds lie.");
+  cmd->add_option("scene", a->scene, "scene file or name (default: the last one, else paper-plane)");
+  cmd->add_option("--frames", a->frames, "play N frames, then exit")->check(CLI::Range(1, 10000000));
+  cmd->add_option("--screenshot", a->screenshot, "save the window after the last frame (PNG)");
+  cmd->add_option("--size", a->size, "window size WxH in pixels (default 1600x1000)");
+  cmd->add_option("--steps-per-frame", a->steps_per_frame, "steps per frame while playing")
+      ->check(CLI::Range(1, 10000));
+  cmd->add_flag("--stats", a->stats,
+                "print one JSON line: frames, iterations, mean frame time, steps per second");
+  cmd->add_option("--config-dir", a->config_dir,
+                  "settings folder (default $XDG_CONFIG_HOME/dampbound or ~/.config/dampbound)");
+  cmd->add_flag("--play", a->play, "start playing");
+  cmd->add_flag("--demo", a->demo,
+                "pin a run at a quarter of the lower bound and one at it before the first frame");
+  a->flags.add_to(cmd, true);
+  return [a] { return run(*a); };
+}
+
+const bool registered = register_command("gui", setup);
+
+}  // namespace
+}  // namespace dampbound::app

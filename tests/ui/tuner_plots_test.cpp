@@ -1,0 +1,152 @@
+// The tuner's plots and export without a window: pins overlaid and removable, the band
+// coarsened for drawing, the long CSV of all runs.
+#include "ui/tuner_plots.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+#include "core/error.hpp"
+#include "core/scene.hpp"
+#include "ui/tuner_export.hpp"
+
+namespace dampbound::ui {
+namespace {
+
+SceneSpec tiny() {
+  SceneSpec s;
+  s.name = "tiny";
+  GridSpec g;
+  g.nx = g.nz = 6;
+  g.spacing = 0.57;
+  s.model = make_grid(g);
+  s.watched = 14;
+  Perturbation p;
+  p.node = 14;
+  p.displacement = Vec3(0, 5, 0);
+  s.perturbations.push_back(p);
+  return s;
+}
+
+bool has_series(const PlotSpec& p, const std::string& label) {
+  for (const auto& s : p.series)
+    if (s.label.find(label) != std::string::npos) return true;
+  return false;
+}
+
+TEST(TunerPlots, PinsAreOverlaidUntilHiddenOrRemoved) {
+  Tuner t(tiny());
+  t.step(30);
+  t.pin("slow one");
+  t.reset();
+  t.step(10);
+  TunerPlotOptions o;
+  PlotSpec d = tuner_displacement_plot(t, o);
+  EXPECT_TRUE(has_series(d, "slow one"));
+  EXPECT_TRUE(has_series(d, "current"));
+  EXPECT_TRUE(has_series(d, "max over nodes"));
+  ASSERT_EQ(d.hlines.size(), 1u);
+  EXPECT_DOUBLE_EQ(d.hlines[0].y, 0.05);  // 1 % of the 5 cm perturbation
+  EXPECT_EQ(d.series.back().label.rfind("current", 0), 0u);  // live run drawn last
+  PlotSpec e = tuner_envelope_plot(t, o);
+  EXPECT_TRUE(has_series(e, "slow one"));
+  EXPECT_TRUE(has_series(e, "lower bound"));
+  EXPECT_TRUE(e.y.log);
+  ASSERT_TRUE(e.y.min && e.y.max);
+  EXPECT_LT(*e.y.min, 0.002);
+  t.pins()[0].visible = false;
+  EXPECT_FALSE(has_series(tuner_displacement_plot(t, o), "slow one"));
+  t.pins()[0].visible = true;
+  o.show_pins = false;
+  EXPECT_FALSE(has_series(tuner_displacement_plot(t, o), "slow one"));
+  o.show_pins = true;
+  t.unpin(0);
+  EXPECT_FALSE(has_series(tuner_envelope_plot(t, o), "slow one"));
+  o.log_y = true;
+  EXPECT_TRUE(tuner_displacement_plot(t, o).y.log);
+}
+
+TEST(TunerPlots, BandIsCoarsenedConservatively) {
+  PlotBand b;
+  const double inf = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < 1000; ++i) {
+    b.x.push_back(i);
+    b.y_lo.push_back(i < 500 ? 1.0 : 2.0);
+    b.y_hi.push_back(i < 500 ? inf : 10.0 + (i % 7));
+  }
+  simplify_band(b, 100);
+  ASSERT_LE(b.x.size(), 102u);
+  EXPECT_EQ(b.x.front(), 0);
+  EXPECT_EQ(b.x.back(), 999);
+  // The constant first half became its two ends.
+  size_t first_half = 0;
+  for (double x : b.x) first_half += x < 490;
+  EXPECT_LE(first_half, 2u);
+  for (size_t i = 0; i + 1 < b.x.size(); ++i)
+    if (b.x[i] >= 500) {
+      EXPECT_EQ(b.y_hi[i], 10.0);  // the smallest upper edge of its bucket
+    }
+}
+
+TEST(TunerPlots, HeadroomCapsTheLogAxis) {
+  PlotSpec p;
+  p.y.log = true;
+  PlotSeries s;
+  s.x = {1, 2, 3};
+  s.y = {0.001, 1e9, 0.01};
+  p.series.push_back(s);
+  envelope_headroom(p, 1.0, 0.5);
+  ASSERT_TRUE(p.y.min && p.y.max);
+  EXPECT_LT(*p.y.min, 0.001);
+  EXPECT_NEAR(std::log10(*p.y.max), 3.0, 1e-9);  // data up to 1, the same span again above
+}
+
+TEST(TunerExport, LongCsvHasOneHeaderAndARunColumn) {
+  Tuner t(tiny());
+  t.step(12);
+  t.pin("a, quoted");
+  t.reset();
+  t.step(5);
+  std::ostringstream csv;
+  write_runs_trace_csv(csv, t);
+  std::istringstream in(csv.str());
+  std::string line;
+  int rows = 0, headers = 0, pinned = 0;
+  while (std::getline(in, line)) {
+    if (line.rfind("run,iteration", 0) == 0) ++headers;
+    else ++rows;
+    if (line.rfind("\"a, quoted\",", 0) == 0) ++pinned;
+  }
+  EXPECT_EQ(headers, 1);
+  EXPECT_EQ(rows, 17);
+  EXPECT_EQ(pinned, 12);
+  EXPECT_EQ(csv.str().find("nan"), std::string::npos);
+  std::ostringstream runs;
+  write_runs_summary_csv(runs, t);
+  EXPECT_NE(runs.str().find("\"a, quoted\",tiny,14,"), std::string::npos);
+}
+
+TEST(TunerExport, WritesFilesAtomicallyAndRejectsBadPrefixes) {
+  Tuner t(tiny());
+  t.step(3);
+  const auto dir = std::filesystem::temp_directory_path() / "dampbound_tuner_export_test";
+  std::filesystem::remove_all(dir);
+  const ExportPaths p = export_paths((dir / "sub").string(), "run1");
+  EXPECT_NE(p.plots_png.find("run1_plots.png"), std::string::npos);
+  export_csv(t, p);
+  EXPECT_TRUE(std::filesystem::exists(p.traces_csv));
+  EXPECT_TRUE(std::filesystem::exists(p.runs_csv));
+  int files = 0;
+  for (const auto& e : std::filesystem::directory_iterator(dir / "sub")) files += e.is_regular_file();
+  EXPECT_EQ(files, 2);  // no temporary file left behind
+  EXPECT_THROW(export_paths(dir.string(), "a/b"), InputError);
+  EXPECT_THROW(export_paths(dir.string(), ""), InputError);
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace dampbound::ui

@@ -1,0 +1,255 @@
+// The tuner's state without a window (ui/tuner.hpp): parameter changes mid-run, playback,
+// divergence, pinning, watching, displacing and cutting through the screen-space cut tool.
+#include "ui/tuner.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "core/bounds.hpp"
+#include "core/scene.hpp"
+#include "ui/mesh_pick.hpp"
+
+namespace dampbound::ui {
+namespace {
+
+/// A small version of the paper's plane: 10 x 10 grid, anchors, the centre node lifted 5 cm.
+SceneSpec small_plane() {
+  SceneSpec s;
+  s.name = "small-plane";
+  GridSpec g;
+  g.nx = g.nz = 10;
+  g.spacing = 0.57;
+  s.grid = g;
+  s.model = make_grid(g);
+  s.watched = 5 * 10 + 5;
+  Perturbation p;
+  p.node = s.watched;
+  p.displacement = Vec3(0, 5, 0);
+  s.perturbations.push_back(p);
+  return s;
+}
+
+TEST(Tuner, StartsPausedAtTheScenesParameters) {
+  Tuner t(small_plane());
+  EXPECT_FALSE(t.playing());
+  EXPECT_EQ(t.advance(), 0);
+  EXPECT_EQ(t.session().state().iteration, 0);
+  EXPECT_DOUBLE_EQ(t.params().gamma, default_params().gamma);
+}
+
+TEST(Tuner, ParameterChangeTakesEffectAtTheNextStepWithoutRestart) {
+  Tuner t(small_plane());
+  t.step(5);
+  Params p = t.params();
+  p.gamma = 0.0005;
+  p.kappa = 0.004;
+  ASSERT_TRUE(t.set_params(p));
+  t.step(1);
+  const auto& tr = t.session().trace();
+  ASSERT_EQ(tr.size(), 6u);  // the trace goes on: no restart
+  EXPECT_EQ(t.session().state().iteration, 6);
+  EXPECT_DOUBLE_EQ(tr[4].watched_gamma, default_params().gamma);
+  EXPECT_DOUBLE_EQ(tr[5].watched_gamma, 0.0005);
+  EXPECT_DOUBLE_EQ(tr[4].watched_lower, lower_bound(0.001, 0.001));
+  EXPECT_DOUBLE_EQ(tr[5].watched_lower, lower_bound(0.001, 0.004));
+  // The policy too.
+  p.policy = DampingPolicy::lower;
+  ASSERT_TRUE(t.set_params(p));
+  t.step(1);
+  EXPECT_DOUBLE_EQ(tr.back().watched_gamma_eff, tr.back().watched_lower);
+}
+
+TEST(Tuner, InvalidParametersAreRefusedAndChangeNothing) {
+  Tuner t(small_plane());
+  const Params before = t.params();
+  Params p = before;
+  p.m = 0;
+  std::string why;
+  EXPECT_FALSE(t.set_params(p, &why));
+  EXPECT_NE(why.find('m'), std::string::npos);
+  p = before;
+  p.gamma = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_FALSE(t.set_params(p, &why));
+  EXPECT_DOUBLE_EQ(t.params().m, before.m);
+  EXPECT_DOUBLE_EQ(t.params().gamma, before.gamma);
+}
+
+TEST(Tuner, PlaybackStepsPerFrame) {
+  Tuner t(small_plane());
+  t.playback().steps_per_frame = 7;
+  EXPECT_EQ(t.advance(), 0);
+  ASSERT_TRUE(t.set_playing(true));
+  EXPECT_EQ(t.advance(), 7);
+  EXPECT_EQ(t.advance(), 7);
+  EXPECT_EQ(t.session().state().iteration, 14);
+  t.set_playing(false);
+  EXPECT_EQ(t.step(3), 3);  // single steps while paused
+  EXPECT_EQ(t.total_steps(), 17);
+}
+
+TEST(Tuner, DivergenceStopsPlaybackCleanlyUntilReset) {
+  Tuner t(small_plane());
+  Params p = t.params();
+  p.kappa = 10;
+  p.gamma = 0;
+  p.dt = 0.2;
+  ASSERT_TRUE(t.set_params(p));
+  t.playback().steps_per_frame = 50;
+  ASSERT_TRUE(t.set_playing(true));
+  for (int i = 0; i < 100 && t.playing(); ++i) t.advance();
+  EXPECT_FALSE(t.playing());
+  EXPECT_EQ(t.session().result().outcome, Outcome::diverged);
+  EXPECT_EQ(t.session().state().iteration, t.session().result().iterations);
+  EXPECT_NE(t.notice().find("diverged at"), std::string::npos);
+  EXPECT_FALSE(t.can_step());
+  EXPECT_FALSE(t.set_playing(true));
+  EXPECT_EQ(t.step(5), 0);
+  t.reset();  // same parameters: it can step again (and diverges again, at once)
+  EXPECT_TRUE(t.can_step());
+  EXPECT_EQ(t.session().state().iteration, 0);
+  ASSERT_TRUE(t.set_params(default_params()));
+  t.reset();
+  EXPECT_EQ(t.step(20), 20);
+  EXPECT_TRUE(t.set_playing(true));
+}
+
+TEST(Tuner, PauseAtTheVerdictWhenAsked) {
+  Tuner t(small_plane());
+  t.playback().pause_at_verdict = true;
+  t.playback().steps_per_frame = 1000;
+  t.set_playing(true);
+  t.advance();
+  EXPECT_FALSE(t.playing());
+  EXPECT_NE(t.session().result().outcome, Outcome::running);
+  EXPECT_EQ(t.session().state().iteration, t.session().result().iterations);
+}
+
+TEST(Tuner, PinsKeepACopyOfTheTraceAndDistinctColours) {
+  Tuner t(small_plane());
+  t.step(10);
+  Pin& a = t.pin("first");
+  EXPECT_EQ(a.name, "first");
+  EXPECT_EQ(a.trace.size(), 10u);
+  EXPECT_EQ(a.reduced.size(), 10u);
+  Params p = t.params();
+  p.gamma = 0.0005;
+  ASSERT_TRUE(t.set_params(p));
+  t.reset();
+  t.step(4);
+  const Pin& b = t.pin();
+  EXPECT_EQ(b.name, params_label(p));
+  EXPECT_NE(b.name.find("gamma 0.0005"), std::string::npos);
+  ASSERT_EQ(t.pins().size(), 2u);
+  EXPECT_EQ(t.pins()[0].trace.size(), 10u);  // unchanged by the reset and new steps
+  EXPECT_EQ(t.pins()[1].trace.size(), 4u);
+  EXPECT_DOUBLE_EQ(t.pins()[1].params.gamma, 0.0005);
+  EXPECT_NE(t.pins()[0].color, t.pins()[1].color);
+  EXPECT_NE(t.pins()[0].color, t.current_color());
+  EXPECT_NE(t.pins()[1].color, t.current_color());
+  t.unpin(0);
+  ASSERT_EQ(t.pins().size(), 1u);
+  EXPECT_EQ(t.pins()[0].trace.size(), 4u);
+  t.unpin(7);  // out of range: ignored
+  EXPECT_EQ(t.pins().size(), 1u);
+}
+
+TEST(Tuner, WatchAndDisplace) {
+  Tuner t(small_plane());
+  t.watch(3);
+  EXPECT_EQ(t.session().watched(), 3);
+  t.watch(-1);
+  t.watch(100000);
+  EXPECT_EQ(t.session().watched(), 3);
+  const Vec3 before = t.session().state().x[3];
+  t.displace(3, Vec3(0, 1.5, 0));
+  EXPECT_DOUBLE_EQ(t.session().state().x[3].y(), before.y() + 1.5);
+  t.displace(3, Vec3(std::numeric_limits<double>::infinity(), 0, 0));  // refused
+  EXPECT_TRUE(t.session().state().x[3].allFinite());
+  t.step(1);
+  EXPECT_GT(t.session().trace().back().watched_displacement, 1.0);
+}
+
+TEST(Tuner, CutWithTheScreenToolWhileRunningAndTheBoundsReact) {
+  Tuner t(small_plane());
+  Tuner twin(small_plane());
+  t.step(3);
+  twin.step(3);
+  // Look down on the mesh and drag a line across the middle, as the mesh view does.
+  OrbitCamera cam;
+  Vec3f lo, hi;
+  bounding_box(t.session().model().rest, lo, hi);
+  cam.fit(lo, hi);
+  cam.pitch = 1.2f;
+  const Viewport vp{0, 0, 800, 600};
+  const Mat4f m = cam.view_projection(vp.aspect());
+  const auto pts = project_points(m, vp, t.session().state().x);
+  const float mid = 0.5f * (lo.x() + hi.x()) + 0.1f;
+  const ScreenPoint a = project(m, vp, Vec3f(mid, 0, lo.z() - 1));
+  const ScreenPoint b = project(m, vp, Vec3f(mid, 0, hi.z() + 1));
+  const auto springs =
+      springs_crossing_screen(t.session().model(), pts, Vec2f(a.x, a.y), Vec2f(b.x, b.y));
+  const int before = t.session().model().spring_count();
+  const auto topo = t.topology();
+  ASSERT_GT(springs.size(), 5u);
+  EXPECT_EQ(t.cut(springs), static_cast<int>(springs.size()));
+  EXPECT_EQ(t.session().model().spring_count(), before - static_cast<int>(springs.size()));
+  EXPECT_NE(t.topology(), topo);
+  EXPECT_EQ(t.session().springs_cut(), static_cast<int>(springs.size()));
+  // Next step: the forces changed, so the upper bound (eq. 6) of the watched node changes.
+  t.step(1);
+  twin.step(1);
+  EXPECT_EQ(t.session().trace().size(), 4u);
+  EXPECT_NE(t.session().trace().back().watched_upper, twin.session().trace().back().watched_upper);
+  // A reset brings the springs back.
+  t.reset();
+  EXPECT_EQ(t.session().model().spring_count(), before);
+}
+
+TEST(Tuner, ReducedTraceFollowsTheSession) {
+  Tuner t(small_plane());
+  t.step(20);
+  EXPECT_EQ(t.reduced_trace().size(), 20u);
+  const auto gen = t.generation();
+  t.reset();
+  EXPECT_NE(t.generation(), gen);
+  EXPECT_TRUE(t.reduced_trace().empty());
+}
+
+TEST(Tuner, ExactDampingLimitIsPositiveAndCached) {
+  Tuner t(small_plane());
+  const auto g = t.exact_gamma_max();
+  ASSERT_TRUE(g.has_value());
+  EXPECT_GT(*g, 0.0);
+  EXPECT_LT(*g, 2 * t.params().m / t.params().dt);  // gamma < 2m/dt - m lambda dt / 2
+  EXPECT_EQ(t.exact_gamma_max(), g);
+}
+
+TEST(Tuner, OpenSceneFailureKeepsTheCurrentScene) {
+  Tuner t(small_plane());
+  std::string err;
+  EXPECT_FALSE(t.open_scene("/nonexistent/scene.toml", &err));
+  EXPECT_NE(err.find("/nonexistent/scene.toml"), std::string::npos);
+  EXPECT_EQ(t.scene().name, "small-plane");
+  EXPECT_TRUE(t.open_scene(DAMPBOUND_SOURCE_DIR "/scenes/two-node.toml", &err)) << err;
+  EXPECT_NE(t.scene().name, "small-plane");
+}
+
+TEST(TunerText, NeverNaN) {
+  EXPECT_EQ(fmt(std::numeric_limits<double>::quiet_NaN()), "-");
+  EXPECT_EQ(fmt(std::numeric_limits<double>::infinity()), "inf");
+  EXPECT_EQ(fmt(-std::numeric_limits<double>::infinity()), "-inf");
+  EXPECT_EQ(fmt(0.002), "0.002");
+  RunResult r;
+  EXPECT_EQ(outcome_text(r), "running");
+  r.outcome = Outcome::diverged;
+  r.iterations = 45;
+  EXPECT_EQ(outcome_text(r), "diverged at 45");
+  r.outcome = Outcome::restored;
+  EXPECT_EQ(outcome_text(r), "restored at 45");
+}
+
+}  // namespace
+}  // namespace dampbound::ui

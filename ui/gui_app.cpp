@@ -1,0 +1,290 @@
+#include "ui/gui_app.hpp"
+
+#include <imgui.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <exception>
+#include <filesystem>
+#include <utility>
+
+#include "core/bounds.hpp"
+#include "core/io.hpp"
+
+namespace dampbound::ui {
+
+namespace {
+double now_s() {
+  using Clock = std::chrono::steady_clock;
+  return std::chrono::duration<double>(Clock::now().time_since_epoch()).count();
+}
+
+void warn(std::vector<std::string>& out, const std::string& text) {
+  out.push_back(text);
+  std::fprintf(stderr, "dampbound: warning: %s\n", text.c_str());
+}
+}  // namespace
+
+SceneSpec builtin_paper_plane() {
+  SceneSpec s;
+  s.name = "paper-plane (built in)";
+  s.description = "Paper sec. 3: 36x36 planar mesh, anchors, node (18,18) perturbed 5 cm along y";
+  GridSpec g;
+  g.nx = g.nz = 36;
+  g.spacing = 0.57;
+  s.grid = g;
+  s.model = make_grid(g);
+  s.watched = 18 * 36 + 18;
+  Perturbation p;
+  p.node = s.watched;
+  p.displacement = Vec3(0.0, 5.0, 0.0);
+  s.perturbations.push_back(p);
+  return s;
+}
+
+GuiApp::GuiApp(GuiOptions options) : options_(std::move(options)) {
+  std::string warning;
+  if (!options_.config_dir.empty()) settings_ = load_gui_settings(settings_path(), &warning);
+  if (!warning.empty()) warn(warnings_, warning);
+  std::error_code ec;
+  if (!options_.scenes_dir.empty()) {
+    for (const auto& e : std::filesystem::directory_iterator(options_.scenes_dir, ec))
+      if (e.path().extension() == ".toml") scene_files_.push_back(e.path().string());
+    std::sort(scene_files_.begin(), scene_files_.end());
+  }
+  std::optional<SceneSpec> scene = options_.scene;
+  bool remembered = false;
+  if (!scene && !settings_.scene_path.empty()) {
+    try {
+      scene = load_scene(settings_.scene_path);
+      remembered = true;
+    } catch (const std::exception& e) {
+      warn(warnings_, std::string("cannot reopen the last scene: ") + e.what());
+    }
+  }
+  if (!scene) {
+    const std::string plane = options_.scenes_dir + "/paper-plane.toml";
+    try {
+      scene = load_scene(plane);
+    } catch (const std::exception&) {
+      scene = builtin_paper_plane();
+    }
+  }
+  scene_path_ = scene->path;
+  open_path_ = scene_path_;
+  tuner_ = std::make_unique<Tuner>(std::move(*scene));
+  Params p = tuner_->params();
+  StopRules r = tuner_->session().rules();
+  if (remembered && settings_.params) p = *settings_.params;
+  if (remembered && settings_.max_iterations) r.max_iterations = *settings_.max_iterations;
+  if (options_.overrides) options_.overrides(p, r);
+  std::string why;
+  if (!tuner_->set_params(p, &why)) warn(warnings_, "ignoring parameters: " + why);
+  tuner_->set_max_iterations(r.max_iterations);
+  tuner_->reset();
+  PlaybackOptions& pb = tuner_->playback();
+  pb.steps_per_frame = options_.steps_per_frame > 0 ? options_.steps_per_frame
+                                                    : settings_.steps_per_frame;
+  pb.pause_at_verdict = settings_.pause_at_verdict;
+  plot_options_.log_y = settings_.log_y;
+  plot_options_.show_max = settings_.show_max;
+  mesh_.options.show_springs = settings_.show_springs;
+  mesh_.options.show_anchors = settings_.show_anchors;
+  mesh_.options.point_size = settings_.point_size;
+  export_dir_ = settings_.export_dir;
+  export_prefix_ = settings_.export_prefix;
+  if (options_.demo) run_demo();
+  if (options_.play) tuner_->set_playing(true);
+  if (!warnings_.empty()) tuner_->set_notice(warnings_.back());
+}
+
+GuiApp::~GuiApp() = default;
+
+std::string GuiApp::settings_path() const {
+  return options_.config_dir.empty() ? "" : options_.config_dir + "/settings.txt";
+}
+
+std::string GuiApp::ini_path() const {
+  return options_.config_dir.empty() ? "" : options_.config_dir + "/imgui.ini";
+}
+
+void GuiApp::run_demo() {
+  // Two runs pinned for comparison, as in the paper's Fig. 1: damping below the lower bound
+  // (eq. 5) and at it. The current run then starts over with the chosen parameters.
+  const Params base = tuner_->params();
+  const double lo = lower_bound(base.m, base.kappa);
+  const int steps = std::min(tuner_->session().rules().max_iterations, 250);
+  auto pin_run = [&](double gamma, const std::string& name) {
+    Params p = base;
+    p.gamma = gamma;
+    p.policy = DampingPolicy::fixed;
+    tuner_->set_params(p);
+    tuner_->reset();
+    tuner_->step(steps);
+    tuner_->pin(name + " = " + fmt(gamma));
+  };
+  pin_run(lo / 4, "gamma = lower / 4");
+  pin_run(lo, "gamma = lower");
+  tuner_->set_params(base);
+  tuner_->reset();
+}
+
+GuiSettings GuiApp::current_settings() const {
+  GuiSettings s = settings_;
+  s.scene_path = scene_path_;
+  s.params = tuner_->params();
+  s.max_iterations = tuner_->session().rules().max_iterations;
+  s.steps_per_frame = tuner_->playback().steps_per_frame;
+  s.pause_at_verdict = tuner_->playback().pause_at_verdict;
+  s.log_y = plot_options_.log_y;
+  s.show_max = plot_options_.show_max;
+  s.show_springs = mesh_.options.show_springs;
+  s.show_anchors = mesh_.options.show_anchors;
+  s.point_size = mesh_.options.point_size;
+  s.export_dir = export_dir_;
+  s.export_prefix = export_prefix_;
+  if (window_w_ > 0 && window_h_ > 0) {
+    s.window_width = window_w_;
+    s.window_height = window_h_;
+  }
+  return s;
+}
+
+void GuiApp::load_layout_once() {
+  if (layout_loaded_) return;
+  layout_loaded_ = true;
+  const auto& bg = options_.background;
+  ImGui::GetStyle().Colors[ImGuiCol_WindowBg] = ImVec4(bg[0], bg[1], bg[2], 1.0f);
+  const std::string path = ini_path();
+  std::string text;
+  if (path.empty() || !read_text_file(path, &text)) return;
+  if (!imgui_ini_looks_valid(text)) {
+    warn(warnings_, "ignoring corrupt window layout file " + path);
+    tuner_->set_notice(warnings_.back());
+    return;
+  }
+  ImGui::LoadIniSettingsFromMemory(text.c_str(), text.size());
+}
+
+void GuiApp::save_layout_if_needed(bool force) {
+  ImGuiIO& io = ImGui::GetIO();
+  const std::string path = ini_path();
+  if (path.empty() || (!force && !io.WantSaveIniSettings)) return;
+  io.WantSaveIniSettings = false;
+  size_t size = 0;
+  const char* data = ImGui::SaveIniSettingsToMemory(&size);
+  try {
+    std::error_code ec;
+    std::filesystem::create_directories(options_.config_dir, ec);
+    write_file_atomic(path, [&](std::ostream& out) { out.write(data, static_cast<std::streamsize>(size)); });
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "dampbound: warning: %s\n", e.what());
+  }
+}
+
+void GuiApp::save() {
+  if (options_.config_dir.empty()) return;
+  try {
+    save_gui_settings(current_settings(), settings_path());
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "dampbound: warning: cannot save settings: %s\n", e.what());
+  }
+  if (ImGui::GetCurrentContext() != nullptr) save_layout_if_needed(true);
+}
+
+void GuiApp::release_gl() { mesh_.release_gl(); }
+
+FrameFn GuiApp::frame_fn() {
+  return [this](FrameInfo& info) { frame(info); };
+}
+
+void GuiApp::update_stats() {
+  const double t = now_s();
+  const long long steps = tuner_->total_steps();
+  const double step_s = tuner_->step_seconds();
+  if (last_frame_time_ >= 0) {
+    const double dt = t - last_frame_time_;
+    const double a = stats_.frames < 3 ? 1.0 : 0.05;  // smoothing over ~20 frames
+    stats_.frame_ms += a * (dt * 1e3 - stats_.frame_ms);
+    if (dt > 0) {
+      const double sps = static_cast<double>(steps - last_steps_) / dt;
+      stats_.steps_per_second += a * (sps - stats_.steps_per_second);
+    }
+    stats_.step_ms += a * ((step_s - last_step_seconds_) * 1e3 - stats_.step_ms);
+  }
+  last_frame_time_ = t;
+  last_steps_ = steps;
+  last_step_seconds_ = step_s;
+  ++stats_.frames;
+}
+
+void GuiApp::layout_windows(const FrameInfo& info) {
+  // Default layout: controls on the left, the mesh and the envelope on top, the displacement
+  // and the runs below. Remembered positions (imgui.ini) win unless "reset layout" was asked.
+  const float W = static_cast<float>(info.width), H = static_cast<float>(info.height);
+  const float left = std::clamp(std::floor(W * 0.245f), 330.0f, 430.0f);
+  const float R = W - left, top = std::floor(H * 0.56f);
+  const float mesh_w = std::floor(R * 0.48f), disp_w = std::floor(R * 0.64f);
+  const float params_h = std::floor(H * 0.61f);
+  layout_ = {
+      {"Parameters", 0, 0, left, params_h},
+      {"Status", 0, params_h, left, H - params_h},
+      {"Mesh view", left, 0, mesh_w, top},
+      {"Damping bounds", left + mesh_w, 0, R - mesh_w, top},
+      {"Displacement", left, top, disp_w, H - top},
+      {"Runs", left + disp_w, top, R - disp_w, H - top},
+  };
+}
+
+bool GuiApp::begin(const char* name, int flags) {
+  const ImGuiCond cond = reset_layout_ ? ImGuiCond_Always : ImGuiCond_FirstUseEver;
+  for (const WindowRect& r : layout_) {
+    if (r.name != name) continue;
+    ImGui::SetNextWindowPos(ImVec2(r.x, r.y), cond);
+    ImGui::SetNextWindowSize(ImVec2(r.w, r.h), cond);
+  }
+  // A window that overlaps no other needs no background fill: the frame is cleared to the
+  // same colour. On a software rasteriser (llvmpipe) this saves a full-screen blended fill.
+  WindowRect* last = nullptr;
+  for (WindowRect& r : drawn_)
+    if (r.name == name) last = &r;
+  bool overlaps = last == nullptr;
+  for (const WindowRect& r : drawn_)
+    if (last != nullptr && &r != last && r.x < last->x + last->w - 1 && last->x < r.x + r.w - 1 &&
+        r.y < last->y + last->h - 1 && last->y < r.y + r.h - 1)
+      overlaps = true;
+  if (!overlaps) flags |= ImGuiWindowFlags_NoBackground;
+  const bool open = ImGui::Begin(name, nullptr, flags | ImGuiWindowFlags_NoCollapse);
+  const ImVec2 pos = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
+  if (last == nullptr) drawn_.push_back({name, 0, 0, 0, 0}), last = &drawn_.back();
+  *last = {name, pos.x, pos.y, size.x, size.y};
+  return open;
+}
+
+void GuiApp::frame(FrameInfo& info) {
+  load_layout_once();
+  update_stats();
+  window_w_ = info.width;
+  window_h_ = info.height;
+  tuner_->advance();
+  layout_windows(info);
+  const int fixed = ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse;
+  if (begin("Parameters", 0)) parameters_panel();
+  ImGui::End();
+  if (begin("Status", 0)) status_panel();
+  ImGui::End();
+  if (begin("Mesh view", fixed)) mesh_.draw(*tuner_);
+  ImGui::End();
+  if (begin("Damping bounds", fixed)) plots_envelope();
+  ImGui::End();
+  if (begin("Displacement", fixed)) plots_displacement();
+  ImGui::End();
+  if (begin("Runs", 0)) runs_panel();
+  ImGui::End();
+  reset_layout_ = false;
+  save_layout_if_needed(false);
+}
+
+}  // namespace dampbound::ui

@@ -1,0 +1,123 @@
+#pragma once
+// The interactive tuner window (issue 3): parameter panel, mesh view, bound envelope and
+// displacement plots, status, pinned runs and export. One frame function serves the GLFW
+// window and the headless EGL host; the physics is core's Session behind ui/tuner.hpp.
+#include <array>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/scene.hpp"
+#include "ui/frame_renderer.hpp"
+#include "ui/mesh_view.hpp"
+#include "ui/settings.hpp"
+#include "ui/tuner.hpp"
+#include "ui/tuner_plots.hpp"
+
+namespace dampbound::ui {
+
+/// How the window starts.
+struct GuiOptions {
+  std::string config_dir;      ///< settings and imgui.ini live here; "" = nothing persisted
+  std::string scenes_dir;      ///< its *.toml files fill the scene picker
+  std::optional<SceneSpec> scene;  ///< given on the command line; else the last one, else paper-plane
+  /// Command-line parameter flags, applied over the scene's (or remembered) parameters.
+  std::function<void(Params&, StopRules&)> overrides;
+  int steps_per_frame = 0;     ///< > 0: overrides the remembered value
+  bool play = false;           ///< start playing
+  bool demo = false;           ///< pin two runs (below and at the lower bound) before frame 0
+  /// The host's clear colour; windows take it as their background (RGBA 0..1).
+  std::array<float, 4> background = gui_render_options().clear_color;
+};
+
+/// Frame statistics of the window.
+struct GuiStats {
+  int frames = 0;
+  double frame_ms = 0;         ///< smoothed wall time between frames
+  double steps_per_second = 0; ///< smoothed
+  double step_ms = 0;          ///< smoothed time in step() per frame
+};
+
+class GuiApp {
+ public:
+  explicit GuiApp(GuiOptions options);
+  ~GuiApp();
+  GuiApp(const GuiApp&) = delete;
+  GuiApp& operator=(const GuiApp&) = delete;
+
+  /// Builds one frame (call between NewFrame and Render, GL context current).
+  void frame(FrameInfo& info);
+  /// A FrameFn calling frame() on this app.
+  FrameFn frame_fn();
+
+  /// Writes the settings and the window layout (ImGui context current for the layout).
+  void save();
+  /// Deletes the GL objects (context current); call before the context goes.
+  void release_gl();
+
+  /// The window size remembered from the last session (0, 0 when none).
+  std::pair<int, int> remembered_window_size() const {
+    return {settings_.window_width, settings_.window_height};
+  }
+
+  Tuner& tuner() { return *tuner_; }
+  const GuiStats& stats() const { return stats_; }
+  /// Warnings met at start (a corrupt settings file, a missing scene), one line each.
+  const std::vector<std::string>& warnings() const { return warnings_; }
+  /// Path of the settings file and of the ImGui layout file ("" when not persisted).
+  std::string settings_path() const;
+  std::string ini_path() const;
+
+ private:
+  void load_layout_once();
+  void save_layout_if_needed(bool force);
+  void layout_windows(const FrameInfo& info);
+  /// ImGui::Begin with the default position and size of the layout.
+  bool begin(const char* name, int flags);
+  void parameters_panel();
+  void scene_picker();
+  void playback_controls();
+  void status_panel();
+  void runs_panel();
+  void plots_envelope();
+  void plots_displacement();
+  void run_demo();
+  void update_stats();
+  GuiSettings current_settings() const;
+
+  GuiOptions options_;
+  GuiSettings settings_;
+  std::unique_ptr<Tuner> tuner_;
+  MeshView mesh_;
+  TunerPlotOptions plot_options_;
+  std::vector<std::string> scene_files_;
+  std::vector<std::string> warnings_;
+  std::string scene_path_;     ///< file of the current scene ("" when built in code)
+  std::string open_path_;      ///< the "open a file" text field
+  std::string scene_error_;
+  std::string param_error_;
+  std::string pin_name_;
+  std::string export_dir_, export_prefix_, export_message_;
+  bool export_failed_ = false;
+  bool layout_loaded_ = false;
+  bool reset_layout_ = false;
+  struct WindowRect {
+    std::string name;
+    float x, y, w, h;
+  };
+  std::vector<WindowRect> layout_;
+  std::vector<WindowRect> drawn_;  ///< where each window was last frame
+  int window_w_ = 0, window_h_ = 0;  ///< size of the last frame
+  GuiStats stats_;
+  double last_frame_time_ = -1;
+  long long last_steps_ = 0;
+  double last_step_seconds_ = 0;
+};
+
+/// The paper's plane (SPEC 5) built in code: the fallback when no scene file can be read.
+SceneSpec builtin_paper_plane();
+
+}  // namespace dampbound::ui

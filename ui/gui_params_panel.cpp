@@ -1,0 +1,178 @@
+// The tuner's "Parameters" window: scene picker, the parameter sliders (logarithmic, Ctrl+click
+// to type), the damping policy, and playback.
+#include <imgui.h>
+#include <imgui_stdlib.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "core/bounds.hpp"
+#include "ui/gui_app.hpp"
+#include "ui/gui_widgets.hpp"
+
+namespace dampbound::ui {
+
+namespace {
+
+/// A logarithmic slider of a double with a tooltip; Ctrl+click types a value (not clamped,
+/// so any value the core accepts can be entered).
+bool log_slider(const char* label, double* v, double lo, double hi, const char* help) {
+  const bool changed =
+      ImGui::SliderScalar(label, ImGuiDataType_Double, v, &lo, &hi, "%.5g",
+                          ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_NoRoundToFormat);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s\nCtrl+click to type a value.", help);
+  return changed;
+}
+
+bool key_pressed(ImGuiKey key) { return ImGui::IsKeyPressed(ImGui::GetKeyIndex(key), false); }
+
+}  // namespace
+
+void GuiApp::scene_picker() {
+  const std::string current = std::filesystem::path(scene_path_).stem().string();
+  ImGui::SetNextItemWidth(-1.0f);
+  const std::string preview = scene_path_.empty() ? tuner_->scene().name : current;
+  if (ImGui::BeginCombo("##scene", preview.c_str())) {
+    for (const std::string& f : scene_files_) {
+      const std::string stem = std::filesystem::path(f).stem().string();
+      if (ImGui::Selectable(stem.c_str(), f == scene_path_)) {
+        std::string err;
+        if (tuner_->open_scene(f, &err)) {
+          scene_path_ = open_path_ = f;
+          scene_error_.clear();
+        } else {
+          scene_error_ = err;
+        }
+      }
+    }
+    ImGui::EndCombo();
+  }
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("The scenes of the source tree (scenes/*.toml).");
+  const float open_w = ImGui::CalcTextSize("Open").x + ImGui::GetStyle().FramePadding.x * 2;
+  ImGui::SetNextItemWidth(-open_w - ImGui::GetStyle().ItemSpacing.x);
+  const bool enter = ImGui::InputTextWithHint("##path", "path to a scene file (.toml)", &open_path_,
+                                              ImGuiInputTextFlags_EnterReturnsTrue);
+  ImGui::SameLine();
+  if (ImGui::Button("Open") || enter) {
+    std::string err;
+    if (tuner_->open_scene(open_path_, &err)) {
+      scene_path_ = open_path_;
+      scene_error_.clear();
+    } else {
+      scene_error_ = err;
+    }
+  }
+  if (!scene_error_.empty()) {
+    wrapped_colored(gui_red(), scene_error_.c_str());
+  }
+  if (!tuner_->scene().description.empty()) {
+    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
+    ImGui::TextWrapped("%s", tuner_->scene().description.c_str());
+    ImGui::PopStyleColor();
+  }
+}
+
+void GuiApp::playback_controls() {
+  Tuner& t = *tuner_;
+  const bool can = t.can_step();
+  const ImGuiIO& io = ImGui::GetIO();
+  const bool keys = !io.WantCaptureKeyboard;
+  const float bw = (ImGui::GetContentRegionAvail().x - 3 * ImGui::GetStyle().ItemSpacing.x) / 4;
+  ImGui::BeginDisabled(!can);
+  if (ImGui::Button(t.playing() ? "Pause" : "Play", ImVec2(bw, 0)) ||
+      (keys && key_pressed(ImGuiKey_Space)))
+    t.set_playing(!t.playing());
+  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) ImGui::SetTooltip("Space");
+  ImGui::SameLine();
+  if (ImGui::Button("Step", ImVec2(bw, 0))) t.step(1);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("One step of the paper's integrator");
+  ImGui::EndDisabled();
+  ImGui::SameLine();
+  if (ImGui::Button("Reset", ImVec2(bw, 0))) t.reset();
+  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+    ImGui::SetTooltip("Back to the scene's perturbed start (cuts undone), same parameters");
+  ImGui::SameLine();
+  if (ImGui::Button("Perturb", ImVec2(bw, 0))) t.perturb();
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Apply the scene's perturbation again, now");
+  int spf = t.playback().steps_per_frame;
+  ImGui::SetNextItemWidth(-ImGui::CalcTextSize("steps / frame").x - ImGui::GetStyle().ItemInnerSpacing.x);
+  if (ImGui::SliderInt("steps / frame", &spf, 1, 1000, "%d", ImGuiSliderFlags_Logarithmic))
+    t.playback().steps_per_frame = std::max(1, std::min(spf, 10000));
+  ImGui::Checkbox("pause at the verdict (restored / not restored)", &t.playback().pause_at_verdict);
+}
+
+void GuiApp::parameters_panel() {
+  Tuner& t = *tuner_;
+  section_header("Scene");
+  scene_picker();
+  section_header("Parameters");
+  Params p = t.params();
+  const float label_w = ImGui::CalcTextSize("factor x upper").x + ImGui::GetStyle().ItemInnerSpacing.x;
+  ImGui::PushItemWidth(-label_w);
+  bool changed = false;
+  changed |= log_slider("m", &p.m, 1e-5, 10.0, "Node mass m (mass unit)");
+  changed |= log_slider(u8"\u03BA kappa", &p.kappa, 1e-5, 100.0,
+                        "Spring and anchor stiffness kappa (mass unit / s^2)");
+  changed |= log_slider(u8"\u03B3 gamma", &p.gamma, 1e-6, 10.0,
+                        "The user's viscous damping gamma (mass unit / s)");
+  const double lo = lower_bound(p.m, p.kappa);
+  ImGui::Text(u8"lower bound 2\u221A(m\u03BA) = %s", fmt(lo).c_str());
+  ImGui::SameLine();
+  if (ImGui::SmallButton(u8"\u03B3 = lower bound")) {
+    p.gamma = lo;
+    changed = true;
+  }
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Set gamma to 2 sqrt(m kappa) (paper eq. 5)");
+  const double rel = lo > 0 ? p.gamma / lo : 1.0;
+  if (std::abs(rel - 1.0) < 1e-9) {
+    ImGui::TextColored(gui_green(), u8"\u03B3 at the lower bound: critical damping");
+  } else if (rel < 1.0) {
+    ImGui::TextColored(gui_amber(), u8"\u03B3 below the lower bound (%.3g x): underdamped", rel);
+  } else {
+    ImGui::TextColored(gui_green(), u8"\u03B3 above the lower bound (%.3g x)", rel);
+  }
+  changed |= log_slider("dt (s)", &p.dt, 1e-4, 1.0, "Time step dt (s)");
+  int policy = static_cast<int>(p.policy);
+  const char* policies[] = {"fixed", "clamp", "upper", "lower"};
+  if (ImGui::Combo("policy", &policy, policies, 4)) {
+    p.policy = static_cast<DampingPolicy>(policy);
+    changed = true;
+  }
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip(
+        "Effective damping each step (paper sec. 5):\n"
+        "fixed: gamma as given\nclamp: gamma clamped into [lower, upper]\n"
+        "upper: factor x upper bound (eq. 6)\nlower: the lower bound (eq. 5)");
+  ImGui::BeginDisabled(p.policy != DampingPolicy::upper);
+  double fmin = 0.0, fmax = 2.0;
+  changed |= ImGui::SliderScalar("factor x upper", ImGuiDataType_Double, &p.factor, &fmin, &fmax,
+                                 "%.3f");
+  ImGui::EndDisabled();
+  int integ = static_cast<int>(p.integrator);
+  const char* integrators[] = {"semi-implicit Euler (paper)", "forward Euler", "Verlet", "RK4",
+                               "implicit Euler"};
+  if (ImGui::Combo("integrator", &integ, integrators, 5)) {
+    p.integrator = static_cast<Integrator>(integ);
+    changed = true;
+  }
+  int max_iter = t.session().rules().max_iterations;
+  if (ImGui::InputInt("max iterations", &max_iter, 100, 1000)) t.set_max_iterations(max_iter);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("The protocol's limit: the run is \"not restored\" at this iteration");
+  ImGui::PopItemWidth();
+  if (changed) {
+    std::string err;
+    if (t.set_params(p, &err)) {
+      param_error_.clear();
+    } else {
+      param_error_ = "not applied: " + err;
+    }
+  }
+  if (!param_error_.empty()) {
+    wrapped_colored(gui_red(), param_error_.c_str());
+  }
+  section_header("Playback");
+  playback_controls();
+}
+
+}  // namespace dampbound::ui

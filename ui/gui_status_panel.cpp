@@ -1,0 +1,191 @@
+// The tuner's "Status", "Runs" (pins and export) and plot windows.
+#include <imgui.h>
+#include <imgui_stdlib.h>
+
+#include <exception>
+#include <string>
+
+#include "ui/gui_app.hpp"
+#include "ui/gui_export.hpp"
+#include "ui/gui_widgets.hpp"
+#include "ui/mesh_style.hpp"
+#include "ui/plot.hpp"
+
+namespace dampbound::ui {
+
+namespace {
+
+/// One "label | value" row of a two-column table.
+void row(const char* label, const std::string& value, const ImVec4* color = nullptr) {
+  ImGui::TableNextRow();
+  ImGui::TableNextColumn();
+  ImGui::TextDisabled("%s", label);
+  ImGui::TableNextColumn();
+  if (color != nullptr) {
+    ImGui::PushStyleColor(ImGuiCol_Text, *color);
+    ImGui::TextWrapped("%s", value.c_str());
+    ImGui::PopStyleColor();
+  } else {
+    ImGui::TextWrapped("%s", value.c_str());
+  }
+}
+
+ImVec4 outcome_color(Outcome o) {
+  switch (o) {
+    case Outcome::restored: return gui_green();
+    case Outcome::diverged: return gui_red();
+    case Outcome::not_restored: return gui_amber();
+    case Outcome::running: break;
+  }
+  return ImGui::GetStyle().Colors[ImGuiCol_Text];
+}
+
+/// The dark plot style with a transparent data area: the window colour shows through, and a
+/// software rasteriser is spared the fill.
+PlotStyle gui_plot_style() {
+  PlotStyle s = plot_style_dark();
+  s.plot_background = 0;
+  return s;
+}
+
+}  // namespace
+
+void GuiApp::status_panel() {
+  const Session& s = tuner_->session();
+  const Model& m = s.model();
+  const RunResult& r = s.result();
+  const StopRules& rules = s.rules();
+  const StepStats* last = s.trace().empty() ? nullptr : &s.trace().back();
+  if (ImGui::BeginTable("status", 2, ImGuiTableFlags_SizingStretchProp)) {
+    ImGui::TableSetupColumn("k", ImGuiTableColumnFlags_WidthFixed);
+    ImGui::TableSetupColumn("v", ImGuiTableColumnFlags_WidthStretch);
+    row("scene", s.scene().name);
+    row("mesh", std::to_string(m.node_count()) + " nodes, " + std::to_string(m.spring_count()) +
+                    " springs" +
+                    (s.springs_cut() > 0 ? " (" + std::to_string(s.springs_cut()) + " cut)" : ""));
+    row("iteration", std::to_string(s.state().iteration) + "   (t = " + fmt(s.state().time) + " s)");
+    const ImVec4 oc = outcome_color(r.outcome);
+    row("outcome", outcome_text(r), &oc);
+    const double thr = rules.restore_fraction * rules.reference;
+    row("max |x - X|", (last ? fmt(last->max_displacement) : std::string("0")) +
+                           " cm (restored < " + fmt(thr) + ")");
+    const int w = s.watched();
+    const NodeStatus ns = w < static_cast<int>(s.workspace().status.size())
+                              ? s.workspace().status[static_cast<size_t>(w)]
+                              : NodeStatus::within;
+    const ImVec4 wc = ImGui::ColorConvertU32ToFloat4(status_color(ns));
+    row("watched node", "#" + std::to_string(w) + ", " + status_label(ns), &wc);
+    if (last != nullptr) {
+      row("  |x - X|", fmt(last->watched_displacement) + " cm");
+      row("  bounds", fmt(last->watched_lower) + " .. " + fmt(last->watched_upper));
+      row("  gamma", fmt(last->watched_gamma) + " (effective " + fmt(last->watched_gamma_eff) + ")");
+    }
+    const ImVec4 amber = gui_amber();
+    auto count_row = [&](const char* label, int now, long long total, bool warn_if_any) {
+      row(label, std::to_string(now) + " now, " + std::to_string(total) + " node-steps",
+          warn_if_any && now > 0 ? &amber : nullptr);
+    };
+    count_row("violating", last ? last->violating : 0, r.violations, true);
+    count_row("unstabilisable", last ? last->unstabilisable : 0, r.unstabilisable, true);
+    count_row("clamped", last ? last->clamped : 0, r.clamped, false);
+    row("frame", fmt(stats_.frame_ms) + " ms (" +
+                     fmt(stats_.frame_ms > 0 ? 1000.0 / stats_.frame_ms : 0.0) + " fps)");
+    row("speed", fmt(stats_.steps_per_second) + " steps/s");
+    ImGui::EndTable();
+  }
+  if (!tuner_->notice().empty()) {
+    const bool bad = r.outcome == Outcome::diverged || !warnings_.empty();
+    wrapped_colored(bad ? gui_red() : gui_amber(), tuner_->notice().c_str());
+  }
+  if (ImGui::SmallButton("Reset layout")) reset_layout_ = true;
+}
+
+void GuiApp::runs_panel() {
+  Tuner& t = *tuner_;
+  const float pin_w = ImGui::CalcTextSize("Pin run").x + ImGui::GetStyle().FramePadding.x * 2;
+  ImGui::SetNextItemWidth(-pin_w - ImGui::GetStyle().ItemSpacing.x);
+  const std::string hint = params_label(t.params());
+  ImGui::InputTextWithHint("##pin_name", hint.c_str(), &pin_name_);
+  ImGui::SameLine();
+  if (ImGui::Button("Pin run")) {
+    t.pin(pin_name_);
+    pin_name_.clear();
+  }
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Keep the current run's traces on the plots under this name\n"
+                      "(its parameters when left empty)");
+  int remove = -1;
+  const ImGuiTableFlags tf = ImGuiTableFlags_SizingStretchProp | ImGuiTableFlags_ScrollY;
+  const float table_h = ImGui::GetContentRegionAvail().y - 3.4f * ImGui::GetFrameHeightWithSpacing();
+  if (!t.pins().empty() && ImGui::BeginTable("pins", 3, tf, ImVec2(0, std::max(table_h, 60.0f)))) {
+    ImGui::TableSetupColumn("show", ImGuiTableColumnFlags_WidthFixed);
+    ImGui::TableSetupColumn("name", ImGuiTableColumnFlags_WidthStretch);
+    ImGui::TableSetupColumn("x", ImGuiTableColumnFlags_WidthFixed);
+    for (size_t i = 0; i < t.pins().size(); ++i) {
+      Pin& p = t.pins()[i];
+      ImGui::PushID(static_cast<int>(i));
+      ImGui::TableNextRow();
+      ImGui::TableNextColumn();
+      ImGui::PushStyleColor(ImGuiCol_CheckMark, p.color);
+      ImGui::Checkbox("##visible", &p.visible);
+      ImGui::PopStyleColor();
+      ImGui::TableNextColumn();
+      ImGui::SetNextItemWidth(-1.0f);
+      ImGui::PushStyleColor(ImGuiCol_Text, p.color);
+      ImGui::InputText("##name", &p.name);
+      ImGui::PopStyleColor();
+      if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("%s\n%s", outcome_text(p.result).c_str(), params_label(p.params).c_str());
+      ImGui::TableNextColumn();
+      if (ImGui::SmallButton("x")) remove = static_cast<int>(i);
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("Remove this pin");
+      ImGui::PopID();
+    }
+    ImGui::EndTable();
+  } else if (t.pins().empty()) {
+    ImGui::TextDisabled("No pinned runs: pin one to compare it with the next.");
+  }
+  if (remove >= 0) t.unpin(static_cast<size_t>(remove));
+  section_header("Export plots (PNG) and data (CSV)");
+  const float half = (ImGui::GetContentRegionAvail().x - ImGui::GetStyle().ItemSpacing.x) * 0.5f;
+  ImGui::SetNextItemWidth(half);
+  ImGui::InputTextWithHint("##dir", "folder (default: here)", &export_dir_);
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(-1.0f);
+  ImGui::InputTextWithHint("##prefix", "file prefix", &export_prefix_);
+  if (ImGui::Button("Export")) {
+    try {
+      const std::vector<PlotSpec> plots = {tuner_displacement_plot(t, plot_options_),
+                                           tuner_envelope_plot(t, plot_options_)};
+      export_message_ = export_runs(t, plots, export_dir_, export_prefix_);
+      export_failed_ = false;
+    } catch (const std::exception& e) {
+      export_message_ = e.what();
+      export_failed_ = true;
+    }
+  }
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Writes PREFIX_plots.png, PREFIX_traces.csv (one row per run and\n"
+                      "iteration) and PREFIX_runs.csv (one row per run), each atomically");
+  if (!export_message_.empty()) {
+    ImGui::SameLine();
+    wrapped_colored(export_failed_ ? gui_red() : gui_green(), export_message_.c_str());
+  }
+}
+
+void GuiApp::plots_envelope() {
+  const PlotSpec spec = tuner_envelope_plot(*tuner_, plot_options_);
+  plot_widget("envelope", spec, ImVec2(-1.0f, -1.0f), gui_plot_style());
+}
+
+void GuiApp::plots_displacement() {
+  ImGui::Checkbox("log10 y axis", &plot_options_.log_y);
+  ImGui::SameLine();
+  ImGui::Checkbox("max over all nodes", &plot_options_.show_max);
+  ImGui::SameLine();
+  ImGui::Checkbox("pinned runs", &plot_options_.show_pins);
+  const PlotSpec spec = tuner_displacement_plot(*tuner_, plot_options_);
+  plot_widget("displacement", spec, ImVec2(-1.0f, -1.0f), gui_plot_style());
+}
+
+}  // namespace dampbound::ui

@@ -1,0 +1,23 @@
+#pragma once
+// Colours of the mesh view: one per node state of the last step (core/bounds.hpp NodeStatus),
+// shared by the GL renderer, the legend and the tests. No GL.
+#include <imgui.h>
+
+#include "core/bounds.hpp"
+
+namespace dampbound::ui {
+
+/// Colour of a node in `status` (IM_COL32 layout, opaque).
+ImU32 status_color(NodeStatus status);
+
+/// Legend text of a status, e.g. "within bounds".
+const char* status_label(NodeStatus status);
+
+/// Legend explanation, e.g. "effective gamma < lower bound or > upper bound".
+const char* status_help(NodeStatus status);
+
+/// Colour of the springs and of the watched-node marker.
+ImU32 spring_color();
+ImU32 watched_color();
+
+}  // namespace dampbound::ui

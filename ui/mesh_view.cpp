@@ -1,0 +1,224 @@
+#include "ui/mesh_view.hpp"
+
+#include <imgui.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <string>
+
+#include "core/scene.hpp"
+#include "ui/mesh_pick.hpp"
+#include "ui/mesh_style.hpp"
+
+namespace dampbound::ui {
+
+namespace {
+constexpr NodeStatus kLegend[] = {NodeStatus::within, NodeStatus::clamped, NodeStatus::violating,
+                                  NodeStatus::unstabilisable, NodeStatus::fixed};
+
+}  // namespace
+
+void MeshView::fit(const Tuner& tuner) {
+  const Session& s = tuner.session();
+  Vec3f lo, hi, lo2, hi2;
+  if (!bounding_box(s.model().rest, lo, hi)) return;
+  // Include the scene's perturbed start so the initial bump is in view.
+  if (bounding_box(initial_state(s.scene()).x, lo2, hi2)) {
+    lo = lo.cwiseMin(lo2);
+    hi = hi.cwiseMax(hi2);
+  }
+  camera_.fit(lo, hi);
+  camera_.distance *= 0.92f;  // the bounding sphere is loose around a flat mesh
+}
+
+void MeshView::handle_input(Tuner& tuner, const Viewport& vp, bool hovered) {
+  ImGuiIO& io = ImGui::GetIO();
+  const Session& s = tuner.session();
+  const Mat4f vpm = camera_.view_projection(vp.aspect());
+  if (hovered && io.MouseWheel != 0.0f) camera_.zoom(io.MouseWheel);
+  if (drag_ == Drag::none && hovered) {
+    if (ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
+      drag_distance_ = 0.0f;
+      if (cut_tool) {
+        drag_ = Drag::cut;
+        cut_from_[0] = cut_to_[0] = io.MousePos.x;
+        cut_from_[1] = cut_to_[1] = io.MousePos.y;
+      } else {
+        const auto pts = project_points(vpm, vp, s.state().x);
+        const float radius = std::max(8.0f, options.point_size);
+        drag_node_ = pick_node(pts, io.MousePos.x, io.MousePos.y, radius);
+        drag_ = drag_node_ >= 0 ? Drag::node : Drag::orbit;
+      }
+    } else if (ImGui::IsMouseClicked(ImGuiMouseButton_Right) ||
+               ImGui::IsMouseClicked(ImGuiMouseButton_Middle)) {
+      drag_ = Drag::pan;
+    }
+  }
+  const ImVec2 d = io.MouseDelta;
+  const bool moved = std::isfinite(d.x) && std::isfinite(d.y) && (d.x != 0.0f || d.y != 0.0f);
+  if (moved && drag_ != Drag::none) drag_distance_ += std::abs(d.x) + std::abs(d.y);
+  switch (drag_) {
+    case Drag::none: break;
+    case Drag::orbit:
+      if (moved) camera_.orbit(d.x, d.y);
+      if (!ImGui::IsMouseDown(ImGuiMouseButton_Left)) drag_ = Drag::none;
+      break;
+    case Drag::pan:
+      if (moved) camera_.pan(d.x, d.y, vp.h);
+      if (!ImGui::IsMouseDown(ImGuiMouseButton_Right) && !ImGui::IsMouseDown(ImGuiMouseButton_Middle))
+        drag_ = Drag::none;
+      break;
+    case Drag::node: {
+      if (moved && drag_distance_ >= 3.0f) {
+        const Vec3f p = s.state().x[static_cast<size_t>(drag_node_)].cast<float>();
+        const ScreenPoint sp = project(vpm, vp, p);
+        if (sp.visible) {
+          const Vec3f off = camera_.view_plane_offset(d.x, d.y, sp.depth, vp.h);
+          tuner.displace(drag_node_, off.cast<double>());
+        }
+      }
+      if (!ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
+        tuner.watch(drag_node_);  // a click watches; a drag watches what it moved
+        drag_ = Drag::none;
+      }
+      break;
+    }
+    case Drag::cut:
+      cut_to_[0] = io.MousePos.x;
+      cut_to_[1] = io.MousePos.y;
+      if (!ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
+        drag_ = Drag::none;
+        if (drag_distance_ >= 3.0f) {
+          const auto pts = project_points(vpm, vp, s.state().x);
+          tuner.cut(springs_crossing_screen(s.model(), pts, Vec2f(cut_from_[0], cut_from_[1]),
+                                            Vec2f(cut_to_[0], cut_to_[1])));
+        }
+      }
+      break;
+  }
+}
+
+void MeshView::draw_overlays(const Tuner& tuner, const Viewport& vp) const {
+  ImDrawList* dl = ImGui::GetWindowDrawList();
+  const ImVec2 tl(vp.x, vp.y), br(vp.x + vp.w, vp.y + vp.h);
+  dl->PushClipRect(tl, br, true);
+  const Session& s = tuner.session();
+  const Mat4f vpm = camera_.view_projection(vp.aspect());
+  // The watched node: a ring and its index.
+  const int w = s.watched();
+  if (w >= 0 && w < s.model().node_count()) {
+    const ScreenPoint p = project(vpm, vp, s.state().x[static_cast<size_t>(w)].cast<float>());
+    if (p.visible) {
+      const float r = options.point_size * 0.5f + 5.0f;
+      dl->AddCircle(ImVec2(p.x, p.y), r, watched_color(), 24, 2.0f);
+      dl->AddText(ImVec2(p.x + r + 3.0f, p.y - r - 14.0f), watched_color(),
+                  ("watched #" + std::to_string(w)).c_str());
+    }
+  }
+  // The cut line while dragging.
+  if (drag_ == Drag::cut) {
+    dl->AddLine(ImVec2(cut_from_[0], cut_from_[1]), ImVec2(cut_to_[0], cut_to_[1]),
+                IM_COL32(255, 80, 60, 255), 2.5f);
+  }
+  // An axis triad in the lower-left corner (x red, y green, z blue).
+  const ImVec2 o(tl.x + 40.0f, br.y - 40.0f);
+  const Mat4f view = camera_.view();
+  const ImU32 axis_col[3] = {IM_COL32(230, 80, 80, 255), IM_COL32(90, 200, 90, 255),
+                             IM_COL32(90, 140, 255, 255)};
+  const char* axis_name[3] = {"x", "y", "z"};
+  for (int a = 0; a < 3; ++a) {
+    const Eigen::Vector3f e = view.block<3, 3>(0, 0).col(a) * 26.0f;
+    const ImVec2 end(o.x + e.x(), o.y - e.y());
+    dl->AddLine(o, end, axis_col[a], 2.0f);
+    dl->AddText(ImVec2(end.x + 2.0f, end.y - 8.0f), axis_col[a], axis_name[a]);
+  }
+  // The colour legend in the upper-left corner.
+  const float line = ImGui::GetTextLineHeight() + 2.0f;
+  float width = 0.0f;
+  for (NodeStatus st : kLegend) width = std::max(width, ImGui::CalcTextSize(status_label(st)).x);
+  const ImVec2 box0(tl.x + 8.0f, tl.y + 8.0f);
+  const ImVec2 box1(box0.x + width + 38.0f, box0.y + line * 5.0f + 10.0f);
+  dl->AddRectFilled(box0, box1, IM_COL32(20, 22, 26, 200), 4.0f);
+  for (int i = 0; i < 5; ++i) {
+    const ImVec2 c(box0.x + 14.0f, box0.y + 5.0f + line * (static_cast<float>(i) + 0.5f));
+    dl->AddCircleFilled(c, 5.0f, status_color(kLegend[i]), 16);
+    dl->AddText(ImVec2(c.x + 12.0f, c.y - line * 0.5f + 1.0f), IM_COL32(230, 230, 230, 255),
+                status_label(kLegend[i]));
+  }
+  dl->PopClipRect();
+  // Tooltips for the legend entries.
+  const ImVec2 m = ImGui::GetIO().MousePos;
+  if (m.x >= box0.x && m.x <= box1.x && m.y >= box0.y && m.y <= box1.y && ImGui::IsWindowHovered()) {
+    const int i = std::clamp(static_cast<int>((m.y - box0.y - 5.0f) / line), 0, 4);
+    ImGui::SetTooltip("%s", status_help(kLegend[i]));
+  }
+}
+
+void MeshView::draw(Tuner& tuner) {
+  const Session& s = tuner.session();
+  if (fitted_scene_ != &s) {
+    fitted_scene_ = &s;
+    fit_pending_ = true;
+  }
+  if (fit_pending_) {
+    fit(tuner);
+    fit_pending_ = false;
+  }
+  // Toolbar.
+  if (cut_tool) ImGui::PushStyleColor(ImGuiCol_Button, IM_COL32(200, 60, 50, 255));
+  if (ImGui::Button(cut_tool ? "Cut tool: ON" : "Cut tool")) cut_tool = !cut_tool;
+  if (cut_tool) ImGui::PopStyleColor();
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Drag a line across the mesh: the springs it crosses are removed.");
+  ImGui::SameLine();
+  if (ImGui::Button("Fit")) fit_pending_ = true;
+  ImGui::SameLine();
+  ImGui::Checkbox("springs", &options.show_springs);
+  ImGui::SameLine();
+  ImGui::Checkbox("anchors", &options.show_anchors);
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(std::max(60.0f, ImGui::GetContentRegionAvail().x));
+  ImGui::SliderFloat("##points", &options.point_size, 2.0f, 16.0f, "points %.0f px");
+  // The view fills the rest of the window but one line of hints.
+  const float hint_h = ImGui::GetTextLineHeightWithSpacing();
+  ImVec2 size = ImGui::GetContentRegionAvail();
+  size.y -= hint_h;
+  size = ImVec2(std::max(std::floor(size.x), 32.0f), std::max(std::floor(size.y), 32.0f));
+  const ImVec2 tl = ImGui::GetCursorScreenPos();
+  ImGui::InvisibleButton("mesh_view", size,
+                         ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight |
+                             ImGuiButtonFlags_MouseButtonMiddle);
+  const bool hovered = ImGui::IsItemHovered();
+  const Viewport vp{tl.x, tl.y, size.x, size.y};
+  handle_input(tuner, vp, hovered);
+  MeshDrawData d;
+  d.model = &s.model();
+  d.x = &s.state().x;
+  d.status = &s.workspace().status;
+  d.topology = tuner.topology();
+  d.view_proj = camera_.view_projection(vp.aspect());
+  d.point_size = options.point_size;
+  d.springs = options.show_springs;
+  d.anchors = options.show_anchors;
+  const ImGuiIO& io = ImGui::GetIO();
+  const int fb_w = static_cast<int>(size.x * io.DisplayFramebufferScale.x);
+  const int fb_h = static_cast<int>(size.y * io.DisplayFramebufferScale.y);
+  const unsigned tex = renderer_.render(d, fb_w, fb_h);
+  ImDrawList* dl = ImGui::GetWindowDrawList();
+  if (tex != 0) {
+    // GL textures start at the bottom row.
+    dl->AddImage(reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(tex)), tl,
+                 ImVec2(tl.x + size.x, tl.y + size.y), ImVec2(0, 1), ImVec2(1, 0));
+  } else {
+    dl->AddRectFilled(tl, ImVec2(tl.x + size.x, tl.y + size.y), IM_COL32(40, 20, 20, 255));
+    dl->AddText(ImVec2(tl.x + 10, tl.y + 10), IM_COL32(255, 120, 120, 255),
+                "the mesh view needs OpenGL 3.3");
+  }
+  draw_overlays(tuner, vp);
+  ImGui::TextDisabled(cut_tool ? "cut tool: drag a line across springs to remove them"
+                               : "drag: orbit | click node: watch | drag node: move it | "
+                                 "right/middle drag: pan | wheel: zoom");
+}
+
+}  // namespace dampbound::ui

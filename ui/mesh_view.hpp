@@ -1,0 +1,53 @@
+#pragma once
+// The mesh view widget: the model rendered in 3-D (ui/mesh_renderer.hpp) inside the current
+// ImGui window, with an orbit camera (left drag orbits, right or middle drag pans, the wheel
+// zooms), node picking (click a node to watch it, drag it to move it in the view plane), the
+// cut tool (drag a line; the springs it crosses are removed) and a colour legend.
+#include <cstdint>
+
+#include "ui/camera.hpp"
+#include "ui/mesh_renderer.hpp"
+#include "ui/tuner.hpp"
+
+namespace dampbound::ui {
+
+/// What the mesh view shows (remembered in the settings).
+struct MeshViewOptions {
+  bool show_springs = true;
+  bool show_anchors = false;
+  float point_size = 6.0f;  ///< pixels
+};
+
+class MeshView {
+ public:
+  MeshViewOptions options;
+  bool cut_tool = false;  ///< left drag draws a cut line instead of orbiting
+
+  /// Draws the toolbar, the view filling the rest of the current window, and the legend, and
+  /// applies the mouse to the camera and the tuner. Needs the GL context current.
+  void draw(Tuner& tuner);
+
+  /// Frames the scene (rest positions and the perturbed state) on the next draw.
+  void request_fit() { fit_pending_ = true; }
+  OrbitCamera& camera() { return camera_; }
+
+  /// Deletes the GL objects (context current).
+  void release_gl() { renderer_.release(); }
+
+ private:
+  enum class Drag { none, orbit, pan, node, cut };
+  void handle_input(Tuner& tuner, const Viewport& vp, bool hovered);
+  void draw_overlays(const Tuner& tuner, const Viewport& vp) const;
+  void fit(const Tuner& tuner);
+
+  MeshRenderer renderer_;
+  OrbitCamera camera_;
+  bool fit_pending_ = true;
+  const void* fitted_scene_ = nullptr;
+  Drag drag_ = Drag::none;
+  int drag_node_ = -1;
+  float drag_distance_ = 0.0f;  ///< pixels moved since the press
+  float cut_from_[2] = {0, 0}, cut_to_[2] = {0, 0};
+};
+
+}  // namespace dampbound::ui

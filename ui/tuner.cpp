@@ -1,0 +1,203 @@
+#include "ui/tuner.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <exception>
+#include <stdexcept>
+
+#include "core/linear_stability.hpp"
+
+namespace dampbound::ui {
+
+std::string fmt(double x) {
+  if (std::isnan(x)) return "-";
+  if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.4g", x);
+  return buf;
+}
+
+std::string outcome_text(const RunResult& r) {
+  switch (r.outcome) {
+    case Outcome::running: return "running";
+    case Outcome::restored: return "restored at " + std::to_string(r.iterations);
+    case Outcome::diverged: return "diverged at " + std::to_string(r.iterations);
+    case Outcome::not_restored: return "not restored at " + std::to_string(r.iterations);
+  }
+  return "?";
+}
+
+std::string params_label(const Params& p) {
+  std::string s = "gamma " + fmt(p.gamma) + ", m " + fmt(p.m) + ", kappa " + fmt(p.kappa) +
+                  ", dt " + fmt(p.dt) + ", " + to_string(p.policy);
+  if (p.policy == DampingPolicy::upper) s += " x" + fmt(p.factor);
+  if (p.integrator != Integrator::semi_implicit_euler) s += ", " + std::string(to_string(p.integrator));
+  return s;
+}
+
+Tuner::Tuner(SceneSpec scene)
+    : session_(std::make_unique<Session>(std::move(scene))) {}
+
+bool Tuner::open_scene(const std::string& path, std::string* error) {
+  try {
+    set_scene(load_scene(path));
+    return true;
+  } catch (const std::exception& e) {
+    if (error != nullptr) *error = e.what();
+    return false;
+  }
+}
+
+void Tuner::set_scene(SceneSpec scene) {
+  session_ = std::make_unique<Session>(std::move(scene));
+  playing_ = false;
+  notice_.clear();
+  on_new_trace();
+}
+
+bool Tuner::set_params(const Params& params, std::string* error) {
+  const std::string why = validate(params);
+  if (!why.empty()) {
+    if (error != nullptr) *error = why;
+    return false;
+  }
+  session_->set_params(params);
+  return true;
+}
+
+void Tuner::set_max_iterations(int n) {
+  StopRules r = session_->rules();
+  r.max_iterations = n < 1 ? 1 : n;
+  session_->set_rules(r);
+}
+
+bool Tuner::set_playing(bool play) {
+  if (play && !can_step()) {
+    playing_ = false;
+    return false;
+  }
+  playing_ = play;
+  return true;
+}
+
+bool Tuner::can_step() const {
+  return session_->result().outcome != Outcome::diverged &&
+         session_->trace().size() < playback_.max_trace;
+}
+
+int Tuner::step(int n) {
+  using Clock = std::chrono::steady_clock;
+  const auto t0 = Clock::now();
+  int taken = 0;
+  for (; taken < n && can_step(); ++taken) {
+    const Outcome before = session_->result().outcome;
+    session_->step_once();
+    const Outcome after = session_->result().outcome;
+    if (after == Outcome::diverged) {
+      ++taken;
+      playing_ = false;
+      notice_ = outcome_text(session_->result()) + ": the run stopped; reset to go on";
+      break;
+    }
+    if (before == Outcome::running && after != Outcome::running && playback_.pause_at_verdict) {
+      ++taken;
+      playing_ = false;
+      notice_ = outcome_text(session_->result()) + ": paused at the verdict";
+      break;
+    }
+  }
+  if (session_->trace().size() >= playback_.max_trace) {
+    playing_ = false;
+    notice_ = "the trace is full (" + std::to_string(playback_.max_trace) + " steps): reset to go on";
+  }
+  total_steps_ += taken;
+  step_seconds_ += std::chrono::duration<double>(Clock::now() - t0).count();
+  return taken;
+}
+
+int Tuner::advance() {
+  if (!playing_) return 0;
+  return step(playback_.steps_per_frame < 1 ? 1 : playback_.steps_per_frame);
+}
+
+void Tuner::reset() {
+  session_->reset();
+  notice_.clear();
+  on_new_trace();
+}
+
+void Tuner::perturb() { session_->perturb(); }
+
+void Tuner::displace(int node, const Vec3& offset) {
+  if (node < 0 || node >= session_->model().node_count() || !offset.allFinite()) return;
+  session_->displace(node, offset);
+}
+
+void Tuner::watch(int node) {
+  if (node < 0 || node >= session_->model().node_count()) return;
+  session_->set_watched(node);
+}
+
+int Tuner::cut(const std::vector<int>& springs) {
+  if (springs.empty()) return 0;
+  const int removed = session_->cut(springs);
+  if (removed > 0) ++topology_;
+  notice_ = "cut " + std::to_string(removed) + " springs at iteration " +
+            std::to_string(session_->state().iteration);
+  return removed;
+}
+
+Pin& Tuner::pin(const std::string& name) {
+  Pin p;
+  p.name = name.empty() ? params_label(params()) : name;
+  p.scene = scene().name;
+  p.params = params();
+  p.rules = session_->rules();
+  p.result = session_->result();
+  p.watched = session_->watched();
+  p.trace = session_->trace();
+  TraceDecimator d;
+  p.reduced = d.update(p.trace);
+  p.color = palette_color(next_color_++);
+  pins_.push_back(std::move(p));
+  return pins_.back();
+}
+
+void Tuner::unpin(size_t index) {
+  if (index < pins_.size()) pins_.erase(pins_.begin() + static_cast<std::ptrdiff_t>(index));
+}
+
+ImU32 Tuner::current_color() const { return palette_color(0); }
+
+const std::vector<StepStats>& Tuner::reduced_trace() {
+  return decimator_.update(session_->trace(), generation_);
+}
+
+void Tuner::on_new_trace() {
+  ++generation_;
+  ++topology_;
+}
+
+std::optional<double> Tuner::exact_gamma_max() {
+  const Params& p = params();
+  if (exact_topology_ == topology_ && exact_m_ == p.m && exact_kappa_ == p.kappa &&
+      exact_dt_ == p.dt)
+    return exact_value_;
+  exact_topology_ = topology_;
+  exact_m_ = p.m;
+  exact_kappa_ = p.kappa;
+  exact_dt_ = p.dt;
+  exact_value_.reset();
+  try {
+    const Model& model = session_->model();
+    const double lambda = max_stiffness_eigenvalue(model, model.rest);
+    const LinearLimits lim = linear_limits(lambda, p.m, p.dt);
+    if (std::isfinite(lim.gamma_max) && lim.gamma_max > 0) exact_value_ = lim.gamma_max;
+  } catch (const std::exception&) {
+    exact_value_.reset();
+  }
+  return exact_value_;
+}
+
+}  // namespace dampbound::ui

@@ -1,0 +1,144 @@
+#pragma once
+// The interactive tuner's state, free of GL and of any ImGui context: a core Session (the one
+// step()), playback, parameter edits that take effect at the next step, pinned runs, and the
+// actions of the mesh view (watch, displace, cut). The window's panels only call these;
+// tests/ui/tuner_test.cpp drives them without a window.
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/session.hpp"
+#include "ui/plot_spec.hpp"
+#include "ui/tuner_trace.hpp"
+
+namespace dampbound::ui {
+
+/// A pinned run: a copy of a run's trace and what produced it, overlaid on the plots.
+struct Pin {
+  std::string name;   ///< legend and CSV label (editable)
+  std::string scene;  ///< the scene's name
+  Params params;
+  StopRules rules;
+  RunResult result;
+  int watched = 0;
+  std::vector<StepStats> trace;    ///< every step (exported to CSV)
+  std::vector<StepStats> reduced;  ///< decimated once for plotting
+  ImU32 color = 0;
+  bool visible = true;
+};
+
+/// How playback advances the session.
+struct PlaybackOptions {
+  int steps_per_frame = 10;       ///< steps per drawn frame while playing (1..10000)
+  bool pause_at_verdict = false;  ///< pause when the run is restored or not restored
+  size_t max_trace = 2000000;     ///< pause when the trace holds this many steps (memory)
+};
+
+/// "running", "restored at N", "diverged at N" or "not restored at N".
+std::string outcome_text(const RunResult& result);
+
+/// The default name of a pin: "gamma G, m M, kappa K, dt D, POLICY" (with the factor for
+/// the upper policy).
+std::string params_label(const Params& params);
+
+/// Short number for the panels: %.4g, and "inf", "-inf" or "-" (NaN) when not finite, so the
+/// window never shows NaN.
+std::string fmt(double x);
+
+class Tuner {
+ public:
+  /// Starts with the scene's own parameters and stop rules, paused.
+  explicit Tuner(SceneSpec scene);
+
+  /// Loads a scene file (core load_scene) and switches to it with its own parameters. On
+  /// failure the current scene stays and *error holds the one-line reason.
+  bool open_scene(const std::string& path, std::string* error);
+  /// Switches to `scene` with its own parameters; pins are kept.
+  void set_scene(SceneSpec scene);
+
+  const Session& session() const { return *session_; }
+  const SceneSpec& scene() const { return session_->scene(); }
+  const Params& params() const { return session_->params(); }
+
+  /// New parameters, effective at the next step (state, trace and cuts are kept). Invalid
+  /// parameters are refused with *error set and nothing changed.
+  bool set_params(const Params& params, std::string* error = nullptr);
+  /// Iteration limit of the protocol (the verdict "not restored"), >= 1.
+  void set_max_iterations(int n);
+
+  bool playing() const { return playing_; }
+  /// Play or pause; refusing to play (returns false) when the run cannot step.
+  bool set_playing(bool play);
+  PlaybackOptions& playback() { return playback_; }
+  const PlaybackOptions& playback() const { return playback_; }
+
+  /// One drawn frame: steps_per_frame steps when playing, none when paused. Returns the
+  /// number of steps taken. Playback stops when the run diverges (it cannot go on), when the
+  /// trace is full, and at the verdict when pause_at_verdict is set.
+  int advance();
+  /// Up to n steps now, playing or not (single step). Returns the steps taken.
+  int step(int n = 1);
+  /// False after divergence (reset to go on) or with a full trace.
+  bool can_step() const;
+
+  /// Back to the scene's perturbed state and topology with the current parameters.
+  void reset();
+  /// Applies the scene's perturbation again on top of the current state.
+  void perturb();
+  /// The mesh view's drag: moves one node by `offset` (cm).
+  void displace(int node, const Vec3& offset);
+  /// Watches another node (its bounds and displacement go into the trace from now on).
+  void watch(int node);
+  /// Removes the springs (the cut tool); the bounds react at the next step. Returns how many.
+  int cut(const std::vector<int>& springs);
+
+  /// Pins the current run under `name` (params_label() when empty); returns the pin.
+  Pin& pin(const std::string& name = "");
+  void unpin(size_t index);
+  std::vector<Pin>& pins() { return pins_; }
+  const std::vector<Pin>& pins() const { return pins_; }
+  /// Colour of the current run on the plots.
+  ImU32 current_color() const;
+
+  /// The current trace decimated for plotting (updated incrementally).
+  const std::vector<StepStats>& reduced_trace();
+  /// Changes whenever the trace starts over (reset, new scene).
+  std::uint64_t generation() const { return generation_; }
+  /// Changes whenever the springs change (cut, reset, new scene): the renderer's cue.
+  std::uint64_t topology() const { return topology_; }
+
+  /// The last thing worth telling the user (e.g. "diverged at 45: reset to go on").
+  const std::string& notice() const { return notice_; }
+  void set_notice(std::string text) { notice_ = std::move(text); }
+  /// Steps taken since construction and the wall time they took (for steps per second).
+  long long total_steps() const { return total_steps_; }
+  double step_seconds() const { return step_seconds_; }
+
+  /// The exact damping limit of the paper's step at rest for uniform gamma/m (SPEC 7,
+  /// core/linear_stability.hpp), recomputed when m, kappa, dt or the springs change; nullopt
+  /// when it cannot be computed or is not positive.
+  std::optional<double> exact_gamma_max();
+
+ private:
+  void on_new_trace();
+
+  std::unique_ptr<Session> session_;
+  PlaybackOptions playback_;
+  bool playing_ = false;
+  std::vector<Pin> pins_;
+  int next_color_ = 1;
+  TraceDecimator decimator_;
+  std::uint64_t generation_ = 1;
+  std::uint64_t topology_ = 1;
+  std::string notice_;
+  long long total_steps_ = 0;
+  double step_seconds_ = 0;
+  // exact_gamma_max cache key
+  std::uint64_t exact_topology_ = 0;
+  double exact_m_ = -1, exact_kappa_ = -1, exact_dt_ = -1;
+  std::optional<double> exact_value_;
+};
+
+}  // namespace dampbound::ui

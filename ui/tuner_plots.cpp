@@ -1,0 +1,131 @@
+#include "ui/tuner_plots.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+#include "ui/trace_plots.hpp"
+
+namespace dampbound::ui {
+
+std::string current_run_label(const Tuner& tuner) {
+  return "current: " + outcome_text(tuner.session().result());
+}
+
+PlotSpec tuner_displacement_plot(Tuner& tuner, const TunerPlotOptions& options) {
+  const StopRules& rules = tuner.session().rules();
+  const double threshold = rules.restore_fraction * rules.reference;
+  const std::vector<StepStats>& current = tuner.reduced_trace();
+  PlotSpec p = displacement_plot({{current_run_label(tuner), &current, tuner.current_color()}},
+                                 options.log_y, threshold, options.show_max,
+                                 "Displacement of node " +
+                                     std::to_string(tuner.session().watched()));
+  if (options.show_pins) {
+    std::vector<TraceView> views;
+    for (const Pin& pin : tuner.pins())
+      if (pin.visible)
+        views.push_back({pin.name + " (" + outcome_text(pin.result) + ")", &pin.reduced, pin.color});
+    PlotSpec pins = displacement_plot(views, options.log_y, 0, false);
+    // Pins first, so the live run is drawn on top of them.
+    pins.series.insert(pins.series.end(), std::make_move_iterator(p.series.begin()),
+                       std::make_move_iterator(p.series.end()));
+    p.series = std::move(pins.series);
+  }
+  return p;
+}
+
+void simplify_band(PlotBand& band, size_t max_columns) {
+  const size_t n = std::min({band.x.size(), band.y_lo.size(), band.y_hi.size()});
+  if (n < 3 || max_columns < 2) return;
+  PlotBand out;
+  out.label = band.label;
+  out.color = band.color;
+  auto push = [&](double x, double lo, double hi) {
+    out.x.push_back(x);
+    out.y_lo.push_back(lo);
+    out.y_hi.push_back(hi);
+  };
+  // Buckets of k samples: where the whole bucket is feasible (largest lower, smallest upper).
+  const size_t k = (n + max_columns - 1) / max_columns;
+  for (size_t i0 = 0; i0 < n - 1; i0 += k) {
+    const size_t i1 = std::min(i0 + k, n - 1);
+    double lo = band.y_lo[i0], hi = band.y_hi[i0];
+    for (size_t i = i0 + 1; i < i1; ++i) {
+      lo = std::fmax(lo, band.y_lo[i]);
+      hi = std::fmin(hi, band.y_hi[i]);
+    }
+    push(band.x[i0], lo, hi);
+  }
+  push(band.x[n - 1], band.y_lo[n - 1], band.y_hi[n - 1]);
+  // Runs of equal samples: keep their ends only.
+  auto same = [&](size_t a, size_t b) {
+    return out.y_lo[a] == out.y_lo[b] && out.y_hi[a] == out.y_hi[b];
+  };
+  PlotBand lean;
+  lean.label = out.label;
+  lean.color = out.color;
+  const size_t m = out.x.size();
+  for (size_t i = 0; i < m; ++i) {
+    if (i > 0 && i + 1 < m && same(i - 1, i) && same(i, i + 1)) continue;
+    lean.x.push_back(out.x[i]);
+    lean.y_lo.push_back(out.y_lo[i]);
+    lean.y_hi.push_back(out.y_hi[i]);
+  }
+  band = std::move(lean);
+}
+
+void envelope_headroom(PlotSpec& spec, double cap, double fraction) {
+  double lo = std::numeric_limits<double>::infinity(), hi = 0;
+  for (const PlotSeries& s : spec.series)
+    for (double v : s.y)
+      if (std::isfinite(v) && v > 0) {
+        lo = std::min(lo, v);
+        hi = std::max(hi, v);
+      }
+  for (const PlotHLine& h : spec.hlines)
+    if (std::isfinite(h.y) && h.y > 0) {
+      lo = std::min(lo, h.y);
+      hi = std::max(hi, h.y);
+    }
+  if (!(hi > 0) || !std::isfinite(lo)) return;
+  if (cap > 0) hi = std::min(hi, cap);
+  if (!(hi > lo)) hi = lo * 10;
+  const double l0 = std::log10(lo), l1 = std::log10(hi);
+  const double pad = 0.05 * (l1 - l0);
+  spec.y.min = std::pow(10.0, l0 - pad);
+  spec.y.max = std::pow(10.0, l1 + (l1 - l0) * fraction / (1.0 - fraction));
+}
+
+PlotSpec tuner_envelope_plot(Tuner& tuner, const TunerPlotOptions& options) {
+  const std::vector<StepStats>& current = tuner.reduced_trace();
+  PlotSpec p = envelope_plot(current, tuner.exact_gamma_max(),
+                             "Damping bounds of node " + std::to_string(tuner.session().watched()));
+  p.x.min = 0;
+  if (options.show_pins) {
+    for (const Pin& pin : tuner.pins()) {
+      if (!pin.visible) continue;
+      PlotSeries s;
+      s.label = pin.name + ": effective gamma";
+      s.color = pin.color;
+      s.dashed = true;
+      s.thickness = 1.5f;
+      for (const StepStats& st : pin.reduced) {
+        s.x.push_back(st.iteration);
+        s.y.push_back(st.watched_gamma_eff);
+      }
+      p.series.push_back(std::move(s));
+    }
+  }
+  for (PlotBand& b : p.bands) simplify_band(b, 240);
+  // The upper bound (eq. 6) grows without limit as |v| -> 0: cap the axis at 100 x the
+  // largest damping that matters, and keep the top part free for the legend.
+  double ref = tuner.exact_gamma_max().value_or(0.0);
+  for (const StepStats& st : current)
+    for (double v : {st.watched_lower, st.watched_gamma, st.watched_gamma_eff})
+      if (std::isfinite(v)) ref = std::max(ref, v);
+  envelope_headroom(p, ref > 0 ? 100 * ref : 0.0, 0.4);
+  return p;
+}
+
+}  // namespace dampbound::ui

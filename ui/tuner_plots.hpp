@@ -1,0 +1,41 @@
+#pragma once
+// The tuner's two live plots as PlotSpecs (no GL): the bound envelope of the watched node and
+// the displacement, with the pinned runs overlaid. Built from ui/trace_plots.hpp, the same
+// functions the headless figures use, on decimated traces.
+#include <string>
+
+#include "ui/plot_spec.hpp"
+#include "ui/tuner.hpp"
+
+namespace dampbound::ui {
+
+/// What the plots show.
+struct TunerPlotOptions {
+  bool log_y = false;     ///< displacement on a log10 axis
+  bool show_max = true;   ///< the max displacement over all nodes (current run)
+  bool show_pins = true;  ///< overlay the visible pins
+};
+
+/// Legend label of the current run: "current: <outcome>".
+std::string current_run_label(const Tuner& tuner);
+
+/// Displacement of the watched node (and the max over nodes) against iteration for the
+/// current run and the visible pins, with the 1 % restore threshold line.
+PlotSpec tuner_displacement_plot(Tuner& tuner, const TunerPlotOptions& options);
+
+/// Coarsens a band for drawing: at most about max_columns samples (per bucket of consecutive
+/// samples the largest lower and the smallest upper edge: where the whole bucket is feasible),
+/// then runs of equal samples reduced to their ends. A software rasteriser (llvmpipe) fills a
+/// few wide quads far faster than hundreds of one-pixel slivers.
+void simplify_band(PlotBand& band, size_t max_columns);
+
+/// Sets a log y axis to the positive finite data of the series and lines, capped at `cap`
+/// (when > 0), with the top `fraction` of the axis left free (for the legend).
+void envelope_headroom(PlotSpec& spec, double cap, double fraction);
+
+/// The bound envelope of the watched node (envelope_plot: lower, upper, user and effective
+/// gamma, feasible band, log axis) with the exact linear limit when known, plus each visible
+/// pin's effective gamma dashed in its colour.
+PlotSpec tuner_envelope_plot(Tuner& tuner, const TunerPlotOptions& options);
+
+}  // namespace dampbound::ui

@@ -1,0 +1,54 @@
+#pragma once
+// A growing trace reduced for plotting: min/max per bucket of iterations, updated
+// incrementally, so a run of a million steps costs the plots what a few thousand do.
+// No GL (tests/ui/tuner_trace_test.cpp).
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "core/step.hpp"
+
+namespace dampbound::ui {
+
+/// Keeps at most about 2 * max_buckets samples of a trace that only grows (until it starts
+/// over). While the trace is short every sample is kept as is; beyond max_buckets samples,
+/// consecutive samples are grouped into buckets whose size doubles as needed, and each bucket
+/// contributes two samples: the field-wise minima at its first iteration and the field-wise
+/// maxima at its last (what a min/max per-pixel-column plot would draw anyway). NaN fields
+/// are ignored by the minima and maxima.
+class TraceDecimator {
+ public:
+  explicit TraceDecimator(size_t max_buckets = 2048);
+
+  /// Brings the reduced trace up to date with `trace`: reads only the samples added since the
+  /// last call, and starts over when `generation` changed or the trace got shorter.
+  const std::vector<StepStats>& update(const std::vector<StepStats>& trace,
+                                       std::uint64_t generation = 0);
+  /// The reduced trace of the last update().
+  const std::vector<StepStats>& reduced() const { return out_; }
+  /// Samples per bucket now (1 while every sample is kept).
+  size_t bucket_size() const { return bucket_; }
+
+ private:
+  struct Bucket {
+    StepStats lo, hi;
+    size_t count = 0;
+  };
+  void add(const StepStats& s);
+  void rebuild_output();
+
+  size_t max_buckets_;
+  size_t bucket_ = 1;
+  size_t consumed_ = 0;
+  std::uint64_t generation_ = 0;
+  std::vector<Bucket> full_;
+  Bucket partial_;
+  std::vector<StepStats> out_;
+};
+
+/// Field-wise merge of two bucket ends: `lo` keeps minima and the earlier iteration, `hi`
+/// maxima and the later one. Exposed for tests.
+void merge_min(StepStats& lo, const StepStats& s);
+void merge_max(StepStats& hi, const StepStats& s);
+
+}  // namespace dampbound::ui
