@@ -1,5 +1,7 @@
 // dampbound bounds: the paper's bounds (eqs. 5, 6) and the runtime check (sec. 5) for given
-// parameters.
+// parameters, then every stability criterion side by side (SPEC 7, docs/criteria.md): the
+// paper's, Delingette's, Provot's, Kacic-Alesic's and the exact linear analysis of the
+// integrator, on the two-node system (or a single node) or on a scene.
 #include <cstdio>
 #include <memory>
 #include <sstream>
@@ -7,16 +9,20 @@
 #include "app/commands.hpp"
 #include "app/options.hpp"
 #include "core/bounds.hpp"
+#include "core/criteria.hpp"
 #include "core/error.hpp"
 #include "core/io.hpp"
+#include "core/session.hpp"
 
 namespace dampbound::app {
 namespace {
 
 struct BoundsArgs {
+  std::string scene, v, force, integrator, system = "two-node";
   double m = 0, kappa = 0, dt = 0, gamma = 0;
-  std::string v, force;
-  CLI::Option* gamma_opt = nullptr;
+  int after = 0;
+  CLI::Option *m_opt = nullptr, *kappa_opt = nullptr, *dt_opt = nullptr, *gamma_opt = nullptr,
+              *integrator_opt = nullptr;
 };
 
 Vec3 parse_vec3(const std::string& text, const char* flag) {
@@ -38,11 +44,23 @@ Vec3 parse_vec3(const std::string& text, const char* flag) {
   throw InputError(std::string(flag) + ": '" + text + "' is not three numbers x,y,z");
 }
 
-int run(const BoundsArgs& a) {
+/// The table: one line per criterion, then its formula and source indented below.
+void print_criteria(const std::vector<CriterionResult>& criteria) {
+  std::printf("\n%-44s %-24s %-7s %s\n", "criterion", "value", "verdict", "test");
+  for (const CriterionResult& c : criteria) {
+    const std::string value = format_short(c.value) + (c.unit.empty() ? "" : " " + c.unit);
+    std::printf("%-44s %-24s %-7s %s\n", c.name.c_str(), value.c_str(), to_string(c.verdict),
+                c.test.c_str());
+    std::printf("    %s  [%s]\n", c.formula.c_str(), c.source.c_str());
+  }
+}
+
+/// The paper's own lines for --m --kappa --dt [--v --force --gamma] (the command's first job).
+void print_paper_lines(const BoundsArgs& a) {
   const double lo = lower_bound(a.m, a.kappa);
   std::printf("lower bound (eq. 5)   gamma_lo = 2*sqrt(m*kappa) = %s\n", format_number(lo).c_str());
   if (a.v.empty() != a.force.empty()) throw InputError("--v and --force go together");
-  if (a.v.empty()) return 0;
+  if (a.v.empty()) return;
   const Vec3 v = parse_vec3(a.v, "--v"), f = parse_vec3(a.force, "--force");
   const double hi = upper_bound(v, f, a.m, a.dt);
   std::printf("upper bound (eq. 6)   gamma_hi = |v*m/dt + F|/|v| = %s%s\n",
@@ -56,24 +74,99 @@ int run(const BoundsArgs& a) {
     std::printf("gamma = %s          %s\n", format_number(a.gamma).c_str(),
                 inside ? "within the bounds" : "outside the bounds");
   }
+}
+
+int run_parameters(const BoundsArgs& a) {
+  if (!a.m_opt->count() || !a.kappa_opt->count() || !a.dt_opt->count())
+    throw InputError("--m, --kappa and --dt are required without a scene");
+  print_paper_lines(a);
+  Params p;
+  p.m = a.m;
+  p.kappa = a.kappa;
+  p.dt = a.dt;
+  p.gamma = a.gamma_opt->count() ? a.gamma : lower_bound(a.m, a.kappa);
+  if (a.integrator_opt->count()) p.integrator = *parse_integrator(a.integrator);
+  const bool two = a.system == "two-node";
+  const Model model = two ? two_node_system(p) : single_node_system(p);
+  std::printf("\nsystem       %s\n",
+              two ? "two-node (paper sec. 2): node 0 fixed, node 1 on one spring of rest length "
+                    "1 cm, no anchor; at rest"
+                  : "single node on a zero-rest-length anchor (the linear oscillator); at rest");
+  std::printf("parameters   m=%s kappa=%s gamma=%s%s dt=%s s integrator=%s\n",
+              format_number(p.m).c_str(), format_number(p.kappa).c_str(),
+              format_number(p.gamma).c_str(), a.gamma_opt->count() ? "" : " (= gamma_lo)",
+              format_number(p.dt).c_str(), to_string(p.integrator));
+  const State rest = rest_state(model);
+  print_criteria(all_criteria(model, rest, p, exact_stability(model, rest.x, p)));
   return 0;
 }
+
+int run_scene(const BoundsArgs& a) {
+  if (!a.v.empty() || !a.force.empty()) throw InputError("--v and --force need no scene");
+  SceneSpec scene = load_scene_arg(a.scene);
+  Params p = scene.params;
+  if (a.m_opt->count()) p.m = a.m;
+  if (a.kappa_opt->count()) p.kappa = a.kappa;
+  if (a.dt_opt->count()) p.dt = a.dt;
+  if (a.gamma_opt->count()) p.gamma = a.gamma;
+  if (a.integrator_opt->count()) p.integrator = *parse_integrator(a.integrator);
+  p.policy = DampingPolicy::fixed;  // the user's gamma is what is judged
+  const std::string name = scene.name.empty() ? a.scene : scene.name;
+  Session session(std::move(scene), p, StopRules{});
+  for (int k = 0; k < a.after && session.running(); ++k) session.step_once();
+  const Model& model = session.model();
+  const State state = a.after > 0 ? session.state() : rest_state(model);
+  std::printf("scene        %s (%d nodes, %d springs, %d anchors)\n", name.c_str(),
+              model.node_count(), model.spring_count(), model.anchor_count());
+  std::printf("parameters   m=%s kappa=%s gamma=%s dt=%s s integrator=%s (gamma_i = gamma * "
+              "gamma_scale_i, m_i = m * mass_scale_i)\n",
+              format_number(p.m).c_str(), format_number(p.kappa).c_str(),
+              format_number(p.gamma).c_str(), format_number(p.dt).c_str(),
+              to_string(p.integrator));
+  if (a.after > 0)
+    std::printf("state        after %d steps of the scene's perturbed run (policy fixed)\n",
+                state.iteration);
+  else
+    std::printf("state        rest (x = X, v = 0): the linearisation point of the exact analysis\n");
+  const ExactStability exact = exact_stability(model, state.x, p);
+  std::printf("exact method %s\n", to_string(exact.method));
+  print_criteria(all_criteria(model, state, p, exact));
+  return 0;
+}
+
+int run(const BoundsArgs& a) { return a.scene.empty() ? run_parameters(a) : run_scene(a); }
 
 std::function<int()> setup(CLI::App& root) {
   auto a = std::make_shared<BoundsArgs>();
   CLI::App* cmd = root.add_subcommand(
-      "bounds", "Print the paper's damping bounds: the lower bound 2*sqrt(m*kappa) (eq. 5) and, "
-                "given a velocity and force, the upper bound |v*m/dt+F|/|v| (eq. 6) and the "
-                "runtime check (sec. 5).");
-  cmd->add_option("--m", a->m, "node mass (mass unit)")->required()->check(finite_positive());
-  cmd->add_option("--kappa", a->kappa, "stiffness (mass unit/s^2)")
-      ->required()
-      ->check(finite_positive());
-  cmd->add_option("--dt", a->dt, "time step (s)")->required()->check(finite_positive());
+      "bounds",
+      "Print the paper's damping bounds: the lower bound 2*sqrt(m*kappa) (eq. 5) and, given a "
+      "velocity and force, the upper bound |v*m/dt+F|/|v| (eq. 6) and the runtime check "
+      "(sec. 5); then every stability criterion (paper, Delingette, Provot, Kacic-Alesic, exact "
+      "linear) with its value and verdict, for the two-node system or for a SCENE.");
+  cmd->add_option("scene", a->scene,
+                  "scene file (.toml) or shipped scene name; without it --m --kappa --dt are "
+                  "required and the two-node system (or --system single-node) is analysed");
+  a->m_opt = cmd->add_option("--m", a->m, "node mass (mass unit)")->check(finite_positive());
+  a->kappa_opt = cmd->add_option("--kappa", a->kappa, "stiffness (mass unit/s^2)")
+                     ->check(finite_positive());
+  a->dt_opt = cmd->add_option("--dt", a->dt, "time step (s)")->check(finite_positive());
   cmd->add_option("--v", a->v, "node velocity x,y,z (cm/s)");
   cmd->add_option("--force", a->force, "internal (spring) force on the node x,y,z (mass unit cm/s^2)");
-  a->gamma_opt = cmd->add_option("--gamma", a->gamma, "a damping to test against the bounds")
+  a->gamma_opt = cmd->add_option("--gamma", a->gamma,
+                                 "a damping to test against the bounds (mass unit/s); default "
+                                 "the scene's, or gamma_lo without a scene")
                      ->check(finite_non_negative());
+  a->integrator_opt =
+      cmd->add_option("--integrator", a->integrator, "integrator whose exact limits are shown")
+          ->check(CLI::IsMember(
+              {"semi-implicit-euler", "forward-euler", "verlet", "rk4", "implicit-euler"}));
+  cmd->add_option("--system", a->system, "without a scene: two-node (default) or single-node")
+      ->check(CLI::IsMember({"two-node", "single-node"}));
+  cmd->add_option("--after", a->after,
+                  "with a scene: analyse the state after this many steps of its perturbed run "
+                  "(default 0: the rest state)")
+      ->check(CLI::Range(0, 100000000));
   return [a] { return run(*a); };
 }
 

@@ -1,8 +1,4 @@
-// GCC 12 reports a false -Wmaybe-uninitialized inside its own AVX-512 intrinsics when Spectra's
-// Eigen expressions are inlined with -march=native; it must be silenced before any include.
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#endif
+#include "core/linear_stability_gcc.hpp"  // first: silences GCC 12 false positives
 #include "core/linear_stability.hpp"
 
 #include <Eigen/Dense>
@@ -79,17 +75,22 @@ namespace {
 
 /// One end of the spectrum of a symmetric matrix. Lanczos with restarts (Spectra); a tiny
 /// matrix (below 13 rows, e.g. the two-node system) is solved densely.
-double extreme_eigenvalue(const SparseMatrix& A, bool largest) {
+double extreme_eigenvalue(const SparseMatrix& A, bool largest, Eigen::VectorXd* vector = nullptr) {
   const Eigen::Index n = A.rows();
   if (n == 0) return 0;
   if (n < 13) {
-    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(Eigen::MatrixXd(A), Eigen::EigenvaluesOnly);
-    return largest ? es.eigenvalues()(n - 1) : es.eigenvalues()(0);
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es{Eigen::MatrixXd(A)};
+    const Eigen::Index k = largest ? n - 1 : 0;
+    if (vector) *vector = es.eigenvectors().col(k);
+    return es.eigenvalues()(k);
   }
   double scale = 0;  // a zero matrix leaves Lanczos no Krylov space to build
   for (int k = 0; k < A.outerSize(); ++k)
     for (SparseMatrix::InnerIterator it(A, k); it; ++it) scale = std::max(scale, std::abs(it.value()));
-  if (scale == 0) return 0;
+  if (scale == 0) {
+    if (vector) *vector = Eigen::VectorXd::Unit(n, 0);
+    return 0;
+  }
   const auto rule = largest ? Spectra::SortRule::LargestAlge : Spectra::SortRule::SmallestAlge;
   Spectra::SparseSymMatProd<double> op(A);
   // The low end of a mesh spectrum is clustered; a larger subspace converges in fewer restarts.
@@ -99,12 +100,16 @@ double extreme_eigenvalue(const SparseMatrix& A, bool largest) {
   eigs.compute(rule, 5000, 1e-11, rule);
   if (eigs.info() != Spectra::CompInfo::Successful)
     return std::numeric_limits<double>::quiet_NaN();
+  if (vector) *vector = eigs.eigenvectors().col(0);
   return eigs.eigenvalues()(0);
 }
 
 }  // namespace
 
 double largest_eigenvalue(const SparseMatrix& A) { return extreme_eigenvalue(A, true); }
+double largest_eigenpair(const SparseMatrix& A, Eigen::VectorXd& vector) {
+  return extreme_eigenvalue(A, true, &vector);
+}
 double smallest_eigenvalue(const SparseMatrix& A) { return extreme_eigenvalue(A, false); }
 
 double max_stiffness_eigenvalue(const Model& model, const std::vector<Vec3>& x) {

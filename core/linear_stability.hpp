@@ -34,6 +34,8 @@ SparseMatrix mass_weighted(const Model& model, const SparseMatrix& K);
 /// (Spectra::SymEigsSolver), dense only below 13 rows. Tolerance 1e-10 relative.
 double largest_eigenvalue(const SparseMatrix& A);
 double smallest_eigenvalue(const SparseMatrix& A);
+/// The largest eigenvalue and its unit eigenvector (for Hellmann-Feynman slopes).
+double largest_eigenpair(const SparseMatrix& A, Eigen::VectorXd& vector);
 
 /// Largest eigenvalue of M^-1 K, K the tangent stiffness of springs and anchors at positions
 /// x (at rest only spring directions and anchors contribute), over the free nodes.

@@ -1,11 +1,4 @@
-// GCC 12 reports a false -Wmaybe-uninitialized inside its own AVX-512 intrinsics when Spectra's
-// Eigen expressions are inlined with -march=native; it must be silenced before any include.
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#if __GNUC__ >= 12  // and a false -Wuse-after-free in Spectra's Hessenberg eigen solver
-#pragma GCC diagnostic ignored "-Wuse-after-free"
-#endif
-#endif
+#include "core/linear_stability_gcc.hpp"  // first: silences GCC 12 false positives
 #include "core/linear_stability_modes.hpp"
 
 #include <Eigen/Dense>

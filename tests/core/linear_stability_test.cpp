@@ -1,7 +1,4 @@
-// GCC 12: false -Wmaybe-uninitialized in its AVX-512 intrinsics under -march=native (Eigen).
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#endif
+#include "core/linear_stability_gcc.hpp"  // first: silences GCC 12 false positives
 // Tests of core/linear_stability: tangent stiffness, Lanczos against a dense solver, the
 // exact limits of the paper's step.
 #include "core/linear_stability.hpp"
