@@ -9,11 +9,11 @@
 
 namespace dampbound {
 
-const char* to_string(Verdict v) {
+const char* to_string(ClaimVerdict v) {
   switch (v) {
-    case Verdict::holds: return "holds";
-    case Verdict::does_not_hold: return "does not hold";
-    case Verdict::partly: return "partly";
+    case ClaimVerdict::holds: return "holds";
+    case ClaimVerdict::does_not_hold: return "does not hold";
+    case ClaimVerdict::partly: return "partly";
   }
   return "?";
 }
@@ -57,18 +57,18 @@ std::vector<Claim> fig1_claims(const FigureData& fig) {
                 "oscillating and never returns to its initial configuration";
   below.measured = "gamma = 0.0005: " + outcome_text(r0) + "; gamma = 0.001: " + outcome_text(r1);
   const int settled = (r0.outcome == Outcome::restored) + (r1.outcome == Outcome::restored);
-  below.verdict = settled == 0 ? Verdict::holds : settled == 2 ? Verdict::does_not_hold
-                                                               : Verdict::partly;
+  below.verdict = settled == 0 ? ClaimVerdict::holds : settled == 2 ? ClaimVerdict::does_not_hold
+                                                               : ClaimVerdict::partly;
   out.push_back(below);
   Claim at;
   at.source = "sec. 4, Fig. 1";
   at.paper = "At the lower bound (gamma = 0.002) the mesh reaches steady state after 34 "
              "iterations";
   at.measured = "gamma = 0.002: " + outcome_text(r2);
-  at.verdict = r2.outcome == Outcome::restored && r2.iterations == 34 ? Verdict::holds
-               : r2.outcome == Outcome::restored                     ? Verdict::partly
-                                                                     : Verdict::does_not_hold;
-  if (at.verdict == Verdict::partly)
+  at.verdict = r2.outcome == Outcome::restored && r2.iterations == 34 ? ClaimVerdict::holds
+               : r2.outcome == Outcome::restored                     ? ClaimVerdict::partly
+                                                                     : ClaimVerdict::does_not_hold;
+  if (at.verdict == ClaimVerdict::partly)
     at.measured += " (it settles, after " + std::to_string(r2.iterations) + ", not 34)";
   out.push_back(at);
   return out;
@@ -90,14 +90,14 @@ std::vector<Claim> fig2_claims(const FigureData& fig, const AfterRestore& after)
                                         format_number(after.max_after) + " cm";
   const bool within = r0.outcome == Outcome::restored && r0.iterations <= 652;
   const bool stays = after.restored && !after.diverged;
-  at.verdict = within && stays ? Verdict::holds : (within || stays) ? Verdict::partly
-                                                                    : Verdict::does_not_hold;
+  at.verdict = within && stays ? ClaimVerdict::holds : (within || stays) ? ClaimVerdict::partly
+                                                                    : ClaimVerdict::does_not_hold;
   out.push_back(at);
   Claim above;
   above.source = "sec. 4, Fig. 2";
   above.paper = "With damping 5% above the upper bound the system was unstable";
   above.measured = "factor 1.05: " + outcome_text(r1);
-  above.verdict = r1.outcome == Outcome::diverged ? Verdict::holds : Verdict::does_not_hold;
+  above.verdict = r1.outcome == Outcome::diverged ? ClaimVerdict::holds : ClaimVerdict::does_not_hold;
   out.push_back(above);
   return out;
 }
@@ -115,16 +115,16 @@ std::vector<Claim> sweep_claims(const std::vector<PredictionCheck>& checks,
     std::snprintf(buf, sizeof buf, "%.1f%%", pct);
     c.measured = "held in " + std::to_string(p.held) + " of " + std::to_string(p.of) +
                  " trials (" + buf + ") on " + grid;
-    c.verdict = p.held == p.of ? Verdict::holds
-                : p.held == 0  ? Verdict::does_not_hold
-                               : Verdict::partly;
+    c.verdict = p.held == p.of ? ClaimVerdict::holds
+                : p.held == 0  ? ClaimVerdict::does_not_hold
+                               : ClaimVerdict::partly;
     out.push_back(c);
   }
   return out;
 }
 
 void write_claims_table(std::ostream& out, const std::vector<Claim>& claims) {
-  out << "| # | Source | The paper says | dampbound measured | Verdict |\n"
+  out << "| # | Source | The paper says | dampbound measured | ClaimVerdict |\n"
          "|---|---|---|---|---|\n";
   int k = 1;
   for (const Claim& c : claims)

@@ -10,14 +10,14 @@
 
 namespace dampbound {
 
-enum class Verdict { holds, does_not_hold, partly };
-const char* to_string(Verdict v);
+enum class ClaimVerdict { holds, does_not_hold, partly };
+const char* to_string(ClaimVerdict v);
 
 struct Claim {
   std::string source;    ///< where the paper says it ("sec. 4, Fig. 1")
   std::string paper;     ///< the claim in the paper's words
   std::string measured;  ///< what dampbound measured, with numbers
-  Verdict verdict = Verdict::does_not_hold;
+  ClaimVerdict verdict = ClaimVerdict::does_not_hold;
 };
 
 /// What a run does after its restore: stepped on to `until` iterations.

@@ -26,17 +26,17 @@ TEST(Claims, Fig1Verdicts) {
                              {Outcome::not_restored, 1000},
                              {Outcome::restored, 34}}));
   ASSERT_EQ(c.size(), 2u);
-  EXPECT_EQ(c[0].verdict, Verdict::holds);
-  EXPECT_EQ(c[1].verdict, Verdict::holds);
+  EXPECT_EQ(c[0].verdict, ClaimVerdict::holds);
+  EXPECT_EQ(c[1].verdict, ClaimVerdict::holds);
   c = fig1_claims(fake({{Outcome::restored, 230}, {Outcome::not_restored, 1000},
                         {Outcome::restored, 112}}));
-  EXPECT_EQ(c[0].verdict, Verdict::partly);
-  EXPECT_EQ(c[1].verdict, Verdict::partly);
+  EXPECT_EQ(c[0].verdict, ClaimVerdict::partly);
+  EXPECT_EQ(c[1].verdict, ClaimVerdict::partly);
   EXPECT_NE(c[1].measured.find("112"), std::string::npos);
   c = fig1_claims(fake({{Outcome::restored, 230}, {Outcome::restored, 108},
                         {Outcome::diverged, 3}}));
-  EXPECT_EQ(c[0].verdict, Verdict::does_not_hold);
-  EXPECT_EQ(c[1].verdict, Verdict::does_not_hold);
+  EXPECT_EQ(c[0].verdict, ClaimVerdict::does_not_hold);
+  EXPECT_EQ(c[1].verdict, ClaimVerdict::does_not_hold);
 }
 
 TEST(Claims, Fig2Verdicts) {
@@ -45,16 +45,16 @@ TEST(Claims, Fig2Verdicts) {
   stays.restored_at = 110;
   stays.until = 10000;
   auto c = fig2_claims(fake({{Outcome::restored, 110}, {Outcome::diverged, 400}}), stays);
-  EXPECT_EQ(c[0].verdict, Verdict::holds);
-  EXPECT_EQ(c[1].verdict, Verdict::holds);
+  EXPECT_EQ(c[0].verdict, ClaimVerdict::holds);
+  EXPECT_EQ(c[1].verdict, ClaimVerdict::holds);
   c = fig2_claims(fake({{Outcome::restored, 700}, {Outcome::restored, 85}}), stays);
-  EXPECT_EQ(c[0].verdict, Verdict::partly);
-  EXPECT_EQ(c[1].verdict, Verdict::does_not_hold);
+  EXPECT_EQ(c[0].verdict, ClaimVerdict::partly);
+  EXPECT_EQ(c[1].verdict, ClaimVerdict::does_not_hold);
   AfterRestore blows = stays;
   blows.diverged = true;
   blows.diverged_at = 5000;
   c = fig2_claims(fake({{Outcome::restored, 110}, {Outcome::diverged, 400}}), blows);
-  EXPECT_EQ(c[0].verdict, Verdict::partly);
+  EXPECT_EQ(c[0].verdict, ClaimVerdict::partly);
   EXPECT_NE(c[0].measured.find("diverged at iteration 5000"), std::string::npos);
 }
 
@@ -75,7 +75,7 @@ TEST(Claims, TableHasEveryClaim) {
   std::vector<Claim> c(2);
   c[0].paper = "A";
   c[1].paper = "B";
-  c[1].verdict = Verdict::holds;
+  c[1].verdict = ClaimVerdict::holds;
   std::ostringstream os;
   write_claims_table(os, c);
   EXPECT_NE(os.str().find("| 1 |  | A |  | **does not hold** |"), std::string::npos);
