@@ -107,6 +107,27 @@ double extreme_eigenvalue(const SparseMatrix& A, bool largest, Eigen::VectorXd* 
 }  // namespace
 
 double largest_eigenvalue(const SparseMatrix& A) { return extreme_eigenvalue(A, true); }
+double smallest_eigenvalue_above(const SparseMatrix& A, double floor) {
+  const Eigen::Index n = A.rows();
+  if (n == 0) return 0;
+  if (n <= 300) {  // small: dense is cheap and finds every zero mode
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es{Eigen::MatrixXd(A), Eigen::EigenvaluesOnly};
+    for (Eigen::Index k = 0; k < n; ++k)
+      if (es.eigenvalues()(k) > floor) return es.eigenvalues()(k);
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+  // Large: the 12 smallest by Lanczos (a free mesh has 6 rigid modes; 12 leaves room).
+  Spectra::SparseSymMatProd<double> op(A);
+  const Eigen::Index nev = std::min<Eigen::Index>(12, n - 2);
+  Spectra::SymEigsSolver<Spectra::SparseSymMatProd<double>> eigs(op, nev, std::min<Eigen::Index>(n, 96));
+  eigs.init();
+  eigs.compute(Spectra::SortRule::SmallestAlge, 5000, 1e-11, Spectra::SortRule::SmallestAlge);
+  if (eigs.info() != Spectra::CompInfo::Successful) return std::numeric_limits<double>::quiet_NaN();
+  for (Eigen::Index k = 0; k < eigs.eigenvalues().size(); ++k)
+    if (eigs.eigenvalues()(k) > floor) return eigs.eigenvalues()(k);
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
 double largest_eigenpair(const SparseMatrix& A, Eigen::VectorXd& vector) {
   return extreme_eigenvalue(A, true, &vector);
 }

@@ -34,6 +34,9 @@ SparseMatrix mass_weighted(const Model& model, const SparseMatrix& K);
 /// (Spectra::SymEigsSolver), dense only below 13 rows. Tolerance 1e-10 relative.
 double largest_eigenvalue(const SparseMatrix& A);
 double smallest_eigenvalue(const SparseMatrix& A);
+/// The smallest eigenvalue above `floor` (zero modes skipped: motions no spring resists).
+/// Dense up to 300 rows, else the 12 smallest by Lanczos; NaN when none is found.
+double smallest_eigenvalue_above(const SparseMatrix& A, double floor);
 /// The largest eigenvalue and its unit eigenvector (for Hellmann-Feynman slopes).
 double largest_eigenpair(const SparseMatrix& A, Eigen::VectorXd& vector);
 

@@ -65,7 +65,7 @@ SpectralRadius spectral_radius_at(const Model& model, const SparseMatrix& K_weig
   const Eigen::VectorXd R = unit_rates(model);
   if (e.uniform_rate) {
     const double r = R.size() ? R.maxCoeff() : 0;
-    return {spectrum_spectral_radius(e.integrator, e.spectrum, gamma * r, params.dt), true};
+    return {spectrum_spectral_radius(e.integrator, e.decaying, gamma * r, params.dt), true};
   }
   return amplification_spectral_radius(e.integrator, K_weighted, gamma * R, params.dt);
 }
@@ -83,6 +83,12 @@ ExactStability exact_stability(const Model& model, const std::vector<Vec3>& x,
   e.rate_max = gamma * r_max;
   e.uniform_rate = r_max - r_min <= 1e-12 * r_max;
   const double tiny = 1e-12 * std::max(1.0, std::abs(e.spectrum.lambda_max));
+  e.decaying = e.spectrum;
+  if (std::abs(e.spectrum.lambda_min) <= 1e-9 * std::abs(e.spectrum.lambda_max)) {
+    e.zero_modes = true;
+    const double above = smallest_eigenvalue_above(A, 1e-9 * e.spectrum.lambda_max);
+    e.decaying.lambda_min = std::isnan(above) ? e.spectrum.lambda_max : above;
+  }
   auto rho_or_nan = [&] {
     if (!options.with_radius) return;
     const SpectralRadius s = spectral_radius_at(model, A, e, params, gamma);
@@ -105,8 +111,8 @@ ExactStability exact_stability(const Model& model, const std::vector<Vec3>& x,
   if (e.uniform_rate) {
     e.method = ExactMethod::per_mode;
     const double c = gamma * r_max;
-    e.spectral_radius = spectrum_spectral_radius(e.integrator, e.spectrum, c, h);
-    e.stable = e.spectral_radius <= 1 + 1e-12;
+    e.spectral_radius = spectrum_spectral_radius(e.integrator, e.decaying, c, h);
+    e.stable = spectrum_spectral_radius(e.integrator, e.spectrum, c, h) <= 1 + 1e-12;
     const RateInterval ci = uniform_rate_interval(e.integrator, e.spectrum, h);
     if (r_max > 0) {
       e.gamma_lo = ci.lo / r_max;

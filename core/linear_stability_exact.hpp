@@ -27,7 +27,12 @@ struct ExactStability {
   bool uniform_rate = true;   ///< gamma_i/m_i equal over the free nodes
   double rate_min = 0;        ///< min and max of gamma_i/m_i over the free nodes (1/s)
   double rate_max = 0;
-  StiffnessSpectrum spectrum;  ///< of M^-1 K at the state (1/s^2)
+  StiffnessSpectrum spectrum;  ///< of M^-1 K at the state (1/s^2); decides stability
+  /// The spectrum without zero modes (lambda = 0: motions no spring resists, e.g. the two-node
+  /// system's transverse directions), whose z = 1 neither grows nor decays whatever gamma and
+  /// dt. The spectral radius (the decay rate per step) is taken over it.
+  StiffnessSpectrum decaying;
+  bool zero_modes = false;
   double spectral_radius = 0;  ///< rho of one step at the user's gamma and dt (NaN: not computed)
   bool radius_converged = true;
   double index = 0;           ///< symmetric_index only: lambda_max(dt^2 A + 2 dt C); stable < 4

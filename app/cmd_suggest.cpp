@@ -1,0 +1,125 @@
+// dampbound suggest SCENE [--dt X | --gamma X]: stable values (issue 6, docs/criteria.md).
+// For a dt: the damping range every applicable criterion accepts (per node class where the
+// model is non-uniform) and the fastest-settling damping in it. For a damping: the largest
+// stable dt. Every suggestion is run through a Session and its outcome printed.
+#include <cstdio>
+#include <memory>
+
+#include "app/commands.hpp"
+#include "app/options.hpp"
+#include "core/suggest.hpp"
+
+namespace dampbound::app {
+namespace {
+
+struct SuggestArgs {
+  std::string scene, integrator;
+  double m = 0, kappa = 0, dt = 0, gamma = 0;
+  int max_iter = 0, trials = 16;
+  bool no_verify = false;
+  CLI::Option *m_opt = nullptr, *kappa_opt = nullptr, *dt_opt = nullptr, *gamma_opt = nullptr,
+              *integrator_opt = nullptr, *max_iter_opt = nullptr;
+};
+
+std::string num(double x) { return format_short(x); }
+
+void print_runs(const std::vector<VerifiedRun>& runs) {
+  if (runs.empty()) return;
+  std::printf("verification (Session: the scene's perturbation and stop rules, policy fixed)\n");
+  for (const VerifiedRun& r : runs)
+    std::printf("  %-34s gamma=%-12s dt=%-12s %s at iteration %d (max |x-X| %s cm)\n",
+                r.label.c_str(), num(r.params.gamma).c_str(), num(r.params.dt).c_str(),
+                to_string(r.result.outcome), r.result.iterations,
+                num(r.result.max_displacement).c_str());
+}
+
+int print_damping(const DampingSuggestion& s) {
+  std::printf("damping range at dt = %s s (the user's gamma; gamma_i = gamma * gamma_scale_i)\n",
+              num(s.dt).c_str());
+  std::printf("  gamma_min  %-14s set by %s\n", num(s.gamma_min).c_str(), s.min_by.c_str());
+  std::printf("  gamma_max  %-14s set by %s (exclusive)\n", num(s.gamma_max).c_str(),
+              s.max_by.c_str());
+  std::printf("  per node class (m_i, kappa_i = max incident stiffness, gamma_scale_i):\n");
+  for (const NodeClass& c : s.classes)
+    std::printf("    %5d nodes like %-5d m_i=%-10s kappa_i=%-10s scale=%-6s eq.5 %-12s gamma_i in [%s, %s)\n",
+                c.count, c.example, num(c.mass).c_str(), num(c.kappa).c_str(),
+                num(c.gamma_scale).c_str(), num(c.lower_bound).c_str(), num(c.gamma_min).c_str(),
+                num(c.gamma_max).c_str());
+  std::printf("  dt-only criteria at this dt:");
+  for (const CriterionResult& c : s.dt_only) std::printf(" %s %s;", c.name.c_str(), to_string(c.verdict));
+  std::printf("\n");
+  if (s.empty) {
+    std::printf("no damping satisfies every criterion at this dt (gamma_min >= gamma_max)\n");
+    std::printf("largest stable dt at gamma_min: %s s (try suggest --gamma %s)\n",
+                num(s.dt_max_at_gamma_min).c_str(), num(s.gamma_min).c_str());
+    return 1;
+  }
+  if (!s.dt_accepted) std::printf("warning: a dt-only criterion rejects this dt whatever the damping\n");
+  std::printf("fastest settling gamma  %s  (%s%s)\n", num(s.gamma_best).c_str(),
+              s.best_method.c_str(), std::isnan(s.best_rho) ? "" : ("; rho = " + num(s.best_rho)).c_str());
+  print_runs(s.runs);
+  return 0;
+}
+
+int print_step(const StepSuggestion& s) {
+  std::printf("largest stable dt at gamma = %s\n", num(s.gamma).c_str());
+  std::printf("  exact limit   dt < %s s (%s)\n", num(s.dt_exact).c_str(), to_string(s.exact.method));
+  std::printf("  all criteria  dt <= %s s, set by %s\n", num(s.dt_all).c_str(), s.dt_all_by.c_str());
+  print_runs(s.runs);
+  return 0;
+}
+
+int run(const SuggestArgs& a) {
+  SceneSpec scene = load_scene_arg(a.scene);
+  Params p = scene.params;
+  StopRules rules = scene.rules;
+  if (a.m_opt->count()) p.m = a.m;
+  if (a.kappa_opt->count()) p.kappa = a.kappa;
+  if (a.dt_opt->count()) p.dt = a.dt;
+  if (a.gamma_opt->count()) p.gamma = a.gamma;
+  if (a.integrator_opt->count()) p.integrator = *parse_integrator(a.integrator);
+  if (a.max_iter_opt->count()) rules.max_iterations = a.max_iter;
+  p.policy = DampingPolicy::fixed;
+  const std::string name = scene.name.empty() ? a.scene : scene.name;
+  std::printf("scene        %s (%d nodes, %d springs)\n", name.c_str(), scene.model.node_count(),
+              scene.model.spring_count());
+  std::printf("parameters   m=%s kappa=%s dt=%s s integrator=%s max_iterations=%d\n",
+              num(p.m).c_str(), num(p.kappa).c_str(), num(p.dt).c_str(), to_string(p.integrator),
+              rules.max_iterations);
+  SuggestOptions options;
+  options.verify = !a.no_verify;
+  options.trials = a.trials;
+  if (a.gamma_opt->count()) return print_step(suggest_step(scene, p, rules, options));
+  return print_damping(suggest_damping(scene, p, rules, options));
+}
+
+std::function<int()> setup(CLI::App& root) {
+  auto a = std::make_shared<SuggestArgs>();
+  CLI::App* cmd = root.add_subcommand(
+      "suggest",
+      "Suggest stable values for a scene: with --dt (or the scene's dt) the damping range that "
+      "every applicable criterion accepts and the fastest-settling damping in it; with --gamma "
+      "the largest stable dt. Each suggestion is verified by running it. Exit 1 when no "
+      "damping satisfies every criterion.");
+  cmd->add_option("scene", a->scene, "scene file (.toml) or the name of a shipped scene")->required();
+  a->m_opt = cmd->add_option("--m", a->m, "node mass (mass unit)")->check(finite_positive());
+  a->kappa_opt = cmd->add_option("--kappa", a->kappa, "stiffness (mass unit/s^2)")->check(finite_positive());
+  a->dt_opt = cmd->add_option("--dt", a->dt, "time step (s): suggest the damping")->check(finite_positive());
+  a->gamma_opt = cmd->add_option("--gamma", a->gamma, "damping (mass unit/s): suggest the time step")
+                     ->check(finite_non_negative());
+  a->dt_opt->excludes(a->gamma_opt);
+  a->integrator_opt =
+      cmd->add_option("--integrator", a->integrator, "integrator (default: the scene's)")
+          ->check(CLI::IsMember({"semi-implicit-euler", "forward-euler", "verlet", "rk4", "implicit-euler"}));
+  a->max_iter_opt = cmd->add_option("--max-iter", a->max_iter, "iteration limit of the verification runs")
+                        ->check(CLI::Range(1, 100000000));
+  cmd->add_option("--trials", a->trials, "trial runs for the best damping of a non-uniform model")
+      ->check(CLI::Range(2, 1000));
+  cmd->add_flag("--no-verify", a->no_verify, "do not run the suggestions");
+  return [a] { return run(*a); };
+}
+
+const bool registered = register_command("suggest", setup);
+
+}  // namespace
+}  // namespace dampbound::app
