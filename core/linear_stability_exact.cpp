@@ -6,6 +6,8 @@
 #include <functional>
 #include <limits>
 
+#include "core/step.hpp"
+
 namespace dampbound {
 namespace {
 
@@ -171,6 +173,28 @@ ExactStability exact_stability(const Model& model, const std::vector<Vec3>& x,
                  ? (gamma >= e.gamma_lo && gamma < e.gamma_hi && h <= e.dt_max)
                  : e.spectral_radius <= 1 + 1e-9;
   return e;
+}
+
+double perturbation_growth(const Model& model, const Params& params_in, int steps,
+                           double amplitude, unsigned seed) {
+  Params params = params_in;
+  params.policy = DampingPolicy::fixed;
+  State state = rest_state(model);
+  auto uniform = [&seed] {  // a linear congruential generator: the same numbers everywhere
+    seed = seed * 1103515245u + 12345u;
+    return static_cast<double>((seed >> 8) & 0xffffu) / 65535.0 - 0.5;
+  };
+  double before = 0;
+  for (size_t i = 0; i < state.x.size(); ++i) {
+    if (model.fixed[i]) continue;
+    const Vec3 d(uniform(), uniform(), uniform());
+    state.x[i] += (2 * amplitude) * d;
+    before = std::max(before, (state.x[i] - model.rest[i]).norm());
+  }
+  StepWorkspace ws;
+  double after = before;
+  for (int k = 0; k < steps; ++k) after = step(model, params, state, ws, 0).max_displacement;
+  return before > 0 ? after / before : 0;
 }
 
 }  // namespace dampbound

@@ -69,16 +69,19 @@ struct ScalarOps {
 struct VectorOps {
   const SparseMatrix* K;
   const Eigen::VectorXd* rate;
+  SparseMatrix S;  ///< I + h C + h^2 A; the solver keeps a reference to it, so it lives here
   std::unique_ptr<Eigen::ConjugateGradient<SparseMatrix, Eigen::Lower | Eigen::Upper>> cg;
   VectorOps(Integrator integrator, const SparseMatrix& Kw, const Eigen::VectorXd& c, double h)
       : K(&Kw), rate(&c) {
     if (integrator != Integrator::implicit_euler) return;
-    SparseMatrix S = (h * h) * Kw;
+    S = (h * h) * Kw;
     for (Eigen::Index i = 0; i < S.rows(); ++i) S.coeffRef(i, i) += 1 + h * c(i);
     cg = std::make_unique<Eigen::ConjugateGradient<SparseMatrix, Eigen::Lower | Eigen::Upper>>();
     cg->setTolerance(1e-13);
     cg->compute(S);
   }
+  VectorOps(const VectorOps&) = delete;
+  VectorOps& operator=(const VectorOps&) = delete;
   Eigen::VectorXd A(const Eigen::VectorXd& y) const { return *K * y; }
   Eigen::VectorXd C(const Eigen::VectorXd& w) const { return rate->cwiseProduct(w); }
   Eigen::VectorXd half_damp_solve(const Eigen::VectorXd& r, double h) const {
