@@ -53,7 +53,12 @@ INSTANTIATE_TEST_SUITE_P(Oscillators, StepClosedForm,
                                            OscCase{0.001, 0.001, 0.0005, 0.05},  // under
                                            OscCase{0.001, 0.001, 0.002, 0.05},   // critical
                                            OscCase{0.001, 0.001, 0.01, 0.05},    // over
-                                           OscCase{0.005, 0.1, 0.01, 0.05}));
+                                           OscCase{0.005, 0.1, 0.01, 0.05}),
+                         [](const ::testing::TestParamInfo<OscCase>& info) {
+                           const char* names[] = {"undamped", "underdamped", "critical",
+                                                  "overdamped", "stiff"};
+                           return std::string(names[info.index]);
+                         });
 
 TEST(Step, UsesNewVelocityForPosition) {
   // One step by hand: a = (F - gamma v)/m, v1 = v0 + a dt, x1 = x0 + v1 dt (eqs. 3-4).
