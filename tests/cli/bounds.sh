@@ -1,0 +1,61 @@
+# dampbound bounds: every criterion side by side (issue 6, docs/criteria.md).
+. "$(dirname "$0")/lib.inc"
+
+# The issue's acceptance command: every criterion, with its value and verdict.
+expect_exit 0 "$DB" bounds "$SRC/scenes/paper-plane.toml" --m 0.001 --kappa 0.001 --dt 0.05
+for name in 'paper lower bound' 'paper upper bound' 'paper runtime check' 'Delingette critical stiffness' \
+  'Provot natural period' 'Kacic-Alesic \(Verlet\) step' 'exact lambda_max of M\^-1 K' \
+  'exact spectral radius \(semi-implicit-euler\)' 'exact gamma interval \(semi-implicit-euler\)' \
+  'exact dt limit \(semi-implicit-euler\)'; do
+  expect_match "$OUT" "^$name +[^ ]+.* (within|BEYOND|n/a) " "bounds lists '$name'"
+done
+expect_match "$OUT" 'exact lambda_max of M\^-1 K +7\.8123249 1/s\^2' "paper plane lambda_max"
+expect_match "$OUT" 'exact gamma interval \(semi-implicit-euler\) +0\.039804692 .*within' "exact gamma interval"
+expect_match "$OUT" 'exact dt limit \(semi-implicit-euler\) +0\.50396164 s +within' "exact dt limit"
+expect_match "$OUT" 'Delingette critical stiffness +0\.040528473' "Delingette k_c"
+expect_match "$OUT" 'Provot natural period +3\.1415927 s +within' "Provot T0"
+expect_match "$OUT" 'Kacic-Alesic \(Verlet\) step +0\.75592895 s +within' "Kacic-Alesic"
+expect_match "$OUT" 'paper lower bound +0\.002 mass unit/s +within' "eq. 5"
+expect_match "$OUT" 'paper upper bound +inf .* n/a +every v_i = 0' "eq. 6 at rest"
+expect_match "$OUT" '\[Provot 1995 \(paper ref\. \[2\]\), SPEC 7\]' "sources are printed"
+
+# Beyond the limit the verdicts say so; Kacic-Alesic and Provot still accept (documented).
+expect_exit 0 "$DB" bounds paper-plane --gamma 0 --dt 0.73
+expect_match "$OUT" 'exact dt limit \(semi-implicit-euler\) +0\.71554977 s +BEYOND' "beyond the exact dt limit"
+expect_match "$OUT" 'Kacic-Alesic \(Verlet\) step +0\.75592895 s +within' "Kacic-Alesic accepts an unstable dt"
+expect_match "$OUT" 'Delingette critical stiffness .* BEYOND' "Delingette rejects it"
+
+# Parameters only: the paper's lines first (unchanged), then the two-node system, said so.
+expect_exit 0 "$DB" bounds --m 0.001 --kappa 0.001 --dt 0.05
+expect_match "$OUT" 'gamma_lo = 2\*sqrt\(m\*kappa\) = 0\.002$' "bounds lower line kept"
+expect_match "$OUT" 'system +two-node \(paper sec\. 2\)' "says which system"
+expect_match "$OUT" 'exact lambda_max of M\^-1 K +1 1/s\^2' "two-node lambda = kappa/m"
+expect_match "$OUT" 'exact gamma interval \(semi-implicit-euler\) +0\.039975 ' "2m/dt - kappa dt/2"
+expect_match "$OUT" 'gamma=0\.002 \(= gamma_lo\)' "gamma defaults to gamma_lo, said so"
+expect_exit 0 "$DB" bounds --m 0.001 --kappa 0.001 --dt 0.05 --gamma 0.01 --system single-node --integrator rk4
+expect_match "$OUT" 'system +single node' "single node"
+expect_match "$OUT" 'exact dt limit \(rk4\)' "integrator's own limit"
+expect_exit 0 "$DB" bounds --m 0.001 --kappa 0.001 --dt 0.05 --v 1,0,0 --force -0.001,0,0
+expect_match "$OUT" '= 0\.019' "bounds upper kept"
+
+# Non-uniform scene: the general criterion; a running state: eq. 6 applies.
+expect_exit 0 "$DB" bounds stiff-region
+expect_match "$OUT" 'exact method symmetric index' "non-uniform method"
+expect_match "$OUT" 'paper lower bound +0\.012649111 ' "eq. 5 of the stiff square"
+expect_exit 0 "$DB" bounds paper-plane --after 5
+expect_match "$OUT" 'state +after 5 steps' "state after 5 steps"
+expect_match "$OUT" 'paper upper bound +[0-9.e-]+ mass unit/s +(within|BEYOND) ' "eq. 6 judged while moving"
+expect_exit 0 "$DB" bounds stiff-region --integrator implicit-euler
+expect_match "$OUT" 'exact dt limit \(implicit-euler\) +inf s +within' "implicit Euler has no limit"
+
+# Bad input: one line, exit 2.
+expect_exit 2 "$DB" bounds --m 0.001 --kappa 0.001
+expect_one_line "$ERR" "missing --dt"
+expect_match "$ERR" -- '--dt' "names --dt"
+expect_exit 2 "$DB" bounds paper-plane --v 1,0,0 --force 0,0,0
+expect_one_line "$ERR" "--v with a scene"
+expect_exit 2 "$DB" bounds paper-plane --integrator leapfrog
+expect_match "$ERR" -- '--integrator' "names --integrator"
+expect_exit 2 "$DB" bounds "$WORK/missing.toml"
+
+finish
