@@ -166,6 +166,11 @@ std::vector<CriterionResult> paper_criteria(const Model& model, const State& sta
     hi.verdict = verdict_of(g <= hi.value);
     hi.test = "gamma_i = " + num(g) + (g <= hi.value ? " <= " : " > ") + "gamma_hi = " +
               num(hi.value) + " (worst node " + std::to_string(hi.node) + ")";
+    // Eq. 6 comes from the Euler velocity update v' = v + a dt, which the paper's step and
+    // forward Euler share; for the other integrators it is shown for reference only.
+    if (params.integrator != Integrator::semi_implicit_euler &&
+        params.integrator != Integrator::forward_euler)
+      hi.test += "; derived for the Euler update, shown for reference";
     check.value = unstabilisable;
     check.verdict = verdict_of(unstabilisable == 0);
     check.test = std::to_string(unstabilisable) + " of " + std::to_string(moving) +

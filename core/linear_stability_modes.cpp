@@ -161,6 +161,8 @@ double spectrum_spectral_radius(Integrator integrator, const StiffnessSpectrum& 
 double uniform_dt_max(Integrator integrator, const StiffnessSpectrum& s, double c) {
   if (integrator == Integrator::implicit_euler) return kInf;
   if (integrator == Integrator::semi_implicit_euler) return semi_implicit_dt_max(s.lambda_max, c);
+  // Undamped forward Euler: |z|^2 = 1 + lambda h^2 > 1 for every h > 0 and lambda > 0.
+  if (integrator == Integrator::forward_euler && c <= 0 && s.lambda_max > 0) return 0;
   auto stable = [&](double h) { return spectrum_spectral_radius(integrator, s, c, h) <= 1 + kMarginal; };
   const double scale = 1.0 / std::sqrt(std::max({s.lambda_max, c * c, 1e-300}));
   double lo = 1e-6 * scale;
