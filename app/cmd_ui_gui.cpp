@@ -77,6 +77,7 @@ int run(GuiArgs& a) {
   o.steps_per_frame = a.steps_per_frame;
   o.play = a.play || a.frames > 0;
   o.demo = a.demo;
+  o.scripted = a.frames > 0;
   if (!have_display())
     throw std::runtime_error(
         "gui: no display (DISPLAY is not set): run it under `xvfb-run -a`, or use `dampbound "

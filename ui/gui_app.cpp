@@ -155,6 +155,7 @@ GuiSettings GuiApp::current_settings() const {
 void GuiApp::load_layout_once() {
   if (layout_loaded_) return;
   layout_loaded_ = true;
+  if (options_.scripted) ImGui::GetIO().ConfigFlags |= ImGuiConfigFlags_NoMouse;
   const auto& bg = options_.background;
   ImGui::GetStyle().Colors[ImGuiCol_WindowBg] = ImVec4(bg[0], bg[1], bg[2], 1.0f);
   const std::string path = ini_path();
@@ -273,7 +274,18 @@ void GuiApp::frame(FrameInfo& info) {
   const int fixed = ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse;
   if (begin("Parameters", 0)) parameters_panel();
   ImGui::End();
-  if (begin("Status", 0)) status_panel();
+  suggest_.poll();
+  if (begin("Status", 0) && ImGui::BeginTabBar("status_tabs")) {
+    if (ImGui::BeginTabItem("Status")) {
+      status_panel();
+      ImGui::EndTabItem();
+    }
+    if (ImGui::BeginTabItem("Criteria")) {
+      criteria_panel();
+      ImGui::EndTabItem();
+    }
+    ImGui::EndTabBar();
+  }
   ImGui::End();
   if (begin("Mesh view", fixed)) mesh_.draw(*tuner_);
   ImGui::End();
@@ -281,7 +293,17 @@ void GuiApp::frame(FrameInfo& info) {
   ImGui::End();
   if (begin("Displacement", fixed)) plots_displacement();
   ImGui::End();
-  if (begin("Runs", 0)) runs_panel();
+  if (begin("Runs", 0) && ImGui::BeginTabBar("runs_tabs")) {
+    if (ImGui::BeginTabItem("Pins & export")) {
+      runs_panel();
+      ImGui::EndTabItem();
+    }
+    if (ImGui::BeginTabItem("Suggest")) {
+      suggest_panel();
+      ImGui::EndTabItem();
+    }
+    ImGui::EndTabBar();
+  }
   ImGui::End();
   reset_layout_ = false;
   save_layout_if_needed(false);

@@ -29,6 +29,7 @@ struct GuiOptions {
   int steps_per_frame = 0;     ///< > 0: overrides the remembered value
   bool play = false;           ///< start playing
   bool demo = false;           ///< pin two runs (below and at the lower bound) before frame 0
+  bool scripted = false;       ///< ignore the mouse (--frames runs: no stray hover tooltips)
   /// The host's clear colour; windows take it as their background (RGBA 0..1).
   std::array<float, 4> background = gui_render_options().clear_color;
 };
@@ -82,6 +83,8 @@ class GuiApp {
   void playback_controls();
   void status_panel();
   void runs_panel();
+  void criteria_panel();
+  void suggest_panel();
   void plots_envelope();
   void plots_displacement();
   void run_demo();
@@ -92,6 +95,7 @@ class GuiApp {
   GuiSettings settings_;
   std::unique_ptr<Tuner> tuner_;
   MeshView mesh_;
+  TunerSuggest suggest_;
   TunerPlotOptions plot_options_;
   std::vector<std::string> scene_files_;
   std::vector<std::string> warnings_;

@@ -6,7 +6,6 @@
 #include <exception>
 #include <stdexcept>
 
-#include "core/linear_stability.hpp"
 
 namespace dampbound::ui {
 
@@ -177,27 +176,6 @@ const std::vector<StepStats>& Tuner::reduced_trace() {
 void Tuner::on_new_trace() {
   ++generation_;
   ++topology_;
-}
-
-std::optional<double> Tuner::exact_gamma_max() {
-  const Params& p = params();
-  if (exact_topology_ == topology_ && exact_m_ == p.m && exact_kappa_ == p.kappa &&
-      exact_dt_ == p.dt)
-    return exact_value_;
-  exact_topology_ = topology_;
-  exact_m_ = p.m;
-  exact_kappa_ = p.kappa;
-  exact_dt_ = p.dt;
-  exact_value_.reset();
-  try {
-    const Model& model = session_->model();
-    const double lambda = max_stiffness_eigenvalue(model, model.rest);
-    const LinearLimits lim = linear_limits(lambda, p.m, p.dt);
-    if (std::isfinite(lim.gamma_max) && lim.gamma_max > 0) exact_value_ = lim.gamma_max;
-  } catch (const std::exception&) {
-    exact_value_.reset();
-  }
-  return exact_value_;
 }
 
 }  // namespace dampbound::ui

@@ -11,6 +11,7 @@
 
 #include "core/session.hpp"
 #include "ui/plot_spec.hpp"
+#include "ui/tuner_criteria.hpp"
 #include "ui/tuner_trace.hpp"
 
 namespace dampbound::ui {
@@ -116,10 +117,13 @@ class Tuner {
   long long total_steps() const { return total_steps_; }
   double step_seconds() const { return step_seconds_; }
 
-  /// The exact damping limit of the paper's step at rest for uniform gamma/m (SPEC 7,
-  /// core/linear_stability.hpp), recomputed when m, kappa, dt or the springs change; nullopt
-  /// when it cannot be computed or is not positive.
-  std::optional<double> exact_gamma_max();
+  /// The exact upper limit of gamma for the chosen integrator at rest (SPEC 7,
+  /// core/linear_stability_exact.hpp), recomputed when the parameters or the springs change;
+  /// nullopt when it is infinite or cannot be computed.
+  std::optional<double> exact_gamma_max() { return criteria_.exact_gamma_max(*session_, topology_); }
+  /// Every stability criterion at the current state (issue 6), updated on each call.
+  const std::vector<CriterionResult>& criteria() { return criteria_.evaluate(*session_, topology_); }
+  TunerCriteria& criteria_state() { return criteria_; }
 
  private:
   void on_new_trace();
@@ -135,10 +139,7 @@ class Tuner {
   std::string notice_;
   long long total_steps_ = 0;
   double step_seconds_ = 0;
-  // exact_gamma_max cache key
-  std::uint64_t exact_topology_ = 0;
-  double exact_m_ = -1, exact_kappa_ = -1, exact_dt_ = -1;
-  std::optional<double> exact_value_;
+  TunerCriteria criteria_;
 };
 
 }  // namespace dampbound::ui

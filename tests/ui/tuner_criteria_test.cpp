@@ -1,0 +1,106 @@
+// The tuner's criteria and suggestions (ui/tuner_criteria.hpp) without a window: live
+// criteria, the cached exact analysis, the background suggestion and applying it.
+#include "ui/tuner_criteria.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/bounds.hpp"
+#include "core/scene.hpp"
+#include "ui/tuner.hpp"
+
+namespace dampbound::ui {
+namespace {
+
+SceneSpec plane(int n) {
+  SceneSpec s;
+  s.name = "plane";
+  GridSpec g;
+  g.nx = g.nz = n;
+  g.spacing = 0.57;
+  s.model = make_grid(g);
+  s.watched = (n / 2) * n + n / 2;
+  Perturbation p;
+  p.node = s.watched;
+  p.displacement = Vec3(0, 5, 0);
+  s.perturbations.push_back(p);
+  s.rules.max_iterations = 300;
+  return s;
+}
+
+const CriterionResult* find(const std::vector<CriterionResult>& rows, const std::string& name) {
+  for (const auto& r : rows)
+    if (r.name.find(name) != std::string::npos) return &r;
+  return nullptr;
+}
+
+TEST(TunerCriteria, LiveCriteriaWithACachedExactAnalysis) {
+  Tuner t(plane(8));
+  const auto& at_rest = t.criteria();
+  ASSERT_FALSE(at_rest.empty());
+  const CriterionResult* lower = find(at_rest, "paper lower bound");
+  ASSERT_NE(lower, nullptr);
+  EXPECT_EQ(lower->verdict, CriterionVerdict::within);  // gamma = 2 sqrt(m kappa)
+  ASSERT_NE(find(at_rest, "exact"), nullptr);
+  const int runs = t.criteria_state().exact_runs();
+  t.step(3);
+  const auto& moving = t.criteria();
+  EXPECT_EQ(t.criteria_state().exact_runs(), runs);  // same parameters: cached
+  const CriterionResult* upper = find(moving, "paper upper bound");
+  ASSERT_NE(upper, nullptr);
+  EXPECT_NE(upper->verdict, CriterionVerdict::not_applicable);  // nodes move now
+  Params p = t.params();
+  p.gamma = 0.0005;
+  ASSERT_TRUE(t.set_params(p));
+  const auto& below = t.criteria();
+  EXPECT_EQ(t.criteria_state().exact_runs(), runs + 1);
+  EXPECT_EQ(find(below, "paper lower bound")->verdict, CriterionVerdict::beyond);
+  t.cut({0, 1, 2});
+  t.criteria();
+  EXPECT_EQ(t.criteria_state().exact_runs(), runs + 2);  // springs changed
+}
+
+TEST(TunerCriteria, ExactGammaMaxIsTheIntegratorsLimit) {
+  Tuner t(plane(6));
+  const auto g = t.exact_gamma_max();
+  ASSERT_TRUE(g.has_value());
+  const ExactStability* e = t.criteria_state().exact(t.session(), t.topology());
+  ASSERT_NE(e, nullptr);
+  EXPECT_DOUBLE_EQ(*g, e->gamma_hi);
+  // Semi-implicit Euler, uniform rate: gamma < 2m/dt - m lambda_max dt / 2 (SPEC 7).
+  const Params& p = t.params();
+  EXPECT_NEAR(*g, 2 * p.m / p.dt - p.m * e->spectrum.lambda_max * p.dt / 2, 1e-9);
+  Params q = p;
+  q.integrator = Integrator::implicit_euler;  // unconditionally stable: no finite limit
+  ASSERT_TRUE(t.set_params(q));
+  EXPECT_FALSE(t.exact_gamma_max().has_value());
+}
+
+TEST(TunerSuggest, RunsInTheBackgroundAndCanBeApplied) {
+  Tuner t(plane(8));
+  Params p = t.params();
+  p.gamma = 0.0003;
+  ASSERT_TRUE(t.set_params(p));
+  TunerSuggest s;
+  EXPECT_FALSE(s.poll());
+  s.start(t.scene(), t.params(), t.session().rules());
+  s.wait();
+  ASSERT_TRUE(s.result().has_value()) << s.error();
+  EXPECT_FALSE(s.busy());
+  const Suggestion& r = *s.result();
+  EXPECT_DOUBLE_EQ(r.params.gamma, 0.0003);
+  EXPECT_FALSE(r.damping.empty);
+  EXPECT_NEAR(r.damping.gamma_min, lower_bound(p.m, p.kappa), 1e-12);
+  EXPECT_GE(r.damping.gamma_best, r.damping.gamma_min);
+  EXPECT_LT(r.damping.gamma_best, r.damping.gamma_max);
+  EXPECT_FALSE(r.damping.runs.empty());
+  EXPECT_GT(r.step.dt_all, 0.0);
+  ASSERT_TRUE(t.set_params(with_best_gamma(t.params(), r)));
+  EXPECT_DOUBLE_EQ(t.params().gamma, r.damping.gamma_best);
+  ASSERT_TRUE(t.set_params(with_suggested_dt(t.params(), r)));
+  EXPECT_DOUBLE_EQ(t.params().dt, r.step.dt_all);
+}
+
+}  // namespace
+}  // namespace dampbound::ui

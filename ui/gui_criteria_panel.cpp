@@ -1,0 +1,119 @@
+// The tuner's "Criteria" tab (every stability criterion, live) and "Suggest" tab (stable
+// values from core/suggest.hpp, verified by runs, with buttons to apply them).
+#include <imgui.h>
+
+#include <string>
+
+#include "ui/gui_app.hpp"
+#include "ui/gui_widgets.hpp"
+
+namespace dampbound::ui {
+
+namespace {
+
+ImVec4 verdict_color(CriterionVerdict v) {
+  switch (v) {
+    case CriterionVerdict::within: return gui_green();
+    case CriterionVerdict::beyond: return gui_red();
+    case CriterionVerdict::not_applicable: break;
+  }
+  return ImGui::GetStyle().Colors[ImGuiCol_TextDisabled];
+}
+
+void run_line(const VerifiedRun& r) {
+  const ImVec4 c = r.result.outcome == Outcome::restored   ? gui_green()
+                   : r.result.outcome == Outcome::diverged ? gui_red()
+                                                           : gui_amber();
+  ImGui::BulletText("%s:", r.label.c_str());
+  ImGui::SameLine();
+  ImGui::TextColored(c, "%s", outcome_text(r.result).c_str());
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("%s\nmax |x - X| = %s cm", params_label(r.params).c_str(),
+                      fmt(r.result.max_displacement).c_str());
+}
+
+}  // namespace
+
+void GuiApp::criteria_panel() {
+  Tuner& t = *tuner_;
+  const std::vector<CriterionResult>& rows = t.criteria();
+  const ExactStability* e = t.criteria_state().exact(t.session(), t.topology());
+  ImGui::TextDisabled("at iteration %d; exact analysis at rest (%s)", t.session().state().iteration,
+                      e != nullptr ? to_string(e->method) : "unavailable");
+  const ImGuiTableFlags tf = ImGuiTableFlags_SizingStretchProp | ImGuiTableFlags_ScrollY |
+                             ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerH;
+  if (!ImGui::BeginTable("criteria", 3, tf)) return;
+  ImGui::TableSetupScrollFreeze(0, 1);
+  ImGui::TableSetupColumn("criterion", ImGuiTableColumnFlags_WidthStretch, 1.0f);
+  ImGui::TableSetupColumn("verdict", ImGuiTableColumnFlags_WidthFixed);
+  ImGui::TableSetupColumn("test", ImGuiTableColumnFlags_WidthStretch, 1.6f);
+  ImGui::TableHeadersRow();
+  for (const CriterionResult& r : rows) {
+    ImGui::TableNextRow();
+    ImGui::TableNextColumn();
+    ImGui::TextWrapped("%s", r.name.c_str());
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("%s\n%s\nvalue: %s %s", r.formula.c_str(), r.source.c_str(),
+                        fmt(r.value).c_str(), r.unit.c_str());
+    ImGui::TableNextColumn();
+    ImGui::TextColored(verdict_color(r.verdict), "%s", to_string(r.verdict));
+    ImGui::TableNextColumn();
+    ImGui::TextWrapped("%s", r.test.c_str());
+  }
+  ImGui::EndTable();
+}
+
+void GuiApp::suggest_panel() {
+  Tuner& t = *tuner_;
+  ImGui::BeginDisabled(suggest_.busy());
+  if (ImGui::Button("Suggest stable values")) {
+    suggest_.start(t.scene(), t.params(), t.session().rules());
+  }
+  ImGui::EndDisabled();
+  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+    ImGui::SetTooltip("The damping range every criterion accepts at this dt, the fastest-settling\n"
+                      "gamma in it, and the largest stable dt at this gamma; each verified by a\n"
+                      "run of the scene as loaded (cuts made here are not included).");
+  if (suggest_.busy()) {
+    ImGui::SameLine();
+    ImGui::TextDisabled("computing and verifying...");
+  }
+  if (!suggest_.error().empty()) wrapped_colored(gui_red(), suggest_.error().c_str());
+  if (!suggest_.result()) return;
+  const Suggestion& s = *suggest_.result();
+  const DampingSuggestion& d = s.damping;
+  section_header(("Damping at dt = " + fmt(d.dt) + " s").c_str());
+  if (d.empty) {
+    wrapped_colored(gui_amber(), ("No damping satisfies every criterion at this dt (" +
+                                  d.min_by + " vs " + d.max_by + ").").c_str());
+    ImGui::Text("largest dt stable at gamma %s: %s s", fmt(d.gamma_min).c_str(),
+                fmt(d.dt_max_at_gamma_min).c_str());
+  } else {
+    ImGui::TextWrapped("range [%s, %s)", fmt(d.gamma_min).c_str(), fmt(d.gamma_max).c_str());
+    ImGui::TextDisabled("  from %s; to %s", d.min_by.c_str(), d.max_by.c_str());
+    ImGui::Text("fastest settling: gamma = %s", fmt(d.gamma_best).c_str());
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("%s (spectral radius %s)", d.best_method.c_str(), fmt(d.best_rho).c_str());
+    ImGui::SameLine();
+    if (ImGui::SmallButton("apply gamma")) t.set_params(with_best_gamma(t.params(), s));
+    ImGui::SameLine();
+    if (ImGui::SmallButton("apply range min")) {
+      Params p = t.params();
+      p.gamma = d.gamma_min;
+      t.set_params(p);
+    }
+  }
+  for (const VerifiedRun& r : d.runs) run_line(r);
+  const StepSuggestion& st = s.step;
+  section_header(("Time step at gamma = " + fmt(st.gamma)).c_str());
+  ImGui::TextWrapped("largest stable dt (exact): %s s", fmt(st.dt_exact).c_str());
+  ImGui::TextWrapped("every criterion accepts dt <= %s s (%s)", fmt(st.dt_all).c_str(),
+                     st.dt_all_by.c_str());
+  if (ImGui::SmallButton("apply dt")) t.set_params(with_suggested_dt(t.params(), s));
+  for (const VerifiedRun& r : st.runs) run_line(r);
+  if (s.params.gamma != t.params().gamma || s.params.dt != t.params().dt ||
+      s.params.m != t.params().m || s.params.kappa != t.params().kappa)
+    ImGui::TextDisabled("(computed for %s)", params_label(s.params).c_str());
+}
+
+}  // namespace dampbound::ui

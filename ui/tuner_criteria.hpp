@@ -1,0 +1,77 @@
+#pragma once
+// The tuner's stability criteria (issue 6) without GL: every criterion of core/criteria.hpp
+// for the current run, updated live, and the suggestions of core/suggest.hpp computed in the
+// background so the window never stalls. tests/ui/tuner_criteria_test.cpp drives it.
+#include <cstdint>
+#include <future>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/criteria.hpp"
+#include "core/session.hpp"
+#include "core/suggest.hpp"
+
+namespace dampbound::ui {
+
+/// The criteria of a session. The exact linear analysis is taken at the rest state (its
+/// linearisation point, as `dampbound bounds SCENE` does) and cached until the parameters or
+/// the springs change; the paper's criteria (eqs. 5, 6 and the sec. 5 check) and the classic
+/// ones are evaluated at the current state on every call.
+class TunerCriteria {
+ public:
+  /// All criteria, in the order `bounds` prints them. `topology` changes when springs do.
+  const std::vector<CriterionResult>& evaluate(const Session& session, std::uint64_t topology);
+  /// The exact analysis (cached); null when it failed.
+  const ExactStability* exact(const Session& session, std::uint64_t topology);
+  /// The exact upper limit of the user's gamma at this dt, when finite and positive: the line
+  /// drawn on the envelope plot.
+  std::optional<double> exact_gamma_max(const Session& session, std::uint64_t topology);
+  /// How many times the exact analysis ran (tests: the cache works).
+  int exact_runs() const { return exact_runs_; }
+
+ private:
+  std::vector<CriterionResult> results_;
+  std::optional<ExactStability> exact_;
+  std::uint64_t topology_ = 0;
+  Params key_;
+  bool have_key_ = false;
+  int exact_runs_ = 0;
+};
+
+/// What the Suggest button produced, and for which parameters.
+struct Suggestion {
+  Params params;                ///< the parameters it was asked for
+  DampingSuggestion damping;    ///< damping range and fastest-settling gamma at params.dt
+  StepSuggestion step;          ///< largest stable dt at params.gamma
+};
+
+/// Runs suggest_damping and suggest_step on a worker thread (each verified through Sessions).
+class TunerSuggest {
+ public:
+  ~TunerSuggest();
+  /// Starts a computation for the scene as loaded (no cuts) and these parameters; ignored
+  /// while one is running.
+  void start(const SceneSpec& scene, const Params& params, const StopRules& rules);
+  bool busy() const { return pending_.valid(); }
+  /// Collects a finished computation (call once per frame); true when a result arrived.
+  bool poll();
+  /// Waits for a running computation (tests).
+  void wait();
+  const std::optional<Suggestion>& result() const { return result_; }
+  /// One line when the computation threw.
+  const std::string& error() const { return error_; }
+
+ private:
+  std::future<Suggestion> pending_;
+  std::optional<Suggestion> result_;
+  std::string error_;
+};
+
+/// `current` with the fastest-settling gamma of the suggestion (policy unchanged).
+Params with_best_gamma(const Params& current, const Suggestion& s);
+/// `current` with the recommended dt of the suggestion (every dt criterion accepts it).
+Params with_suggested_dt(const Params& current, const Suggestion& s);
+
+}  // namespace dampbound::ui
