@@ -1,8 +1,4 @@
-// GCC 12 reports a false -Wmaybe-uninitialized inside its own AVX-512 intrinsics when Eigen's
-// sparse solvers are inlined with -march=native; it must be silenced before any include.
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#endif
+#include "core/linear_stability_gcc.hpp"  // first: silences GCC 12 false positives
 #include "core/integrate.hpp"
 
 #include <Eigen/IterativeLinearSolvers>
