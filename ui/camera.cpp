@@ -69,6 +69,32 @@ void OrbitCamera::fit(const Vec3f& lo, const Vec3f& hi) {
   distance = radius / std::sin(fov_y * 0.5f) * 1.05f;
 }
 
+void OrbitCamera::fit_tight(const Vec3f& lo, const Vec3f& hi, float aspect, float margin) {
+  fit(lo, hi);
+  const Viewport vp{0.0f, 0.0f, 2.0f * aspect, 2.0f};
+  auto fits = [&](float d) {
+    OrbitCamera c = *this;
+    c.distance = d;
+    const Mat4f m = c.view_projection(aspect);
+    for (int i = 0; i < 8; ++i) {
+      const Vec3f corner((i & 1) ? hi.x() : lo.x(), (i & 2) ? hi.y() : lo.y(),
+                         (i & 4) ? hi.z() : lo.z());
+      const ScreenPoint p = project(m, vp, corner);
+      const float nx = p.x / aspect - 1.0f, ny = p.y - 1.0f;  // in [-1, 1] when inside
+      if (!p.visible || std::abs(nx) > 1.0f - margin || std::abs(ny) > 1.0f - margin) return false;
+    }
+    return true;
+  };
+  // The sphere's distance always fits; bisect towards the nearest distance that still does.
+  float far_d = distance, near_d = distance * 0.2f;
+  if (!fits(far_d)) return;
+  for (int k = 0; k < 30; ++k) {
+    const float mid = 0.5f * (far_d + near_d);
+    (fits(mid) ? far_d : near_d) = mid;
+  }
+  distance = far_d;
+}
+
 float OrbitCamera::pixel_size_at(float depth, float viewport_h) const {
   return 2.0f * depth * std::tan(fov_y * 0.5f) / std::max(viewport_h, 1.0f);
 }

@@ -57,6 +57,9 @@ struct OrbitCamera {
   void zoom(float wheel_steps);
   /// Frames the box [lo, hi]: target at its centre, distance so the box fits the view.
   void fit(const Vec3f& lo, const Vec3f& hi);
+  /// Like fit(), then moves in as far as every corner of the box stays inside the view of
+  /// the given aspect ratio with `margin` (fraction of the half-size) to spare.
+  void fit_tight(const Vec3f& lo, const Vec3f& hi, float aspect, float margin = 0.06f);
 
   /// World size (cm) of one screen pixel at eye-space depth `depth` in a viewport
   /// `viewport_h` pixels high.

@@ -228,7 +228,7 @@ void GuiApp::layout_windows(const FrameInfo& info) {
   const float left = std::clamp(std::floor(W * 0.245f), 330.0f, 430.0f);
   const float R = W - left, top = std::floor(H * 0.56f);
   const float mesh_w = std::floor(R * 0.48f), disp_w = std::floor(R * 0.64f);
-  const float params_h = std::floor(H * 0.61f);
+  const float params_h = std::floor(std::clamp(560.0f, H * 0.45f, H * 0.62f));
   layout_ = {
       {"Parameters", 0, 0, left, params_h},
       {"Status", 0, params_h, left, H - params_h},

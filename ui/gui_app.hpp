@@ -65,6 +65,7 @@ class GuiApp {
   }
 
   Tuner& tuner() { return *tuner_; }
+  MeshView& mesh_view() { return mesh_; }
   const GuiStats& stats() const { return stats_; }
   /// Warnings met at start (a corrupt settings file, a missing scene), one line each.
   const std::vector<std::string>& warnings() const { return warnings_; }

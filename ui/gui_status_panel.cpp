@@ -117,9 +117,10 @@ void GuiApp::runs_panel() {
   int remove = -1;
   const ImGuiTableFlags tf = ImGuiTableFlags_SizingStretchProp | ImGuiTableFlags_ScrollY;
   const float table_h = ImGui::GetContentRegionAvail().y - 3.4f * ImGui::GetFrameHeightWithSpacing();
-  if (!t.pins().empty() && ImGui::BeginTable("pins", 3, tf, ImVec2(0, std::max(table_h, 60.0f)))) {
+  if (!t.pins().empty() && ImGui::BeginTable("pins", 4, tf, ImVec2(0, std::max(table_h, 60.0f)))) {
     ImGui::TableSetupColumn("show", ImGuiTableColumnFlags_WidthFixed);
     ImGui::TableSetupColumn("name", ImGuiTableColumnFlags_WidthStretch);
+    ImGui::TableSetupColumn("outcome", ImGuiTableColumnFlags_WidthFixed);
     ImGui::TableSetupColumn("x", ImGuiTableColumnFlags_WidthFixed);
     for (size_t i = 0; i < t.pins().size(); ++i) {
       Pin& p = t.pins()[i];
@@ -136,6 +137,9 @@ void GuiApp::runs_panel() {
       ImGui::PopStyleColor();
       if (ImGui::IsItemHovered())
         ImGui::SetTooltip("%s\n%s", outcome_text(p.result).c_str(), params_label(p.params).c_str());
+      ImGui::TableNextColumn();
+      const ImVec4 oc = outcome_color(p.result.outcome);
+      ImGui::TextColored(oc, "%s", outcome_text(p.result).c_str());
       ImGui::TableNextColumn();
       if (ImGui::SmallButton("x")) remove = static_cast<int>(i);
       if (ImGui::IsItemHovered()) ImGui::SetTooltip("Remove this pin");

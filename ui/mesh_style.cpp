@@ -37,7 +37,7 @@ const char* status_help(NodeStatus status) {
   return "";
 }
 
-ImU32 spring_color() { return IM_COL32(150, 165, 190, 150); }
+ImU32 spring_color() { return IM_COL32(160, 175, 205, 190); }
 ImU32 watched_color() { return IM_COL32(255, 255, 255, 255); }
 
 }  // namespace dampbound::ui

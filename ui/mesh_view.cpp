@@ -19,7 +19,7 @@ constexpr NodeStatus kLegend[] = {NodeStatus::within, NodeStatus::clamped, NodeS
 
 }  // namespace
 
-void MeshView::fit(const Tuner& tuner) {
+void MeshView::fit(const Tuner& tuner, float aspect) {
   const Session& s = tuner.session();
   Vec3f lo, hi, lo2, hi2;
   if (!bounding_box(s.model().rest, lo, hi)) return;
@@ -28,8 +28,7 @@ void MeshView::fit(const Tuner& tuner) {
     lo = lo.cwiseMin(lo2);
     hi = hi.cwiseMax(hi2);
   }
-  camera_.fit(lo, hi);
-  camera_.distance *= 0.92f;  // the bounding sphere is loose around a flat mesh
+  camera_.fit_tight(lo, hi, aspect);
 }
 
 void MeshView::handle_input(Tuner& tuner, const Viewport& vp, bool hovered) {
@@ -161,10 +160,6 @@ void MeshView::draw(Tuner& tuner) {
     fitted_scene_ = &s;
     fit_pending_ = true;
   }
-  if (fit_pending_) {
-    fit(tuner);
-    fit_pending_ = false;
-  }
   // Toolbar.
   if (cut_tool) ImGui::PushStyleColor(ImGuiCol_Button, IM_COL32(200, 60, 50, 255));
   if (ImGui::Button(cut_tool ? "Cut tool: ON" : "Cut tool")) cut_tool = !cut_tool;
@@ -191,6 +186,11 @@ void MeshView::draw(Tuner& tuner) {
                              ImGuiButtonFlags_MouseButtonMiddle);
   const bool hovered = ImGui::IsItemHovered();
   const Viewport vp{tl.x, tl.y, size.x, size.y};
+  viewport_ = vp;
+  if (fit_pending_) {
+    fit(tuner, vp.aspect());
+    fit_pending_ = false;
+  }
   handle_input(tuner, vp, hovered);
   MeshDrawData d;
   d.model = &s.model();

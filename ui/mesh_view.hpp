@@ -15,7 +15,7 @@ namespace dampbound::ui {
 struct MeshViewOptions {
   bool show_springs = true;
   bool show_anchors = false;
-  float point_size = 6.0f;  ///< pixels
+  float point_size = 5.0f;  ///< pixels
 };
 
 class MeshView {
@@ -30,6 +30,8 @@ class MeshView {
   /// Frames the scene (rest positions and the perturbed state) on the next draw.
   void request_fit() { fit_pending_ = true; }
   OrbitCamera& camera() { return camera_; }
+  /// Where the view was drawn in the last frame (screen pixels).
+  const Viewport& viewport() const { return viewport_; }
 
   /// Deletes the GL objects (context current).
   void release_gl() { renderer_.release(); }
@@ -38,10 +40,11 @@ class MeshView {
   enum class Drag { none, orbit, pan, node, cut };
   void handle_input(Tuner& tuner, const Viewport& vp, bool hovered);
   void draw_overlays(const Tuner& tuner, const Viewport& vp) const;
-  void fit(const Tuner& tuner);
+  void fit(const Tuner& tuner, float aspect);
 
   MeshRenderer renderer_;
   OrbitCamera camera_;
+  Viewport viewport_;
   bool fit_pending_ = true;
   const void* fitted_scene_ = nullptr;
   Drag drag_ = Drag::none;

@@ -21,7 +21,7 @@ struct GuiSettings {
   bool show_max = true;           ///< plot the max displacement over all nodes
   bool show_springs = true;
   bool show_anchors = false;
-  float point_size = 6.0f;        ///< node size in the mesh view (pixels)
+  float point_size = 5.0f;        ///< node size in the mesh view (pixels)
   std::string export_dir;         ///< "" = the current directory
   std::string export_prefix = "dampbound";
   int window_width = 0, window_height = 0;  ///< 0: the default size

@@ -10,6 +10,8 @@
 #include "ui/mesh_style.hpp"
 #include "ui/tuner_plots.hpp"
 
+#include <imgui.h>
+
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -101,6 +103,75 @@ TEST(GuiRender, DivergedRunShowsNoNaNAndStops) {
   EXPECT_FALSE(app.tuner().playing());
   EXPECT_FALSE(is_blank(img));
   write_png_atomic(img, out_path("gui_diverged.png"));
+  app.release_gl();
+}
+
+/// Mouse input for the next frame (the headless host has no platform backend: the frame
+/// function sets the ImGui IO that the next NewFrame reads).
+void mouse(ImVec2 pos, bool down) {
+  ImGuiIO& io = ImGui::GetIO();
+  io.MousePos = pos;
+  io.MouseDown[0] = down;
+}
+
+ImVec2 on_screen(GuiApp& app, int node) {
+  MeshView& v = app.mesh_view();
+  const Viewport& vp = v.viewport();
+  const Vec3f p = app.tuner().session().state().x[static_cast<size_t>(node)].cast<float>();
+  const ScreenPoint s = project(v.camera().view_projection(vp.aspect()), vp, p);
+  return ImVec2(s.x, s.y);
+}
+
+TEST(GuiRender, MouseWatchesDragsAndCutsInTheMeshView) {
+  EglOptions eo;
+  eo.render = gui_render_options();
+  EglHost host(eo);
+  GuiOptions o = options(fs::path());
+  o.config_dir.clear();
+  o.demo = false;
+  o.play = false;
+  o.scripted = false;
+  GuiApp app(o);
+  const int watch_node = 100, drag_node = 200;
+  double y_before = 0;
+  int watched_after_click = -1;
+  ImVec2 cut_from, cut_to;
+  host.render_frames(1280, 800, [&](FrameInfo& info) {
+    app.frame(info);
+    const ImVec2 a = on_screen(app, watch_node), b = on_screen(app, drag_node);
+    switch (info.index) {
+      case 0: mouse(a, false); break;  // hover the node
+      case 1: mouse(a, true); break;   // press
+      case 2: mouse(a, false); break;  // release without moving: a click
+      case 3:
+        watched_after_click = app.tuner().session().watched();
+        y_before = app.tuner().session().state().x[drag_node].y();
+        mouse(b, false);
+        break;
+      case 4: mouse(b, true); break;
+      case 5: mouse(ImVec2(b.x, b.y - 20), true); break;  // drag upwards on the screen
+      case 6: mouse(ImVec2(b.x, b.y - 40), true); break;
+      case 7: mouse(ImVec2(b.x, b.y - 40), false); break;
+      case 8: {
+        // The cut tool: a line across the middle of the view.
+        app.mesh_view().cut_tool = true;
+        const Viewport& vp = app.mesh_view().viewport();
+        cut_from = ImVec2(vp.x + vp.w * 0.5f, vp.y + 5);
+        cut_to = ImVec2(vp.x + vp.w * 0.5f, vp.y + vp.h - 5);
+        mouse(cut_from, false);
+        break;
+      }
+      case 9: mouse(cut_from, true); break;
+      case 10: mouse(cut_to, true); break;
+      case 11: mouse(cut_to, false); break;
+      default: break;
+    }
+  }, 13);
+  EXPECT_EQ(watched_after_click, watch_node);
+  EXPECT_EQ(app.tuner().session().watched(), drag_node);
+  EXPECT_GT(app.tuner().session().state().x[drag_node].y(), y_before + 0.5);  // moved up
+  EXPECT_GT(app.tuner().session().springs_cut(), 10);
+  EXPECT_EQ(app.tuner().session().state().iteration, 0);  // paused all along
   app.release_gl();
 }
 
