@@ -48,17 +48,19 @@ TEST_P(StepClosedForm, MatchesRecurrence) {
   }
 }
 
+std::string case_name(const ::testing::TestParamInfo<OscCase>& param) {
+  static const char* const names[] = {"undamped", "underdamped", "critical", "overdamped",
+                                      "stiff"};
+  return names[param.index];
+}
+
 INSTANTIATE_TEST_SUITE_P(Oscillators, StepClosedForm,
                          ::testing::Values(OscCase{0.001, 0.001, 0.0, 0.05},     // undamped
                                            OscCase{0.001, 0.001, 0.0005, 0.05},  // under
                                            OscCase{0.001, 0.001, 0.002, 0.05},   // critical
                                            OscCase{0.001, 0.001, 0.01, 0.05},    // over
                                            OscCase{0.005, 0.1, 0.01, 0.05}),
-                         [](const ::testing::TestParamInfo<OscCase>& info) {
-                           const char* names[] = {"undamped", "underdamped", "critical",
-                                                  "overdamped", "stiff"};
-                           return std::string(names[info.index]);
-                         });
+                         case_name);
 
 TEST(Step, UsesNewVelocityForPosition) {
   // One step by hand: a = (F - gamma v)/m, v1 = v0 + a dt, x1 = x0 + v1 dt (eqs. 3-4).
