@@ -197,6 +197,10 @@ void GuiApp::save() {
 
 void GuiApp::release_gl() { mesh_.release_gl(); }
 
+void GuiApp::start_suggest() {
+  suggest_.start(tuner_->scene(), tuner_->params(), tuner_->session().rules());
+}
+
 FrameFn GuiApp::frame_fn() {
   return [this](FrameInfo& info) { frame(info); };
 }
@@ -275,12 +279,17 @@ void GuiApp::frame(FrameInfo& info) {
   if (begin("Parameters", 0)) parameters_panel();
   ImGui::End();
   suggest_.poll();
+  auto tab = [&](const char* name) {
+    const bool selected = select_tab_ == name;
+    if (selected) select_tab_.clear();
+    return ImGui::BeginTabItem(name, nullptr, selected ? ImGuiTabItemFlags_SetSelected : 0);
+  };
   if (begin("Status", 0) && ImGui::BeginTabBar("status_tabs")) {
-    if (ImGui::BeginTabItem("Status")) {
+    if (tab("Status")) {
       status_panel();
       ImGui::EndTabItem();
     }
-    if (ImGui::BeginTabItem("Criteria")) {
+    if (tab("Criteria")) {
       criteria_panel();
       ImGui::EndTabItem();
     }
@@ -294,11 +303,11 @@ void GuiApp::frame(FrameInfo& info) {
   if (begin("Displacement", fixed)) plots_displacement();
   ImGui::End();
   if (begin("Runs", 0) && ImGui::BeginTabBar("runs_tabs")) {
-    if (ImGui::BeginTabItem("Pins & export")) {
+    if (tab("Pins & export")) {
       runs_panel();
       ImGui::EndTabItem();
     }
-    if (ImGui::BeginTabItem("Suggest")) {
+    if (tab("Suggest")) {
       suggest_panel();
       ImGui::EndTabItem();
     }

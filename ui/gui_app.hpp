@@ -66,6 +66,12 @@ class GuiApp {
 
   Tuner& tuner() { return *tuner_; }
   MeshView& mesh_view() { return mesh_; }
+  /// Brings a tab to the front at the next frame: "Status", "Criteria", "Pins & export" or
+  /// "Suggest".
+  void select_tab(const std::string& name) { select_tab_ = name; }
+  /// Starts the Suggest computation as the button does.
+  void start_suggest();
+  TunerSuggest& suggestions() { return suggest_; }
   const GuiStats& stats() const { return stats_; }
   /// Warnings met at start (a corrupt settings file, a missing scene), one line each.
   const std::vector<std::string>& warnings() const { return warnings_; }
@@ -116,6 +122,7 @@ class GuiApp {
   std::vector<WindowRect> layout_;
   std::vector<WindowRect> drawn_;  ///< where each window was last frame
   int window_w_ = 0, window_h_ = 0;  ///< size of the last frame
+  std::string select_tab_;
   GuiStats stats_;
   double last_frame_time_ = -1;
   long long last_steps_ = 0;

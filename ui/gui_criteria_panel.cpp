@@ -66,9 +66,7 @@ void GuiApp::criteria_panel() {
 void GuiApp::suggest_panel() {
   Tuner& t = *tuner_;
   ImGui::BeginDisabled(suggest_.busy());
-  if (ImGui::Button("Suggest stable values")) {
-    suggest_.start(t.scene(), t.params(), t.session().rules());
-  }
+  if (ImGui::Button("Suggest stable values")) start_suggest();
   ImGui::EndDisabled();
   if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
     ImGui::SetTooltip("The damping range every criterion accepts at this dt, the fastest-settling\n"
@@ -90,11 +88,12 @@ void GuiApp::suggest_panel() {
                 fmt(d.dt_max_at_gamma_min).c_str());
   } else {
     ImGui::TextWrapped("range [%s, %s)", fmt(d.gamma_min).c_str(), fmt(d.gamma_max).c_str());
-    ImGui::TextDisabled("  from %s; to %s", d.min_by.c_str(), d.max_by.c_str());
+    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
+    ImGui::TextWrapped("from %s; to %s", d.min_by.c_str(), d.max_by.c_str());
+    ImGui::PopStyleColor();
     ImGui::Text("fastest settling: gamma = %s", fmt(d.gamma_best).c_str());
     if (ImGui::IsItemHovered())
       ImGui::SetTooltip("%s (spectral radius %s)", d.best_method.c_str(), fmt(d.best_rho).c_str());
-    ImGui::SameLine();
     if (ImGui::SmallButton("apply gamma")) t.set_params(with_best_gamma(t.params(), s));
     ImGui::SameLine();
     if (ImGui::SmallButton("apply range min")) {

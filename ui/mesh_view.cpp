@@ -204,7 +204,13 @@ void MeshView::draw(Tuner& tuner) {
   const ImGuiIO& io = ImGui::GetIO();
   const int fb_w = static_cast<int>(size.x * io.DisplayFramebufferScale.x);
   const int fb_h = static_cast<int>(size.y * io.DisplayFramebufferScale.y);
-  const unsigned tex = renderer_.render(d, fb_w, fb_h);
+  const ImageKey key{tuner.state_version(), d.topology, d.view_proj, fb_w,
+                     fb_h, d.point_size, d.springs, d.anchors};
+  if (texture_ == 0 || !(key == drawn_)) {  // paused and still: the last image is kept
+    texture_ = renderer_.render(d, fb_w, fb_h);
+    drawn_ = key;
+  }
+  const unsigned tex = texture_;
   ImDrawList* dl = ImGui::GetWindowDrawList();
   if (tex != 0) {
     // GL textures start at the bottom row.

@@ -34,7 +34,10 @@ class MeshView {
   const Viewport& viewport() const { return viewport_; }
 
   /// Deletes the GL objects (context current).
-  void release_gl() { renderer_.release(); }
+  void release_gl() {
+    renderer_.release();
+    texture_ = 0;
+  }
 
  private:
   enum class Drag { none, orbit, pan, node, cut };
@@ -47,6 +50,21 @@ class MeshView {
   Viewport viewport_;
   bool fit_pending_ = true;
   const void* fitted_scene_ = nullptr;
+  /// What the last rendered image showed: it is drawn again only when this changes.
+  struct ImageKey {
+    std::uint64_t state = 0, topology = 0;
+    Mat4f view_proj = Mat4f::Zero();
+    int width = 0, height = 0;
+    float point_size = 0;
+    bool springs = false, anchors = false;
+    bool operator==(const ImageKey& o) const {
+      return state == o.state && topology == o.topology && view_proj == o.view_proj &&
+             width == o.width && height == o.height && point_size == o.point_size &&
+             springs == o.springs && anchors == o.anchors;
+    }
+  };
+  ImageKey drawn_;
+  unsigned texture_ = 0;
   Drag drag_ = Drag::none;
   int drag_node_ = -1;
   float drag_distance_ = 0.0f;  ///< pixels moved since the press

@@ -111,6 +111,7 @@ int Tuner::step(int n) {
     notice_ = "the trace is full (" + std::to_string(playback_.max_trace) + " steps): reset to go on";
   }
   total_steps_ += taken;
+  if (taken > 0) ++state_version_;
   step_seconds_ += std::chrono::duration<double>(Clock::now() - t0).count();
   return taken;
 }
@@ -126,11 +127,15 @@ void Tuner::reset() {
   on_new_trace();
 }
 
-void Tuner::perturb() { session_->perturb(); }
+void Tuner::perturb() {
+  session_->perturb();
+  ++state_version_;
+}
 
 void Tuner::displace(int node, const Vec3& offset) {
   if (node < 0 || node >= session_->model().node_count() || !offset.allFinite()) return;
   session_->displace(node, offset);
+  ++state_version_;
 }
 
 void Tuner::watch(int node) {
@@ -141,7 +146,7 @@ void Tuner::watch(int node) {
 int Tuner::cut(const std::vector<int>& springs) {
   if (springs.empty()) return 0;
   const int removed = session_->cut(springs);
-  if (removed > 0) ++topology_;
+  if (removed > 0) ++topology_, ++state_version_;
   notice_ = "cut " + std::to_string(removed) + " springs at iteration " +
             std::to_string(session_->state().iteration);
   return removed;
@@ -176,6 +181,7 @@ const std::vector<StepStats>& Tuner::reduced_trace() {
 void Tuner::on_new_trace() {
   ++generation_;
   ++topology_;
+  ++state_version_;
 }
 
 }  // namespace dampbound::ui

@@ -109,6 +109,9 @@ class Tuner {
   std::uint64_t generation() const { return generation_; }
   /// Changes whenever the springs change (cut, reset, new scene): the renderer's cue.
   std::uint64_t topology() const { return topology_; }
+  /// Changes whenever positions or node states may have changed (a step, a drag, a
+  /// perturbation, a cut, a reset): the mesh view redraws only then (or when the camera moves).
+  std::uint64_t state_version() const { return state_version_; }
 
   /// The last thing worth telling the user (e.g. "diverged at 45: reset to go on").
   const std::string& notice() const { return notice_; }
@@ -136,6 +139,7 @@ class Tuner {
   TraceDecimator decimator_;
   std::uint64_t generation_ = 1;
   std::uint64_t topology_ = 1;
+  std::uint64_t state_version_ = 1;
   std::string notice_;
   long long total_steps_ = 0;
   double step_seconds_ = 0;

@@ -106,6 +106,30 @@ TEST(GuiRender, DivergedRunShowsNoNaNAndStops) {
   app.release_gl();
 }
 
+TEST(GuiRender, CriteriaAndSuggestTabs) {
+  EglOptions eo;
+  eo.render = gui_render_options();
+  EglHost host(eo);
+  GuiOptions o = options(fs::path());
+  o.config_dir.clear();
+  o.demo = false;
+  o.overrides = [](Params& p, StopRules&) { p.gamma = 0.001; };
+  GuiApp app(o);
+  app.select_tab("Criteria");
+  app.select_tab("Suggest");  // the last one asked wins: one pending tab at a time
+  app.start_suggest();
+  app.suggestions().wait();
+  ASSERT_TRUE(app.suggestions().result().has_value()) << app.suggestions().error();
+  Image img = host.render_frames(1600, 1000, app.frame_fn(), 3);
+  EXPECT_FALSE(is_blank(img));
+  write_png_atomic(img, out_path("gui_suggest.png"));
+  app.select_tab("Criteria");
+  img = host.render_frames(1600, 1000, app.frame_fn(), 3);
+  EXPECT_FALSE(app.tuner().criteria().empty());
+  write_png_atomic(img, out_path("gui_criteria.png"));
+  app.release_gl();
+}
+
 /// Mouse input for the next frame (the headless host has no platform backend: the frame
 /// function sets the ImGui IO that the next NewFrame reads).
 void mouse(ImVec2 pos, bool down) {
