@@ -1,6 +1,7 @@
 // dampbound sweep [SCENE]: the paper's experiment at scale (SPEC 5, 6): every combination of
 // m, kappa, gamma (or zeta), dt and factor, one CSV row per trial. docs/sweeps.md.
 #include <signal.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -161,10 +162,14 @@ int run(const SweepArgs& a) {
         h.similarity.c_str(), static_cast<unsigned long long>(rep.classes_run),
         static_cast<unsigned long long>(rep.classes_resumed));
     const double s = std::max(rep.seconds, 1e-9);
+    struct rusage ru {};
+    ::getrusage(RUSAGE_SELF, &ru);
+    const double cpu = static_cast<double>(ru.ru_utime.tv_sec + ru.ru_stime.tv_sec) +
+                       1e-6 * static_cast<double>(ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);
     std::printf(
-        "time         %.1f s, %.0f trials/s, %.3g trial-steps/s, %.3g spring "
+        "time         %.1f s (%.1f s of CPU), %.0f trials/s, %.3g trial-steps/s, %.3g spring "
         "evaluations/s (%s)\n",
-        rep.seconds, static_cast<double>(rep.trials - 0) / s,
+        rep.seconds, cpu, static_cast<double>(rep.trials) / s,
         static_cast<double>(rep.lane_steps) / s,
         static_cast<double>(rep.lane_steps) * static_cast<double>(rep.spring_evaluations_per_step) /
             s,

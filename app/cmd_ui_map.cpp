@@ -45,6 +45,7 @@ ui::PlotSpec panel_plot(const MapPanel& p, int max_iterations, bool with_legend)
   s.x.min = p.x_edges.front();
   s.x.max = p.x_edges.back();
   s.y.label = p.y_label;
+  s.y.log = p.y_log;
   s.y.min = p.y_edges.front();
   s.y.max = p.y_edges.back();
   s.heatmap.x_edges = p.x_edges;

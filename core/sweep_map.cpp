@@ -19,52 +19,53 @@ MapRenderer& map_renderer() {
 
 namespace {
 
-/// Bin edges for a set of values: one cell per distinct value when there are at most
-/// `max_bins` (edges half-way between neighbours), else `max_bins` equal cells (equal in log
-/// on a log axis). `bin` maps a value to its cell.
+/// Cells along one axis. Distinct values are grouped, in order, into cells at least
+/// (range / max_bins) wide (in log on a log axis), with edges half-way between neighbouring
+/// groups: at most about max_bins cells, one per value when there are few, and never an
+/// empty cell between two values of the grid.
 struct Binning {
   std::vector<double> edges;
-  std::vector<double> centres;  // distinct values when one cell each
-  bool log = false;
-  double lo = 0, step = 0;
+  std::vector<double> firsts;  // the first value of each cell
 
   int bin(double v) const {
-    if (!centres.empty())
-      return static_cast<int>(std::lower_bound(centres.begin(), centres.end(), v) -
-                              centres.begin());
-    const double t = ((log ? std::log(v) : v) - lo) / step;
-    const int nb = static_cast<int>(edges.size()) - 1;
-    return std::clamp(static_cast<int>(std::floor(t)), 0, nb - 1);
+    const auto it = std::upper_bound(firsts.begin(), firsts.end(), v);
+    return std::max(0, static_cast<int>(it - firsts.begin()) - 1);
   }
 };
 
 Binning make_binning(std::vector<double> v, int max_bins, bool log) {
   std::sort(v.begin(), v.end());
   v.erase(std::unique(v.begin(), v.end()), v.end());
-  Binning b;
-  b.log = log;
   auto fwd = [log](double x) { return log ? std::log(x) : x; };
   auto inv = [log](double x) { return log ? std::exp(x) : x; };
+  Binning b;
   if (v.size() == 1) {
     const double x = fwd(v[0]);
     const double pad = log ? 0.1 : (v[0] != 0 ? 0.25 * std::fabs(v[0]) : 0.5);
     b.edges = {inv(x - pad), inv(x + pad)};
-    b.centres = v;
+    b.firsts = v;
     return b;
   }
-  if (static_cast<int>(v.size()) <= max_bins) {
-    b.centres = v;
-    std::vector<double> f(v.size());
-    for (size_t i = 0; i < v.size(); ++i) f[i] = fwd(v[i]);
-    b.edges.push_back(inv(f[0] - 0.5 * (f[1] - f[0])));
-    for (size_t i = 0; i + 1 < f.size(); ++i) b.edges.push_back(inv(0.5 * (f[i] + f[i + 1])));
-    b.edges.push_back(inv(f.back() + 0.5 * (f.back() - f[f.size() - 2])));
-    if (!log && v[0] >= 0 && b.edges[0] < 0) b.edges[0] = 0;
-    return b;
+  const double width =
+      static_cast<int>(v.size()) <= max_bins ? 0.0 : (fwd(v.back()) - fwd(v.front())) / max_bins;
+  std::vector<double> lasts;
+  for (size_t i = 0; i < v.size(); ++i) {
+    if (b.firsts.empty() || fwd(v[i]) - fwd(b.firsts.back()) >= width * (1 - 1e-9)) {
+      b.firsts.push_back(v[i]);
+      lasts.push_back(v[i]);
+    } else {
+      lasts.back() = v[i];
+    }
   }
-  b.lo = fwd(v.front());
-  b.step = (fwd(v.back()) - b.lo) / max_bins;
-  for (int k = 0; k <= max_bins; ++k) b.edges.push_back(inv(b.lo + k * b.step));
+  const size_t n = b.firsts.size();
+  // Outer edges: half the spacing of the neighbouring values beyond the outermost ones.
+  const double lo_gap = fwd(v[1]) - fwd(v[0]);
+  const double hi_gap = fwd(v.back()) - fwd(v[v.size() - 2]);
+  b.edges.push_back(inv(fwd(b.firsts[0]) - 0.5 * lo_gap));
+  for (size_t k = 0; k + 1 < n; ++k)
+    b.edges.push_back(inv(0.5 * (fwd(lasts[k]) + fwd(b.firsts[k + 1]))));
+  b.edges.push_back(inv(fwd(lasts.back()) + 0.5 * hi_gap));
+  if (!log && v[0] >= 0 && b.edges[0] < 0) b.edges[0] = 0;
   return b;
 }
 
@@ -186,8 +187,15 @@ StabilityMap build_stability_map(const SweepTable& table, double lambda_unit,
     ms.push_back(r->m);
     ks.push_back(r->kappa);
   }
-  const Binning bm = make_binning(ms, opt.grid_bins, false);
-  const Binning bk = make_binning(ks, opt.grid_bins, false);
+  // Log axes when the grid spans more than a decade: the boundaries kappa = r m are then
+  // straight diagonals and the small masses, where the mesh diverges, get room.
+  auto spans_decade = [](const std::vector<double>& v) {
+    const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
+    return *lo > 0 && *hi / *lo > 10;
+  };
+  const bool log_m = spans_decade(ms), log_k = spans_decade(ks);
+  const Binning bm = make_binning(ms, opt.grid_bins, log_m);
+  const Binning bk = make_binning(ks, opt.grid_bins, log_k);
   if (static_cast<int>(slices.size()) > opt.max_slices || bm.edges.size() < 3 ||
       bk.edges.size() < 3)
     return map;
@@ -196,6 +204,8 @@ StabilityMap build_stability_map(const SweepTable& table, double lambda_unit,
     p.title = (upper ? "factor = " : "zeta = ") + format_number(s);
     p.x_label = "m (mass unit)";
     p.y_label = "kappa (mass unit/s^2)";
+    p.x_log = log_m;
+    p.y_log = log_k;
     std::vector<const SweepRow*> sub;
     for (const SweepRow* r : rows)
       if (yval(*r) == s) sub.push_back(r);

@@ -28,7 +28,7 @@ struct MapLine {
 /// y_edges[iy+1]]; cells are row-major with rows along y.
 struct MapPanel {
   std::string title, x_label, y_label;
-  bool x_log = false;
+  bool x_log = false, y_log = false;
   std::vector<double> x_edges, y_edges;
   std::vector<MapCell> cells;
   std::vector<double> iterations;  ///< mean iteration of the restored trials of a cell
