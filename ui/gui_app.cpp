@@ -2,8 +2,11 @@
 
 #include <imgui.h>
 
+#include <GL/gl.h>
+
 #include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <cmath>
 #include <cstdio>
 #include <exception>
@@ -195,6 +198,23 @@ void GuiApp::save() {
   if (ImGui::GetCurrentContext() != nullptr) save_layout_if_needed(true);
 }
 
+void GuiApp::nearest_font_texture() {
+  // ImGui draws glyphs at whole pixels, one texel per pixel: nearest sampling gives the same
+  // image as bilinear, and a software rasteriser shades every pixel of the window with one
+  // texel fetch instead of four. Lines then take their anti-aliasing from geometry.
+  ImGuiIO& io = ImGui::GetIO();
+  const ImTextureID tex = io.Fonts->TexID;
+  if (tex == nullptr || tex == patched_font_texture_) return;
+  patched_font_texture_ = tex;
+  ImGui::GetStyle().AntiAliasedLinesUseTex = false;
+  GLint bound = 0;
+  glGetIntegerv(GL_TEXTURE_BINDING_2D, &bound);
+  glBindTexture(GL_TEXTURE_2D, static_cast<GLuint>(reinterpret_cast<std::intptr_t>(tex)));
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glBindTexture(GL_TEXTURE_2D, static_cast<GLuint>(bound));
+}
+
 void GuiApp::release_gl() { mesh_.release_gl(); }
 
 void GuiApp::start_suggest() {
@@ -269,6 +289,7 @@ bool GuiApp::begin(const char* name, int flags) {
 }
 
 void GuiApp::frame(FrameInfo& info) {
+  nearest_font_texture();
   load_layout_once();
   update_stats();
   window_w_ = info.width;

@@ -10,6 +10,8 @@
 #include <utility>
 #include <vector>
 
+#include <imgui.h>
+
 #include "core/scene.hpp"
 #include "ui/frame_renderer.hpp"
 #include "ui/mesh_view.hpp"
@@ -81,6 +83,7 @@ class GuiApp {
 
  private:
   void load_layout_once();
+  void nearest_font_texture();
   void save_layout_if_needed(bool force);
   void layout_windows(const FrameInfo& info);
   /// ImGui::Begin with the default position and size of the layout.
@@ -123,6 +126,7 @@ class GuiApp {
   std::vector<WindowRect> drawn_;  ///< where each window was last frame
   int window_w_ = 0, window_h_ = 0;  ///< size of the last frame
   std::string select_tab_;
+  ImTextureID patched_font_texture_ = nullptr;
   GuiStats stats_;
   double last_frame_time_ = -1;
   long long last_steps_ = 0;

@@ -2,6 +2,8 @@
 
 #include <imgui.h>
 
+#include <GL/gl.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -14,6 +16,9 @@
 namespace dampbound::ui {
 
 namespace {
+/// Draw-list callback: the next draw commands are opaque.
+void disable_blending(const ImDrawList*, const ImDrawCmd*) { glDisable(GL_BLEND); }
+
 constexpr NodeStatus kLegend[] = {NodeStatus::within, NodeStatus::clamped, NodeStatus::violating,
                                   NodeStatus::unstabilisable, NodeStatus::fixed};
 
@@ -69,6 +74,10 @@ void MeshView::handle_input(Tuner& tuner, const Viewport& vp, bool hovered) {
         drag_ = Drag::none;
       break;
     case Drag::node: {
+      if (drag_node_ >= s.model().node_count()) {  // the scene changed under the mouse
+        drag_ = Drag::none;
+        break;
+      }
       if (moved && drag_distance_ >= 3.0f) {
         const Vec3f p = s.state().x[static_cast<size_t>(drag_node_)].cast<float>();
         const ScreenPoint sp = project(vpm, vp, p);
@@ -213,9 +222,12 @@ void MeshView::draw(Tuner& tuner) {
   const unsigned tex = texture_;
   ImDrawList* dl = ImGui::GetWindowDrawList();
   if (tex != 0) {
-    // GL textures start at the bottom row.
+    // The image is opaque: drawn without blending, a software rasteriser skips reading the
+    // pixels under it. GL textures start at the bottom row.
+    dl->AddCallback(disable_blending, nullptr);
     dl->AddImage(reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(tex)), tl,
                  ImVec2(tl.x + size.x, tl.y + size.y), ImVec2(0, 1), ImVec2(1, 0));
+    dl->AddCallback(ImDrawCallback_ResetRenderState, nullptr);
   } else {
     dl->AddRectFilled(tl, ImVec2(tl.x + size.x, tl.y + size.y), IM_COL32(40, 20, 20, 255));
     dl->AddText(ImVec2(tl.x + 10, tl.y + 10), IM_COL32(255, 120, 120, 255),

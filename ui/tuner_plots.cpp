@@ -32,6 +32,7 @@ PlotSpec tuner_displacement_plot(Tuner& tuner, const TunerPlotOptions& options) 
                        std::make_move_iterator(p.series.end()));
     p.series = std::move(pins.series);
   }
+  for (PlotSeries& s : p.series) drop_flat_runs(s);
   return p;
 }
 
@@ -73,6 +74,22 @@ void simplify_band(PlotBand& band, size_t max_columns) {
     lean.y_hi.push_back(out.y_hi[i]);
   }
   band = std::move(lean);
+}
+
+void drop_flat_runs(PlotSeries& s) {
+  const size_t n = std::min(s.x.size(), s.y.size());
+  if (n < 3) return;
+  std::vector<double> x, y;
+  x.reserve(n);
+  y.reserve(n);
+  for (size_t i = 0; i < n; ++i) {
+    // An interior point of a run of equal y adds nothing to the line.
+    if (i > 0 && i + 1 < n && s.y[i - 1] == s.y[i] && s.y[i] == s.y[i + 1]) continue;
+    x.push_back(s.x[i]);
+    y.push_back(s.y[i]);
+  }
+  s.x = std::move(x);
+  s.y = std::move(y);
 }
 
 void envelope_headroom(PlotSpec& spec, double cap, double fraction) {
@@ -118,6 +135,7 @@ PlotSpec tuner_envelope_plot(Tuner& tuner, const TunerPlotOptions& options) {
     }
   }
   for (PlotBand& b : p.bands) simplify_band(b, 240);
+  for (PlotSeries& s : p.series) drop_flat_runs(s);
   // The upper bound (eq. 6) grows without limit as |v| -> 0: cap the axis at 100 x the
   // largest damping that matters, and keep the top part free for the legend.
   double ref = tuner.exact_gamma_max().value_or(0.0);

@@ -29,6 +29,10 @@ PlotSpec tuner_displacement_plot(Tuner& tuner, const TunerPlotOptions& options);
 /// few wide quads far faster than hundreds of one-pixel slivers.
 void simplify_band(PlotBand& band, size_t max_columns);
 
+/// Removes the interior points of runs of equal y (a constant bound or gamma becomes one
+/// segment): the same line with far fewer triangles to rasterise.
+void drop_flat_runs(PlotSeries& series);
+
 /// Sets a log y axis to the positive finite data of the series and lines, capped at `cap`
 /// (when > 0), with the top `fraction` of the axis left free (for the legend).
 void envelope_headroom(PlotSpec& spec, double cap, double fraction);

@@ -92,6 +92,20 @@ TEST(TunerPlots, BandIsCoarsenedConservatively) {
     }
 }
 
+TEST(TunerPlots, FlatRunsKeepTheirEndsOnly) {
+  PlotSeries s;
+  s.x = {0, 1, 2, 3, 4, 5, 6};
+  s.y = {1, 1, 1, 2, 2, 2, 2};
+  drop_flat_runs(s);
+  EXPECT_EQ(s.x, (std::vector<double>{0, 2, 3, 6}));
+  EXPECT_EQ(s.y, (std::vector<double>{1, 1, 2, 2}));
+  PlotSeries wiggle;
+  wiggle.x = {0, 1, 2, 3};
+  wiggle.y = {1, 2, 1, 2};
+  drop_flat_runs(wiggle);
+  EXPECT_EQ(wiggle.x.size(), 4u);
+}
+
 TEST(TunerPlots, HeadroomCapsTheLogAxis) {
   PlotSpec p;
   p.y.log = true;
