@@ -10,6 +10,13 @@
 #include <immintrin.h>
 #endif
 
+// Without AVX-512 (DAMPBOUND_NATIVE=OFF) GCC warns that passing these 64-byte vectors
+// by value has another ABI than with it. They never cross a translation unit (only
+// core/sweep_kernel.cpp includes this header), so the warning does not apply.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wpsabi"
+#endif
+
 namespace dampbound::simd {
 
 /// Trials per vector: 8 doubles = 64 bytes = one AVX-512 register.
