@@ -1,5 +1,6 @@
 // dampbound gui [SCENE]: the interactive tuner window (Dear ImGui + GLFW + OpenGL 3.3). With
 // --frames N it plays N frames and exits (screenshots, frame-time measurement, tests).
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
@@ -31,6 +32,10 @@ struct GuiArgs {
 };
 
 #if defined(DAMPBOUND_HAVE_GLFW)
+/// Set by Ctrl+C or SIGTERM: the window closes after the frame, and the settings are saved.
+volatile std::sig_atomic_t g_stop = 0;
+void on_stop_signal(int) { g_stop = 1; }
+
 bool have_display() {
   const char* x = std::getenv("DISPLAY");
   const char* w = std::getenv("WAYLAND_DISPLAY");
@@ -96,7 +101,14 @@ int run(GuiArgs& a) {
   w.max_frames = a.frames;
   w.screenshot_frame = a.screenshot.empty() ? -1 : a.frames - 1;
   ui::GlfwHost host(w);
-  const ui::WindowRun run = host.run(app.frame_fn());
+  std::signal(SIGINT, on_stop_signal);
+  std::signal(SIGTERM, on_stop_signal);
+  const ui::WindowRun run = host.run([&app](ui::FrameInfo& info) {
+    app.frame(info);
+    if (g_stop != 0) info.close = true;
+  });
+  std::signal(SIGINT, SIG_DFL);
+  std::signal(SIGTERM, SIG_DFL);
   app.save();
   app.release_gl();
   if (!a.screenshot.empty()) {
