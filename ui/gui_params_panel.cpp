@@ -117,19 +117,23 @@ void GuiApp::parameters_panel() {
                         "The user's viscous damping gamma (mass unit / s)");
   const double lo = lower_bound(p.m, p.kappa);
   ImGui::Text(u8"lower bound 2\u221A(m\u03BA) = %s", fmt(lo).c_str());
-  ImGui::SameLine();
-  if (ImGui::SmallButton(u8"\u03B3 = lower bound")) {
+  const char* set_lower = u8"\u03B3 = lower bound";
+  const float button_w = ImGui::CalcTextSize(set_lower).x + 2 * ImGui::GetStyle().FramePadding.x;
+  if (ImGui::GetContentRegionAvail().x - ImGui::GetItemRectSize().x >
+      button_w + ImGui::GetStyle().ItemSpacing.x)
+    ImGui::SameLine();  // beside the value when there is room, else below it
+  if (ImGui::SmallButton(set_lower)) {
     p.gamma = lo;
     changed = true;
   }
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("Set gamma to 2 sqrt(m kappa) (paper eq. 5)");
   const double rel = lo > 0 ? p.gamma / lo : 1.0;
   if (std::abs(rel - 1.0) < 1e-9) {
-    ImGui::TextColored(gui_green(), u8"\u03B3 at the lower bound: critical damping");
+    wrapped_colored(gui_green(), u8"\u03B3 at the lower bound: critical damping");
   } else if (rel < 1.0) {
-    ImGui::TextColored(gui_amber(), u8"\u03B3 below the lower bound (%.3g x): underdamped", rel);
+    wrapped_colored(gui_amber(), (u8"\u03B3 below the lower bound (" + fmt(rel) + " x): underdamped").c_str());
   } else {
-    ImGui::TextColored(gui_green(), u8"\u03B3 above the lower bound (%.3g x)", rel);
+    wrapped_colored(gui_green(), (u8"\u03B3 above the lower bound (" + fmt(rel) + " x)").c_str());
   }
   changed |= log_slider("dt (s)", &p.dt, 1e-4, 1.0, "Time step dt (s)");
   int policy = static_cast<int>(p.policy);

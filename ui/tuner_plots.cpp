@@ -123,7 +123,7 @@ PlotSpec tuner_envelope_plot(Tuner& tuner, const TunerPlotOptions& options) {
     for (const Pin& pin : tuner.pins()) {
       if (!pin.visible) continue;
       PlotSeries s;
-      s.label = pin.name + ": effective gamma";
+      s.label = pin.name + " (effective)";
       s.color = pin.color;
       s.dashed = true;
       s.thickness = 1.5f;

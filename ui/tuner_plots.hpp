@@ -39,7 +39,7 @@ void envelope_headroom(PlotSpec& spec, double cap, double fraction);
 
 /// The bound envelope of the watched node (envelope_plot: lower, upper, user and effective
 /// gamma, feasible band, log axis) with the exact linear limit when known, plus each visible
-/// pin's effective gamma dashed in its colour.
+/// pin's effective gamma dashed in its colour, labelled "<pin> (effective)".
 PlotSpec tuner_envelope_plot(Tuner& tuner, const TunerPlotOptions& options);
 
 }  // namespace dampbound::ui
