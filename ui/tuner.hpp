@@ -34,7 +34,7 @@ struct Pin {
 struct PlaybackOptions {
   int steps_per_frame = 10;       ///< steps per drawn frame while playing (1..10000)
   bool pause_at_verdict = false;  ///< pause when the run is restored or not restored
-  size_t max_trace = 2000000;     ///< pause when the trace holds this many steps (memory)
+  size_t max_trace = 1000000;     ///< pause when the trace holds this many steps (~100 MB)
 };
 
 /// "running", "restored at N", "diverged at N" or "not restored at N".

@@ -26,7 +26,14 @@ bool uniform_rate(const Model& m) {
 }  // namespace
 
 const ExactStability* TunerCriteria::exact(const Session& s, std::uint64_t topology) {
-  if (!have_key_ || topology != topology_ || !same_key(key_, s.params())) {
+  using Clock = std::chrono::steady_clock;
+  const double now = std::chrono::duration<double>(Clock::now().time_since_epoch()).count();
+  const bool changed = !have_key_ || topology != topology_ || !same_key(key_, s.params());
+  // On a large mesh the analysis takes long: while a slider is dragged, keep the last result
+  // and recompute at most every few durations, so the window stays responsive.
+  const bool throttled = exact_ && last_seconds_ > 0.01 && now - last_time_ < 4 * last_seconds_;
+  if (changed && !throttled) {
+    last_time_ = now;
     have_key_ = true;
     topology_ = topology;
     key_ = s.params();
@@ -39,6 +46,8 @@ const ExactStability* TunerCriteria::exact(const Session& s, std::uint64_t topol
     } catch (const std::exception&) {
       exact_.reset();
     }
+    const double end = std::chrono::duration<double>(Clock::now().time_since_epoch()).count();
+    last_seconds_ = end - now;
   }
   return exact_ ? &*exact_ : nullptr;
 }

@@ -18,7 +18,8 @@ namespace dampbound::ui {
 /// The criteria of a session. The exact linear analysis is taken at the rest state (its
 /// linearisation point, as `dampbound bounds SCENE` does) and cached until the parameters or
 /// the springs change; the paper's criteria (eqs. 5, 6 and the sec. 5 check) and the classic
-/// ones are evaluated at the current state on every call.
+/// ones are evaluated at the current state on every call. When one analysis takes longer than
+/// 10 ms (a large mesh), a changed key is recomputed at most every four such durations.
 class TunerCriteria {
  public:
   /// All criteria, in the order `bounds` prints them. `topology` changes when springs do.
@@ -38,6 +39,7 @@ class TunerCriteria {
   Params key_;
   bool have_key_ = false;
   int exact_runs_ = 0;
+  double last_time_ = 0, last_seconds_ = 0;  ///< when the last analysis started, how long it took
 };
 
 /// What the Suggest button produced, and for which parameters.
