@@ -161,7 +161,7 @@ Pin& Tuner::pin(const std::string& name) {
   p.result = session_->result();
   p.watched = session_->watched();
   p.trace = session_->trace();
-  TraceDecimator d;
+  TraceDecimator d(kPlotBuckets);
   p.reduced = d.update(p.trace);
   p.color = palette_color(next_color_++);
   pins_.push_back(std::move(p));

@@ -48,6 +48,9 @@ std::string params_label(const Params& params);
 /// window never shows NaN.
 std::string fmt(double x);
 
+/// Buckets of the plot decimation (ui/tuner_trace.hpp): up to twice as many samples.
+constexpr size_t kPlotBuckets = 512;
+
 class Tuner {
  public:
   /// Starts with the scene's own parameters and stop rules, paused.
@@ -136,7 +139,9 @@ class Tuner {
   bool playing_ = false;
   std::vector<Pin> pins_;
   int next_color_ = 1;
-  TraceDecimator decimator_;
+  /// At most ~1000 samples per plotted trace: about one per pixel column of a plot, which
+  /// keeps the triangles a software rasteriser must set up in check on long runs.
+  TraceDecimator decimator_{kPlotBuckets};
   std::uint64_t generation_ = 1;
   std::uint64_t topology_ = 1;
   std::uint64_t state_version_ = 1;
