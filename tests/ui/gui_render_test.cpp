@@ -77,6 +77,7 @@ TEST(GuiRender, WholeWindowHeadless) {
   EXPECT_FALSE(is_blank(fig));
   EXPECT_EQ(fig.pixel(2, 2), (Rgba{255, 255, 255, 255}));  // a light figure
   EXPECT_GT(count_color(fig, rgba_from_u32(app.tuner().pins()[0].color), 12), 50);
+  write_png_atomic(fig, out_path("gui_export.png"));
   EXPECT_TRUE(fs::exists(config / "export" / "test_traces.csv"));
   EXPECT_TRUE(fs::exists(config / "export" / "test_runs.csv"));
   // Settings and layout are saved into the config folder.
