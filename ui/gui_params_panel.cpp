@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <string>
 
 #include "core/bounds.hpp"
 #include "ui/gui_app.hpp"
@@ -22,6 +23,19 @@ bool log_slider(const char* label, double* v, double lo, double hi, const char* 
                           ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_NoRoundToFormat);
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s\nCtrl+click to type a value.", help);
   return changed;
+}
+
+/// A path as typed, or a scene name looked up in `scenes_dir` ("two-node", "two-node.toml").
+std::string resolve_scene(const std::string& text, const std::string& scenes_dir) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (fs::exists(text, ec) || text.find('/') != std::string::npos || scenes_dir.empty())
+    return text;
+  for (const std::string& name : {text, text + ".toml"}) {
+    const fs::path p = fs::path(scenes_dir) / name;
+    if (fs::is_regular_file(p, ec)) return p.string();
+  }
+  return text;
 }
 
 bool key_pressed(ImGuiKey key) { return ImGui::IsKeyPressed(ImGui::GetKeyIndex(key), false); }
@@ -50,13 +64,14 @@ void GuiApp::scene_picker() {
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("The scenes of the source tree (scenes/*.toml).");
   const float open_w = ImGui::CalcTextSize("Open").x + ImGui::GetStyle().FramePadding.x * 2;
   ImGui::SetNextItemWidth(-open_w - ImGui::GetStyle().ItemSpacing.x);
-  const bool enter = ImGui::InputTextWithHint("##path", "path to a scene file (.toml)", &open_path_,
+  const bool enter = ImGui::InputTextWithHint("##path", "scene file (.toml) or name", &open_path_,
                                               ImGuiInputTextFlags_EnterReturnsTrue);
   ImGui::SameLine();
   if (ImGui::Button("Open") || enter) {
     std::string err;
-    if (tuner_->open_scene(open_path_, &err)) {
-      scene_path_ = open_path_;
+    const std::string path = resolve_scene(open_path_, options_.scenes_dir);
+    if (tuner_->open_scene(path, &err)) {
+      scene_path_ = open_path_ = path;
       scene_error_.clear();
     } else {
       scene_error_ = err;

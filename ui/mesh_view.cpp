@@ -163,6 +163,29 @@ void MeshView::draw_overlays(const Tuner& tuner, const Viewport& vp) const {
   }
 }
 
+void MeshView::node_tooltip(const Tuner& tuner, const Viewport& vp) const {
+  const Session& s = tuner.session();
+  const ImVec2 m = ImGui::GetIO().MousePos;
+  const auto pts = project_points(camera_.view_projection(vp.aspect()), vp, s.state().x);
+  const int n = pick_node(pts, m.x, m.y, std::max(8.0f, options.point_size));
+  if (n < 0) return;
+  const size_t i = static_cast<size_t>(n);
+  const ScreenPoint& p = pts[i];
+  ImGui::GetWindowDrawList()->AddCircle(ImVec2(p.x, p.y), options.point_size * 0.5f + 3.0f,
+                                        IM_COL32(255, 255, 255, 160), 16, 1.5f);
+  const StepWorkspace& ws = s.workspace();
+  const NodeStatus st = i < ws.status.size() ? ws.status[i] : NodeStatus::within;
+  ImGui::BeginTooltip();
+  ImGui::Text("node #%d: %s", n, status_label(st));
+  ImGui::Text("|x - X| = %s cm", fmt(displacement(s.model(), s.state(), n)).c_str());
+  ImGui::Text("lower %s, upper %s", fmt(s.model().lower_bound[i]).c_str(),
+              i < ws.upper_bound.size() ? fmt(ws.upper_bound[i]).c_str() : "-");
+  ImGui::Text("gamma %s, effective %s", fmt(s.model().gamma[i]).c_str(),
+              i < ws.gamma_eff.size() ? fmt(ws.gamma_eff[i]).c_str() : "-");
+  ImGui::TextDisabled("click: watch it; drag: move it");
+  ImGui::EndTooltip();
+}
+
 void MeshView::draw(Tuner& tuner) {
   const Session& s = tuner.session();
   if (fitted_scene_ != &s) {
@@ -234,6 +257,7 @@ void MeshView::draw(Tuner& tuner) {
                 "the mesh view needs OpenGL 3.3");
   }
   draw_overlays(tuner, vp);
+  if (hovered && drag_ == Drag::none && !cut_tool) node_tooltip(tuner, vp);
   ImGui::TextDisabled(cut_tool ? "cut tool: drag a line across springs to remove them"
                                : "drag: orbit | click node: watch | drag node: move it | "
                                  "right/middle drag: pan | wheel: zoom");

@@ -43,6 +43,8 @@ class MeshView {
   enum class Drag { none, orbit, pan, node, cut };
   void handle_input(Tuner& tuner, const Viewport& vp, bool hovered);
   void draw_overlays(const Tuner& tuner, const Viewport& vp) const;
+  /// The node under the mouse: a ring and a tooltip with its state and bounds.
+  void node_tooltip(const Tuner& tuner, const Viewport& vp) const;
   void fit(const Tuner& tuner, float aspect);
 
   MeshRenderer renderer_;

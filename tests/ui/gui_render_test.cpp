@@ -158,6 +158,12 @@ TEST(GuiRender, MouseWatchesDragsAndCutsInTheMeshView) {
   o.scripted = false;
   GuiApp app(o);
   const int watch_node = 100, drag_node = 200;
+  // Hovering a node shows its state and bounds.
+  const Image hover = host.render_frames(1280, 800, [&](FrameInfo& info) {
+    app.frame(info);
+    mouse(on_screen(app, watch_node), false);
+  }, 3);
+  write_png_atomic(hover, out_path("gui_hover.png"));
   double y_before = 0;
   int watched_after_click = -1;
   ImVec2 cut_from, cut_to;
