@@ -46,6 +46,8 @@ struct GuiStats {
 
 class GuiApp {
  public:
+  /// Loads the settings and the scene (command line, else the last one, else paper-plane),
+  /// applies the overrides, runs the demo when asked. Needs no GL context.
   explicit GuiApp(GuiOptions options);
   ~GuiApp();
   GuiApp(const GuiApp&) = delete;
@@ -66,6 +68,7 @@ class GuiApp {
     return {settings_.window_width, settings_.window_height};
   }
 
+  /// The tuner state and the mesh view (tests drive them).
   Tuner& tuner() { return *tuner_; }
   MeshView& mesh_view() { return mesh_; }
   /// Brings a tab to the front at the next frame: "Status", "Criteria", "Pins & export" or
@@ -73,6 +76,7 @@ class GuiApp {
   void select_tab(const std::string& name) { select_tab_ = name; }
   /// Starts the Suggest computation as the button does.
   void start_suggest();
+  /// The Suggest computation, and the frame statistics of the window.
   TunerSuggest& suggestions() { return suggest_; }
   const GuiStats& stats() const { return stats_; }
   /// Warnings met at start (a corrupt settings file, a missing scene), one line each.

@@ -29,6 +29,7 @@ class MeshView {
 
   /// Frames the scene (rest positions and the perturbed state) on the next draw.
   void request_fit() { fit_pending_ = true; }
+  /// The camera (orbit, pan, zoom state).
   OrbitCamera& camera() { return camera_; }
   /// Where the view was drawn in the last frame (screen pixels).
   const Viewport& viewport() const { return viewport_; }

@@ -62,6 +62,7 @@ class Tuner {
   /// Switches to `scene` with its own parameters; pins are kept.
   void set_scene(SceneSpec scene);
 
+  /// The session: model, state, trace and verdict (read only; change it through the tuner).
   const Session& session() const { return *session_; }
   const SceneSpec& scene() const { return session_->scene(); }
   const Params& params() const { return session_->params(); }
@@ -72,9 +73,11 @@ class Tuner {
   /// Iteration limit of the protocol (the verdict "not restored"), >= 1.
   void set_max_iterations(int n);
 
+  /// True while advance() steps.
   bool playing() const { return playing_; }
   /// Play or pause; refusing to play (returns false) when the run cannot step.
   bool set_playing(bool play);
+  /// Steps per frame, pause at the verdict, trace cap.
   PlaybackOptions& playback() { return playback_; }
   const PlaybackOptions& playback() const { return playback_; }
 
@@ -100,7 +103,9 @@ class Tuner {
 
   /// Pins the current run under `name` (params_label() when empty); returns the pin.
   Pin& pin(const std::string& name = "");
+  /// Removes a pin (an index out of range is ignored).
   void unpin(size_t index);
+  /// The pins, oldest first (names and visibility are editable).
   std::vector<Pin>& pins() { return pins_; }
   const std::vector<Pin>& pins() const { return pins_; }
   /// Colour of the current run on the plots.
@@ -118,6 +123,7 @@ class Tuner {
 
   /// The last thing worth telling the user (e.g. "diverged at 45: reset to go on").
   const std::string& notice() const { return notice_; }
+  /// Replaces the notice (the window shows warnings there).
   void set_notice(std::string text) { notice_ = std::move(text); }
   /// Steps taken since construction and the wall time they took (for steps per second).
   long long total_steps() const { return total_steps_; }
@@ -129,6 +135,7 @@ class Tuner {
   std::optional<double> exact_gamma_max() { return criteria_.exact_gamma_max(*session_, topology_); }
   /// Every stability criterion at the current state (issue 6), updated on each call.
   const std::vector<CriterionResult>& criteria() { return criteria_.evaluate(*session_, topology_); }
+  /// The criteria cache (the exact analysis; tests read its counters).
   TunerCriteria& criteria_state() { return criteria_; }
 
  private:

@@ -56,11 +56,13 @@ class TunerSuggest {
   /// Starts a computation for the scene as loaded (no cuts) and these parameters; ignored
   /// while one is running.
   void start(const SceneSpec& scene, const Params& params, const StopRules& rules);
+  /// True while a computation runs.
   bool busy() const { return pending_.valid(); }
   /// Collects a finished computation (call once per frame); true when a result arrived.
   bool poll();
   /// Waits for a running computation (tests).
   void wait();
+  /// The last finished suggestion.
   const std::optional<Suggestion>& result() const { return result_; }
   /// One line when the computation threw.
   const std::string& error() const { return error_; }
