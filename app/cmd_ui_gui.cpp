@@ -34,7 +34,9 @@ struct GuiArgs {
 #if defined(DAMPBOUND_HAVE_GLFW)
 /// Set by Ctrl+C or SIGTERM: the window closes after the frame, and the settings are saved.
 volatile std::sig_atomic_t g_stop = 0;
-void on_stop_signal(int) { g_stop = 1; }
+void on_stop_signal(int) {
+  g_stop = 1;
+}
 
 bool have_display() {
   const char* x = std::getenv("DISPLAY");
@@ -126,8 +128,10 @@ std::function<int()> setup(CLI::App& root) {
       "gui",
       "The interactive tuner: a window to tune m, kappa, gamma (mass unit/s) and dt (s) and "
       "watch, live, whether the mesh stays stable and where the paper's bounds lie.");
-  cmd->add_option("scene", a->scene, "scene file or name (default: the last one, else paper-plane)");
-  cmd->add_option("--frames", a->frames, "play N frames, then exit")->check(CLI::Range(1, 10000000));
+  cmd->add_option("scene", a->scene,
+                  "scene file or name (default: the last one, else paper-plane)");
+  cmd->add_option("--frames", a->frames, "play N frames, then exit")
+      ->check(CLI::Range(1, 10000000));
   cmd->add_option("--screenshot", a->screenshot, "save the window after the last frame (PNG)");
   cmd->add_option("--size", a->size, "window size WxH in pixels (default 1600x1000)");
   cmd->add_option("--steps-per-frame", a->steps_per_frame, "steps per frame while playing")

@@ -1,7 +1,6 @@
 #include "ui/camera.hpp"
 
 #include <Eigen/Geometry>
-
 #include <algorithm>
 #include <cmath>
 
@@ -13,7 +12,9 @@ Vec3f OrbitCamera::forward() const {
   return Vec3f(-cp * std::cos(yaw), -sp, -cp * std::sin(yaw));
 }
 
-Vec3f OrbitCamera::eye() const { return target - distance * forward(); }
+Vec3f OrbitCamera::eye() const {
+  return target - distance * forward();
+}
 
 Vec3f OrbitCamera::right() const {
   const Vec3f r = forward().cross(Vec3f::UnitY());
@@ -21,7 +22,9 @@ Vec3f OrbitCamera::right() const {
   return n > 1e-6f ? Vec3f(r / n) : Vec3f::UnitX();
 }
 
-Vec3f OrbitCamera::up() const { return right().cross(forward()); }
+Vec3f OrbitCamera::up() const {
+  return right().cross(forward());
+}
 
 Mat4f OrbitCamera::view() const {
   const Vec3f f = forward(), r = right(), u = up(), e = eye();
@@ -48,7 +51,9 @@ Mat4f OrbitCamera::projection(float aspect) const {
   return m;
 }
 
-Mat4f OrbitCamera::view_projection(float aspect) const { return projection(aspect) * view(); }
+Mat4f OrbitCamera::view_projection(float aspect) const {
+  return projection(aspect) * view();
+}
 
 void OrbitCamera::orbit(float dx_px, float dy_px) {
   yaw += dx_px * 0.01f;

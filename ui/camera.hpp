@@ -29,10 +29,10 @@ struct ScreenPoint {
 /// eye above the xz-plane (the paper's mesh lies in the xz-plane and is perturbed along y).
 struct OrbitCamera {
   Vec3f target = Vec3f::Zero();
-  float yaw = 0.75f;     ///< radians about +y
-  float pitch = 0.6f;    ///< radians above the xz-plane, kept inside (-1.55, 1.55)
+  float yaw = 0.75f;       ///< radians about +y
+  float pitch = 0.6f;      ///< radians above the xz-plane, kept inside (-1.55, 1.55)
   float distance = 30.0f;  ///< cm from target to eye, > 0
-  float fov_y = 0.7f;    ///< vertical field of view (radians)
+  float fov_y = 0.7f;      ///< vertical field of view (radians)
 
   /// Eye position in world coordinates.
   Vec3f eye() const;

@@ -1,13 +1,12 @@
 #include "ui/gui_app.hpp"
 
-#include <imgui.h>
-
 #include <GL/gl.h>
+#include <imgui.h>
 
 #include <algorithm>
 #include <chrono>
-#include <cstdint>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -88,8 +87,8 @@ GuiApp::GuiApp(GuiOptions options) : options_(std::move(options)) {
   tuner_->set_max_iterations(r.max_iterations);
   tuner_->reset();
   PlaybackOptions& pb = tuner_->playback();
-  pb.steps_per_frame = options_.steps_per_frame > 0 ? options_.steps_per_frame
-                                                    : settings_.steps_per_frame;
+  pb.steps_per_frame =
+      options_.steps_per_frame > 0 ? options_.steps_per_frame : settings_.steps_per_frame;
   pb.pause_at_verdict = settings_.pause_at_verdict;
   plot_options_.log_y = settings_.log_y;
   plot_options_.show_max = settings_.show_max;
@@ -182,7 +181,8 @@ void GuiApp::save_layout_if_needed(bool force) {
   try {
     std::error_code ec;
     std::filesystem::create_directories(options_.config_dir, ec);
-    write_file_atomic(path, [&](std::ostream& out) { out.write(data, static_cast<std::streamsize>(size)); });
+    write_file_atomic(
+        path, [&](std::ostream& out) { out.write(data, static_cast<std::streamsize>(size)); });
   } catch (const std::exception& e) {
     std::fprintf(stderr, "dampbound: warning: %s\n", e.what());
   }
@@ -215,7 +215,9 @@ void GuiApp::nearest_font_texture() {
   glBindTexture(GL_TEXTURE_2D, static_cast<GLuint>(bound));
 }
 
-void GuiApp::release_gl() { mesh_.release_gl(); }
+void GuiApp::release_gl() {
+  mesh_.release_gl();
+}
 
 void GuiApp::start_suggest() {
   suggest_.start(tuner_->scene(), tuner_->params(), tuner_->session().rules());

@@ -2,6 +2,8 @@
 // The interactive tuner window (issue 3): parameter panel, mesh view, bound envelope and
 // displacement plots, status, pinned runs and export. One frame function serves the GLFW
 // window and the headless EGL host; the physics is core's Session behind ui/tuner.hpp.
+#include <imgui.h>
+
 #include <array>
 #include <functional>
 #include <memory>
@@ -9,8 +11,6 @@
 #include <string>
 #include <utility>
 #include <vector>
-
-#include <imgui.h>
 
 #include "core/scene.hpp"
 #include "ui/frame_renderer.hpp"
@@ -23,15 +23,16 @@ namespace dampbound::ui {
 
 /// How the window starts.
 struct GuiOptions {
-  std::string config_dir;      ///< settings and imgui.ini live here; "" = nothing persisted
-  std::string scenes_dir;      ///< its *.toml files fill the scene picker
-  std::optional<SceneSpec> scene;  ///< given on the command line; else the last one, else paper-plane
+  std::string config_dir;  ///< settings and imgui.ini live here; "" = nothing persisted
+  std::string scenes_dir;  ///< its *.toml files fill the scene picker
+  std::optional<SceneSpec>
+      scene;  ///< given on the command line; else the last one, else paper-plane
   /// Command-line parameter flags, applied over the scene's (or remembered) parameters.
   std::function<void(Params&, StopRules&)> overrides;
-  int steps_per_frame = 0;     ///< > 0: overrides the remembered value
-  bool play = false;           ///< start playing
-  bool demo = false;           ///< pin two runs (below and at the lower bound) before frame 0
-  bool scripted = false;       ///< ignore the mouse (--frames runs: no stray hover tooltips)
+  int steps_per_frame = 0;  ///< > 0: overrides the remembered value
+  bool play = false;        ///< start playing
+  bool demo = false;        ///< pin two runs (below and at the lower bound) before frame 0
+  bool scripted = false;    ///< ignore the mouse (--frames runs: no stray hover tooltips)
   /// The host's clear colour; windows take it as their background (RGBA 0..1).
   std::array<float, 4> background = gui_render_options().clear_color;
 };
@@ -39,9 +40,9 @@ struct GuiOptions {
 /// Frame statistics of the window.
 struct GuiStats {
   int frames = 0;
-  double frame_ms = 0;         ///< smoothed wall time between frames
-  double steps_per_second = 0; ///< smoothed
-  double step_ms = 0;          ///< smoothed time in step() per frame
+  double frame_ms = 0;          ///< smoothed wall time between frames
+  double steps_per_second = 0;  ///< smoothed
+  double step_ms = 0;           ///< smoothed time in step() per frame
 };
 
 class GuiApp {
@@ -113,8 +114,8 @@ class GuiApp {
   TunerPlotOptions plot_options_;
   std::vector<std::string> scene_files_;
   std::vector<std::string> warnings_;
-  std::string scene_path_;     ///< file of the current scene ("" when built in code)
-  std::string open_path_;      ///< the "open a file" text field
+  std::string scene_path_;  ///< file of the current scene ("" when built in code)
+  std::string open_path_;   ///< the "open a file" text field
   std::string scene_error_;
   std::string param_error_;
   std::string pin_name_;
@@ -127,7 +128,7 @@ class GuiApp {
     float x, y, w, h;
   };
   std::vector<WindowRect> layout_;
-  std::vector<WindowRect> drawn_;  ///< where each window was last frame
+  std::vector<WindowRect> drawn_;    ///< where each window was last frame
   int window_w_ = 0, window_h_ = 0;  ///< size of the last frame
   std::string select_tab_;
   ImTextureID patched_font_texture_ = nullptr;

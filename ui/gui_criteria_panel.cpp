@@ -13,9 +13,12 @@ namespace {
 
 ImVec4 verdict_color(CriterionVerdict v) {
   switch (v) {
-    case CriterionVerdict::within: return gui_green();
-    case CriterionVerdict::beyond: return gui_red();
-    case CriterionVerdict::not_applicable: break;
+    case CriterionVerdict::within:
+      return gui_green();
+    case CriterionVerdict::beyond:
+      return gui_red();
+    case CriterionVerdict::not_applicable:
+      break;
   }
   return ImGui::GetStyle().Colors[ImGuiCol_TextDisabled];
 }
@@ -69,9 +72,10 @@ void GuiApp::suggest_panel() {
   if (ImGui::Button("Suggest stable values")) start_suggest();
   ImGui::EndDisabled();
   if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
-    ImGui::SetTooltip("The damping range every criterion accepts at this dt, the fastest-settling\n"
-                      "gamma in it, and the largest stable dt at this gamma; each verified by a\n"
-                      "run of the scene as loaded (cuts made here are not included).");
+    ImGui::SetTooltip(
+        "The damping range every criterion accepts at this dt, the fastest-settling\n"
+        "gamma in it, and the largest stable dt at this gamma; each verified by a\n"
+        "run of the scene as loaded (cuts made here are not included).");
   if (suggest_.busy()) {
     ImGui::SameLine();
     ImGui::TextDisabled("computing and verifying...");
@@ -82,8 +86,9 @@ void GuiApp::suggest_panel() {
   const DampingSuggestion& d = s.damping;
   section_header(("Damping at dt = " + fmt(d.dt) + " s").c_str());
   if (d.empty) {
-    wrapped_colored(gui_amber(), ("No damping satisfies every criterion at this dt (" +
-                                  d.min_by + " vs " + d.max_by + ").").c_str());
+    wrapped_colored(gui_amber(), ("No damping satisfies every criterion at this dt (" + d.min_by +
+                                  " vs " + d.max_by + ").")
+                                     .c_str());
     ImGui::Text("largest dt stable at gamma %s: %s s", fmt(d.gamma_min).c_str(),
                 fmt(d.dt_max_at_gamma_min).c_str());
   } else {

@@ -1,10 +1,9 @@
 #include "ui/gui_export.hpp"
 
-#include <imgui.h>
-#include <backends/imgui_impl_opengl3.h>
-
 #include <GL/gl.h>
 #include <GL/glext.h>
+#include <backends/imgui_impl_opengl3.h>
+#include <imgui.h>
 
 #include <algorithm>
 #include <cmath>
@@ -31,7 +30,8 @@ Image render_plots_offscreen(const std::vector<PlotSpec>& plots, int columns, in
   const int n = static_cast<int>(plots.size());
   const int cols = std::clamp(columns, 1, std::max(n, 1));
   const int rows = std::max((n + cols - 1) / cols, 1);
-  const float cw = std::floor(w / static_cast<float>(cols)), ch = std::floor(h / static_cast<float>(rows));
+  const float cw = std::floor(w / static_cast<float>(cols)),
+              ch = std::floor(h / static_cast<float>(rows));
   for (int i = 0; i < n; ++i) {
     const ImVec2 tl(cw * static_cast<float>(i % cols), ch * static_cast<float>(i / cols));
     draw_plot(&dl, tl, ImVec2(cw, ch), plots[static_cast<size_t>(i)], style);
@@ -91,7 +91,8 @@ std::string export_runs(Tuner& tuner, const std::vector<PlotSpec>& plots, const 
   const ExportPaths paths = export_paths(dir, prefix);
   std::error_code ec;
   if (!dir.empty()) std::filesystem::create_directories(dir, ec);
-  const Image img = render_plots_offscreen(plots, 1, 1400, 500 * static_cast<int>(std::max<size_t>(plots.size(), 1)));
+  const Image img = render_plots_offscreen(
+      plots, 1, 1400, 500 * static_cast<int>(std::max<size_t>(plots.size(), 1)));
   write_png_atomic(img, paths.plots_png);
   export_csv(tuner, paths);
   return "wrote " + paths.plots_png + ", " + paths.traces_csv + ", " + paths.runs_csv;

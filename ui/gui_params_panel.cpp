@@ -38,7 +38,9 @@ std::string resolve_scene(const std::string& text, const std::string& scenes_dir
   return text;
 }
 
-bool key_pressed(ImGuiKey key) { return ImGui::IsKeyPressed(ImGui::GetKeyIndex(key), false); }
+bool key_pressed(ImGuiKey key) {
+  return ImGui::IsKeyPressed(ImGui::GetKeyIndex(key), false);
+}
 
 }  // namespace
 
@@ -110,7 +112,8 @@ void GuiApp::playback_controls() {
   if (ImGui::Button("Perturb", ImVec2(bw, 0))) t.perturb();
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("Apply the scene's perturbation again, now");
   int spf = t.playback().steps_per_frame;
-  ImGui::SetNextItemWidth(-ImGui::CalcTextSize("steps / frame").x - ImGui::GetStyle().ItemInnerSpacing.x);
+  ImGui::SetNextItemWidth(-ImGui::CalcTextSize("steps / frame").x -
+                          ImGui::GetStyle().ItemInnerSpacing.x);
   if (ImGui::SliderInt("steps / frame", &spf, 1, 1000, "%d", ImGuiSliderFlags_Logarithmic))
     t.playback().steps_per_frame = std::max(1, std::min(spf, 10000));
   ImGui::Checkbox("pause at the verdict (restored / not restored)", &t.playback().pause_at_verdict);
@@ -122,7 +125,8 @@ void GuiApp::parameters_panel() {
   scene_picker();
   section_header("Parameters");
   Params p = t.params();
-  const float label_w = ImGui::CalcTextSize("factor x upper").x + ImGui::GetStyle().ItemInnerSpacing.x;
+  const float label_w =
+      ImGui::CalcTextSize("factor x upper").x + ImGui::GetStyle().ItemInnerSpacing.x;
   ImGui::PushItemWidth(-label_w);
   bool changed = false;
   changed |= log_slider("m", &p.m, 1e-5, 10.0, "Node mass m (mass unit)");
@@ -146,7 +150,8 @@ void GuiApp::parameters_panel() {
   if (std::abs(rel - 1.0) < 1e-9) {
     wrapped_colored(gui_green(), u8"\u03B3 at the lower bound: critical damping");
   } else if (rel < 1.0) {
-    wrapped_colored(gui_amber(), (u8"\u03B3 below the lower bound (" + fmt(rel) + " x): underdamped").c_str());
+    wrapped_colored(gui_amber(),
+                    (u8"\u03B3 below the lower bound (" + fmt(rel) + " x): underdamped").c_str());
   } else {
     wrapped_colored(gui_green(), (u8"\u03B3 above the lower bound (" + fmt(rel) + " x)").c_str());
   }
@@ -164,8 +169,8 @@ void GuiApp::parameters_panel() {
         "upper: factor x upper bound (eq. 6)\nlower: the lower bound (eq. 5)");
   ImGui::BeginDisabled(p.policy != DampingPolicy::upper);
   double fmin = 0.0, fmax = 2.0;
-  changed |= ImGui::SliderScalar("factor x upper", ImGuiDataType_Double, &p.factor, &fmin, &fmax,
-                                 "%.3f");
+  changed |=
+      ImGui::SliderScalar("factor x upper", ImGuiDataType_Double, &p.factor, &fmin, &fmax, "%.3f");
   ImGui::EndDisabled();
   int integ = static_cast<int>(p.integrator);
   const char* integrators[] = {"semi-implicit Euler (paper)", "forward Euler", "Verlet", "RK4",

@@ -32,10 +32,14 @@ void row(const char* label, const std::string& value, const ImVec4* color = null
 
 ImVec4 outcome_color(Outcome o) {
   switch (o) {
-    case Outcome::restored: return gui_green();
-    case Outcome::diverged: return gui_red();
-    case Outcome::not_restored: return gui_amber();
-    case Outcome::running: break;
+    case Outcome::restored:
+      return gui_green();
+    case Outcome::diverged:
+      return gui_red();
+    case Outcome::not_restored:
+      return gui_amber();
+    case Outcome::running:
+      break;
   }
   return ImGui::GetStyle().Colors[ImGuiCol_Text];
 }
@@ -63,7 +67,8 @@ void GuiApp::status_panel() {
     row("mesh", std::to_string(m.node_count()) + " nodes, " + std::to_string(m.spring_count()) +
                     " springs" +
                     (s.springs_cut() > 0 ? " (" + std::to_string(s.springs_cut()) + " cut)" : ""));
-    row("iteration", std::to_string(s.state().iteration) + "   (t = " + fmt(s.state().time) + " s)");
+    row("iteration",
+        std::to_string(s.state().iteration) + "   (t = " + fmt(s.state().time) + " s)");
     const ImVec4 oc = outcome_color(r.outcome);
     row("outcome", outcome_text(r), &oc);
     const double thr = rules.restore_fraction * rules.reference;
@@ -78,7 +83,8 @@ void GuiApp::status_panel() {
     if (last != nullptr) {
       row("  |x - X|", fmt(last->watched_displacement) + " cm");
       row("  bounds", fmt(last->watched_lower) + " .. " + fmt(last->watched_upper));
-      row("  gamma", fmt(last->watched_gamma) + " (effective " + fmt(last->watched_gamma_eff) + ")");
+      row("  gamma",
+          fmt(last->watched_gamma) + " (effective " + fmt(last->watched_gamma_eff) + ")");
     }
     const ImVec4 amber = gui_amber();
     auto count_row = [&](const char* label, int now, long long total, bool warn_if_any) {
@@ -112,11 +118,13 @@ void GuiApp::runs_panel() {
     pin_name_.clear();
   }
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("Keep the current run's traces on the plots under this name\n"
-                      "(its parameters when left empty)");
+    ImGui::SetTooltip(
+        "Keep the current run's traces on the plots under this name\n"
+        "(its parameters when left empty)");
   int remove = -1;
   const ImGuiTableFlags tf = ImGuiTableFlags_SizingStretchProp | ImGuiTableFlags_ScrollY;
-  const float table_h = ImGui::GetContentRegionAvail().y - 3.4f * ImGui::GetFrameHeightWithSpacing();
+  const float table_h =
+      ImGui::GetContentRegionAvail().y - 3.4f * ImGui::GetFrameHeightWithSpacing();
   if (!t.pins().empty() && ImGui::BeginTable("pins", 4, tf, ImVec2(0, std::max(table_h, 60.0f)))) {
     ImGui::TableSetupColumn("show", ImGuiTableColumnFlags_WidthFixed);
     ImGui::TableSetupColumn("name", ImGuiTableColumnFlags_WidthStretch);
@@ -169,8 +177,9 @@ void GuiApp::runs_panel() {
     }
   }
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("Writes PREFIX_plots.png, PREFIX_traces.csv (one row per run and\n"
-                      "iteration) and PREFIX_runs.csv (one row per run), each atomically");
+    ImGui::SetTooltip(
+        "Writes PREFIX_plots.png, PREFIX_traces.csv (one row per run and\n"
+        "iteration) and PREFIX_runs.csv (one row per run), each atomically");
   if (!export_message_.empty()) {
     ImGui::SameLine();
     wrapped_colored(export_failed_ ? gui_red() : gui_green(), export_message_.c_str());

@@ -5,9 +5,15 @@
 namespace dampbound::ui {
 
 /// Colours of verdicts and warnings in the panels (dark theme).
-inline ImVec4 gui_red() { return ImVec4(1.0f, 0.42f, 0.38f, 1.0f); }
-inline ImVec4 gui_amber() { return ImVec4(1.0f, 0.75f, 0.3f, 1.0f); }
-inline ImVec4 gui_green() { return ImVec4(0.45f, 0.85f, 0.5f, 1.0f); }
+inline ImVec4 gui_red() {
+  return ImVec4(1.0f, 0.42f, 0.38f, 1.0f);
+}
+inline ImVec4 gui_amber() {
+  return ImVec4(1.0f, 0.75f, 0.3f, 1.0f);
+}
+inline ImVec4 gui_green() {
+  return ImVec4(0.45f, 0.85f, 0.5f, 1.0f);
+}
 
 /// A section title: a little space, the label in the header colour, a separator.
 inline void section_header(const char* label) {

@@ -48,7 +48,9 @@ bool on_segment(const Vec2f& a, const Vec2f& b, const Vec2f& c) {
          std::min(a.y(), b.y()) <= c.y() && c.y() <= std::max(a.y(), b.y());
 }
 
-int sign(double v) { return (v > 0) - (v < 0); }
+int sign(double v) {
+  return (v > 0) - (v < 0);
+}
 }  // namespace
 
 bool segments_intersect(const Vec2f& a0, const Vec2f& a1, const Vec2f& b0, const Vec2f& b1) {
@@ -62,8 +64,7 @@ bool segments_intersect(const Vec2f& a0, const Vec2f& a1, const Vec2f& b0, const
   return false;
 }
 
-std::vector<int> springs_crossing_screen(const Model& model,
-                                         const std::vector<ScreenPoint>& points,
+std::vector<int> springs_crossing_screen(const Model& model, const std::vector<ScreenPoint>& points,
                                          const Vec2f& p0, const Vec2f& p1) {
   std::vector<int> out;
   for (int s = 0; s < model.spring_count(); ++s) {

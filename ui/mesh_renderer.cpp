@@ -67,7 +67,9 @@ void set_color(std::uint8_t* out, ImU32 c) {
   out[3] = static_cast<std::uint8_t>((c >> 24) & 0xFF);
 }
 
-GLsizeiptr bytes(size_t n) { return static_cast<GLsizeiptr>(n); }
+GLsizeiptr bytes(size_t n) {
+  return static_cast<GLsizeiptr>(n);
+}
 
 /// The GL state render() changes, put back afterwards.
 struct SavedState {

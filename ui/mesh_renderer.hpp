@@ -7,8 +7,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/model.hpp"
 #include "core/bounds.hpp"
+#include "core/model.hpp"
 #include "ui/camera.hpp"
 
 namespace dampbound::ui {
@@ -16,14 +16,14 @@ namespace dampbound::ui {
 /// What one render draws.
 struct MeshDrawData {
   const Model* model = nullptr;
-  const std::vector<Vec3>* x = nullptr;              ///< current positions (cm)
+  const std::vector<Vec3>* x = nullptr;             ///< current positions (cm)
   const std::vector<NodeStatus>* status = nullptr;  ///< per node; empty: all "within"
-  std::uint64_t topology = 0;  ///< changes whenever model->springs changes
+  std::uint64_t topology = 0;                       ///< changes whenever model->springs changes
   Mat4f view_proj = Mat4f::Identity();
-  float point_size = 6.0f;     ///< node diameter (pixels)
+  float point_size = 6.0f;  ///< node diameter (pixels)
   bool springs = true;
-  bool anchors = false;        ///< lines from each anchored node to its rest position
-  int samples = 1;             ///< multisampling (1: none; 4 smooths lines, costs fill rate)
+  bool anchors = false;  ///< lines from each anchored node to its rest position
+  int samples = 1;       ///< multisampling (1: none; 4 smooths lines, costs fill rate)
   float background[4] = {0.12f, 0.13f, 0.15f, 1.0f};
 };
 
@@ -37,8 +37,8 @@ class MeshRenderer {
   MeshRenderer& operator=(const MeshRenderer&) = delete;
 
   /// Renders into a width x height colour texture (multisampled and resolved when
-  /// data.samples > 1 and available) and returns the texture's GL name (0 when GL failed). The draw framebuffer,
-  /// viewport and program bound before are bound again after.
+  /// data.samples > 1 and available) and returns the texture's GL name (0 when GL failed). The draw
+  /// framebuffer, viewport and program bound before are bound again after.
   unsigned render(const MeshDrawData& data, int width, int height);
 
   /// Deletes the GL objects (the context that made them must be current).

@@ -4,22 +4,32 @@ namespace dampbound::ui {
 
 ImU32 status_color(NodeStatus status) {
   switch (status) {
-    case NodeStatus::within: return IM_COL32(120, 200, 140, 255);       // soft green
-    case NodeStatus::clamped: return IM_COL32(250, 190, 40, 255);       // amber
-    case NodeStatus::violating: return IM_COL32(235, 60, 50, 255);      // red
-    case NodeStatus::unstabilisable: return IM_COL32(230, 60, 230, 255);  // magenta
-    case NodeStatus::fixed: return IM_COL32(110, 150, 255, 255);        // blue
+    case NodeStatus::within:
+      return IM_COL32(120, 200, 140, 255);  // soft green
+    case NodeStatus::clamped:
+      return IM_COL32(250, 190, 40, 255);  // amber
+    case NodeStatus::violating:
+      return IM_COL32(235, 60, 50, 255);  // red
+    case NodeStatus::unstabilisable:
+      return IM_COL32(230, 60, 230, 255);  // magenta
+    case NodeStatus::fixed:
+      return IM_COL32(110, 150, 255, 255);  // blue
   }
   return IM_COL32(200, 200, 200, 255);
 }
 
 const char* status_label(NodeStatus status) {
   switch (status) {
-    case NodeStatus::within: return "within bounds";
-    case NodeStatus::clamped: return "clamped by the policy";
-    case NodeStatus::violating: return "violating";
-    case NodeStatus::unstabilisable: return "unstabilisable";
-    case NodeStatus::fixed: return "fixed";
+    case NodeStatus::within:
+      return "within bounds";
+    case NodeStatus::clamped:
+      return "clamped by the policy";
+    case NodeStatus::violating:
+      return "violating";
+    case NodeStatus::unstabilisable:
+      return "unstabilisable";
+    case NodeStatus::fixed:
+      return "fixed";
   }
   return "?";
 }
@@ -28,16 +38,23 @@ const char* status_help(NodeStatus status) {
   switch (status) {
     case NodeStatus::within:
       return "effective gamma in [lower (eq. 5), upper (eq. 6)], as the user set it";
-    case NodeStatus::clamped: return "the policy changed gamma; the result is within the bounds";
-    case NodeStatus::violating: return "effective gamma outside [lower, upper]";
+    case NodeStatus::clamped:
+      return "the policy changed gamma; the result is within the bounds";
+    case NodeStatus::violating:
+      return "effective gamma outside [lower, upper]";
     case NodeStatus::unstabilisable:
       return "lower > upper: no damping satisfies both bounds (paper sec. 5)";
-    case NodeStatus::fixed: return "a fixed node: never moves, not judged";
+    case NodeStatus::fixed:
+      return "a fixed node: never moves, not judged";
   }
   return "";
 }
 
-ImU32 spring_color() { return IM_COL32(160, 175, 205, 190); }
-ImU32 watched_color() { return IM_COL32(255, 255, 255, 255); }
+ImU32 spring_color() {
+  return IM_COL32(160, 175, 205, 190);
+}
+ImU32 watched_color() {
+  return IM_COL32(255, 255, 255, 255);
+}
 
 }  // namespace dampbound::ui

@@ -1,8 +1,7 @@
 #include "ui/mesh_view.hpp"
 
-#include <imgui.h>
-
 #include <GL/gl.h>
+#include <imgui.h>
 
 #include <algorithm>
 #include <cmath>
@@ -17,7 +16,9 @@ namespace dampbound::ui {
 
 namespace {
 /// Draw-list callback: the next draw commands are opaque.
-void disable_blending(const ImDrawList*, const ImDrawCmd*) { glDisable(GL_BLEND); }
+void disable_blending(const ImDrawList*, const ImDrawCmd*) {
+  glDisable(GL_BLEND);
+}
 
 constexpr NodeStatus kLegend[] = {NodeStatus::within, NodeStatus::clamped, NodeStatus::violating,
                                   NodeStatus::unstabilisable, NodeStatus::fixed};
@@ -63,14 +64,16 @@ void MeshView::handle_input(Tuner& tuner, const Viewport& vp, bool hovered) {
   const bool moved = std::isfinite(d.x) && std::isfinite(d.y) && (d.x != 0.0f || d.y != 0.0f);
   if (moved && drag_ != Drag::none) drag_distance_ += std::abs(d.x) + std::abs(d.y);
   switch (drag_) {
-    case Drag::none: break;
+    case Drag::none:
+      break;
     case Drag::orbit:
       if (moved) camera_.orbit(d.x, d.y);
       if (!ImGui::IsMouseDown(ImGuiMouseButton_Left)) drag_ = Drag::none;
       break;
     case Drag::pan:
       if (moved) camera_.pan(d.x, d.y, vp.h);
-      if (!ImGui::IsMouseDown(ImGuiMouseButton_Right) && !ImGui::IsMouseDown(ImGuiMouseButton_Middle))
+      if (!ImGui::IsMouseDown(ImGuiMouseButton_Right) &&
+          !ImGui::IsMouseDown(ImGuiMouseButton_Middle))
         drag_ = Drag::none;
       break;
     case Drag::node: {
@@ -157,7 +160,8 @@ void MeshView::draw_overlays(const Tuner& tuner, const Viewport& vp) const {
   dl->PopClipRect();
   // Tooltips for the legend entries.
   const ImVec2 m = ImGui::GetIO().MousePos;
-  if (m.x >= box0.x && m.x <= box1.x && m.y >= box0.y && m.y <= box1.y && ImGui::IsWindowHovered()) {
+  if (m.x >= box0.x && m.x <= box1.x && m.y >= box0.y && m.y <= box1.y &&
+      ImGui::IsWindowHovered()) {
     const int i = std::clamp(static_cast<int>((m.y - box0.y - 5.0f) / line), 0, 4);
     ImGui::SetTooltip("%s", status_help(kLegend[i]));
   }
@@ -236,8 +240,8 @@ void MeshView::draw(Tuner& tuner) {
   const ImGuiIO& io = ImGui::GetIO();
   const int fb_w = static_cast<int>(size.x * io.DisplayFramebufferScale.x);
   const int fb_h = static_cast<int>(size.y * io.DisplayFramebufferScale.y);
-  const ImageKey key{tuner.state_version(), d.topology, d.view_proj, fb_w,
-                     fb_h, d.point_size, d.springs, d.anchors};
+  const ImageKey key{tuner.state_version(), d.topology, d.view_proj, fb_w, fb_h,
+                     d.point_size,          d.springs,  d.anchors};
   if (texture_ == 0 || !(key == drawn_)) {  // paused and still: the last image is kept
     texture_ = renderer_.render(d, fb_w, fb_h);
     drawn_ = key;

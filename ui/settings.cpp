@@ -38,17 +38,24 @@ bool parse_int(const std::string& v, int& out, int lo, int hi) {
 }
 
 bool parse_bool(const std::string& v, bool& out) {
-  if (v == "true" || v == "1") out = true;
-  else if (v == "false" || v == "0") out = false;
-  else return false;
+  if (v == "true" || v == "1")
+    out = true;
+  else if (v == "false" || v == "0")
+    out = false;
+  else
+    return false;
   return true;
 }
 
-const char* b(bool v) { return v ? "true" : "false"; }
+const char* b(bool v) {
+  return v ? "true" : "false";
+}
 
 }  // namespace
 
-GuiSettings default_gui_settings() { return GuiSettings{}; }
+GuiSettings default_gui_settings() {
+  return GuiSettings{};
+}
 
 std::string config_dir(const std::string& override_dir) {
   if (!override_dir.empty()) return override_dir;
@@ -101,12 +108,36 @@ std::optional<GuiSettings> parse_settings(const std::string& text, std::string* 
   int n = 0;
   // Each known key parses its value into s (or p); false means a bad value.
   const std::map<std::string, std::function<bool(const std::string&)>> keys = {
-      {"scene", [&](const std::string& v) { s.scene_path = v; return true; }},
-      {"m", [&](const std::string& v) { any_param = true; return parse_double(v, p.m); }},
-      {"kappa", [&](const std::string& v) { any_param = true; return parse_double(v, p.kappa); }},
-      {"gamma", [&](const std::string& v) { any_param = true; return parse_double(v, p.gamma); }},
-      {"dt", [&](const std::string& v) { any_param = true; return parse_double(v, p.dt); }},
-      {"factor", [&](const std::string& v) { any_param = true; return parse_double(v, p.factor); }},
+      {"scene",
+       [&](const std::string& v) {
+         s.scene_path = v;
+         return true;
+       }},
+      {"m",
+       [&](const std::string& v) {
+         any_param = true;
+         return parse_double(v, p.m);
+       }},
+      {"kappa",
+       [&](const std::string& v) {
+         any_param = true;
+         return parse_double(v, p.kappa);
+       }},
+      {"gamma",
+       [&](const std::string& v) {
+         any_param = true;
+         return parse_double(v, p.gamma);
+       }},
+      {"dt",
+       [&](const std::string& v) {
+         any_param = true;
+         return parse_double(v, p.dt);
+       }},
+      {"factor",
+       [&](const std::string& v) {
+         any_param = true;
+         return parse_double(v, p.factor);
+       }},
       {"policy",
        [&](const std::string& v) {
          any_param = true;
@@ -128,7 +159,8 @@ std::optional<GuiSettings> parse_settings(const std::string& text, std::string* 
          s.max_iterations = k;
          return true;
        }},
-      {"steps_per_frame", [&](const std::string& v) { return parse_int(v, s.steps_per_frame, 1, 10000); }},
+      {"steps_per_frame",
+       [&](const std::string& v) { return parse_int(v, s.steps_per_frame, 1, 10000); }},
       {"pause_at_verdict", [&](const std::string& v) { return parse_bool(v, s.pause_at_verdict); }},
       {"log_y", [&](const std::string& v) { return parse_bool(v, s.log_y); }},
       {"show_max", [&](const std::string& v) { return parse_bool(v, s.show_max); }},
@@ -141,10 +173,20 @@ std::optional<GuiSettings> parse_settings(const std::string& text, std::string* 
          s.point_size = static_cast<float>(d);
          return true;
        }},
-      {"export_dir", [&](const std::string& v) { s.export_dir = v; return true; }},
-      {"export_prefix", [&](const std::string& v) { s.export_prefix = v; return true; }},
-      {"window_width", [&](const std::string& v) { return parse_int(v, s.window_width, 0, 16384); }},
-      {"window_height", [&](const std::string& v) { return parse_int(v, s.window_height, 0, 16384); }},
+      {"export_dir",
+       [&](const std::string& v) {
+         s.export_dir = v;
+         return true;
+       }},
+      {"export_prefix",
+       [&](const std::string& v) {
+         s.export_prefix = v;
+         return true;
+       }},
+      {"window_width",
+       [&](const std::string& v) { return parse_int(v, s.window_width, 0, 16384); }},
+      {"window_height",
+       [&](const std::string& v) { return parse_int(v, s.window_height, 0, 16384); }},
   };
   while (std::getline(in, raw)) {
     ++n;

@@ -12,17 +12,17 @@ namespace dampbound::ui {
 
 /// The tuner's remembered state. Unset optionals mean "the scene's own".
 struct GuiSettings {
-  std::string scene_path;         ///< last scene file ("" = the default scene)
-  std::optional<Params> params;   ///< last parameters used with scene_path
+  std::string scene_path;        ///< last scene file ("" = the default scene)
+  std::optional<Params> params;  ///< last parameters used with scene_path
   std::optional<int> max_iterations;
   int steps_per_frame = 10;
   bool pause_at_verdict = false;
-  bool log_y = false;             ///< displacement plot on a log10 axis
-  bool show_max = true;           ///< plot the max displacement over all nodes
+  bool log_y = false;    ///< displacement plot on a log10 axis
+  bool show_max = true;  ///< plot the max displacement over all nodes
   bool show_springs = true;
   bool show_anchors = false;
-  float point_size = 5.0f;        ///< node size in the mesh view (pixels)
-  std::string export_dir;         ///< "" = the current directory
+  float point_size = 5.0f;  ///< node size in the mesh view (pixels)
+  std::string export_dir;   ///< "" = the current directory
   std::string export_prefix = "dampbound";
   int window_width = 0, window_height = 0;  ///< 0: the default size
 };

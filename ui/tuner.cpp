@@ -6,7 +6,6 @@
 #include <exception>
 #include <stdexcept>
 
-
 namespace dampbound::ui {
 
 std::string fmt(double x) {
@@ -19,10 +18,14 @@ std::string fmt(double x) {
 
 std::string outcome_text(const RunResult& r) {
   switch (r.outcome) {
-    case Outcome::running: return "running";
-    case Outcome::restored: return "restored at " + std::to_string(r.iterations);
-    case Outcome::diverged: return "diverged at " + std::to_string(r.iterations);
-    case Outcome::not_restored: return "not restored at " + std::to_string(r.iterations);
+    case Outcome::running:
+      return "running";
+    case Outcome::restored:
+      return "restored at " + std::to_string(r.iterations);
+    case Outcome::diverged:
+      return "diverged at " + std::to_string(r.iterations);
+    case Outcome::not_restored:
+      return "not restored at " + std::to_string(r.iterations);
   }
   return "?";
 }
@@ -31,12 +34,12 @@ std::string params_label(const Params& p) {
   std::string s = "gamma " + fmt(p.gamma) + ", m " + fmt(p.m) + ", kappa " + fmt(p.kappa) +
                   ", dt " + fmt(p.dt) + ", " + to_string(p.policy);
   if (p.policy == DampingPolicy::upper) s += " x" + fmt(p.factor);
-  if (p.integrator != Integrator::semi_implicit_euler) s += ", " + std::string(to_string(p.integrator));
+  if (p.integrator != Integrator::semi_implicit_euler)
+    s += ", " + std::string(to_string(p.integrator));
   return s;
 }
 
-Tuner::Tuner(SceneSpec scene)
-    : session_(std::make_unique<Session>(std::move(scene))) {}
+Tuner::Tuner(SceneSpec scene) : session_(std::make_unique<Session>(std::move(scene))) {}
 
 bool Tuner::open_scene(const std::string& path, std::string* error) {
   try {
@@ -108,7 +111,8 @@ int Tuner::step(int n) {
   }
   if (session_->trace().size() >= playback_.max_trace) {
     playing_ = false;
-    notice_ = "the trace is full (" + std::to_string(playback_.max_trace) + " steps): reset to go on";
+    notice_ =
+        "the trace is full (" + std::to_string(playback_.max_trace) + " steps): reset to go on";
   }
   total_steps_ += taken;
   if (taken > 0) ++state_version_;
@@ -172,7 +176,9 @@ void Tuner::unpin(size_t index) {
   if (index < pins_.size()) pins_.erase(pins_.begin() + static_cast<std::ptrdiff_t>(index));
 }
 
-ImU32 Tuner::current_color() const { return palette_color(0); }
+ImU32 Tuner::current_color() const {
+  return palette_color(0);
+}
 
 const std::vector<StepStats>& Tuner::reduced_trace() {
   return decimator_.update(session_->trace(), generation_);

@@ -132,9 +132,13 @@ class Tuner {
   /// The exact upper limit of gamma for the chosen integrator at rest (SPEC 7,
   /// core/linear_stability_exact.hpp), recomputed when the parameters or the springs change;
   /// nullopt when it is infinite or cannot be computed.
-  std::optional<double> exact_gamma_max() { return criteria_.exact_gamma_max(*session_, topology_); }
+  std::optional<double> exact_gamma_max() {
+    return criteria_.exact_gamma_max(*session_, topology_);
+  }
   /// Every stability criterion at the current state (issue 6), updated on each call.
-  const std::vector<CriterionResult>& criteria() { return criteria_.evaluate(*session_, topology_); }
+  const std::vector<CriterionResult>& criteria() {
+    return criteria_.evaluate(*session_, topology_);
+  }
   /// The criteria cache (the exact analysis; tests read its counters).
   TunerCriteria& criteria_state() { return criteria_; }
 

@@ -76,7 +76,9 @@ std::optional<double> TunerCriteria::exact_gamma_max(const Session& s, std::uint
   return e->gamma_hi;
 }
 
-TunerSuggest::~TunerSuggest() { wait(); }
+TunerSuggest::~TunerSuggest() {
+  wait();
+}
 
 void TunerSuggest::start(const SceneSpec& scene, const Params& params, const StopRules& rules) {
   if (busy()) return;
@@ -109,7 +111,8 @@ void TunerSuggest::wait() {
 
 Params with_best_gamma(const Params& current, const Suggestion& s) {
   Params p = current;
-  if (std::isfinite(s.damping.gamma_best) && s.damping.gamma_best >= 0) p.gamma = s.damping.gamma_best;
+  if (std::isfinite(s.damping.gamma_best) && s.damping.gamma_best >= 0)
+    p.gamma = s.damping.gamma_best;
   return p;
 }
 

@@ -44,9 +44,9 @@ class TunerCriteria {
 
 /// What the Suggest button produced, and for which parameters.
 struct Suggestion {
-  Params params;                ///< the parameters it was asked for
-  DampingSuggestion damping;    ///< damping range and fastest-settling gamma at params.dt
-  StepSuggestion step;          ///< largest stable dt at params.gamma
+  Params params;              ///< the parameters it was asked for
+  DampingSuggestion damping;  ///< damping range and fastest-settling gamma at params.dt
+  StepSuggestion step;        ///< largest stable dt at params.gamma
 };
 
 /// Runs suggest_damping and suggest_step on a worker thread (each verified through Sessions).

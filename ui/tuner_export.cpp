@@ -10,7 +10,9 @@
 namespace dampbound::ui {
 
 namespace {
-std::string current_label(const Tuner& t) { return "current: " + params_label(t.params()); }
+std::string current_label(const Tuner& t) {
+  return "current: " + params_label(t.params());
+}
 
 /// CSV field: quoted when it holds a comma, quote or newline.
 std::string csv_field(const std::string& s) {
@@ -23,14 +25,13 @@ std::string csv_field(const std::string& s) {
   return q + "\"";
 }
 
-void summary_row(std::ostream& out, const std::string& label, const std::string& scene,
-                 int watched, const Params& p, const RunResult& r) {
-  out << csv_field(label) << ',' << csv_field(scene) << ',' << watched << ','
-      << format_number(p.m) << ',' << format_number(p.kappa) << ',' << format_number(p.gamma)
-      << ',' << format_number(p.dt) << ',' << to_string(p.policy) << ','
-      << format_number(p.factor) << ',' << to_string(r.outcome) << ',' << r.iterations << ','
-      << format_number(r.max_displacement) << ',' << r.violations << ',' << r.unstabilisable
-      << '\n';
+void summary_row(std::ostream& out, const std::string& label, const std::string& scene, int watched,
+                 const Params& p, const RunResult& r) {
+  out << csv_field(label) << ',' << csv_field(scene) << ',' << watched << ',' << format_number(p.m)
+      << ',' << format_number(p.kappa) << ',' << format_number(p.gamma) << ','
+      << format_number(p.dt) << ',' << to_string(p.policy) << ',' << format_number(p.factor) << ','
+      << to_string(r.outcome) << ',' << r.iterations << ',' << format_number(r.max_displacement)
+      << ',' << r.violations << ',' << r.unstabilisable << '\n';
 }
 }  // namespace
 
@@ -38,7 +39,8 @@ ExportPaths export_paths(const std::string& dir, const std::string& prefix) {
   if (prefix.empty()) throw InputError("export: the file prefix is empty");
   if (prefix.find('/') != std::string::npos)
     throw InputError("export: the file prefix '" + prefix + "' contains '/'; use the folder field");
-  const std::filesystem::path base = dir.empty() ? std::filesystem::path(".") : std::filesystem::path(dir);
+  const std::filesystem::path base =
+      dir.empty() ? std::filesystem::path(".") : std::filesystem::path(dir);
   ExportPaths p;
   p.plots_png = (base / (prefix + "_plots.png")).string();
   p.traces_csv = (base / (prefix + "_traces.csv")).string();

@@ -17,15 +17,15 @@ PlotSpec tuner_displacement_plot(Tuner& tuner, const TunerPlotOptions& options) 
   const StopRules& rules = tuner.session().rules();
   const double threshold = rules.restore_fraction * rules.reference;
   const std::vector<StepStats>& current = tuner.reduced_trace();
-  PlotSpec p = displacement_plot({{current_run_label(tuner), &current, tuner.current_color()}},
-                                 options.log_y, threshold, options.show_max,
-                                 "Displacement of node " +
-                                     std::to_string(tuner.session().watched()));
+  PlotSpec p = displacement_plot(
+      {{current_run_label(tuner), &current, tuner.current_color()}}, options.log_y, threshold,
+      options.show_max, "Displacement of node " + std::to_string(tuner.session().watched()));
   if (options.show_pins) {
     std::vector<TraceView> views;
     for (const Pin& pin : tuner.pins())
       if (pin.visible)
-        views.push_back({pin.name + " (" + outcome_text(pin.result) + ")", &pin.reduced, pin.color});
+        views.push_back(
+            {pin.name + " (" + outcome_text(pin.result) + ")", &pin.reduced, pin.color});
     PlotSpec pins = displacement_plot(views, options.log_y, 0, false);
     // Pins first, so the live run is drawn on top of them.
     pins.series.insert(pins.series.end(), std::make_move_iterator(p.series.begin()),

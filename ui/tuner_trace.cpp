@@ -7,8 +7,12 @@ namespace dampbound::ui {
 
 namespace {
 /// min/max that ignore NaN on either side (std::fmin/fmax semantics).
-double lo_of(double a, double b) { return std::fmin(a, b); }
-double hi_of(double a, double b) { return std::fmax(a, b); }
+double lo_of(double a, double b) {
+  return std::fmin(a, b);
+}
+double hi_of(double a, double b) {
+  return std::fmax(a, b);
+}
 }  // namespace
 
 void merge_min(StepStats& lo, const StepStats& s) {
@@ -43,7 +47,8 @@ void merge_max(StepStats& hi, const StepStats& s) {
   hi.finite = hi.finite && s.finite;
 }
 
-TraceDecimator::TraceDecimator(size_t max_buckets) : max_buckets_(std::max<size_t>(max_buckets, 2)) {}
+TraceDecimator::TraceDecimator(size_t max_buckets)
+    : max_buckets_(std::max<size_t>(max_buckets, 2)) {}
 
 void TraceDecimator::add(const StepStats& s) {
   if (partial_.count == 0) {

@@ -3,21 +3,19 @@
 // export of the plots from inside a frame. PNGs go to $DAMPBOUND_UI_PNG_DIR, else
 // ui_test_output/.
 #if defined(DAMPBOUND_HAVE_EGL)
+#include <gtest/gtest.h>
+#include <imgui.h>
+
+#include <cstdlib>
+#include <filesystem>
+
+#include "core/scene.hpp"
 #include "ui/egl_host.hpp"
 #include "ui/gui_app.hpp"
 #include "ui/gui_export.hpp"
 #include "ui/image.hpp"
 #include "ui/mesh_style.hpp"
 #include "ui/tuner_plots.hpp"
-
-#include <imgui.h>
-
-#include <gtest/gtest.h>
-
-#include <cstdlib>
-#include <filesystem>
-
-#include "core/scene.hpp"
 
 namespace dampbound::ui {
 namespace {
@@ -53,21 +51,26 @@ TEST(GuiRender, WholeWindowHeadless) {
   ASSERT_EQ(app.tuner().pins().size(), 2u);
   const int frames = 3;
   std::string export_summary;
-  const Image img = host.render_frames(1280, 800, [&](FrameInfo& info) {
-    app.frame(info);
-    if (info.index == frames - 1) {
-      // Export from inside a frame, as the button does.
-      Tuner& t = app.tuner();
-      export_summary = export_runs(t, {tuner_displacement_plot(t, {}), tuner_envelope_plot(t, {})},
-                                   (config / "export").string(), "test");
-    }
-  }, frames);
+  const Image img = host.render_frames(
+      1280, 800,
+      [&](FrameInfo& info) {
+        app.frame(info);
+        if (info.index == frames - 1) {
+          // Export from inside a frame, as the button does.
+          Tuner& t = app.tuner();
+          export_summary =
+              export_runs(t, {tuner_displacement_plot(t, {}), tuner_envelope_plot(t, {})},
+                          (config / "export").string(), "test");
+        }
+      },
+      frames);
   EXPECT_EQ(app.tuner().session().state().iteration, frames * 4);
   EXPECT_FALSE(is_blank(img));
   // The mesh view drew its nodes: many pixels of the "within bounds" colour.
   EXPECT_GT(count_color(img, rgba_from_u32(status_color(NodeStatus::within)), 10), 200);
   // The pinned runs' colours are on the plots.
-  for (const Pin& p : app.tuner().pins()) EXPECT_GT(count_color(img, rgba_from_u32(p.color), 12), 20);
+  for (const Pin& p : app.tuner().pins())
+    EXPECT_GT(count_color(img, rgba_from_u32(p.color), 12), 20);
   write_png_atomic(img, out_path("gui_window.png"));
   // The export wrote a readable, non-blank figure and the CSVs.
   EXPECT_NE(export_summary.find("test_plots.png"), std::string::npos);
@@ -159,45 +162,72 @@ TEST(GuiRender, MouseWatchesDragsAndCutsInTheMeshView) {
   GuiApp app(o);
   const int watch_node = 100, drag_node = 200;
   // Hovering a node shows its state and bounds.
-  const Image hover = host.render_frames(1280, 800, [&](FrameInfo& info) {
-    app.frame(info);
-    mouse(on_screen(app, watch_node), false);
-  }, 3);
+  const Image hover = host.render_frames(
+      1280, 800,
+      [&](FrameInfo& info) {
+        app.frame(info);
+        mouse(on_screen(app, watch_node), false);
+      },
+      3);
   write_png_atomic(hover, out_path("gui_hover.png"));
   double y_before = 0;
   int watched_after_click = -1;
   ImVec2 cut_from, cut_to;
-  host.render_frames(1280, 800, [&](FrameInfo& info) {
-    app.frame(info);
-    const ImVec2 a = on_screen(app, watch_node), b = on_screen(app, drag_node);
-    switch (info.index) {
-      case 0: mouse(a, false); break;  // hover the node
-      case 1: mouse(a, true); break;   // press
-      case 2: mouse(a, false); break;  // release without moving: a click
-      case 3:
-        watched_after_click = app.tuner().session().watched();
-        y_before = app.tuner().session().state().x[drag_node].y();
-        mouse(b, false);
-        break;
-      case 4: mouse(b, true); break;
-      case 5: mouse(ImVec2(b.x, b.y - 20), true); break;  // drag upwards on the screen
-      case 6: mouse(ImVec2(b.x, b.y - 40), true); break;
-      case 7: mouse(ImVec2(b.x, b.y - 40), false); break;
-      case 8: {
-        // The cut tool: a line across the middle of the view.
-        app.mesh_view().cut_tool = true;
-        const Viewport& vp = app.mesh_view().viewport();
-        cut_from = ImVec2(vp.x + vp.w * 0.5f, vp.y + 5);
-        cut_to = ImVec2(vp.x + vp.w * 0.5f, vp.y + vp.h - 5);
-        mouse(cut_from, false);
-        break;
-      }
-      case 9: mouse(cut_from, true); break;
-      case 10: mouse(cut_to, true); break;
-      case 11: mouse(cut_to, false); break;
-      default: break;
-    }
-  }, 13);
+  host.render_frames(
+      1280, 800,
+      [&](FrameInfo& info) {
+        app.frame(info);
+        const ImVec2 a = on_screen(app, watch_node), b = on_screen(app, drag_node);
+        switch (info.index) {
+          case 0:
+            mouse(a, false);
+            break;  // hover the node
+          case 1:
+            mouse(a, true);
+            break;  // press
+          case 2:
+            mouse(a, false);
+            break;  // release without moving: a click
+          case 3:
+            watched_after_click = app.tuner().session().watched();
+            y_before = app.tuner().session().state().x[drag_node].y();
+            mouse(b, false);
+            break;
+          case 4:
+            mouse(b, true);
+            break;
+          case 5:
+            mouse(ImVec2(b.x, b.y - 20), true);
+            break;  // drag upwards on the screen
+          case 6:
+            mouse(ImVec2(b.x, b.y - 40), true);
+            break;
+          case 7:
+            mouse(ImVec2(b.x, b.y - 40), false);
+            break;
+          case 8: {
+            // The cut tool: a line across the middle of the view.
+            app.mesh_view().cut_tool = true;
+            const Viewport& vp = app.mesh_view().viewport();
+            cut_from = ImVec2(vp.x + vp.w * 0.5f, vp.y + 5);
+            cut_to = ImVec2(vp.x + vp.w * 0.5f, vp.y + vp.h - 5);
+            mouse(cut_from, false);
+            break;
+          }
+          case 9:
+            mouse(cut_from, true);
+            break;
+          case 10:
+            mouse(cut_to, true);
+            break;
+          case 11:
+            mouse(cut_to, false);
+            break;
+          default:
+            break;
+        }
+      },
+      13);
   EXPECT_EQ(watched_after_click, watch_node);
   EXPECT_EQ(app.tuner().session().watched(), drag_node);
   EXPECT_GT(app.tuner().session().state().x[drag_node].y(), y_before + 0.5);  // moved up

@@ -14,14 +14,14 @@ namespace {
 TEST(SegmentsIntersect, CrossingParallelTouchingCollinear) {
   const Vec2f o(0, 0), x(10, 0), y(0, 10), xy(10, 10);
   EXPECT_TRUE(segments_intersect(o, xy, Vec2f(0, 10), Vec2f(10, 0)));  // an X
-  EXPECT_FALSE(segments_intersect(o, x, Vec2f(0, 1), Vec2f(10, 1)));    // parallel
-  EXPECT_TRUE(segments_intersect(o, x, Vec2f(5, 0), Vec2f(5, 5)));      // T: touching
-  EXPECT_TRUE(segments_intersect(o, x, x, xy));                         // shared end
-  EXPECT_TRUE(segments_intersect(o, x, Vec2f(5, 0), Vec2f(15, 0)));     // collinear overlap
-  EXPECT_FALSE(segments_intersect(o, x, Vec2f(11, 0), Vec2f(15, 0)));   // collinear apart
-  EXPECT_FALSE(segments_intersect(o, y, Vec2f(1, 5), Vec2f(3, 5)));     // short of it
-  EXPECT_TRUE(segments_intersect(o, x, Vec2f(3, 0), Vec2f(3, 0)));      // a point on it
-  EXPECT_FALSE(segments_intersect(o, x, Vec2f(3, 1), Vec2f(3, 1)));     // a point off it
+  EXPECT_FALSE(segments_intersect(o, x, Vec2f(0, 1), Vec2f(10, 1)));   // parallel
+  EXPECT_TRUE(segments_intersect(o, x, Vec2f(5, 0), Vec2f(5, 5)));     // T: touching
+  EXPECT_TRUE(segments_intersect(o, x, x, xy));                        // shared end
+  EXPECT_TRUE(segments_intersect(o, x, Vec2f(5, 0), Vec2f(15, 0)));    // collinear overlap
+  EXPECT_FALSE(segments_intersect(o, x, Vec2f(11, 0), Vec2f(15, 0)));  // collinear apart
+  EXPECT_FALSE(segments_intersect(o, y, Vec2f(1, 5), Vec2f(3, 5)));    // short of it
+  EXPECT_TRUE(segments_intersect(o, x, Vec2f(3, 0), Vec2f(3, 0)));     // a point on it
+  EXPECT_FALSE(segments_intersect(o, x, Vec2f(3, 1), Vec2f(3, 1)));    // a point off it
 }
 
 TEST(PickNode, NearestWithinRadiusAndFrontMostOnTies) {

@@ -161,7 +161,10 @@ TEST(Settings, ConfigDirFollowsXdgThenHome) {
   unsetenv("XDG_CONFIG_HOME");
   EXPECT_EQ(config_dir(""), "/home/u/.config/dampbound");
   if (xdg) setenv("XDG_CONFIG_HOME", saved_xdg.c_str(), 1);
-  if (home) setenv("HOME", saved_home.c_str(), 1); else unsetenv("HOME");
+  if (home)
+    setenv("HOME", saved_home.c_str(), 1);
+  else
+    unsetenv("HOME");
 }
 
 TEST(Settings, ImGuiIniCheck) {

@@ -50,7 +50,7 @@ TEST(TunerPlots, PinsAreOverlaidUntilHiddenOrRemoved) {
   EXPECT_TRUE(has_series(d, "current"));
   EXPECT_TRUE(has_series(d, "max over nodes"));
   ASSERT_EQ(d.hlines.size(), 1u);
-  EXPECT_DOUBLE_EQ(d.hlines[0].y, 0.05);  // 1 % of the 5 cm perturbation
+  EXPECT_DOUBLE_EQ(d.hlines[0].y, 0.05);                     // 1 % of the 5 cm perturbation
   EXPECT_EQ(d.series.back().label.rfind("current", 0), 0u);  // live run drawn last
   PlotSpec e = tuner_envelope_plot(t, o);
   EXPECT_TRUE(has_series(e, "slow one"));
@@ -131,8 +131,10 @@ TEST(TunerExport, LongCsvHasOneHeaderAndARunColumn) {
   std::string line;
   int rows = 0, headers = 0, pinned = 0;
   while (std::getline(in, line)) {
-    if (line.rfind("run,iteration", 0) == 0) ++headers;
-    else ++rows;
+    if (line.rfind("run,iteration", 0) == 0)
+      ++headers;
+    else
+      ++rows;
     if (line.rfind("\"a, quoted\",", 0) == 0) ++pinned;
   }
   EXPECT_EQ(headers, 1);
@@ -155,7 +157,8 @@ TEST(TunerExport, WritesFilesAtomicallyAndRejectsBadPrefixes) {
   EXPECT_TRUE(std::filesystem::exists(p.traces_csv));
   EXPECT_TRUE(std::filesystem::exists(p.runs_csv));
   int files = 0;
-  for (const auto& e : std::filesystem::directory_iterator(dir / "sub")) files += e.is_regular_file();
+  for (const auto& e : std::filesystem::directory_iterator(dir / "sub"))
+    files += e.is_regular_file();
   EXPECT_EQ(files, 2);  // no temporary file left behind
   EXPECT_THROW(export_paths(dir.string(), "a/b"), InputError);
   EXPECT_THROW(export_paths(dir.string(), ""), InputError);

@@ -57,7 +57,8 @@ TEST(TraceDecimator, LongTracesStayBoundedAndKeepTheExtremes) {
   for (size_t i = 1; i < r.size(); ++i) EXPECT_LE(r[i - 1].iteration, r[i].iteration);
   EXPECT_TRUE(std::any_of(r.begin(), r.end(),
                           [](const StepStats& s) { return std::isinf(s.watched_upper); }));
-  EXPECT_TRUE(std::any_of(r.begin(), r.end(), [](const StepStats& s) { return s.violating == 12; }));
+  EXPECT_TRUE(
+      std::any_of(r.begin(), r.end(), [](const StepStats& s) { return s.violating == 12; }));
 }
 
 TEST(TraceDecimator, IncrementalUpdatesEqualOneShot) {
