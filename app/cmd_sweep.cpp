@@ -44,11 +44,6 @@ struct SweepArgs {
               *gamma_opt = nullptr, *dt_opt = nullptr, *factor_opt = nullptr, *policy_opt = nullptr;
 };
 
-std::string read_text(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), {});
-}
-
 /// The sweep's definition: preset, then flags, then the scene's own values.
 SweepSpec make_spec(const SweepArgs& a, const SceneSpec& scene) {
   std::string m = format_number(scene.params.m), kappa = format_number(scene.params.kappa);
@@ -106,7 +101,7 @@ SweepSpec make_spec(const SweepArgs& a, const SceneSpec& scene) {
 int run(const SweepArgs& a) {
   SceneSpec scene = load_scene_arg(a.scene);
   SweepRequest rq;
-  rq.scene_text = read_text(scene.path);
+  rq.scene_text = read_file_text(scene.path);
   rq.spec = make_spec(a, scene);
   parse_shard(a.shard, rq.shard, rq.shards);
   auto writable = [](const std::string& flag, const std::string& path) {

@@ -45,11 +45,6 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-std::string read_text(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), {});
-}
-
 SweepOutcome reduced_sweep(const ReproduceArgs& a, const SceneSpec& scene, bool upper) {
   SweepOutcome o;
   o.name = upper ? "upper" : "lower";
@@ -62,7 +57,7 @@ SweepOutcome reduced_sweep(const ReproduceArgs& a, const SceneSpec& scene, bool 
   std::snprintf(axis, sizeof axis, "%g:0.1:%g", step_q * 1e-4, step_q * 1e-4);
   SweepRequest rq;
   rq.scene = scene;
-  rq.scene_text = read_text(scene.path);
+  rq.scene_text = read_file_text(scene.path);
   rq.spec.m = parse_axis("--m", axis, AxisDomain::positive);
   rq.spec.kappa = parse_axis("--kappa", axis, AxisDomain::positive);
   rq.spec.dt = parse_axis("--dt", "0.05", AxisDomain::positive);

@@ -10,6 +10,9 @@ namespace dampbound {
 /// a half-written file. Throws InputError naming the path when it cannot be written.
 void write_file_atomic(const std::string& path, const std::function<void(std::ostream&)>& write);
 
+/// The whole file as bytes; InputError naming the path when it cannot be read.
+std::string read_file_text(const std::string& path);
+
 /// Fails early (InputError naming the path) when PATH's directory cannot take a new file.
 void check_writable(const std::string& path);
 

@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "core/error.hpp"
+#include "core/io.hpp"
 #include "core/scene.hpp"
 
 namespace dampbound {
@@ -402,12 +403,9 @@ SceneSpec parse_scene(const std::string& text, const std::string& path) {
 }
 
 SceneSpec load_scene(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": cannot open the scene file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw InputError(path + ": cannot read the scene file");
-  return parse_scene(text.str(), path);
+  std::ifstream probe(path, std::ios::binary);
+  if (!probe) throw InputError(path + ": cannot open the scene file");
+  return parse_scene(read_file_text(path), path);
 }
 
 }  // namespace dampbound
