@@ -28,6 +28,7 @@ struct GuiArgs {
   std::string scene, screenshot, size, config_dir;
   int frames = 0, steps_per_frame = 0;
   bool stats = false, play = false, demo = false;
+  std::string tab;
   ParamFlags flags;
 };
 
@@ -63,6 +64,15 @@ void print_stats(const GuiArgs& a, ui::GuiApp& app, const ui::WindowRun& run,
       to_string(s.params().policy), app.tuner().pins().size(), json_string(renderer).c_str());
   (void)a;
 }
+
+/// The window's title of a --tab value.
+std::string tab_title(const std::string& tab) {
+  if (tab == "criteria") return "Criteria";
+  if (tab == "pins") return "Pins & export";
+  if (tab == "suggest") return "Suggest";
+  return "Status";
+}
+
 #endif
 
 int run(GuiArgs& a) {
@@ -90,6 +100,7 @@ int run(GuiArgs& a) {
         "gui: no display (DISPLAY is not set): run it under `xvfb-run -a`, or use `dampbound "
         "figure` for headless plots");
   ui::GuiApp app(std::move(o));
+  if (!a.tab.empty()) app.select_tab(tab_title(a.tab));
   if (width == 0) {
     const auto remembered = app.remembered_window_size();
     width = remembered.first > 0 ? remembered.first : 1600;
@@ -141,6 +152,8 @@ std::function<int()> setup(CLI::App& root) {
   cmd->add_option("--config-dir", a->config_dir,
                   "settings folder (default $XDG_CONFIG_HOME/dampbound or ~/.config/dampbound)");
   cmd->add_flag("--play", a->play, "start playing");
+  cmd->add_option("--tab", a->tab, "open this tab first: status, criteria, pins or suggest")
+      ->check(CLI::IsMember({"status", "criteria", "pins", "suggest"}));
   cmd->add_flag("--demo", a->demo,
                 "pin a run at a quarter of the lower bound and one at it before the first frame");
   a->flags.add_to(cmd, true);

@@ -61,6 +61,16 @@ void Session::displace(int node, const Vec3& offset) {
   if (!model_.fixed[static_cast<size_t>(node)]) state_.x[static_cast<size_t>(node)] += offset;
 }
 
+SceneSpec Session::current_scene() const {
+  SceneSpec s = scene_;
+  s.model = model_;  // set_params is applied again by make_model, which is harmless
+  s.cuts.clear();
+  // step_once applies a cut due at iteration k before the step that leaves iteration k.
+  for (const CutEvent& c : scene_.cuts)
+    if (c.iteration >= state_.iteration) s.cuts.push_back(c);
+  return s;
+}
+
 int Session::cut(const std::vector<int>& springs) {
   const int before = model_.spring_count();
   remove_springs(model_, springs, params_);

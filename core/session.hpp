@@ -38,6 +38,10 @@ class Session {
   int cut(const std::vector<int>& springs);
 
   const SceneSpec& scene() const { return scene_; }
+  /// The scene as this run has it now: its springs as cut so far (from the scene's own cuts
+  /// or by hand), the scene's cuts not reached yet, everything else as loaded. What a
+  /// suggestion or a fresh run for "this mesh" starts from.
+  SceneSpec current_scene() const;
   const Model& model() const { return model_; }
   const State& state() const { return state_; }
   const StepWorkspace& workspace() const { return ws_; }

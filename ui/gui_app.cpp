@@ -92,6 +92,7 @@ GuiApp::GuiApp(GuiOptions options) : options_(std::move(options)) {
   pb.pause_at_verdict = settings_.pause_at_verdict;
   plot_options_.log_y = settings_.log_y;
   plot_options_.show_max = settings_.show_max;
+  tuner_->criteria_state().set_at_current_state(settings_.exact_at_state);
   mesh_.options.show_springs = settings_.show_springs;
   mesh_.options.show_anchors = settings_.show_anchors;
   mesh_.options.point_size = settings_.point_size;
@@ -142,6 +143,7 @@ GuiSettings GuiApp::current_settings() const {
   s.pause_at_verdict = tuner_->playback().pause_at_verdict;
   s.log_y = plot_options_.log_y;
   s.show_max = plot_options_.show_max;
+  s.exact_at_state = tuner_->criteria_state().at_current_state();
   s.show_springs = mesh_.options.show_springs;
   s.show_anchors = mesh_.options.show_anchors;
   s.point_size = mesh_.options.point_size;
@@ -220,7 +222,7 @@ void GuiApp::release_gl() {
 }
 
 void GuiApp::start_suggest() {
-  suggest_.start(tuner_->scene(), tuner_->params(), tuner_->session().rules());
+  suggest_.start(tuner_->session());
 }
 
 FrameFn GuiApp::frame_fn() {

@@ -40,9 +40,22 @@ void run_line(const VerifiedRun& r) {
 void GuiApp::criteria_panel() {
   Tuner& t = *tuner_;
   const std::vector<CriterionResult>& rows = t.criteria();
-  const ExactStability* e = t.criteria_state().exact(t.session(), t.topology());
-  ImGui::TextDisabled("at iteration %d; exact analysis at rest (%s)", t.session().state().iteration,
-                      e != nullptr ? to_string(e->method) : "unavailable");
+  TunerCriteria& c = t.criteria_state();
+  bool at_state = c.at_current_state();
+  if (ImGui::Checkbox("linearise at the current state", &at_state))
+    c.set_at_current_state(at_state);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip(
+        "The exact analysis (SPEC 7) linearises the forces at rest (off) or at the\n"
+        "current positions (on: it follows the run, refreshed every 0.2 s or so).");
+  const ExactStability* e = t.exact();
+  const std::string where = c.at_current_state()
+                                ? "at iteration " + std::to_string(c.exact_iteration())
+                                : std::string("at rest");
+  ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
+  ImGui::TextWrapped("at iteration %d; exact analysis %s (%s)", t.session().state().iteration,
+                     where.c_str(), e != nullptr ? to_string(e->method) : "unavailable");
+  ImGui::PopStyleColor();
   const ImGuiTableFlags tf = ImGuiTableFlags_SizingStretchProp | ImGuiTableFlags_ScrollY |
                              ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerH;
   if (!ImGui::BeginTable("criteria", 3, tf)) return;
@@ -75,7 +88,7 @@ void GuiApp::suggest_panel() {
     ImGui::SetTooltip(
         "The damping range every criterion accepts at this dt, the fastest-settling\n"
         "gamma in it, and the largest stable dt at this gamma; each verified by a\n"
-        "run of the scene as loaded (cuts made here are not included).");
+        "run of the mesh as it is now (with the cuts made so far).");
   if (suggest_.busy()) {
     ImGui::SameLine();
     ImGui::TextDisabled("computing and verifying...");
@@ -84,6 +97,9 @@ void GuiApp::suggest_panel() {
   if (!suggest_.result()) return;
   const Suggestion& s = *suggest_.result();
   const DampingSuggestion& d = s.damping;
+  if (s.springs_cut > 0)
+    ImGui::TextDisabled("for the mesh as cut: %d springs, %d cut away", s.springs,
+                        s.springs_cut);
   section_header(("Damping at dt = " + fmt(d.dt) + " s").c_str());
   if (d.empty) {
     wrapped_colored(gui_amber(), ("No damping satisfies every criterion at this dt (" + d.min_by +

@@ -85,6 +85,7 @@ std::string serialize_settings(const GuiSettings& s) {
   o << "pause_at_verdict = " << b(s.pause_at_verdict) << "\n";
   o << "log_y = " << b(s.log_y) << "\n";
   o << "show_max = " << b(s.show_max) << "\n";
+  o << "exact_at_state = " << b(s.exact_at_state) << "\n";
   o << "show_springs = " << b(s.show_springs) << "\n";
   o << "show_anchors = " << b(s.show_anchors) << "\n";
   o << "point_size = " << format_number(s.point_size) << "\n";
@@ -164,6 +165,8 @@ std::optional<GuiSettings> parse_settings(const std::string& text, std::string* 
       {"pause_at_verdict", [&](const std::string& v) { return parse_bool(v, s.pause_at_verdict); }},
       {"log_y", [&](const std::string& v) { return parse_bool(v, s.log_y); }},
       {"show_max", [&](const std::string& v) { return parse_bool(v, s.show_max); }},
+      {"exact_at_state",
+       [&](const std::string& v) { return parse_bool(v, s.exact_at_state); }},
       {"show_springs", [&](const std::string& v) { return parse_bool(v, s.show_springs); }},
       {"show_anchors", [&](const std::string& v) { return parse_bool(v, s.show_anchors); }},
       {"point_size",

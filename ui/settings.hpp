@@ -19,6 +19,7 @@ struct GuiSettings {
   bool pause_at_verdict = false;
   bool log_y = false;    ///< displacement plot on a log10 axis
   bool show_max = true;  ///< plot the max displacement over all nodes
+  bool exact_at_state = false;  ///< exact analysis linearised at the current state
   bool show_springs = true;
   bool show_anchors = false;
   float point_size = 5.0f;  ///< node size in the mesh view (pixels)

@@ -129,16 +129,19 @@ class Tuner {
   long long total_steps() const { return total_steps_; }
   double step_seconds() const { return step_seconds_; }
 
-  /// The exact upper limit of gamma for the chosen integrator at rest (SPEC 7,
-  /// core/linear_stability_exact.hpp), recomputed when the parameters or the springs change;
-  /// nullopt when it is infinite or cannot be computed.
+  /// The exact upper limit of gamma for the chosen integrator (SPEC 7,
+  /// core/linear_stability_exact.hpp), at rest or at the current state (TunerCriteria),
+  /// recomputed when the parameters or the springs change (or the state, when it follows
+  /// it); nullopt when it is infinite or cannot be computed.
   std::optional<double> exact_gamma_max() {
-    return criteria_.exact_gamma_max(*session_, topology_);
+    return criteria_.exact_gamma_max(*session_, topology_, state_version_);
   }
   /// Every stability criterion at the current state (issue 6), updated on each call.
   const std::vector<CriterionResult>& criteria() {
-    return criteria_.evaluate(*session_, topology_);
+    return criteria_.evaluate(*session_, topology_, state_version_);
   }
+  /// The exact analysis as the criteria use it (null when unavailable).
+  const ExactStability* exact() { return criteria_.exact(*session_, topology_, state_version_); }
   /// The criteria cache (the exact analysis; tests read its counters).
   TunerCriteria& criteria_state() { return criteria_; }
 

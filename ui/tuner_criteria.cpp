@@ -1,5 +1,6 @@
 #include "ui/tuner_criteria.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <exception>
@@ -25,24 +26,42 @@ bool uniform_rate(const Model& m) {
 }
 }  // namespace
 
-const ExactStability* TunerCriteria::exact(const Session& s, std::uint64_t topology) {
+void TunerCriteria::set_at_current_state(bool on) {
+  if (on == at_state_) return;
+  at_state_ = on;
+  have_key_ = false;  // recompute at the next call, unthrottled
+  last_seconds_ = 0;
+}
+
+const ExactStability* TunerCriteria::exact(const Session& s, std::uint64_t topology,
+                                           std::uint64_t state) {
   using Clock = std::chrono::steady_clock;
   const double now = std::chrono::duration<double>(Clock::now().time_since_epoch()).count();
-  const bool changed = !have_key_ || topology != topology_ || !same_key(key_, s.params());
-  // On a large mesh the analysis takes long: while a slider is dragged, keep the last result
-  // and recompute at most every few durations, so the window stays responsive.
-  const bool throttled = exact_ && last_seconds_ > 0.01 && now - last_time_ < 4 * last_seconds_;
+  const bool moved = at_state_ && state != state_;
+  const bool changed =
+      !have_key_ || topology != topology_ || !same_key(key_, s.params()) || moved;
+  // On a large mesh the analysis takes long: while a slider is dragged (or the run goes on,
+  // when it follows the state), keep the last result and recompute at most every few
+  // durations, so the window stays responsive.
+  const double slow = last_seconds_ > 0.01 ? 4 * last_seconds_ : 0.0;
+  const double wait = at_state_ ? std::max(follow_interval_, slow) : slow;
+  const bool throttled = have_key_ && exact_ && now - last_time_ < wait;
   if (changed && !throttled) {
     last_time_ = now;
     have_key_ = true;
     topology_ = topology;
+    state_ = state;
     key_ = s.params();
     exact_.reset();
     ++exact_runs_;
+    const std::vector<Vec3>& x = at_state_ ? s.state().x : s.model().rest;
+    exact_iteration_ = at_state_ ? s.state().iteration : 0;
+    bool finite = true;
+    for (const Vec3& p : x) finite = finite && p.allFinite();
     try {
       ExactOptions o;
       o.with_radius = uniform_rate(s.model());  // Arnoldi on a non-uniform mesh can take seconds
-      exact_ = exact_stability(s.model(), s.model().rest, s.params(), o);
+      if (finite) exact_ = exact_stability(s.model(), x, s.params(), o);
     } catch (const std::exception&) {
       exact_.reset();
     }
@@ -53,9 +72,10 @@ const ExactStability* TunerCriteria::exact(const Session& s, std::uint64_t topol
 }
 
 const std::vector<CriterionResult>& TunerCriteria::evaluate(const Session& s,
-                                                            std::uint64_t topology) {
+                                                            std::uint64_t topology,
+                                                            std::uint64_t state) {
   results_.clear();
-  const ExactStability* e = exact(s, topology);
+  const ExactStability* e = exact(s, topology, state);
   try {
     if (e != nullptr) {
       results_ = all_criteria(s.model(), s.state(), s.params(), *e);
@@ -70,8 +90,9 @@ const std::vector<CriterionResult>& TunerCriteria::evaluate(const Session& s,
   return results_;
 }
 
-std::optional<double> TunerCriteria::exact_gamma_max(const Session& s, std::uint64_t topology) {
-  const ExactStability* e = exact(s, topology);
+std::optional<double> TunerCriteria::exact_gamma_max(const Session& s, std::uint64_t topology,
+                                                     std::uint64_t state) {
+  const ExactStability* e = exact(s, topology, state);
   if (e == nullptr || !std::isfinite(e->gamma_hi) || !(e->gamma_hi > 0)) return std::nullopt;
   return e->gamma_hi;
 }
@@ -80,12 +101,19 @@ TunerSuggest::~TunerSuggest() {
   wait();
 }
 
-void TunerSuggest::start(const SceneSpec& scene, const Params& params, const StopRules& rules) {
+void TunerSuggest::start(const Session& session) {
+  start(session.current_scene(), session.params(), session.rules(), session.springs_cut());
+}
+
+void TunerSuggest::start(const SceneSpec& scene, const Params& params, const StopRules& rules,
+                         int cut) {
   if (busy()) return;
   error_.clear();
-  pending_ = std::async(std::launch::async, [scene, params, rules] {
+  pending_ = std::async(std::launch::async, [scene, params, rules, cut] {
     Suggestion s;
     s.params = params;
+    s.springs = scene.model.spring_count();
+    s.springs_cut = cut;
     s.damping = suggest_damping(scene, params, rules);
     s.step = suggest_step(scene, params, rules);
     return s;

@@ -15,29 +15,46 @@
 
 namespace dampbound::ui {
 
-/// The criteria of a session. The exact linear analysis is taken at the rest state (its
-/// linearisation point, as `dampbound bounds SCENE` does) and cached until the parameters or
-/// the springs change; the paper's criteria (eqs. 5, 6 and the sec. 5 check) and the classic
-/// ones are evaluated at the current state on every call. When one analysis takes longer than
-/// 10 ms (a large mesh), a changed key is recomputed at most every four such durations.
+/// The criteria of a session. The exact linear analysis (SPEC 7) is linearised at the rest
+/// state by default (as `dampbound bounds SCENE` does) and cached until the parameters or the
+/// springs change; with set_at_current_state(true) it is linearised at the current positions
+/// (as `bounds SCENE --after N` does) and follows the run, recomputed at most every
+/// follow_interval (0.2 s) or four analysis durations, whichever is longer. The paper's criteria (eqs. 5, 6 and the
+/// sec. 5 check) and the classic ones are evaluated at the current state on every call. When
+/// one analysis takes longer than 10 ms (a large mesh), a changed key is recomputed at most
+/// every four such durations. `state` is the caller's counter of state changes (Tuner's
+/// state_version()).
 class TunerCriteria {
  public:
   /// All criteria, in the order `bounds` prints them. `topology` changes when springs do.
-  const std::vector<CriterionResult>& evaluate(const Session& session, std::uint64_t topology);
-  /// The exact analysis (cached); null when it failed.
-  const ExactStability* exact(const Session& session, std::uint64_t topology);
+  const std::vector<CriterionResult>& evaluate(const Session& session, std::uint64_t topology,
+                                               std::uint64_t state = 0);
+  /// The exact analysis (cached); null when it failed (or the state is not finite).
+  const ExactStability* exact(const Session& session, std::uint64_t topology,
+                              std::uint64_t state = 0);
   /// The exact upper limit of the user's gamma at this dt, when finite and positive: the line
   /// drawn on the envelope plot.
-  std::optional<double> exact_gamma_max(const Session& session, std::uint64_t topology);
+  std::optional<double> exact_gamma_max(const Session& session, std::uint64_t topology,
+                                        std::uint64_t state = 0);
+  /// Linearise at the current positions (true) or at rest (false, the default).
+  void set_at_current_state(bool on);
+  bool at_current_state() const { return at_state_; }
+  /// Shortest time between two analyses that follow the state (seconds).
+  void set_follow_interval(double seconds) { follow_interval_ = seconds; }
+  /// The iteration the cached analysis was linearised at (0 at rest).
+  int exact_iteration() const { return exact_iteration_; }
   /// How many times the exact analysis ran (tests: the cache works).
   int exact_runs() const { return exact_runs_; }
 
  private:
   std::vector<CriterionResult> results_;
   std::optional<ExactStability> exact_;
-  std::uint64_t topology_ = 0;
+  std::uint64_t topology_ = 0, state_ = 0;
   Params key_;
   bool have_key_ = false;
+  bool at_state_ = false;
+  double follow_interval_ = 0.2;
+  int exact_iteration_ = 0;
   int exact_runs_ = 0;
   double last_time_ = 0, last_seconds_ = 0;  ///< when the last analysis started, how long it took
 };
@@ -47,15 +64,20 @@ struct Suggestion {
   Params params;              ///< the parameters it was asked for
   DampingSuggestion damping;  ///< damping range and fastest-settling gamma at params.dt
   StepSuggestion step;        ///< largest stable dt at params.gamma
+  int springs = 0;            ///< springs of the mesh it was computed for
+  int springs_cut = 0;        ///< of which cut away before (by hand or by the scene)
 };
 
 /// Runs suggest_damping and suggest_step on a worker thread (each verified through Sessions).
 class TunerSuggest {
  public:
   ~TunerSuggest();
-  /// Starts a computation for the scene as loaded (no cuts) and these parameters; ignored
-  /// while one is running.
-  void start(const SceneSpec& scene, const Params& params, const StopRules& rules);
+  /// Starts a computation for `scene` and these parameters (`cut`: springs the scene has
+  /// lost to cuts, for the record); ignored while one is running.
+  void start(const SceneSpec& scene, const Params& params, const StopRules& rules, int cut = 0);
+  /// The same for the mesh the session has now (Session::current_scene(): the cuts made so
+  /// far count) with its parameters and rules.
+  void start(const Session& session);
   /// True while a computation runs.
   bool busy() const { return pending_.valid(); }
   /// Collects a finished computation (call once per frame); true when a result arrived.

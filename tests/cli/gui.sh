@@ -108,7 +108,10 @@ expect_match "$ERR" 'warning: ignoring corrupt settings file .*settings.txt' "co
 expect_match "$ERR" 'warning: ignoring corrupt window layout file' "corrupt layout warned"
 expect_match "$OUT" '"scene":"paper-plane"' "corrupt settings fall back to paper-plane"
 
-# 4. The demo pins two runs; a diverging run stops and says so.
+# 4. The demo pins two runs; a diverging run stops and says so; --tab opens a tab.
+expect_exit 0 "${XV[@]}" "$DB" gui paper-plane --tab criteria --frames 2 --stats \
+  --config-dir "$WORK/c5"
+expect_match "$OUT" '"frames":2,' "--tab criteria"
 expect_exit 0 "${XV[@]}" "$DB" gui paper-plane --demo --frames 2 --stats --config-dir "$WORK/c2"
 expect_match "$OUT" '"pins":2,' "--demo pins two runs"
 expect_exit 0 "${XV[@]}" "$DB" gui paper-plane --kappa 1 --gamma 0 --frames 30 \
@@ -126,6 +129,8 @@ expect_exit 2 "$DB" gui --screenshot "$WORK/x.png" --config-dir "$WORK/c4"
 expect_match "$ERR" -- '--frames' "--screenshot needs --frames"
 expect_exit 2 "$DB" gui --size 10x10 --frames 1 --config-dir "$WORK/c4"
 expect_match "$ERR" -- '--size' "bad --size"
+expect_exit 2 "$DB" gui --tab bogus --frames 1 --config-dir "$WORK/c4"
+expect_match "$ERR" -- '--tab' "bad --tab"
 expect_exit 2 "$DB" gui "$WORK/missing.toml" --frames 1 --config-dir "$WORK/c4"
 expect_one_line "$ERR" "missing scene"
 

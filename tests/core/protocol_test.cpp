@@ -156,6 +156,38 @@ TEST(Session, ScheduledCutFromScene) {
   EXPECT_EQ(session.springs_cut(), 71);
 }
 
+TEST(Session, CurrentSceneHasTheCutsMadeSoFar) {
+  SceneSpec s = paper_plane();
+  CutEvent c;  // scripted: along z = 10.0 cm at iteration 3
+  c.iteration = 3;
+  c.from[0] = -1, c.from[1] = 10.0, c.to[0] = 25, c.to[1] = 10.0;
+  s.cuts.push_back(c);
+  Session session(s);
+  EXPECT_EQ(session.current_scene().model.spring_count(), 3745);
+  ASSERT_EQ(session.current_scene().cuts.size(), 1u);  // not reached yet
+  // By hand, before the scripted cut: along x = 10.0 cm.
+  const double from[2] = {10.0, -1.0}, to[2] = {10.0, 25.0};
+  EXPECT_EQ(session.cut(springs_crossing(session.model(), session.state().x, from, to)), 71);
+  for (int k = 0; k < 3; ++k) session.step_once();
+  SceneSpec now = session.current_scene();
+  EXPECT_EQ(now.model.spring_count(), 3745 - 71);
+  ASSERT_EQ(now.cuts.size(), 1u);  // due before the next step: still to come
+  session.step_once();
+  now = session.current_scene();
+  EXPECT_EQ(now.model.spring_count(), session.model().spring_count());
+  EXPECT_LT(now.model.spring_count(), 3745 - 71);
+  EXPECT_TRUE(now.cuts.empty());
+  // A fresh run of the current scene starts from the perturbed state on the cut mesh, with
+  // the session's parameters applied to it.
+  Params p = session.params();
+  p.kappa *= 2;
+  Session fresh(now, p, session.rules());
+  EXPECT_EQ(fresh.model().spring_count(), now.model.spring_count());
+  EXPECT_DOUBLE_EQ(fresh.model().springs.front().kappa, 2 * session.model().springs.front().kappa);
+  EXPECT_DOUBLE_EQ(fresh.state().x[666].y(), 5.0);
+  EXPECT_EQ(fresh.state().iteration, 0);
+}
+
 TEST(Session, PerturbAddsDisplacementAgain) {
   Session session(paper_plane());
   session.perturb();

@@ -41,6 +41,7 @@ GuiSettings unusual() {
   s.pause_at_verdict = true;
   s.log_y = true;
   s.show_max = false;
+  s.exact_at_state = true;
   s.show_springs = false;
   s.show_anchors = true;
   s.point_size = 9.5f;
@@ -70,6 +71,7 @@ TEST(Settings, RoundTripIsExact) {
   EXPECT_TRUE(back->pause_at_verdict);
   EXPECT_TRUE(back->log_y);
   EXPECT_FALSE(back->show_max);
+  EXPECT_TRUE(back->exact_at_state);
   EXPECT_FALSE(back->show_springs);
   EXPECT_TRUE(back->show_anchors);
   EXPECT_EQ(back->point_size, 9.5f);

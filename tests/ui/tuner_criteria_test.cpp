@@ -4,7 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
+#include <thread>
 
 #include "core/bounds.hpp"
 #include "core/scene.hpp"
@@ -61,6 +63,48 @@ TEST(TunerCriteria, LiveCriteriaWithACachedExactAnalysis) {
   EXPECT_EQ(t.criteria_state().exact_runs(), runs + 2);  // springs changed
 }
 
+TEST(TunerCriteria, ExactAnalysisCanFollowTheState) {
+  Tuner t(plane(8));
+  TunerCriteria& c = t.criteria_state();
+  EXPECT_FALSE(c.at_current_state());
+  const ExactStability* rest = t.exact();
+  ASSERT_NE(rest, nullptr);
+  const double lambda_rest = rest->spectrum.lambda_max;
+  t.step(5);
+  ASSERT_NE(t.exact(), nullptr);
+  EXPECT_EQ(t.exact()->spectrum.lambda_max, lambda_rest);  // at rest: cached
+  EXPECT_EQ(c.exact_iteration(), 0);
+  // At the current state the 5 cm perturbation stretches the springs around the watched
+  // node: the tangent stiffness, and so lambda_max, differ from the rest state's.
+  c.set_at_current_state(true);
+  c.set_follow_interval(1e9);  // never twice: the throttle, without a clock in the test
+  const int runs = c.exact_runs();
+  const ExactStability* now = t.exact();
+  ASSERT_NE(now, nullptr);
+  EXPECT_EQ(c.exact_runs(), runs + 1);
+  EXPECT_EQ(c.exact_iteration(), 5);
+  EXPECT_NE(now->spectrum.lambda_max, lambda_rest);
+  // The same state again: cached; a later state within the interval: throttled (kept).
+  t.exact();
+  EXPECT_EQ(c.exact_runs(), runs + 1);
+  t.step(1);
+  t.exact();
+  EXPECT_EQ(c.exact_runs(), runs + 1);
+  EXPECT_EQ(c.exact_iteration(), 5);
+  c.set_follow_interval(0.05);  // once the interval (and 4 analysis durations) are over, a
+  t.step(1);                    // new state is analysed
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  t.exact();
+  EXPECT_EQ(c.exact_runs(), runs + 2);
+  EXPECT_EQ(c.exact_iteration(), 7);
+  // Back at rest: recomputed at once, the rest value again.
+  c.set_at_current_state(false);
+  ASSERT_NE(t.exact(), nullptr);
+  EXPECT_EQ(c.exact_runs(), runs + 3);
+  EXPECT_EQ(t.exact()->spectrum.lambda_max, lambda_rest);
+  EXPECT_EQ(c.exact_iteration(), 0);
+}
+
 TEST(TunerCriteria, ExactGammaMaxIsTheIntegratorsLimit) {
   Tuner t(plane(6));
   const auto g = t.exact_gamma_max();
@@ -100,6 +144,37 @@ TEST(TunerSuggest, RunsInTheBackgroundAndCanBeApplied) {
   EXPECT_DOUBLE_EQ(t.params().gamma, r.damping.gamma_best);
   ASSERT_TRUE(t.set_params(with_suggested_dt(t.params(), r)));
   EXPECT_DOUBLE_EQ(t.params().dt, r.step.dt_all);
+}
+
+TEST(TunerSuggest, IsForTheMeshAsCut) {
+  Tuner t(plane(8));
+  TunerSuggest whole;
+  whole.start(t.session());
+  whole.wait();
+  ASSERT_TRUE(whole.result().has_value()) << whole.error();
+  EXPECT_EQ(whole.result()->springs, t.session().model().spring_count());
+  EXPECT_EQ(whole.result()->springs_cut, 0);
+  // Cut every spring of the node in the middle of the grid: the suggestion is computed (and
+  // its runs verified) on the mesh without them.
+  std::vector<int> around;
+  const Model& m = t.session().model();
+  for (int k = 0; k < m.spring_count(); ++k) {
+    const Spring& sp = m.springs[static_cast<size_t>(k)];
+    if (sp.i == t.session().watched() || sp.j == t.session().watched()) around.push_back(k);
+  }
+  ASSERT_EQ(t.cut(around), 6);
+  TunerSuggest cut;
+  cut.start(t.session());
+  cut.wait();
+  ASSERT_TRUE(cut.result().has_value()) << cut.error();
+  EXPECT_EQ(cut.result()->springs, whole.result()->springs - 6);
+  EXPECT_EQ(cut.result()->springs_cut, 6);
+  // The perturbed node now hangs on its anchor alone: its runs differ from the whole mesh's.
+  ASSERT_FALSE(cut.result()->damping.runs.empty());
+  ASSERT_FALSE(whole.result()->damping.runs.empty());
+  const RunResult& a = cut.result()->damping.runs.front().result;
+  const RunResult& b = whole.result()->damping.runs.front().result;
+  EXPECT_TRUE(a.iterations != b.iterations || a.max_displacement != b.max_displacement);
 }
 
 }  // namespace
