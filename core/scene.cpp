@@ -1,5 +1,7 @@
 #include "core/scene.hpp"
 
+#include <string>
+
 namespace dampbound {
 
 Model make_grid(const GridSpec& g) {
@@ -17,6 +19,25 @@ Model make_grid(const GridSpec& g) {
       if (g.diagonals && a + 1 < g.nx && b + 1 < g.nz) add_spring(m, index(a, b), index(a + 1, b + 1));
     }
   return m;
+}
+
+SceneSpec paper_plane_scene(int n) {
+  SceneSpec s;
+  s.name = "paper-plane";
+  s.description = "Paper sec. 3: " + std::to_string(n) + "x" + std::to_string(n) +
+                  " planar mesh, anchors, node (" + std::to_string(n / 2) + "," +
+                  std::to_string(n / 2) + ") perturbed 5 cm along y";
+  GridSpec g;
+  g.nx = g.nz = n;
+  g.spacing = 0.57;
+  s.grid = g;
+  s.model = make_grid(g);
+  s.watched = (n / 2) * n + n / 2;
+  Perturbation p;
+  p.node = s.watched;
+  p.displacement = Vec3(0.0, 5.0, 0.0);
+  s.perturbations.push_back(p);
+  return s;
 }
 
 Model make_model(const SceneSpec& scene, const Params& params) {

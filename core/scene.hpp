@@ -72,6 +72,12 @@ struct SceneSpec {
 /// (a,b)-(a+1,b+1) per cell, rest length = initial length, and anchors (SPEC 5).
 Model make_grid(const GridSpec& grid);
 
+/// SPEC 5's scene built in code: an n x n grid (n = 36 is the paper's mesh; the file
+/// scenes/paper-plane.toml describes the same scene, which a test checks), node (n/2, n/2)
+/// moved 5 cm along y and watched, the default parameters and protocol. The GUI falls back
+/// on it when scenes/ is missing; tests build small versions of it.
+SceneSpec paper_plane_scene(int n = 36);
+
 /// Loads and validates a scene file. Throws InputError("FILE:LINE: message") on any
 /// malformed or inconsistent content (unknown key, missing value, NaN, negative mass,
 /// spring to a missing node, duplicate spring, ...).

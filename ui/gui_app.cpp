@@ -29,23 +29,6 @@ void warn(std::vector<std::string>& out, const std::string& text) {
 }
 }  // namespace
 
-SceneSpec builtin_paper_plane() {
-  SceneSpec s;
-  s.name = "paper-plane (built in)";
-  s.description = "Paper sec. 3: 36x36 planar mesh, anchors, node (18,18) perturbed 5 cm along y";
-  GridSpec g;
-  g.nx = g.nz = 36;
-  g.spacing = 0.57;
-  s.grid = g;
-  s.model = make_grid(g);
-  s.watched = 18 * 36 + 18;
-  Perturbation p;
-  p.node = s.watched;
-  p.displacement = Vec3(0.0, 5.0, 0.0);
-  s.perturbations.push_back(p);
-  return s;
-}
-
 GuiApp::GuiApp(GuiOptions options) : options_(std::move(options)) {
   std::string warning;
   if (!options_.config_dir.empty()) settings_ = load_gui_settings(settings_path(), &warning);
@@ -71,7 +54,8 @@ GuiApp::GuiApp(GuiOptions options) : options_(std::move(options)) {
     try {
       scene = load_scene(plane);
     } catch (const std::exception&) {
-      scene = builtin_paper_plane();
+      scene = paper_plane_scene();
+      scene->name += " (built in)";
     }
   }
   scene_path_ = scene->path;

@@ -138,7 +138,4 @@ class GuiApp {
   double last_step_seconds_ = 0;
 };
 
-/// The paper's plane (SPEC 5) built in code: the fallback when no scene file can be read.
-SceneSpec builtin_paper_plane();
-
 }  // namespace dampbound::ui

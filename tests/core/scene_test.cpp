@@ -34,6 +34,45 @@ TEST(PaperPlane, CountsAndPerturbation) {
   EXPECT_DOUBLE_EQ(st.x[665].y(), 0.0);
 }
 
+TEST(PaperPlane, BuiltInSceneIsTheFile) {
+  const SceneSpec file = load_scene(test::source_path("scenes/paper-plane.toml"));
+  const SceneSpec code = paper_plane_scene();
+  EXPECT_EQ(code.name, file.name);
+  EXPECT_EQ(code.description, file.description);
+  ASSERT_EQ(code.model.node_count(), file.model.node_count());
+  ASSERT_EQ(code.model.spring_count(), file.model.spring_count());
+  for (int k = 0; k < code.model.spring_count(); ++k) {
+    const Spring& a = code.model.springs[static_cast<size_t>(k)];
+    const Spring& b = file.model.springs[static_cast<size_t>(k)];
+    EXPECT_EQ(a.i, b.i);
+    EXPECT_EQ(a.j, b.j);
+    EXPECT_EQ(a.rest_length, b.rest_length);
+    EXPECT_EQ(a.kappa_scale, b.kappa_scale);
+  }
+  EXPECT_EQ(code.model.rest, file.model.rest);
+  EXPECT_EQ(code.model.anchor_scale, file.model.anchor_scale);
+  EXPECT_EQ(code.model.mass_scale, file.model.mass_scale);
+  EXPECT_EQ(code.model.gamma_scale, file.model.gamma_scale);
+  EXPECT_EQ(code.model.fixed, file.model.fixed);
+  EXPECT_EQ(code.watched, file.watched);
+  ASSERT_EQ(code.perturbations.size(), file.perturbations.size());
+  EXPECT_EQ(code.perturbations[0].node, file.perturbations[0].node);
+  EXPECT_EQ(code.perturbations[0].displacement, file.perturbations[0].displacement);
+  EXPECT_EQ(code.params.m, file.params.m);
+  EXPECT_EQ(code.params.kappa, file.params.kappa);
+  EXPECT_EQ(code.params.gamma, file.params.gamma);
+  EXPECT_EQ(code.params.dt, file.params.dt);
+  EXPECT_EQ(code.params.policy, file.params.policy);
+  EXPECT_EQ(code.rules.max_iterations, file.rules.max_iterations);
+  EXPECT_EQ(code.rules.restore_fraction, file.rules.restore_fraction);
+  EXPECT_EQ(code.rules.diverge_factor, file.rules.diverge_factor);
+  EXPECT_EQ(code.rules.reference, file.rules.reference);
+  // A small one: the centre node of a 10 x 10 grid.
+  const SceneSpec small = paper_plane_scene(10);
+  EXPECT_EQ(small.model.node_count(), 100);
+  EXPECT_EQ(small.watched, 55);
+}
+
 TEST(PaperPlane, UniformLowerBound) {
   const SceneSpec s = load_scene(test::source_path("scenes/paper-plane.toml"));
   Params p;

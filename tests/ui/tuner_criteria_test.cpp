@@ -16,17 +16,8 @@ namespace dampbound::ui {
 namespace {
 
 SceneSpec plane(int n) {
-  SceneSpec s;
+  SceneSpec s = paper_plane_scene(n);
   s.name = "plane";
-  GridSpec g;
-  g.nx = g.nz = n;
-  g.spacing = 0.57;
-  s.model = make_grid(g);
-  s.watched = (n / 2) * n + n / 2;
-  Perturbation p;
-  p.node = s.watched;
-  p.displacement = Vec3(0, 5, 0);
-  s.perturbations.push_back(p);
   s.rules.max_iterations = 300;
   return s;
 }

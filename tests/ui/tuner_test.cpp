@@ -17,18 +17,8 @@ namespace {
 
 /// A small version of the paper's plane: 10 x 10 grid, anchors, the centre node lifted 5 cm.
 SceneSpec small_plane() {
-  SceneSpec s;
+  SceneSpec s = paper_plane_scene(10);
   s.name = "small-plane";
-  GridSpec g;
-  g.nx = g.nz = 10;
-  g.spacing = 0.57;
-  s.grid = g;
-  s.model = make_grid(g);
-  s.watched = 5 * 10 + 5;
-  Perturbation p;
-  p.node = s.watched;
-  p.displacement = Vec3(0, 5, 0);
-  s.perturbations.push_back(p);
   return s;
 }
 
