@@ -155,6 +155,10 @@ void GuiApp::load_layout_once() {
     return;
   }
   ImGui::LoadIniSettingsFromMemory(text.c_str(), text.size());
+  // The remembered panels were laid out in a window of the remembered size: when this window
+  // has another size, they follow it from the second frame on (layout_windows).
+  layout_w_ = static_cast<float>(settings_.window_width);
+  layout_h_ = static_cast<float>(settings_.window_height);
 }
 
 void GuiApp::save_layout_if_needed(bool force) {
@@ -233,15 +237,15 @@ void GuiApp::update_stats() {
   ++stats_.frames;
 }
 
-void GuiApp::layout_windows(const FrameInfo& info) {
-  // Default layout: controls on the left, the mesh and the envelope on top, the displacement
-  // and the runs below. Remembered positions (imgui.ini) win unless "reset layout" was asked.
-  const float W = static_cast<float>(info.width), H = static_cast<float>(info.height);
+namespace {
+/// The default layout for a W x H window: controls on the left, the mesh and the envelope on
+/// top, the displacement and the runs below.
+std::vector<GuiApp::WindowRect> default_layout(float W, float H) {
   const float left = std::clamp(std::floor(W * 0.245f), 330.0f, 430.0f);
   const float R = W - left, top = std::floor(H * 0.56f);
   const float mesh_w = std::floor(R * 0.48f), disp_w = std::floor(R * 0.64f);
   const float params_h = std::floor(std::clamp(560.0f, H * 0.45f, H * 0.62f));
-  layout_ = {
+  return {
       {"Parameters", 0, 0, left, params_h},
       {"Status", 0, params_h, left, H - params_h},
       {"Mesh view", left, 0, mesh_w, top},
@@ -251,12 +255,53 @@ void GuiApp::layout_windows(const FrameInfo& info) {
   };
 }
 
+bool same_rect(const GuiApp::WindowRect& a, const GuiApp::WindowRect& b) {
+  return std::abs(a.x - b.x) <= 1 && std::abs(a.y - b.y) <= 1 && std::abs(a.w - b.w) <= 1 &&
+         std::abs(a.h - b.h) <= 1;
+}
+}  // namespace
+
+void GuiApp::layout_windows(const FrameInfo& info) {
+  // Remembered positions (imgui.ini) win over the default layout unless "reset layout" was
+  // asked. When the window changes size, every panel follows: one still where the default
+  // layout put it takes the default layout of the new size, one the user moved or resized
+  // keeps its place and size in proportion.
+  const float W = static_cast<float>(info.width), H = static_cast<float>(info.height);
+  layout_ = default_layout(W, H);
+  follow_.clear();
+  if (drawn_.empty()) return;  // nothing drawn yet: no rectangles to move
+  if (layout_w_ > 0 && layout_h_ > 0 && (W != layout_w_ || H != layout_h_) && !reset_layout_) {
+    const std::vector<WindowRect> before = default_layout(layout_w_, layout_h_);
+    const float sx = W / layout_w_, sy = H / layout_h_;
+    for (const WindowRect& d : drawn_) {
+      const WindowRect* was = nullptr;
+      const WindowRect* now = nullptr;
+      for (const WindowRect& r : before)
+        if (r.name == d.name) was = &r;
+      for (const WindowRect& r : layout_)
+        if (r.name == d.name) now = &r;
+      if (was != nullptr && now != nullptr && same_rect(d, *was))
+        follow_.push_back(*now);
+      else
+        follow_.push_back({d.name, std::floor(d.x * sx), std::floor(d.y * sy),
+                           std::floor(d.w * sx), std::floor(d.h * sy)});
+    }
+  }
+  layout_w_ = W;
+  layout_h_ = H;
+}
+
 bool GuiApp::begin(const char* name, int flags) {
   const ImGuiCond cond = reset_layout_ ? ImGuiCond_Always : ImGuiCond_FirstUseEver;
   for (const WindowRect& r : layout_) {
     if (r.name != name) continue;
     ImGui::SetNextWindowPos(ImVec2(r.x, r.y), cond);
     ImGui::SetNextWindowSize(ImVec2(r.w, r.h), cond);
+  }
+  for (const WindowRect& r : follow_) {
+    if (r.name != name) continue;
+    ImGui::SetNextWindowPos(ImVec2(r.x, r.y), ImGuiCond_Always);
+    ImGui::SetNextWindowSize(ImVec2(r.w, r.h), ImGuiCond_Always);
   }
   // A window that overlaps no other needs no background fill: the frame is cleared to the
   // same colour. On a software rasteriser (llvmpipe) this saves a full-screen blended fill.

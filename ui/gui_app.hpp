@@ -69,6 +69,18 @@ class GuiApp {
     return {settings_.window_width, settings_.window_height};
   }
 
+  /// A panel's place: name, position and size in pixels.
+  struct WindowRect {
+    std::string name;
+    float x, y, w, h;
+  };
+  /// Where the panel `name` was drawn in the last frame (tests).
+  std::optional<WindowRect> window_rect(const std::string& name) const {
+    for (const WindowRect& r : drawn_)
+      if (r.name == name) return r;
+    return std::nullopt;
+  }
+
   /// The tuner state and the mesh view (tests drive them).
   Tuner& tuner() { return *tuner_; }
   MeshView& mesh_view() { return mesh_; }
@@ -123,11 +135,9 @@ class GuiApp {
   bool export_failed_ = false;
   bool layout_loaded_ = false;
   bool reset_layout_ = false;
-  struct WindowRect {
-    std::string name;
-    float x, y, w, h;
-  };
   std::vector<WindowRect> layout_;
+  std::vector<WindowRect> follow_;   ///< where panels go this frame after a resize
+  float layout_w_ = 0, layout_h_ = 0;  ///< the window size drawn_ was laid out in
   std::vector<WindowRect> drawn_;    ///< where each window was last frame
   int window_w_ = 0, window_h_ = 0;  ///< size of the last frame
   std::string select_tab_;

@@ -134,6 +134,56 @@ TEST(GuiRender, CriteriaAndSuggestTabs) {
   app.release_gl();
 }
 
+TEST(GuiRender, PanelsFollowTheWindowSize) {
+  EglOptions eo;
+  eo.render = gui_render_options();
+  EglHost host(eo);
+  GuiOptions o = options(fs::path());
+  o.config_dir.clear();
+  o.demo = false;
+  GuiApp app(o);
+  host.render_frames(1280, 800, app.frame_fn(), 2);
+  // The user moves and resizes one panel (as a drag would); the others stay where the default
+  // layout put them.
+  host.render_frames(
+      1280, 800,
+      [&](FrameInfo& info) {
+        app.frame(info);
+        if (info.index == 0) {
+          ImGui::SetWindowPos("Damping bounds", ImVec2(640, 100));
+          ImGui::SetWindowSize("Damping bounds", ImVec2(400, 300));
+        }
+      },
+      2);
+  auto moved = app.window_rect("Damping bounds");
+  ASSERT_TRUE(moved.has_value());
+  EXPECT_FLOAT_EQ(moved->x, 640);
+  EXPECT_FLOAT_EQ(moved->w, 400);
+  // The window shrinks to 960 x 600 (three quarters): default panels take the default layout
+  // of the new size (they fill it), the moved one keeps its place and size in proportion.
+  const Image img = host.render_frames(960, 600, app.frame_fn(), 2);
+  EXPECT_FALSE(is_blank(img));
+  const auto params = app.window_rect("Parameters");
+  const auto runs = app.window_rect("Runs");
+  moved = app.window_rect("Damping bounds");
+  ASSERT_TRUE(params && runs && moved);
+  EXPECT_FLOAT_EQ(params->x, 0);
+  EXPECT_FLOAT_EQ(params->y, 0);
+  EXPECT_FLOAT_EQ(params->w, 330);  // the left column's minimum width
+  EXPECT_NEAR(runs->x + runs->w, 960, 1);
+  EXPECT_NEAR(runs->y + runs->h, 600, 1);
+  EXPECT_FLOAT_EQ(moved->x, 480);
+  EXPECT_FLOAT_EQ(moved->y, 75);
+  EXPECT_FLOAT_EQ(moved->w, 300);
+  EXPECT_FLOAT_EQ(moved->h, 225);
+  // And back up: the default panels fill 1600 x 1000.
+  host.render_frames(1600, 1000, app.frame_fn(), 2);
+  EXPECT_NEAR(app.window_rect("Runs")->x + app.window_rect("Runs")->w, 1600, 1);
+  EXPECT_NEAR(app.window_rect("Status")->y + app.window_rect("Status")->h, 1000, 1);
+  write_png_atomic(img, out_path("gui_resized.png"));
+  app.release_gl();
+}
+
 /// Mouse input for the next frame (the headless host has no platform backend: the frame
 /// function sets the ImGui IO that the next NewFrame reads).
 void mouse(ImVec2 pos, bool down) {
