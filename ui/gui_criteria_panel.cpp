@@ -49,9 +49,9 @@ void GuiApp::criteria_panel() {
         "The exact analysis (SPEC 7) linearises the forces at rest (off) or at the\n"
         "current positions (on: it follows the run, refreshed every 0.2 s or so).");
   const ExactStability* e = t.exact();
-  const std::string where = c.at_current_state()
-                                ? "at iteration " + std::to_string(c.exact_iteration())
-                                : std::string("at rest");
+  const std::string where = c.exact_at_rest()
+                                ? std::string("at rest")
+                                : "at iteration " + std::to_string(c.exact_iteration());
   ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
   ImGui::TextWrapped("at iteration %d; exact analysis %s (%s)", t.session().state().iteration,
                      where.c_str(), e != nullptr ? to_string(e->method) : "unavailable");

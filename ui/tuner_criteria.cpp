@@ -24,7 +24,31 @@ bool uniform_rate(const Model& m) {
   }
   return true;
 }
+
+/// The analysis itself (SPEC 7), linearised at positions x; nullopt when x is not finite or
+/// the solver fails.
+std::optional<ExactStability> analyse(const Model& model, const std::vector<Vec3>& x,
+                                      const Params& params) {
+  for (const Vec3& p : x)
+    if (!p.allFinite()) return std::nullopt;
+  try {
+    ExactOptions o;
+    o.with_radius = uniform_rate(model);  // Arnoldi on a non-uniform mesh can take seconds
+    return exact_stability(model, x, params, o);
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+}
+
+double seconds_now() {
+  using Clock = std::chrono::steady_clock;
+  return std::chrono::duration<double>(Clock::now().time_since_epoch()).count();
+}
 }  // namespace
+
+TunerCriteria::~TunerCriteria() {
+  wait();
+}
 
 void TunerCriteria::set_at_current_state(bool on) {
   if (on == at_state_) return;
@@ -33,10 +57,28 @@ void TunerCriteria::set_at_current_state(bool on) {
   last_seconds_ = 0;
 }
 
+void TunerCriteria::wait() {
+  if (job_.valid()) job_.wait();
+  collect();
+}
+
+void TunerCriteria::collect() {
+  if (!job_.valid() || job_.wait_for(std::chrono::seconds(0)) != std::future_status::ready)
+    return;
+  Finished f = job_.get();
+  last_seconds_ = f.seconds;
+  // A result of the other mode (switched while it ran) is dropped; the next call starts anew.
+  if (!at_state_) return;
+  exact_ = std::move(f.exact);
+  exact_iteration_ = f.iteration;
+  exact_at_rest_ = false;
+}
+
 const ExactStability* TunerCriteria::exact(const Session& s, std::uint64_t topology,
                                            std::uint64_t state) {
-  using Clock = std::chrono::steady_clock;
-  const double now = std::chrono::duration<double>(Clock::now().time_since_epoch()).count();
+  if (!at_state_) wait();  // a result that followed the state is of no use at rest
+  collect();
+  const double now = seconds_now();
   const bool moved = at_state_ && state != state_;
   const bool changed =
       !have_key_ || topology != topology_ || !same_key(key_, s.params()) || moved;
@@ -45,29 +87,33 @@ const ExactStability* TunerCriteria::exact(const Session& s, std::uint64_t topol
   // durations, so the window stays responsive.
   const double slow = last_seconds_ > 0.01 ? 4 * last_seconds_ : 0.0;
   const double wait = at_state_ ? std::max(follow_interval_, slow) : slow;
-  const bool throttled = have_key_ && exact_ && now - last_time_ < wait;
-  if (changed && !throttled) {
-    last_time_ = now;
-    have_key_ = true;
-    topology_ = topology;
-    state_ = state;
-    key_ = s.params();
-    exact_.reset();
-    ++exact_runs_;
-    const std::vector<Vec3>& x = at_state_ ? s.state().x : s.model().rest;
-    exact_iteration_ = at_state_ ? s.state().iteration : 0;
-    bool finite = true;
-    for (const Vec3& p : x) finite = finite && p.allFinite();
-    try {
-      ExactOptions o;
-      o.with_radius = uniform_rate(s.model());  // Arnoldi on a non-uniform mesh can take seconds
-      if (finite) exact_ = exact_stability(s.model(), x, s.params(), o);
-    } catch (const std::exception&) {
-      exact_.reset();
-    }
-    const double end = std::chrono::duration<double>(Clock::now().time_since_epoch()).count();
-    last_seconds_ = end - now;
+  const bool throttled = have_key_ && (exact_ || job_.valid()) && now - last_time_ < wait;
+  if (!changed || throttled || job_.valid()) return exact_ ? &*exact_ : nullptr;
+  last_time_ = now;
+  have_key_ = true;
+  topology_ = topology;
+  state_ = state;
+  key_ = s.params();
+  ++exact_runs_;
+  if (at_state_) {
+    // Following the run: on a worker thread, from copies, so a frame never waits for it; the
+    // last result stays on show meanwhile.
+    const int iteration = s.state().iteration;
+    job_ = std::async(std::launch::async,
+                      [model = s.model(), x = s.state().x, params = s.params(), iteration] {
+                        const double t0 = seconds_now();
+                        Finished f;
+                        f.exact = analyse(model, x, params);
+                        f.iteration = iteration;
+                        f.seconds = seconds_now() - t0;
+                        return f;
+                      });
+    return exact_ ? &*exact_ : nullptr;
   }
+  exact_ = analyse(s.model(), s.model().rest, s.params());
+  exact_iteration_ = 0;
+  exact_at_rest_ = true;
+  last_seconds_ = seconds_now() - now;
   return exact_ ? &*exact_ : nullptr;
 }
 

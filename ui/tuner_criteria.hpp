@@ -18,14 +18,20 @@ namespace dampbound::ui {
 /// The criteria of a session. The exact linear analysis (SPEC 7) is linearised at the rest
 /// state by default (as `dampbound bounds SCENE` does) and cached until the parameters or the
 /// springs change; with set_at_current_state(true) it is linearised at the current positions
-/// (as `bounds SCENE --after N` does) and follows the run, recomputed at most every
-/// follow_interval (0.2 s) or four analysis durations, whichever is longer. The paper's criteria (eqs. 5, 6 and the
+/// (as `bounds SCENE --after N` does) and follows the run: recomputed on a worker thread at
+/// most every follow_interval (0.2 s) or four analysis durations, whichever is longer, the
+/// last result staying on show meanwhile (no frame waits for it). The paper's criteria (eqs. 5, 6 and the
 /// sec. 5 check) and the classic ones are evaluated at the current state on every call. When
 /// one analysis takes longer than 10 ms (a large mesh), a changed key is recomputed at most
 /// every four such durations. `state` is the caller's counter of state changes (Tuner's
 /// state_version()).
 class TunerCriteria {
  public:
+  TunerCriteria() = default;
+  ~TunerCriteria();
+  TunerCriteria(const TunerCriteria&) = delete;
+  TunerCriteria& operator=(const TunerCriteria&) = delete;
+
   /// All criteria, in the order `bounds` prints them. `topology` changes when springs do.
   const std::vector<CriterionResult>& evaluate(const Session& session, std::uint64_t topology,
                                                std::uint64_t state = 0);
@@ -41,20 +47,34 @@ class TunerCriteria {
   bool at_current_state() const { return at_state_; }
   /// Shortest time between two analyses that follow the state (seconds).
   void set_follow_interval(double seconds) { follow_interval_ = seconds; }
-  /// The iteration the cached analysis was linearised at (0 at rest).
+  /// Waits for an analysis running on the worker thread and takes its result (tests).
+  void wait();
+  /// Whether the analysis on show was linearised at rest, else at the state of iteration
+  /// exact_iteration().
+  bool exact_at_rest() const { return exact_at_rest_; }
   int exact_iteration() const { return exact_iteration_; }
   /// How many times the exact analysis ran (tests: the cache works).
   int exact_runs() const { return exact_runs_; }
 
  private:
+  struct Finished {
+    std::optional<ExactStability> exact;
+    int iteration = 0;
+    double seconds = 0;
+  };
+  /// Takes the worker's result when it is ready.
+  void collect();
+
   std::vector<CriterionResult> results_;
   std::optional<ExactStability> exact_;
+  std::future<Finished> job_;  ///< the analysis at the current state, when one runs
   std::uint64_t topology_ = 0, state_ = 0;
   Params key_;
   bool have_key_ = false;
   bool at_state_ = false;
   double follow_interval_ = 0.2;
   int exact_iteration_ = 0;
+  bool exact_at_rest_ = true;
   int exact_runs_ = 0;
   double last_time_ = 0, last_seconds_ = 0;  ///< when the last analysis started, how long it took
 };
