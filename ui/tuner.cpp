@@ -92,6 +92,7 @@ int Tuner::step(int n) {
   using Clock = std::chrono::steady_clock;
   const auto t0 = Clock::now();
   int taken = 0;
+  const int springs_before = session_->model().spring_count();
   for (; taken < n && can_step(); ++taken) {
     const Outcome before = session_->result().outcome;
     session_->step_once();
@@ -116,6 +117,8 @@ int Tuner::step(int n) {
   }
   total_steps_ += taken;
   if (taken > 0) ++state_version_;
+  // The scene's own cuts happen inside a step: the renderer and the criteria must hear of them.
+  if (session_->model().spring_count() != springs_before) ++topology_;
   step_seconds_ += std::chrono::duration<double>(Clock::now() - t0).count();
   return taken;
 }

@@ -162,6 +162,28 @@ TEST(Tuner, WatchAndDisplace) {
   EXPECT_GT(t.session().trace().back().watched_displacement, 1.0);
 }
 
+TEST(Tuner, TheScenesOwnCutChangesTheTopology) {
+  // A cut scripted in the scene happens inside a step: the mesh view's index buffer and the
+  // cached exact analysis are keyed on topology(), so it must change then too.
+  SceneSpec s = small_plane();
+  CutEvent c;
+  c.iteration = 4;
+  c.from[0] = 2.6, c.from[1] = -1, c.to[0] = 2.6, c.to[1] = 10;
+  s.cuts.push_back(c);
+  Tuner t(s);
+  const int springs = t.session().model().spring_count();
+  ASSERT_NE(t.exact(), nullptr);
+  const int runs = t.criteria_state().exact_runs();
+  const auto topo = t.topology();
+  t.step(4);
+  EXPECT_EQ(t.topology(), topo);  // no cut yet
+  t.step(1);
+  EXPECT_LT(t.session().model().spring_count(), springs);
+  EXPECT_NE(t.topology(), topo);
+  ASSERT_NE(t.exact(), nullptr);
+  EXPECT_EQ(t.criteria_state().exact_runs(), runs + 1);  // analysed again, on the cut mesh
+}
+
 TEST(Tuner, CutWithTheScreenToolWhileRunningAndTheBoundsReact) {
   Tuner t(small_plane());
   Tuner twin(small_plane());
