@@ -1,7 +1,6 @@
 // dampbound sweep [SCENE]: the paper's experiment at scale (SPEC 5, 6): every combination of
 // m, kappa, gamma (or zeta), dt and factor, one CSV row per trial. docs/sweeps.md.
 #include <signal.h>
-#include <sys/resource.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -156,19 +155,24 @@ int run(const SweepArgs& a) {
         static_cast<unsigned long long>(rep.trials), static_cast<unsigned long long>(rep.classes),
         h.similarity.c_str(), static_cast<unsigned long long>(rep.classes_run),
         static_cast<unsigned long long>(rep.classes_resumed));
+    // Rates over this run's work (trials from the journal were stepped by an earlier run).
     const double s = std::max(rep.seconds, 1e-9);
-    struct rusage ru {};
-    ::getrusage(RUSAGE_SELF, &ru);
-    const double cpu = static_cast<double>(ru.ru_utime.tv_sec + ru.ru_stime.tv_sec) +
-                       1e-6 * static_cast<double>(ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);
     std::printf(
-        "time         %.1f s (%.1f s of CPU), %.0f trials/s, %.3g trial-steps/s, %.3g spring "
-        "evaluations/s (%s)\n",
-        rep.seconds, cpu, static_cast<double>(rep.trials) / s,
+        "time         %.1f s (%.1f s of CPU)%s, %.0f trials/s, %.3g trial-steps/s, %.3g "
+        "spring evaluations/s (%s)\n",
+        rep.seconds, rep.cpu_seconds, rep.classes_resumed > 0 ? " this run" : "",
+        static_cast<double>(rep.trials - rep.trials_resumed) / s,
         static_cast<double>(rep.lane_steps) / s,
         static_cast<double>(rep.lane_steps) * static_cast<double>(rep.spring_evaluations_per_step) /
             s,
         rep.batched ? "batched kernel" : ("Session per trial: " + rep.plain_reason).c_str());
+    if (rep.earlier_runs > 0)
+      std::printf("in all       %.1f s (%.1f s of CPU) over %d runs\n",
+                  rep.seconds + rep.earlier_seconds, rep.cpu_seconds + rep.earlier_cpu_seconds,
+                  rep.earlier_runs + 1);
+    else if (rep.classes_resumed > 0)
+      std::printf("in all       unknown: the journal's classes came from a run that recorded no "
+                  "time (killed in its first 10 s, or an older dampbound)\n");
   }
   std::printf("output       %s\n", a.output.c_str());
   double lambda_unit = NAN;

@@ -4,12 +4,14 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cinttypes>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <map>
 #include <unordered_set>
 
 #include "core/error.hpp"
@@ -137,6 +139,30 @@ bool parse_journal_line(const std::string& line, JournalEntry& e) {
   return true;
 }
 
+std::string journal_time_line(const JournalTime& t) {
+  char body[128];
+  const int n = std::snprintf(body, sizeof body, "t %d %.3f %.3f", t.run, t.wall_s, t.cpu_s);
+  char line[160];
+  std::snprintf(line, sizeof line, "%s %08" PRIx32 "\n", body,
+                fnv1a32(body, static_cast<size_t>(n)));
+  return line;
+}
+
+bool parse_journal_time_line(const std::string& line, JournalTime& t) {
+  const size_t space = line.find_last_of(' ');
+  if (line.rfind("t ", 0) != 0 || space == std::string::npos || line.size() - space != 9)
+    return false;
+  char* end = nullptr;
+  const unsigned long sum = std::strtoul(line.c_str() + space + 1, &end, 16);
+  if (*end != '\0' || sum != fnv1a32(line.data(), space)) return false;
+  JournalTime x;
+  if (std::sscanf(line.c_str(), "t %d %lf %lf", &x.run, &x.wall_s, &x.cpu_s) != 3 || x.run < 1 ||
+      !(x.wall_s >= 0) || !(x.cpu_s >= 0))
+    return false;
+  t = x;
+  return true;
+}
+
 JournalContents read_journal(const std::string& path, const std::string& header,
                              std::uint64_t classes) {
   std::ifstream in(path, std::ios::binary);
@@ -150,9 +176,16 @@ JournalContents read_journal(const std::string& path, const std::string& header,
   if (in.eof()) return jc;  // the header itself was cut short: start the journal afresh
   jc.valid_bytes = line.size() + 1;
   std::unordered_set<std::uint32_t> seen;
+  std::map<int, JournalTime> times;  // each run's last record
   // Only whole lines (ending in '\n') with a good checksum count; the first bad one ends
   // the valid prefix (what follows it was written after the last completed sync).
   while (std::getline(in, line)) {
+    JournalTime t;
+    if (!in.eof() && parse_journal_time_line(line, t)) {
+      times[t.run] = t;
+      jc.valid_bytes += line.size() + 1;
+      continue;
+    }
     JournalEntry e;
     if (in.eof() || !parse_journal_line(line, e)) {
       ++jc.dropped_lines;
@@ -167,6 +200,11 @@ JournalContents read_journal(const std::string& path, const std::string& header,
       ++jc.dropped_lines;
   }
   while (std::getline(in, line)) ++jc.dropped_lines;
+  for (const auto& [run, t] : times) {
+    jc.runs = std::max(jc.runs, run);
+    jc.wall_s += t.wall_s;
+    jc.cpu_s += t.cpu_s;
+  }
   return jc;
 }
 
@@ -200,6 +238,10 @@ Journal::~Journal() {
 
 void Journal::add(const JournalEntry& e) {
   buffer_ += journal_line(e);
+}
+
+void Journal::add_time(const JournalTime& t) {
+  buffer_ += journal_time_line(t);
 }
 
 void Journal::sync() {

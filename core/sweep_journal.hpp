@@ -30,11 +30,25 @@ struct JournalEntry {
 std::string journal_line(const JournalEntry& e);
 bool parse_journal_line(const std::string& line, JournalEntry& e);
 
+/// How long one run of a sweep had worked when it last synced its journal: a run (the first,
+/// or a --resume) writes its number and its wall and CPU seconds so far, about every 10 s and
+/// when it stops, so that a sweep finished over several runs can report its time in all.
+struct JournalTime {
+  int run = 1;
+  double wall_s = 0, cpu_s = 0;
+};
+
+/// The journal line of a time record ("t RUN WALL CPU" and a checksum), and its inverse.
+std::string journal_time_line(const JournalTime& t);
+bool parse_journal_time_line(const std::string& line, JournalTime& t);
+
 /// What a journal held.
 struct JournalContents {
   std::vector<JournalEntry> entries;  ///< valid entries, duplicates removed (first kept)
   std::uint64_t valid_bytes = 0;      ///< length of the valid prefix (header included)
   std::uint64_t dropped_lines = 0;    ///< damaged or duplicate lines ignored
+  int runs = 0;                       ///< runs that recorded their time (the last run's number)
+  double wall_s = 0, cpu_s = 0;       ///< their time in all (each run's last record)
 };
 
 /// Reads PATH. Throws InputError when its first line is not `header` (another sweep or
@@ -53,6 +67,8 @@ class Journal {
 
   /// Buffers an entry; nothing reaches the disk before sync().
   void add(const JournalEntry& e);
+  /// Buffers a time record of this run.
+  void add_time(const JournalTime& t);
   /// Writes the buffered lines and fsyncs the file.
   void sync();
   /// Closes and deletes the file (after the final CSV is in place).

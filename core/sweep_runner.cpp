@@ -1,5 +1,6 @@
 #include "core/sweep_runner.hpp"
 
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -128,8 +129,16 @@ std::uint64_t run_classes(const SweepRequest& rq, const SweepGrid& grid,
 
 }  // namespace
 
+double process_cpu_seconds() {
+  struct rusage ru {};
+  ::getrusage(RUSAGE_SELF, &ru);
+  return static_cast<double>(ru.ru_utime.tv_sec + ru.ru_stime.tv_sec) +
+         1e-6 * static_cast<double>(ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);
+}
+
 SweepReport run_sweep(const SweepRequest& rq) {
   const Clock::time_point t0 = Clock::now();
+  const double cpu0 = process_cpu_seconds();
   SweepGrid grid(rq.spec);
   check_sweep_resources(grid, rq.output, rq.shards);
   check_writable(rq.output);
@@ -187,8 +196,13 @@ SweepReport run_sweep(const SweepRequest& rq) {
   const std::string journal_header =
       "dampbound-journal v1 sweep=" + identity + " classes=" + std::to_string(classes.count());
   std::unique_ptr<Journal> journal;
+  int run = 1;  // this run's number in the journal's time records
   if (rq.resume && journal_exists) {
     const JournalContents jc = read_journal(journal_path, journal_header, classes.count());
+    run = jc.runs + 1;
+    rep.earlier_runs = jc.runs;
+    rep.earlier_seconds = jc.wall_s;
+    rep.earlier_cpu_seconds = jc.cpu_s;
     for (const JournalEntry& e : jc.entries) {
       if (!in_shard(e.cls))
         throw InputError(journal_path + ": class " + std::to_string(e.cls) + " is not in shard " +
@@ -206,6 +220,13 @@ SweepReport run_sweep(const SweepRequest& rq) {
   pr.classes_done = pr.classes_resumed;
   pr.trials_resumed = pr.trials_done;
   rep.classes_resumed = pr.classes_resumed;
+  rep.trials_resumed = pr.trials_resumed;
+  // Records this run's time so far; a kill -9 loses at most the last ten seconds of it.
+  Clock::time_point last_time_record = Clock::now();
+  const auto record_time = [&] {
+    journal->add_time({run, seconds_since(t0), process_cpu_seconds() - cpu0});
+    last_time_record = Clock::now();
+  };
 
   // The classes still to run, in a fixed shuffled order: the cost of a class varies along the
   // grid, so shuffling keeps the threads balanced and the time-remaining estimate honest.
@@ -230,14 +251,16 @@ SweepReport run_sweep(const SweepRequest& rq) {
       },
       [&](bool last) {
         if (last || seconds_since(last_sync) >= rq.sync_interval_s) {
+          if (last || seconds_since(last_time_record) >= 10) record_time();
           journal->sync();
           last_sync = Clock::now();
         }
         pr.elapsed_s = seconds_since(t0);
         if (rq.progress) rq.progress(pr);
       });
-  journal->sync();
+  journal->sync();  // the last tick recorded this run's time
   rep.seconds = seconds_since(t0);
+  rep.cpu_seconds = process_cpu_seconds() - cpu0;
   if (pr.classes_done < pr.classes_total) {
     rep.cancelled = true;
     return rep;
@@ -251,6 +274,7 @@ SweepReport run_sweep(const SweepRequest& rq) {
   rep.rows = sweep_rows(grid, classes, results, rq.shard, rq.shards);
   for (const SweepRow& r : rep.rows) ++rep.outcome_trials[static_cast<size_t>(r.outcome)];
   rep.seconds = seconds_since(t0);
+  rep.cpu_seconds = process_cpu_seconds() - cpu0;
   pr.elapsed_s = rep.seconds;
   pr.final = true;
   if (rq.progress) rq.progress(pr);

@@ -48,13 +48,20 @@ struct SweepReport {
   std::uint64_t lane_steps = 0;       ///< trial-steps taken in this run
   long long spring_evaluations_per_step = 0;
   std::uint64_t outcome_trials[4] = {0, 0, 0, 0};  ///< per Outcome, over this shard's trials
-  double seconds = 0;
+  std::uint64_t trials_resumed = 0;   ///< trials whose class came from the journal
+  double seconds = 0;                 ///< wall time of this run
+  double cpu_seconds = 0;             ///< CPU time of this process (all threads)
+  int earlier_runs = 0;               ///< earlier runs that recorded their time in the journal
+  double earlier_seconds = 0, earlier_cpu_seconds = 0;  ///< their wall and CPU time in all
   bool cancelled = false;         ///< interrupted: the journal holds what was done
   bool already_complete = false;  ///< --resume found the finished CSV and nothing to do
   bool batched = true;            ///< the batched kernel ran (else Session per trial)
   std::string plain_reason;       ///< why not, when not
   std::vector<SweepRow> rows;     ///< this shard's rows (for the summary and the map)
 };
+
+/// CPU time of this process so far, all threads (seconds).
+double process_cpu_seconds();
 
 /// "K/N" -> (K, N), 1 <= K <= N. Throws InputError naming --shard.
 void parse_shard(const std::string& text, int& shard, int& shards);

@@ -9,10 +9,14 @@ GRID=(--m 0.001:0.08:0.001 --kappa 0.001:0.08:0.001 --zeta 1 --max-iter 150 --th
 
 expect_exit 0 "$DB" sweep "${GRID[@]}" -o "$WORK/ref.csv"
 
-# wait_for_journal FILE N: until FILE has N finished classes (lines after the header).
+# classes_in FILE: the finished classes in a journal (lines after the header, time records
+# "t ..." aside).
+classes_in() { echo $(($(grep -cv '^t ' "$1") - 1)); }
+
+# wait_for_journal FILE N: until FILE has N finished classes.
 wait_for_journal() {
   for _ in $(seq 1 600); do
-    [ -f "$1" ] && [ "$(($(wc -l <"$1") - 1))" -ge "$2" ] && return 0
+    [ -f "$1" ] && [ "$(classes_in "$1")" -ge "$2" ] && return 0
     sleep 0.05
   done
   return 1
@@ -26,7 +30,7 @@ kill -9 $pid 2>/dev/null
 wait $pid 2>/dev/null
 [ -e "$WORK/k.csv" ] && bad "the sweep finished before the kill: make the grid larger"
 [ -e "$WORK/k.csv.journal" ] && ok || bad "journal missing after kill -9"
-done_before=$(($(wc -l <"$WORK/k.csv.journal") - 1))
+done_before=$(classes_in "$WORK/k.csv.journal")
 # A write torn by the kill: half a line at the end must be detected and dropped.
 printf '123 r 45 0x1.8p-5 10' >>"$WORK/k.csv.journal"
 expect_exit 0 "$DB" sweep "${GRID[@]}" -o "$WORK/k.csv" --resume
@@ -46,6 +50,9 @@ wait $pid
 code=$?
 [ "$code" -eq 130 ] && ok || bad "Ctrl-C exit $code, wanted 130"
 expect_match "$(cat "$WORK/c.err")" 'interrupted: .*--resume' "Ctrl-C message"
+grep -q '^t 1 ' "$WORK/c.csv.journal" && ok || bad "no time record after Ctrl-C"
 expect_exit 0 "$DB" sweep "${GRID[@]}" -o "$WORK/c.csv" --resume
 cmp -s "$WORK/c.csv" "$WORK/ref.csv" && ok || bad "CSV after Ctrl-C + resume differs"
+# The interrupted run recorded its time: the report adds the two runs up.
+expect_match "$OUT" 'in all       [0-9.]+ s \([0-9.]+ s of CPU\) over 2 runs' "time over two runs"
 finish
