@@ -166,13 +166,17 @@ int run(const SweepArgs& a) {
         static_cast<double>(rep.lane_steps) * static_cast<double>(rep.spring_evaluations_per_step) /
             s,
         rep.batched ? "batched kernel" : ("Session per trial: " + rep.plain_reason).c_str());
-    if (rep.earlier_runs > 0)
-      std::printf("in all       %.1f s (%.1f s of CPU) over %d runs\n",
-                  rep.seconds + rep.earlier_seconds, rep.cpu_seconds + rep.earlier_cpu_seconds,
-                  rep.earlier_runs + 1);
-    else if (rep.classes_resumed > 0)
-      std::printf("in all       unknown: the journal's classes came from a run that recorded no "
-                  "time (killed in its first 10 s, or an older dampbound)\n");
+    if (rep.classes_resumed > 0) {
+      if (rep.untimed_classes == 0)
+        std::printf("in all       %.1f s (%.1f s of CPU) over %d runs\n",
+                    rep.seconds + rep.earlier_seconds, rep.cpu_seconds + rep.earlier_cpu_seconds,
+                    rep.earlier_runs + 1);
+      else
+        std::printf("in all       more than %.1f s (%.1f s of CPU): the time of %llu of the "
+                    "journal's classes was not recorded (an older dampbound records none)\n",
+                    rep.seconds + rep.earlier_seconds, rep.cpu_seconds + rep.earlier_cpu_seconds,
+                    static_cast<unsigned long long>(rep.untimed_classes));
+    }
   }
   std::printf("output       %s\n", a.output.c_str());
   double lambda_unit = NAN;

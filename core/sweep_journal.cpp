@@ -141,7 +141,8 @@ bool parse_journal_line(const std::string& line, JournalEntry& e) {
 
 std::string journal_time_line(const JournalTime& t) {
   char body[128];
-  const int n = std::snprintf(body, sizeof body, "t %d %.3f %.3f", t.run, t.wall_s, t.cpu_s);
+  const int n = std::snprintf(body, sizeof body, "t %d %.3f %.3f %" PRIu64, t.run, t.wall_s,
+                              t.cpu_s, t.classes);
   char line[160];
   std::snprintf(line, sizeof line, "%s %08" PRIx32 "\n", body,
                 fnv1a32(body, static_cast<size_t>(n)));
@@ -156,7 +157,9 @@ bool parse_journal_time_line(const std::string& line, JournalTime& t) {
   const unsigned long sum = std::strtoul(line.c_str() + space + 1, &end, 16);
   if (*end != '\0' || sum != fnv1a32(line.data(), space)) return false;
   JournalTime x;
-  if (std::sscanf(line.c_str(), "t %d %lf %lf", &x.run, &x.wall_s, &x.cpu_s) != 3 || x.run < 1 ||
+  if (std::sscanf(line.c_str(), "t %d %lf %lf %" SCNu64, &x.run, &x.wall_s, &x.cpu_s,
+                  &x.classes) != 4 ||
+      x.run < 1 ||
       !(x.wall_s >= 0) || !(x.cpu_s >= 0))
     return false;
   t = x;
@@ -204,6 +207,7 @@ JournalContents read_journal(const std::string& path, const std::string& header,
     jc.runs = std::max(jc.runs, run);
     jc.wall_s += t.wall_s;
     jc.cpu_s += t.cpu_s;
+    jc.timed_classes += t.classes;
   }
   return jc;
 }

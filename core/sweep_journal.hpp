@@ -31,14 +31,17 @@ std::string journal_line(const JournalEntry& e);
 bool parse_journal_line(const std::string& line, JournalEntry& e);
 
 /// How long one run of a sweep had worked when it last synced its journal: a run (the first,
-/// or a --resume) writes its number and its wall and CPU seconds so far, about every 10 s and
-/// when it stops, so that a sweep finished over several runs can report its time in all.
+/// or a --resume) writes its number, its wall and CPU seconds so far and the classes it has
+/// finished with every sync, so that a sweep finished over several runs can report its time
+/// in all.
 struct JournalTime {
   int run = 1;
   double wall_s = 0, cpu_s = 0;
+  std::uint64_t classes = 0;  ///< classes this run had finished by then
 };
 
-/// The journal line of a time record ("t RUN WALL CPU" and a checksum), and its inverse.
+/// The journal line of a time record ("t RUN WALL CPU CLASSES" and a checksum), and its
+/// inverse.
 std::string journal_time_line(const JournalTime& t);
 bool parse_journal_time_line(const std::string& line, JournalTime& t);
 
@@ -49,6 +52,7 @@ struct JournalContents {
   std::uint64_t dropped_lines = 0;    ///< damaged or duplicate lines ignored
   int runs = 0;                       ///< runs that recorded their time (the last run's number)
   double wall_s = 0, cpu_s = 0;       ///< their time in all (each run's last record)
+  std::uint64_t timed_classes = 0;    ///< classes those runs had finished at their last record
 };
 
 /// Reads PATH. Throws InputError when its first line is not `header` (another sweep or

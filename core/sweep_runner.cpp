@@ -203,6 +203,9 @@ SweepReport run_sweep(const SweepRequest& rq) {
     rep.earlier_runs = jc.runs;
     rep.earlier_seconds = jc.wall_s;
     rep.earlier_cpu_seconds = jc.cpu_s;
+    rep.untimed_classes = jc.entries.size() > jc.timed_classes
+                              ? jc.entries.size() - jc.timed_classes
+                              : 0;
     for (const JournalEntry& e : jc.entries) {
       if (!in_shard(e.cls))
         throw InputError(journal_path + ": class " + std::to_string(e.cls) + " is not in shard " +
@@ -221,11 +224,10 @@ SweepReport run_sweep(const SweepRequest& rq) {
   pr.trials_resumed = pr.trials_done;
   rep.classes_resumed = pr.classes_resumed;
   rep.trials_resumed = pr.trials_resumed;
-  // Records this run's time so far; a kill -9 loses at most the last ten seconds of it.
-  Clock::time_point last_time_record = Clock::now();
+  // Records this run's time so far with each sync: a kill -9 loses no more of it than of
+  // the classes.
   const auto record_time = [&] {
-    journal->add_time({run, seconds_since(t0), process_cpu_seconds() - cpu0});
-    last_time_record = Clock::now();
+    journal->add_time({run, seconds_since(t0), process_cpu_seconds() - cpu0, rep.classes_run});
   };
 
   // The classes still to run, in a fixed shuffled order: the cost of a class varies along the
@@ -251,7 +253,7 @@ SweepReport run_sweep(const SweepRequest& rq) {
       },
       [&](bool last) {
         if (last || seconds_since(last_sync) >= rq.sync_interval_s) {
-          if (last || seconds_since(last_time_record) >= 10) record_time();
+          record_time();
           journal->sync();
           last_sync = Clock::now();
         }

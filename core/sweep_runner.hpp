@@ -53,6 +53,7 @@ struct SweepReport {
   double cpu_seconds = 0;             ///< CPU time of this process (all threads)
   int earlier_runs = 0;               ///< earlier runs that recorded their time in the journal
   double earlier_seconds = 0, earlier_cpu_seconds = 0;  ///< their wall and CPU time in all
+  std::uint64_t untimed_classes = 0;  ///< journal classes from runs that recorded no time
   bool cancelled = false;         ///< interrupted: the journal holds what was done
   bool already_complete = false;  ///< --resume found the finished CSV and nothing to do
   bool batched = true;            ///< the batched kernel ran (else Session per trial)

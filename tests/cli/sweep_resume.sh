@@ -35,6 +35,8 @@ done_before=$(classes_in "$WORK/k.csv.journal")
 printf '123 r 45 0x1.8p-5 10' >>"$WORK/k.csv.journal"
 expect_exit 0 "$DB" sweep "${GRID[@]}" -o "$WORK/k.csv" --resume
 expect_match "$OUT" "classes run now, $done_before from the journal" "resumed classes counted"
+# Every synced class has its time record: the killed run's time is known.
+expect_match "$OUT" 'in all       [0-9.]+ s \([0-9.]+ s of CPU\) over 2 runs' "time after kill -9"
 cmp -s "$WORK/k.csv" "$WORK/ref.csv" && ok || bad "CSV after kill -9 + resume differs"
 [ -e "$WORK/k.csv.journal" ] && bad "journal left after a finished sweep"
 # --resume on a finished sweep has nothing to do.

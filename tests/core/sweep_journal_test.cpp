@@ -107,20 +107,22 @@ TEST(SweepJournal, TimeRecordsAddUpOverRuns) {
   t.run = 2;
   t.wall_s = 12.5;
   t.cpu_s = 24.25;
+  t.classes = 17;
   JournalTime back;
   ASSERT_TRUE(parse_journal_time_line(journal_time_line(t).substr(0, journal_time_line(t).size() - 1),
                                       back));
   EXPECT_EQ(back.run, 2);
   EXPECT_EQ(back.wall_s, 12.5);
   EXPECT_EQ(back.cpu_s, 24.25);
+  EXPECT_EQ(back.classes, 17u);
   JournalEntry e;
   EXPECT_FALSE(parse_journal_line(journal_time_line(t), e));  // not a class line
   {
     Journal j(path, header);
     j.add(entry(1, Outcome::restored, 30, 0.04));
-    j.add_time({1, 10.0, 19.0});
+    j.add_time({1, 10.0, 19.0, 1});
     j.add(entry(2, Outcome::restored, 31, 0.04));
-    j.add_time({1, 20.0, 39.0});  // the first run's last record counts
+    j.add_time({1, 20.0, 39.0, 2});  // the first run's last record counts
     j.sync();
   }
   JournalContents jc = read_journal(path, header, 10);
@@ -128,14 +130,15 @@ TEST(SweepJournal, TimeRecordsAddUpOverRuns) {
   EXPECT_EQ(jc.runs, 1);
   EXPECT_DOUBLE_EQ(jc.wall_s, 20.0);
   EXPECT_DOUBLE_EQ(jc.cpu_s, 39.0);
+  EXPECT_EQ(jc.timed_classes, 2u);
   {
     Journal j(path, header, jc.valid_bytes);  // a second run
     j.add(entry(3, Outcome::diverged, 3, HUGE_VAL));
-    j.add_time({2, 5.0, 9.5});
+    j.add_time({2, 5.0, 9.5, 1});
     j.sync();
   }
   // A torn time record at the end is dropped like a torn class line.
-  const std::string torn = journal_time_line({2, 7.0, 13.0});
+  const std::string torn = journal_time_line({2, 7.0, 13.0, 1});
   {
     std::ofstream out(path, std::ios::app | std::ios::binary);
     out << torn.substr(0, torn.size() - 4);
@@ -145,6 +148,7 @@ TEST(SweepJournal, TimeRecordsAddUpOverRuns) {
   EXPECT_EQ(jc.runs, 2);
   EXPECT_DOUBLE_EQ(jc.wall_s, 25.0);
   EXPECT_DOUBLE_EQ(jc.cpu_s, 48.5);
+  EXPECT_EQ(jc.timed_classes, 3u);
   EXPECT_EQ(jc.dropped_lines, 1u);
   std::remove(path.c_str());
 }
