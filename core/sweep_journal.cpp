@@ -66,6 +66,22 @@ char outcome_code(Outcome o) {
   return '?';
 }
 
+/// A journal line: the body, a space, its 8-hex-digit FNV-1a checksum and a newline.
+std::string with_checksum(const char* body, int n) {
+  char sum[16];
+  std::snprintf(sum, sizeof sum, " %08" PRIx32 "\n", fnv1a32(body, static_cast<size_t>(n)));
+  return std::string(body, static_cast<size_t>(n)) + sum;
+}
+
+/// Whether a line (without its newline) ends in the right checksum of what precedes it.
+bool checksum_ok(const std::string& line) {
+  const size_t space = line.find_last_of(' ');
+  if (space == std::string::npos || line.size() - space != 9) return false;
+  char* end = nullptr;
+  const unsigned long sum = std::strtoul(line.c_str() + space + 1, &end, 16);
+  return *end == '\0' && sum == fnv1a32(line.data(), space);
+}
+
 }  // namespace
 
 void write_durably(const std::string& path, const std::function<void(std::FILE*)>& fill) {
@@ -101,18 +117,11 @@ std::string journal_line(const JournalEntry& e) {
   const int n = std::snprintf(body, sizeof body, "%" PRIu32 " %c %d %a %lld %lld %lld %lld", e.cls,
                               outcome_code(r.outcome), r.iterations, r.max_displacement,
                               r.violations, r.unstabilisable, r.clamped, r.zero_length_springs);
-  char line[300];
-  std::snprintf(line, sizeof line, "%s %08" PRIx32 "\n", body,
-                fnv1a32(body, static_cast<size_t>(n)));
-  return line;
+  return with_checksum(body, n);
 }
 
 bool parse_journal_line(const std::string& line, JournalEntry& e) {
-  const size_t space = line.find_last_of(' ');
-  if (space == std::string::npos || line.size() - space != 9) return false;
-  char* end = nullptr;
-  const unsigned long sum = std::strtoul(line.c_str() + space + 1, &end, 16);
-  if (*end != '\0' || sum != fnv1a32(line.data(), space)) return false;
+  if (!checksum_ok(line)) return false;
   char code = 0;
   char disp[64];
   JournalEntry x;
@@ -143,19 +152,11 @@ std::string journal_time_line(const JournalTime& t) {
   char body[128];
   const int n = std::snprintf(body, sizeof body, "t %d %.3f %.3f %" PRIu64, t.run, t.wall_s,
                               t.cpu_s, t.classes);
-  char line[160];
-  std::snprintf(line, sizeof line, "%s %08" PRIx32 "\n", body,
-                fnv1a32(body, static_cast<size_t>(n)));
-  return line;
+  return with_checksum(body, n);
 }
 
 bool parse_journal_time_line(const std::string& line, JournalTime& t) {
-  const size_t space = line.find_last_of(' ');
-  if (line.rfind("t ", 0) != 0 || space == std::string::npos || line.size() - space != 9)
-    return false;
-  char* end = nullptr;
-  const unsigned long sum = std::strtoul(line.c_str() + space + 1, &end, 16);
-  if (*end != '\0' || sum != fnv1a32(line.data(), space)) return false;
+  if (line.rfind("t ", 0) != 0 || !checksum_ok(line)) return false;
   JournalTime x;
   if (std::sscanf(line.c_str(), "t %d %lf %lf %" SCNu64, &x.run, &x.wall_s, &x.cpu_s,
                   &x.classes) != 4 ||
