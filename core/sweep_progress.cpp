@@ -24,18 +24,30 @@ ProgressPrinter::ProgressPrinter(std::FILE* out, bool terminal, double interval_
     : out_(out), terminal_(terminal), interval_s_(interval_s) {}
 
 void ProgressPrinter::update(const SweepProgress& p) {
-  const double run_s = std::max(p.elapsed_s, 1e-9);
-  const std::uint64_t new_classes = p.classes_done - p.classes_resumed;
-  // Trials per second counts the trials covered by the classes finished in this run.
-  const double trial_rate = static_cast<double>(p.trials_done - p.trials_resumed) / run_s;
-  const double class_rate = static_cast<double>(new_classes) / run_s;
+  constexpr double kWindow = 300;
+  if (window_.empty() || p.elapsed_s - window_.back().t >= 1.0)
+    window_.push_back({p.elapsed_s, p.classes_done, p.trials_done});
+  while (window_.size() > 2 && p.elapsed_s - window_[1].t >= kWindow) window_.pop_front();
+  // Trials per second counts the trials covered by the classes finished (in this run).
+  double trial_rate = NAN, class_rate = NAN;
+  if (p.final) {
+    const double run_s = std::max(p.elapsed_s, 1e-9);
+    trial_rate = static_cast<double>(p.trials_done - p.trials_resumed) / run_s;
+  } else if (p.elapsed_s - window_.front().t > 0.5) {
+    const Sample& a = window_.front();
+    const double dt = p.elapsed_s - a.t;
+    trial_rate = static_cast<double>(p.trials_done - a.trials) / dt;
+    class_rate = static_cast<double>(p.classes_done - a.classes) / dt;
+  }
   const double left =
       class_rate > 0 ? static_cast<double>(p.classes_total - p.classes_done) / class_rate : NAN;
   const double frac = p.trials_total
                           ? static_cast<double>(p.trials_done) / static_cast<double>(p.trials_total)
                           : 1.0;
   char rate[32];
-  if (trial_rate >= 1e4)
+  if (!std::isfinite(trial_rate))
+    std::snprintf(rate, sizeof rate, "?");
+  else if (trial_rate >= 1e4)
     std::snprintf(rate, sizeof rate, "%.1fk", trial_rate / 1e3);
   else
     std::snprintf(rate, sizeof rate, "%.0f", trial_rate);
