@@ -172,10 +172,11 @@ int run(const SweepArgs& a) {
                     rep.seconds + rep.earlier_seconds, rep.cpu_seconds + rep.earlier_cpu_seconds,
                     rep.earlier_runs + 1);
       else
-        std::printf("in all       more than %.1f s (%.1f s of CPU): the time of %llu of the "
-                    "journal's classes was not recorded (an older dampbound records none)\n",
-                    rep.seconds + rep.earlier_seconds, rep.cpu_seconds + rep.earlier_cpu_seconds,
-                    static_cast<unsigned long long>(rep.untimed_classes));
+        std::printf(
+            "in all       more than %.1f s (%.1f s of CPU): the time of %llu of the "
+            "journal's classes was not recorded (an older dampbound records none)\n",
+            rep.seconds + rep.earlier_seconds, rep.cpu_seconds + rep.earlier_cpu_seconds,
+            static_cast<unsigned long long>(rep.untimed_classes));
     }
   }
   std::printf("output       %s\n", a.output.c_str());

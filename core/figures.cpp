@@ -67,10 +67,11 @@ FigureData figure_scene(const SceneSpec& scene) {
   FigureData f;
   f.name = scene.name.empty() ? "scene" : scene.name;
   f.title = scene.description.empty() ? f.name : scene.description;
-  if (scene.runs.empty())
-    f.runs.push_back(make_run(f.name, scene.params, scene.rules));
+  if (scene.runs.empty()) f.runs.push_back(make_run(f.name, scene.params, scene.rules));
   for (const RunSpec& r : scene.runs) f.runs.push_back(make_run(r.label, r.params, r.rules));
   run_figure(scene, f);
+  // A diverging run's displacement dwarfs the others' on a linear axis: use log10 then.
+  for (const FigureRun& r : f.runs) f.log_y = f.log_y || r.result.outcome == Outcome::diverged;
   return f;
 }
 

@@ -36,7 +36,8 @@ FigureData figure_fig1(const SceneSpec& paper_plane);
 /// iterations, log10 displacement.
 FigureData figure_fig2(const SceneSpec& paper_plane);
 
-/// A scene's declared [[run]]s, or its own parameters when it declares none.
+/// A scene's declared [[run]]s, or its own parameters when it declares none; on a log10 axis
+/// when one of them diverges.
 FigureData figure_scene(const SceneSpec& scene);
 
 /// Runs each FigureRun's parameters on the scene (through Session, the one step()).

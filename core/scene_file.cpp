@@ -10,6 +10,7 @@
 
 #include "core/error.hpp"
 #include "core/io.hpp"
+#include "core/mesh_obj.hpp"
 #include "core/scene.hpp"
 
 namespace dampbound {
@@ -99,7 +100,8 @@ class Reader {
   std::string path_;
 };
 
-/// Reads the parameter keys (m, kappa, gamma, dt, policy, factor, integrator) present in `t` into `p`.
+/// Reads the parameter keys (m, kappa, gamma, dt, policy, factor, integrator) present in `t` into
+/// `p`.
 void read_params(const Reader& r, const toml::table& t, Params& p) {
   if (auto* n = t.get("m")) p.m = r.positive(*n, "m");
   if (auto* n = t.get("kappa")) p.kappa = r.positive(*n, "kappa");
@@ -136,9 +138,8 @@ int node_ref(const Reader& r, const SceneSpec& s, const toml::node& n, const std
     if (!s.grid) r.fail(n, what + " as [a, b] needs a [grid] geometry");
     const long long ga = r.integer(*a->get(0), what), gb = r.integer(*a->get(1), what);
     if (ga < 0 || ga >= s.grid->nx || gb < 0 || gb >= s.grid->nz)
-      r.fail(n, what + " [" + std::to_string(ga) + ", " + std::to_string(gb) +
-                    "] is outside the " + std::to_string(s.grid->nx) + " x " +
-                    std::to_string(s.grid->nz) + " grid");
+      r.fail(n, what + " [" + std::to_string(ga) + ", " + std::to_string(gb) + "] is outside the " +
+                    std::to_string(s.grid->nx) + " x " + std::to_string(s.grid->nz) + " grid");
     index = ga * s.grid->nz + gb;
   } else {
     r.fail(n, what + " must be a node index or [a, b]");
@@ -149,12 +150,43 @@ int node_ref(const Reader& r, const SceneSpec& s, const toml::node& n, const std
   return static_cast<int>(index);
 }
 
+/// [mesh]: a Wavefront OBJ surface (core/mesh_obj.hpp), its path relative to the scene file.
+void read_mesh(const Reader& r, const toml::table& root, SceneSpec& s) {
+  const toml::table& t = r.table(*root.get("mesh"), "mesh");
+  r.check_keys(t, {"file", "scale", "bend", "anchors"}, "[mesh]");
+  const toml::node& fn = r.required(t, "file", "[mesh]");
+  std::string file = r.string(fn, "file");
+  if (file.empty()) r.fail(fn, "file must name an OBJ file");
+  if (file.front() != '/') {
+    const auto slash = r.path().find_last_of('/');
+    if (slash != std::string::npos) file = r.path().substr(0, slash + 1) + file;
+  }
+  std::string text;
+  try {
+    text = read_file_text(file);
+  } catch (const std::exception&) {
+    r.fail(fn, "cannot read the mesh file " + file);
+  }
+  MeshSprings how;
+  if (auto* n = t.get("scale")) how.scale = r.positive(*n, "scale");
+  if (auto* n = t.get("bend")) how.bend = r.boolean(*n, "bend");
+  if (auto* n = t.get("anchors")) how.anchors = r.boolean(*n, "anchors");
+  s.model = model_from_obj(parse_obj(text, file), how);
+}
+
 void read_geometry(const Reader& r, const toml::table& root, SceneSpec& s) {
   const bool has_grid = root.contains("grid");
   const bool has_nodes = root.contains("node");
-  if (has_grid == has_nodes)
-    r.fail(1, has_grid ? "a scene has either [grid] or [[node]] geometry, not both"
-                       : "the scene has no geometry: add [grid] or [[node]] entries");
+  const bool has_mesh = root.contains("mesh");
+  if (has_grid + has_nodes + has_mesh != 1)
+    r.fail(1, has_grid || has_nodes || has_mesh
+                  ? "a scene has one geometry: [grid], [[node]] or [mesh], not several"
+                  : "the scene has no geometry: add [grid], [[node]] entries or [mesh]");
+  if (has_mesh) {
+    read_mesh(r, root, s);
+    if (root.contains("spring")) r.fail(*root.get("spring"), "[[spring]] needs [[node]] geometry");
+    return;
+  }
   if (has_grid) {
     const toml::table& g = r.table(*root.get("grid"), "grid");
     r.check_keys(g, {"nx", "nz", "spacing", "diagonals", "anchors"}, "[grid]");
@@ -219,8 +251,9 @@ void read_regions(const Reader& r, const toml::table& root, SceneSpec& s) {
   if (!regions) r.fail(*rn, "region must be an array of tables [[region]]");
   for (auto&& e : *regions) {
     const toml::table& t = r.table(e, "[[region]]");
-    r.check_keys(t, {"min", "max", "mass_scale", "kappa_scale", "gamma_scale", "anchor_scale"},
-                 "[[region]]");
+    r.check_keys(
+        t, {"min", "max", "mass_scale", "kappa_scale", "gamma_scale", "anchor_scale", "fixed"},
+        "[[region]]");
     const Vec3 lo = r.vec3(r.required(t, "min", "[[region]]"), "min");
     const Vec3 hi = r.vec3(r.required(t, "max", "[[region]]"), "max");
     auto inside = [&](int i) {
@@ -237,6 +270,7 @@ void read_regions(const Reader& r, const toml::table& root, SceneSpec& s) {
         s.model.gamma_scale[k] = r.non_negative(*n, "gamma_scale");
       if (auto* n = t.get("anchor_scale"))
         s.model.anchor_scale[k] = r.non_negative(*n, "anchor_scale");
+      if (auto* n = t.get("fixed")) s.model.fixed[k] = r.boolean(*n, "fixed");
     }
     if (count == 0) r.fail(t, "[[region]] contains no node");
     if (auto* n = t.get("kappa_scale")) {
@@ -308,9 +342,10 @@ void read_runs(const Reader& r, const toml::table& root, SceneSpec& s) {
   std::set<std::string> labels;
   for (auto&& e : *list) {
     const toml::table& t = r.table(e, "[[run]]");
-    r.check_keys(t, {"label", "m", "kappa", "gamma", "dt", "policy", "factor", "integrator",
-                     "max_iterations"},
-                 "[[run]]");
+    r.check_keys(
+        t,
+        {"label", "m", "kappa", "gamma", "dt", "policy", "factor", "integrator", "max_iterations"},
+        "[[run]]");
     RunSpec run{r.string(r.required(t, "label", "[[run]]"), "label"), s.params, s.rules};
     if (run.label.empty() || !labels.insert(run.label).second)
       r.fail(t, "run label '" + run.label + "' is empty or used twice");
@@ -327,8 +362,9 @@ void read_expectations(const Reader& r, const toml::table& root, SceneSpec& s) {
   if (!list) r.fail(*en, "expect must be an array of tables [[expect]]");
   for (auto&& e : *list) {
     const toml::table& t = r.table(e, "[[expect]]");
-    r.check_keys(t, {"run", "outcome", "iterations", "max_displacement_below",
-                     "unstabilisable_max", "violations_max", "violations_min"},
+    r.check_keys(t,
+                 {"run", "outcome", "iterations", "max_displacement_below", "unstabilisable_max",
+                  "violations_max", "violations_min"},
                  "[[expect]]");
     Expectation x;
     x.line = static_cast<int>(t.source().begin.line);
@@ -361,8 +397,9 @@ void read_expectations(const Reader& r, const toml::table& root, SceneSpec& s) {
       x.violations_min = static_cast<long long>(r.non_negative(*n, "violations_min"));
     if (!x.outcome && !x.iterations_min && !x.max_displacement_below && !x.unstabilisable_max &&
         !x.violations_max && !x.violations_min)
-      r.fail(t, "[[expect]] asserts nothing: give outcome, iterations, max_displacement_below, "
-                "unstabilisable_max, violations_max or violations_min");
+      r.fail(t,
+             "[[expect]] asserts nothing: give outcome, iterations, max_displacement_below, "
+             "unstabilisable_max, violations_max or violations_min");
     s.expectations.push_back(x);
   }
 }
@@ -378,8 +415,8 @@ SceneSpec parse_scene(const std::string& text, const std::string& path) {
     r.fail(static_cast<int>(e.source().begin.line), std::string(e.description()));
   }
   r.check_keys(root,
-               {"name", "description", "watch", "grid", "node", "spring", "region", "params",
-                "perturb", "protocol", "cut", "run", "expect"},
+               {"name", "description", "watch", "grid", "node", "mesh", "spring", "region",
+                "params", "perturb", "protocol", "cut", "run", "expect"},
                "the scene");
   SceneSpec s;
   s.path = path;

@@ -158,10 +158,9 @@ std::string journal_time_line(const JournalTime& t) {
 bool parse_journal_time_line(const std::string& line, JournalTime& t) {
   if (line.rfind("t ", 0) != 0 || !checksum_ok(line)) return false;
   JournalTime x;
-  if (std::sscanf(line.c_str(), "t %d %lf %lf %" SCNu64, &x.run, &x.wall_s, &x.cpu_s,
-                  &x.classes) != 4 ||
-      x.run < 1 ||
-      !(x.wall_s >= 0) || !(x.cpu_s >= 0))
+  if (std::sscanf(line.c_str(), "t %d %lf %lf %" SCNu64, &x.run, &x.wall_s, &x.cpu_s, &x.classes) !=
+          4 ||
+      x.run < 1 || !(x.wall_s >= 0) || !(x.cpu_s >= 0))
     return false;
   t = x;
   return true;

@@ -203,9 +203,8 @@ SweepReport run_sweep(const SweepRequest& rq) {
     rep.earlier_runs = jc.runs;
     rep.earlier_seconds = jc.wall_s;
     rep.earlier_cpu_seconds = jc.cpu_s;
-    rep.untimed_classes = jc.entries.size() > jc.timed_classes
-                              ? jc.entries.size() - jc.timed_classes
-                              : 0;
+    rep.untimed_classes =
+        jc.entries.size() > jc.timed_classes ? jc.entries.size() - jc.timed_classes : 0;
     for (const JournalEntry& e : jc.entries) {
       if (!in_shard(e.cls))
         throw InputError(journal_path + ": class " + std::to_string(e.cls) + " is not in shard " +

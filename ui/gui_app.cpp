@@ -283,8 +283,8 @@ void GuiApp::layout_windows(const FrameInfo& info) {
       if (was != nullptr && now != nullptr && same_rect(d, *was))
         follow_.push_back(*now);
       else
-        follow_.push_back({d.name, std::floor(d.x * sx), std::floor(d.y * sy),
-                           std::floor(d.w * sx), std::floor(d.h * sy)});
+        follow_.push_back({d.name, std::floor(d.x * sx), std::floor(d.y * sy), std::floor(d.w * sx),
+                           std::floor(d.h * sy)});
     }
   }
   layout_w_ = W;

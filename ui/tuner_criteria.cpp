@@ -63,8 +63,7 @@ void TunerCriteria::wait() {
 }
 
 void TunerCriteria::collect() {
-  if (!job_.valid() || job_.wait_for(std::chrono::seconds(0)) != std::future_status::ready)
-    return;
+  if (!job_.valid() || job_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return;
   Finished f = job_.get();
   last_seconds_ = f.seconds;
   // A result of the other mode (switched while it ran) is dropped; the next call starts anew.
@@ -80,8 +79,7 @@ const ExactStability* TunerCriteria::exact(const Session& s, std::uint64_t topol
   collect();
   const double now = seconds_now();
   const bool moved = at_state_ && state != state_;
-  const bool changed =
-      !have_key_ || topology != topology_ || !same_key(key_, s.params()) || moved;
+  const bool changed = !have_key_ || topology != topology_ || !same_key(key_, s.params()) || moved;
   // On a large mesh the analysis takes long: while a slider is dragged (or the run goes on,
   // when it follows the state), keep the last result and recompute at most every few
   // durations, so the window stays responsive.

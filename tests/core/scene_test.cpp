@@ -139,7 +139,7 @@ TEST(BadScene, MissingValue) {
   EXPECT_EQ(error_of("[grid]\nnx = 4\nspacing = 1.0\n"), "bad.toml:1: missing 'nz' in [grid]");
   EXPECT_NE(error_of("[grid]\nnx = 4\nnz =\n").find("bad.toml:3:"), std::string::npos);
   EXPECT_EQ(error_of("name = \"empty\"\n"),
-            "bad.toml:1: the scene has no geometry: add [grid] or [[node]] entries");
+            "bad.toml:1: the scene has no geometry: add [grid], [[node]] entries or [mesh]");
 }
 
 TEST(BadScene, NegativeMass) {

@@ -1,0 +1,119 @@
+#include "core/mesh_obj.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <map>
+#include <set>
+#include <sstream>
+#include <utility>
+
+#include "core/error.hpp"
+
+namespace dampbound {
+
+namespace {
+
+[[noreturn]] void fail(const std::string& path, int line, const std::string& msg) {
+  throw InputError(path + ":" + std::to_string(line) + ": " + msg);
+}
+
+/// A finite number, or a failure naming the line.
+double read_number(const std::string& token, const std::string& path, int line) {
+  errno = 0;
+  char* end = nullptr;
+  const double x = std::strtod(token.c_str(), &end);
+  if (end == token.c_str() || *end != '\0' || errno == ERANGE || !std::isfinite(x))
+    fail(path, line, "'" + token + "' is not a finite number");
+  return x;
+}
+
+/// The vertex index of a face corner "i", "i/t", "i//n" or "i/t/n" (1-based, or negative
+/// counting back), as a 0-based index into the `count` vertices read so far.
+int read_corner(const std::string& token, int count, const std::string& path, int line) {
+  const std::string head = token.substr(0, token.find('/'));
+  errno = 0;
+  char* end = nullptr;
+  const long k = std::strtol(head.c_str(), &end, 10);
+  if (head.empty() || *end != '\0' || errno == ERANGE)
+    fail(path, line, "face corner '" + token + "' has no vertex index");
+  const long index = k > 0 ? k - 1 : count + k;
+  if (k == 0 || index < 0 || index >= count)
+    fail(path, line,
+         "face corner '" + token + "' refers to a vertex that does not exist (" +
+             std::to_string(count) + " so far)");
+  return static_cast<int>(index);
+}
+
+}  // namespace
+
+ObjMesh parse_obj(const std::string& text, const std::string& path) {
+  ObjMesh mesh;
+  std::istringstream in(text);
+  std::string raw;
+  int line = 0;
+  while (std::getline(in, raw)) {
+    ++line;
+    const std::string content = raw.substr(0, raw.find('#'));
+    std::istringstream ls(content);
+    std::string keyword;
+    if (!(ls >> keyword)) continue;
+    std::vector<std::string> args;
+    for (std::string a; ls >> a;) args.push_back(a);
+    if (keyword == "v") {
+      if (args.size() < 3 || args.size() > 4)
+        fail(path, line, "a vertex needs 3 coordinates (v x y z)");
+      mesh.vertices.emplace_back(read_number(args[0], path, line), read_number(args[1], path, line),
+                                 read_number(args[2], path, line));
+    } else if (keyword == "f") {
+      if (args.size() < 3) fail(path, line, "a face needs at least 3 corners");
+      std::vector<int> face;
+      const int count = static_cast<int>(mesh.vertices.size());
+      for (const std::string& a : args) face.push_back(read_corner(a, count, path, line));
+      std::vector<int> sorted = face;
+      std::sort(sorted.begin(), sorted.end());
+      if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end())
+        fail(path, line, "a face uses the same vertex twice");
+      mesh.faces.push_back(std::move(face));
+    }
+    // vt, vn, vp, g, o, s, l, usemtl, mtllib ...: not part of the spring model.
+  }
+  if (mesh.faces.empty()) fail(path, std::max(line, 1), "the mesh has no face (f ...)");
+  return mesh;
+}
+
+Model model_from_obj(const ObjMesh& mesh, const MeshSprings& how) {
+  Model m;
+  for (const Vec3& v : mesh.vertices) {
+    const int i = add_node(m, v * how.scale);
+    m.anchor_scale[static_cast<size_t>(i)] = how.anchors ? 1.0 : 0.0;
+  }
+  using Edge = std::pair<int, int>;
+  const auto edge = [](int a, int b) { return Edge(std::min(a, b), std::max(a, b)); };
+  std::set<Edge> springs;
+  std::vector<Edge> order;               // edges in order of first appearance
+  std::map<Edge, std::vector<int>> far;  // per edge: the opposite corner of each triangle
+  for (const std::vector<int>& f : mesh.faces) {
+    const size_t n = f.size();
+    for (size_t k = 0; k < n; ++k) {
+      const Edge e = edge(f[k], f[(k + 1) % n]);
+      if (springs.insert(e).second) {
+        order.push_back(e);
+        add_spring(m, f[k], f[(k + 1) % n], 1.0);
+      }
+      if (n == 3) far[e].push_back(f[(k + 2) % 3]);
+    }
+  }
+  if (how.bend)
+    for (const Edge& e : order) {
+      const auto it = far.find(e);
+      if (it == far.end() || it->second.size() != 2) continue;
+      const int a = it->second[0], b = it->second[1];
+      if (a == b || !springs.insert(edge(a, b)).second) continue;
+      add_spring(m, a, b, 1.0);
+    }
+  return m;
+}
+
+}  // namespace dampbound
