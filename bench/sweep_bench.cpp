@@ -7,6 +7,7 @@
 
 #include <atomic>
 #include <memory>
+#include <random>
 #include <string>
 #include <thread>
 #include <vector>
@@ -76,6 +77,63 @@ BENCHMARK(BM_BatchedKernel)
     ->Args({2, static_cast<int>(DampingPolicy::fixed)})
     ->Args({2, static_cast<int>(DampingPolicy::upper)})
     ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+/// Trials as `--preset paper-upper` runs them: a fixed pseudo-random sample of its grid (m and
+/// kappa in 0.0001 .. 0.1 step 0.0001, factor 1 and 1.05, policy upper, 10000 iterations),
+/// each until it restores, diverges or reaches the limit, lanes refilled, `threads` kernels
+/// taking trials from one list. Slower per step than BM_BatchedKernel's busy trials: states
+/// that decay far enough make subnormal numbers (docs/sweeps.md).
+void BM_PaperUpperSample(benchmark::State& state) {
+  const int threads = static_cast<int>(state.range(0));
+  StopRules rules = paper_plane().rules;
+  rules.max_iterations = 10000;
+  std::vector<TrialParams> trials;
+  std::mt19937_64 rng(2026);
+  for (int k = 0; k < 256; ++k) {
+    TrialParams t;
+    t.m = 0.0001 * static_cast<double>(1 + rng() % 1000);
+    t.kappa = 0.0001 * static_cast<double>(1 + rng() % 1000);
+    t.factor = k % 2 == 0 ? 1.0 : 1.05;
+    trials.push_back(t);
+  }
+  std::vector<std::unique_ptr<BatchKernel>> kernels;
+  for (int t = 0; t < threads; ++t)
+    kernels.push_back(
+        std::make_unique<BatchKernel>(paper_plane(), DampingPolicy::upper, rules));
+  const long long per_step = kernels.front()->spring_evaluations_per_step();
+  std::uint64_t lane_steps_total = 0;
+  for (auto _ : state) {
+    std::atomic<size_t> next{0};
+    std::atomic<std::uint64_t> lane_steps{0};
+    std::vector<std::thread> pool;
+    for (int t = 0; t < threads; ++t)
+      pool.emplace_back([&, t] {
+        lane_steps += kernels[static_cast<size_t>(t)]->run(
+            [&](std::size_t& id, TrialParams& p) {
+              const size_t i = next.fetch_add(1);
+              if (i >= trials.size()) return false;
+              id = i;
+              p = trials[i];
+              return true;
+            },
+            [](std::size_t, const TrialResult&) {});
+      });
+    for (auto& th : pool) th.join();
+    lane_steps_total += lane_steps.load();
+  }
+  state.counters["spring_evals_per_s"] = benchmark::Counter(
+      static_cast<double>(lane_steps_total) * static_cast<double>(per_step),
+      benchmark::Counter::kIsRate);
+  state.counters["trial_steps_per_s"] =
+      benchmark::Counter(static_cast<double>(lane_steps_total), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_PaperUpperSample)
+    ->ArgNames({"threads"})
+    ->Arg(1)
+    ->Arg(2)
+    ->Iterations(1)
+    ->Unit(benchmark::kSecond)
     ->UseRealTime();
 
 /// The plain step() of core, one trial, one thread.
