@@ -35,41 +35,56 @@ TrialParams busy_trial(int k) {
   return t;
 }
 
-/// 1000 steps of kLanes trials per kernel, `threads` kernels side by side (built once, outside
-/// the timing).
+/// Kernels for `threads` threads (built once, outside the timing).
+std::vector<std::unique_ptr<BatchKernel>> make_kernels(int threads, DampingPolicy policy,
+                                                       const StopRules& rules) {
+  std::vector<std::unique_ptr<BatchKernel>> kernels;
+  for (int t = 0; t < threads; ++t)
+    kernels.push_back(std::make_unique<BatchKernel>(paper_plane(), policy, rules));
+  return kernels;
+}
+
+/// Times the kernels side by side, kernel t taking its trials from source_for(t), and reports
+/// spring evaluations and trial-steps per second.
+template <typename SourceFor>
+void time_kernels(benchmark::State& state,
+                  const std::vector<std::unique_ptr<BatchKernel>>& kernels,
+                  const SourceFor& source_for) {
+  std::uint64_t lane_steps_total = 0;
+  for (auto _ : state) {
+    std::atomic<std::uint64_t> lane_steps{0};
+    std::vector<std::thread> pool;
+    for (size_t t = 0; t < kernels.size(); ++t)
+      pool.emplace_back([&, t] {
+        lane_steps += kernels[t]->run(source_for(static_cast<int>(t)),
+                                      [](std::size_t, const TrialResult&) {});
+      });
+    for (auto& th : pool) th.join();
+    lane_steps_total += lane_steps.load();
+  }
+  const double per_step = static_cast<double>(kernels.front()->spring_evaluations_per_step());
+  state.counters["spring_evals_per_s"] = benchmark::Counter(
+      static_cast<double>(lane_steps_total) * per_step, benchmark::Counter::kIsRate);
+  state.counters["trial_steps_per_s"] =
+      benchmark::Counter(static_cast<double>(lane_steps_total), benchmark::Counter::kIsRate);
+}
+
+/// 1000 steps of kLanes busy trials per kernel, `threads` kernels side by side.
 void BM_BatchedKernel(benchmark::State& state) {
   const int threads = static_cast<int>(state.range(0));
   const auto policy = static_cast<DampingPolicy>(state.range(1));
   StopRules rules = paper_plane().rules;
   rules.max_iterations = 1000;
-  std::vector<std::unique_ptr<BatchKernel>> kernels;
-  for (int t = 0; t < threads; ++t)
-    kernels.push_back(std::make_unique<BatchKernel>(paper_plane(), policy, rules));
-  const long long per_step = kernels.front()->spring_evaluations_per_step();
-  std::uint64_t lane_steps_total = 0;
-  for (auto _ : state) {
-    std::atomic<std::uint64_t> lane_steps{0};
-    std::vector<std::thread> pool;
-    for (int t = 0; t < threads; ++t)
-      pool.emplace_back([&, t] {
-        int handed = 0;
-        lane_steps += kernels[static_cast<size_t>(t)]->run(
-            [&](std::size_t& id, TrialParams& p) {
-              if (handed == BatchKernel::kLanes) return false;
-              id = static_cast<std::size_t>(handed);
-              p = busy_trial(t * 100 + handed++);
-              return true;
-            },
-            [](std::size_t, const TrialResult&) {});
-      });
-    for (auto& th : pool) th.join();
-    lane_steps_total += lane_steps.load();
-  }
-  state.counters["spring_evals_per_s"] = benchmark::Counter(
-      static_cast<double>(lane_steps_total) * static_cast<double>(per_step),
-      benchmark::Counter::kIsRate);
-  state.counters["trial_steps_per_s"] =
-      benchmark::Counter(static_cast<double>(lane_steps_total), benchmark::Counter::kIsRate);
+  const auto kernels = make_kernels(threads, policy, rules);
+  time_kernels(state, kernels, [](int t) -> TrialSource {
+    auto handed = std::make_shared<int>(0);
+    return [t, handed](std::size_t& id, TrialParams& p) {
+      if (*handed == BatchKernel::kLanes) return false;
+      id = static_cast<std::size_t>(*handed);
+      p = busy_trial(t * 100 + (*handed)++);
+      return true;
+    };
+  });
 }
 BENCHMARK(BM_BatchedKernel)
     ->ArgNames({"threads", "policy"})
@@ -97,36 +112,17 @@ void BM_PaperUpperSample(benchmark::State& state) {
     t.factor = k % 2 == 0 ? 1.0 : 1.05;
     trials.push_back(t);
   }
-  std::vector<std::unique_ptr<BatchKernel>> kernels;
-  for (int t = 0; t < threads; ++t)
-    kernels.push_back(
-        std::make_unique<BatchKernel>(paper_plane(), DampingPolicy::upper, rules));
-  const long long per_step = kernels.front()->spring_evaluations_per_step();
-  std::uint64_t lane_steps_total = 0;
-  for (auto _ : state) {
-    std::atomic<size_t> next{0};
-    std::atomic<std::uint64_t> lane_steps{0};
-    std::vector<std::thread> pool;
-    for (int t = 0; t < threads; ++t)
-      pool.emplace_back([&, t] {
-        lane_steps += kernels[static_cast<size_t>(t)]->run(
-            [&](std::size_t& id, TrialParams& p) {
-              const size_t i = next.fetch_add(1);
-              if (i >= trials.size()) return false;
-              id = i;
-              p = trials[i];
-              return true;
-            },
-            [](std::size_t, const TrialResult&) {});
-      });
-    for (auto& th : pool) th.join();
-    lane_steps_total += lane_steps.load();
-  }
-  state.counters["spring_evals_per_s"] = benchmark::Counter(
-      static_cast<double>(lane_steps_total) * static_cast<double>(per_step),
-      benchmark::Counter::kIsRate);
-  state.counters["trial_steps_per_s"] =
-      benchmark::Counter(static_cast<double>(lane_steps_total), benchmark::Counter::kIsRate);
+  const auto kernels = make_kernels(threads, DampingPolicy::upper, rules);
+  std::atomic<size_t> next{0};  // one pass over the list: the benchmark runs one iteration
+  time_kernels(state, kernels, [&](int) -> TrialSource {
+    return [&](std::size_t& id, TrialParams& p) {
+      const size_t i = next.fetch_add(1);
+      if (i >= trials.size()) return false;
+      id = i;
+      p = trials[i];
+      return true;
+    };
+  });
 }
 BENCHMARK(BM_PaperUpperSample)
     ->ArgNames({"threads"})
