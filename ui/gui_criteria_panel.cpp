@@ -24,9 +24,7 @@ ImVec4 verdict_color(CriterionVerdict v) {
 }
 
 void run_line(const VerifiedRun& r) {
-  const ImVec4 c = r.result.outcome == Outcome::restored   ? gui_green()
-                   : r.result.outcome == Outcome::diverged ? gui_red()
-                                                           : gui_amber();
+  const ImVec4 c = outcome_color(r.result.outcome);
   ImGui::BulletText("%s:", r.label.c_str());
   ImGui::SameLine();
   ImGui::TextColored(c, "%s", outcome_text(r.result).c_str());
@@ -98,8 +96,7 @@ void GuiApp::suggest_panel() {
   const Suggestion& s = *suggest_.result();
   const DampingSuggestion& d = s.damping;
   if (s.springs_cut > 0)
-    ImGui::TextDisabled("for the mesh as cut: %d springs, %d cut away", s.springs,
-                        s.springs_cut);
+    ImGui::TextDisabled("for the mesh as cut: %d springs, %d cut away", s.springs, s.springs_cut);
   section_header(("Damping at dt = " + fmt(d.dt) + " s").c_str());
   if (d.empty) {
     wrapped_colored(gui_amber(), ("No damping satisfies every criterion at this dt (" + d.min_by +

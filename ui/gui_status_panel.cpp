@@ -30,20 +30,6 @@ void row(const char* label, const std::string& value, const ImVec4* color = null
   }
 }
 
-ImVec4 outcome_color(Outcome o) {
-  switch (o) {
-    case Outcome::restored:
-      return gui_green();
-    case Outcome::diverged:
-      return gui_red();
-    case Outcome::not_restored:
-      return gui_amber();
-    case Outcome::running:
-      break;
-  }
-  return ImGui::GetStyle().Colors[ImGuiCol_Text];
-}
-
 /// The dark plot style with a transparent data area: the window colour shows through, and a
 /// software rasteriser is spared the fill.
 PlotStyle gui_plot_style() {

@@ -2,6 +2,8 @@
 // Small ImGui helpers shared by the tuner's panels.
 #include <imgui.h>
 
+#include "core/protocol.hpp"
+
 namespace dampbound::ui {
 
 /// Colours of verdicts and warnings in the panels (dark theme).
@@ -16,6 +18,22 @@ inline ImVec4 gui_green() {
 }
 
 /// A section title: a little space, the label in the header colour, a separator.
+/// The colour of a run's verdict: restored green, diverged red, not restored amber, running
+/// the text colour.
+inline ImVec4 outcome_color(Outcome o) {
+  switch (o) {
+    case Outcome::restored:
+      return gui_green();
+    case Outcome::diverged:
+      return gui_red();
+    case Outcome::not_restored:
+      return gui_amber();
+    case Outcome::running:
+      break;
+  }
+  return ImGui::GetStyle().Colors[ImGuiCol_Text];
+}
+
 inline void section_header(const char* label) {
   ImGui::Spacing();
   ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_PlotHistogram]);

@@ -41,6 +41,21 @@ GuiOptions options(const fs::path& config) {
   return o;
 }
 
+/// The EGL host with the window's render options.
+EglOptions headless() {
+  EglOptions eo;
+  eo.render = gui_render_options();
+  return eo;
+}
+
+/// options() with nothing persisted and no demo pins.
+GuiOptions bare_options() {
+  GuiOptions o = options(fs::path());
+  o.config_dir.clear();
+  o.demo = false;
+  return o;
+}
+
 TEST(GuiRender, WholeWindowHeadless) {
   const fs::path config = fs::temp_directory_path() / "dampbound_gui_render_test";
   fs::remove_all(config);
@@ -91,12 +106,8 @@ TEST(GuiRender, WholeWindowHeadless) {
 }
 
 TEST(GuiRender, DivergedRunShowsNoNaNAndStops) {
-  EglOptions eo;
-  eo.render = gui_render_options();
-  EglHost host(eo);
-  GuiOptions o = options(fs::path());
-  o.config_dir.clear();
-  o.demo = false;
+  EglHost host(headless());
+  GuiOptions o = bare_options();
   o.overrides = [](Params& p, StopRules&) {
     p.kappa = 1.0;
     p.gamma = 0.0;
@@ -111,12 +122,8 @@ TEST(GuiRender, DivergedRunShowsNoNaNAndStops) {
 }
 
 TEST(GuiRender, CriteriaAndSuggestTabs) {
-  EglOptions eo;
-  eo.render = gui_render_options();
-  EglHost host(eo);
-  GuiOptions o = options(fs::path());
-  o.config_dir.clear();
-  o.demo = false;
+  EglHost host(headless());
+  GuiOptions o = bare_options();
   o.overrides = [](Params& p, StopRules&) { p.gamma = 0.001; };
   GuiApp app(o);
   app.select_tab("Criteria");
@@ -135,12 +142,8 @@ TEST(GuiRender, CriteriaAndSuggestTabs) {
 }
 
 TEST(GuiRender, PanelsFollowTheWindowSize) {
-  EglOptions eo;
-  eo.render = gui_render_options();
-  EglHost host(eo);
-  GuiOptions o = options(fs::path());
-  o.config_dir.clear();
-  o.demo = false;
+  EglHost host(headless());
+  GuiOptions o = bare_options();
   GuiApp app(o);
   host.render_frames(1280, 800, app.frame_fn(), 2);
   // The user moves and resizes one panel (as a drag would); the others stay where the default
@@ -201,12 +204,8 @@ ImVec2 on_screen(GuiApp& app, int node) {
 }
 
 TEST(GuiRender, MouseWatchesDragsAndCutsInTheMeshView) {
-  EglOptions eo;
-  eo.render = gui_render_options();
-  EglHost host(eo);
-  GuiOptions o = options(fs::path());
-  o.config_dir.clear();
-  o.demo = false;
+  EglHost host(headless());
+  GuiOptions o = bare_options();
   o.play = false;
   o.scripted = false;
   GuiApp app(o);
