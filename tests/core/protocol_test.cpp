@@ -145,10 +145,7 @@ TEST(Session, CutRemovesCrossingSpringsAndBoundsReact) {
 
 TEST(Session, ScheduledCutFromScene) {
   SceneSpec s = paper_plane();
-  CutEvent c;
-  c.iteration = 3;
-  c.from[0] = 10.0, c.from[1] = -1, c.to[0] = 10.0, c.to[1] = 25;
-  s.cuts.push_back(c);
+  s.cuts.push_back({3, {10.0, -1}, {10.0, 25}});  // along x = 10.0 cm after 3 steps
   Session session(s);
   for (int k = 0; k < 3; ++k) session.step_once();
   EXPECT_EQ(session.model().spring_count(), 3745);
@@ -158,10 +155,7 @@ TEST(Session, ScheduledCutFromScene) {
 
 TEST(Session, CurrentSceneHasTheCutsMadeSoFar) {
   SceneSpec s = paper_plane();
-  CutEvent c;  // scripted: along z = 10.0 cm at iteration 3
-  c.iteration = 3;
-  c.from[0] = -1, c.from[1] = 10.0, c.to[0] = 25, c.to[1] = 10.0;
-  s.cuts.push_back(c);
+  s.cuts.push_back({3, {-1, 10.0}, {25, 10.0}});  // scripted: along z = 10.0 cm after 3 steps
   Session session(s);
   EXPECT_EQ(session.current_scene().model.spring_count(), 3745);
   ASSERT_EQ(session.current_scene().cuts.size(), 1u);  // not reached yet

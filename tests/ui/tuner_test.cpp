@@ -166,10 +166,7 @@ TEST(Tuner, TheScenesOwnCutChangesTheTopology) {
   // A cut scripted in the scene happens inside a step: the mesh view's index buffer and the
   // cached exact analysis are keyed on topology(), so it must change then too.
   SceneSpec s = small_plane();
-  CutEvent c;
-  c.iteration = 4;
-  c.from[0] = 2.6, c.from[1] = -1, c.to[0] = 2.6, c.to[1] = 10;
-  s.cuts.push_back(c);
+  s.cuts.push_back({4, {2.6, -1}, {2.6, 10}});  // along x = 2.6 cm after 4 steps
   Tuner t(s);
   const int springs = t.session().model().spring_count();
   ASSERT_NE(t.exact(), nullptr);
