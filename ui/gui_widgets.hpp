@@ -17,7 +17,6 @@ inline ImVec4 gui_green() {
   return ImVec4(0.45f, 0.85f, 0.5f, 1.0f);
 }
 
-/// A section title: a little space, the label in the header colour, a separator.
 /// The colour of a run's verdict: restored green, diverged red, not restored amber, running
 /// the text colour.
 inline ImVec4 outcome_color(Outcome o) {
@@ -34,6 +33,7 @@ inline ImVec4 outcome_color(Outcome o) {
   return ImGui::GetStyle().Colors[ImGuiCol_Text];
 }
 
+/// A section title: a little space, the label in the header colour, a separator.
 inline void section_header(const char* label) {
   ImGui::Spacing();
   ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_PlotHistogram]);
