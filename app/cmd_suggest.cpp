@@ -1,4 +1,4 @@
-// dampbound suggest SCENE [--dt X | --gamma X]: stable values (issue 6, docs/criteria.md).
+// dampbound suggest SCENE [--dt X | --gamma X]: stable values (docs/criteria.md).
 // For a dt: the damping range every applicable criterion accepts (per node class where the
 // model is non-uniform) and the fastest-settling damping in it. For a damping: the largest
 // stable dt. Every suggestion is run through a Session and its outcome printed.

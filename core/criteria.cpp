@@ -194,7 +194,7 @@ std::vector<CriterionResult> exact_criteria(const ExactStability& e, const Param
             num(params.dt * params.dt * e.spectrum.lambda_max);
   out.push_back(lm);
 
-  CriterionResult rho = criterion("exact spectral radius (" + integ + ")", "SPEC 7, issue 6",
+  CriterionResult rho = criterion("exact spectral radius (" + integ + ")", "SPEC 7",
                       std::string("rho of one step's amplification matrix; ") + to_string(e.method));
   rho.value = e.spectral_radius;
   rho.verdict = verdict_of(e.stable);
@@ -210,7 +210,7 @@ std::vector<CriterionResult> exact_criteria(const ExactStability& e, const Param
                (e.zero_modes ? " (zero modes, lambda = 0, excluded: z = 1 for any gamma, dt)" : "");
   out.push_back(rho);
 
-  CriterionResult gi = criterion("exact gamma interval (" + integ + ")", "SPEC 7, issue 6",
+  CriterionResult gi = criterion("exact gamma interval (" + integ + ")", "SPEC 7",
                      "the user's gamma for which the step is stable at this dt");
   gi.unit = "mass unit/s";
   gi.value = e.gamma_hi;
@@ -221,7 +221,7 @@ std::vector<CriterionResult> exact_criteria(const ExactStability& e, const Param
             (e.method == ExactMethod::frozen_estimate ? " (frozen-rate estimate)" : "");
   out.push_back(gi);
 
-  CriterionResult dm = criterion("exact dt limit (" + integ + ")", "SPEC 7, issue 6",
+  CriterionResult dm = criterion("exact dt limit (" + integ + ")", "SPEC 7",
                      "the largest stable dt at this gamma");
   dm.unit = "s";
   dm.value = e.dt_max;

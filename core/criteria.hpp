@@ -1,5 +1,5 @@
 #pragma once
-// Every stability criterion side by side (SPEC 7, issue 6): the paper's bounds (eqs. 5, 6,
+// Every stability criterion side by side (SPEC 7): the paper's bounds (eqs. 5, 6,
 // sec. 5), the classic criteria the paper cites (Delingette [11], Provot [2],
 // Kacic-Alesic [12]) and the exact linear analysis of the chosen integrator, each computed
 // for a model, a state and the parameters, with its verdict. docs/criteria.md has the table.

@@ -1,6 +1,6 @@
 #pragma once
 // The exact linear stability of one model, state and parameters, for any integrator
-// (SPEC 7, issue 6): lambda range of M^-1 K, the spectral radius of the step, the interval of
+// (SPEC 7): lambda range of M^-1 K, the spectral radius of the step, the interval of
 // the user's gamma that keeps the step stable at dt, and the largest stable dt at gamma.
 #include <string>
 #include <vector>

@@ -1,5 +1,5 @@
 #pragma once
-// Linear stability of every integrator (SPEC 7, issue 6): one step of each integrator applied
+// Linear stability of every integrator (SPEC 7): one step of each integrator applied
 // to the linearised system y'' = -A y - C y' (A = M^-1/2 K M^-1/2, C = M^-1 Gamma, the
 // damping held over the step as in integrate.cpp), as a per-mode 2x2 matrix (lambda, c) and
 // as a matrix-free 2n x 2n amplification operator over a whole mesh.

@@ -19,7 +19,7 @@ struct StepWorkspace {
   std::vector<Vec3> scratch[8];  ///< integrator temporaries
 };
 
-/// What one step reports (SPEC 3, issue "core"): the watched node's bounds and displacement
+/// What one step reports (SPEC 3): the watched node's bounds and displacement
 /// and the whole model's maximum displacement and counts.
 struct StepStats {
   int iteration = 0;   ///< steps completed, counting from 1

@@ -1,5 +1,5 @@
 #pragma once
-// Suggest stable values (issue 6): for a dt, the damping range every applicable criterion
+// Suggest stable values: for a dt, the damping range every applicable criterion
 // accepts and the fastest-settling damping in it; for a damping, the largest stable dt. Each
 // suggestion is verified by running it through a Session (the scene's perturbation and
 // protocol). A core function so that the CLI (`dampbound suggest`) and the GUI share it.

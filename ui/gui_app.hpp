@@ -1,5 +1,5 @@
 #pragma once
-// The interactive tuner window (issue 3): parameter panel, mesh view, bound envelope and
+// The interactive tuner window: parameter panel, mesh view, bound envelope and
 // displacement plots, status, pinned runs and export. One frame function serves the GLFW
 // window and the headless EGL host; the physics is core's Session behind ui/tuner.hpp.
 #include <imgui.h>

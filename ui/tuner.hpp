@@ -136,7 +136,7 @@ class Tuner {
   std::optional<double> exact_gamma_max() {
     return criteria_.exact_gamma_max(*session_, topology_, state_version_);
   }
-  /// Every stability criterion at the current state (issue 6), updated on each call.
+  /// Every stability criterion at the current state, updated on each call.
   const std::vector<CriterionResult>& criteria() {
     return criteria_.evaluate(*session_, topology_, state_version_);
   }

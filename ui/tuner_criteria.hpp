@@ -1,5 +1,5 @@
 #pragma once
-// The tuner's stability criteria (issue 6) without GL: every criterion of core/criteria.hpp
+// The tuner's stability criteria without GL: every criterion of core/criteria.hpp
 // for the current run, updated live, and the suggestions of core/suggest.hpp computed in the
 // background so the window never stalls. tests/ui/tuner_criteria_test.cpp drives it.
 #include <cstdint>

@@ -1,4 +1,4 @@
-# dampbound bounds: every criterion side by side (issue 6, docs/criteria.md).
+# dampbound bounds: every criterion side by side (docs/criteria.md).
 . "$(dirname "$0")/lib.inc"
 
 # The issue's acceptance command: every criterion, with its value and verdict.

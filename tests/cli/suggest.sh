@@ -1,4 +1,4 @@
-# dampbound suggest: stable values, each verified by a run (issue 6, docs/criteria.md).
+# dampbound suggest: stable values, each verified by a run (docs/criteria.md).
 . "$(dirname "$0")/lib.inc"
 
 expect_exit 0 "$DB" suggest paper-plane
