@@ -24,6 +24,7 @@ int run(const RunArgs& a) {
   a.flags.apply(params, rules);
   if (!a.trace.empty()) check_writable(a.trace);
   Session session(std::move(scene), params, rules);
+  session.set_keep_trace(!a.trace.empty());  // without --trace, memory stays flat
   const RunResult& r = session.run_to_end();
   if (!a.trace.empty())
     write_file_atomic(a.trace, [&](std::ostream& out) { write_trace_csv(out, session.trace()); });

@@ -31,10 +31,23 @@ int run(const FigureArgs& a) {
   } else {
     fig = figure_scene(load_scene_arg(a.what));
   }
+  // The CSV is finished first and put in place only once the PNG is: a failure of either
+  // (a full disk) leaves neither file.
+  std::unique_ptr<PendingOutput> csv;
+  if (!a.csv.empty())
+    csv = std::make_unique<PendingOutput>(a.csv, [&](int fd) {
+      write_stream(fd, a.csv, [&](std::ostream& out) { write_figure_csv(out, fig); });
+    });
   const std::string renderer =
       ui::render_plots_png({ui::figure_plot(fig)}, 1, width, height, a.output);
-  if (!a.csv.empty())
-    write_file_atomic(a.csv, [&](std::ostream& out) { write_figure_csv(out, fig); });
+  if (csv) {
+    try {
+      csv->commit();
+    } catch (...) {
+      std::remove(a.output.c_str());
+      throw;
+    }
+  }
   std::printf("figure %s -> %s (%dx%d, %s)\n", fig.name.c_str(), a.output.c_str(), width, height,
               renderer.c_str());
   for (const FigureRun& r : fig.runs)

@@ -147,8 +147,8 @@ int run(const MapArgs& a) {
   try {
     lambda_unit = unit_stiffness_eigenvalue(load_scene_arg(scene_path));
   } catch (const std::exception& e) {
-    std::printf("warning      no exact linear limit (scene %s: %s)\n", scene_path.c_str(),
-                e.what());
+    std::printf("warning      no exact linear limit (scene %s: %s)\n",
+                printable(scene_path).c_str(), printable(e.what()).c_str());
   }
   MapOptions opt;
   if (a.dt_opt->count()) opt.dt = a.dt;

@@ -5,6 +5,8 @@
 
 #include "app/commands.hpp"
 #include "core/error.hpp"
+#include "core/io.hpp"
+#include "core/scene_text.hpp"
 
 namespace dampbound::app {
 
@@ -20,6 +22,14 @@ bool register_command(const std::string& name, CommandSetup setup) {
 
 }  // namespace dampbound::app
 
+namespace {
+/// One line on stderr: control characters in the message (from a file name or a file's
+/// content) are escaped, so that it stays one line and sends nothing to the terminal.
+void print_error(const char* what) {
+  std::fprintf(stderr, "dampbound: error: %s\n", dampbound::printable(what).c_str());
+}
+}  // namespace
+
 int main(int argc, char** argv) {
   using namespace dampbound::app;
   CLI::App root{
@@ -27,8 +37,23 @@ int main(int argc, char** argv) {
       "(Bhasin & Liu). Units: cm, s, and any consistent mass unit."};
   root.require_subcommand(1);
   root.set_help_all_flag("--help-all", "Print help for every subcommand");
+  bool any_path = false;
+  root.add_flag("--allow-any-path", any_path,
+                "let a scene name files outside its own folder ([mesh] file: absolute paths, "
+                "'..')");
+  root.fallthrough();  // the flag may also follow the subcommand
   std::map<std::string, std::function<int()>> runners;
   for (auto& entry : command_table()) runners[entry.name] = entry.setup(root);
+  // CLI11 answers an unknown first word with "A subcommand is required": name it instead.
+  for (int k = 1; k < argc; ++k) {
+    const std::string word = argv[k];
+    if (word.empty() || word[0] == '-') continue;
+    if (runners.count(word)) break;
+    std::string names;
+    for (const auto& [name, runner] : runners) names += (names.empty() ? "" : ", ") + name;
+    print_error(("unknown subcommand '" + word + "' (one of: " + names + ")").c_str());
+    return 2;
+  }
   try {
     root.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -37,20 +62,21 @@ int main(int argc, char** argv) {
     return root.exit(e);
   } catch (const CLI::ParseError& e) {
     // One line naming the flag; CLI11's own text already does.
-    std::fprintf(stderr, "dampbound: error: %s\n", e.what());
+    print_error(e.what());
     return 2;
   }
+  dampbound::set_scene_paths_unrestricted(any_path);
   try {
     for (auto* sub : root.get_subcommands()) {
       auto it = runners.find(sub->get_name());
       if (it != runners.end()) return it->second();
     }
   } catch (const dampbound::InputError& e) {
-    std::fprintf(stderr, "dampbound: error: %s\n", e.what());
+    print_error(e.what());
     return 2;
   } catch (const std::exception& e) {
     // Environment failures (no EGL, no display, a file system error): one line, exit 3.
-    std::fprintf(stderr, "dampbound: error: %s\n", e.what());
+    print_error(e.what());
     return 3;
   }
   return 2;

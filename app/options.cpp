@@ -2,10 +2,14 @@
 
 #include <unistd.h>
 
+#include <cctype>
+#include <cerrno>
 #include <cmath>
+#include <cstdlib>
 #include <cstdio>
 
 #include "core/error.hpp"
+#include "core/io.hpp"
 
 #ifndef DAMPBOUND_SOURCE_DIR
 #define DAMPBOUND_SOURCE_DIR "."
@@ -17,16 +21,18 @@ namespace {
 CLI::Validator number_check(bool allow_zero) {
   return CLI::Validator(
       [allow_zero](std::string& s) -> std::string {
-        double x = 0;
-        try {
-          size_t used = 0;
-          x = std::stod(s, &used);
-          if (used != s.size()) return "'" + s + "' is not a number";
-        } catch (...) {
-          return "'" + s + "' is not a number";
-        }
-        if (!std::isfinite(x)) return "must be finite, got " + s;
+        // strtod, not stod: stod throws on a number that underflows (1e-320), which would
+        // be reported as "not a number".
+        errno = 0;
+        char* end = nullptr;
+        const double x = std::strtod(s.c_str(), &end);
+        if (s.empty() || end != s.c_str() + s.size() || std::isspace(static_cast<unsigned char>(s[0])))
+          return "'" + printable(s) + "' is not a number";
+        if (!std::isfinite(x) || (errno == ERANGE && std::fabs(x) > 1))
+          return "must be finite, got " + printable(s);
         if (allow_zero ? x < 0 : x <= 0) return allow_zero ? "must be >= 0" : "must be > 0";
+        if (x != 0 && std::fabs(x) < 1e-300)
+          return "'" + printable(s) + "' is too small to compute with (below 1e-300)";
         return {};
       },
       allow_zero ? "NUMBER>=0" : "NUMBER>0");
@@ -77,9 +83,10 @@ void ParamFlags::apply(Params& p, StopRules& rules) const {
 void parse_size(const std::string& text, const char* flag, int& width, int& height) {
   int w = 0, h = 0;
   char x = 0, extra = 0;
-  if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || x != 'x' || w < 64 ||
+  // %5d: a longer number could overflow int (4294967360 would read as 64).
+  if (std::sscanf(text.c_str(), "%5d%c%5d%c", &w, &x, &h, &extra) != 3 || x != 'x' || w < 64 ||
       h < 64 || w > 8192 || h > 8192)
-    throw InputError(std::string(flag) + ": '" + text +
+    throw InputError(std::string(flag) + ": '" + printable(text) +
                      "' is not a size WxH with each side in 64..8192");
   width = w;
   height = h;

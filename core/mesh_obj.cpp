@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "core/error.hpp"
+#include "core/io.hpp"
 
 namespace dampbound {
 
@@ -19,13 +20,19 @@ namespace {
   throw InputError(path + ":" + std::to_string(line) + ": " + msg);
 }
 
+/// A token of the file as a message quotes it: at most 24 characters, control characters
+/// escaped (the file may be anything a scene named).
+std::string quoted(const std::string& token) {
+  return "'" + printable(token.size() > 24 ? token.substr(0, 24) + "..." : token) + "'";
+}
+
 /// A finite number, or a failure naming the line.
 double read_number(const std::string& token, const std::string& path, int line) {
   errno = 0;
   char* end = nullptr;
   const double x = std::strtod(token.c_str(), &end);
   if (end == token.c_str() || *end != '\0' || errno == ERANGE || !std::isfinite(x))
-    fail(path, line, "'" + token + "' is not a finite number");
+    fail(path, line, quoted(token) + " is not a finite number");
   return x;
 }
 
@@ -37,11 +44,11 @@ int read_corner(const std::string& token, int count, const std::string& path, in
   char* end = nullptr;
   const long k = std::strtol(head.c_str(), &end, 10);
   if (head.empty() || *end != '\0' || errno == ERANGE)
-    fail(path, line, "face corner '" + token + "' has no vertex index");
+    fail(path, line, "face corner " + quoted(token) + " has no vertex index");
   const long index = k > 0 ? k - 1 : count + k;
   if (k == 0 || index < 0 || index >= count)
     fail(path, line,
-         "face corner '" + token + "' refers to a vertex that does not exist (" +
+         "face corner " + quoted(token) + " refers to a vertex that does not exist (" +
              std::to_string(count) + " so far)");
   return static_cast<int>(index);
 }

@@ -12,6 +12,7 @@
 #include "core/io.hpp"
 #include "core/mesh_obj.hpp"
 #include "core/scene.hpp"
+#include "core/scene_text.hpp"
 
 namespace dampbound {
 namespace {
@@ -157,15 +158,15 @@ void read_mesh(const Reader& r, const toml::table& root, SceneSpec& s) {
   const toml::node& fn = r.required(t, "file", "[mesh]");
   std::string file = r.string(fn, "file");
   if (file.empty()) r.fail(fn, "file must name an OBJ file");
-  if (file.front() != '/') {
-    const auto slash = r.path().find_last_of('/');
-    if (slash != std::string::npos) file = r.path().substr(0, slash + 1) + file;
-  }
+  std::string why;
+  const std::string named = file;
+  file = scene_relative_path(r.path(), named, why);
+  if (file.empty()) r.fail(fn, "mesh file '" + named + "' " + why);
   std::string text;
   try {
     text = read_file_text(file);
-  } catch (const std::exception&) {
-    r.fail(fn, "cannot read the mesh file " + file);
+  } catch (const std::exception& e) {
+    r.fail(fn, "cannot read the mesh file: " + std::string(e.what()));
   }
   MeshSprings how;
   if (auto* n = t.get("scale")) how.scale = r.positive(*n, "scale");
@@ -193,7 +194,9 @@ void read_geometry(const Reader& r, const toml::table& root, SceneSpec& s) {
     GridSpec grid;
     const auto nx = r.integer(r.required(g, "nx", "[grid]"), "nx");
     const auto nz = r.integer(r.required(g, "nz", "[grid]"), "nz");
-    if (nx < 1 || nz < 1 || nx * nz > 4000000) r.fail(g, "grid size must be 1..4e6 nodes");
+    // Each side first: nx * nz of two huge sides overflows before it is compared.
+    if (nx < 1 || nz < 1 || nx > 4000000 || nz > 4000000 || nx * nz > 4000000)
+      r.fail(g, "grid size must be 1..4e6 nodes");
     grid.nx = static_cast<int>(nx);
     grid.nz = static_cast<int>(nz);
     grid.spacing = r.positive(r.required(g, "spacing", "[grid]"), "spacing");
@@ -219,6 +222,8 @@ void read_geometry(const Reader& r, const toml::table& root, SceneSpec& s) {
       s.model.anchor_scale[k] = r.non_negative(*n, "anchor_scale");
     if (auto* n = t.get("force")) s.model.external_force[k] = r.vec3(*n, "force");
   }
+  // An empty model has no node to watch or perturb, and step() needs one.
+  if (s.model.node_count() == 0) r.fail(*root.get("node"), "the scene has no node");
   std::set<std::pair<int, int>> seen;
   if (auto* springs_node = root.get("spring")) {
     const toml::array* springs = springs_node->as_array();
@@ -325,7 +330,7 @@ void read_cuts(const Reader& r, const toml::table& root, SceneSpec& s) {
     r.check_keys(t, {"iteration", "from", "to"}, "[[cut]]");
     CutEvent c;
     const long long it = r.integer(r.required(t, "iteration", "[[cut]]"), "iteration");
-    if (it < 0) r.fail(t, "cut iteration must be >= 0");
+    if (it < 0 || it > 100000000) r.fail(t, "cut iteration must be in 0..100000000");
     c.iteration = static_cast<int>(it);
     const auto a = r.numbers(r.required(t, "from", "[[cut]]"), 2, "from ([x, z])");
     const auto b = r.numbers(r.required(t, "to", "[[cut]]"), 2, "to ([x, z])");
@@ -347,6 +352,7 @@ void read_runs(const Reader& r, const toml::table& root, SceneSpec& s) {
         {"label", "m", "kappa", "gamma", "dt", "policy", "factor", "integrator", "max_iterations"},
         "[[run]]");
     RunSpec run{r.string(r.required(t, "label", "[[run]]"), "label"), s.params, s.rules};
+    check_plain_text(run.label, "run label", r.path(), static_cast<int>(t.source().begin.line));
     if (run.label.empty() || !labels.insert(run.label).second)
       r.fail(t, "run label '" + run.label + "' is empty or used twice");
     read_params(r, t, run.params);
@@ -383,18 +389,25 @@ void read_expectations(const Reader& r, const toml::table& root, SceneSpec& s) {
     if (auto* n = t.get("iterations")) {
       const toml::array* a = n->as_array();
       if (!a || a->size() != 2) r.fail(*n, "iterations must be [min, max]");
-      x.iterations_min = static_cast<int>(r.integer(*a->get(0), "iterations"));
-      x.iterations_max = static_cast<int>(r.integer(*a->get(1), "iterations"));
+      const long long lo = r.integer(*a->get(0), "iterations");
+      const long long hi = r.integer(*a->get(1), "iterations");
+      if (lo < 0 || hi > 100000000) r.fail(*n, "iterations must lie in 0..100000000");
+      x.iterations_min = static_cast<int>(lo);
+      x.iterations_max = static_cast<int>(hi);
       if (*x.iterations_min > *x.iterations_max) r.fail(*n, "iterations range is inverted");
     }
     if (auto* n = t.get("max_displacement_below"))
       x.max_displacement_below = r.positive(*n, "max_displacement_below");
+    // Node-step counts: a double beyond 1e18 would not convert to long long.
+    auto count = [&](const toml::node& c, const char* what) {
+      const double v = r.non_negative(c, what);
+      if (v > 1e18) r.fail(c, std::string(what) + " must be at most 1e18");
+      return static_cast<long long>(v);
+    };
     if (auto* n = t.get("unstabilisable_max"))
-      x.unstabilisable_max = static_cast<long long>(r.non_negative(*n, "unstabilisable_max"));
-    if (auto* n = t.get("violations_max"))
-      x.violations_max = static_cast<long long>(r.non_negative(*n, "violations_max"));
-    if (auto* n = t.get("violations_min"))
-      x.violations_min = static_cast<long long>(r.non_negative(*n, "violations_min"));
+      x.unstabilisable_max = count(*n, "unstabilisable_max");
+    if (auto* n = t.get("violations_max")) x.violations_max = count(*n, "violations_max");
+    if (auto* n = t.get("violations_min")) x.violations_min = count(*n, "violations_min");
     if (!x.outcome && !x.iterations_min && !x.max_displacement_below && !x.unstabilisable_max &&
         !x.violations_max && !x.violations_min)
       r.fail(t,
@@ -408,6 +421,7 @@ void read_expectations(const Reader& r, const toml::table& root, SceneSpec& s) {
 
 SceneSpec parse_scene(const std::string& text, const std::string& path) {
   const Reader r(path);
+  check_scene_text(text, path);
   toml::table root;
   try {
     root = toml::parse(text, path);
@@ -420,8 +434,14 @@ SceneSpec parse_scene(const std::string& text, const std::string& path) {
                "the scene");
   SceneSpec s;
   s.path = path;
-  if (auto* n = root.get("name")) s.name = r.string(*n, "name");
-  if (auto* n = root.get("description")) s.description = r.string(*n, "description");
+  if (auto* n = root.get("name")) {
+    s.name = r.string(*n, "name");
+    check_plain_text(s.name, "name", path, static_cast<int>(n->source().begin.line));
+  }
+  if (auto* n = root.get("description")) {
+    s.description = r.string(*n, "description");
+    check_plain_text(s.description, "description", path, static_cast<int>(n->source().begin.line));
+  }
   read_geometry(r, root, s);
   read_regions(r, root, s);
   if (auto* pn = root.get("params")) {
@@ -440,9 +460,7 @@ SceneSpec parse_scene(const std::string& text, const std::string& path) {
 }
 
 SceneSpec load_scene(const std::string& path) {
-  std::ifstream probe(path, std::ios::binary);
-  if (!probe) throw InputError(path + ": cannot open the scene file");
-  return parse_scene(read_file_text(path), path);
+  return parse_scene(read_file_text(path, kMaxSceneBytes), path);
 }
 
 }  // namespace dampbound

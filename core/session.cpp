@@ -16,7 +16,10 @@ Session::Session(SceneSpec scene) : Session(scene, scene.params, scene.rules) {}
 const StepStats& Session::step_once() {
   for (const CutEvent& c : scene_.cuts)
     if (c.iteration == state_.iteration) cut(springs_crossing(model_, state_.x, c.from, c.to));
-  trace_.push_back(step(model_, params_, state_, ws_, watched_));
+  if (keep_trace_ || trace_.empty())
+    trace_.push_back(step(model_, params_, state_, ws_, watched_));
+  else
+    trace_.back() = step(model_, params_, state_, ws_, watched_);
   accumulate(result_, trace_.back(), rules_);
   return trace_.back();
 }

@@ -48,7 +48,12 @@ class Session {
   const Params& params() const { return params_; }
   const StopRules& rules() const { return rules_; }
   int watched() const { return watched_; }
+  /// Every step's stats since the last reset, or only the last step's after
+  /// set_keep_trace(false).
   const std::vector<StepStats>& trace() const { return trace_; }
+  /// Whether trace() keeps every step (about 100 bytes each: 10 GB for 1e8 iterations) or
+  /// only the last; a run that writes no trace keeps only the last.
+  void set_keep_trace(bool keep) { keep_trace_ = keep; }
   const RunResult& result() const { return result_; }
   bool running() const { return result_.outcome == Outcome::running; }
   /// Springs removed by cuts since the last reset.
@@ -65,6 +70,7 @@ class Session {
   std::vector<StepStats> trace_;
   RunResult result_;
   int springs_cut_ = 0;
+  bool keep_trace_ = true;
 };
 
 }  // namespace dampbound

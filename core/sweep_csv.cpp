@@ -1,10 +1,12 @@
 #include "core/sweep_csv.hpp"
 
 #include <algorithm>
+#include <cerrno>
 #include <cinttypes>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <map>
 
 #include "core/bounds.hpp"
 #include "core/error.hpp"
@@ -124,6 +126,7 @@ void write_sweep_rows(std::FILE* out, const SweepGrid& grid, const TrialClasses&
 }
 
 SweepTable read_sweep_csv(const std::string& path, bool keep_lines) {
+  check_regular_input(path);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path + ": cannot read the file");
   SweepTable t;
@@ -155,14 +158,22 @@ SweepTable read_sweep_csv(const std::string& path, bool keep_lines) {
           h.scene_name = value;
         else if (key == "definition")
           h.definition = value;
-        else if (key == "trials")
-          h.trials = std::strtoull(value.c_str(), nullptr, 10);
-        else if (key == "classes")
-          h.classes = std::strtoull(value.c_str(), nullptr, 10);
-        else if (key == "similarity")
+        else if (key == "trials" || key == "classes") {
+          // A sweep has at most 2^32 classes (class indices are 32 bits), and so many trials.
+          char* end = nullptr;
+          errno = 0;
+          const unsigned long long n = std::strtoull(value.c_str(), &end, 10);
+          if (value.empty() || value[0] == '-' || *end || errno || n > (1ull << 32))
+            fail("bad " + key + " count (a whole number up to 2^32)");
+          (key == "trials" ? h.trials : h.classes) = n;
+        } else if (key == "similarity")
           h.similarity = value;
-        else if (key == "shard" && std::sscanf(value.c_str(), "%d/%d", &h.shard, &h.shards) != 2)
-          fail("bad shard line");
+        else if (key == "shard") {
+          char extra = 0;
+          if (std::sscanf(value.c_str(), "%9d/%9d%c", &h.shard, &h.shards, &extra) != 2 ||
+              h.shards < 1 || h.shard < 1 || h.shard > h.shards)
+            fail("bad shard line (K/N with 1 <= K <= N < 1e9)");
+        }
         continue;
       }
       if (line != sweep_csv_columns()) fail("unexpected column line");
@@ -196,7 +207,8 @@ void merge_sweep_parts(const std::vector<std::string>& parts, const std::string&
   std::vector<SweepTable> tables;
   for (const std::string& p : parts) tables.push_back(read_sweep_csv(p, true));
   const SweepHeader& first = tables.front().header;
-  std::vector<int> part_of(static_cast<size_t>(std::max(first.shards, 1)), -1);
+  // Nothing is allocated by the headers' counts (a forged part may claim 2^31 shards).
+  std::map<int, size_t> part_of;
   for (size_t k = 0; k < tables.size(); ++k) {
     const SweepHeader& h = tables[k].header;
     if (h.sweep_id != first.sweep_id)
@@ -205,18 +217,20 @@ void merge_sweep_parts(const std::vector<std::string>& parts, const std::string&
     if (h.shards != first.shards || h.trials != first.trials)
       throw InputError(parts[k] + ": is part of a split into " + std::to_string(h.shards) +
                        ", not " + std::to_string(first.shards));
-    if (h.shard < 1 || h.shard > h.shards) throw InputError(parts[k] + ": bad shard number");
-    int& seen = part_of[static_cast<size_t>(h.shard - 1)];
-    if (seen >= 0)
+    const auto [it, fresh] = part_of.emplace(h.shard, k);
+    if (!fresh)
       throw InputError(parts[k] + ": part " + std::to_string(h.shard) + "/" +
-                       std::to_string(h.shards) + " is also given as " +
-                       parts[static_cast<size_t>(seen)]);
-    seen = static_cast<int>(k);
+                       std::to_string(h.shards) + " is also given as " + parts[it->second]);
   }
-  for (size_t s = 0; s < part_of.size(); ++s)
-    if (part_of[s] < 0)
-      throw InputError("merge: part " + std::to_string(s + 1) + "/" + std::to_string(first.shards) +
+  for (int s = 1; s <= first.shards; ++s)
+    if (!part_of.count(s))
+      throw InputError("merge: part " + std::to_string(s) + "/" + std::to_string(first.shards) +
                        " of sweep " + first.sweep_id + " is missing");
+  std::uint64_t rows = 0;
+  for (const SweepTable& t : tables) rows += t.rows.size();
+  if (rows != first.trials)
+    throw InputError("merge: the parts hold " + std::to_string(rows) + " rows, and the sweep has " +
+                     std::to_string(first.trials) + " trials");
   std::vector<const std::string*> by_trial(static_cast<size_t>(first.trials), nullptr);
   for (size_t k = 0; k < tables.size(); ++k)
     for (size_t r = 0; r < tables[k].rows.size(); ++r) {

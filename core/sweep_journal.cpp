@@ -20,19 +20,6 @@ namespace dampbound {
 
 namespace {
 
-std::string directory_of(const std::string& path) {
-  const auto slash = path.find_last_of('/');
-  return slash == std::string::npos ? "." : (slash == 0 ? "/" : path.substr(0, slash));
-}
-
-void sync_directory(const std::string& path) {
-  const int fd = ::open(directory_of(path).c_str(), O_RDONLY | O_DIRECTORY);
-  if (fd >= 0) {
-    ::fsync(fd);
-    ::close(fd);
-  }
-}
-
 std::uint32_t fnv1a32(const char* p, size_t n) {
   std::uint32_t h = 2166136261u;
   for (size_t k = 0; k < n; ++k) {
@@ -40,16 +27,6 @@ std::uint32_t fnv1a32(const char* p, size_t n) {
     h *= 16777619u;
   }
   return h;
-}
-
-void write_all(int fd, const std::string& bytes, const std::string& path) {
-  size_t done = 0;
-  while (done < bytes.size()) {
-    const ssize_t w = ::write(fd, bytes.data() + done, bytes.size() - done);
-    if (w < 0 && errno == EINTR) continue;
-    if (w <= 0) throw InputError(path + ": write failed: " + std::strerror(errno));
-    done += static_cast<size_t>(w);
-  }
 }
 
 char outcome_code(Outcome o) {
@@ -84,33 +61,6 @@ bool checksum_ok(const std::string& line) {
 
 }  // namespace
 
-void write_durably(const std::string& path, const std::function<void(std::FILE*)>& fill) {
-  const std::string tmp = path + ".tmp." + std::to_string(::getpid());
-  std::FILE* f = std::fopen(tmp.c_str(), "wb");
-  if (!f) throw InputError(path + ": cannot write the file (" + std::strerror(errno) + ")");
-  static thread_local std::vector<char> buffer(1 << 20);
-  std::setvbuf(f, buffer.data(), _IOFBF, buffer.size());
-  bool ok = true;
-  try {
-    fill(f);
-  } catch (...) {
-    std::fclose(f);
-    std::remove(tmp.c_str());
-    throw;
-  }
-  ok = std::fflush(f) == 0 && !std::ferror(f) && ::fsync(fileno(f)) == 0;
-  ok = std::fclose(f) == 0 && ok;
-  if (!ok) {
-    std::remove(tmp.c_str());
-    throw InputError(path + ": write failed (disk full?)");
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    std::remove(tmp.c_str());
-    throw InputError(path + ": cannot move the finished file into place");
-  }
-  sync_directory(path);
-}
-
 std::string journal_line(const JournalEntry& e) {
   const TrialResult& r = e.result;
   char body[256];
@@ -130,7 +80,15 @@ bool parse_journal_line(const std::string& line, JournalEntry& e) {
                   &r.iterations, disp, &r.violations, &r.unstabilisable, &r.clamped,
                   &r.zero_length_springs) != 8)
     return false;
-  r.max_displacement = std::strtod(disp, nullptr);
+  char* end = nullptr;
+  r.max_displacement = std::strtod(disp, &end);
+  // A line with a good checksum can still be forged or come from a broken build: what no
+  // run can give is refused (counts are node-steps >= 0; only a diverged trial ends at a
+  // non-finite displacement).
+  if (*end != '\0' || r.iterations < 0 || r.violations < 0 || r.unstabilisable < 0 ||
+      r.clamped < 0 || r.zero_length_springs < 0 || r.max_displacement < 0 ||
+      (!std::isfinite(r.max_displacement) && code != 'd'))
+    return false;
   switch (code) {
     case 'r':
       r.outcome = Outcome::restored;
@@ -168,15 +126,18 @@ bool parse_journal_time_line(const std::string& line, JournalTime& t) {
 
 JournalContents read_journal(const std::string& path, const std::string& header,
                              std::uint64_t classes) {
+  check_regular_input(path);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path + ": cannot read the journal");
   JournalContents jc;
   std::string line;
-  if (!std::getline(in, line) || line != header)
+  // Empty, or killed while its header was being written: nothing was done, start afresh.
+  if (!std::getline(in, line) || (in.eof() && header.compare(0, line.size(), line) == 0))
+    return jc;
+  if (line != header)
     throw InputError("--resume: " + path +
                      " belongs to another sweep or another shard (its first line is not '" +
                      header + "'); remove it to start over");
-  if (in.eof()) return jc;  // the header itself was cut short: start the journal afresh
   jc.valid_bytes = line.size() + 1;
   std::unordered_set<std::uint32_t> seen;
   std::map<int, JournalTime> times;  // each run's last record
@@ -217,16 +178,26 @@ Journal::Journal(std::string path, const std::string& header, std::uint64_t resu
   if (resume_valid_bytes > 0) {
     fd_ = ::open(path_.c_str(), O_WRONLY | O_CLOEXEC);
     if (fd_ < 0 || ::ftruncate(fd_, static_cast<off_t>(resume_valid_bytes)) != 0 ||
-        ::lseek(fd_, 0, SEEK_END) < 0)
-      throw InputError(path_ + ": cannot reopen the journal (" + std::strerror(errno) + ")");
+        ::lseek(fd_, 0, SEEK_END) < 0) {
+      const int err = errno;
+      if (fd_ >= 0) ::close(fd_);
+      throw InputError(path_ + ": cannot reopen the journal (" + std::strerror(err) + ")");
+    }
     ::fsync(fd_);
     return;
   }
   fd_ = ::open(path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (fd_ < 0)
     throw InputError(path_ + ": cannot create the journal (" + std::strerror(errno) + ")");
-  write_all(fd_, header + "\n", path_);
-  ::fsync(fd_);
+  try {
+    write_all(fd_, header + "\n", path_);
+    if (::fsync(fd_) != 0)
+      throw InputError(path_ + ": cannot sync the journal (" + std::strerror(errno) + ")");
+  } catch (...) {  // a full disk: no journal is left behind to block the next run
+    ::close(fd_);
+    ::unlink(path_.c_str());
+    throw;
+  }
   sync_directory(path_);
 }
 

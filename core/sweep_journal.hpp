@@ -11,13 +11,10 @@
 #include <string>
 #include <vector>
 
+#include "core/io.hpp"  // write_durably
 #include "core/sweep_kernel.hpp"
 
 namespace dampbound {
-
-/// Writes PATH.tmp.<pid> through `fill`, fsyncs it, renames it onto PATH and fsyncs the
-/// directory. Throws InputError naming PATH when any step fails.
-void write_durably(const std::string& path, const std::function<void(std::FILE*)>& fill);
 
 /// One finished class as the journal keeps it.
 struct JournalEntry {

@@ -138,13 +138,15 @@ struct BatchKernel::Impl {
     dt[l] = p.dt;
     factor[l] = p.factor;
     // Model::set_params and upper_bound(): m_i = m*scale, m_i/dt, 2 sqrt(m_i kappa_i).
-    auto node_values = [&](size_t i, double& ms, double& mds, double& los, double& gus) {
-      ms = p.m * mass_scale[i];
-      mds = ms / p.dt;
-      los = 2.0 * std::sqrt(ms * (p.kappa * kappa_max_scale[i]));
-      gus = p.gamma * gamma_scale[i];
+    // Lane l of each vector is assigned one by one: Clang does not bind a reference to a
+    // vector element.
+    auto node_values = [&](size_t i, vd& ms, vd& mds, vd& los, vd& gus) {
+      ms[l] = p.m * mass_scale[i];
+      mds[l] = ms[l] / p.dt;
+      los[l] = 2.0 * std::sqrt(ms[l] * (p.kappa * kappa_max_scale[i]));
+      gus[l] = p.gamma * gamma_scale[i];
     };
-    if (n > 0 && uniform) node_values(0, mass[l], md[l], lo[l], gu[l]);
+    if (n > 0 && uniform) node_values(0, mass, md, lo, gu);
     for (size_t i = 0; i < n; ++i) {
       NodeBlock& b = blocks[i];
       // forces.cpp: F_i starts as the anchor force -kappa_a,i (x_i - X_i).
@@ -156,7 +158,7 @@ struct BatchKernel::Impl {
       }
       if (!uniform) {
         NodeParams& q = node_params[i];
-        node_values(i, q.mass[l], q.md[l], q.lo[l], q.gu[l]);
+        node_values(i, q.mass, q.md, q.lo, q.gu);
       }
     }
   }

@@ -94,8 +94,9 @@ std::vector<TrialResult> run_batched(const SceneSpec& scene, DampingPolicy polic
                                      const StopRules& rules,
                                      const std::vector<TrialParams>& trials);
 
-/// The reference: each trial through Session::run_to_end (the one step() of core).
+/// The reference: each trial through Session::step_once (the one step() of core). When
+/// `cancel` becomes true it returns at the next step with outcome `running`.
 TrialResult run_reference(const SceneSpec& scene, DampingPolicy policy, const StopRules& rules,
-                          const TrialParams& trial);
+                          const TrialParams& trial, const std::atomic<bool>* cancel = nullptr);
 
 }  // namespace dampbound

@@ -60,9 +60,12 @@ std::uint64_t run_classes(const SweepRequest& rq, const SweepGrid& grid,
   std::condition_variable cv;
   std::vector<std::pair<std::uint32_t, TrialResult>> pending;
   std::exception_ptr error;
+  // Set on Ctrl-C (rq.cancel) and when this thread fails (a full disk under the journal): the
+  // workers stop at their next step, and are joined before the error goes on.
+  std::atomic<bool> halt{false};
   auto cancelled = [&] { return rq.cancel && rq.cancel->load(std::memory_order_relaxed); };
   auto take = [&](std::uint32_t& cls) {
-    if (cancelled()) return false;
+    if (halt.load(std::memory_order_relaxed) || cancelled()) return false;
     const size_t i = next.fetch_add(1);
     if (i >= todo.size()) return false;
     cls = todo[i];
@@ -85,12 +88,13 @@ std::uint64_t run_classes(const SweepRequest& rq, const SweepGrid& grid,
               return true;
             },
             [&](std::size_t id, const TrialResult& r) { give(static_cast<std::uint32_t>(id), r); },
-            rq.cancel);
+            &halt);
       } else {
         std::uint32_t cls = 0;
         while (take(cls)) {
           const TrialResult r = run_reference(rq.scene, rq.spec.policy, rq.spec.rules,
-                                              grid.params(classes.representative[cls]));
+                                              grid.params(classes.representative[cls]), &halt);
+          if (r.outcome == Outcome::running) break;  // halted mid-trial
           lane_steps += static_cast<std::uint64_t>(r.iterations);
           give(cls, r);
         }
@@ -108,19 +112,26 @@ std::uint64_t run_classes(const SweepRequest& rq, const SweepGrid& grid,
   std::vector<std::thread> pool;
   for (int t = 0; t < threads; ++t) pool.emplace_back(worker);
   std::vector<std::pair<std::uint32_t, TrialResult>> batch;
-  for (;;) {
-    bool finished = false;
-    {
-      std::unique_lock<std::mutex> lock(mu);
-      cv.wait_for(lock, std::chrono::milliseconds(rq.sync_interval_s < 0.2 ? 20 : 200),
-                  [&] { return running == 0; });
-      finished = running == 0;
-      batch.swap(pending);
+  try {
+    for (;;) {
+      bool finished = false;
+      {
+        std::unique_lock<std::mutex> lock(mu);
+        cv.wait_for(lock, std::chrono::milliseconds(rq.sync_interval_s < 0.2 ? 20 : 200),
+                    [&] { return running == 0; });
+        finished = running == 0;
+        batch.swap(pending);
+      }
+      if (cancelled()) halt = true;
+      for (const auto& [cls, r] : batch) done(cls, r);
+      batch.clear();
+      tick(finished);
+      if (finished) break;
     }
-    for (const auto& [cls, r] : batch) done(cls, r);
-    batch.clear();
-    tick(finished);
-    if (finished) break;
+  } catch (...) {
+    halt = true;
+    for (auto& th : pool) th.join();
+    throw;
   }
   for (auto& th : pool) th.join();
   if (error) std::rethrow_exception(error);
@@ -143,6 +154,7 @@ SweepReport run_sweep(const SweepRequest& rq) {
   check_sweep_resources(grid, rq.output, rq.shards);
   check_writable(rq.output);
   const std::string journal_path = rq.output + ".journal";
+  check_writable(journal_path);  // not a directory or a device
   const bool journal_exists = ::access(journal_path.c_str(), F_OK) == 0;
   if (journal_exists && !rq.resume)
     throw InputError("-o: " + journal_path +

@@ -36,8 +36,10 @@ double available_memory() {
 void parse_shard(const std::string& text, int& shard, int& shards) {
   int k = 0, n = 0;
   char extra = 0;
-  if (std::sscanf(text.c_str(), "%d/%d%c", &k, &n, &extra) != 2 || n < 1 || k < 1 || k > n)
-    throw InputError("--shard: '" + text + "' must be K/N with 1 <= K <= N (part K of N)");
+  // At most 9 digits each: %d of a longer number overflows (3/99999999999 would wrap).
+  if (std::sscanf(text.c_str(), "%9d/%9d%c", &k, &n, &extra) != 2 || n < 1 || k < 1 || k > n)
+    throw InputError("--shard: '" + printable(text) +
+                     "' must be K/N with 1 <= K <= N <= 999999999 (part K of N)");
   shard = k;
   shards = n;
 }

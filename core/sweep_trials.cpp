@@ -106,9 +106,14 @@ std::vector<TrialResult> run_batched(const SceneSpec& scene, DampingPolicy polic
 }
 
 TrialResult run_reference(const SceneSpec& scene, DampingPolicy policy, const StopRules& rules,
-                          const TrialParams& trial) {
+                          const TrialParams& trial, const std::atomic<bool>* cancel) {
   Session session(scene, trial_params(scene.params, policy, trial), rules);
-  return to_trial_result(session.run_to_end());
+  session.set_keep_trace(false);
+  while (session.running()) {
+    if (cancel && cancel->load(std::memory_order_relaxed)) return TrialResult{};
+    session.step_once();
+  }
+  return to_trial_result(session.result());
 }
 
 }  // namespace dampbound

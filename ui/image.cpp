@@ -9,6 +9,8 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "core/io.hpp"
+
 namespace dampbound::ui {
 
 Rgba rgba_from_u32(uint32_t c) {
@@ -21,23 +23,24 @@ Rgba Image::pixel(int x, int y) const {
   return {rgba[i], rgba[i + 1], rgba[i + 2], rgba[i + 3]};
 }
 
+std::string encode_png(const Image& img) {
+  if (img.empty() || img.rgba.size() != static_cast<size_t>(img.width) * img.height * 4)
+    throw std::runtime_error("cannot encode a PNG: the image is empty or malformed");
+  std::string bytes;
+  const auto append = [](void* context, void* data, int size) {
+    static_cast<std::string*>(context)->append(static_cast<const char*>(data),
+                                               static_cast<size_t>(size));
+  };
+  if (stbi_write_png_to_func(append, &bytes, img.width, img.height, 4, img.rgba.data(),
+                             img.width * 4) == 0)
+    throw std::runtime_error("cannot encode a PNG: stb_image_write failed");
+  return bytes;
+}
+
 void write_png_atomic(const Image& img, const std::string& path) {
-  if (img.empty() || img.rgba.size() != static_cast<size_t>(img.width) * img.height * 4) {
-    throw std::runtime_error("cannot write PNG " + path + ": the image is empty or malformed");
-  }
-  const std::string tmp = path + ".tmp";
-  errno = 0;
-  if (stbi_write_png(tmp.c_str(), img.width, img.height, 4, img.rgba.data(), img.width * 4) == 0) {
-    const int err = errno;
-    std::remove(tmp.c_str());
-    throw std::runtime_error("cannot write PNG " + path + ": " +
-                             (err != 0 ? std::strerror(err) : "stb_image_write failed"));
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    const int err = errno;
-    std::remove(tmp.c_str());
-    throw std::runtime_error("cannot write PNG " + path + ": rename failed: " + std::strerror(err));
-  }
+  // Encoded in memory first: stb's file writer does not report a failed write (a full
+  // disk gave a truncated PNG); the core writer checks every byte.
+  write_file_bytes(path, encode_png(img));
 }
 
 Image read_png(const std::string& path) {

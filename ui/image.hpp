@@ -28,8 +28,11 @@ struct Image {
   bool empty() const { return width <= 0 || height <= 0 || rgba.empty(); }
 };
 
-/// Writes `img` as a PNG to path + ".tmp", then renames it over `path`, so readers never see
-/// a half-written file. Throws std::runtime_error naming the path when it cannot.
+/// `img` as PNG bytes (stb_image_write). Throws std::runtime_error for an empty image.
+std::string encode_png(const Image& img);
+
+/// Writes `img` as a PNG through core's one output writer (core/io.hpp: whole or not at all,
+/// only a regular file). Throws InputError naming the path when it cannot.
 void write_png_atomic(const Image& img, const std::string& path);
 
 /// Reads a PNG (or any format stb_image reads) as RGBA. Throws std::runtime_error naming the

@@ -47,6 +47,9 @@ class TunerCriteria {
   bool at_current_state() const { return at_state_; }
   /// Shortest time between two analyses that follow the state (seconds).
   void set_follow_interval(double seconds) { follow_interval_ = seconds; }
+  /// The analysis time above which a changed key is throttled (10 ms; tests that count
+  /// analyses set it high, so that a slow build, e.g. under sanitizers, counts the same).
+  void set_slow_threshold(double seconds) { slow_threshold_ = seconds; }
   /// Waits for an analysis running on the worker thread and takes its result (tests).
   void wait();
   /// Whether the analysis on show was linearised at rest, else at the state of iteration
@@ -73,6 +76,7 @@ class TunerCriteria {
   bool have_key_ = false;
   bool at_state_ = false;
   double follow_interval_ = 0.2;
+  double slow_threshold_ = 0.01;
   int exact_iteration_ = 0;
   bool exact_at_rest_ = true;
   int exact_runs_ = 0;

@@ -129,7 +129,8 @@ TEST(MeshObj, SceneErrorsNameTheSceneOrTheMeshFile) {
     return std::string();
   };
   EXPECT_EQ(error_of("[mesh]\nfile = \"missing.obj\"\n"),
-            scene + ":2: cannot read the mesh file " + dir + "missing.obj");
+            scene + ":2: cannot read the mesh file: " + dir +
+                "missing.obj: cannot open the file (No such file or directory)");
   std::ofstream(dir + "bad.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n";
   EXPECT_EQ(error_of("[mesh]\nfile = \"bad.obj\"\n"),
             dir + "bad.obj:4: face corner '9' refers to a vertex that does not exist (3 so far)");

@@ -3,8 +3,10 @@
 #include "core/sweep_journal.hpp"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -206,6 +208,79 @@ TEST(SweepMerge, JoinsPartsAndRefusesBadSets) {
   EXPECT_THROW(merge_sweep_parts({a, dup}, out), InputError);    // a trial twice
   EXPECT_THROW(merge_sweep_parts({a, gap}, out), InputError);    // a trial missing
   for (const std::string& p : {a, b, whole, other, dup, gap, out}) std::remove(p.c_str());
+}
+
+TEST(SweepJournal, EmptyOrTornHeaderStartsAfresh) {
+  // Killed between creating the journal and writing its header: nothing was done, and the
+  // journal must neither block --resume nor be taken for another sweep's.
+  const std::string path = temp_path("torn_header.journal");
+  const std::string header = "dampbound-journal v1 sweep=abc 1/1 classes=10";
+  for (const std::string& text : {std::string(), header.substr(0, 17)}) {
+    std::ofstream(path, std::ios::binary | std::ios::trunc) << text;
+    const JournalContents jc = read_journal(path, header, 10);
+    EXPECT_EQ(jc.valid_bytes, 0u);
+    EXPECT_TRUE(jc.entries.empty());
+    Journal j(path, header, jc.valid_bytes);  // replaces it
+  }
+  EXPECT_EQ(slurp(path), header + "\n");
+  std::ofstream(path, std::ios::binary | std::ios::trunc) << "dampbound-journal v1 sweep=abd";
+  EXPECT_THROW(read_journal(path, header, 10), InputError);  // another sweep's, torn
+  std::remove(path.c_str());
+  const std::string dir = temp_path("dir.journal");
+  ::mkdir(dir.c_str(), 0700);
+  try {
+    read_journal(dir, header, 10);
+    ADD_FAILURE() << "a directory was read as a journal";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), dir + ": is a directory, not a file");
+  }
+  ::rmdir(dir.c_str());
+}
+
+TEST(SweepJournal, ForgedLinesWithAGoodChecksumAreRefused) {
+  // A good checksum is easy to forge: what no run can write must not reach the CSV.
+  auto parses = [](const JournalEntry& e) {
+    std::string line = journal_line(e);
+    line.pop_back();  // the newline
+    JournalEntry back;
+    return parse_journal_line(line, back);
+  };
+  EXPECT_TRUE(parses(entry(1, Outcome::restored, 34, 0.04)));
+  EXPECT_TRUE(parses(entry(1, Outcome::diverged, 3, HUGE_VAL)));  // a diverged run may end at inf
+  EXPECT_FALSE(parses(entry(1, Outcome::restored, 34, HUGE_VAL)));
+  EXPECT_FALSE(parses(entry(1, Outcome::not_restored, 34, -1.0)));
+  EXPECT_FALSE(parses(entry(1, Outcome::restored, -34, 0.04)));
+  JournalEntry negative = entry(1, Outcome::restored, 34, 0.04);
+  negative.result.violations = -5;
+  EXPECT_FALSE(parses(negative));
+}
+
+TEST(SweepMerge, ForgedHeadersAllocateNothing) {
+  // A header claiming 2^64-1 trials or 2^31-1 shards was allocated for before being checked.
+  const std::string a = write_part("f1.csv", "id1", 1, 2, {0, 2, 4}, 5);
+  const std::string out = temp_path("forged_merged.csv");
+  std::string text = slurp(a);
+  for (const char* shards : {"# shard: 1/2147483647", "# shard: 1/999999999"}) {
+    std::string forged = text;
+    forged.replace(forged.find("# shard: 1/2"), 12, shards);
+    std::ofstream(a, std::ios::binary | std::ios::trunc) << forged;
+    try {
+      merge_sweep_parts({a}, out);
+      ADD_FAILURE() << "merged one part of " << shards;
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      // 2^31-1 parts are refused as the header is read; 999999999 for the missing part 2.
+      EXPECT_TRUE(what.find("bad shard line") != std::string::npos ||
+                  what.find("part 2/999999999 of sweep id1 is missing") != std::string::npos)
+          << what;
+    }
+  }
+  std::string forged = text;
+  forged.replace(forged.find("# trials: 5"), 11, "# trials: 18446744073709551615");
+  std::ofstream(a, std::ios::binary | std::ios::trunc) << forged;
+  EXPECT_THROW(read_sweep_csv(a), InputError);
+  EXPECT_FALSE(std::ifstream(out).good());
+  std::remove(a.c_str());
 }
 
 }  // namespace

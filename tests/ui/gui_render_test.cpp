@@ -8,12 +8,14 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 
 #include "core/scene.hpp"
 #include "ui/egl_host.hpp"
 #include "ui/gui_app.hpp"
 #include "ui/gui_export.hpp"
 #include "ui/image.hpp"
+#include "ui/settings.hpp"
 #include "ui/mesh_style.hpp"
 #include "ui/tuner_plots.hpp"
 
@@ -54,6 +56,34 @@ GuiOptions bare_options() {
   o.config_dir.clear();
   o.demo = false;
   return o;
+}
+
+TEST(GuiRender, ARememberedHostileSceneDoesNotStopTheNextStart) {
+  // The settings remembered a scene of 40 000 dotted key parts, which overflowed toml++'s
+  // stack: every later start of `gui` crashed. Now the scene is refused with a warning and
+  // the window opens on the paper plane.
+  const fs::path config = fs::temp_directory_path() / "dampbound_gui_hostile_scene";
+  fs::remove_all(config);
+  fs::create_directories(config);
+  const fs::path bomb = config / "bomb.toml";
+  {
+    std::ofstream out(bomb);
+    out << "a";
+    for (int k = 0; k < 40000; ++k) out << ".a";
+    out << " = 1\n";
+  }
+  GuiSettings remembered = default_gui_settings();
+  remembered.scene_path = bomb.string();
+  save_gui_settings(remembered, (config / "settings.txt").string());
+  GuiOptions o = options(config);
+  o.scene.reset();
+  o.demo = false;
+  GuiApp app(o);
+  ASSERT_FALSE(app.warnings().empty());
+  EXPECT_NE(app.warnings().front().find("more than 64 parts"), std::string::npos)
+      << app.warnings().front();
+  EXPECT_EQ(app.tuner().session().model().node_count(), 1296);  // the paper plane
+  fs::remove_all(config);
 }
 
 TEST(GuiRender, WholeWindowHeadless) {
