@@ -33,6 +33,8 @@ std::vector<std::string> scene_files(const std::vector<std::string>& paths) {
         if (e.is_regular_file() && e.path().extension() == ".toml") out.push_back(e.path().string());
     } else if (fs::is_regular_file(p, ec)) {
       out.push_back(p);
+    } else if (fs::exists(p, ec)) {
+      check_regular_input(p);  // a FIFO or a device: named as such
     } else {
       throw InputError(p + ": no such file or folder");
     }
@@ -110,7 +112,7 @@ int run(const CheckArgs& a) {
     try {
       rep.results = check_expectations(load_scene(file));
     } catch (const InputError& e) {
-      rep.error = e.what();
+      rep.error = printable(e.what());  // it may quote the file: one inert line
     }
     rep.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (!rep.error.empty()) {

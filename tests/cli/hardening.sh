@@ -37,17 +37,21 @@ if cmp -s <(body "$WORK/ref.csv") <(body "$WORK/f.csv"); then ok; else bad "forg
 # journal keeps the finished classes, and --resume finishes once there is space.
 FULL="$WORK/full"
 mkdir -p "$FULL"
-if mount -t tmpfs -o size=128k tmpfs "$FULL" 2>/dev/null; then
+if mount -t tmpfs -o size=256k tmpfs "$FULL" 2>/dev/null; then
   trap 'umount "$FULL" 2>/dev/null; rm -rf "$WORK"' EXIT
-  BIG=(--m 0.0001:0.006:0.0001 --kappa 0.001:0.01:0.001 --zeta 0.5,1 --max-iter 20
-       --progress none --no-similarity --sync-interval 0)
+  # About 2 s of --plain trials on the paper plane; the disk fills up after 0.3 s, between
+  # two syncs of the journal (or, on a slow machine, before the final CSV).
+  BIG=(--m 0.001:0.02:0.001 --kappa 0.001:0.005:0.001 --zeta 0.5,1 --max-iter 200 --plain
+       --threads 2 --progress none --no-similarity --sync-interval 0)
   expect_exit 0 "$DB" sweep "${BIG[@]}" -o "$WORK/bigref.csv"
-  dd if=/dev/zero of="$FULL/filler" bs=1k count=100 2>/dev/null
+  ( sleep 0.3; dd if=/dev/zero of="$FULL/filler" bs=1k 2>/dev/null ) &
+  filler=$!
   expect_exit 2 "$DB" sweep "${BIG[@]}" -o "$FULL/x.csv"
+  wait "$filler"
   expect_one_line "$ERR" "disk full mid-sweep"
   expect_match "$ERR" 'No space left on device|write failed' "disk full mid-sweep"
   if [ -e "$FULL/x.csv" ]; then bad "a CSV was left on the full disk"; fi
-  ls "$FULL" | grep -q 'tmp' && bad "a temporary was left on the full disk: $(ls "$FULL")"
+  if ls "$FULL" | grep -q 'tmp'; then bad "a temporary was left on the full disk: $(ls "$FULL")"; fi
   rm -f "$FULL/filler"
   if [ -e "$FULL/x.csv.journal" ]; then
     expect_exit 0 "$DB" sweep "${BIG[@]}" -o "$FULL/x.csv" --resume
