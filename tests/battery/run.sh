@@ -24,6 +24,7 @@ fail() { echo "FAIL: $*" >&2; FAILS=$((FAILS + 1)); }
 mkdir -p "$W/dir" "$S/meshes" "$W/jdir.csv.journal" "$W/repro/report.md"
 mkfifo "$W/fifo" "$S/meshes/fifo.obj"
 truncate -s 1G "$W/huge.toml"
+truncate -s 300M "$S/meshes/huge.obj"
 cat >"$W/ok.toml" <<'TOML'
 name = "battery"
 [grid]
@@ -112,7 +113,7 @@ gen binary 'NUL byte|not valid UTF-8'
 # --- one case: EXIT REGEX ARGS...
 snapshot() {
   find "$W" -mindepth 1 -printf '%P %y %s %m\n' | sort
-  find "$W" -type f ! -name huge.toml -size -20M -exec md5sum {} + 2>/dev/null | sort
+  find "$W" -type f ! -name 'huge.*' -size -20M -exec md5sum {} + 2>/dev/null | sort
   for dev in /dev/null /dev/full /dev/zero; do [ -c "$dev" ] && echo "$dev char"; done
 }
 BEFORE=$(snapshot)
