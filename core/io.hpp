@@ -13,8 +13,8 @@ namespace dampbound {
 
 /// Largest scene file read (bytes): a scene of 1e5 explicit nodes is about 5 MB.
 constexpr std::uint64_t kMaxSceneBytes = 16u << 20;
-/// Largest file read whole otherwise (a mesh: about 5e6 vertices), bytes.
-constexpr std::uint64_t kMaxInputBytes = 256u << 20;
+/// Largest file read otherwise (meshes, sweep CSVs, journals, settings), bytes.
+constexpr std::uint64_t kMaxInputBytes = 1u << 30;
 
 /// An output file finished under a temporary name and not yet in place. The one writer every
 /// output goes through: it refuses a PATH that exists and is not a regular file (a directory,

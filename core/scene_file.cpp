@@ -164,7 +164,7 @@ void read_mesh(const Reader& r, const toml::table& root, SceneSpec& s) {
   if (file.empty()) r.fail(fn, "mesh file '" + named + "' " + why);
   std::string text;
   try {
-    text = read_file_text(file);
+    text = read_file_text(file, kMaxMeshBytes);
   } catch (const std::exception& e) {
     r.fail(fn, "cannot read the mesh file: " + std::string(e.what()));
   }

@@ -10,6 +10,9 @@ namespace dampbound {
 /// inline tables: toml++ recurses once per level and a hostile file could overflow the stack.
 constexpr int kMaxTomlNesting = 64;
 
+/// Largest OBJ mesh a scene may name, bytes (about 5e6 vertices).
+constexpr unsigned long long kMaxMeshBytes = 256ull << 20;
+
 /// Throws InputError("PATH:LINE: ...") when TEXT is not valid UTF-8, starts with a broken
 /// byte-order mark, holds a NUL byte, or nests deeper than kMaxTomlNesting.
 void check_scene_text(const std::string& text, const std::string& path);
