@@ -21,7 +21,7 @@ SAN="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-fram
 cmake -S . -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=Debug \
   -DCMAKE_C_COMPILER=clang-14 -DCMAKE_CXX_COMPILER=clang++-14 "${LAUNCHER[@]}" \
   -DCMAKE_CXX_FLAGS="-O1 -g $SAN" -DCMAKE_EXE_LINKER_FLAGS="$SAN" \
-  -DDAMPBOUND_WERROR=ON -DDAMPBOUND_BENCH=OFF -DDAMPBOUND_FUZZ=ON >/dev/null
+  -DDAMPBOUND_WERROR=ON -DDAMPBOUND_BENCH=OFF -DDAMPBOUND_FUZZ=ON
 cmake --build "$BUILD_DIR" -j "$JOBS"
 T1=$(date +%s)
 
