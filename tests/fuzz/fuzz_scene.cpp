@@ -17,7 +17,8 @@ namespace {
 bool huge_grid(const std::string& text) {
   try {
     dampbound::check_scene_text(text, "fuzz.toml");  // toml++ must not see what it refuses
-    const toml::table root = toml::parse(text, "fuzz.toml");
+    const std::string name = "fuzz.toml";
+    const toml::table root = toml::parse(text, name);
     const auto nx = root["grid"]["nx"].value<long long>().value_or(1);
     const auto nz = root["grid"]["nz"].value<long long>().value_or(1);
     return nx > 64 || nz > 64;
