@@ -6,6 +6,8 @@
 #include <exception>
 #include <stdexcept>
 
+#include "core/report.hpp"
+
 namespace dampbound::ui {
 
 std::string fmt(double x) {
@@ -17,17 +19,30 @@ std::string fmt(double x) {
 }
 
 std::string outcome_text(const RunResult& r) {
+  const std::string left = r.left_at > 0 ? ", left at " + std::to_string(r.left_at) : "";
   switch (r.outcome) {
     case Outcome::running:
-      return "running";
+      return r.left_at > 0 ? "running (entered at " + std::to_string(r.first_entry) + left + ")"
+                           : "running";
     case Outcome::restored:
       return "restored at " + std::to_string(r.iterations);
     case Outcome::diverged:
       return "diverged at " + std::to_string(r.iterations);
     case Outcome::not_restored:
       return "not restored at " + std::to_string(r.iterations);
+    case Outcome::settled:
+      return "settled at " + std::to_string(r.settled_at);
+    case Outcome::not_settled:
+      return "not settled at " + std::to_string(r.iterations) +
+             (r.first_entry > 0 ? " (entered at " + std::to_string(r.first_entry) + left + ")"
+                                : "");
   }
   return "?";
+}
+
+SceneSpec with_settled_rule(SceneSpec scene) {
+  scene.rules.rule = StopRule::settled;
+  return scene;
 }
 
 std::string params_label(const Params& p) {
@@ -39,7 +54,8 @@ std::string params_label(const Params& p) {
   return s;
 }
 
-Tuner::Tuner(SceneSpec scene) : session_(std::make_unique<Session>(std::move(scene))) {}
+Tuner::Tuner(SceneSpec scene)
+    : session_(std::make_unique<Session>(with_settled_rule(std::move(scene)))) {}
 
 bool Tuner::open_scene(const std::string& path, std::string* error) {
   try {
@@ -52,7 +68,7 @@ bool Tuner::open_scene(const std::string& path, std::string* error) {
 }
 
 void Tuner::set_scene(SceneSpec scene) {
-  session_ = std::make_unique<Session>(std::move(scene));
+  session_ = std::make_unique<Session>(with_settled_rule(std::move(scene)));
   playing_ = false;
   notice_.clear();
   on_new_trace();
@@ -106,7 +122,10 @@ int Tuner::step(int n) {
     if (before == Outcome::running && after != Outcome::running && playback_.pause_at_verdict) {
       ++taken;
       playing_ = false;
-      notice_ = outcome_text(session_->result()) + ": paused at the verdict";
+      notice_ = verdict_text(session_->result(), session_->rules()) + ": paused at the verdict" +
+                (after == Outcome::settled || after == Outcome::not_settled
+                     ? " (the iteration limit, where the settled rule decides)"
+                     : "");
       break;
     }
   }
