@@ -46,6 +46,9 @@ std::string both_verdicts(const FigureRun& run, const RunResult& s) {
   const bool agree = (p.outcome == Outcome::restored && settled(s) && s.settled_at == p.iterations) ||
                      (p.outcome == Outcome::diverged && s.outcome == Outcome::diverged &&
                       s.iterations == p.iterations);
+  if (agree && p.outcome == Outcome::restored)
+    return outcome_text(p) + " and settled there, below the band to the limit " +
+           std::to_string(rules.max_iterations) + " (both rules)";
   if (agree) return outcome_text(p) + " (both rules)";
   return outcome_text(p) + " by the first entry; settled rule: " + verdict_text(s, rules);
 }

@@ -70,7 +70,7 @@ void GuiApp::status_panel() {
     row("divergence", r.outcome == Outcome::diverged ? at(r.iterations) : std::string("-"));
     const double thr = rules.restore_fraction * rules.reference;
     row("max |x - X|", (last ? fmt(last->max_displacement) : std::string("0")) +
-                           " cm (restored < " + fmt(thr) + ")");
+                           " cm (band < " + fmt(thr) + ")");
     const int w = s.watched();
     const NodeStatus ns = w < static_cast<int>(s.workspace().status.size())
                               ? s.workspace().status[static_cast<size_t>(w)]
