@@ -135,6 +135,28 @@ std::vector<Claim> sweep_claims(const std::vector<PredictionCheck>& checks,
   return out;
 }
 
+std::vector<Claim> both_rule_claims(const std::vector<Claim>& first_entry,
+                                    const std::vector<Claim>& settled) {
+  std::vector<Claim> out;
+  for (size_t k = 0; k < first_entry.size(); ++k) {
+    const Claim& f = first_entry[k];
+    if (k >= settled.size()) {
+      out.push_back(f);
+      continue;
+    }
+    const Claim& s = settled[k];
+    const bool lasting = f.paper.find("not restored") != std::string::npos;
+    Claim c = lasting ? s : f;
+    c.paper = f.paper;  // the paper's words, as the first-entry check states them
+    if (lasting)
+      c.measured = "settled rule: " + s.measured + "; first entry: " + f.measured;
+    else if (s.measured != f.measured)
+      c.measured = f.measured + "; settled rule: " + s.measured;
+    out.push_back(c);
+  }
+  return out;
+}
+
 void write_claims_table(std::ostream& out, const std::vector<Claim>& claims) {
   out << "| # | Source | The paper says | dampbound measured | Rule | ClaimVerdict |\n"
          "|---|---|---|---|---|---|\n";

@@ -46,6 +46,13 @@ std::vector<Claim> fig2_claims(const FigureData& fig2, const std::vector<RunResu
 std::vector<Claim> sweep_claims(const std::vector<PredictionCheck>& checks,
                                 const std::string& source, const std::string& grid);
 
+/// One sweep's claims under both rules (SPEC 8), paired by position (the same checks of the
+/// same grid run once per rule): a claim that a run is "not restored" (keeps oscillating) is
+/// about lasting behaviour and judged by the settled rule, the others by the first entry;
+/// each gives the other rule's count beside its own where they differ.
+std::vector<Claim> both_rule_claims(const std::vector<Claim>& first_entry,
+                                    const std::vector<Claim>& settled);
+
 /// Markdown table of the claims, with the rule that judges each.
 void write_claims_table(std::ostream& out, const std::vector<Claim>& claims);
 
