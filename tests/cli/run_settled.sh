@@ -41,6 +41,13 @@ rows=$(($(wc -l <"$WORK/a.csv") - 1))
 "$DB" run paper-plane --gamma 0.0005 --json --trace "$WORK/b2.csv" >"$WORK/j2"
 cmp -s "$WORK/j1" "$WORK/j2" && cmp -s "$WORK/b1.csv" "$WORK/b2.csv" && ok || bad "two runs differ"
 
+# Figures keep the paper's rule and say so (headless EGL builds only).
+if "$DB" map --help >/dev/null 2>&1; then
+  expect_exit 0 "$DB" figure stiff-region -o "$WORK/stiff.png"
+  expect_match "$OUT" 'dt 0\.13 +restored at 40 \(first entry into the 1% band, the paper.s rule\)' \
+    "figure names the first-entry rule"
+fi
+
 # A bad rule: one line naming the flag, exit 2.
 expect_exit 2 "$DB" run paper-plane --rule sometimes
 expect_one_line "$ERR" "--rule sometimes"
