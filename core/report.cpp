@@ -42,6 +42,28 @@ void write_trace_csv(std::ostream& out, const std::vector<StepStats>& trace,
         << s.zero_length_springs << '\n';
 }
 
+std::string verdict_short(const RunResult& r) {
+  const std::string left = r.left_at > 0 ? ", left at " + std::to_string(r.left_at) : "";
+  switch (r.outcome) {
+    case Outcome::running:
+      return r.left_at > 0 ? "running (entered at " + std::to_string(r.first_entry) + left + ")"
+                           : "running";
+    case Outcome::restored:
+      return "restored at " + std::to_string(r.iterations);
+    case Outcome::diverged:
+      return "diverged at " + std::to_string(r.iterations);
+    case Outcome::not_restored:
+      return "not restored at " + std::to_string(r.iterations);
+    case Outcome::settled:
+      return "settled at " + std::to_string(r.settled_at);
+    case Outcome::not_settled:
+      return "not settled at " + std::to_string(r.iterations) +
+             (r.first_entry > 0 ? " (entered at " + std::to_string(r.first_entry) + left + ")"
+                                : "");
+  }
+  return "?";
+}
+
 std::string verdict_text(const RunResult& r, const StopRules& rules) {
   const std::string band = "the " + format_number(100 * rules.restore_fraction) + "% band";
   std::string history;  // "entered the 1% band at K, left it at L"

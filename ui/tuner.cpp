@@ -18,27 +18,7 @@ std::string fmt(double x) {
   return buf;
 }
 
-std::string outcome_text(const RunResult& r) {
-  const std::string left = r.left_at > 0 ? ", left at " + std::to_string(r.left_at) : "";
-  switch (r.outcome) {
-    case Outcome::running:
-      return r.left_at > 0 ? "running (entered at " + std::to_string(r.first_entry) + left + ")"
-                           : "running";
-    case Outcome::restored:
-      return "restored at " + std::to_string(r.iterations);
-    case Outcome::diverged:
-      return "diverged at " + std::to_string(r.iterations);
-    case Outcome::not_restored:
-      return "not restored at " + std::to_string(r.iterations);
-    case Outcome::settled:
-      return "settled at " + std::to_string(r.settled_at);
-    case Outcome::not_settled:
-      return "not settled at " + std::to_string(r.iterations) +
-             (r.first_entry > 0 ? " (entered at " + std::to_string(r.first_entry) + left + ")"
-                                : "");
-  }
-  return "?";
-}
+std::string outcome_text(const RunResult& r) { return verdict_short(r); }
 
 SceneSpec with_settled_rule(SceneSpec scene) {
   scene.rules.rule = StopRule::settled;

@@ -41,11 +41,15 @@ rows=$(($(wc -l <"$WORK/a.csv") - 1))
 "$DB" run paper-plane --gamma 0.0005 --json --trace "$WORK/b2.csv" >"$WORK/j2"
 cmp -s "$WORK/j1" "$WORK/j2" && cmp -s "$WORK/b1.csv" "$WORK/b2.csv" && ok || bad "two runs differ"
 
-# Figures keep the paper's rule and say so (headless EGL builds only).
+# fig1 keeps the paper's rule and says so; a scene's figure is judged by the settled rule
+# (headless EGL builds only).
 if "$DB" map --help >/dev/null 2>&1; then
+  expect_exit 0 "$DB" figure fig1 -o "$WORK/fig1.png"
+  expect_match "$OUT" 'gamma = 0\.0005 +restored at 230 \(first entry into the 1% band, the paper.s rule\)' \
+    "fig1 names the first-entry rule"
   expect_exit 0 "$DB" figure stiff-region -o "$WORK/stiff.png"
-  expect_match "$OUT" 'dt 0\.13 +restored at 40 \(first entry into the 1% band, the paper.s rule\)' \
-    "figure names the first-entry rule"
+  expect_match "$OUT" 'dt 0\.13 +entered the 1% band at 40, left it at 53, diverged at 71' \
+    "a scene's figure is judged by the settled rule"
 fi
 
 # A bad rule: one line naming the flag, exit 2.
