@@ -231,20 +231,37 @@ void GuiApp::update_stats() {
     }
     stats_.step_ms += a * ((step_s - last_step_seconds_) * 1e3 - stats_.step_ms);
   }
+  if (stats_.frames == 1) {  // the second frame starts: the start-up is over
+    run_start_time_ = t;
+    run_start_steps_ = steps;
+  }
   last_frame_time_ = t;
   last_steps_ = steps;
   last_step_seconds_ = step_s;
   ++stats_.frames;
 }
 
+double GuiApp::measured_steps_per_second() const {
+  if (run_start_time_ < 0 || !(last_frame_time_ > run_start_time_)) return 0;
+  return static_cast<double>(last_steps_ - run_start_steps_) / (last_frame_time_ - run_start_time_);
+}
+
 namespace {
+/// Below this window height (pixels) the layout is compact (default_layout).
+constexpr float kCompactHeight = 760.0f;
+
 /// The default layout for a W x H window: controls on the left, the mesh and the envelope on
 /// top, the displacement and the runs below.
 std::vector<GuiApp::WindowRect> default_layout(float W, float H) {
   const float left = std::clamp(std::floor(W * 0.245f), 330.0f, 430.0f);
-  const float R = W - left, top = std::floor(H * 0.56f);
-  const float mesh_w = std::floor(R * 0.48f), disp_w = std::floor(R * 0.64f);
-  const float params_h = std::floor(std::clamp(560.0f, H * 0.45f, H * 0.62f));
+  const float R = W - left, top = std::floor(H * (H < kCompactHeight ? 0.5f : 0.56f));
+  const bool compact = H < kCompactHeight;
+  // The runs' tabs need about 330 px; in a compact window they take the status tabs too.
+  const float runs_w = compact ? std::max(std::floor(R * 0.5f), 330.0f)
+                               : std::max(std::floor(R * 0.36f), std::min(330.0f, R * 0.5f));
+  const float mesh_w = std::floor(R * 0.48f), disp_w = R - runs_w;
+  // Compact: the parameters take the whole left column (the status moved to the runs' tabs).
+  const float params_h = compact ? H : std::floor(std::clamp(560.0f, H * 0.45f, H * 0.62f));
   return {
       {"Parameters", 0, 0, left, params_h},
       {"Status", 0, params_h, left, H - params_h},
@@ -292,7 +309,11 @@ void GuiApp::layout_windows(const FrameInfo& info) {
 }
 
 bool GuiApp::begin(const char* name, int flags) {
-  const ImGuiCond cond = reset_layout_ ? ImGuiCond_Always : ImGuiCond_FirstUseEver;
+  // A panel that was hidden (the compact layout's Status) comes back where the layout says.
+  const auto was_hidden = std::find(hidden_.begin(), hidden_.end(), name);
+  const bool back = was_hidden != hidden_.end();
+  if (back) hidden_.erase(was_hidden);
+  const ImGuiCond cond = reset_layout_ || back ? ImGuiCond_Always : ImGuiCond_FirstUseEver;
   for (const WindowRect& r : layout_) {
     if (r.name != name) continue;
     ImGui::SetNextWindowPos(ImVec2(r.x, r.y), cond);
@@ -333,12 +354,18 @@ void GuiApp::frame(FrameInfo& info) {
   if (begin("Parameters", 0)) parameters_panel();
   ImGui::End();
   suggest_.poll();
-  auto tab = [&](const char* name) {
+  // Below kCompactHeight the status tabs join the runs' tabs, under short titles (the part
+  // after ### is the tab's identity, so a selected tab stays selected across sizes).
+  const bool compact = static_cast<float>(info.height) < kCompactHeight;
+  auto tab = [&](const char* name, const char* short_name = nullptr) {
     const bool selected = select_tab_ == name;
     if (selected) select_tab_.clear();
-    return ImGui::BeginTabItem(name, nullptr, selected ? ImGuiTabItemFlags_SetSelected : 0);
+    const std::string label =
+        std::string(compact && short_name != nullptr ? short_name : name) + "###" + name;
+    return ImGui::BeginTabItem(label.c_str(), nullptr,
+                               selected ? ImGuiTabItemFlags_SetSelected : 0);
   };
-  if (begin("Status", 0) && ImGui::BeginTabBar("status_tabs")) {
+  auto status_tabs = [&] {
     if (tab("Status")) {
       status_panel();
       ImGui::EndTabItem();
@@ -347,22 +374,48 @@ void GuiApp::frame(FrameInfo& info) {
       criteria_panel();
       ImGui::EndTabItem();
     }
+  };
+  if (compact && std::find(hidden_.begin(), hidden_.end(), "Status") == hidden_.end()) {
+    hidden_.push_back("Status");  // not drawn: it must not follow resizes from a stale place
+    drawn_.erase(std::remove_if(drawn_.begin(), drawn_.end(),
+                                [](const WindowRect& r) { return r.name == "Status"; }),
+                 drawn_.end());
+  }
+  if (!compact) {
+    if (begin("Status", 0) && ImGui::BeginTabBar("status_tabs")) {
+      status_tabs();
+      ImGui::EndTabBar();
+    }
+    ImGui::End();
+  }
+  if (begin("Mesh view", fixed) && ImGui::BeginTabBar("view_tabs")) {
+    if (tab("Mesh")) {
+      mesh_.draw(*tuner_);
+      ImGui::EndTabItem();
+    }
+    if (tab("Map")) {
+      map_panel();
+      ImGui::EndTabItem();
+    }
     ImGui::EndTabBar();
   }
-  ImGui::End();
-  if (begin("Mesh view", fixed)) mesh_.draw(*tuner_);
   ImGui::End();
   if (begin("Damping bounds", fixed)) plots_envelope();
   ImGui::End();
   if (begin("Displacement", fixed)) plots_displacement();
   ImGui::End();
   if (begin("Runs", 0) && ImGui::BeginTabBar("runs_tabs")) {
-    if (tab("Pins & export")) {
+    if (compact) status_tabs();
+    if (tab("Pins & export", "Pins")) {
       runs_panel();
       ImGui::EndTabItem();
     }
     if (tab("Suggest")) {
       suggest_panel();
+      ImGui::EndTabItem();
+    }
+    if (tab("Save scene", "Save")) {
+      save_panel();
       ImGui::EndTabItem();
     }
     ImGui::EndTabBar();

@@ -278,7 +278,7 @@ unsigned MeshRenderer::render(const MeshDrawData& d, int width, int height) {
     glUniform4f(loc_tint_, static_cast<float>(c & 0xFF) / 255.0f,
                 static_cast<float>((c >> 8) & 0xFF) / 255.0f,
                 static_cast<float>((c >> 16) & 0xFF) / 255.0f,
-                static_cast<float>((c >> 24) & 0xFF) / 255.0f);
+                static_cast<float>((c >> 24) & 0xFF) / 255.0f * d.spring_alpha);
     glDrawElements(GL_LINES, index_count_, GL_UNSIGNED_INT, nullptr);
   }
   glUniform1i(loc_use_tint_, 0);

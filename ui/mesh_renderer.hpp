@@ -21,6 +21,9 @@ struct MeshDrawData {
   std::uint64_t topology = 0;                       ///< changes whenever model->springs changes
   Mat4f view_proj = Mat4f::Identity();
   float point_size = 6.0f;  ///< node diameter (pixels)
+  /// Opacity of the spring lines (0..1): below 1 on dense meshes, where one-pixel lines a few
+  /// pixels apart beat against the pixel grid (moire).
+  float spring_alpha = 1.0f;
   bool springs = true;
   bool anchors = false;  ///< lines from each anchored node to its rest position
   int samples = 1;       ///< multisampling (1: none; 4 smooths lines, costs fill rate)
