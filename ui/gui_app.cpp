@@ -248,7 +248,7 @@ double GuiApp::measured_steps_per_second() const {
 
 namespace {
 /// Below this window height (pixels) the layout is compact (default_layout).
-constexpr float kCompactHeight = 760.0f;
+constexpr float kCompactHeight = 900.0f;  // the parameters need ~560 px, 62 % of the height
 
 /// The default layout for a W x H window: controls on the left, the mesh and the envelope on
 /// top, the displacement and the runs below.

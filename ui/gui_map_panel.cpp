@@ -78,8 +78,45 @@ void GuiApp::map_panel() {
   if (!r || r->view.x != v.x || r->view.y != v.y) return;
   PlotSpec spec = map_panel_plot(map_result_panel(*r), r->max_iterations, true);
   spec.title.clear();
-  const float avail_w = ImGui::GetContentRegionAvail().x;
-  spec.legend = avail_w > 620.0f ? LegendPos::Outside : LegendPos::Hidden;
+  // The key as one wrapping line of swatches above the plot: a legend box would take a third
+  // of a panel this size, or cover the cells.
+  spec.legend = LegendPos::Hidden;
+  std::vector<LegendSwatch> key = spec.heatmap.legend;  // short names, the full ones on hover
+  const char* short_names[] = {"restored: few iterations", "near the limit", "not restored",
+                               "diverged"};
+  for (size_t k = 0; k < key.size() && k < 4; ++k) key[k].label = short_names[k];
+  for (size_t k = 0; k < r->lines.size() && k < spec.series.size(); ++k)
+    key.push_back({r->lines[k].kind == MapLineKind::paper ? "lower bound" : "exact limit",
+                   spec.series[k].color});
+  key.push_back({"current", IM_COL32(255, 255, 255, 255)});
+  // In a short panel the key hides behind one line and shows on hover.
+  const bool short_panel = ImGui::GetContentRegionAvail().y < 320.0f;
+  if (short_panel) {
+    ImGui::SameLine();
+    ImGui::TextDisabled("| key (hover)");
+    if (!ImGui::IsItemHovered()) key.clear();
+    else ImGui::BeginTooltip();
+  }
+  ImDrawList* dl = ImGui::GetWindowDrawList();  // the tooltip's, in a short panel
+  const float box = ImGui::GetTextLineHeight() * 0.8f;
+  for (size_t k = 0; k < key.size(); ++k) {
+    const std::string& text = key[k].label;
+    const float w = box + ImGui::GetStyle().ItemInnerSpacing.x + ImGui::CalcTextSize(text.c_str()).x;
+    if (k > 0 && !short_panel) same_line_if_fits(w);
+    const ImVec2 p = ImGui::GetCursorScreenPos();
+    const float y = p.y + (ImGui::GetTextLineHeight() - box) * 0.5f;
+    dl->AddRectFilled(ImVec2(p.x, y), ImVec2(p.x + box, y + box), key[k].color);
+    dl->AddRect(ImVec2(p.x, y), ImVec2(p.x + box, y + box), IM_COL32(200, 200, 200, 160));
+    ImGui::Dummy(ImVec2(box, ImGui::GetTextLineHeight()));
+    ImGui::SameLine(0.0f, ImGui::GetStyle().ItemInnerSpacing.x);
+    ImGui::TextUnformatted(text.c_str());
+    if (short_panel) continue;
+    if (ImGui::IsItemHovered() && k < spec.heatmap.legend.size())
+      ImGui::SetTooltip("%s", spec.heatmap.legend[k].label.c_str());
+    else if (ImGui::IsItemHovered() && k - spec.heatmap.legend.size() < spec.series.size())
+      ImGui::SetTooltip("%s", spec.series[k - spec.heatmap.legend.size()].label.c_str());
+  }
+  if (short_panel && !key.empty()) ImGui::EndTooltip();
   const double cx = get_param(t.params(), v.x), cy = get_param(t.params(), v.y);
   for (int k = 0; k < 2; ++k) {
     // The current point: a cross of two lines, a dark one under a white one.
