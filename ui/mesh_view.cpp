@@ -254,13 +254,14 @@ void MeshView::draw(Tuner& tuner) {
   d.view_proj = camera_.view_projection(vp.aspect());
   const float spacing = spring_spacing_px(s.model(), s.state().x, d.view_proj, vp);
   // Dense meshes: lines a few pixels apart alias into moire, and points wider than the spacing
-  // overlap in a pattern of their own. Fade the lines below ~10 px and keep points within it.
-  d.spring_alpha = std::clamp((spacing - 2.0f) / 8.0f, 0.15f, 1.0f);
+  // overlap in a pattern of their own. Below ~5 px the lines and nodes fade and the points
+  // shrink to the spacing.
+  d.spring_alpha = std::clamp((spacing - 1.5f) / 4.0f, 0.15f, 1.0f);
   d.point_size = std::min(options.point_size, std::max(2.0f, 0.9f * spacing));
-  // Below ~6 px, 4x multisampling: the image is redrawn only when something moved, and the
+  // Below 5 px, 4x multisampling: the image is redrawn only when something moved, and the
   // grid's aliasing is what makes the moire.
-  d.samples = spacing < 6.0f ? 4 : 1;
-  d.point_alpha = std::clamp((spacing - 1.5f) / 4.5f, 0.3f, 1.0f);
+  d.samples = spacing < 5.0f ? 4 : 1;
+  d.point_alpha = std::clamp((spacing - 1.5f) / 3.0f, 0.3f, 1.0f);
   d.springs = options.show_springs;
   d.anchors = options.show_anchors;
   const ImGuiIO& io = ImGui::GetIO();
