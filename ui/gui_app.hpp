@@ -23,6 +23,11 @@
 
 namespace dampbound::ui {
 
+/// Below this window height (pixels) the layout is compact: the parameters take the whole
+/// left column (they need about 560 px, 62 % of the height) and the Status and Criteria tabs
+/// join the runs' tabs.
+constexpr float kCompactLayoutHeight = 900.0f;
+
 /// How the window starts.
 struct GuiOptions {
   std::string config_dir;  ///< settings and imgui.ini live here; "" = nothing persisted
