@@ -24,7 +24,7 @@ namespace {
 void render_map(const StabilityMap& map, const std::string& png, int width, int height) {
   std::vector<ui::PlotSpec> plots;
   for (size_t k = 0; k < map.panels.size(); ++k)
-    plots.push_back(ui::map_panel_plot(map.panels[k], map.max_iterations, k == 0));
+    plots.push_back(ui::map_panel_plot(map.panels[k], map.max_iterations, k == 0, map.rule));
   plots.front().title = map.title + " - " + plots.front().title;
   const int below = static_cast<int>(plots.size()) - 1;
   if (width <= 0) width = below >= 3 ? 2100 : 1800;

@@ -9,6 +9,7 @@
 #include <charconv>
 #include <cmath>
 #include <filesystem>
+#include <optional>
 #include <ostream>
 #include <sstream>
 
@@ -186,10 +187,17 @@ void write_geometry(std::ostream& out, const SceneSpec& s, const std::string& de
 
 Table expect_table(const Expectation& e) {
   Table t;
+  auto range = [&t](const char* key, const std::optional<int>& lo, const std::optional<int>& hi) {
+    if (lo && hi) t.emplace_back(key, "[" + num(*lo) + ", " + num(*hi) + "]");
+  };
   if (!e.run.empty()) t.emplace_back("run", str(e.run));
+  if (e.rule != StopRule::first_entry) t.emplace_back("rule", str(to_string(e.rule)));
   if (e.outcome) t.emplace_back("outcome", str(to_string(*e.outcome)));
-  if (e.iterations_min && e.iterations_max)
-    t.emplace_back("iterations", "[" + num(*e.iterations_min) + ", " + num(*e.iterations_max) + "]");
+  range("iterations", e.iterations_min, e.iterations_max);
+  range("first_entry", e.first_entry_min, e.first_entry_max);
+  if (e.left) t.emplace_back("left", boolean(*e.left));
+  range("left_at", e.left_at_min, e.left_at_max);
+  range("settled_at", e.settled_at_min, e.settled_at_max);
   if (e.max_displacement_below)
     t.emplace_back("max_displacement_below", num(*e.max_displacement_below));
   if (e.unstabilisable_max) t.emplace_back("unstabilisable_max", num(*e.unstabilisable_max));
@@ -215,14 +223,26 @@ bool same_topology(const Model& a, const Model& b) {
 }
 
 Expectation expectation_for(const RunResult& r, const std::string& run,
-                            const ExpectTolerance& tol) {
+                            const ExpectTolerance& tol, StopRule rule) {
   Expectation e;
   e.run = run;
+  e.rule = rule;
   e.outcome = r.outcome;
-  if (r.outcome != Outcome::not_restored) {
-    const int k = std::max(0, tol.iterations);
-    e.iterations_min = std::max(0, r.iterations - k);
-    e.iterations_max = r.iterations + k;
+  const int k = std::max(0, tol.iterations);
+  auto range = [k](int value, std::optional<int>& lo, std::optional<int>& hi) {
+    lo = std::max(1, value - k);
+    hi = value + k;
+  };
+  // At the limit (not restored; settled, not settled) the iteration says nothing new.
+  if (r.outcome == Outcome::restored || r.outcome == Outcome::diverged)
+    range(r.iterations, e.iterations_min, e.iterations_max);
+  if (rule == StopRule::settled) {
+    if (r.first_entry > 0) range(r.first_entry, e.first_entry_min, e.first_entry_max);
+    if (r.outcome != Outcome::diverged) {
+      e.left = r.left_at > 0;
+      if (r.left_at > 0) range(r.left_at, e.left_at_min, e.left_at_max);
+    }
+    if (r.outcome == Outcome::settled) range(r.settled_at, e.settled_at_min, e.settled_at_max);
   }
   if (r.outcome != Outcome::diverged && tol.displacement_factor > 1 &&
       std::isfinite(r.max_displacement) && r.max_displacement > 0)

@@ -13,8 +13,8 @@ namespace dampbound {
 
 /// How loose the [[expect]] entries written for a measured run are.
 struct ExpectTolerance {
-  /// The outcome's iteration must lie within +- this many iterations of the measured one
-  /// (>= 0). Not asserted for not_restored, whose iteration is the limit.
+  /// Each asserted iteration (the outcome's, the first entry, the exit, the settled one) must
+  /// lie within +- this many iterations of the measured one (>= 0).
   int iterations = 2;
   /// max_displacement_below = this x the measured final max displacement (cm), for runs that
   /// did not diverge; <= 1 leaves it out.
@@ -28,11 +28,14 @@ inline ExpectTolerance default_expect_tolerance() {
   return {};
 }
 
-/// The [[expect]] entry for `result`, measured on the run labelled `run` ("" = the scene's
-/// own [params]): its outcome, its iteration within the tolerance, and what the tolerance
-/// adds.
+/// The [[expect]] entry for `result`, measured under `rule` on the run labelled `run` ("" =
+/// the scene's own [params]): the rule, the outcome, the outcome's iteration when it is not
+/// the limit (restored, diverged), and under the settled rule (SPEC 8) the first entry, whether
+/// and when the run left the band, and the settled iteration, each within the tolerance; then
+/// what the tolerance adds.
 Expectation expectation_for(const RunResult& result, const std::string& run,
-                            const ExpectTolerance& tolerance);
+                            const ExpectTolerance& tolerance,
+                            StopRule rule = StopRule::first_entry);
 
 /// Writes `scene` as TOML that load_scene() reads back to the same model, parameters,
 /// perturbations, protocol, cuts, runs and expectations. The geometry is a [grid] when the

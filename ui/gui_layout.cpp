@@ -24,7 +24,7 @@ std::vector<GuiApp::WindowRect> default_layout(float W, float H) {
                                : std::max(std::floor(R * 0.36f), std::min(330.0f, R * 0.5f));
   const float mesh_w = std::floor(R * 0.48f), disp_w = R - runs_w;
   // Compact: the parameters take the whole left column (the status moved to the runs' tabs).
-  const float params_h = compact ? H : std::floor(std::clamp(560.0f, H * 0.45f, H * 0.62f));
+  const float params_h = compact ? H : std::floor(std::clamp(535.0f, H * 0.45f, H * 0.62f));
   return {
       {"Parameters", 0, 0, left, params_h},
       {"Status", 0, params_h, left, H - params_h},

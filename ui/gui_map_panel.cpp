@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "ui/gui_app.hpp"
 #include "ui/gui_widgets.hpp"
@@ -76,15 +77,20 @@ void GuiApp::map_panel() {
   if (t.session().springs_cut() > 0) line += "  (the scene as loaded: hand cuts not included)";
   ImGui::TextDisabled("%s", line.c_str());
   if (!r || r->view.x != v.x || r->view.y != v.y) return;
-  PlotSpec spec = map_panel_plot(map_result_panel(*r), r->max_iterations, true);
+  PlotSpec spec = map_panel_plot(map_result_panel(*r), r->max_iterations, true, r->rule);
   spec.title.clear();
   // The key as one wrapping line of swatches above the plot: a legend box would take a third
   // of a panel this size, or cover the cells.
   spec.legend = LegendPos::Hidden;
   std::vector<LegendSwatch> key = spec.heatmap.legend;  // short names, the full ones on hover
-  const char* short_names[] = {"restored: few iterations", "near the limit", "not restored",
-                               "diverged"};
-  for (size_t k = 0; k < key.size() && k < 4; ++k) key[k].label = short_names[k];
+  const std::vector<const char*> short_names =
+      r->rule == StopRule::settled
+          ? std::vector<const char*>{"settled early", "near the limit", "entered, then left",
+                                     "never entered", "diverged"}
+          : std::vector<const char*>{"restored: few iterations", "near the limit",
+                                     "not restored", "diverged"};
+  for (size_t k = 0; k < key.size() && k < short_names.size(); ++k)
+    key[k].label = short_names[k];
   for (size_t k = 0; k < r->lines.size() && k < spec.series.size(); ++k)
     key.push_back({r->lines[k].kind == MapLineKind::paper ? "lower bound" : "exact limit",
                    spec.series[k].color});
@@ -139,8 +145,13 @@ void GuiApp::map_panel() {
   const double y = std::sqrt(r->y_edges[iy] * r->y_edges[iy + 1]);
   ImGui::BeginTooltip();
   ImGui::Text("%s = %s, %s = %s", to_string(v.x), fmt(x).c_str(), to_string(v.y), fmt(y).c_str());
-  ImGui::TextColored(outcome_color(cell.outcome), "%s at %d", to_string(cell.outcome),
-                     cell.iterations);
+  RunResult as_run;  // the window's verdict colours and words for a trial
+  as_run.outcome = cell.outcome;
+  as_run.iterations = cell.iterations;
+  as_run.first_entry = cell.first_entry;
+  as_run.left_at = cell.left_at;
+  as_run.settled_at = cell.settled_at;
+  ImGui::TextColored(outcome_color(as_run), "%s", outcome_text(as_run).c_str());
   ImGui::TextDisabled("click: run with these values");
   ImGui::EndTooltip();
   if (ImGui::IsItemClicked(ImGuiMouseButton_Left)) {

@@ -118,7 +118,7 @@ void GuiApp::playback_controls() {
     t.playback().steps_per_frame = std::max(1, std::min(spf, 10000));
   ImGui::Checkbox("pause at the verdict", &t.playback().pause_at_verdict);
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("Pause when the run is restored or not restored (a diverged run always stops)");
+    ImGui::SetTooltip("Pause at the verdict: the iteration limit, or a divergence");
 }
 
 void GuiApp::parameters_panel() {
@@ -200,7 +200,7 @@ void GuiApp::parameters_panel() {
   int max_iter = t.session().rules().max_iterations;
   if (ImGui::InputInt("max iterations", &max_iter, 100, 1000)) t.set_max_iterations(max_iter);
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("The protocol's limit: the run is \"not restored\" at this iteration");
+    ImGui::SetTooltip("The iteration limit: the settled rule (SPEC 8) gives its verdict here");
   ImGui::PopItemWidth();
   if (changed) {
     std::string err;

@@ -9,6 +9,7 @@ namespace dampbound::ui {
 namespace {
 const ImU32 kNotRestored = IM_COL32(253, 190, 133, 255);
 const ImU32 kDiverged = IM_COL32(203, 24, 29, 255);
+const ImU32 kEnteredLeft = IM_COL32(150, 80, 160, 255);  // SPEC 8: entered, then left
 const ImU32 kFast = IM_COL32(199, 233, 192, 255);
 const ImU32 kSlow = IM_COL32(0, 90, 50, 255);
 
@@ -26,7 +27,7 @@ ImU32 map_restored_color(double iterations, int max_iterations) {
   return IM_COL32(mix(IM_COL32_R_SHIFT), mix(IM_COL32_G_SHIFT), mix(IM_COL32_B_SHIFT), 255);
 }
 
-PlotSpec map_panel_plot(const MapPanel& p, int max_iterations, bool with_legend) {
+PlotSpec map_panel_plot(const MapPanel& p, int max_iterations, bool with_legend, StopRule rule) {
   PlotSpec s;
   s.title = p.title;
   s.x.label = p.x_label;
@@ -53,14 +54,24 @@ PlotSpec map_panel_plot(const MapPanel& p, int max_iterations, bool with_legend)
       case MapCell::diverged:
         s.heatmap.cell_color[c] = kDiverged;
         break;
+      case MapCell::entered_left:
+        s.heatmap.cell_color[c] = kEnteredLeft;
+        break;
     }
   }
   if (with_legend) {
     const std::string n = std::to_string(max_iterations);
-    s.heatmap.legend = {{"restored in few iterations", kFast},
-                        {"restored near the limit (" + n + ")", kSlow},
-                        {"not restored in " + n + " iterations", kNotRestored},
-                        {"diverged", kDiverged}};
+    if (rule == StopRule::settled)
+      s.heatmap.legend = {{"settled early", kFast},
+                          {"settled near the limit (" + n + ")", kSlow},
+                          {"entered the band, then left", kEnteredLeft},
+                          {"never entered in " + n + " iterations", kNotRestored},
+                          {"diverged", kDiverged}};
+    else
+      s.heatmap.legend = {{"restored in few iterations", kFast},
+                          {"restored near the limit (" + n + ")", kSlow},
+                          {"not restored in " + n + " iterations", kNotRestored},
+                          {"diverged", kDiverged}};
   }
   for (const MapLine& l : p.lines) {
     PlotSeries ser;

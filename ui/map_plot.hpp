@@ -11,10 +11,13 @@ namespace dampbound::ui {
 /// the protocol's limit `max_iterations` (log scale of the iteration).
 ImU32 map_restored_color(double iterations, int max_iterations);
 
-/// The plot of one map panel: cells coloured by outcome, lines by kind (the paper's bound
-/// black dashed, the exact linear limit blue, the dt limit violet dashed). With `with_legend`
+/// The plot of one map panel: cells coloured by outcome under `rule` (SPEC 8: settled, entered
+/// then left, never entered, diverged; or the paper's restored, not restored, diverged), lines
+/// by kind (the paper's bound black dashed, the exact linear limit blue, the dt limit violet
+/// dashed). With `with_legend`
 /// the outcome swatches and every line are in a legend outside the plot; else only the lines
 /// other than the paper's, bottom right.
-PlotSpec map_panel_plot(const MapPanel& panel, int max_iterations, bool with_legend);
+PlotSpec map_panel_plot(const MapPanel& panel, int max_iterations, bool with_legend,
+                        StopRule rule = StopRule::first_entry);
 
 }  // namespace dampbound::ui

@@ -16,7 +16,7 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 bool same_rules(const StopRules& a, const StopRules& b) {
   return a.max_iterations == b.max_iterations && a.restore_fraction == b.restore_fraction &&
-         a.diverge_factor == b.diverge_factor && a.reference == b.reference;
+         a.diverge_factor == b.diverge_factor && a.reference == b.reference && a.rule == b.rule;
 }
 
 bool same_view(const MapView& a, const MapView& b) {
@@ -248,12 +248,23 @@ MapPanel map_result_panel(const MapResult& r) {
   p.cells.reserve(r.cells.size());
   p.iterations.reserve(r.cells.size());
   for (const TrialResult& t : r.cells) {
+    // As build_stability_map does: under the settled rule (SPEC 8) a settled cell is shaded by
+    // its settled iteration, and a run that entered the band but was out of it at the limit is
+    // told from one that never entered.
     MapCell c = MapCell::empty;
-    if (t.outcome == Outcome::restored) c = MapCell::restored;
-    if (t.outcome == Outcome::not_restored) c = MapCell::not_restored;
-    if (t.outcome == Outcome::diverged) c = MapCell::diverged;
+    double it = t.iterations;
+    switch (t.outcome) {
+      case Outcome::restored: c = MapCell::restored; break;
+      case Outcome::settled: c = MapCell::restored, it = t.settled_at; break;
+      case Outcome::not_restored: c = MapCell::not_restored; break;
+      case Outcome::not_settled:
+        c = t.first_entry > 0 ? MapCell::entered_left : MapCell::not_restored;
+        break;
+      case Outcome::diverged: c = MapCell::diverged; break;
+      case Outcome::running: break;
+    }
     p.cells.push_back(c);
-    p.iterations.push_back(t.iterations);
+    p.iterations.push_back(it);
   }
   p.lines = r.lines;
   return p;
@@ -367,6 +378,7 @@ void TunerMap::start(const SceneSpec& scene, const Params& centre, const StopRul
         r->view = view;
         r->base = centre;
         r->max_iterations = rules.max_iterations;
+        r->rule = rules.rule;
         r->x_edges = map_log_edges(get_param(centre, view.x), view.decades, n);
         r->y_edges = map_log_edges(get_param(centre, view.y), view.decades, n);
         r->cells = run_map_trials(s, centre, rules,

@@ -77,6 +77,7 @@ struct MapResult {
   MapView view;
   Params base;                 ///< the parameters the window is centred on
   int max_iterations = 0;
+  StopRule rule = StopRule::first_entry;  ///< the verdict rule of the cells (SPEC 8)
   std::vector<double> x_edges, y_edges;
   std::vector<TrialResult> cells;  ///< row major, rows along y
   std::vector<MapLine> lines;

@@ -35,7 +35,7 @@ RunResult checked_result(const SceneSpec& scene, const std::string& label,
     const RunResult seen = result_at_verdict(trace, rules);
     if (seen.outcome != Outcome::running) return seen;
   }
-  const RunResult r = run_labelled(scene, label);
+  const RunResult r = run_labelled(scene, label, rules.rule);
   if (notes != nullptr)
     notes->push_back(who + (replayable ? " had no verdict yet" : " was changed by hand") +
                      ": saved with its headless replay, " + outcome_text(r));
@@ -68,13 +68,13 @@ SceneSpec tuner_saved_scene(const Tuner& tuner, const ExpectTolerance& tolerance
   s.expectations.push_back(expectation_for(
       checked_result(s, "", tuner.session().trace(), s.rules, tuner.replayable(),
                      "the current run", notes),
-      "", tolerance));
+      "", tolerance, s.rules.rule));
   for (size_t k = 0; k < pins.size(); ++k) {
     const std::string& label = s.runs[k].label;
     s.expectations.push_back(expectation_for(
         checked_result(s, label, pins[k]->trace, s.runs[k].rules, pins[k]->replayable,
                        "pin '" + label + "'", notes),
-        label, tolerance));
+        label, tolerance, s.rules.rule));
   }
   return s;
 }

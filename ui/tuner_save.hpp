@@ -13,7 +13,8 @@ namespace dampbound::ui {
 
 /// The scene Save writes: the tuner's scene (its geometry, perturbations, protocol and cuts)
 /// with the current parameters as [params]; each pin of this scene as a [[run]] labelled with
-/// its name (made unique); an [[expect]] per pin and one for the current run. A run that is
+/// its name (made unique); an [[expect]] per pin and one for the current run, under the
+/// tuner's verdict rule (the settled rule of SPEC 8). A run that is
 /// replayable (Tuner::replayable) and has a verdict keeps its measured result; any other is
 /// replayed headless to its verdict (one line in *notes says so). The source file's own
 /// [[run]] and [[expect]] tables are replaced.

@@ -58,9 +58,17 @@ void expect_same_scene(const SceneSpec& a, const SceneSpec& b) {
   for (size_t k = 0; k < a.expectations.size(); ++k) {
     const Expectation &x = a.expectations[k], &y = b.expectations[k];
     EXPECT_EQ(x.run, y.run);
+    EXPECT_EQ(x.rule, y.rule);
     EXPECT_EQ(x.outcome, y.outcome);
     EXPECT_EQ(x.iterations_min, y.iterations_min);
     EXPECT_EQ(x.iterations_max, y.iterations_max);
+    EXPECT_EQ(x.first_entry_min, y.first_entry_min);
+    EXPECT_EQ(x.first_entry_max, y.first_entry_max);
+    EXPECT_EQ(x.left, y.left);
+    EXPECT_EQ(x.left_at_min, y.left_at_min);
+    EXPECT_EQ(x.left_at_max, y.left_at_max);
+    EXPECT_EQ(x.settled_at_min, y.settled_at_min);
+    EXPECT_EQ(x.settled_at_max, y.settled_at_max);
     EXPECT_EQ(x.max_displacement_below, y.max_displacement_below);
     EXPECT_EQ(x.unstabilisable_max, y.unstabilisable_max);
     EXPECT_EQ(x.violations_max, y.violations_max);
@@ -138,6 +146,24 @@ TEST(SceneWrite, ExpectationOfAMeasuredRun) {
   r.outcome = Outcome::not_restored;
   r.iterations = 1000;
   EXPECT_FALSE(expectation_for(r, "", default_expect_tolerance()).iterations_min);
+  // The settled rule (SPEC 8): entered at 40, left at 55, settled from 90 to the limit.
+  r.outcome = Outcome::settled;
+  r.first_entry = 40;
+  r.left_at = 55;
+  r.settled_at = 90;
+  const Expectation s = expectation_for(r, "pin", tol, StopRule::settled);
+  EXPECT_EQ(s.rule, StopRule::settled);
+  EXPECT_FALSE(s.iterations_min);  // the limit
+  EXPECT_EQ(*s.first_entry_min, 37);
+  EXPECT_EQ(*s.first_entry_max, 43);
+  EXPECT_TRUE(*s.left);
+  EXPECT_EQ(*s.left_at_min, 52);
+  EXPECT_EQ(*s.settled_at_max, 93);
+  // Written and read back, under the settled rule's keys.
+  SceneSpec scene = load_scene(test::source_path("scenes/two-node.toml"));
+  scene.runs = {{"pin", scene.params, scene.rules}};
+  scene.expectations = {s};
+  expect_same_scene(scene, parse_scene(scene_toml(scene, "/tmp/s.toml"), "/tmp/s.toml"));
 }
 
 // The tuner's "Save as scene" without a window: two runs measured, written with their

@@ -34,8 +34,8 @@ TEST(TunerSave, TunePinSaveCheckPassesAndAnEditFails) {
   Params p = t.params();
   p.gamma = 0.0015;  // "tuned"
   ASSERT_TRUE(t.set_params(p));
-  const Pin& under = pin_run(t, parse_pin_request("gamma=0.0005,name=under", t.params(), 1000));
-  EXPECT_TRUE(under.replayable);
+  const Pin under = pin_run(t, parse_pin_request("gamma=0.0005,name=under", t.params(), 1000));
+  EXPECT_TRUE(under.replayable);  // a copy: the next pin may move the vector
   EXPECT_NE(under.result.outcome, Outcome::running);
   pin_run(t, parse_pin_request("gamma=0.002", t.params(), 1000));
   EXPECT_EQ(t.params().gamma, 0.0015);  // back on its own parameters, at the start
@@ -60,9 +60,16 @@ TEST(TunerSave, TunePinSaveCheckPassesAndAnEditFails) {
   for (const Expectation& e : back.expectations)
     if (e.run == "under") {
       found = true;
+      EXPECT_EQ(e.rule, StopRule::settled);  // the tuner's verdict rule (SPEC 8)
       EXPECT_EQ(e.outcome, under.result.outcome);
-      EXPECT_LE(*e.iterations_min, under.result.iterations);
-      EXPECT_GE(*e.iterations_max, under.result.iterations);
+      ASSERT_TRUE(e.first_entry_min);
+      EXPECT_LE(*e.first_entry_min, under.result.first_entry);
+      EXPECT_GE(*e.first_entry_max, under.result.first_entry);
+      if (under.result.outcome == Outcome::settled) {
+        ASSERT_TRUE(e.settled_at_min);
+        EXPECT_LE(*e.settled_at_min, under.result.settled_at);
+        EXPECT_GE(*e.settled_at_max, under.result.settled_at);
+      }
     }
   EXPECT_TRUE(found);
   // Edit the pinned run's gamma in the file: check fails.
@@ -81,9 +88,9 @@ TEST(TunerSave, TunePinSaveCheckPassesAndAnEditFails) {
 // what check's replay (run_to_end, stopping there) measures.
 TEST(TunerSave, ARunPastItsVerdictIsSavedAtItsVerdict) {
   Tuner t(small_plane());
-  t.step(600);
+  t.set_max_iterations(300);
+  t.step(400);
   ASSERT_NE(t.session().result().outcome, Outcome::running);
-  ASSERT_GT(t.session().state().iteration, t.session().result().iterations);
   t.pin("played on");
   std::vector<std::string> notes;
   ExpectTolerance tol;
@@ -91,9 +98,14 @@ TEST(TunerSave, ARunPastItsVerdictIsSavedAtItsVerdict) {
   const SceneSpec s = tuner_saved_scene(t, tol, &notes);
   EXPECT_TRUE(notes.empty());  // nothing replayed: both results are the runs' own
   for (const Expectation& e : s.expectations) {
-    const RunResult replay = run_labelled(s, e.run);
+    const RunResult replay = run_labelled(s, e.run, e.rule);
     EXPECT_EQ(*e.outcome, replay.outcome);
-    EXPECT_EQ(*e.iterations_min + 2, replay.iterations);
+    if (e.settled_at_min) {
+      EXPECT_EQ(*e.settled_at_max - 2, replay.settled_at);
+    }
+    if (e.first_entry_min) {
+      EXPECT_EQ(*e.first_entry_max - 2, replay.first_entry);
+    }
     EXPECT_EQ(*e.max_displacement_below, replay.max_displacement * tol.displacement_factor);
     EXPECT_EQ(*e.violations_max, replay.violations);
   }
@@ -126,7 +138,7 @@ TEST(TunerSave, RunsChangedByHandAreReplayed) {
   const SceneSpec s = tuner_saved_scene(t, default_expect_tolerance(), &notes);
   ASSERT_EQ(s.runs.size(), 1u);
   // The saved expectation is the replay's, which check will see.
-  const RunResult replay = run_labelled(s, "changed");
+  const RunResult replay = run_labelled(s, "changed", StopRule::settled);
   EXPECT_EQ(s.expectations[1].outcome, replay.outcome);
   bool noted = false;
   for (const std::string& n : notes) noted = noted || n.find("changed by hand") != std::string::npos;
