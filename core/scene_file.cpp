@@ -10,95 +10,14 @@
 
 #include "core/error.hpp"
 #include "core/io.hpp"
-#include "core/mesh_obj.hpp"
 #include "core/scene.hpp"
+#include "core/scene_reader.hpp"
 
 namespace dampbound {
 namespace {
 
-using Keys = std::initializer_list<std::string_view>;
-
-/// Reads one scene file; every error names the file and the line.
-class Reader {
- public:
-  explicit Reader(std::string path) : path_(std::move(path)) {}
-
-  [[noreturn]] void fail(int line, const std::string& msg) const {
-    std::ostringstream os;
-    os << path_ << ":" << line << ": " << msg;
-    throw InputError(os.str());
-  }
-  [[noreturn]] void fail(const toml::node& n, const std::string& msg) const {
-    fail(static_cast<int>(n.source().begin.line), msg);
-  }
-
-  void check_keys(const toml::table& t, Keys allowed, const std::string& where) const {
-    for (auto&& [key, value] : t) {
-      bool ok = false;
-      for (auto a : allowed) ok = ok || key.str() == a;
-      if (!ok)
-        fail(static_cast<int>(key.source().begin.line),
-             "unknown key '" + std::string(key.str()) + "' in " + where);
-    }
-  }
-
-  const toml::table& table(const toml::node& n, const std::string& what) const {
-    if (!n.is_table()) fail(n, what + " must be a table");
-    return *n.as_table();
-  }
-
-  double number(const toml::node& n, const std::string& what) const {
-    if (!n.is_number()) fail(n, what + " must be a number");
-    const double x = n.value<double>().value_or(NAN);
-    if (!std::isfinite(x)) fail(n, what + " must be finite (got " + std::to_string(x) + ")");
-    return x;
-  }
-  double positive(const toml::node& n, const std::string& what) const {
-    const double x = number(n, what);
-    if (!(x > 0)) fail(n, what + " must be > 0");
-    return x;
-  }
-  double non_negative(const toml::node& n, const std::string& what) const {
-    const double x = number(n, what);
-    if (x < 0) fail(n, what + " must be >= 0");
-    return x;
-  }
-  long long integer(const toml::node& n, const std::string& what) const {
-    if (!n.is_integer()) fail(n, what + " must be an integer");
-    return *n.value<long long>();
-  }
-  bool boolean(const toml::node& n, const std::string& what) const {
-    if (!n.is_boolean()) fail(n, what + " must be true or false");
-    return *n.value<bool>();
-  }
-  std::string string(const toml::node& n, const std::string& what) const {
-    if (!n.is_string()) fail(n, what + " must be a string");
-    return *n.value<std::string>();
-  }
-  std::vector<double> numbers(const toml::node& n, size_t count, const std::string& what) const {
-    const toml::array* a = n.as_array();
-    if (!a || a->size() != count)
-      fail(n, what + " must be an array of " + std::to_string(count) + " numbers");
-    std::vector<double> out;
-    for (auto&& e : *a) out.push_back(number(e, what));
-    return out;
-  }
-  Vec3 vec3(const toml::node& n, const std::string& what) const {
-    const auto v = numbers(n, 3, what);
-    return {v[0], v[1], v[2]};
-  }
-  const toml::node& required(const toml::table& t, std::string_view key,
-                             const std::string& where) const {
-    const toml::node* n = t.get(key);
-    if (!n) fail(t, "missing '" + std::string(key) + "' in " + where);
-    return *n;
-  }
-
-  const std::string& path() const { return path_; }
-
- private:
-  std::string path_;
-};
+using detail::Keys;
+using detail::Reader;
 
 /// Reads the parameter keys (m, kappa, gamma, dt, policy, factor, integrator) present in `t` into
 /// `p`.
@@ -150,30 +69,6 @@ int node_ref(const Reader& r, const SceneSpec& s, const toml::node& n, const std
   return static_cast<int>(index);
 }
 
-/// [mesh]: a Wavefront OBJ surface (core/mesh_obj.hpp), its path relative to the scene file.
-void read_mesh(const Reader& r, const toml::table& root, SceneSpec& s) {
-  const toml::table& t = r.table(*root.get("mesh"), "mesh");
-  r.check_keys(t, {"file", "scale", "bend", "anchors"}, "[mesh]");
-  const toml::node& fn = r.required(t, "file", "[mesh]");
-  std::string file = r.string(fn, "file");
-  if (file.empty()) r.fail(fn, "file must name an OBJ file");
-  if (file.front() != '/') {
-    const auto slash = r.path().find_last_of('/');
-    if (slash != std::string::npos) file = r.path().substr(0, slash + 1) + file;
-  }
-  std::string text;
-  try {
-    text = read_file_text(file);
-  } catch (const std::exception&) {
-    r.fail(fn, "cannot read the mesh file " + file);
-  }
-  MeshSprings how;
-  if (auto* n = t.get("scale")) how.scale = r.positive(*n, "scale");
-  if (auto* n = t.get("bend")) how.bend = r.boolean(*n, "bend");
-  if (auto* n = t.get("anchors")) how.anchors = r.boolean(*n, "anchors");
-  s.model = model_from_obj(parse_obj(text, file), how);
-}
-
 void read_geometry(const Reader& r, const toml::table& root, SceneSpec& s) {
   const bool has_grid = root.contains("grid");
   const bool has_nodes = root.contains("node");
@@ -182,8 +77,10 @@ void read_geometry(const Reader& r, const toml::table& root, SceneSpec& s) {
     r.fail(1, has_grid || has_nodes || has_mesh
                   ? "a scene has one geometry: [grid], [[node]] or [mesh], not several"
                   : "the scene has no geometry: add [grid], [[node]] entries or [mesh]");
+  if (root.contains("mesh_region") && !has_mesh)
+    r.fail(*root.get("mesh_region"), "[[mesh_region]] needs a [mesh] geometry");
   if (has_mesh) {
-    read_mesh(r, root, s);
+    detail::read_mesh(r, root, s);  // any mesh format, and its [[mesh_region]] tables
     if (root.contains("spring")) r.fail(*root.get("spring"), "[[spring]] needs [[node]] geometry");
     return;
   }
@@ -415,8 +312,8 @@ SceneSpec parse_scene(const std::string& text, const std::string& path) {
     r.fail(static_cast<int>(e.source().begin.line), std::string(e.description()));
   }
   r.check_keys(root,
-               {"name", "description", "watch", "grid", "node", "mesh", "spring", "region",
-                "params", "perturb", "protocol", "cut", "run", "expect"},
+               {"name", "description", "watch", "grid", "node", "mesh", "mesh_region", "spring",
+                "region", "params", "perturb", "protocol", "cut", "run", "expect"},
                "the scene");
   SceneSpec s;
   s.path = path;
