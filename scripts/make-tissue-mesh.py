@@ -3,7 +3,9 @@
 tests and fuzz corpora use, reproducibly (no randomness, no third-party module).
 
   scripts/make-tissue-mesh.py            # scenes/meshes/tissue-block.msh, quad-cloth.obj
-  scripts/make-tissue-mesh.py --small D  # one small block in every format under D/
+  scripts/make-tissue-mesh.py --small D  # one small block in every format under D/ (the
+                                         # fuzz seeds: D = tests/fuzz/corpus; block.tetgen
+                                         # joins .node, .ele, .face with lines "@@")
 
 The block is a structured grid of cubes, each split into the six tetrahedra of Kuhn's
 (Freudenthal's) subdivision along its main diagonal, which conforms across cubes. Tetrahedra
@@ -184,7 +186,9 @@ def main():
         write(os.path.join(d, "tetgen", "block.node"), node)
         write(os.path.join(d, "tetgen", "block.ele"), ele)
         write(os.path.join(d, "tetgen", "block.face"), face)
+        write(os.path.join(d, "tetgen", "block.tetgen"), "\n@@\n".join((node, ele, face)))
         write(os.path.join(d, "vtk", "block.vtk"), vtk(*m))
+        write(os.path.join(d, "obj", "cloth.obj"), quad_cloth(4, 0.5))
         return
     if len(sys.argv) != 1:
         sys.exit("usage: make-tissue-mesh.py [--small DIR]")
