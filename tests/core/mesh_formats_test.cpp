@@ -169,5 +169,35 @@ TEST(MeshFormats, TissueBlockScene) {
   EXPECT_GT(*hi / *lo, 5.0);
 }
 
+TEST(MeshFormats, MeshRegionErrorsNameTheSceneLine) {
+  const std::string dir = ::testing::TempDir();
+  const std::string scene = dir + "mesh_region.toml";
+  const std::string mesh = test::source_path(kCorpus + "msh/block-41.msh");
+  auto scene_error = [&](const std::string& toml) {
+    std::ofstream(scene) << "[mesh]\nfile = \"" << mesh << "\"\n" << toml;
+    return error_of([&] { load_scene(scene); });
+  };
+  EXPECT_EQ(scene_error("[[mesh_region]]\nname = \"probe\"\nfixed = true\n"), "");
+  EXPECT_EQ(scene_error("[[mesh_region]]\nname = \"bone\"\n"),
+            scene + ":4: the mesh has no region named 'bone' (it has base, probe, tissue)");
+  EXPECT_EQ(scene_error("[[mesh_region]]\ntag = 9\n"),
+            scene + ":4: no element of the mesh has region tag 9 (it has 1, 2, 3)");
+  EXPECT_EQ(scene_error("[[mesh_region]]\ntag = 2\nname = \"base\"\n"),
+            scene + ":3: [[mesh_region]] needs one of tag or name");
+  EXPECT_EQ(scene_error("format = \"stl\"\n"), scene + ":3: format must be one of obj, msh, tetgen, vtk");
+  EXPECT_EQ(scene_error("[[mesh_region]]\nname = \"base\"\nfixed = true\n"
+                     "[[mesh_region]]\nname = \"base\"\ndisplacement = [0, 1, 0]\n"),
+            scene + ":8: the region's node 0 is fixed");
+  // Multiplied scales: mass_scale 2 on the probe doubles its nodes' lumped masses.
+  std::ofstream(scene) << "[mesh]\nfile = \"" << mesh << "\"\ndensity = 1.0\n"
+                       << "[[mesh_region]]\nname = \"probe\"\nmass_scale = 2.0\n";
+  const SceneSpec s = load_scene(scene);
+  MeshSprings how;
+  how.density = 1.0;
+  const Model plain = model_from_mesh(read_mesh_file(mesh), how);
+  const auto probe = region_nodes(read_mesh_file(mesh)).at(3);
+  for (int i : probe) EXPECT_DOUBLE_EQ(s.model.mass_scale[size_t(i)], 2 * plain.mass_scale[size_t(i)]);
+}
+
 }  // namespace
 }  // namespace dampbound
