@@ -12,16 +12,24 @@ namespace dampbound {
 namespace {
 
 using Edge = std::pair<int, int>;
-Edge edge(int a, int b) { return {std::min(a, b), std::max(a, b)}; }
+Edge edge(int a, int b) {
+  return {std::min(a, b), std::max(a, b)};
+}
 
 size_t corner_count(CellShape s) {
   switch (s) {
-    case CellShape::point: return 1;
-    case CellShape::line: return 2;
-    case CellShape::triangle: return 3;
-    case CellShape::quad: return 4;
-    case CellShape::tetra: return 4;
-    case CellShape::polygon: return 0;  // any count >= 3
+    case CellShape::point:
+      return 1;
+    case CellShape::line:
+      return 2;
+    case CellShape::triangle:
+      return 3;
+    case CellShape::quad:
+      return 4;
+    case CellShape::tetra:
+      return 4;
+    case CellShape::polygon:
+      return 0;  // any count >= 3
   }
   return 0;
 }
@@ -39,13 +47,16 @@ double measure(const std::vector<Vec3>& p, const MeshCell& c) {
   const auto& k = c.corners;
   switch (c.shape) {
     case CellShape::tetra:
-      return std::abs(tetra_signed_volume(p[size_t(k[0])], p[size_t(k[1])], p[size_t(k[2])],
-                                          p[size_t(k[3])]));
+      return std::abs(
+          tetra_signed_volume(p[size_t(k[0])], p[size_t(k[1])], p[size_t(k[2])], p[size_t(k[3])]));
     case CellShape::quad:  // half the cross product of the diagonals: exact for planar quads
-      return 0.5 * (p[size_t(k[2])] - p[size_t(k[0])]).cross(p[size_t(k[3])] - p[size_t(k[1])]).norm();
+      return 0.5 *
+             (p[size_t(k[2])] - p[size_t(k[0])]).cross(p[size_t(k[3])] - p[size_t(k[1])]).norm();
     case CellShape::triangle:
-    case CellShape::polygon: return 0.5 * vector_area2(p, k).norm();
-    default: return 0;
+    case CellShape::polygon:
+      return 0.5 * vector_area2(p, k).norm();
+    default:
+      return 0;
   }
 }
 
@@ -67,21 +78,31 @@ std::vector<Edge> cell_springs(const MeshCell& c) {
 
 int cell_dimension(CellShape shape) {
   switch (shape) {
-    case CellShape::point: return 0;
-    case CellShape::line: return 1;
-    case CellShape::tetra: return 3;
-    default: return 2;
+    case CellShape::point:
+      return 0;
+    case CellShape::line:
+      return 1;
+    case CellShape::tetra:
+      return 3;
+    default:
+      return 2;
   }
 }
 
 const char* to_string(CellShape shape) {
   switch (shape) {
-    case CellShape::point: return "point";
-    case CellShape::line: return "line";
-    case CellShape::triangle: return "triangle";
-    case CellShape::quad: return "quadrilateral";
-    case CellShape::polygon: return "polygon";
-    case CellShape::tetra: return "tetrahedron";
+    case CellShape::point:
+      return "point";
+    case CellShape::line:
+      return "line";
+    case CellShape::triangle:
+      return "triangle";
+    case CellShape::quad:
+      return "quadrilateral";
+    case CellShape::polygon:
+      return "polygon";
+    case CellShape::tetra:
+      return "tetrahedron";
   }
   return "?";
 }
@@ -90,8 +111,7 @@ double tetra_signed_volume(const Vec3& a, const Vec3& b, const Vec3& c, const Ve
   return (b - a).dot((c - a).cross(d - a)) / 6.0;
 }
 
-std::string cell_problem(const std::vector<Vec3>& vertices, const MeshCell& cell,
-                         int orientation) {
+std::string cell_problem(const std::vector<Vec3>& vertices, const MeshCell& cell, int orientation) {
   const auto& k = cell.corners;
   const size_t want = corner_count(cell.shape);
   if ((want && k.size() != want) || (!want && k.size() < 3))
@@ -116,7 +136,10 @@ std::string cell_problem(const std::vector<Vec3>& vertices, const MeshCell& cell
   // Relative to the longest edge: 1e-12 of a regular element's measure is degenerate.
   if (!(size > 1e-12 * std::pow(longest, dim)))
     return std::string("degenerate ") + to_string(cell.shape) + " (zero " +
-           (dim == 3 ? "volume" : dim == 2 ? "area" : "length") + ")";
+           (dim == 3   ? "volume"
+            : dim == 2 ? "area"
+                       : "length") +
+           ")";
   if (cell.shape == CellShape::tetra && orientation != 0) {
     const double v = tetra_signed_volume(vertices[size_t(k[0])], vertices[size_t(k[1])],
                                          vertices[size_t(k[2])], vertices[size_t(k[3])]);
@@ -130,8 +153,9 @@ void check_mesh(const CellMesh& mesh, const std::function<std::string(const Mesh
   int top = -1;
   for (const MeshCell& c : mesh.cells) top = std::max(top, cell_dimension(c.shape));
   if (top < 2)
-    throw InputError(where(MeshCell{}) + ": the mesh has no triangle, quadrilateral or "
-                                         "tetrahedron");
+    throw InputError(where(MeshCell{}) +
+                     ": the mesh has no triangle, quadrilateral or "
+                     "tetrahedron");
   std::vector<std::uint8_t> in_body(mesh.vertices.size(), 0);
   for (const MeshCell& c : mesh.cells)
     if (cell_dimension(c.shape) == top)
@@ -190,7 +214,8 @@ Model model_from_mesh(const CellMesh& mesh, const MeshSprings& how) {
       // The corner of a face next to `v` that is not `other` (triangles: the far corner).
       const auto beside = [](const MeshCell& c, int v, int other) {
         const size_t n = c.corners.size();
-        const size_t k = size_t(std::find(c.corners.begin(), c.corners.end(), v) - c.corners.begin());
+        const size_t k =
+            size_t(std::find(c.corners.begin(), c.corners.end(), v) - c.corners.begin());
         const int prev = c.corners[(k + n - 1) % n], next = c.corners[(k + 1) % n];
         return prev == other ? next : prev;
       };

@@ -56,8 +56,9 @@ CellMesh read_mesh_file(const std::string& path, const std::string& format,
     const std::string node = stem + ".node", ele = stem + ".ele", face = stem + ".face";
     return parse_tetgen(text_of(node), node, text_of(ele), ele, text_of(face, true), face);
   }
-  throw InputError(path + ": unknown mesh format (use .obj, .msh, .node/.ele or .vtk, or set "
-                          "format = \"obj\", \"msh\", \"tetgen\" or \"vtk\")");
+  throw InputError(path +
+                   ": unknown mesh format (use .obj, .msh, .node/.ele or .vtk, or set "
+                   "format = \"obj\", \"msh\", \"tetgen\" or \"vtk\")");
 }
 
 }  // namespace dampbound

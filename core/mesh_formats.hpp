@@ -21,9 +21,9 @@ CellMesh parse_msh(const char* data, size_t size, const std::string& name);
 /// header declares attributes, is the region tag) and optionally a .face file (faces tag their
 /// nodes with their boundary marker; empty `face` = none). Indices start at the first node's
 /// number (0 or 1). Every tetrahedron must have the orientation of the first one.
-CellMesh parse_tetgen(const std::string& node, const std::string& node_name,
-                      const std::string& ele, const std::string& ele_name,
-                      const std::string& face = {}, const std::string& face_name = {});
+CellMesh parse_tetgen(const std::string& node, const std::string& node_name, const std::string& ele,
+                      const std::string& ele_name, const std::string& face = {},
+                      const std::string& face_name = {});
 
 /// A VTK legacy file (versions 2 to 5.1, ASCII) with DATASET UNSTRUCTURED_GRID. Cell types
 /// vertex (1), line (3), triangle (5), polygon (7), quad (9), tetra (10). Region tag = the

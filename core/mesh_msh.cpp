@@ -15,17 +15,27 @@ namespace {
 /// The shape of a Gmsh element type, or fails naming the type.
 CellShape gmsh_shape(MeshScan& s, long long type, long long where) {
   switch (type) {
-    case 15: return CellShape::point;
-    case 1: return CellShape::line;
-    case 2: return CellShape::triangle;
-    case 3: return CellShape::quad;
-    case 4: return CellShape::tetra;
-    default: break;
+    case 15:
+      return CellShape::point;
+    case 1:
+      return CellShape::line;
+    case 2:
+      return CellShape::triangle;
+    case 3:
+      return CellShape::quad;
+    case 4:
+      return CellShape::tetra;
+    default:
+      break;
   }
-  static const std::map<long long, const char*> known = {
-      {5, "hexahedron"},         {6, "prism"},          {7, "pyramid"},
-      {8, "second-order line"},  {9, "6-node triangle"}, {10, "9-node quadrangle"},
-      {11, "10-node tetrahedron"}, {16, "8-node quadrangle"}};
+  static const std::map<long long, const char*> known = {{5, "hexahedron"},
+                                                         {6, "prism"},
+                                                         {7, "pyramid"},
+                                                         {8, "second-order line"},
+                                                         {9, "6-node triangle"},
+                                                         {10, "9-node quadrangle"},
+                                                         {11, "10-node tetrahedron"},
+                                                         {16, "8-node quadrangle"}};
   const auto it = known.find(type);
   s.fail_at(where, "unsupported element type " + std::to_string(type) +
                        (it != known.end() ? std::string(" (") + it->second + ")" : "") +
@@ -34,10 +44,14 @@ CellShape gmsh_shape(MeshScan& s, long long type, long long where) {
 
 int corner_count(CellShape shape) {
   switch (shape) {
-    case CellShape::point: return 1;
-    case CellShape::line: return 2;
-    case CellShape::triangle: return 3;
-    default: return 4;
+    case CellShape::point:
+      return 1;
+    case CellShape::line:
+      return 2;
+    case CellShape::triangle:
+      return 3;
+    default:
+      return 4;
   }
 }
 
@@ -85,7 +99,8 @@ class MshReader {
       }
     }
     if (!have_nodes_) s_.fail("the file has no $Nodes section");
-    check_mesh(mesh_, [&](const MeshCell& c) { return s_.location(c.where ? c.where : s_.where()); });
+    check_mesh(mesh_,
+               [&](const MeshCell& c) { return s_.location(c.where ? c.where : s_.where()); });
     return std::move(mesh_);
   }
 
@@ -95,15 +110,18 @@ class MshReader {
     if (s_.word(marker) != marker) s_.fail(std::string("expected ") + marker);
   }
   long long count(const char* what, size_t min_bytes) {
-    const long long n = binary_ && v4_ ? static_cast<long long>(s_.binary<std::uint64_t>(what))
-                                       : s_.integer(what);
+    const long long n =
+        binary_ && v4_ ? static_cast<long long>(s_.binary<std::uint64_t>(what)) : s_.integer(what);
     check_count(s_, n, min_bytes, what);
     return n;
   }
-  int int32(const char* what) { return binary_ ? s_.binary<std::int32_t>(what) : int(s_.integer_in(what, INT32_MIN, INT32_MAX)); }
+  int int32(const char* what) {
+    return binary_ ? s_.binary<std::int32_t>(what) : int(s_.integer_in(what, INT32_MIN, INT32_MAX));
+  }
   long long tag(const char* what) {  // size_t in 4.1 binary, int in 2.2 binary
     if (!binary_) return s_.integer(what);
-    return v4_ ? static_cast<long long>(s_.binary<std::uint64_t>(what)) : s_.binary<std::int32_t>(what);
+    return v4_ ? static_cast<long long>(s_.binary<std::uint64_t>(what))
+               : s_.binary<std::int32_t>(what);
   }
   double real(const char* what) { return binary_ ? s_.binary<double>(what) : s_.number(what); }
 
@@ -193,7 +211,8 @@ class MshReader {
   }
 
   /// One element's node tags as vertex indices, validated (Gmsh orientation: +1).
-  void add_cell(CellShape shape, const std::vector<long long>& node_tags, int region, long long at) {
+  void add_cell(CellShape shape, const std::vector<long long>& node_tags, int region,
+                long long at) {
     MeshCell c;
     c.shape = shape;
     c.region = region;
@@ -201,7 +220,8 @@ class MshReader {
     for (long long t : node_tags) {
       const auto it = ids_.find(t);
       if (it == ids_.end())
-        s_.fail_at(at, "the element refers to node tag " + std::to_string(t) + ", which $Nodes does not define");
+        s_.fail_at(at, "the element refers to node tag " + std::to_string(t) +
+                           ", which $Nodes does not define");
       c.corners.push_back(it->second);
     }
     const std::string why = cell_problem(mesh_.vertices, c, 1);
@@ -246,7 +266,8 @@ class MshReader {
           if (t == 0) region = v;
         }
         std::vector<long long> nodes;
-        for (int c = 0; c < corner_count(shape); ++c) nodes.push_back(s_.binary<std::int32_t>("a node tag"));
+        for (int c = 0; c < corner_count(shape); ++c)
+          nodes.push_back(s_.binary<std::int32_t>("a node tag"));
         add_cell(shape, nodes, region, w);
       }
     }
@@ -265,7 +286,8 @@ class MshReader {
       const int entity = int32("an entity tag");
       const CellShape shape = gmsh_shape(s_, int32("an element type"), at);
       if (cell_dimension(shape) != dim)
-        s_.fail_at(at, std::string("a ") + to_string(shape) + " in an entity of dimension " + std::to_string(dim));
+        s_.fail_at(at, std::string("a ") + to_string(shape) + " in an entity of dimension " +
+                           std::to_string(dim));
       const long long n = count("elements in a block", binary_ ? 16 : 4);
       const auto ph = physical_.find({dim, entity});
       const int region = ph == physical_.end() ? 0 : ph->second;

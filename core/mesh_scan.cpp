@@ -18,7 +18,9 @@ std::string MeshScan::location(long long where) const {
   return binary_ ? name_ + ": byte " + std::to_string(where) : name_ + ":" + std::to_string(where);
 }
 
-void MeshScan::fail(const std::string& msg) const { fail_at(where(), msg); }
+void MeshScan::fail(const std::string& msg) const {
+  fail_at(where(), msg);
+}
 
 void MeshScan::fail_at(long long where, const std::string& msg) const {
   throw InputError(location(where) + ": " + msg);
@@ -73,8 +75,8 @@ long long MeshScan::integer(const char* what) {
 long long MeshScan::integer_in(const char* what, long long lo, long long hi) {
   const long long v = integer(what);
   if (v < lo || v > hi)
-    fail(std::string(what) + " " + std::to_string(v) + " is outside " + std::to_string(lo) +
-         ".." + std::to_string(hi));
+    fail(std::string(what) + " " + std::to_string(v) + " is outside " + std::to_string(lo) + ".." +
+         std::to_string(hi));
   return v;
 }
 
@@ -119,8 +121,8 @@ void MeshScan::skip_past(const std::string& marker) {
 }
 
 void check_count(MeshScan& scan, long long count, size_t min_bytes, const char* what) {
-  if (count < 0 || static_cast<unsigned long long>(count) >
-                       scan.remaining() / std::max<size_t>(min_bytes, 1))
+  if (count < 0 ||
+      static_cast<unsigned long long>(count) > scan.remaining() / std::max<size_t>(min_bytes, 1))
     scan.fail(std::string("the file is too short for ") + std::to_string(count) + " " + what);
 }
 

@@ -22,7 +22,8 @@ std::vector<int> corners(MeshScan& s, int count, long long base, size_t vertices
     const long long v = s.integer("a node number") - base;
     if (v < 0 || static_cast<size_t>(v) >= vertices)
       s.fail("node number " + std::to_string(v + base) + " does not exist (nodes are " +
-             std::to_string(base) + ".." + std::to_string(base + static_cast<long long>(vertices) - 1) + ")");
+             std::to_string(base) + ".." +
+             std::to_string(base + static_cast<long long>(vertices) - 1) + ")");
     out.push_back(static_cast<int>(v));
   }
   return out;
@@ -49,7 +50,8 @@ CellMesh parse_tetgen(const std::string& node, const std::string& node_name, con
         if (id != 0 && id != 1) s.fail("the first point must be numbered 0 or 1");
         base = id;
       } else if (id != base + k) {
-        s.fail("point number " + std::to_string(id) + " out of sequence (" + std::to_string(base + k) + " expected)");
+        s.fail("point number " + std::to_string(id) + " out of sequence (" +
+               std::to_string(base + k) + " expected)");
       }
       const double x = s.number("x"), y = s.number("y"), z = s.number("z");
       for (long long a = 0; a < attributes + markers; ++a) s.number("an attribute");
@@ -62,7 +64,8 @@ CellMesh parse_tetgen(const std::string& node, const std::string& node_name, con
   const long long n = s.integer("the number of tetrahedra");
   check_count(s, n, 8, "tetrahedra");
   const long long per = s.integer("nodes per tetrahedron");
-  if (per != 4) s.fail("only 4-node tetrahedra are read (the header says " + std::to_string(per) + ")");
+  if (per != 4)
+    s.fail("only 4-node tetrahedra are read (the header says " + std::to_string(per) + ")");
   const long long attributes = s.integer_in("the region attribute flag", 0, 1000);
   int orientation = 0;
   for (long long k = 0; k < n; ++k) {
@@ -80,10 +83,11 @@ CellMesh parse_tetgen(const std::string& node, const std::string& node_name, con
     // reference, and a tetrahedron of the other sign is inverted.
     if (orientation == 0 && cell_problem(mesh.vertices, c, 0).empty()) {
       const auto& q = c.corners;
-      orientation = tetra_signed_volume(mesh.vertices[size_t(q[0])], mesh.vertices[size_t(q[1])],
-                                        mesh.vertices[size_t(q[2])], mesh.vertices[size_t(q[3])]) > 0
-                        ? 1
-                        : -1;
+      orientation =
+          tetra_signed_volume(mesh.vertices[size_t(q[0])], mesh.vertices[size_t(q[1])],
+                              mesh.vertices[size_t(q[2])], mesh.vertices[size_t(q[3])]) > 0
+              ? 1
+              : -1;
     }
     const std::string why = cell_problem(mesh.vertices, c, orientation);
     if (!why.empty()) s.fail_at(at, why);

@@ -13,13 +13,20 @@ namespace {
 /// VTK cell type -> shape, or fails naming the type.
 CellShape vtk_shape(MeshScan& s, long long type, long long at) {
   switch (type) {
-    case 1: return CellShape::point;
-    case 3: return CellShape::line;
-    case 5: return CellShape::triangle;
-    case 7: return CellShape::polygon;
-    case 9: return CellShape::quad;
-    case 10: return CellShape::tetra;
-    default: break;
+    case 1:
+      return CellShape::point;
+    case 3:
+      return CellShape::line;
+    case 5:
+      return CellShape::triangle;
+    case 7:
+      return CellShape::polygon;
+    case 9:
+      return CellShape::quad;
+    case 10:
+      return CellShape::tetra;
+    default:
+      break;
   }
   s.fail_at(at, "unsupported VTK cell type " + std::to_string(type) +
                     ": only vertices (1), lines (3), triangles (5), polygons (7), quads (9) and "
@@ -38,7 +45,8 @@ class VtkReader {
     v5_ = head.find("Version 5") != std::string::npos;
     s_.rest_of_line();  // the title
     const std::string format = s_.word("ASCII or BINARY");
-    if (format != "ASCII") s_.fail("only ASCII VTK files are read (found '" + format.substr(0, 20) + "')");
+    if (format != "ASCII")
+      s_.fail("only ASCII VTK files are read (found '" + format.substr(0, 20) + "')");
     if (s_.word("DATASET") != "DATASET" || s_.word("the dataset type") != "UNSTRUCTURED_GRID")
       s_.fail("only DATASET UNSTRUCTURED_GRID is read");
     std::vector<std::vector<int>> corners;
@@ -76,19 +84,23 @@ class VtkReader {
         }
       } else if (key == "CELL_DATA" || key == "POINT_DATA") {
         const long long n = s_.integer("the number of values");
-        const long long expected = key == "CELL_DATA" ? static_cast<long long>(mesh_.cells.size())
-                                                      : static_cast<long long>(mesh_.vertices.size());
+        const long long expected = key == "CELL_DATA"
+                                       ? static_cast<long long>(mesh_.cells.size())
+                                       : static_cast<long long>(mesh_.vertices.size());
         if (n != expected)
-          s_.fail_at(at, key + " has " + std::to_string(n) + " values for " + std::to_string(expected));
+          s_.fail_at(at,
+                     key + " has " + std::to_string(n) + " values for " + std::to_string(expected));
         cell_data_ = key == "CELL_DATA";
         count_ = n;
       } else if (key == "SCALARS") {
         const std::string name = s_.word("the array name");
         s_.word("the data type");
         std::string line = s_.rest_of_line();
-        const long long comps = line.find_first_not_of(" \t\r") == std::string::npos ? 1 : std::atoll(line.c_str());
+        const long long comps =
+            line.find_first_not_of(" \t\r") == std::string::npos ? 1 : std::atoll(line.c_str());
         if (comps < 1 || comps > 4) s_.fail_at(at, "SCALARS must have 1 to 4 components");
-        if (s_.word("LOOKUP_TABLE") != "LOOKUP_TABLE") s_.fail("expected LOOKUP_TABLE after SCALARS");
+        if (s_.word("LOOKUP_TABLE") != "LOOKUP_TABLE")
+          s_.fail("expected LOOKUP_TABLE after SCALARS");
         s_.word("the lookup table name");
         array(name, comps, count_, at);
       } else if (key == "FIELD") {
@@ -108,7 +120,8 @@ class VtkReader {
         array("", key == "TENSORS" ? 9 : 3, count_, at);
       } else if (key == "METADATA") {  // information lines up to a blank line
         s_.rest_of_line();
-        while (s_.remaining() && s_.rest_of_line().find_first_not_of(" \t\r") != std::string::npos) {
+        while (s_.remaining() &&
+               s_.rest_of_line().find_first_not_of(" \t\r") != std::string::npos) {
         }
       } else {
         s_.fail_at(at, "unsupported VTK section '" + key.substr(0, 40) + "'");
@@ -116,36 +129,44 @@ class VtkReader {
     }
     if (mesh_.cells.size() != corners.size()) s_.fail("CELLS without CELL_TYPES");
     if (!wanted_.empty() && !found_) s_.fail("no cell array named '" + wanted_ + "'");
-    check_mesh(mesh_, [&](const MeshCell& c) { return s_.location(c.where ? c.where : s_.where()); });
+    check_mesh(mesh_,
+               [&](const MeshCell& c) { return s_.location(c.where ? c.where : s_.where()); });
     return std::move(mesh_);
   }
 
  private:
   /// Legacy CELLS: per cell its corner count then the corners.
-  void cells4(long long n, long long size, std::vector<std::vector<int>>& out, std::vector<long long>& where) {
+  void cells4(long long n, long long size, std::vector<std::vector<int>>& out,
+              std::vector<long long>& where) {
     long long used = 0;
     for (long long k = 0; k < n; ++k) {
       where.push_back(s_.mark());
       const long long c = s_.integer_in("a cell's node count", 1, 1000);
       used += c + 1;
-      if (used > size) s_.fail("the cells hold more indices than the CELLS size " + std::to_string(size));
+      if (used > size)
+        s_.fail("the cells hold more indices than the CELLS size " + std::to_string(size));
       out.push_back(read_indices(c));
     }
-    if (used != size) s_.fail("the cells hold " + std::to_string(used) + " indices, the CELLS size says " + std::to_string(size));
+    if (used != size)
+      s_.fail("the cells hold " + std::to_string(used) + " indices, the CELLS size says " +
+              std::to_string(size));
   }
 
   /// Version 5.1 CELLS: OFFSETS (n values, from 0) then CONNECTIVITY (size values).
-  void cells5(long long offsets, long long size, std::vector<std::vector<int>>& out, std::vector<long long>& where) {
+  void cells5(long long offsets, long long size, std::vector<std::vector<int>>& out,
+              std::vector<long long>& where) {
     if (offsets < 1) s_.fail("CELLS needs at least one offset");
     if (s_.word("OFFSETS") != "OFFSETS") s_.fail("expected OFFSETS");
     s_.word("the offset type");
     std::vector<long long> off;
     for (long long k = 0; k < offsets; ++k) {
       off.push_back(s_.integer("an offset"));
-      if ((k == 0 && off[0] != 0) || (k > 0 && (off[size_t(k)] <= off[size_t(k) - 1] || off[size_t(k)] - off[size_t(k) - 1] > 1000)))
+      if ((k == 0 && off[0] != 0) || (k > 0 && (off[size_t(k)] <= off[size_t(k) - 1] ||
+                                                off[size_t(k)] - off[size_t(k) - 1] > 1000)))
         s_.fail("offsets must start at 0 and increase");
     }
-    if (off.back() != size) s_.fail("the last offset must be the connectivity size " + std::to_string(size));
+    if (off.back() != size)
+      s_.fail("the last offset must be the connectivity size " + std::to_string(size));
     if (s_.word("CONNECTIVITY") != "CONNECTIVITY") s_.fail("expected CONNECTIVITY");
     s_.word("the connectivity type");
     for (size_t k = 0; k + 1 < off.size(); ++k) {
@@ -157,7 +178,8 @@ class VtkReader {
   std::vector<int> read_indices(long long count) {
     std::vector<int> c;
     for (long long i = 0; i < count; ++i)
-      c.push_back(static_cast<int>(s_.integer_in("a point index", 0, static_cast<long long>(mesh_.vertices.size()) - 1)));
+      c.push_back(static_cast<int>(
+          s_.integer_in("a point index", 0, static_cast<long long>(mesh_.vertices.size()) - 1)));
     return c;
   }
 
@@ -174,7 +196,8 @@ class VtkReader {
       const double v = s_.number("an array value");
       if (!tags) continue;
       if (v != std::floor(v) || std::abs(v) > 2e9)
-        s_.fail("the region array '" + name + "' must hold integers (found " + std::to_string(v) + ")");
+        s_.fail("the region array '" + name + "' must hold integers (found " + std::to_string(v) +
+                ")");
       mesh_.cells[size_t(k)].region = static_cast<int>(v);
     }
     found_ = found_ || tags;

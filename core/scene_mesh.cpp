@@ -27,8 +27,9 @@ const std::vector<int>& region_of(const Reader& r, const toml::table& t, const C
     if (it == mesh.region_names.end()) {
       std::string known;
       for (const auto& [n, k] : mesh.region_names) known += (known.empty() ? "" : ", ") + n;
-      r.fail(*nn, "the mesh has no region named '" + name + "'" +
-                      (known.empty() ? std::string(" (it names none)") : " (it has " + known + ")"));
+      r.fail(*nn,
+             "the mesh has no region named '" + name + "'" +
+                 (known.empty() ? std::string(" (it names none)") : " (it has " + known + ")"));
     }
     tag = it->second;
   }
@@ -36,15 +37,17 @@ const std::vector<int>& region_of(const Reader& r, const toml::table& t, const C
   if (it == regions.end()) {
     std::string known;
     for (const auto& [k, nodes] : regions) known += (known.empty() ? "" : ", ") + std::to_string(k);
-    r.fail(tn ? *tn : *nn, "no element of the mesh has region tag " + std::to_string(tag) +
-                               (known.empty() ? std::string(" (it has none)") : " (it has " + known + ")"));
+    r.fail(tn ? *tn : *nn,
+           "no element of the mesh has region tag " + std::to_string(tag) +
+               (known.empty() ? std::string(" (it has none)") : " (it has " + known + ")"));
   }
   return it->second;
 }
 
 /// [[mesh_region]]: multiplies the scales of its nodes (and of the springs with both ends in
 /// it), fixes them, gives them an external force, or pulls each by `displacement` at t = 0.
-void read_mesh_regions(const Reader& r, const toml::table& root, const CellMesh& mesh, SceneSpec& s) {
+void read_mesh_regions(const Reader& r, const toml::table& root, const CellMesh& mesh,
+                       SceneSpec& s) {
   const toml::node* rn = root.get("mesh_region");
   if (!rn) return;
   const toml::array* list = rn->as_array();
@@ -75,7 +78,8 @@ void read_mesh_regions(const Reader& r, const toml::table& root, const CellMesh&
     if (auto* n = t.get("displacement")) {
       const Vec3 d = r.vec3(*n, "displacement");
       for (int i : nodes) {
-        if (m.fixed[static_cast<size_t>(i)]) r.fail(*n, "the region's node " + std::to_string(i) + " is fixed");
+        if (m.fixed[static_cast<size_t>(i)])
+          r.fail(*n, "the region's node " + std::to_string(i) + " is fixed");
         s.perturbations.push_back({i, d, Vec3::Zero()});
       }
     }
@@ -86,7 +90,8 @@ void read_mesh_regions(const Reader& r, const toml::table& root, const CellMesh&
 
 void read_mesh(const Reader& r, const toml::table& root, SceneSpec& s) {
   const toml::table& t = r.table(*root.get("mesh"), "mesh");
-  r.check_keys(t, {"file", "format", "scale", "bend", "anchors", "density", "young", "region_array"},
+  r.check_keys(t,
+               {"file", "format", "scale", "bend", "anchors", "density", "young", "region_array"},
                "[mesh]");
   const toml::node& fn = r.required(t, "file", "[mesh]");
   std::string file = r.string(fn, "file");
@@ -101,7 +106,8 @@ void read_mesh(const Reader& r, const toml::table& root, SceneSpec& s) {
     if (mesh_format(file, format).empty() || format == "node" || format == "ele")
       r.fail(*n, "format must be one of obj, msh, tetgen, vtk");
   } else if (mesh_format(file).empty()) {
-    r.fail(fn, "cannot tell the format of " + file + " from its extension: set format = \"obj\", "
+    r.fail(fn, "cannot tell the format of " + file +
+                   " from its extension: set format = \"obj\", "
                    "\"msh\", \"tetgen\" or \"vtk\"");
   }
   std::string region_array;

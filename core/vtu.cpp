@@ -37,9 +37,9 @@ void data_array(std::ostream& out, const char* type, const char* name, int compo
   std::vector<unsigned char> raw(sizeof bytes + bytes);
   std::memcpy(raw.data(), &bytes, sizeof bytes);
   if (bytes) std::memcpy(raw.data() + sizeof bytes, values.data(), bytes);
-  out << "        <DataArray type=\"" << type << "\" Name=\"" << name
-      << "\" NumberOfComponents=\"" << components << "\" format=\"binary\">\n          "
-      << base64(raw) << "\n        </DataArray>\n";
+  out << "        <DataArray type=\"" << type << "\" Name=\"" << name << "\" NumberOfComponents=\""
+      << components << "\" format=\"binary\">\n          " << base64(raw)
+      << "\n        </DataArray>\n";
 }
 
 std::vector<double> flatten(const std::vector<Vec3>& v) {
@@ -51,7 +51,9 @@ std::vector<double> flatten(const std::vector<Vec3>& v) {
 
 }  // namespace
 
-int state_code(NodeStatus s) { return static_cast<int>(s); }
+int state_code(NodeStatus s) {
+  return static_cast<int>(s);
+}
 
 void write_vtu(std::ostream& out, const Model& model, const State& state, const StepWorkspace& ws) {
   const size_t n = model.rest.size(), ns = model.springs.size();
@@ -63,8 +65,9 @@ void write_vtu(std::ostream& out, const Model& model, const State& state, const 
     disp[i] = state.x[i] - model.rest[i];
     upper[i] = stepped ? ws.upper_bound[i] : std::numeric_limits<double>::infinity();
     gamma[i] = stepped ? ws.gamma_eff[i] : (model.fixed[i] ? 0.0 : model.gamma[i]);
-    code[i] = state_code(stepped ? ws.status[i]
-                                 : model.fixed[i] ? NodeStatus::fixed : NodeStatus::within);
+    code[i] = state_code(stepped          ? ws.status[i]
+                         : model.fixed[i] ? NodeStatus::fixed
+                                          : NodeStatus::within);
   }
   std::vector<std::int64_t> conn, offsets;
   std::vector<std::uint8_t> types(ns, 3);  // VTK_LINE

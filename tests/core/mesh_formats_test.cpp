@@ -51,8 +51,8 @@ std::string vtk_error(const std::string& text) {
 }
 
 TEST(MeshFormats, EveryFormatGivesTheSameBlock) {
-  const char* files[] = {"msh/block-22.msh", "msh/block-22b.msh", "msh/block-41.msh",
-                         "msh/block-41b.msh", "tetgen/block.ele", "vtk/block.vtk"};
+  const char* files[] = {"msh/block-22.msh",  "msh/block-22b.msh", "msh/block-41.msh",
+                         "msh/block-41b.msh", "tetgen/block.ele",  "vtk/block.vtk"};
   const CellMesh ref = small_block(files[0]);
   const Model ref_model = model_from_mesh(ref, MeshSprings{});
   ASSERT_EQ(ref.vertices.size(), 48u);
@@ -115,8 +115,9 @@ TEST(MeshFormats, QuadsGetShearAndFlexionSprings) {
 }
 
 TEST(MeshFormats, BadInputNamesTheFileAndTheLineOrByte) {
-  const std::string head = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n1 0 0 0\n2 1 0 0\n"
-                           "3 0 1 0\n4 0 0 1\n$EndNodes\n$Elements\n1\n";
+  const std::string head =
+      "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n1 0 0 0\n2 1 0 0\n"
+      "3 0 1 0\n4 0 0 1\n$EndNodes\n$Elements\n1\n";
   EXPECT_EQ(msh_error(head + "1 4 2 1 1 1 2 3 4\n$EndElements\n"), "");
   EXPECT_EQ(msh_error(head + "1 4 2 1 1 1 2 3 9\n$EndElements\n"),
             "m.msh:13: the element refers to node tag 9, which $Nodes does not define");
@@ -125,12 +126,14 @@ TEST(MeshFormats, BadInputNamesTheFileAndTheLineOrByte) {
   EXPECT_EQ(msh_error(head + "1 5 2 1 1 1 2 3 4 1 2 3 4\n$EndElements\n"),
             "m.msh:13: unsupported element type 5 (hexahedron): only points, lines, triangles, "
             "quadrangles and tetrahedra are read");
-  const std::string flat = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n1 0 0 0\n2 1 0 0\n"
-                           "3 0 1 0\n4 1 1 0\n$EndNodes\n$Elements\n1\n1 4 0 1 2 3 4\n$EndElements\n";
+  const std::string flat =
+      "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n1 0 0 0\n2 1 0 0\n"
+      "3 0 1 0\n4 1 1 0\n$EndNodes\n$Elements\n1\n1 4 0 1 2 3 4\n$EndElements\n";
   EXPECT_EQ(msh_error(flat), "m.msh:13: degenerate tetrahedron (zero volume)");
-  const std::string mixed = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n5\n1 0 0 0\n2 1 0 0\n"
-                            "3 0 1 0\n4 0 0 1\n5 2 2 2\n$EndNodes\n$Elements\n2\n1 4 0 1 2 3 4\n"
-                            "2 2 0 1 2 5\n$EndElements\n";
+  const std::string mixed =
+      "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n5\n1 0 0 0\n2 1 0 0\n"
+      "3 0 1 0\n4 0 0 1\n5 2 2 2\n$EndNodes\n$Elements\n2\n1 4 0 1 2 3 4\n"
+      "2 2 0 1 2 5\n$EndElements\n";
   EXPECT_EQ(msh_error(mixed),
             "m.msh:15: mixed dimensions: this triangle has node 4, which no tetrahedron uses");
   EXPECT_EQ(msh_error("v 0 0 0\nf 1 2 3\n"),
@@ -146,12 +149,14 @@ TEST(MeshFormats, BadInputNamesTheFileAndTheLineOrByte) {
   const std::string node = "4 3 0 0\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n";
   EXPECT_EQ(error_of([&] { parse_tetgen(node, "b.node", "1 4 0\n1 1 2 3 5\n", "b.ele"); }),
             "b.ele:2: node number 5 does not exist (nodes are 1..4)");
-  EXPECT_EQ(error_of([&] { parse_tetgen(node, "b.node", "2 4 0\n1 1 2 3 4\n2 1 3 2 4\n", "b.ele"); })
-                .substr(0, 30),
+  EXPECT_EQ(error_of([&] {
+              parse_tetgen(node, "b.node", "2 4 0\n1 1 2 3 4\n2 1 3 2 4\n", "b.ele");
+            }).substr(0, 30),
             "b.ele:3: inverted tetrahedron ");
-  const std::string vtk = "# vtk DataFile Version 4.2\nt\nASCII\nDATASET UNSTRUCTURED_GRID\n"
-                          "POINTS 4 double\n0 0 0\n1 0 0\n0 1 0\n0 0 1\nCELLS 1 5\n4 0 1 2 3\n"
-                          "CELL_TYPES 1\n";
+  const std::string vtk =
+      "# vtk DataFile Version 4.2\nt\nASCII\nDATASET UNSTRUCTURED_GRID\n"
+      "POINTS 4 double\n0 0 0\n1 0 0\n0 1 0\n0 0 1\nCELLS 1 5\n4 0 1 2 3\n"
+      "CELL_TYPES 1\n";
   EXPECT_EQ(vtk_error(vtk + "10\n"), "");
   EXPECT_EQ(vtk_error(vtk + "12\n"),
             "m.vtk:13: unsupported VTK cell type 12: only vertices (1), lines (3), triangles (5), "
@@ -184,9 +189,10 @@ TEST(MeshFormats, MeshRegionErrorsNameTheSceneLine) {
             scene + ":4: no element of the mesh has region tag 9 (it has 1, 2, 3)");
   EXPECT_EQ(scene_error("[[mesh_region]]\ntag = 2\nname = \"base\"\n"),
             scene + ":3: [[mesh_region]] needs one of tag or name");
-  EXPECT_EQ(scene_error("format = \"stl\"\n"), scene + ":3: format must be one of obj, msh, tetgen, vtk");
+  EXPECT_EQ(scene_error("format = \"stl\"\n"),
+            scene + ":3: format must be one of obj, msh, tetgen, vtk");
   EXPECT_EQ(scene_error("[[mesh_region]]\nname = \"base\"\nfixed = true\n"
-                     "[[mesh_region]]\nname = \"base\"\ndisplacement = [0, 1, 0]\n"),
+                        "[[mesh_region]]\nname = \"base\"\ndisplacement = [0, 1, 0]\n"),
             scene + ":8: the region's node 0 is fixed");
   // Multiplied scales: mass_scale 2 on the probe doubles its nodes' lumped masses.
   std::ofstream(scene) << "[mesh]\nfile = \"" << mesh << "\"\ndensity = 1.0\n"
@@ -196,7 +202,8 @@ TEST(MeshFormats, MeshRegionErrorsNameTheSceneLine) {
   how.density = 1.0;
   const Model plain = model_from_mesh(read_mesh_file(mesh), how);
   const auto probe = region_nodes(read_mesh_file(mesh)).at(3);
-  for (int i : probe) EXPECT_DOUBLE_EQ(s.model.mass_scale[size_t(i)], 2 * plain.mass_scale[size_t(i)]);
+  for (int i : probe)
+    EXPECT_DOUBLE_EQ(s.model.mass_scale[size_t(i)], 2 * plain.mass_scale[size_t(i)]);
 }
 
 }  // namespace

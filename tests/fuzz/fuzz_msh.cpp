@@ -3,7 +3,6 @@
 #include "tests/fuzz/fuzz_common.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-  return dampbound::fuzz::run([&] {
-    return dampbound::parse_msh(reinterpret_cast<const char*>(data), size, "fuzz.msh");
-  });
+  return dampbound::fuzz::run(
+      [&] { return dampbound::parse_msh(reinterpret_cast<const char*>(data), size, "fuzz.msh"); });
 }
