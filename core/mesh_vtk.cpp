@@ -96,8 +96,9 @@ class VtkReader {
         const std::string name = s_.word("the array name");
         s_.word("the data type");
         std::string line = s_.rest_of_line();
-        const long long comps =
-            line.find_first_not_of(" \t\r") == std::string::npos ? 1 : std::atoll(line.c_str());
+        const long long comps = line.find_first_not_of(" \t\r") == std::string::npos
+                                    ? 1
+                                    : std::strtoll(line.c_str(), nullptr, 10);
         if (comps < 1 || comps > 4) s_.fail_at(at, "SCALARS must have 1 to 4 components");
         if (s_.word("LOOKUP_TABLE") != "LOOKUP_TABLE")
           s_.fail("expected LOOKUP_TABLE after SCALARS");
@@ -186,6 +187,7 @@ class VtkReader {
   /// Reads comps x tuples values; a cell array of one component is the region tags when it
   /// is the one asked for (or the first, when none is named).
   void array(const std::string& name, long long comps, long long tuples, long long at) {
+    check_count(s_, tuples, 2, "array tuples");  // first: comps * tuples must not overflow
     check_count(s_, comps * tuples, 2, "array values");
     const bool tags = cell_data_ && comps == 1 && !found_ && !name.empty() &&
                       (wanted_.empty() || wanted_ == name) &&
