@@ -1,4 +1,4 @@
-#include "core/mesh_scan.hpp"
+#include "core/detail/mesh_scan.hpp"
 
 #include <algorithm>
 #include <cctype>

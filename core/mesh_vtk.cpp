@@ -5,7 +5,7 @@
 #include <utility>
 
 #include "core/mesh_formats.hpp"
-#include "core/mesh_scan.hpp"
+#include "core/detail/mesh_scan.hpp"
 
 namespace dampbound {
 namespace {

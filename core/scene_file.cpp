@@ -11,7 +11,7 @@
 #include "core/error.hpp"
 #include "core/io.hpp"
 #include "core/scene.hpp"
-#include "core/scene_reader.hpp"
+#include "core/detail/scene_reader.hpp"
 
 namespace dampbound {
 namespace {

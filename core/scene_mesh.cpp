@@ -7,7 +7,7 @@
 #include <set>
 
 #include "core/mesh_formats.hpp"
-#include "core/scene_reader.hpp"
+#include "core/detail/scene_reader.hpp"
 
 namespace dampbound::detail {
 namespace {

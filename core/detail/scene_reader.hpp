@@ -1,6 +1,7 @@
 #pragma once
-// The scene file reader's helpers (private to core): typed access to TOML values, each error
-// "FILE:LINE: message" (InputError). Shared by scene_file.cpp and scene_mesh.cpp.
+// The scene file reader's helpers (private to core, not installed): typed access to TOML
+// values, each error "FILE:LINE: message" (InputError). Shared by scene_file.cpp and
+// scene_mesh.cpp.
 #include <toml++/toml.h>
 
 #include <cmath>

@@ -1,8 +1,8 @@
 #pragma once
-// The cursor the mesh readers share: whitespace-separated tokens with line numbers for text,
-// fixed-size little-endian values with byte offsets for binary, and one-line errors
-// "NAME:LINE: message" or "NAME: byte N: message" (InputError). Reads a caller's buffer;
-// never reads past its end, whatever the content.
+// The cursor the mesh readers share (private to core, not installed): whitespace-separated
+// tokens with line numbers for text, fixed-size little-endian values with byte offsets for
+// binary, and one-line errors "NAME:LINE: message" or "NAME: byte N: message" (InputError).
+// Reads a caller's buffer; never reads past its end, whatever the content.
 #include <cstddef>
 #include <cstring>
 #include <string>
