@@ -6,8 +6,8 @@
 #include <unordered_map>
 #include <utility>
 
-#include "core/mesh_formats.hpp"
 #include "core/detail/mesh_scan.hpp"
+#include "core/mesh_formats.hpp"
 
 namespace dampbound {
 namespace {

@@ -3,8 +3,8 @@
 #include <cmath>
 #include <utility>
 
-#include "core/mesh_formats.hpp"
 #include "core/detail/mesh_scan.hpp"
+#include "core/mesh_formats.hpp"
 
 namespace dampbound {
 namespace {

@@ -4,8 +4,8 @@
 #include <cstdlib>
 #include <utility>
 
-#include "core/mesh_formats.hpp"
 #include "core/detail/mesh_scan.hpp"
+#include "core/mesh_formats.hpp"
 
 namespace dampbound {
 namespace {

@@ -6,8 +6,8 @@
 #include <fstream>
 #include <set>
 
-#include "core/mesh_formats.hpp"
 #include "core/detail/scene_reader.hpp"
+#include "core/mesh_formats.hpp"
 
 namespace dampbound::detail {
 namespace {
