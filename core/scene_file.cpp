@@ -11,13 +11,13 @@
 #include "core/error.hpp"
 #include "core/io.hpp"
 #include "core/scene.hpp"
-#include "core/detail/scene_reader.hpp"
+#include "core/scene_reader.hpp"
 
 namespace dampbound {
 namespace {
 
-using detail::Keys;
-using detail::Reader;
+using scene_file::Keys;
+using scene_file::Reader;
 
 /// Reads the parameter keys (m, kappa, gamma, dt, policy, factor, integrator) present in `t` into
 /// `p`.
@@ -80,7 +80,7 @@ void read_geometry(const Reader& r, const toml::table& root, SceneSpec& s) {
   if (root.contains("mesh_region") && !has_mesh)
     r.fail(*root.get("mesh_region"), "[[mesh_region]] needs a [mesh] geometry");
   if (has_mesh) {
-    detail::read_mesh(r, root, s);  // any mesh format, and its [[mesh_region]] tables
+    scene_file::read_mesh(r, root, s);  // any mesh format, and its [[mesh_region]] tables
     if (root.contains("spring")) r.fail(*root.get("spring"), "[[spring]] needs [[node]] geometry");
     return;
   }
@@ -252,55 +252,6 @@ void read_runs(const Reader& r, const toml::table& root, SceneSpec& s) {
   }
 }
 
-void read_expectations(const Reader& r, const toml::table& root, SceneSpec& s) {
-  const toml::node* en = root.get("expect");
-  if (!en) return;
-  const toml::array* list = en->as_array();
-  if (!list) r.fail(*en, "expect must be an array of tables [[expect]]");
-  for (auto&& e : *list) {
-    const toml::table& t = r.table(e, "[[expect]]");
-    r.check_keys(t,
-                 {"run", "outcome", "iterations", "max_displacement_below", "unstabilisable_max",
-                  "violations_max", "violations_min"},
-                 "[[expect]]");
-    Expectation x;
-    x.line = static_cast<int>(t.source().begin.line);
-    if (auto* n = t.get("run")) {
-      x.run = r.string(*n, "run");
-      bool found = false;
-      for (const auto& run : s.runs) found = found || run.label == x.run;
-      if (!found) r.fail(*n, "expect refers to run '" + x.run + "', which is not declared");
-    }
-    if (auto* n = t.get("outcome")) {
-      const std::string o = r.string(*n, "outcome");
-      for (auto c : {Outcome::restored, Outcome::diverged, Outcome::not_restored})
-        if (o == to_string(c)) x.outcome = c;
-      if (!x.outcome) r.fail(*n, "outcome must be restored, diverged or not_restored");
-    }
-    if (auto* n = t.get("iterations")) {
-      const toml::array* a = n->as_array();
-      if (!a || a->size() != 2) r.fail(*n, "iterations must be [min, max]");
-      x.iterations_min = static_cast<int>(r.integer(*a->get(0), "iterations"));
-      x.iterations_max = static_cast<int>(r.integer(*a->get(1), "iterations"));
-      if (*x.iterations_min > *x.iterations_max) r.fail(*n, "iterations range is inverted");
-    }
-    if (auto* n = t.get("max_displacement_below"))
-      x.max_displacement_below = r.positive(*n, "max_displacement_below");
-    if (auto* n = t.get("unstabilisable_max"))
-      x.unstabilisable_max = static_cast<long long>(r.non_negative(*n, "unstabilisable_max"));
-    if (auto* n = t.get("violations_max"))
-      x.violations_max = static_cast<long long>(r.non_negative(*n, "violations_max"));
-    if (auto* n = t.get("violations_min"))
-      x.violations_min = static_cast<long long>(r.non_negative(*n, "violations_min"));
-    if (!x.outcome && !x.iterations_min && !x.max_displacement_below && !x.unstabilisable_max &&
-        !x.violations_max && !x.violations_min)
-      r.fail(t,
-             "[[expect]] asserts nothing: give outcome, iterations, max_displacement_below, "
-             "unstabilisable_max, violations_max or violations_min");
-    s.expectations.push_back(x);
-  }
-}
-
 }  // namespace
 
 SceneSpec parse_scene(const std::string& text, const std::string& path) {
@@ -332,7 +283,7 @@ SceneSpec parse_scene(const std::string& text, const std::string& path) {
   if (auto* n = root.get("watch")) s.watched = node_ref(r, s, *n, "watch");
   read_cuts(r, root, s);
   read_runs(r, root, s);
-  read_expectations(r, root, s);
+  scene_file::read_expectations(r, root, s);
   return s;
 }
 

@@ -6,10 +6,10 @@
 #include <fstream>
 #include <set>
 
-#include "core/detail/scene_reader.hpp"
+#include "core/scene_reader.hpp"
 #include "core/mesh_formats.hpp"
 
-namespace dampbound::detail {
+namespace dampbound::scene_file {
 namespace {
 
 /// The nodes of the region a [[mesh_region]] names by `tag` or by `name` (Gmsh physical name).
@@ -129,4 +129,4 @@ void read_mesh(const Reader& r, const toml::table& root, SceneSpec& s) {
   read_mesh_regions(r, root, mesh, s);
 }
 
-}  // namespace dampbound::detail
+}  // namespace dampbound::scene_file

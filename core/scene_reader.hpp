@@ -1,7 +1,6 @@
 #pragma once
-// The scene file reader's helpers (private to core, not installed): typed access to TOML
-// values, each error "FILE:LINE: message" (InputError). Shared by scene_file.cpp and
-// scene_mesh.cpp.
+// The scene file reader's checked accessors (core/scene_file.cpp and the files that read parts
+// of a scene): every error names the file and the line. Private to core.
 #include <toml++/toml.h>
 
 #include <cmath>
@@ -14,7 +13,7 @@
 #include "core/error.hpp"
 #include "core/scene.hpp"
 
-namespace dampbound::detail {
+namespace dampbound::scene_file {
 
 using Keys = std::initializer_list<std::string_view>;
 
@@ -100,8 +99,11 @@ class Reader {
   std::string path_;
 };
 
+/// Reads the [[expect]] tables (core/scene_expect.cpp).
+void read_expectations(const Reader& r, const toml::table& root, SceneSpec& s);
+
 /// [mesh]: a mesh file of any format (core/mesh_formats.hpp), its path relative to the scene
-/// file, with its [[mesh_region]] tables (scene_mesh.cpp).
+/// file, with its [[mesh_region]] tables (core/scene_mesh.cpp).
 void read_mesh(const Reader& r, const toml::table& root, SceneSpec& s);
 
-}  // namespace dampbound::detail
+}  // namespace dampbound::scene_file
