@@ -139,7 +139,9 @@ void GuiApp::parameters_panel() {
   // The lower bound (eq. 5) at every node: on a non-uniform mesh the worst node speaks.
   const LowerBoundCheck lb = check_lower_bound(t.session().model());
   const double lo = lower_bound(p.m, p.kappa);
-  if (lb.uniform || lb.worst < 0)
+  // Per-node masses or stiffnesses (mesh geometry, regions) give per-node bounds (SPEC 3).
+  const bool per_node = lb.worst >= 0 && (!lb.uniform || std::abs(lb.lower - lo) > 1e-12 * lo);
+  if (!per_node)
     ImGui::Text(u8"lower bound 2\u221A(m\u03BA) = %s", fmt(lo).c_str());
   else
     ImGui::Text(u8"lower bound at worst node #%d = %s", lb.worst, fmt(lb.lower).c_str());
@@ -150,7 +152,7 @@ void GuiApp::parameters_panel() {
     ImGui::SameLine();  // beside the value when there is room, else below it
   if (ImGui::SmallButton(set_lower)) {
     // The smallest gamma that puts every node at or above its bound.
-    p.gamma = lb.uniform || lb.worst < 0 || !(lb.ratio > 0) ? lo : p.gamma / lb.ratio;
+    p.gamma = per_node && lb.ratio > 0 ? p.gamma / lb.ratio : lo;
     changed = true;
   }
   if (ImGui::IsItemHovered())
