@@ -11,6 +11,7 @@ PACKAGES=(
   libgtest-dev libbenchmark-dev
   xvfb xauth fonts-dejavu-core
   clang libclang-rt-14-dev
+  python3-meshio python3-numpy   # tests read the ParaView (VTU) output back with meshio
 )
 missing=()
 for p in "${PACKAGES[@]}"; do

@@ -21,7 +21,7 @@ FAILS=0
 fail() { echo "FAIL: $*" >&2; FAILS=$((FAILS + 1)); }
 
 # --- fixtures
-mkdir -p "$W/dir" "$S/meshes" "$W/jdir.csv.journal" "$W/repro/report.md"
+mkdir -p "$W/dir" "$S/meshes/dir.obj" "$W/jdir.csv.journal" "$W/repro/report.md"
 mkfifo "$W/fifo" "$S/meshes/fifo.obj"
 truncate -s 1G "$W/huge.toml"
 truncate -s 300M "$S/meshes/huge.obj"
