@@ -47,6 +47,7 @@ gamma = 0.001
 outcome = "restored"
 TOML
 printf '[mesh]\nfile = "/nonexistent/x.obj"\n' >"$W/abs-missing.toml"
+printf '[mesh]\nfile = "scenes/meshes/huge.obj"\n' >"$W/mesh-huge.toml"
 : >"$W/torn.csv.journal"
 echo "dampbound-journal v1 sweep=0000000000000000 1/1 classes=1" >"$W/other.csv.journal"
 sweep=(sweep "$W/ok.toml" --m 0.001:0.002:0.001 --kappa 0.001 --zeta 0.5,1 --max-iter 20
