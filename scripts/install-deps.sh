@@ -6,10 +6,11 @@ SUDO=""
 if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
 PACKAGES=(
   cmake ninja-build g++ pkg-config git
-  libeigen3-dev libspectra-dev libtomlplusplus-dev libcli11-dev libstb-dev
+  libeigen3-dev libspectra-dev libtomlplusplus-dev libcli11-dev libstb-dev libsuitesparse-dev
   libimgui-dev libglfw3-dev libgl-dev libegl-dev libegl-mesa0 libgl1-mesa-dri
   libgtest-dev libbenchmark-dev
   xvfb xauth fonts-dejavu-core
+  slurm-wlm munge
 )
 missing=()
 for p in "${PACKAGES[@]}"; do
