@@ -1,8 +1,8 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """lambda_max of M^-1/2 K M^-1/2 on big meshes: dampbound's certified sparse-Cholesky method
 against SciPy's eigsh (ARPACK Lanczos, which='LA') on the same matrix, in one run.
 
-    python3 bench/exact_vs_scipy.py [--bench build/bench/exact_limits_bench]
+    /usr/bin/python3 bench/exact_vs_scipy.py [--bench build/bench/exact_limits_bench]
                                     [--planes 100,200,400] [--blocks 20] [--no-scipy-above N]
 
 For each mesh the C++ benchmark builds the matrix, times its own method, and writes the

@@ -191,8 +191,9 @@ std::vector<CriterionResult> exact_criteria(const ExactStability& e, const Param
   lm.unit = "1/s^2";
   lm.value = e.spectrum.lambda_max;
   lm.verdict = CriterionVerdict::not_applicable;
-  lm.test = "a quantity, not a test; certified in [" + num(e.lambda_max_lo) + ", " +
-            num(e.spectrum.lambda_max) + "]; dt^2 lambda_max = " +
+  char interval[80];  // 12 digits: the interval is ~1e-10 wide
+  std::snprintf(interval, sizeof interval, "[%.12g, %.12g]", e.lambda_max_lo, e.spectrum.lambda_max);
+  lm.test = "a quantity, not a test; certified in " + std::string(interval) + "; dt^2 lambda_max = " +
             num(params.dt * params.dt * e.spectrum.lambda_max);
   out.push_back(lm);
 

@@ -105,8 +105,8 @@ double max_stiffness_eigenvalue(const Model& model, const std::vector<Vec3>& x) 
 }
 
 StiffnessSpectrum stiffness_spectrum(const Model& model, const std::vector<Vec3>& x) {
-  const SparseMatrix A = mass_weighted(model, tangent_stiffness(model, x));
-  return {smallest_eigenvalue(A), largest_eigenvalue(A)};
+  const CertifiedSpectrum ends = certified_spectrum(mass_weighted(model, tangent_stiffness(model, x)));
+  return {ends.smallest.lo, ends.largest.hi};
 }
 
 LinearLimits linear_limits(double lambda_max, double m, double dt) {

@@ -81,10 +81,9 @@ ExactStability exact_stability(const Model& model, const std::vector<Vec3>& x,
   const SparseMatrix A = mass_weighted(model, tangent_stiffness(model, x));
   // Certified intervals (Cholesky, linear_stability_cholesky.hpp); the limits use the safe
   // ends: lambda_max never low, lambda_min never high.
-  const EigenInterval top = certified_largest_eigenvalue(A);
-  const EigenInterval bottom = certified_smallest_eigenvalue(A);
-  e.spectrum = {bottom.lo, top.hi};
-  e.lambda_max_lo = top.lo;
+  const CertifiedSpectrum ends = certified_spectrum(A);
+  e.spectrum = {ends.smallest.lo, ends.largest.hi};
+  e.lambda_max_lo = ends.largest.lo;
   const Eigen::VectorXd R = unit_rates(model);
   const double r_min = R.size() ? R.minCoeff() : 0, r_max = R.size() ? R.maxCoeff() : 0;
   e.rate_min = gamma * r_min;
