@@ -33,7 +33,7 @@ SparseMatrix mass_weighted(const Model& model, const SparseMatrix& K);
 /// Largest and smallest algebraic eigenvalue of a symmetric sparse matrix, each the safe end
 /// of a certified interval (linear_stability_cholesky.hpp: shift-and-invert Lanczos from
 /// Gershgorin's bound, a Cholesky certificate): largest_eigenvalue is never low and
-/// smallest_eigenvalue never high, by at most ~1e-10 relative. Dense up to 200 rows.
+/// smallest_eigenvalue never high, by at most ~1e-10 relative. Dense up to 400 rows.
 double largest_eigenvalue(const SparseMatrix& A);
 double smallest_eigenvalue(const SparseMatrix& A);
 /// The smallest eigenvalue above `floor` (zero modes skipped: motions no spring resists).

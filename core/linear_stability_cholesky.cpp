@@ -16,9 +16,12 @@ constexpr double kEps = std::numeric_limits<double>::epsilon();
 /// The certificate's allowance for rounding in the factorisation, relative to max_r sum_s
 /// |A_rs|: a factorisation that succeeds on (hi - margin) I - A is taken to prove hi.
 constexpr double kMargin = 1e-12;
-/// Up to this many rows the dense eigenvalues are cheaper than factorisations (an 8 x 8
-/// plane, 192 rows: ~2 ms) and exact to rounding: lo = hi.
-constexpr Eigen::Index kDenseRows = 200;
+/// Up to this many rows the dense eigenvalues are cheaper than factorisations (a 10 x 10
+/// plane, 300 rows: a few ms) and exact to rounding: lo = hi.
+constexpr Eigen::Index kDenseRows = 400;
+/// Below this many rows the fill-reducing ordering is AMD alone (CHOLMOD's default also tries
+/// nested dissection, which pays on big meshes only).
+constexpr Eigen::Index kNestedDissectionRows = 20000;
 
 /// Factorisations of sigma I - A for a changing shift sigma, by CHOLMOD's supernodal
 /// Cholesky (fill-reducing ordering chosen by CHOLMOD: AMD or nested dissection): the
@@ -35,6 +38,10 @@ class ShiftedCholesky {
     B_.resize(n_, n_);
     B_.setFromTriplets(t.begin(), t.end());  // lower triangle of -A, duplicates summed
     llt_.cholmod().print = 0;                // a failed factorisation is an answer, not news
+    if (n_ < kNestedDissectionRows) {         // small: AMD alone; CHOLMOD's trial of nested
+      llt_.cholmod().nmethods = 1;            // dissection costs more than it saves there
+      llt_.cholmod().method[0].ordering = CHOLMOD_AMD;
+    }
   }
   /// Factors sigma I - A; true when it is positive definite (every pivot > 0).
   bool factor(double sigma) {

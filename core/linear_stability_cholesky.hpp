@@ -36,7 +36,7 @@ struct EigenInterval {
 /// Largest eigenvalue of symmetric A. hi is certified by a successful Cholesky factorisation
 /// of (hi - margin) I - A, margin = 1e-12 * max row sum of |A| (an allowance for the
 /// factorisation's rounding); lo is the Rayleigh quotient of the Ritz vector (a lower bound
-/// for any vector). hi - lo <= ~1e-10 |lambda| + 1e-11 (Gershgorin width). Up to 200 rows
+/// for any vector). hi - lo <= ~1e-10 |lambda| + 1e-11 (Gershgorin width). Up to 400 rows
 /// the dense eigenvalue is returned (lo = hi). `vector`: the unit Ritz vector.
 EigenInterval certified_largest_eigenvalue(const SparseMatrix& A,
                                            Eigen::VectorXd* vector = nullptr);
@@ -45,7 +45,7 @@ EigenInterval certified_largest_eigenvalue(const SparseMatrix& A,
 /// Cholesky of A - lo I, hi the Rayleigh quotient).
 EigenInterval certified_smallest_eigenvalue(const SparseMatrix& A);
 
-/// Both ends at once (one dense solve for a small matrix, else the two methods above).
+/// Both ends at once (one dense solve up to 400 rows, else the two methods above).
 struct CertifiedSpectrum {
   EigenInterval smallest;
   EigenInterval largest;

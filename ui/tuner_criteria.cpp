@@ -90,7 +90,7 @@ const ExactStability* TunerCriteria::exact(const Session& s, std::uint64_t topol
   // On a large mesh the analysis takes long: while a slider is dragged (or the run goes on,
   // when it follows the state), keep the last result and recompute at most every few
   // durations, so the window stays responsive.
-  const double slow = last_seconds_ > 0.01 ? 4 * last_seconds_ : 0.0;
+  const double slow = last_seconds_ > 0.05 ? 4 * last_seconds_ : 0.0;
   const double interval = at_state_ ? std::max(follow_interval_, slow) : slow;
   const bool throttled = have_key_ && (exact_ || job_.valid()) && now - last_time_ < interval;
   if (!changed || throttled || job_.valid()) return exact_ ? &*exact_ : nullptr;

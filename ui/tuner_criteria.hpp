@@ -22,7 +22,7 @@ namespace dampbound::ui {
 /// most every follow_interval (0.2 s) or four analysis durations, whichever is longer, the
 /// last result staying on show meanwhile (no frame waits for it). The paper's criteria (eqs. 5, 6 and the
 /// sec. 5 check) and the classic ones are evaluated at the current state on every call. When
-/// one analysis takes longer than 10 ms (a large mesh), a changed key is recomputed at most
+/// one analysis takes longer than 50 ms (a large mesh), a changed key is recomputed at most
 /// every four such durations. `state` is the caller's counter of state changes (Tuner's
 /// state_version()).
 class TunerCriteria {
