@@ -10,7 +10,8 @@ PACKAGES=(
   libimgui-dev libglfw3-dev libgl-dev libegl-dev libegl-mesa0 libgl1-mesa-dri
   libgtest-dev libbenchmark-dev
   xvfb xauth fonts-dejavu-core
-  slurm-wlm munge
+  slurm-wlm munge                # scripts/ci/slurm.sh: a single-node Slurm on localhost
+  python3-meshio python3-numpy   # tests read the ParaView (VTU) output back with meshio
 )
 missing=()
 for p in "${PACKAGES[@]}"; do
