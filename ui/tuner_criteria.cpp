@@ -80,8 +80,8 @@ void TunerCriteria::collect() {
 const ExactStability* TunerCriteria::exact(const Session& s, std::uint64_t topology,
                                            std::uint64_t state) {
   collect();
-  // Small meshes are analysed in the frame (well under a millisecond at the paper's 1296
-  // nodes); larger ones, and every analysis that follows the state, on the worker thread.
+  // Small meshes are analysed in the frame (tens of ms at the paper's 1296 nodes, once per
+  // change); larger ones, and every analysis that follows the state, on the worker thread.
   const bool on_worker = at_state_ || free_node_count(s.model()) > worker_nodes_;
   if (!on_worker) wait();  // a result that followed the state is of no use at rest
   const double now = seconds_now();
