@@ -17,10 +17,6 @@
 #include "ui/image.hpp"
 #endif
 
-#ifndef DAMPBOUND_SOURCE_DIR
-#define DAMPBOUND_SOURCE_DIR "."
-#endif
-
 namespace dampbound::app {
 namespace {
 
@@ -87,7 +83,7 @@ int run(GuiArgs& a) {
   if (!a.screenshot.empty()) check_writable(a.screenshot);
   ui::GuiOptions o;
   o.config_dir = ui::config_dir(a.config_dir);
-  o.scenes_dir = std::string(DAMPBOUND_SOURCE_DIR) + "/scenes";
+  o.scenes_dir = shipped_scenes_dir();
   if (!a.scene.empty()) o.scene = load_scene_arg(a.scene);
   const ParamFlags flags = a.flags;
   o.overrides = [flags](Params& p, StopRules& r) { flags.apply(p, r); };
