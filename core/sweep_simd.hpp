@@ -29,8 +29,13 @@ namespace {
 /// Trials per vector: 8 doubles = 64 bytes = one AVX-512 register.
 constexpr int kLanes = 8;
 
-typedef double vd __attribute__((vector_size(kLanes * sizeof(double))));
-typedef std::int64_t vl __attribute__((vector_size(kLanes * sizeof(std::int64_t))));
+// aligned(64) is explicit: GCC otherwise derives a vector type's alignment from the target in
+// force where the type is used, so a std::vector<NodeBlock> instantiated after the AVX-512
+// target pragma of core/sweep_kernel_avx512.cpp ends would allocate 16-byte aligned blocks
+// that the kernel's AVX-512 code reads with aligned loads.
+typedef double vd __attribute__((vector_size(kLanes * sizeof(double)), aligned(64)));
+typedef std::int64_t vl __attribute__((vector_size(kLanes * sizeof(std::int64_t)), aligned(64)));
+static_assert(alignof(vd) == 64 && alignof(vl) == 64, "one AVX-512 register per vector");
 
 /// Every lane = x (keeps the sign of a zero, unlike `vd{} + x`).
 inline vd splat(double x) {
