@@ -8,27 +8,28 @@
 set -euo pipefail
 portable=$1/bench/sweep_bench native=$2/bench/sweep_bench rounds=${3:-3}
 filter='BM_BatchedKernel/threads:1/policy:0'
-rate() {  # spring evaluations per second, the median of 3 repetitions
+rate() {  # spring evaluations per thread-CPU second (time-slicing on a busy machine does not
+          # count), the median of 3 repetitions
   env "${@:2}" "$1" --benchmark_filter="$filter" --benchmark_repetitions=3 \
     --benchmark_report_aggregates_only=true --benchmark_format=csv 2>/dev/null |
-    awk -F, '/_median"?,/ { for (i = 1; i <= NF; ++i) if (h[i] == "spring_evals_per_s") print $i }
-             /^name,/ { for (i = 1; i <= NF; ++i) h[i] = $i }'
+    awk -F, '/_median"?,/ { for (i = 1; i <= NF; ++i) if (h[i] == "spring_evals_per_cpu_s") print $i }
+             /^name,/ { for (i = 1; i <= NF; ++i) { h[i] = $i; gsub(/"/, "", h[i]) } }'
 }
 echo "cores: $(nproc), load: $(cut -d' ' -f1-3 /proc/loadavg), $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2)"
 declare -A sum
 for r in $(seq "$rounds"); do
   for v in native portable-best portable-avx512 portable-avx2 portable-generic; do
     case $v in
-      native) x=$(rate "$native" X=1) ;;
-      portable-best) x=$(rate "$portable" X=1) ;;
+      native) x=$(rate "$native" DAMPBOUND_KERNEL_ISA=best) ;;
+      portable-best) x=$(rate "$portable" DAMPBOUND_KERNEL_ISA=best) ;;
       portable-*) x=$(rate "$portable" DAMPBOUND_KERNEL_ISA="${v#portable-}") ;;
     esac
-    printf 'round %d  %-17s %.3e spring evals/s\n' "$r" "$v" "$x"
+    printf 'round %d  %-17s %.3e spring evals/CPU-s\n' "$r" "$v" "$x"
     sum[$v]=$(awk -v a="${sum[$v]:-0}" -v b="$x" 'BEGIN { print a + b }')
   done
 done
 n=${sum[native]}
 for v in native portable-best portable-avx512 portable-avx2 portable-generic; do
   awk -v v="$v" -v s="${sum[$v]}" -v n="$n" -v r="$rounds" \
-    'BEGIN { printf "mean %-17s %.3e spring evals/s  %5.1f%% of native\n", v, s / r, 100 * s / n }'
+    'BEGIN { printf "mean %-17s %.3e spring evals/CPU-s  %5.1f%% of native\n", v, s / r, 100 * s / n }'
 done

@@ -62,7 +62,8 @@ std::optional<KernelIsa> parse_kernel_isa(const std::string& s);
 /// Whether this CPU (and OS) can run `isa` (always true for best and generic).
 bool kernel_isa_supported(KernelIsa isa);
 /// What `best` resolves to on this machine: DAMPBOUND_KERNEL_ISA from the environment when it
-/// names a supported variant (for benchmarks and tests), else the widest supported one.
+/// names a supported variant (for benchmarks and tests), else the widest supported one (the
+/// plain copy in a DAMPBOUND_NATIVE build for an AVX-512 host: it is compiled for the host).
 KernelIsa best_kernel_isa();
 
 /// Why the batched kernel cannot run a scene ("" when it can): cuts (topology changes

@@ -52,9 +52,15 @@ KernelIsa best_kernel_isa() {
     const auto isa = parse_kernel_isa(env);
     if (isa && *isa != KernelIsa::best && kernel_isa_supported(*isa)) return *isa;
   }
+#if defined(__AVX512F__)
+  // Built for the host (DAMPBOUND_NATIVE) on an AVX-512 machine: the plain copy already has
+  // the widest target, and the host's tuning besides.
+  return KernelIsa::generic;
+#else
   for (KernelIsa isa : {KernelIsa::avx512, KernelIsa::avx2})
     if (kernel_isa_supported(isa)) return isa;
   return KernelIsa::generic;
+#endif
 }
 
 BatchKernel::BatchKernel(const SceneSpec& scene, DampingPolicy policy, const StopRules& rules,
