@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 
 #include "core/error.hpp"
 
@@ -98,7 +99,9 @@ std::string shipped_scenes_dir() {
   if (len > 0) {
     const std::string path(exe, static_cast<size_t>(len));
     const std::string installed =
-        path.substr(0, path.rfind('/') + 1) + DAMPBOUND_SCENES_FROM_BIN;
+        std::filesystem::path(path.substr(0, path.rfind('/') + 1) + DAMPBOUND_SCENES_FROM_BIN)
+            .lexically_normal()
+            .string();
     if (is_dir(installed)) return installed;
   }
   const std::string source = std::string(DAMPBOUND_SOURCE_DIR) + "/scenes";

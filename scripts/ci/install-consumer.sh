@@ -40,7 +40,12 @@ soname=$(objdump -p "$so" | awk '/SONAME/ {print $2}')
 # Only the public headers: no sweep, UI or app header is installed.
 [ -z "$(find "$P/include" -name 'sweep_*' -o -name 'gui_*' -o -name 'options.hpp')" ] ||
   fail "a private header was installed"
-step "layout ok (SONAME $soname)"
+# Every installed header compiles on its own, with only the prefix and Eigen on the path.
+for h in $(cd "$P/include" && find dampbound -name '*.hpp'); do
+  echo "#include <$h>" | g++ -std=c++17 -fsyntax-only -x c++ - -I"$P/include" \
+    -I"$P/include/dampbound" $(pkg-config --cflags eigen3) || fail "$h does not compile alone"
+done
+step "layout ok (SONAME $soname); every installed header compiles alone"
 
 # The CLI, with the source tree out of reach of its scene lookup.
 version=$("$P/bin/dampbound" --version)
