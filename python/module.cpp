@@ -54,14 +54,28 @@ void bind_params(py::module_& m) {
                      "restored below fraction * reference")
       .def_readwrite("diverge_factor", &StopRules::diverge_factor,
                      "diverged above factor * reference")
-      .def_readwrite("max_iterations", &StopRules::max_iterations, "iteration limit");
+      .def_readwrite("max_iterations", &StopRules::max_iterations, "iteration limit")
+      .def_property(
+          "rule", [](const StopRules& r) { return std::string(to_string(r.rule)); },
+          [](StopRules& r, const std::string& s) {
+            if (!parse_stop_rule(s, r.rule))
+              throw py::value_error("rule must be first-entry or settled, got '" + s + "'");
+          },
+          "'first-entry' (the paper's, SPEC 5) or 'settled' (SPEC 8: step to the limit)");
 }
 
 void bind_results(py::module_& m) {
   py::class_<RunResult>(m, "RunResult", "The result of a protocol run (SPEC 5).")
       .def_property_readonly("outcome", [](const RunResult& r) { return std::string(to_string(r.outcome)); },
-                             "'running', 'restored', 'diverged' or 'not_restored'")
+                             "'running', 'restored', 'diverged', 'not_restored' (first-entry "
+                             "rule), 'settled', 'not_settled' (settled rule)")
       .def_readonly("iterations", &RunResult::iterations, "iteration of the outcome")
+      .def_readonly("first_entry", &RunResult::first_entry,
+                    "first iteration below the restore threshold (0 = none)")
+      .def_readonly("left_at", &RunResult::left_at,
+                    "first iteration back at or above it after an entry (0 = none)")
+      .def_readonly("settled_at", &RunResult::settled_at,
+                    "settled rule: below the threshold from here to the limit (0 = none)")
       .def_readonly("max_displacement", &RunResult::max_displacement,
                     "max |x_i - X_i| at the last iteration (cm; inf if not finite)")
       .def_readonly("violations", &RunResult::violations,

@@ -81,3 +81,15 @@ def test_exact_limits_and_suggest_agree_on_the_two_node_system(scenes_dir):
     assert 0 < t["dt_all"] <= t["dt_exact"]
     for params, result in t["runs"].values():
         assert result.outcome != "diverged"
+
+
+def test_settled_rule_runs_to_the_limit_and_reports_the_first_entry(scenes_dir):
+    scene = dampbound.load_scene(str(scenes_dir / "two-node.toml"))
+    rules = scene.rules
+    rules.rule = "settled"
+    rules.max_iterations = 400
+    first = dampbound.Session(scene).run()
+    settled = dampbound.Session(scene, rules=rules).run()
+    assert settled.outcome == "settled" and settled.iterations == 400
+    assert settled.first_entry == first.iterations
+    assert 0 < settled.settled_at <= 400
