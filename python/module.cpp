@@ -105,8 +105,14 @@ void bind_scene(py::module_& m) {
       .def_readonly("name", &SceneSpec::name)
       .def_readonly("description", &SceneSpec::description)
       .def_readonly("path", &SceneSpec::path)
-      .def_readwrite("params", &SceneSpec::params, "the scene's parameters (a copy on read)")
-      .def_readwrite("rules", &SceneSpec::rules, "the scene's stop rules (a copy on read)")
+      .def_property(
+          "params", [](const SceneSpec& s) { return s.params; },
+          [](SceneSpec& s, const Params& p) { s.params = p; },
+          "the scene's parameters (a copy: assign a Params to change them)")
+      .def_property(
+          "rules", [](const SceneSpec& s) { return s.rules; },
+          [](SceneSpec& s, const StopRules& r) { s.rules = r; },
+          "the scene's stop rules (a copy: assign a StopRules to change them)")
       .def_readonly("watched", &SceneSpec::watched, "index of the watched node")
       .def_property_readonly("node_count", [](const SceneSpec& s) { return s.model.node_count(); })
       .def_property_readonly("spring_count",
