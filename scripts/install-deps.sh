@@ -11,6 +11,7 @@ PACKAGES=(
   libgtest-dev libbenchmark-dev
   pybind11-dev python3-dev python3-numpy python3-pytest
   xvfb xauth fonts-dejavu-core
+  python3-meshio python3-numpy   # tests read the ParaView (VTU) output back with meshio
 )
 missing=()
 for p in "${PACKAGES[@]}"; do

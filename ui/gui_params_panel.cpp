@@ -135,8 +135,17 @@ void GuiApp::parameters_panel() {
                         "Spring and anchor stiffness kappa (mass unit / s^2)");
   changed |= log_slider(u8"\u03B3 gamma", &p.gamma, 1e-6, 10.0,
                         "The user's viscous damping gamma (mass unit / s)");
-  const double lo = lower_bound(p.m, p.kappa);
-  ImGui::Text(u8"lower bound 2\u221A(m\u03BA) = %s", fmt(lo).c_str());
+  double lo = lower_bound(p.m, p.kappa);
+  // Per-node masses or stiffnesses (mesh geometry, regions): the bound differs per node
+  // (SPEC 3); show the watched node's, which the buttons and messages below then use.
+  const Model& model = t.session().model();
+  const auto w = static_cast<size_t>(t.session().watched());
+  if (w < model.lower_bound.size() && std::abs(model.lower_bound[w] - lo) > 1e-12 * lo) {
+    lo = model.lower_bound[w];
+    ImGui::Text(u8"lower bound of node %d: %s", t.session().watched(), fmt(lo).c_str());
+  } else {
+    ImGui::Text(u8"lower bound 2\u221A(m\u03BA) = %s", fmt(lo).c_str());
+  }
   const char* set_lower = u8"\u03B3 = lower bound";
   const float button_w = ImGui::CalcTextSize(set_lower).x + 2 * ImGui::GetStyle().FramePadding.x;
   if (ImGui::GetContentRegionAvail().x - ImGui::GetItemRectSize().x >
