@@ -63,8 +63,7 @@ Monitor::Monitor(NodeScalars mass, SpringPairs springs, NodeScalars stiffness,
 
 void Monitor::check_size(Eigen::Index n, const char* what) const {
   require(n == node_count(), std::string(what) + " has " + std::to_string(n) +
-                                 " rows, the monitor " + std::to_string(node_count()) +
-                                 " nodes");
+                                 " rows, the monitor " + std::to_string(node_count()) + " nodes");
 }
 
 void Monitor::set_anchors(NodeScalars anchor_stiffness, NodeVectors rest) {
@@ -89,8 +88,7 @@ void Monitor::lower_bounds(NodeScalarsOut out) const {
   for (int i = 0; i < node_count(); ++i) out[i] = model_.lower_bound[static_cast<size_t>(i)];
 }
 
-void Monitor::upper_bounds(NodeVectors v, NodeVectors force, double dt,
-                           NodeScalarsOut out) const {
+void Monitor::upper_bounds(NodeVectors v, NodeVectors force, double dt, NodeScalarsOut out) const {
   check_size(v.rows(), "v");
   check_size(force.rows(), "force");
   check_size(out.size(), "upper bound output");
@@ -118,8 +116,8 @@ MonitorReport Monitor::check(NodeVectors v, NodeVectors force, NodeScalars gamma
       continue;
     }
     const double lo = model_.lower_bound[k];
-    const double hi = upper_bound(v.row(i).transpose(), force.row(i).transpose(),
-                                  model_.mass[k], dt);
+    const double hi =
+        upper_bound(v.row(i).transpose(), force.row(i).transpose(), model_.mass[k], dt);
     const DampingChoice c = effective_damping(policy, gamma[i], lo, hi, factor);
     if (c.unstabilisable && r.unstabilisable++ == 0) r.first_unstabilisable = i;
     if (c.violating && r.violating++ == 0) r.first_violating = i;

@@ -17,9 +17,8 @@ namespace dampbound {
 
 /// N x 3 doubles read in place: row i is node i's (x, y, z); rows `stride` doubles apart
 /// (3 when packed, e.g. an (N, 3) C-ordered NumPy array or a std::vector<std::array<double,3>>).
-using NodeVectors =
-    Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>, 0,
-               Eigen::OuterStride<>>;
+using NodeVectors = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>, 0,
+                               Eigen::OuterStride<>>;
 /// N doubles read in place, `stride` doubles apart.
 using NodeScalars = Eigen::Map<const Eigen::VectorXd, 0, Eigen::InnerStride<>>;
 /// N doubles written in place, `stride` doubles apart.
@@ -44,10 +43,10 @@ inline SpringPairs spring_pairs(const int* data, Eigen::Index s, Eigen::Index st
 
 /// What the runtime check of one step found (paper sec. 5, SPEC 3-4), over the free nodes.
 struct MonitorReport {
-  int violating = 0;             ///< nodes whose effective gamma is outside [gamma_lo, gamma_hi]
-  int unstabilisable = 0;        ///< nodes with gamma_lo > gamma_hi: no damping satisfies both
-  int clamped = 0;               ///< nodes whose gamma the policy changed, within the bounds
-  int first_violating = -1;      ///< the lowest such node index, -1 when none
+  int violating = 0;         ///< nodes whose effective gamma is outside [gamma_lo, gamma_hi]
+  int unstabilisable = 0;    ///< nodes with gamma_lo > gamma_hi: no damping satisfies both
+  int clamped = 0;           ///< nodes whose gamma the policy changed, within the bounds
+  int first_violating = -1;  ///< the lowest such node index, -1 when none
   int first_unstabilisable = -1;
   bool ok() const { return violating == 0 && unstabilisable == 0; }
 };
@@ -56,12 +55,12 @@ struct MonitorReport {
 /// per-node damping gamma_i, linearised at x (tangent stiffness; at rest only spring
 /// directions and anchors contribute). lambda_max by Lanczos, never a dense decomposition.
 struct MonitorLimits {
-  double lambda_max = 0;       ///< largest eigenvalue of M^-1 K (1/s^2)
-  bool stable = false;         ///< the step at dt with these gamma_i does not grow
-  double scale_lo = 0;         ///< s * gamma_i is stable at dt for scale_lo <= s < scale_hi
-  double scale_hi = 0;         ///< (may be inf)
-  double dt_max = 0;           ///< the largest stable dt with these gamma_i (s; may be inf)
-  double rate_max = 0;         ///< uniform damping rate limit: gamma_i/m_i < 2/dt - lambda_max dt/2 (1/s)
+  double lambda_max = 0;  ///< largest eigenvalue of M^-1 K (1/s^2)
+  bool stable = false;    ///< the step at dt with these gamma_i does not grow
+  double scale_lo = 0;    ///< s * gamma_i is stable at dt for scale_lo <= s < scale_hi
+  double scale_hi = 0;    ///< (may be inf)
+  double dt_max = 0;      ///< the largest stable dt with these gamma_i (s; may be inf)
+  double rate_max = 0;  ///< uniform damping rate limit: gamma_i/m_i < 2/dt - lambda_max dt/2 (1/s)
   double dt_max_undamped = 0;  ///< 2/sqrt(lambda_max) (s)
 };
 
@@ -103,8 +102,9 @@ class Monitor {
 
   /// F_i of SPEC 1 at positions x into `force` (N x 3, packed; copies x once). Returns the
   /// number of springs of zero length, which contribute nothing.
-  int internal_forces(NodeVectors x, Eigen::Ref<Eigen::Matrix<double, Eigen::Dynamic, 3,
-                                                              Eigen::RowMajor>> force) const;
+  int internal_forces(
+      NodeVectors x,
+      Eigen::Ref<Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>> force) const;
 
   /// SPEC 7's exact limits at positions x (copied once), for damping gamma_i and step dt.
   MonitorLimits exact_limits(NodeVectors x, NodeScalars gamma, double dt) const;

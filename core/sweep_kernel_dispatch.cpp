@@ -10,17 +10,20 @@ namespace dampbound {
 
 const char* to_string(KernelIsa isa) {
   switch (isa) {
-    case KernelIsa::best: return "best";
-    case KernelIsa::generic: return "generic";
-    case KernelIsa::avx2: return "avx2";
-    case KernelIsa::avx512: return "avx512";
+    case KernelIsa::best:
+      return "best";
+    case KernelIsa::generic:
+      return "generic";
+    case KernelIsa::avx2:
+      return "avx2";
+    case KernelIsa::avx512:
+      return "avx512";
   }
   return "?";
 }
 
 std::optional<KernelIsa> parse_kernel_isa(const std::string& s) {
-  for (KernelIsa isa :
-       {KernelIsa::best, KernelIsa::generic, KernelIsa::avx2, KernelIsa::avx512})
+  for (KernelIsa isa : {KernelIsa::best, KernelIsa::generic, KernelIsa::avx2, KernelIsa::avx512})
     if (s == to_string(isa)) return isa;
   return std::nullopt;
 }
@@ -34,8 +37,10 @@ bool kernel_isa_supported(KernelIsa isa) {
                     __builtin_cpu_supports("bmi2") && __builtin_cpu_supports("popcnt");
   switch (isa) {
     case KernelIsa::best:
-    case KernelIsa::generic: return true;
-    case KernelIsa::avx2: return avx2;
+    case KernelIsa::generic:
+      return true;
+    case KernelIsa::avx2:
+      return avx2;
     case KernelIsa::avx512:
       return avx2 && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512cd") &&
              __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512bw") &&
@@ -71,10 +76,16 @@ BatchKernel::BatchKernel(const SceneSpec& scene, DampingPolicy policy, const Sto
                                 to_string(isa_) + " variant");
   switch (isa_) {
 #if defined(__x86_64__)
-    case KernelIsa::avx512: impl_ = kernel_avx512::make(scene, policy, rules); break;
-    case KernelIsa::avx2: impl_ = kernel_avx2::make(scene, policy, rules); break;
+    case KernelIsa::avx512:
+      impl_ = kernel_avx512::make(scene, policy, rules);
+      break;
+    case KernelIsa::avx2:
+      impl_ = kernel_avx2::make(scene, policy, rules);
+      break;
 #endif
-    default: impl_ = kernel_generic::make(scene, policy, rules); break;
+    default:
+      impl_ = kernel_generic::make(scene, policy, rules);
+      break;
   }
 }
 

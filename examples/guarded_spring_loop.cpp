@@ -9,10 +9,9 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
-#include <vector>
-
 #include <dampbound/monitor.hpp>
 #include <dampbound/version.hpp>
+#include <vector>
 
 namespace {
 
@@ -73,10 +72,10 @@ int run(const Cloth& cloth, const dampbound::Monitor* guard) {
     cloth.forces(x, f);
     if (guard) {  // the monitor reads v, f and gamma in place and writes g
       auto out = dampbound::node_scalars_out(g.data(), count);
-      const auto report = guard->check(
-          dampbound::node_vectors(v[0].data(), count), dampbound::node_vectors(f[0].data(), count),
-          dampbound::node_scalars(user_gamma.data(), count), dt, dampbound::DampingPolicy::clamp,
-          1.0, &out);
+      const auto report = guard->check(dampbound::node_vectors(v[0].data(), count),
+                                       dampbound::node_vectors(f[0].data(), count),
+                                       dampbound::node_scalars(user_gamma.data(), count), dt,
+                                       dampbound::DampingPolicy::clamp, 1.0, &out);
       if (report.unstabilisable > 0 && it == 1)
         std::printf("node %d cannot be stabilised at this dt\n", report.first_unstabilisable);
     }
@@ -85,7 +84,7 @@ int run(const Cloth& cloth, const dampbound::Monitor* guard) {
       double e2 = 0;
       for (int c = 0; c < 3; ++c) {
         v[i][c] += (f[i][c] - g[i] * v[i][c]) / cloth.mass[i] * dt;  // eq. 3
-        x[i][c] += v[i][c] * dt;                                      // eq. 4
+        x[i][c] += v[i][c] * dt;                                     // eq. 4
         e2 += (x[i][c] - cloth.rest[i][c]) * (x[i][c] - cloth.rest[i][c]);
       }
       worst = std::max(worst, std::sqrt(e2));
@@ -111,7 +110,8 @@ int main() {
   const int plain = run(cloth, nullptr), guarded = run(cloth, &monitor);
   std::printf("dampbound %s: gamma = %g, eq. 5 lower bound %g\n", DAMPBOUND_VERSION, gamma_user,
               monitor.model().lower_bound[0]);
-  std::printf("plain loop:   %s %d\n", plain ? "restored at" : "not restored in", plain ? plain : 1000);
+  std::printf("plain loop:   %s %d\n", plain ? "restored at" : "not restored in",
+              plain ? plain : 1000);
   std::printf("guarded loop: %s %d\n", guarded ? "restored at" : "not restored in",
               guarded ? guarded : 1000);
   return plain == 0 && guarded > 0 ? 0 : 1;

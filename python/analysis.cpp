@@ -22,25 +22,27 @@ py::dict runs_dict(const std::vector<VerifiedRun>& runs) {
 void bind_analysis(py::module_& m) {
   py::class_<ExactStability>(m, "ExactStability",
                              "SPEC 7's exact linear stability of a model at a state.")
-      .def_property_readonly("method", [](const ExactStability& e) { return std::string(to_string(e.method)); })
+      .def_property_readonly(
+          "method", [](const ExactStability& e) { return std::string(to_string(e.method)); })
       .def_readonly("uniform_rate", &ExactStability::uniform_rate, "gamma_i/m_i equal everywhere")
-      .def_property_readonly("lambda_max", [](const ExactStability& e) { return e.spectrum.lambda_max; },
-                             "largest eigenvalue of M^-1 K (1/s^2)")
-      .def_property_readonly("lambda_min", [](const ExactStability& e) { return e.spectrum.lambda_min; },
-                             "smallest eigenvalue of M^-1 K (1/s^2)")
+      .def_property_readonly(
+          "lambda_max", [](const ExactStability& e) { return e.spectrum.lambda_max; },
+          "largest eigenvalue of M^-1 K (1/s^2)")
+      .def_property_readonly(
+          "lambda_min", [](const ExactStability& e) { return e.spectrum.lambda_min; },
+          "smallest eigenvalue of M^-1 K (1/s^2)")
       .def_readonly("spectral_radius", &ExactStability::spectral_radius,
                     "of one step at the user's gamma and dt (NaN: not computed)")
       .def_readonly("stable", &ExactStability::stable, "the step does not grow")
-      .def_readonly("gamma_lo", &ExactStability::gamma_lo,
-                    "the user's gamma is stable at dt for gamma_lo <= gamma < gamma_hi (mass unit/s)")
+      .def_readonly(
+          "gamma_lo", &ExactStability::gamma_lo,
+          "the user's gamma is stable at dt for gamma_lo <= gamma < gamma_hi (mass unit/s)")
       .def_readonly("gamma_hi", &ExactStability::gamma_hi, "(mass unit/s; may be inf)")
       .def_readonly("dt_max", &ExactStability::dt_max, "largest stable dt at the user's gamma (s)");
 
   m.def(
       "exact_limits",
-      [](const Session& s) {
-        return exact_stability(s.model(), s.state().x, s.params());
-      },
+      [](const Session& s) { return exact_stability(s.model(), s.state().x, s.params()); },
       py::arg("session"),
       "SPEC 7: the exact limits of the session's model at its current state and parameters "
       "(lambda_max by Lanczos, never a dense decomposition of a large mesh).");

@@ -24,7 +24,8 @@ inline py::array_t<double> as_float64(const py::handle& h) {
 
 /// (N, 3) positions/velocities/forces read in place (rows strided, columns adjacent).
 /// `keep` holds the array (or its copy) alive while the view is used.
-inline NodeVectors node_vectors_of(const py::handle& h, const char* name, py::array_t<double>& keep) {
+inline NodeVectors node_vectors_of(const py::handle& h, const char* name,
+                                   py::array_t<double>& keep) {
   keep = as_float64(h);
   if (keep.ndim() != 2 || keep.shape(1) != 3)
     throw py::value_error(std::string(name) + " must have shape (N, 3)");
@@ -35,7 +36,8 @@ inline NodeVectors node_vectors_of(const py::handle& h, const char* name, py::ar
 }
 
 /// (N,) values read in place (any positive stride that is a whole number of doubles).
-inline NodeScalars node_scalars_of(const py::handle& h, const char* name, py::array_t<double>& keep) {
+inline NodeScalars node_scalars_of(const py::handle& h, const char* name,
+                                   py::array_t<double>& keep) {
   keep = as_float64(h);
   if (keep.ndim() != 1) throw py::value_error(std::string(name) + " must have shape (N,)");
   const auto s0 = keep.strides(0);
@@ -46,9 +48,10 @@ inline NodeScalars node_scalars_of(const py::handle& h, const char* name, py::ar
 
 /// A read-only (N, 3) view of core's positions or velocities, kept alive by `owner`.
 inline py::array_t<double> view_of(const std::vector<Vec3>& v, const py::handle& owner) {
-  py::array_t<double> a({static_cast<py::ssize_t>(v.size()), py::ssize_t{3}},
-                        {static_cast<py::ssize_t>(sizeof(Vec3)), static_cast<py::ssize_t>(sizeof(double))},
-                        v.empty() ? nullptr : v.front().data(), owner);
+  py::array_t<double> a(
+      {static_cast<py::ssize_t>(v.size()), py::ssize_t{3}},
+      {static_cast<py::ssize_t>(sizeof(Vec3)), static_cast<py::ssize_t>(sizeof(double))},
+      v.empty() ? nullptr : v.front().data(), owner);
   py::detail::array_proxy(a.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
   return a;
 }

@@ -25,7 +25,8 @@ Integrator integrator_of(const std::string& s) {
 }
 
 void bind_params(py::module_& m) {
-  py::class_<Params>(m, "Params", "The user's parameters (paper eq. 1); scene scales multiply them.")
+  py::class_<Params>(m, "Params",
+                     "The user's parameters (paper eq. 1); scene scales multiply them.")
       .def(py::init<>())
       .def_readwrite("m", &Params::m, "node mass (mass unit)")
       .def_readwrite("kappa", &Params::kappa, "spring and anchor stiffness (mass unit/s^2)")
@@ -66,9 +67,10 @@ void bind_params(py::module_& m) {
 
 void bind_results(py::module_& m) {
   py::class_<RunResult>(m, "RunResult", "The result of a protocol run (SPEC 5).")
-      .def_property_readonly("outcome", [](const RunResult& r) { return std::string(to_string(r.outcome)); },
-                             "'running', 'restored', 'diverged', 'not_restored' (first-entry "
-                             "rule), 'settled', 'not_settled' (settled rule)")
+      .def_property_readonly(
+          "outcome", [](const RunResult& r) { return std::string(to_string(r.outcome)); },
+          "'running', 'restored', 'diverged', 'not_restored' (first-entry "
+          "rule), 'settled', 'not_settled' (settled rule)")
       .def_readonly("iterations", &RunResult::iterations, "iteration of the outcome")
       .def_readonly("first_entry", &RunResult::first_entry,
                     "first iteration below the restore threshold (0 = none)")
@@ -118,7 +120,8 @@ void bind_scene(py::module_& m) {
       .def_property_readonly("spring_count",
                              [](const SceneSpec& s) { return s.model.spring_count(); })
       .def_property_readonly(
-          "rest", [](py::object self) { return view_of(self.cast<const SceneSpec&>().model.rest, self); },
+          "rest",
+          [](py::object self) { return view_of(self.cast<const SceneSpec&>().model.rest, self); },
           "(N, 3) rest positions X_i (cm), read-only view")
       .def(
           "arrays",
@@ -142,9 +145,9 @@ void bind_scene(py::module_& m) {
             d["rest_length"] = l0;
             d["anchor_stiffness"] =
                 py::array_t<double>(mo.anchor_kappa.size(), mo.anchor_kappa.data());
-            d["rest"] = py::array_t<double>(
-                {static_cast<py::ssize_t>(mo.rest.size()), py::ssize_t{3}},
-                mo.rest.empty() ? nullptr : mo.rest.front().data());
+            d["rest"] =
+                py::array_t<double>({static_cast<py::ssize_t>(mo.rest.size()), py::ssize_t{3}},
+                                    mo.rest.empty() ? nullptr : mo.rest.front().data());
             d["fixed"] = py::array_t<std::uint8_t>(mo.fixed.size(), mo.fixed.data());
             return d;
           },
@@ -184,32 +187,42 @@ void bind_session(py::module_& m) {
             return s.step_once();
           },
           py::arg("n") = 1, "Takes n steps of params.dt seconds; returns the last StepStats.")
-      .def("run", [](Session& s) { return s.run_to_end(); },
-           "Steps until restored, diverged or the iteration limit (SPEC 5); returns RunResult.")
+      .def(
+          "run", [](Session& s) { return s.run_to_end(); },
+          "Steps until restored, diverged or the iteration limit (SPEC 5); returns RunResult.")
       .def_property(
           "params", [](const Session& s) { return s.params(); }, &Session::set_params,
           "parameters (a copy); assign a new Params to change them at the next step")
       .def_property_readonly("result", &Session::result, "the protocol's result so far")
       .def_property_readonly("running", &Session::running)
       .def_property_readonly("iteration", [](const Session& s) { return s.state().iteration; })
-      .def_property_readonly("time", [](const Session& s) { return s.state().time; }, "s")
       .def_property_readonly(
-          "positions", [](py::object self) { return view_of(self.cast<const Session&>().state().x, self); },
+          "time", [](const Session& s) { return s.state().time; }, "s")
+      .def_property_readonly(
+          "positions",
+          [](py::object self) { return view_of(self.cast<const Session&>().state().x, self); },
           "(N, 3) positions x_i (cm), read-only view")
       .def_property_readonly(
-          "velocities", [](py::object self) { return view_of(self.cast<const Session&>().state().v, self); },
+          "velocities",
+          [](py::object self) { return view_of(self.cast<const Session&>().state().v, self); },
           "(N, 3) velocities v_i (cm/s), read-only view")
       .def_property_readonly(
           "lower_bounds",
-          [](py::object self) { return view_of(self.cast<const Session&>().model().lower_bound, self); },
+          [](py::object self) {
+            return view_of(self.cast<const Session&>().model().lower_bound, self);
+          },
           "(N,) paper eq. 5: gamma_lo_i = 2 sqrt(m_i kappa_i) (mass unit/s)")
       .def_property_readonly(
           "upper_bounds",
-          [](py::object self) { return view_of(self.cast<const Session&>().workspace().upper_bound, self); },
+          [](py::object self) {
+            return view_of(self.cast<const Session&>().workspace().upper_bound, self);
+          },
           "(N,) paper eq. 6 of the last step: gamma_hi_i (mass unit/s; inf where v_i = 0)")
       .def_property_readonly(
           "gamma_eff",
-          [](py::object self) { return view_of(self.cast<const Session&>().workspace().gamma_eff, self); },
+          [](py::object self) {
+            return view_of(self.cast<const Session&>().workspace().gamma_eff, self);
+          },
           "(N,) the effective damping of the last step (mass unit/s)")
       .def_property_readonly(
           "displacements",

@@ -21,15 +21,13 @@ DampingPolicy policy_arg(const std::string& s) {
   return *p;
 }
 
-Monitor make_monitor(const py::handle& mass, const py::handle& springs,
-                     const py::handle& stiffness, const py::handle& rest_length,
-                     const py::object& anchor_stiffness, const py::object& rest,
-                     const py::object& fixed) {
+Monitor make_monitor(const py::handle& mass, const py::handle& springs, const py::handle& stiffness,
+                     const py::handle& rest_length, const py::object& anchor_stiffness,
+                     const py::object& rest, const py::object& fixed) {
   py::array_t<double> km, ks, kl, ka, kr;
   const auto pairs = pairs_of(springs);
   try {
-    Monitor mon(node_scalars_of(mass, "mass", km),
-                spring_pairs(pairs.data(), pairs.shape(0)),
+    Monitor mon(node_scalars_of(mass, "mass", km), spring_pairs(pairs.data(), pairs.shape(0)),
                 node_scalars_of(stiffness, "stiffness", ks),
                 node_scalars_of(rest_length, "rest_length", kl));
     if (!anchor_stiffness.is_none()) {
@@ -62,9 +60,12 @@ void bind_monitor(py::module_& m) {
       .def_property_readonly("ok", &MonitorReport::ok, "no node violating or unstabilisable");
 
   py::class_<MonitorLimits>(m, "MonitorLimits", "SPEC 7's exact limits at a state.")
-      .def_readonly("lambda_max", &MonitorLimits::lambda_max, "largest eigenvalue of M^-1 K (1/s^2)")
-      .def_readonly("stable", &MonitorLimits::stable, "the step with these gamma_i, dt does not grow")
-      .def_readonly("scale_lo", &MonitorLimits::scale_lo, "s * gamma_i stable for scale_lo <= s < scale_hi")
+      .def_readonly("lambda_max", &MonitorLimits::lambda_max,
+                    "largest eigenvalue of M^-1 K (1/s^2)")
+      .def_readonly("stable", &MonitorLimits::stable,
+                    "the step with these gamma_i, dt does not grow")
+      .def_readonly("scale_lo", &MonitorLimits::scale_lo,
+                    "s * gamma_i stable for scale_lo <= s < scale_hi")
       .def_readonly("scale_hi", &MonitorLimits::scale_hi)
       .def_readonly("dt_max", &MonitorLimits::dt_max, "largest stable dt with these gamma_i (s)")
       .def_readonly("rate_max", &MonitorLimits::rate_max,
@@ -108,19 +109,17 @@ void bind_monitor(py::module_& m) {
              const py::handle& gamma, double dt, const std::string& policy, double factor,
              const py::object& gamma_eff) {
             py::array_t<double> kv, kf, kg;
-            py::array_t<double> out = gamma_eff.is_none()
-                                          ? py::array_t<double>(mon.node_count())
-                                          : gamma_eff.cast<py::array_t<double>>();
+            py::array_t<double> out = gamma_eff.is_none() ? py::array_t<double>(mon.node_count())
+                                                          : gamma_eff.cast<py::array_t<double>>();
             if (out.ndim() != 1 || out.shape(0) != mon.node_count() || !out.writeable() ||
                 out.strides(0) % static_cast<py::ssize_t>(sizeof(double)) != 0)
               throw py::value_error("gamma_eff must be a writeable float64 array of shape (N,)");
             auto ge = node_scalars_out(out.mutable_data(), out.shape(0),
                                        out.strides(0) / static_cast<py::ssize_t>(sizeof(double)));
             try {
-              const MonitorReport r = mon.check(node_vectors_of(v, "v", kv),
-                                                node_vectors_of(force, "force", kf),
-                                                node_scalars_of(gamma, "gamma", kg), dt,
-                                                policy_arg(policy), factor, &ge);
+              const MonitorReport r = mon.check(
+                  node_vectors_of(v, "v", kv), node_vectors_of(force, "force", kf),
+                  node_scalars_of(gamma, "gamma", kg), dt, policy_arg(policy), factor, &ge);
               return py::make_tuple(r, out);
             } catch (const std::invalid_argument& e) {
               throw py::value_error(e.what());
@@ -150,8 +149,8 @@ void bind_monitor(py::module_& m) {
           [](const Monitor& mon, const py::handle& x, const py::handle& gamma, double dt) {
             py::array_t<double> kx, kg;
             try {
-              return mon.exact_limits(node_vectors_of(x, "x", kx), node_scalars_of(gamma, "gamma", kg),
-                                      dt);
+              return mon.exact_limits(node_vectors_of(x, "x", kx),
+                                      node_scalars_of(gamma, "gamma", kg), dt);
             } catch (const std::invalid_argument& e) {
               throw py::value_error(e.what());
             }

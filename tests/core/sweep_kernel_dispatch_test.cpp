@@ -5,8 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
-#include <map>
 #include <cstring>
+#include <map>
 #include <string>
 
 #include "core/bounds.hpp"
@@ -16,7 +16,9 @@
 namespace dampbound {
 namespace {
 
-bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+bool same_bits(double a, double b) {
+  return std::memcmp(&a, &b, sizeof a) == 0;
+}
 
 std::vector<TrialParams> mixed_trials() {
   std::vector<TrialParams> trials;
@@ -66,8 +68,8 @@ TEST(SweepKernelDispatch, EveryVariantMatchesStepBitForBit) {
   int variants = 0;
   for (Integrator integ : {Integrator::semi_implicit_euler, Integrator::forward_euler}) {
     scene.params.integrator = integ;
-    for (DampingPolicy p : {DampingPolicy::fixed, DampingPolicy::clamp, DampingPolicy::upper,
-                            DampingPolicy::lower}) {
+    for (DampingPolicy p :
+         {DampingPolicy::fixed, DampingPolicy::clamp, DampingPolicy::upper, DampingPolicy::lower}) {
       std::vector<TrialResult> ref;
       std::map<Outcome, int> seen;
       for (const TrialParams& t : trials) {
@@ -85,8 +87,8 @@ TEST(SweepKernelDispatch, EveryVariantMatchesStepBitForBit) {
         ++variants;
         const auto got = run_batched(scene, p, rules, trials, isa);
         for (size_t k = 0; k < trials.size(); ++k) {
-          SCOPED_TRACE(std::string(to_string(isa)) + " " + to_string(p) + " " +
-                       to_string(integ) + " trial " + std::to_string(k));
+          SCOPED_TRACE(std::string(to_string(isa)) + " " + to_string(p) + " " + to_string(integ) +
+                       " trial " + std::to_string(k));
           EXPECT_EQ(got[k].outcome, ref[k].outcome);
           EXPECT_EQ(got[k].iterations, ref[k].iterations);
           EXPECT_TRUE(same_bits(got[k].max_displacement, ref[k].max_displacement))
