@@ -20,10 +20,6 @@
 #include "ui/tuner_export.hpp"
 #endif
 
-#ifndef DAMPBOUND_SOURCE_DIR
-#define DAMPBOUND_SOURCE_DIR "."
-#endif
-
 namespace dampbound::app {
 namespace {
 
@@ -121,7 +117,7 @@ int run(GuiArgs& a) {
   }
   ui::GuiOptions o;
   o.config_dir = ui::config_dir(a.config_dir);
-  o.scenes_dir = std::string(DAMPBOUND_SOURCE_DIR) + "/scenes";
+  o.scenes_dir = shipped_scenes_dir();
   if (!a.scene.empty()) o.scene = load_scene_arg(a.scene);
   const ParamFlags flags = a.flags;
   o.overrides = [flags](Params& p, StopRules& r) { flags.apply(p, r); };
