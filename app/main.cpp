@@ -7,6 +7,8 @@
 #include "core/error.hpp"
 #include "core/io.hpp"
 #include "core/scene_text.hpp"
+#include "core/sweep_kernel.hpp"
+#include "dampbound/version.hpp"
 
 namespace dampbound::app {
 
@@ -36,6 +38,11 @@ int main(int argc, char** argv) {
       "dampbound: damping bounds that guarantee stability in mass-spring systems\n"
       "(Bhasin & Liu). Units: cm, s, and any consistent mass unit."};
   root.require_subcommand(1);
+  // The version, and which compiled variant of the sweep kernel this CPU runs.
+  root.set_version_flag("--version", std::string("dampbound ") + DAMPBOUND_VERSION +
+                                         " (sweep kernel: " +
+                                         dampbound::to_string(dampbound::best_kernel_isa()) +
+                                         ")");
   root.set_help_all_flag("--help-all", "Print help for every subcommand");
   bool any_path = false;
   root.add_flag("--allow-any-path", any_path,
@@ -59,6 +66,8 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForHelp& e) {
     return root.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
+    return root.exit(e);
+  } catch (const CLI::CallForVersion& e) {
     return root.exit(e);
   } catch (const CLI::ParseError& e) {
     // One line naming the flag; CLI11's own text already does.
