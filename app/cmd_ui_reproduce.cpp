@@ -18,6 +18,7 @@
 #include "core/claims.hpp"
 #include "core/error.hpp"
 #include "core/io.hpp"
+#include "core/safe_sweep.hpp"
 #include "core/sweep_map.hpp"
 #include "core/sweep_progress.hpp"
 #include "core/sweep_runner.hpp"
@@ -45,9 +46,11 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-SweepOutcome reduced_sweep(const ReproduceArgs& a, const SceneSpec& scene, bool upper) {
+/// `safe`: the lower-bound grid under the safe policy of SPEC 9 instead of fixed damping.
+SweepOutcome reduced_sweep(const ReproduceArgs& a, const SceneSpec& scene, bool upper,
+                           bool safe = false) {
   SweepOutcome o;
-  o.name = upper ? "upper" : "lower";
+  o.name = upper ? "upper" : safe ? "safe" : "lower";
   o.csv = a.dir + "/sweep-" + o.name + ".csv";
   o.map = a.dir + "/map-" + o.name + ".png";
   // The paper's grid is m, kappa = 0.0001..0.1 step 0.0001; the reduced grid keeps its range
@@ -68,7 +71,7 @@ SweepOutcome reduced_sweep(const ReproduceArgs& a, const SceneSpec& scene, bool 
     rq.spec.factor = parse_axis("--factor", "1,1.05", AxisDomain::non_negative);
     rq.spec.rules.max_iterations = 10000;
   } else {
-    rq.spec.policy = DampingPolicy::fixed;
+    rq.spec.policy = safe ? DampingPolicy::safe : DampingPolicy::fixed;
     rq.spec.gamma_mode = GammaMode::zeta;
     rq.spec.gamma = parse_axis("--zeta", "0.25,0.5,1", AxisDomain::non_negative);
     rq.spec.factor = parse_axis("--factor", "1", AxisDomain::non_negative);
@@ -139,8 +142,26 @@ void write_report(std::ostream& out, const ReproduceArgs& a, const std::vector<C
         << " similarity classes in " << format_number(std::round(s.report.seconds * 10) / 10)
         << " s. The full grid: `dampbound sweep --preset paper-" << s.name
         << "` (README, Sweeps).\n\n![stability map](map-" << s.name << ".png)\n\n";
+    if (s.name == "safe") continue;  // in the next section
     for (const std::string& line : s.summary) out << "    " << line << "\n";
     out << "\nData: `sweep-" << s.name << ".csv`.\n";
+  }
+  // SPEC 9: the safe policy's sweep and the two checks as predictors of divergence.
+  const SweepOutcome* lower = nullptr;
+  const SweepOutcome* safe = nullptr;
+  for (const SweepOutcome& s : sweeps) {
+    if (s.name == "lower") lower = &s;
+    if (s.name == "safe") safe = &s;
+  }
+  if (lower && safe) {
+    const SceneSpec plane = load_scene_arg(a.scene);
+    double lambda_unit = NAN;
+    try {
+      lambda_unit = unit_stiffness_eigenvalue(plane);
+    } catch (const std::exception&) {
+    }
+    out << safe_report_section(lower->report.rows, safe->report.rows, safe->definition,
+                               unit_safe_bound(plane), lambda_unit);
   }
 }
 
@@ -174,6 +195,8 @@ int run(const ReproduceArgs& a) {
       sweeps.push_back(reduced_sweep(a, plane, upper));
       for (Claim& c : sweeps.back().claims) claims.push_back(c);
     }
+    std::fprintf(stderr, "reproduce: safe-policy sweep (SPEC 9) ...\n");
+    sweeps.push_back(reduced_sweep(a, plane, false, true));
   }
   const double seconds = seconds_since(t0);
   write_file_atomic(a.dir + "/report.md", [&](std::ostream& o) {

@@ -183,6 +183,7 @@ SweepTable read_sweep_csv(const std::string& path, bool keep_lines) {
     if (!parse_outcome(f[10], r.outcome)) fail("bad outcome '" + f[10] + "'");
     r.iterations = std::atoi(f[11].c_str());
     r.max_displacement = std::strtod(f[12].c_str(), nullptr);
+    r.unstabilisable = std::atoll(f[14].c_str());
     t.rows.push_back(r);
     if (keep_lines) t.lines.push_back(line);
   }

@@ -41,6 +41,7 @@ struct SweepRow {
   Outcome outcome = Outcome::running;
   int iterations = 0;
   double max_displacement = 0;
+  long long unstabilisable = 0;  ///< node-steps with gamma_lo > gamma_hi (the paper's check)
 };
 
 struct SweepTable {

@@ -118,6 +118,7 @@ std::vector<SweepRow> sweep_rows(const SweepGrid& grid, const TrialClasses& clas
     r.outcome = res.outcome;
     r.iterations = res.iterations;
     r.max_displacement = res.max_displacement;
+    r.unstabilisable = res.unstabilisable;
     rows.push_back(r);
   }
   return rows;
