@@ -50,9 +50,10 @@ std::vector<std::string> safe_summary_lines(const std::vector<SweepRow>& rows,
                                             double lambda_unit);
 
 /// The `reproduce` report's section "What guarantees stability" (markdown): the safe bound
-/// on the scene, the safe-policy sweep's outcomes and what it promised, and the confusion
-/// table of the checks on the fixed-damping sweep.
+/// on the scene, the confusion table of the checks on a fixed-damping sweep, and the same
+/// grid's outcomes under the safe policy with what it promised.
 std::string safe_report_section(const std::vector<SweepRow>& fixed_rows,
+                                const std::string& fixed_definition,
                                 const std::vector<SweepRow>& safe_rows,
                                 const std::string& safe_definition, const SafeUnit& unit,
                                 double lambda_unit);

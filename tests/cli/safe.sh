@@ -19,7 +19,7 @@ expect_exit 0 "$DB" bounds two-node --after 3
 expect_match "$OUT" 'safe bound \(SPEC 9\)' "two-node safe bound"
 
 # The absurd damping, clamped: fixed diverges, safe settles. Damped at gamma_safe (c dt =
-# 1.989, spectral radius 0.9985 per step) the mesh decays slowly: restored after 2000-odd
+# 1.989, spectral radius 0.9987 per step) the mesh decays slowly: restored after 2000-odd
 # iterations, so with the 10000-iteration limit of the paper's upper-bound experiment.
 expect_exit 0 "$DB" run paper-plane --gamma 1 --json
 expect_match "$OUT" '"outcome":"diverged"' "gamma = 1 as given diverges"
