@@ -67,8 +67,12 @@ const char* unguaranteed_help() {
 }
 
 ImU32 node_color(NodeStatus status, bool unguaranteed) {
-  const bool mild = status == NodeStatus::within || status == NodeStatus::clamped;
-  return unguaranteed && mild ? unguaranteed_color() : status_color(status);
+  // Under the safe policy an infeasible node is damped at gamma_safe < gamma_lo, which the
+  // paper's bounds call violating: SPEC 9's colour says why. The paper's own alarm
+  // (unstabilisable) and fixed nodes keep theirs.
+  const bool shown = status == NodeStatus::within || status == NodeStatus::clamped ||
+                     status == NodeStatus::violating;
+  return unguaranteed && shown ? unguaranteed_color() : status_color(status);
 }
 
 }  // namespace dampbound::ui

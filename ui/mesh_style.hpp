@@ -17,8 +17,8 @@ const char* status_label(NodeStatus status);
 const char* status_help(NodeStatus status);
 
 /// SPEC 9: a node where critical damping cannot be guaranteed at this dt (gamma_lo_i >
-/// gamma_safe_i) is drawn in this colour when the paper's bounds have nothing worse to say
-/// (status within or clamped); its legend text and explanation.
+/// gamma_safe_i) is drawn in this colour unless the paper's runtime check calls it
+/// unstabilisable or it is fixed; its legend text and explanation.
 ImU32 unguaranteed_color();
 const char* unguaranteed_label();
 const char* unguaranteed_help();
