@@ -1,4 +1,4 @@
-// dampbound run SCENE: the paper's protocol on one scene (SPEC 5).
+// dampbound run SCENE: one scene judged by the settled rule (SPEC 8) or the paper's (SPEC 5).
 #include <cstdio>
 #include <memory>
 
@@ -13,6 +13,7 @@ namespace {
 
 struct RunArgs {
   std::string scene, trace;
+  std::string rule = "settled";  // SPEC 8: a user's question is whether it stays stable
   bool json = false;
   ParamFlags flags;
 };
@@ -22,6 +23,7 @@ int run(const RunArgs& a) {
   Params params = scene.params;
   StopRules rules = scene.rules;
   a.flags.apply(params, rules);
+  rules.rule = stop_rule_of(a.rule);
   if (!a.trace.empty()) check_writable(a.trace);
   Session session(std::move(scene), params, rules);
   const RunResult& r = session.run_to_end();
@@ -46,6 +48,7 @@ int run(const RunArgs& a) {
               session.watched());
   std::printf("outcome      %s at iteration %d (t = %s s)\n", to_string(r.outcome), r.iterations,
               format_number(r.time).c_str());
+  std::printf("verdict      %s [rule %s]\n", verdict_text(r, rules).c_str(), to_string(rules.rule));
   std::printf("max |x-X|    %s cm (restore below %s cm, diverge above %s cm)\n",
               format_number(r.max_displacement).c_str(),
               format_number(rules.restore_fraction * rules.reference).c_str(),
@@ -67,11 +70,14 @@ std::function<int()> setup(CLI::App& root) {
   auto a = std::make_shared<RunArgs>();
   CLI::App* cmd = root.add_subcommand(
       "run",
-      "Run the paper's protocol on a scene: step until restored (max |x-X| < 1% of the "
-      "perturbation), diverged (non-finite or > 100x), or the iteration limit.");
+      "Run a scene and judge it: under the settled rule (default) step to the iteration limit "
+      "and say whether max |x-X| stayed below 1% of the perturbation from some iteration on; "
+      "under --rule first-entry (the paper's protocol) stop at the first entry below it. "
+      "Either way a divergence (non-finite or > 100x) ends the run.");
   cmd->add_option("scene", a->scene, "scene file (.toml) or the name of a shipped scene")
       ->required();
   a->flags.add_to(cmd);
+  add_rule_option(cmd, a->rule, "default: settled");
   cmd->add_option("--trace", a->trace,
                   "write one CSV row per iteration (watched node's displacement in cm, bounds "
                   "and damping in mass unit/s, max displacement)");

@@ -7,6 +7,7 @@
 
 #include "app/commands.hpp"
 #include "app/options.hpp"
+#include "core/report.hpp"
 #include "core/suggest.hpp"
 
 namespace dampbound::app {
@@ -25,12 +26,14 @@ std::string num(double x) { return format_short(x); }
 
 void print_runs(const std::vector<VerifiedRun>& runs) {
   if (runs.empty()) return;
-  std::printf("verification (Session: the scene's perturbation and stop rules, policy fixed)\n");
+  std::printf(
+      "verification (Session: the scene's perturbation and limit, policy fixed, settled rule: "
+      "verified only where the run settles)\n");
   for (const VerifiedRun& r : runs)
-    std::printf("  %-34s gamma=%-12s dt=%-12s %s at iteration %d (max |x-X| %s cm)\n",
-                r.label.c_str(), num(r.params.gamma).c_str(), num(r.params.dt).c_str(),
-                to_string(r.result.outcome), r.result.iterations,
-                num(r.result.max_displacement).c_str());
+    std::printf("  %-34s gamma=%-12s dt=%-12s %s: %s (max |x-X| %s cm)\n", r.label.c_str(),
+                num(r.params.gamma).c_str(), num(r.params.dt).c_str(),
+                r.verified() ? "verified" : "NOT verified",
+                verdict_text(r.result, r.rules).c_str(), num(r.result.max_displacement).c_str());
 }
 
 int print_damping(const DampingSuggestion& s) {

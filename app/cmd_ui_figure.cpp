@@ -8,6 +8,7 @@
 #include "core/error.hpp"
 #include "core/figures.hpp"
 #include "core/io.hpp"
+#include "core/report.hpp"
 #include "ui/render_png.hpp"
 #include "ui/trace_plots.hpp"
 
@@ -37,9 +38,9 @@ int run(const FigureArgs& a) {
     write_file_atomic(a.csv, [&](std::ostream& out) { write_figure_csv(out, fig); });
   std::printf("figure %s -> %s (%dx%d, %s)\n", fig.name.c_str(), a.output.c_str(), width, height,
               renderer.c_str());
+  // Figures keep the paper's first-entry rule (SPEC 8); the verdict says so in words.
   for (const FigureRun& r : fig.runs)
-    std::printf("  %-28s %s at iteration %d\n", r.label.c_str(), to_string(r.result.outcome),
-                r.result.iterations);
+    std::printf("  %-28s %s\n", r.label.c_str(), verdict_text(r.result, r.rules).c_str());
   return 0;
 }
 

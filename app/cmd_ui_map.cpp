@@ -20,6 +20,7 @@ namespace {
 
 const ImU32 kNotRestored = IM_COL32(253, 190, 133, 255);
 const ImU32 kDiverged = IM_COL32(203, 24, 29, 255);
+const ImU32 kEnteredLeft = IM_COL32(150, 80, 160, 255);  // SPEC 8: entered, then left
 const ImU32 kFast = IM_COL32(199, 233, 192, 255);
 const ImU32 kSlow = IM_COL32(0, 90, 50, 255);
 
@@ -37,7 +38,7 @@ ImU32 restored_color(double iterations, int max_iterations) {
   return IM_COL32(mix(IM_COL32_R_SHIFT), mix(IM_COL32_G_SHIFT), mix(IM_COL32_B_SHIFT), 255);
 }
 
-ui::PlotSpec panel_plot(const MapPanel& p, int max_iterations, bool with_legend) {
+ui::PlotSpec panel_plot(const MapPanel& p, int max_iterations, bool with_legend, StopRule rule) {
   ui::PlotSpec s;
   s.title = p.title;
   s.x.label = p.x_label;
@@ -64,14 +65,24 @@ ui::PlotSpec panel_plot(const MapPanel& p, int max_iterations, bool with_legend)
       case MapCell::diverged:
         s.heatmap.cell_color[c] = kDiverged;
         break;
+      case MapCell::entered_left:
+        s.heatmap.cell_color[c] = kEnteredLeft;
+        break;
     }
   }
   if (with_legend) {
     const std::string n = std::to_string(max_iterations);
-    s.heatmap.legend = {{"restored in few iterations", kFast},
-                        {"restored near the limit (" + n + ")", kSlow},
-                        {"not restored in " + n + " iterations", kNotRestored},
-                        {"diverged", kDiverged}};
+    if (rule == StopRule::settled)
+      s.heatmap.legend = {{"settled early", kFast},
+                          {"settled near the limit (" + n + ")", kSlow},
+                          {"entered the band, then left", kEnteredLeft},
+                          {"never entered in " + n + " iterations", kNotRestored},
+                          {"diverged", kDiverged}};
+    else
+      s.heatmap.legend = {{"restored in few iterations", kFast},
+                          {"restored near the limit (" + n + ")", kSlow},
+                          {"not restored in " + n + " iterations", kNotRestored},
+                          {"diverged", kDiverged}};
   }
   for (const MapLine& l : p.lines) {
     ui::PlotSeries ser;
@@ -105,7 +116,7 @@ ui::PlotSpec panel_plot(const MapPanel& p, int max_iterations, bool with_legend)
 void render_map(const StabilityMap& map, const std::string& png, int width, int height) {
   std::vector<ui::PlotSpec> plots;
   for (size_t k = 0; k < map.panels.size(); ++k)
-    plots.push_back(panel_plot(map.panels[k], map.max_iterations, k == 0));
+    plots.push_back(panel_plot(map.panels[k], map.max_iterations, k == 0, map.rule));
   plots.front().title = map.title + " - " + plots.front().title;
   const int below = static_cast<int>(plots.size()) - 1;
   if (width <= 0) width = below >= 3 ? 2100 : 1800;

@@ -74,6 +74,22 @@ void ParamFlags::apply(Params& p, StopRules& rules) const {
   if (max_iter_opt && max_iter_opt->count()) rules.max_iterations = max_iter;
 }
 
+CLI::Option* add_rule_option(CLI::App* cmd, std::string& rule, const std::string& what_default) {
+  return cmd
+      ->add_option("--rule", rule,
+                   "verdict rule (SPEC 8): first-entry = the paper's, restored at the first "
+                   "iteration below the 1% band; settled = step to the limit, settled only "
+                   "where it stays below from some iteration on (" +
+                       what_default + ")")
+      ->check(CLI::IsMember({"first-entry", "settled"}));
+}
+
+StopRule stop_rule_of(const std::string& text) {
+  StopRule r = StopRule::first_entry;
+  parse_stop_rule(text, r);
+  return r;
+}
+
 void parse_size(const std::string& text, const char* flag, int& width, int& height) {
   int w = 0, h = 0;
   char x = 0, extra = 0;

@@ -28,6 +28,12 @@ struct ParamFlags {
   void apply(Params& params, StopRules& rules) const;
 };
 
+/// Adds `--rule first-entry|settled` (SPEC 8) to `cmd`, storing the text in `rule`;
+/// `what_default` says which rule applies when the flag is not given.
+CLI::Option* add_rule_option(CLI::App* cmd, std::string& rule, const std::string& what_default);
+/// The rule named by add_rule_option's text (already validated by CLI11).
+StopRule stop_rule_of(const std::string& text);
+
 /// Parses "WxH" (e.g. 1200x700) given to `flag`; InputError naming the flag otherwise.
 void parse_size(const std::string& text, const char* flag, int& width, int& height);
 

@@ -12,13 +12,15 @@ struct ExpectationResult {
   std::string scene;     ///< scene file
   int line = 0;          ///< line of the [[expect]] table
   std::string run;       ///< run label ("" = the scene's own parameters)
-  std::string what;      ///< the assertion, e.g. "iterations in [30, 40]"
+  std::string what;      ///< the assertion with its rule, e.g. "[settled] settled_at in [30, 40]"
   std::string measured;  ///< what the run gave
   bool pass = false;
 };
 
-/// The result of the scene's own parameters ("") or of the [[run]] with that label.
-RunResult run_labelled(const SceneSpec& scene, const std::string& label);
+/// The result of the scene's own parameters ("") or of the [[run]] with that label, judged by
+/// `rule` (SPEC 5 first entry or SPEC 8 settled).
+RunResult run_labelled(const SceneSpec& scene, const std::string& label,
+                       StopRule rule = StopRule::first_entry);
 
 /// Runs every run the scene's expectations refer to (each once) and judges every field of
 /// every expectation. Empty when the scene declares none.

@@ -67,8 +67,15 @@ FigureData figure_scene(const SceneSpec& scene) {
   FigureData f;
   f.name = scene.name.empty() ? "scene" : scene.name;
   f.title = scene.description.empty() ? f.name : scene.description;
-  if (scene.runs.empty()) f.runs.push_back(make_run(f.name, scene.params, scene.rules));
-  for (const RunSpec& r : scene.runs) f.runs.push_back(make_run(r.label, r.params, r.rules));
+  // A scene's figure is no reproduction of the paper: its runs are judged by the settled rule
+  // (SPEC 8) and drawn to their limit or divergence.
+  auto settled = [](StopRules rules) {
+    rules.rule = StopRule::settled;
+    return rules;
+  };
+  if (scene.runs.empty()) f.runs.push_back(make_run(f.name, scene.params, settled(scene.rules)));
+  for (const RunSpec& r : scene.runs)
+    f.runs.push_back(make_run(r.label, r.params, settled(r.rules)));
   run_figure(scene, f);
   // A diverging run's displacement dwarfs the others' on a linear axis: use log10 then.
   for (const FigureRun& r : f.runs) f.log_y = f.log_y || r.result.outcome == Outcome::diverged;

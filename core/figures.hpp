@@ -36,8 +36,9 @@ FigureData figure_fig1(const SceneSpec& paper_plane);
 /// iterations, log10 displacement.
 FigureData figure_fig2(const SceneSpec& paper_plane);
 
-/// A scene's declared [[run]]s, or its own parameters when it declares none; on a log10 axis
-/// when one of them diverges.
+/// A scene's declared [[run]]s, or its own parameters when it declares none, each judged by the
+/// settled rule (SPEC 8; fig1 and fig2 keep the paper's first entry); on a log10 axis when one
+/// of them diverges.
 FigureData figure_scene(const SceneSpec& scene);
 
 /// Runs each FigureRun's parameters on the scene (through Session, the one step()).

@@ -15,6 +15,16 @@ std::string csv_field(const std::string& s) {
   for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
   return q + "\"";
 }
+/// SPEC 8's fields: the rule, then first_entry, left_at, settled_at, null where none (under
+/// the first-entry rule the run stops at the entry, so left_at and settled_at are never seen).
+std::string band_json(const StopRules& rules, const RunResult& r) {
+  const auto field = [](const char* key, int it) {
+    return std::string(",\"") + key + "\":" + (it > 0 ? std::to_string(it) : "null");
+  };
+  return std::string(",\"rule\":") + json_string(to_string(rules.rule)) +
+         field("first_entry", r.first_entry) + field("left_at", r.left_at) +
+         field("settled_at", r.settled_at);
+}
 }  // namespace
 
 void write_trace_csv(std::ostream& out, const std::vector<StepStats>& trace,
@@ -34,6 +44,59 @@ void write_trace_csv(std::ostream& out, const std::vector<StepStats>& trace,
         << s.unguaranteed << ',' << s.compressed_springs << '\n';
 }
 
+std::string verdict_short(const RunResult& r) {
+  const std::string left = r.left_at > 0 ? ", left at " + std::to_string(r.left_at) : "";
+  switch (r.outcome) {
+    case Outcome::running:
+      return r.left_at > 0 ? "running (entered at " + std::to_string(r.first_entry) + left + ")"
+                           : "running";
+    case Outcome::restored:
+      return "restored at " + std::to_string(r.iterations);
+    case Outcome::diverged:
+      return "diverged at " + std::to_string(r.iterations);
+    case Outcome::not_restored:
+      return "not restored at " + std::to_string(r.iterations);
+    case Outcome::settled:
+      return "settled at " + std::to_string(r.settled_at);
+    case Outcome::not_settled:
+      return "not settled at " + std::to_string(r.iterations) +
+             (r.first_entry > 0 ? " (entered at " + std::to_string(r.first_entry) + left + ")"
+                                : "");
+  }
+  return "?";
+}
+
+std::string verdict_text(const RunResult& r, const StopRules& rules) {
+  const std::string band = "the " + format_number(100 * rules.restore_fraction) + "% band";
+  std::string history;  // "entered the 1% band at K, left it at L"
+  if (r.first_entry > 0) history = "entered " + band + " at " + std::to_string(r.first_entry);
+  if (r.left_at > 0) history += ", left it at " + std::to_string(r.left_at);
+  const std::string limit = std::to_string(rules.max_iterations);
+  const auto then = [&](const std::string& what) {
+    return history.empty() ? what : history + ", " + what;
+  };
+  switch (r.outcome) {
+    case Outcome::running:
+      if (r.left_at > 0 && r.below_since > r.left_at)
+        history += ", back in since " + std::to_string(r.below_since);
+      return history.empty() ? "running" : "running: " + history;
+    case Outcome::restored:
+      return "restored at " + std::to_string(r.iterations) + " (first entry into " + band +
+             ", the paper's rule)";
+    case Outcome::not_restored:
+      return "not restored by the limit " + limit;
+    case Outcome::diverged:
+      return then("diverged at " + std::to_string(r.iterations));
+    case Outcome::settled:
+      return "settled at " + std::to_string(r.settled_at) + " (" + history + ", below it from " +
+             std::to_string(r.settled_at) + " to the limit " + limit + ")";
+    case Outcome::not_settled:
+      return history.empty() ? "never entered " + band + ", not settled by the limit " + limit
+                             : then("not settled by the limit " + limit);
+  }
+  return "?";
+}
+
 std::string result_json(const std::string& scene, const Params& p, const StopRules& rules,
                         int watched, const RunResult& r) {
   std::ostringstream os;
@@ -44,6 +107,7 @@ std::string result_json(const std::string& scene, const Params& p, const StopRul
      << ",\"integrator\":" << json_string(to_string(p.integrator))
      << ",\"max_iterations\":" << rules.max_iterations << ",\"watched\":" << watched
      << ",\"outcome\":" << json_string(to_string(r.outcome)) << ",\"iterations\":" << r.iterations
+     << band_json(rules, r)
      << ",\"time\":" << json_number(r.time)
      << ",\"max_displacement\":" << json_number(r.max_displacement)
      << ",\"violations\":" << r.violations << ",\"unstabilisable\":" << r.unstabilisable

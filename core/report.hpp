@@ -15,7 +15,19 @@ namespace dampbound {
 void write_trace_csv(std::ostream& out, const std::vector<StepStats>& trace,
                      const std::string& run_label = "", bool header = true);
 
-/// One JSON object: the scene name, the parameters, the outcome and the counts.
+/// The verdict in words, with the band history of SPEC 8: e.g. "entered the 1% band at 12,
+/// left it at 63, not settled by the limit 1000", "settled at 260 (entered the 1% band at
+/// 230, left it at 231)", "restored at 112 (first entry, the paper's rule)". While the run goes
+/// on: "running", with the entry and exit so far.
+std::string verdict_text(const RunResult& result, const StopRules& rules);
+
+/// The verdict in a few words, for legends and tables: "running", "settled at N", "not settled
+/// at N (entered at K, left at L)", "diverged at N", "restored at N", "not restored at N", and
+/// while running after an exit "running (entered at K, left at L)".
+std::string verdict_short(const RunResult& result);
+
+/// One JSON object: the scene name, the parameters, the outcome and the counts; the rule and
+/// the band history (first_entry, left_at, settled_at: null where none, SPEC 8).
 std::string result_json(const std::string& scene, const Params& params, const StopRules& rules,
                         int watched, const RunResult& result);
 

@@ -37,8 +37,15 @@ struct RunSpec {
 struct Expectation {
   std::string run;  ///< label of a RunSpec; empty = the scene's own parameters
   int line = 0;     ///< line in the scene file, for messages
+  /// The verdict rule the run is judged by (SPEC 8); first-entry (the paper's) when the table
+  /// does not say.
+  StopRule rule = StopRule::first_entry;
   std::optional<Outcome> outcome;
-  std::optional<int> iterations_min, iterations_max;
+  std::optional<int> iterations_min, iterations_max;  ///< the outcome's iteration
+  std::optional<int> first_entry_min, first_entry_max;  ///< first iteration below the band
+  std::optional<bool> left;                           ///< left the band after entering it
+  std::optional<int> left_at_min, left_at_max;        ///< the first exit (settled rule)
+  std::optional<int> settled_at_min, settled_at_max;  ///< the settled iteration (settled rule)
   std::optional<double> max_displacement_below;  ///< final max displacement < this (cm)
   std::optional<long long> unstabilisable_max;   ///< unstabilisable node-steps <= this
   std::optional<long long> violations_max;       ///< violating node-steps <= this

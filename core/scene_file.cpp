@@ -12,93 +12,13 @@
 #include "core/io.hpp"
 #include "core/mesh_obj.hpp"
 #include "core/scene.hpp"
+#include "core/scene_reader.hpp"
 
 namespace dampbound {
 namespace {
 
-using Keys = std::initializer_list<std::string_view>;
-
-/// Reads one scene file; every error names the file and the line.
-class Reader {
- public:
-  explicit Reader(std::string path) : path_(std::move(path)) {}
-
-  [[noreturn]] void fail(int line, const std::string& msg) const {
-    std::ostringstream os;
-    os << path_ << ":" << line << ": " << msg;
-    throw InputError(os.str());
-  }
-  [[noreturn]] void fail(const toml::node& n, const std::string& msg) const {
-    fail(static_cast<int>(n.source().begin.line), msg);
-  }
-
-  void check_keys(const toml::table& t, Keys allowed, const std::string& where) const {
-    for (auto&& [key, value] : t) {
-      bool ok = false;
-      for (auto a : allowed) ok = ok || key.str() == a;
-      if (!ok)
-        fail(static_cast<int>(key.source().begin.line),
-             "unknown key '" + std::string(key.str()) + "' in " + where);
-    }
-  }
-
-  const toml::table& table(const toml::node& n, const std::string& what) const {
-    if (!n.is_table()) fail(n, what + " must be a table");
-    return *n.as_table();
-  }
-
-  double number(const toml::node& n, const std::string& what) const {
-    if (!n.is_number()) fail(n, what + " must be a number");
-    const double x = n.value<double>().value_or(NAN);
-    if (!std::isfinite(x)) fail(n, what + " must be finite (got " + std::to_string(x) + ")");
-    return x;
-  }
-  double positive(const toml::node& n, const std::string& what) const {
-    const double x = number(n, what);
-    if (!(x > 0)) fail(n, what + " must be > 0");
-    return x;
-  }
-  double non_negative(const toml::node& n, const std::string& what) const {
-    const double x = number(n, what);
-    if (x < 0) fail(n, what + " must be >= 0");
-    return x;
-  }
-  long long integer(const toml::node& n, const std::string& what) const {
-    if (!n.is_integer()) fail(n, what + " must be an integer");
-    return *n.value<long long>();
-  }
-  bool boolean(const toml::node& n, const std::string& what) const {
-    if (!n.is_boolean()) fail(n, what + " must be true or false");
-    return *n.value<bool>();
-  }
-  std::string string(const toml::node& n, const std::string& what) const {
-    if (!n.is_string()) fail(n, what + " must be a string");
-    return *n.value<std::string>();
-  }
-  std::vector<double> numbers(const toml::node& n, size_t count, const std::string& what) const {
-    const toml::array* a = n.as_array();
-    if (!a || a->size() != count)
-      fail(n, what + " must be an array of " + std::to_string(count) + " numbers");
-    std::vector<double> out;
-    for (auto&& e : *a) out.push_back(number(e, what));
-    return out;
-  }
-  Vec3 vec3(const toml::node& n, const std::string& what) const {
-    const auto v = numbers(n, 3, what);
-    return {v[0], v[1], v[2]};
-  }
-  const toml::node& required(const toml::table& t, std::string_view key,
-                             const std::string& where) const {
-    const toml::node* n = t.get(key);
-    if (!n) fail(t, "missing '" + std::string(key) + "' in " + where);
-    return *n;
-  }
-
-  const std::string& path() const { return path_; }
-
- private:
-  std::string path_;
-};
+using scene_file::Keys;
+using scene_file::Reader;
 
 /// Reads the parameter keys (m, kappa, gamma, dt, policy, factor, integrator) present in `t` into
 /// `p`.
@@ -355,55 +275,6 @@ void read_runs(const Reader& r, const toml::table& root, SceneSpec& s) {
   }
 }
 
-void read_expectations(const Reader& r, const toml::table& root, SceneSpec& s) {
-  const toml::node* en = root.get("expect");
-  if (!en) return;
-  const toml::array* list = en->as_array();
-  if (!list) r.fail(*en, "expect must be an array of tables [[expect]]");
-  for (auto&& e : *list) {
-    const toml::table& t = r.table(e, "[[expect]]");
-    r.check_keys(t,
-                 {"run", "outcome", "iterations", "max_displacement_below", "unstabilisable_max",
-                  "violations_max", "violations_min"},
-                 "[[expect]]");
-    Expectation x;
-    x.line = static_cast<int>(t.source().begin.line);
-    if (auto* n = t.get("run")) {
-      x.run = r.string(*n, "run");
-      bool found = false;
-      for (const auto& run : s.runs) found = found || run.label == x.run;
-      if (!found) r.fail(*n, "expect refers to run '" + x.run + "', which is not declared");
-    }
-    if (auto* n = t.get("outcome")) {
-      const std::string o = r.string(*n, "outcome");
-      for (auto c : {Outcome::restored, Outcome::diverged, Outcome::not_restored})
-        if (o == to_string(c)) x.outcome = c;
-      if (!x.outcome) r.fail(*n, "outcome must be restored, diverged or not_restored");
-    }
-    if (auto* n = t.get("iterations")) {
-      const toml::array* a = n->as_array();
-      if (!a || a->size() != 2) r.fail(*n, "iterations must be [min, max]");
-      x.iterations_min = static_cast<int>(r.integer(*a->get(0), "iterations"));
-      x.iterations_max = static_cast<int>(r.integer(*a->get(1), "iterations"));
-      if (*x.iterations_min > *x.iterations_max) r.fail(*n, "iterations range is inverted");
-    }
-    if (auto* n = t.get("max_displacement_below"))
-      x.max_displacement_below = r.positive(*n, "max_displacement_below");
-    if (auto* n = t.get("unstabilisable_max"))
-      x.unstabilisable_max = static_cast<long long>(r.non_negative(*n, "unstabilisable_max"));
-    if (auto* n = t.get("violations_max"))
-      x.violations_max = static_cast<long long>(r.non_negative(*n, "violations_max"));
-    if (auto* n = t.get("violations_min"))
-      x.violations_min = static_cast<long long>(r.non_negative(*n, "violations_min"));
-    if (!x.outcome && !x.iterations_min && !x.max_displacement_below && !x.unstabilisable_max &&
-        !x.violations_max && !x.violations_min)
-      r.fail(t,
-             "[[expect]] asserts nothing: give outcome, iterations, max_displacement_below, "
-             "unstabilisable_max, violations_max or violations_min");
-    s.expectations.push_back(x);
-  }
-}
-
 }  // namespace
 
 SceneSpec parse_scene(const std::string& text, const std::string& path) {
@@ -435,7 +306,7 @@ SceneSpec parse_scene(const std::string& text, const std::string& path) {
   if (auto* n = root.get("watch")) s.watched = node_ref(r, s, *n, "watch");
   read_cuts(r, root, s);
   read_runs(r, root, s);
-  read_expectations(r, root, s);
+  scene_file::read_expectations(r, root, s);
   return s;
 }
 

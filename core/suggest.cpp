@@ -16,10 +16,11 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kPi = 3.14159265358979323846;
 
-/// The score of a trial run: restored runs by iterations, then the rest by how far they got.
+/// The score of a trial run (settled rule): settled runs by their settled iteration, then the
+/// runs that did not settle by their final displacement, then the diverged by how far they got.
 std::tuple<int, int, double> score(const RunResult& r) {
-  if (r.outcome == Outcome::restored) return {0, r.iterations, 0.0};
-  if (r.outcome == Outcome::not_restored) return {1, 0, r.max_displacement};
+  if (r.outcome == Outcome::settled) return {0, r.settled_at, 0.0};
+  if (r.outcome == Outcome::not_settled) return {1, 0, r.max_displacement};
   return {2, -r.iterations, 0.0};  // diverged: later is less bad
 }
 
@@ -58,8 +59,10 @@ Params with_dt(Params p, double dt) {
 
 VerifiedRun verify_run(const SceneSpec& scene, const Params& params, const StopRules& rules,
                        const std::string& label) {
-  Session session(scene, params, rules);
-  return {label, params, session.run_to_end()};
+  StopRules settled = rules;
+  settled.rule = StopRule::settled;
+  Session session(scene, params, settled);
+  return {label, params, session.run_to_end(), settled};
 }
 
 DampingSuggestion suggest_damping(const SceneSpec& scene, const Params& params_in,
@@ -161,7 +164,7 @@ DampingSuggestion suggest_damping(const SceneSpec& scene, const Params& params_i
     best_of(std::max(s.gamma_min, g - step), std::min(hi, g + step), 9, g, r);
     s.gamma_best = g;
     s.best_rho = kNaN;
-    s.best_method = "fewest iterations to restore over " + std::to_string(n + 9) +
+    s.best_method = "earliest settled iteration over " + std::to_string(n + 9) +
                     " trial runs of the scene (rates gamma_i/m_i are not uniform)";
   }
   if (options.verify) {

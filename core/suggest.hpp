@@ -17,7 +17,11 @@ namespace dampbound {
 struct VerifiedRun {
   std::string label;  ///< e.g. "fastest-settling gamma"
   Params params;
-  RunResult result;
+  RunResult result;   ///< judged by the settled rule (SPEC 8)
+  StopRules rules;    ///< what judged it (the settled rule)
+  /// A suggestion counts as verified only when its run settles (SPEC 8): a first entry
+  /// followed by an exit, or a divergence, is not a verification.
+  bool verified() const { return result.outcome == Outcome::settled; }
 };
 
 /// Nodes that share (m_i, kappa_i, gamma_scale_i): one line of the per-node ranges.
@@ -80,7 +84,8 @@ DampingSuggestion suggest_damping(const SceneSpec& scene, const Params& params,
 StepSuggestion suggest_step(const SceneSpec& scene, const Params& params, const StopRules& rules,
                             const SuggestOptions& options = {});
 
-/// Runs one parameter set through a Session with `rules` (policy fixed as given).
+/// Runs one parameter set through a Session with `rules` under the settled rule (SPEC 8),
+/// whatever rules.rule says (policy fixed as given).
 VerifiedRun verify_run(const SceneSpec& scene, const Params& params, const StopRules& rules,
                        const std::string& label);
 

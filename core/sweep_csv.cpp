@@ -21,8 +21,8 @@ std::string outcome_text(Outcome o) {
   return to_string(o);
 }
 
-bool parse_outcome(const std::string& s, Outcome& o) {
-  for (Outcome c : {Outcome::restored, Outcome::diverged, Outcome::not_restored})
+bool parse_outcome(const std::string& s, Outcome& o, StopRule rule) {
+  for (Outcome c : final_outcomes(rule))
     if (s == to_string(c)) {
       o = c;
       return true;
@@ -55,9 +55,13 @@ std::string fnv1a_hex(const std::string& bytes) {
   return buf;
 }
 
-const char* sweep_csv_columns() {
-  return "trial,m,kappa,gamma,zeta,dt,policy,factor,class,ran,outcome,iterations,"
-         "max_displacement,violations,unstabilisable,clamped,zero_length_springs";
+const char* sweep_csv_columns(StopRule rule) {
+  return rule == StopRule::settled
+             ? "trial,m,kappa,gamma,zeta,dt,policy,factor,class,ran,outcome,iterations,"
+               "max_displacement,violations,unstabilisable,clamped,zero_length_springs,"
+               "first_entry,left_at,settled_at"
+             : "trial,m,kappa,gamma,zeta,dt,policy,factor,class,ran,outcome,iterations,"
+               "max_displacement,violations,unstabilisable,clamped,zero_length_springs";
 }
 
 void write_sweep_header(std::FILE* out, const SweepHeader& h) {
@@ -74,8 +78,12 @@ void write_sweep_header(std::FILE* out, const SweepHeader& h) {
                "# units: m mass unit, kappa mass unit/s^2, gamma mass unit/s, dt s, "
                "max_displacement cm; zeta = gamma/(2 sqrt(m kappa)); counts are node-steps; "
                "ran = 1 for the trial that was stepped, 0 for one that took its class's result "
-               "(SPEC 6)\n");
-  std::fprintf(out, "%s\n", sweep_csv_columns());
+               "(SPEC 6)%s\n",
+               h.rule == StopRule::settled
+                   ? "; outcome by the settled rule (SPEC 8): first_entry, left_at, settled_at "
+                     "are iterations, 0 = none"
+                   : "");
+  std::fprintf(out, "%s\n", sweep_csv_columns(h.rule));
 }
 
 void write_sweep_rows(std::FILE* out, const SweepGrid& grid, const TrialClasses& classes,
@@ -116,9 +124,14 @@ void write_sweep_rows(std::FILE* out, const SweepGrid& grid, const TrialClasses&
                   r.iterations);
     line += tail;
     line += format_number(r.max_displacement);
-    std::snprintf(tail, sizeof tail, ",%lld,%lld,%lld,%lld\n", r.violations, r.unstabilisable,
+    std::snprintf(tail, sizeof tail, ",%lld,%lld,%lld,%lld", r.violations, r.unstabilisable,
                   r.clamped, r.zero_length_springs);
     line += tail;
+    if (s.rules.rule == StopRule::settled) {
+      std::snprintf(tail, sizeof tail, ",%d,%d,%d", r.first_entry, r.left_at, r.settled_at);
+      line += tail;
+    }
+    line += '\n';
     std::fwrite(line.data(), 1, line.size(), out);
   }
 }
@@ -165,13 +178,18 @@ SweepTable read_sweep_csv(const std::string& path, bool keep_lines) {
           fail("bad shard line");
         continue;
       }
-      if (line != sweep_csv_columns()) fail("unexpected column line");
+      if (line == sweep_csv_columns(StopRule::settled))
+        t.header.rule = StopRule::settled;
+      else if (line != sweep_csv_columns(StopRule::first_entry))
+        fail("unexpected column line (not a sweep CSV of this dampbound version)");
       columns = true;
       continue;
     }
     if (line.empty()) continue;
     const std::vector<std::string> f = split(line, ',');
-    if (f.size() != 17) fail("expected 17 fields, got " + std::to_string(f.size()));
+    const size_t fields = t.header.rule == StopRule::settled ? 20 : 17;
+    if (f.size() != fields)
+      fail("expected " + std::to_string(fields) + " fields, got " + std::to_string(f.size()));
     SweepRow r;
     char* end = nullptr;
     r.trial = std::strtoull(f[0].c_str(), &end, 10);
@@ -180,10 +198,18 @@ SweepTable read_sweep_csv(const std::string& path, bool keep_lines) {
     for (int k = 0; k < 5; ++k)
       *nums[k] = std::strtod(f[static_cast<size_t>(k) + 1].c_str(), nullptr);
     r.factor = std::strtod(f[7].c_str(), nullptr);
-    if (!parse_outcome(f[10], r.outcome)) fail("bad outcome '" + f[10] + "'");
+    if (!parse_outcome(f[10], r.outcome, t.header.rule))
+      fail("bad outcome '" + f[10] + "' for rule " + to_string(t.header.rule));
     r.iterations = std::atoi(f[11].c_str());
     r.max_displacement = std::strtod(f[12].c_str(), nullptr);
     r.unstabilisable = std::atoll(f[14].c_str());
+    if (t.header.rule == StopRule::settled) {
+      r.first_entry = std::atoi(f[17].c_str());
+      r.left_at = std::atoi(f[18].c_str());
+      r.settled_at = std::atoi(f[19].c_str());
+    } else if (r.outcome == Outcome::restored) {
+      r.first_entry = r.iterations;
+    }
     t.rows.push_back(r);
     if (keep_lines) t.lines.push_back(line);
   }

@@ -21,10 +21,14 @@ struct SweepHeader {
   std::uint64_t classes = 0;
   std::string similarity;  ///< "on" or "off (reason)"
   int shard = 1, shards = 1;
+  /// The verdict rule (SPEC 8). A settled sweep says "rule=settled" in its definition and
+  /// has three more columns; a first-entry sweep is written exactly as before the rule existed.
+  StopRule rule = StopRule::first_entry;
 };
 
-/// The column line (without newline).
-const char* sweep_csv_columns();
+/// The column line (without newline): first-entry sweeps end at zero_length_springs; settled
+/// sweeps add first_entry, left_at, settled_at (0 = none).
+const char* sweep_csv_columns(StopRule rule = StopRule::first_entry);
 
 /// Writes the '#' lines and the column line.
 void write_sweep_header(std::FILE* out, const SweepHeader& h);
@@ -42,6 +46,9 @@ struct SweepRow {
   int iterations = 0;
   double max_displacement = 0;
   long long unstabilisable = 0;  ///< node-steps with gamma_lo > gamma_hi (the paper's check)
+  int first_entry = 0;  ///< SPEC 8; under first-entry: the restore's iteration, else 0
+  int left_at = 0;      ///< settled sweeps only
+  int settled_at = 0;   ///< settled sweeps only
 };
 
 struct SweepTable {

@@ -60,10 +60,22 @@ char outcome_code(Outcome o) {
       return 'd';
     case Outcome::not_restored:
       return 'n';
+    case Outcome::settled:
+      return 's';
+    case Outcome::not_settled:
+      return 'u';
     case Outcome::running:
       break;
   }
   return '?';
+}
+
+/// Whether a result needs the band fields (SPEC 8) written out: under the first-entry rule
+/// they follow from the outcome (first entry = the iteration of a restore, none otherwise),
+/// so first-entry journals keep their old lines.
+bool band_implied(const TrialResult& r) {
+  const int implied = r.outcome == Outcome::restored ? r.iterations : 0;
+  return r.first_entry == implied && r.left_at == 0 && r.settled_at == 0;
 }
 
 /// A journal line: the body, a space, its 8-hex-digit FNV-1a checksum and a newline.
@@ -114,9 +126,12 @@ void write_durably(const std::string& path, const std::function<void(std::FILE*)
 std::string journal_line(const JournalEntry& e) {
   const TrialResult& r = e.result;
   char body[256];
-  const int n = std::snprintf(body, sizeof body, "%" PRIu32 " %c %d %a %lld %lld %lld %lld", e.cls,
-                              outcome_code(r.outcome), r.iterations, r.max_displacement,
-                              r.violations, r.unstabilisable, r.clamped, r.zero_length_springs);
+  int n = std::snprintf(body, sizeof body, "%" PRIu32 " %c %d %a %lld %lld %lld %lld", e.cls,
+                        outcome_code(r.outcome), r.iterations, r.max_displacement, r.violations,
+                        r.unstabilisable, r.clamped, r.zero_length_springs);
+  if (!band_implied(r))  // " b FIRST LEFT SETTLED": the settled rule's band fields
+    n += std::snprintf(body + n, sizeof body - static_cast<size_t>(n), " b %d %d %d",
+                       r.first_entry, r.left_at, r.settled_at);
   return with_checksum(body, n);
 }
 
@@ -126,9 +141,14 @@ bool parse_journal_line(const std::string& line, JournalEntry& e) {
   char disp[64];
   JournalEntry x;
   TrialResult& r = x.result;
-  if (std::sscanf(line.c_str(), "%" SCNu32 " %c %d %63s %lld %lld %lld %lld", &x.cls, &code,
+  int used = 0;
+  if (std::sscanf(line.c_str(), "%" SCNu32 " %c %d %63s %lld %lld %lld %lld%n", &x.cls, &code,
                   &r.iterations, disp, &r.violations, &r.unstabilisable, &r.clamped,
-                  &r.zero_length_springs) != 8)
+                  &r.zero_length_springs, &used) != 8)
+    return false;
+  const bool band = line.compare(static_cast<size_t>(used), 3, " b ") == 0;
+  if (band && std::sscanf(line.c_str() + used, " b %d %d %d", &r.first_entry, &r.left_at,
+                          &r.settled_at) != 3)
     return false;
   r.max_displacement = std::strtod(disp, nullptr);
   switch (code) {
@@ -141,9 +161,16 @@ bool parse_journal_line(const std::string& line, JournalEntry& e) {
     case 'n':
       r.outcome = Outcome::not_restored;
       break;
+    case 's':
+      r.outcome = Outcome::settled;
+      break;
+    case 'u':
+      r.outcome = Outcome::not_settled;
+      break;
     default:
       return false;
   }
+  if (!band && r.outcome == Outcome::restored) r.first_entry = r.iterations;
   e = x;
   return true;
 }

@@ -56,6 +56,7 @@ struct BatchKernel::Impl {
   bool active[kLanes] = {};
   std::size_t id[kLanes] = {};
   TrialResult result[kLanes];
+  BandHistory band[kLanes];
 
   Impl(const SceneSpec& scene, DampingPolicy pol, const StopRules& r) : policy(pol), rules(r) {
     const std::string why = batch_kernel_unsupported(scene);
@@ -117,6 +118,7 @@ struct BatchKernel::Impl {
     active[l] = true;
     id[l] = trial;
     result[l] = TrialResult{};
+    band[l] = BandHistory{};
   }
 
   void set_lane(int l, const TrialParams& p, const std::vector<double>& x) {
@@ -307,8 +309,6 @@ struct BatchKernel::Impl {
     for (int l = 0; l < kLanes; ++l) refill(l);
     std::uint64_t lane_steps = 0;
     StepCounts sc;
-    const double restore_below = rules.restore_fraction * rules.reference;
-    const double diverge_above = rules.diverge_factor * rules.reference;
     for (;;) {
       int live = 0;
       for (int l = 0; l < kLanes; ++l) live += active[l];
@@ -325,16 +325,14 @@ struct BatchKernel::Impl {
         r.clamped += sc.clamped[l];
         r.zero_length_springs += sc.zero_length[l];
         ++r.iterations;
-        // protocol.cpp judge(), with step.cpp's max displacement (inf when not finite).
+        // protocol.cpp judge_band(), with step.cpp's max displacement (inf when not finite).
         const bool finite = sc.bad[l] == 0;
         const double d = finite ? max_d[l] : HUGE_VAL;
         r.max_displacement = d;
-        if (!finite || !(d <= diverge_above))
-          r.outcome = Outcome::diverged;
-        else if (d < restore_below)
-          r.outcome = Outcome::restored;
-        else if (r.iterations >= rules.max_iterations)
-          r.outcome = Outcome::not_restored;
+        r.outcome = judge_band(rules, band[l], r.iterations, d, finite);
+        r.first_entry = band[l].first_entry;
+        r.left_at = band[l].left_at;
+        if (r.outcome == Outcome::settled) r.settled_at = band[l].below_since;
         if (r.outcome != Outcome::running) {
           sink(id[l], r);
           refill(l);

@@ -3,8 +3,9 @@
 // lane (structure of arrays), each with its own m, kappa, gamma, dt and factor. It mirrors
 // step() (core/step.cpp) operation by operation in the same order, so on the same trial it
 // gives the same trajectory bit for bit (the build has -ffp-contract=off), and the same
-// outcome, iteration and counts as Session::run_to_end. A lane whose trial is over (restored,
-// diverged, not restored) is refilled with the next trial at once.
+// outcome, iteration and counts as Session::run_to_end, under either stop rule (SPEC 5, 8):
+// both judge through judge_band(). A lane whose trial is over is refilled with the next
+// trial at once.
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
@@ -35,6 +36,9 @@ struct TrialResult {
   long long unstabilisable = 0;  ///< node-steps with gamma_lo > gamma_hi
   long long clamped = 0;
   long long zero_length_springs = 0;
+  int first_entry = 0;  ///< first iteration below the restore threshold; 0 = none (SPEC 8)
+  int left_at = 0;      ///< first iteration at or above it after an entry; 0 = none
+  int settled_at = 0;   ///< settled rule: below from here to the limit; 0 = none
 };
 
 /// The same numbers from a RunResult (Session::run_to_end, run_protocol).

@@ -74,14 +74,18 @@ template <class XY>
 void fill_cells(MapPanel& panel, const Binning& bx, const Binning& by,
                 const std::vector<const SweepRow*>& rows, XY xy) {
   const size_t nx = bx.edges.size() - 1, ny = by.edges.size() - 1;
-  std::vector<std::array<std::uint64_t, 3>> count(nx * ny, {0, 0, 0});
+  std::vector<std::array<std::uint64_t, 4>> count(nx * ny, {0, 0, 0, 0});
   std::vector<double> iter_sum(nx * ny, 0);
   for (const SweepRow* r : rows) {
     const auto [x, y] = xy(*r);
     const size_t c = static_cast<size_t>(by.bin(y)) * nx + static_cast<size_t>(bx.bin(x));
-    const int k = r->outcome == Outcome::restored ? 0 : r->outcome == Outcome::diverged ? 2 : 1;
+    const bool settled = r->outcome == Outcome::settled;
+    const int k = r->outcome == Outcome::restored || settled ? 0
+                  : r->outcome == Outcome::diverged         ? 2
+                  : r->first_entry > 0                      ? 3  // SPEC 8: entered, then left
+                                                            : 1;
     ++count[c][static_cast<size_t>(k)];
-    if (k == 0) iter_sum[c] += r->iterations;
+    if (k == 0) iter_sum[c] += settled ? r->settled_at : r->iterations;
   }
   panel.x_edges = bx.edges;
   panel.y_edges = by.edges;
@@ -89,7 +93,7 @@ void fill_cells(MapPanel& panel, const Binning& bx, const Binning& by,
   panel.iterations.assign(nx * ny, 0);
   for (size_t c = 0; c < nx * ny; ++c) {
     const auto& n = count[c];
-    if (n[0] + n[1] + n[2] == 0) continue;
+    if (n[0] + n[1] + n[2] + n[3] == 0) continue;
     const size_t k = static_cast<size_t>(std::max_element(n.begin(), n.end()) - n.begin());
     panel.cells[c] = static_cast<MapCell>(k);
     if (n[0]) panel.iterations[c] = iter_sum[c] / static_cast<double>(n[0]);
@@ -137,6 +141,8 @@ StabilityMap build_stability_map(const SweepTable& table, double lambda_unit,
   map.title = table.header.scene_name + ": policy " + policy + ", dt = " + format_number(dt) +
               " s, " + std::to_string(map.max_iterations) + " iterations";
   map.summary = summary_lines(table.rows, policy, lambda_unit);
+  map.rule = table.header.rule;
+  if (map.rule == StopRule::settled) map.title += ", settled rule";
   auto yval = [upper](const SweepRow& r) { return upper ? r.factor : r.zeta; };
 
   // Panel 1: kappa/m (log) against zeta, or against the factor of the upper bound.

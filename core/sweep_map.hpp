@@ -12,8 +12,16 @@
 
 namespace dampbound {
 
-/// What a map cell shows: the majority outcome of its trials.
-enum class MapCell : signed char { empty = -1, restored = 0, not_restored = 1, diverged = 2 };
+/// What a map cell shows: the majority outcome of its trials. Under the settled rule (SPEC 8)
+/// restored means settled, not_restored means never entered the band, and entered_left is a
+/// trial that entered the band, then left it and was not back in at the limit.
+enum class MapCell : signed char {
+  empty = -1,
+  restored = 0,
+  not_restored = 1,
+  diverged = 2,
+  entered_left = 3
+};
 
 /// Which boundary a line is.
 enum class MapLineKind { paper, exact_linear, dt_limit };
@@ -31,7 +39,7 @@ struct MapPanel {
   bool x_log = false, y_log = false;
   std::vector<double> x_edges, y_edges;
   std::vector<MapCell> cells;
-  std::vector<double> iterations;  ///< mean iteration of the restored trials of a cell
+  std::vector<double> iterations;  ///< mean iteration of the restored (settled) trials of a cell
   std::vector<MapLine> lines;
 };
 
@@ -39,6 +47,7 @@ struct StabilityMap {
   std::string title;
   std::vector<MapPanel> panels;
   int max_iterations = 0;            ///< the protocol's limit (restored cells are shaded up to it)
+  StopRule rule = StopRule::first_entry;  ///< the rule of the sweep (SPEC 8)
   std::vector<std::string> summary;  ///< outcome counts and prediction checks
 };
 

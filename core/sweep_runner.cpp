@@ -161,6 +161,7 @@ SweepReport run_sweep(const SweepRequest& rq) {
   h.similarity = classes.similarity ? "on" : "off (" + classes.reason + ")";
   h.shard = rq.shard;
   h.shards = rq.shards;
+  h.rule = rq.spec.rules.rule;
   rep.plain_reason = rq.use_kernel ? batch_kernel_unsupported(rq.scene) : "--plain";
   rep.batched = rep.plain_reason.empty();
 

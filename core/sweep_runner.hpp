@@ -47,7 +47,7 @@ struct SweepReport {
   std::uint64_t classes_resumed = 0;  ///< taken from the journal
   std::uint64_t lane_steps = 0;       ///< trial-steps taken in this run
   long long spring_evaluations_per_step = 0;
-  std::uint64_t outcome_trials[4] = {0, 0, 0, 0};  ///< per Outcome, over this shard's trials
+  std::uint64_t outcome_trials[6] = {0, 0, 0, 0, 0, 0};  ///< per Outcome, over this shard's trials
   std::uint64_t trials_resumed = 0;   ///< trials whose class came from the journal
   double seconds = 0;                 ///< wall time of this run
   double cpu_seconds = 0;             ///< CPU time of this process (all threads)

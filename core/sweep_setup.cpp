@@ -81,6 +81,8 @@ std::string sweep_definition(const SweepSpec& s) {
        " restore-fraction=" + format_number(s.rules.restore_fraction) +
        " diverge-factor=" + format_number(s.rules.diverge_factor);
   d += s.allow_similarity ? " similarity=auto" : " similarity=off";
+  // SPEC 8; said only when settled, so that a first-entry sweep keeps its id and bytes.
+  if (s.rules.rule == StopRule::settled) d += " rule=settled";
   return d;
 }
 
@@ -119,6 +121,9 @@ std::vector<SweepRow> sweep_rows(const SweepGrid& grid, const TrialClasses& clas
     r.iterations = res.iterations;
     r.max_displacement = res.max_displacement;
     r.unstabilisable = res.unstabilisable;
+    r.first_entry = res.first_entry;
+    r.left_at = res.left_at;
+    r.settled_at = res.settled_at;
     rows.push_back(r);
   }
   return rows;

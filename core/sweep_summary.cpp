@@ -39,8 +39,22 @@ std::string definition_value(const std::string& definition, const std::string& k
 std::vector<PredictionCheck> check_predictions(const std::vector<SweepRow>& rows,
                                                const std::string& policy, double lambda_unit) {
   std::vector<PredictionCheck> out;
+  // Under the settled rule (SPEC 8) "restored" reads "settled": the claim is judged by the
+  // rule the sweep ran under, and the text says which.
+  const bool settled_rule = rows_rule(rows) == StopRule::settled;
+  const auto good = [](const SweepRow& r) {
+    return r.outcome == Outcome::restored || r.outcome == Outcome::settled;
+  };
+  const auto restored = good;
+  const auto not_restored = [good](const SweepRow& r) { return !good(r); };
+  const auto said = [settled_rule](std::string claim) {
+    if (!settled_rule) return claim;
+    for (size_t p = 0; (p = claim.find("restored", p)) != std::string::npos;)
+      claim.replace(p, 8, "settled");
+    return claim + " [settled rule]";
+  };
   auto check = [&](const std::string& claim, auto applies, auto holds) {
-    PredictionCheck c{claim, 0, 0};
+    PredictionCheck c{said(claim), 0, 0};
     for (const SweepRow& r : rows)
       if (applies(r)) {
         ++c.of;
@@ -48,8 +62,6 @@ std::vector<PredictionCheck> check_predictions(const std::vector<SweepRow>& rows
       }
     if (c.of) out.push_back(c);
   };
-  const auto restored = [](const SweepRow& r) { return r.outcome == Outcome::restored; };
-  const auto not_restored = [](const SweepRow& r) { return r.outcome != Outcome::restored; };
   const auto diverged = [](const SweepRow& r) { return r.outcome == Outcome::diverged; };
   const auto not_diverged = [](const SweepRow& r) { return r.outcome != Outcome::diverged; };
   if (policy == "fixed") {
@@ -85,19 +97,61 @@ std::vector<PredictionCheck> check_predictions(const std::vector<SweepRow>& rows
   return out;
 }
 
+StopRule rows_rule(const std::vector<SweepRow>& rows) {
+  for (const SweepRow& r : rows)
+    if (r.outcome == Outcome::settled || r.outcome == Outcome::not_settled)
+      return StopRule::settled;
+  return StopRule::first_entry;
+}
+
+Overturned count_overturned(const std::vector<SweepRow>& rows) {
+  Overturned o;
+  for (const SweepRow& r : rows) {
+    if (r.first_entry == 0) continue;  // never entered: both rules say the same
+    ++o.entered;
+    if (r.outcome == Outcome::not_settled) ++o.left;
+    if (r.outcome == Outcome::diverged) ++o.diverged;
+  }
+  return o;
+}
+
 std::vector<std::string> summary_lines(const std::vector<SweepRow>& rows, const std::string& policy,
                                        double lambda_unit) {
-  std::uint64_t n[4] = {0, 0, 0, 0};
+  std::uint64_t n[6] = {0, 0, 0, 0, 0, 0};
   for (const SweepRow& r : rows) ++n[static_cast<size_t>(r.outcome)];
   std::vector<std::string> lines;
   char buf[512];
-  std::snprintf(buf, sizeof buf,
-                "outcomes     %" PRIu64 " restored, %" PRIu64 " not restored, %" PRIu64
-                " diverged (of %zu trials)",
-                n[static_cast<size_t>(Outcome::restored)],
-                n[static_cast<size_t>(Outcome::not_restored)],
-                n[static_cast<size_t>(Outcome::diverged)], rows.size());
-  lines.push_back(buf);
+  if (rows_rule(rows) == StopRule::settled) {
+    const Overturned o = count_overturned(rows);
+    std::uint64_t left = 0;  // not settled after an entry: the map's "entered, then left"
+    for (const SweepRow& r : rows) left += r.outcome == Outcome::not_settled && r.first_entry > 0;
+    std::snprintf(buf, sizeof buf,
+                  "outcomes     %" PRIu64 " settled, %" PRIu64 " not settled (%" PRIu64
+                  " of them entered the band, then left), %" PRIu64
+                  " diverged (of %zu trials; settled rule)",
+                  n[static_cast<size_t>(Outcome::settled)],
+                  n[static_cast<size_t>(Outcome::not_settled)], left,
+                  n[static_cast<size_t>(Outcome::diverged)], rows.size());
+    lines.push_back(buf);
+    std::snprintf(buf, sizeof buf,
+                  "overturned   %" PRIu64 " of %" PRIu64
+                  " first-entry restores (%.2f%%) did not settle: %" PRIu64
+                  " left the band and were not back in at the limit, %" PRIu64 " diverged later",
+                  o.left + o.diverged, o.entered,
+                  o.entered ? 100.0 * static_cast<double>(o.left + o.diverged) /
+                                  static_cast<double>(o.entered)
+                            : 0.0,
+                  o.left, o.diverged);
+    lines.push_back(buf);
+  } else {
+    std::snprintf(buf, sizeof buf,
+                  "outcomes     %" PRIu64 " restored, %" PRIu64 " not restored, %" PRIu64
+                  " diverged (of %zu trials)",
+                  n[static_cast<size_t>(Outcome::restored)],
+                  n[static_cast<size_t>(Outcome::not_restored)],
+                  n[static_cast<size_t>(Outcome::diverged)], rows.size());
+    lines.push_back(buf);
+  }
   for (const PredictionCheck& c : check_predictions(rows, policy, lambda_unit)) {
     std::snprintf(buf, sizeof buf, "prediction   %s: held in %" PRIu64 " of %" PRIu64 " (%.1f%%)",
                   c.claim.c_str(), c.held, c.of,

@@ -35,7 +35,21 @@ std::vector<PredictionCheck> check_predictions(const std::vector<SweepRow>& rows
 /// "key=value" out of a header definition ("policy", "max-iter", ...); "" when absent.
 std::string definition_value(const std::string& definition, const std::string& key);
 
-/// The lines printed after a sweep: outcome counts and the prediction checks.
+/// The rule a sweep's rows were judged by (SPEC 8): settled when any row is settled or
+/// not_settled, else first-entry.
+StopRule rows_rule(const std::vector<SweepRow>& rows);
+
+/// How often the settled rule overturned the paper's verdict (SPEC 8): of the trials that
+/// entered the band (first-entry: restored), those that did not settle.
+struct Overturned {
+  std::uint64_t entered = 0;   ///< trials with a first entry (the paper's restored)
+  std::uint64_t left = 0;      ///< ... then not settled at the limit
+  std::uint64_t diverged = 0;  ///< ... then diverged
+};
+Overturned count_overturned(const std::vector<SweepRow>& rows);
+
+/// The lines printed after a sweep: outcome counts (under the settled rule also the number of
+/// first-entry verdicts it overturned) and the prediction checks.
 std::vector<std::string> summary_lines(const std::vector<SweepRow>& rows, const std::string& policy,
                                        double lambda_unit);
 

@@ -17,6 +17,9 @@ TrialResult to_trial_result(const RunResult& r) {
   t.unstabilisable = r.unstabilisable;
   t.clamped = r.clamped;
   t.zero_length_springs = r.zero_length_springs;
+  t.first_entry = r.first_entry;
+  t.left_at = r.left_at;
+  t.settled_at = r.settled_at;
   return t;
 }
 

@@ -24,7 +24,7 @@ ImVec4 verdict_color(CriterionVerdict v) {
 }
 
 void run_line(const VerifiedRun& r) {
-  const ImVec4 c = outcome_color(r.result.outcome);
+  const ImVec4 c = outcome_color(r.result);
   ImGui::BulletText("%s:", r.label.c_str());
   ImGui::SameLine();
   ImGui::TextColored(c, "%s", outcome_text(r.result).c_str());

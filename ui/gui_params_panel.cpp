@@ -116,7 +116,8 @@ void GuiApp::playback_controls() {
                           ImGui::GetStyle().ItemInnerSpacing.x);
   if (ImGui::SliderInt("steps / frame", &spf, 1, 1000, "%d", ImGuiSliderFlags_Logarithmic))
     t.playback().steps_per_frame = std::max(1, std::min(spf, 10000));
-  ImGui::Checkbox("pause at the verdict (restored / not restored)", &t.playback().pause_at_verdict);
+  ImGui::Checkbox("pause at the verdict (the limit, or a divergence)",
+                  &t.playback().pause_at_verdict);
 }
 
 void GuiApp::parameters_panel() {
@@ -183,7 +184,7 @@ void GuiApp::parameters_panel() {
   int max_iter = t.session().rules().max_iterations;
   if (ImGui::InputInt("max iterations", &max_iter, 100, 1000)) t.set_max_iterations(max_iter);
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("The protocol's limit: the run is \"not restored\" at this iteration");
+    ImGui::SetTooltip("The iteration limit: the settled rule (SPEC 8) gives its verdict here");
   ImGui::PopItemWidth();
   if (changed) {
     std::string err;

@@ -55,11 +55,22 @@ void GuiApp::status_panel() {
                     (s.springs_cut() > 0 ? " (" + std::to_string(s.springs_cut()) + " cut)" : ""));
     row("iteration",
         std::to_string(s.state().iteration) + "   (t = " + fmt(s.state().time) + " s)");
-    const ImVec4 oc = outcome_color(r.outcome);
+    const ImVec4 oc = outcome_color(r);
     row("outcome", outcome_text(r), &oc);
+    // SPEC 8: the band history, so a run that entered and left is read as such.
+    const auto at = [](int it) { return it > 0 ? std::to_string(it) : std::string("-"); };
+    row("first entry", at(r.first_entry) + " (the paper's restored)");
+    row("exit", at(r.left_at), r.left_at > 0 ? &oc : nullptr);
+    row("settled", r.outcome == Outcome::settled
+                       ? at(r.settled_at)
+                       : r.outcome == Outcome::running && r.below_since > 0
+                             ? "below since " + at(r.below_since) + ", until the limit " +
+                                   std::to_string(rules.max_iterations) + "?"
+                             : std::string("-"));
+    row("divergence", r.outcome == Outcome::diverged ? at(r.iterations) : std::string("-"));
     const double thr = rules.restore_fraction * rules.reference;
     row("max |x - X|", (last ? fmt(last->max_displacement) : std::string("0")) +
-                           " cm (restored < " + fmt(thr) + ")");
+                           " cm (band < " + fmt(thr) + ")");
     const int w = s.watched();
     const NodeStatus ns = w < static_cast<int>(s.workspace().status.size())
                               ? s.workspace().status[static_cast<size_t>(w)]
@@ -132,7 +143,7 @@ void GuiApp::runs_panel() {
       if (ImGui::IsItemHovered())
         ImGui::SetTooltip("%s\n%s", outcome_text(p.result).c_str(), params_label(p.params).c_str());
       ImGui::TableNextColumn();
-      const ImVec4 oc = outcome_color(p.result.outcome);
+      const ImVec4 oc = outcome_color(p.result);
       ImGui::TextColored(oc, "%s", outcome_text(p.result).c_str());
       ImGui::TableNextColumn();
       if (ImGui::SmallButton("x")) remove = static_cast<int>(i);

@@ -17,17 +17,23 @@ inline ImVec4 gui_green() {
   return ImVec4(0.45f, 0.85f, 0.5f, 1.0f);
 }
 
-/// The colour of a run's verdict: restored green, diverged red, not restored amber, running
-/// the text colour.
-inline ImVec4 outcome_color(Outcome o) {
-  switch (o) {
+/// The colour of a run's verdict: settled (or restored) with no exit seen green, diverged red,
+/// not settled / not restored amber, running the text colour; amber once it has entered the
+/// band and left it (SPEC 8), even where it settled later: a run that left the band is never
+/// green.
+inline ImVec4 outcome_color(const RunResult& r) {
+  switch (r.outcome) {
+    case Outcome::settled:
+      return r.left_at > 0 ? gui_amber() : gui_green();
     case Outcome::restored:
-      return gui_green();
+      return r.left_at > 0 ? gui_amber() : gui_green();
     case Outcome::diverged:
       return gui_red();
     case Outcome::not_restored:
+    case Outcome::not_settled:
       return gui_amber();
     case Outcome::running:
+      if (r.left_at > 0) return gui_amber();
       break;
   }
   return ImGui::GetStyle().Colors[ImGuiCol_Text];

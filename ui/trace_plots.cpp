@@ -1,6 +1,7 @@
 #include "ui/trace_plots.hpp"
 
 #include "core/io.hpp"
+#include "core/report.hpp"
 
 namespace dampbound::ui {
 
@@ -107,9 +108,8 @@ PlotSpec figure_plot(const FigureData& figure) {
   std::vector<TraceView> views;
   int k = 0;
   for (const FigureRun& run : figure.runs) {
-    const std::string verdict = std::string(to_string(run.result.outcome)) + " at " +
-                                std::to_string(run.result.iterations);
-    views.push_back({run.label + " (" + verdict + ")", &run.trace, palette_color(k++)});
+    views.push_back(
+        {run.label + " (" + verdict_short(run.result) + ")", &run.trace, palette_color(k++)});
   }
   PlotSpec p = displacement_plot(views, figure.log_y, figure.restore_threshold, false,
                                  figure.title);

@@ -6,6 +6,8 @@
 #include <exception>
 #include <stdexcept>
 
+#include "core/report.hpp"
+
 namespace dampbound::ui {
 
 std::string fmt(double x) {
@@ -16,18 +18,11 @@ std::string fmt(double x) {
   return buf;
 }
 
-std::string outcome_text(const RunResult& r) {
-  switch (r.outcome) {
-    case Outcome::running:
-      return "running";
-    case Outcome::restored:
-      return "restored at " + std::to_string(r.iterations);
-    case Outcome::diverged:
-      return "diverged at " + std::to_string(r.iterations);
-    case Outcome::not_restored:
-      return "not restored at " + std::to_string(r.iterations);
-  }
-  return "?";
+std::string outcome_text(const RunResult& r) { return verdict_short(r); }
+
+SceneSpec with_settled_rule(SceneSpec scene) {
+  scene.rules.rule = StopRule::settled;
+  return scene;
 }
 
 std::string params_label(const Params& p) {
@@ -39,7 +34,8 @@ std::string params_label(const Params& p) {
   return s;
 }
 
-Tuner::Tuner(SceneSpec scene) : session_(std::make_unique<Session>(std::move(scene))) {}
+Tuner::Tuner(SceneSpec scene)
+    : session_(std::make_unique<Session>(with_settled_rule(std::move(scene)))) {}
 
 bool Tuner::open_scene(const std::string& path, std::string* error) {
   try {
@@ -52,7 +48,7 @@ bool Tuner::open_scene(const std::string& path, std::string* error) {
 }
 
 void Tuner::set_scene(SceneSpec scene) {
-  session_ = std::make_unique<Session>(std::move(scene));
+  session_ = std::make_unique<Session>(with_settled_rule(std::move(scene)));
   playing_ = false;
   notice_.clear();
   on_new_trace();
@@ -106,7 +102,10 @@ int Tuner::step(int n) {
     if (before == Outcome::running && after != Outcome::running && playback_.pause_at_verdict) {
       ++taken;
       playing_ = false;
-      notice_ = outcome_text(session_->result()) + ": paused at the verdict";
+      notice_ = verdict_text(session_->result(), session_->rules()) + ": paused at the verdict" +
+                (after == Outcome::settled || after == Outcome::not_settled
+                     ? " (the iteration limit, where the settled rule decides)"
+                     : "");
       break;
     }
   }

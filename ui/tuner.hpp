@@ -33,12 +33,17 @@ struct Pin {
 /// How playback advances the session.
 struct PlaybackOptions {
   int steps_per_frame = 10;       ///< steps per drawn frame while playing (1..10000)
-  bool pause_at_verdict = false;  ///< pause when the run is restored or not restored
+  bool pause_at_verdict = false;  ///< pause when the verdict is final: at the iteration limit
+                                  ///< (settled or not, SPEC 8) or at a divergence
   size_t max_trace = 1000000;     ///< pause when the trace holds this many steps (~100 MB)
 };
 
-/// "running", "restored at N", "diverged at N" or "not restored at N".
+/// "running", "settled at N", "not settled at N (entered at K, left at L)", "diverged at N"
+/// (and the first-entry rule's "restored at N", "not restored at N").
 std::string outcome_text(const RunResult& result);
+
+/// The scene with the settled rule (SPEC 8): the tuner answers "does it stay stable?".
+SceneSpec with_settled_rule(SceneSpec scene);
 
 /// The default name of a pin: "gamma G, m M, kappa K, dt D, POLICY" (with the factor for
 /// the upper policy).
@@ -53,7 +58,7 @@ constexpr size_t kPlotBuckets = 512;
 
 class Tuner {
  public:
-  /// Starts with the scene's own parameters and stop rules, paused.
+  /// Starts with the scene's own parameters and stop rules under the settled rule, paused.
   explicit Tuner(SceneSpec scene);
 
   /// Loads a scene file (core load_scene) and switches to it with its own parameters. On
@@ -70,7 +75,7 @@ class Tuner {
   /// New parameters, effective at the next step (state, trace and cuts are kept). Invalid
   /// parameters are refused with *error set and nothing changed.
   bool set_params(const Params& params, std::string* error = nullptr);
-  /// Iteration limit of the protocol (the verdict "not restored"), >= 1.
+  /// Iteration limit of the protocol (where the settled rule decides), >= 1.
   void set_max_iterations(int n);
 
   /// True while advance() steps.

@@ -13,6 +13,20 @@ std::string current_run_label(const Tuner& tuner) {
   return "current: " + outcome_text(tuner.session().result());
 }
 
+std::vector<PlotVLine> verdict_markers(const RunResult& r) {
+  const ImU32 green = IM_COL32(80, 200, 100, 255), amber = IM_COL32(235, 170, 40, 255),
+              red = IM_COL32(225, 60, 60, 255);
+  std::vector<PlotVLine> out;
+  const auto mark = [&](const char* what, int it, ImU32 color, bool dashed) {
+    if (it > 0) out.push_back({std::string(what) + " " + std::to_string(it), static_cast<double>(it), color, dashed});
+  };
+  mark("first entry", r.first_entry, green, true);
+  mark("left at", r.left_at, amber, true);
+  if (r.outcome == Outcome::settled) mark("settled at", r.settled_at, green, false);
+  if (r.outcome == Outcome::diverged) mark("diverged at", r.iterations, red, false);
+  return out;
+}
+
 PlotSpec tuner_displacement_plot(Tuner& tuner, const TunerPlotOptions& options) {
   const StopRules& rules = tuner.session().rules();
   const double threshold = rules.restore_fraction * rules.reference;
@@ -33,6 +47,8 @@ PlotSpec tuner_displacement_plot(Tuner& tuner, const TunerPlotOptions& options) 
     p.series = std::move(pins.series);
   }
   for (PlotSeries& s : p.series) drop_flat_runs(s);
+  const std::vector<PlotVLine> marks = verdict_markers(tuner.session().result());
+  p.vlines.insert(p.vlines.end(), marks.begin(), marks.end());
   return p;
 }
 

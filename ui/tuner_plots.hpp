@@ -19,8 +19,14 @@ struct TunerPlotOptions {
 /// Legend label of the current run: "current: <outcome>".
 std::string current_run_label(const Tuner& tuner);
 
+/// Vertical markers of a run's band history (SPEC 8): "first entry K" (green, dashed),
+/// "left at L" (amber, dashed), "settled at S" (green, solid), "diverged at D" (red, solid);
+/// only those that happened.
+std::vector<PlotVLine> verdict_markers(const RunResult& result);
+
 /// Displacement of the watched node (and the max over nodes) against iteration for the
-/// current run and the visible pins, with the 1 % restore threshold line.
+/// current run and the visible pins, with the 1 % restore threshold line and the current
+/// run's verdict_markers().
 PlotSpec tuner_displacement_plot(Tuner& tuner, const TunerPlotOptions& options);
 
 /// Coarsens a band for drawing: at most about max_columns samples (per bucket of consecutive

@@ -34,8 +34,31 @@ displacement = [0.5, 0, 0]
 outcome = "diverged"
 TOML
 expect_exit 1 "$DB" check "$WORK/wrong.toml" --junit "$WORK/wrong.xml"
-expect_match "$OUT" 'FAIL .*wrong.toml:13 outcome == diverged \(measured restored at [0-9]+\)' "fail line"
+expect_match "$OUT" 'FAIL .*wrong.toml:13 \[first-entry\] outcome == diverged \(measured restored at [0-9]+' "fail line"
 expect_match "$(cat "$WORK/wrong.xml")" '<failure message="measured restored' "junit failure"
+
+# The settled rule (SPEC 8): the undamped oscillator enters the band at 31 and leaves it.
+sed -e 's/^gamma = 0.002/gamma = 0.0/' -e 's/^outcome = "diverged"/rule = "settled"\noutcome = "not_settled"\nfirst_entry = [31, 31]\nleft = true/' \
+  "$WORK/wrong.toml" >"$WORK/settled.toml"
+expect_exit 0 "$DB" check "$WORK/settled.toml"
+expect_match "$OUT" 'pass .*settled.toml:13 \[settled\] outcome == not_settled \(measured entered the 1% band at 31, left it at [0-9]+, not settled by the limit 1000\)' "settled pass line"
+expect_match "$OUT" '\[settled\] left == true \(measured left at [0-9]+\)' "left pass line"
+sed -e 's/^left = true/settled_at = [1, 1000]/' "$WORK/settled.toml" >"$WORK/never.toml"
+expect_exit 1 "$DB" check "$WORK/never.toml"
+expect_match "$OUT" 'FAIL .*\[settled\] settled_at in \[1, 1000\] \(measured none\)' "no settled iteration fails"
+
+# Expectations that mix the rules' words are bad input, named by file and line.
+write_expect() { printf '[[node]]\nx = [0, 0, 0]\nfixed = true\n[[node]]\nx = [1, 0, 0]\n[[spring]]\nnodes = [0, 1]\n[[perturb]]\nnode = 1\ndisplacement = [0.5, 0, 0]\n[[expect]]\n%b' "$2" >"$WORK/$1.toml"; }
+write_expect settled-word 'outcome = "settled"\n'
+write_expect left-first 'rule = "first-entry"\nleft = false\n'
+write_expect bad-rule 'rule = "eventually"\n'
+write_expect restored-settled 'rule = "settled"\noutcome = "restored"\n'
+for f in settled-word:12 left-first:13 bad-rule:12 restored-settled:13; do
+  name=${f%%:*}; line=${f##*:}
+  expect_exit 2 "$DB" run "$WORK/$name.toml"
+  expect_one_line "$ERR" "$name"
+  expect_match "$ERR" "$name\.toml:$line: " "$name names file and line"
+done
 
 # A malformed scene is a failure of check, reported with file and line.
 printf '[grid]\nnx = 2\n' >"$WORK/broken.toml"

@@ -3,7 +3,7 @@
 
 expect_exit 0 "$DB" reproduce -o "$WORK/rep" --grid 4 --threads 2
 for f in report.md fig1.png fig2.png fig1.csv fig2.csv map-lower.png map-upper.png \
-         sweep-lower.csv sweep-upper.csv; do
+         sweep-lower.csv sweep-upper.csv map-lower-settled.png sweep-lower-settled.csv; do
   [ -s "$WORK/rep/$f" ] && ok || bad "reproduce did not write $f"
 done
 report=$(cat "$WORK/rep/report.md")
@@ -12,6 +12,16 @@ rows=$(grep -cE '^\| [0-9]+ \|' "$WORK/rep/report.md")
 expect_match "$report" '34 iterations .*\| gamma = 0\.002: (restored|not_restored|diverged) at iteration [0-9]+' "Fig. 1 claim measured"
 expect_match "$report" '652 iterations .*\| factor 1\.0: (restored|not_restored|diverged) at iteration [0-9]+' "Fig. 2 claim measured"
 expect_match "$report" '\*\*(holds|does not hold|partly)\*\*' "verdicts"
+# SPEC 8: the rule that judges each claim; "keeps oscillating" is about the settled behaviour,
+# and where the rules differ both verdicts are given.
+expect_match "$report" '\| Rule \| ClaimVerdict \|' "rule column"
+expect_match "$report" 'keeps oscillating .*\| gamma = 0\.0005: restored at iteration 230 by the first entry; settled rule: settled at [0-9]+ \(entered the 1% band at 230, left it at [0-9]+.*\| settled \| \*\*' \
+  "claim 1 judged by the settled rule, both verdicts given"
+expect_match "$report" 'remained stable thereafter .*\| settled \| \*\*' "claim 3 judged by the settled rule"
+expect_match "$report" 'not restored \(paper sec\. 4\) \| settled rule: held in [0-9]+ of [0-9]+ trials .*; first entry: held in [0-9]+ of [0-9]+ trials .*\| settled \| \*\*' \
+  "the sweep's keeps-oscillating claim under both rules"
+expect_match "$(grep -v '^#' "$WORK/rep/sweep-lower-settled.csv" | head -1)" ',first_entry,left_at,settled_at$' \
+  "settled reduced sweep CSV"
 expect_match "$report" 'held in [0-9]+ of [0-9]+ trials' "sweep claims counted"
 # Nothing half-written is left behind.
 left=$(find "$WORK/rep" -name '*.tmp*' -o -name '*.journal' | wc -l)

@@ -3,14 +3,15 @@
 
 # The acceptance command.
 expect_exit 0 "$DB" run "$SRC/scenes/paper-plane.toml" --m 0.001 --kappa 0.001 --gamma 0.002 --json
-expect_match "$OUT" '^\{.*"outcome":"(restored|diverged|not_restored)".*"iterations":[0-9]+' "run --json"
+expect_match "$OUT" '^\{.*"outcome":"(settled|diverged|not_settled)".*"iterations":[0-9]+' "run --json"
 for key in max_displacement violations unstabilisable; do
   expect_match "$OUT" "\"$key\":" "run --json has $key"
 done
 
 # A shipped scene by name, text output.
 expect_exit 0 "$DB" run two-node
-expect_match "$OUT" 'outcome +restored at iteration [0-9]+' "run text"
+expect_match "$OUT" 'outcome +settled at iteration 1000' "run text"
+expect_match "$OUT" 'verdict +settled at [0-9]+ \(entered the 1% band at [0-9]+' "run text verdict"
 
 # Diverging run: reported as diverged, no NaN anywhere.
 expect_exit 0 "$DB" run paper-plane --kappa 1 --gamma 0 --json --trace "$WORK/div.csv"
@@ -28,7 +29,7 @@ expect_match "$(sed -n 2p "$WORK/t.csv")" '^1,0\.05,' "first trace row"
 
 # Flags override the scene; --max-iter stops the run.
 expect_exit 0 "$DB" run paper-plane --gamma 0 --max-iter 7 --json
-expect_match "$OUT" '"outcome":"not_restored","iterations":7' "--max-iter"
+expect_match "$OUT" '"outcome":"not_settled","iterations":7' "--max-iter"
 expect_match "$OUT" '"gamma":0,' "--gamma overrides"
 
 # Help on every subcommand, with units.

@@ -24,7 +24,10 @@ expect_match "$OUT" 'safe bound \(SPEC 9\)' "two-node safe bound"
 expect_exit 0 "$DB" run paper-plane --gamma 1 --json
 expect_match "$OUT" '"outcome":"diverged"' "gamma = 1 as given diverges"
 expect_exit 0 "$DB" run paper-plane --policy safe --gamma 1 --max-iter 10000 --json --trace "$WORK/trace.csv"
-expect_match "$OUT" '"policy":"safe".*"outcome":"restored".*"unguaranteed":0,"compressed_springs":[0-9]+' "safe settles"
+expect_match "$OUT" '"policy":"safe".*"outcome":"settled"' "safe settles"
+expect_match "$OUT" '"unguaranteed":0,"compressed_springs":[0-9]+' "safe counts in the JSON"
+expect_exit 0 "$DB" run paper-plane --policy safe --gamma 1 --max-iter 10000 --rule first-entry --json
+expect_match "$OUT" '"outcome":"restored","iterations":2[0-9][0-9][0-9],' "safe restores after 2000-odd iterations"
 expect_match "$(head -1 "$WORK/trace.csv")" ',safe_bound,unguaranteed,compressed_springs$' "trace columns"
 # The watched node is the perturbed one: its springs are stretched, so R is above 9 kappa/m
 # and gamma_safe below 0.039775; the policy damps it at exactly its gamma_safe.

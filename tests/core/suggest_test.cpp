@@ -34,7 +34,10 @@ TEST(Suggest, PaperPlaneDampingRangeAndFastestSettling) {
     EXPECT_LE(d.best_rho, spectrum_spectral_radius(Integrator::semi_implicit_euler, sp, g / 0.001, 0.05) + 1e-12);
   }
   ASSERT_EQ(d.runs.size(), 3u);
-  EXPECT_EQ(d.runs[0].result.outcome, Outcome::restored);
+  // Verified by the settled rule (SPEC 8): it stays below the band to the limit.
+  EXPECT_EQ(d.runs[0].result.outcome, Outcome::settled);
+  EXPECT_TRUE(d.runs[0].verified());
+  EXPECT_EQ(d.runs[0].rules.rule, StopRule::settled);
   for (const VerifiedRun& r : d.runs) EXPECT_NE(r.result.outcome, Outcome::diverged) << r.label;
 }
 
@@ -47,7 +50,7 @@ TEST(Suggest, LargestStableStep) {
   EXPECT_NEAR(t.dt_all, 1 / kPi, 1e-12);
   EXPECT_EQ(t.dt_all_by, "Delingette critical stiffness");
   ASSERT_EQ(t.runs.size(), 2u);
-  for (const VerifiedRun& r : t.runs) EXPECT_EQ(r.result.outcome, Outcome::restored) << r.label;
+  for (const VerifiedRun& r : t.runs) EXPECT_TRUE(r.verified()) << r.label;
   // Beyond the exact limit the same run diverges: the suggestion is not merely cautious.
   const VerifiedRun beyond = verify_run(s, [&] { Params p = s.params; p.dt = 1.05 * t.dt_exact; return p; }(), s.rules, "");
   EXPECT_EQ(beyond.result.outcome, Outcome::diverged);
@@ -68,7 +71,9 @@ TEST(Suggest, NonUniformModelPerNodeClasses) {
   const SceneSpec s = scene("stiff-region");
   SuggestOptions o;
   o.trials = 6;  // keep the test short: 6 + 9 trial runs
-  const DampingSuggestion d = suggest_damping(s, s.params, s.rules, o);
+  StopRules rules = s.rules;
+  rules.max_iterations = 400;  // each settled-rule run goes to its limit (SPEC 8)
+  const DampingSuggestion d = suggest_damping(s, s.params, rules, o);
   ASSERT_FALSE(d.empty);
   EXPECT_FALSE(d.exact.uniform_rate);
   // Two classes: the square (m_i = 4m, kappa_i = 10 kappa) and the rest; eq. 5 is set by the
@@ -83,17 +88,30 @@ TEST(Suggest, NonUniformModelPerNodeClasses) {
   EXPECT_GE(d.gamma_best, d.gamma_min);
   EXPECT_LT(d.gamma_best, d.gamma_max);
   ASSERT_FALSE(d.runs.empty());
-  EXPECT_EQ(d.runs[0].result.outcome, Outcome::restored);
-  // No trial in the first pass restored faster than the chosen value.
+  EXPECT_EQ(d.runs[0].result.outcome, Outcome::settled);
+  EXPECT_TRUE(d.runs[0].verified());
+  // No trial in the first pass settled sooner than the chosen value.
   for (int k = 0; k < 6; ++k) {
     const double g = d.gamma_min + (d.gamma_max - d.gamma_min) * (1 - 1e-9) * k / 5;
     Params p = s.params;
     p.gamma = g;
-    const RunResult r = verify_run(s, p, s.rules, "").result;
-    if (r.outcome == Outcome::restored) {
-      EXPECT_GE(r.iterations, d.runs[0].result.iterations) << g;
+    const RunResult r = verify_run(s, p, rules, "").result;
+    if (r.outcome == Outcome::settled) {
+      EXPECT_GE(r.settled_at, d.runs[0].result.settled_at) << g;
     }
   }
+}
+
+TEST(Suggest, ARunThatEntersAndLeavesIsNotVerified) {
+  // Past the exact limit the paper plane enters the band at 12 and leaves it at 63.
+  const SceneSpec s = scene("paper-plane");
+  Params p = s.params;
+  p.dt = 0.51;
+  const VerifiedRun r = verify_run(s, p, s.rules, "past the limit");
+  EXPECT_EQ(r.result.first_entry, 12);
+  EXPECT_FALSE(r.verified());
+  p.dt = 0.05;
+  EXPECT_TRUE(verify_run(s, p, s.rules, "at the lower bound").verified());
 }
 
 TEST(Suggest, UnboundedRangeForVerlet) {

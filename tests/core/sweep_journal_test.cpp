@@ -64,6 +64,38 @@ TEST(SweepJournal, LineRoundTripsExactly) {
   EXPECT_FALSE(parse_journal_line(altered, back));
 }
 
+TEST(SweepJournal, SettledRuleLinesKeepTheBandFields) {
+  JournalEntry e = entry(8, Outcome::not_settled, 1000, 0.25);
+  e.result.first_entry = 12;
+  e.result.left_at = 63;
+  std::string line = journal_line(e);
+  EXPECT_NE(line.find(" b 12 63 0 "), std::string::npos);
+  line.pop_back();
+  JournalEntry back;
+  ASSERT_TRUE(parse_journal_line(line, back));
+  EXPECT_EQ(back.result.outcome, Outcome::not_settled);
+  EXPECT_EQ(back.result.first_entry, 12);
+  EXPECT_EQ(back.result.left_at, 63);
+  EXPECT_EQ(back.result.settled_at, 0);
+  e = entry(9, Outcome::settled, 1000, 0.001);
+  e.result.first_entry = 230;
+  e.result.left_at = 231;
+  e.result.settled_at = 260;
+  line = journal_line(e);
+  line.pop_back();
+  ASSERT_TRUE(parse_journal_line(line, back));
+  EXPECT_EQ(back.result.outcome, Outcome::settled);
+  EXPECT_EQ(back.result.settled_at, 260);
+  // A first-entry restore writes the old line: its first entry is its iteration.
+  e = entry(10, Outcome::restored, 112, 0.04);
+  e.result.first_entry = 112;
+  line = journal_line(e);
+  EXPECT_EQ(line.find(" b "), std::string::npos);
+  line.pop_back();
+  ASSERT_TRUE(parse_journal_line(line, back));
+  EXPECT_EQ(back.result.first_entry, 112);
+}
+
 TEST(SweepJournal, ResumeDropsTornTailAndDuplicates) {
   const std::string path = temp_path("journal");
   const std::string header = "dampbound-journal v1 sweep=abc 1/1 classes=10";

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <random>
@@ -31,12 +32,17 @@ std::string describe(const TrialParams& t, DampingPolicy p) {
          " policy=" + to_string(p) + " factor=" + std::to_string(t.factor);
 }
 
-/// Runs every trial both ways and compares; returns how many ended in each outcome so the
-/// caller can check the sample really covers restored, diverged and not restored.
-std::array<int, 4> expect_same(const SceneSpec& scene, DampingPolicy policy, const StopRules& rules,
+constexpr size_t kOutcomes = 6;  // Outcome's values
+constexpr size_t kLeft = kOutcomes;  // the extra slot of Seen: trials that entered and left
+using Seen = std::array<int, kOutcomes + 1>;
+
+/// Runs every trial both ways and compares; returns how many ended in each outcome (and how
+/// many entered the band and left it) so the caller can check the sample really covers
+/// every verdict.
+Seen expect_same(const SceneSpec& scene, DampingPolicy policy, const StopRules& rules,
                                const std::vector<TrialParams>& trials) {
   const std::vector<TrialResult> batched = run_batched(scene, policy, rules, trials);
-  std::array<int, 4> seen{};
+  Seen seen{};
   for (size_t k = 0; k < trials.size(); ++k) {
     const TrialResult ref = run_reference(scene, policy, rules, trials[k]);
     const TrialResult& got = batched[k];
@@ -49,7 +55,11 @@ std::array<int, 4> expect_same(const SceneSpec& scene, DampingPolicy policy, con
     EXPECT_EQ(got.unstabilisable, ref.unstabilisable);
     EXPECT_EQ(got.clamped, ref.clamped);
     EXPECT_EQ(got.zero_length_springs, ref.zero_length_springs);
+    EXPECT_EQ(got.first_entry, ref.first_entry);
+    EXPECT_EQ(got.left_at, ref.left_at);
+    EXPECT_EQ(got.settled_at, ref.settled_at);
     ++seen[static_cast<size_t>(ref.outcome)];
+    seen[kLeft] += ref.left_at > 0;
   }
   return seen;
 }
@@ -71,16 +81,24 @@ TEST(SweepKernel, TwoNodeSceneEveryPolicyMatchesStep) {
         t.factor = zeta > 1 ? 1.05 : 1.0;
         trials.push_back(t);
       }
-  std::array<int, 4> seen{};
-  for (DampingPolicy p :
-       {DampingPolicy::fixed, DampingPolicy::clamp, DampingPolicy::upper, DampingPolicy::lower,
-        DampingPolicy::safe}) {
-    const auto s = expect_same(scene, p, rules, trials);
-    for (size_t k = 0; k < 4; ++k) seen[k] += s[k];
+  for (StopRule rule : {StopRule::first_entry, StopRule::settled}) {
+    rules.rule = rule;
+    Seen seen{};
+    for (DampingPolicy p :
+         {DampingPolicy::fixed, DampingPolicy::clamp, DampingPolicy::upper, DampingPolicy::lower,
+           DampingPolicy::safe}) {
+      const auto s = expect_same(scene, p, rules, trials);
+      for (size_t k = 0; k < seen.size(); ++k) seen[k] += s[k];
+    }
+    const bool settled = rule == StopRule::settled;
+    EXPECT_GT(seen[static_cast<size_t>(settled ? Outcome::settled : Outcome::restored)], 0);
+    EXPECT_GT(seen[static_cast<size_t>(Outcome::diverged)], 0);
+    EXPECT_GT(seen[static_cast<size_t>(settled ? Outcome::not_settled : Outcome::not_restored)], 0);
+    // The undamped oscillator passes through the band and out again: the settled rule's case.
+    if (settled) {
+      EXPECT_GT(seen[kLeft], 0);
+    }
   }
-  EXPECT_GT(seen[static_cast<size_t>(Outcome::restored)], 0);
-  EXPECT_GT(seen[static_cast<size_t>(Outcome::diverged)], 0);
-  EXPECT_GT(seen[static_cast<size_t>(Outcome::not_restored)], 0);
 }
 
 /// An irregular scene built in code: non-uniform mass, gamma and stiffness scales, partial
@@ -131,12 +149,14 @@ TEST(SweepKernel, IrregularSceneMatchesStep) {
     trials.push_back(t);
   }
   long long zero_length = 0;
-  for (DampingPolicy p :
-       {DampingPolicy::fixed, DampingPolicy::clamp, DampingPolicy::upper, DampingPolicy::lower,
-        DampingPolicy::safe}) {
-    expect_same(scene, p, rules, trials);
-    zero_length += run_batched(scene, p, rules, {trials[0]})[0].zero_length_springs;
-  }
+  for (StopRule rule : {StopRule::first_entry, StopRule::settled})
+    for (DampingPolicy p :
+         {DampingPolicy::fixed, DampingPolicy::clamp, DampingPolicy::upper, DampingPolicy::lower,
+           DampingPolicy::safe}) {
+      rules.rule = rule;
+      expect_same(scene, p, rules, trials);
+      zero_length += run_batched(scene, p, rules, {trials[0]})[0].zero_length_springs;
+    }
   EXPECT_GT(zero_length, 0) << "the coincident nodes should give zero-length springs";
 }
 
@@ -154,6 +174,8 @@ TEST(SweepKernel, ForwardEulerMatchesStep) {
     t.gamma = zeta * lower_bound(t.m, t.kappa);
     trials.push_back(t);
   }
+  expect_same(scene, DampingPolicy::fixed, rules, trials);
+  rules.rule = StopRule::settled;
   expect_same(scene, DampingPolicy::fixed, rules, trials);
 }
 
@@ -184,6 +206,12 @@ TEST(SweepKernel, PaperPlaneBorderlineTrialsMatchStep) {
   EXPECT_GT(seen[static_cast<size_t>(Outcome::restored)], 0);
   EXPECT_GT(seen[static_cast<size_t>(Outcome::not_restored)], 0);
   EXPECT_GT(seen[static_cast<size_t>(Outcome::diverged)], 0);
+  StopRules settled = rules;
+  settled.rule = StopRule::settled;
+  const auto seen_settled = expect_same(scene, DampingPolicy::fixed, settled, fixed_trials);
+  EXPECT_GT(seen_settled[static_cast<size_t>(Outcome::settled)], 0);
+  EXPECT_GT(seen_settled[static_cast<size_t>(Outcome::not_settled)], 0);
+  EXPECT_GT(seen_settled[static_cast<size_t>(Outcome::diverged)], 0);
 
   std::vector<TrialParams> few;
   for (double r : {0.5, 20.0, 160.0}) {
@@ -197,8 +225,10 @@ TEST(SweepKernel, PaperPlaneBorderlineTrialsMatchStep) {
     }
   }
   for (DampingPolicy p : {DampingPolicy::clamp, DampingPolicy::upper, DampingPolicy::lower,
-                          DampingPolicy::safe})
+                          DampingPolicy::safe}) {
     expect_same(scene, p, rules, few);
+    expect_same(scene, p, settled, few);
+  }
 }
 
 /// The safe policy (SPEC 9) through every branch: the user's gamma above gamma_safe (clamped

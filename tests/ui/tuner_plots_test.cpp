@@ -70,6 +70,38 @@ TEST(TunerPlots, PinsAreOverlaidUntilHiddenOrRemoved) {
   EXPECT_TRUE(tuner_displacement_plot(t, o).y.log);
 }
 
+TEST(TunerPlots, VerdictMarkersShowEntryExitAndSettled) {
+  RunResult r;
+  EXPECT_TRUE(verdict_markers(r).empty());
+  r.first_entry = 230;
+  r.left_at = 231;
+  r.outcome = Outcome::settled;
+  r.settled_at = 262;
+  const std::vector<PlotVLine> m = verdict_markers(r);
+  ASSERT_EQ(m.size(), 3u);
+  EXPECT_EQ(m[0].label, "first entry 230");
+  EXPECT_DOUBLE_EQ(m[0].x, 230);
+  EXPECT_EQ(m[1].label, "left at 231");
+  EXPECT_EQ(m[2].label, "settled at 262");
+  EXPECT_FALSE(m[2].dashed);
+  r.outcome = Outcome::diverged;
+  r.iterations = 300;
+  const std::vector<PlotVLine> d = verdict_markers(r);
+  ASSERT_EQ(d.size(), 3u);
+  EXPECT_EQ(d[2].label, "diverged at 300");
+  // The live plot carries them.
+  Tuner t(load_scene(DAMPBOUND_SOURCE_DIR "/scenes/two-node.toml"));
+  Params p = t.params();
+  p.gamma = 0;
+  ASSERT_TRUE(t.set_params(p));
+  t.step(40);
+  const PlotSpec spec = tuner_displacement_plot(t, TunerPlotOptions{});
+  int marks = 0;
+  for (const PlotVLine& v : spec.vlines)
+    marks += v.label == "first entry 31" || v.label.rfind("left at ", 0) == 0;
+  EXPECT_EQ(marks, 2);
+}
+
 TEST(TunerPlots, BandIsCoarsenedConservatively) {
   PlotBand b;
   const double inf = std::numeric_limits<double>::infinity();

@@ -115,6 +115,32 @@ TEST(Tuner, PauseAtTheVerdictWhenAsked) {
   EXPECT_FALSE(t.playing());
   EXPECT_NE(t.session().result().outcome, Outcome::running);
   EXPECT_EQ(t.session().state().iteration, t.session().result().iterations);
+  // The tuner judges by the settled rule (SPEC 8): the verdict is final at the limit.
+  EXPECT_EQ(t.session().rules().rule, StopRule::settled);
+  EXPECT_EQ(t.session().result().iterations, t.session().rules().max_iterations);
+  EXPECT_NE(t.notice().find("paused at the verdict (the iteration limit"), std::string::npos)
+      << t.notice();
+}
+
+TEST(Tuner, AnUndampedOscillatorEntersLeavesAndThePinKeepsItAll) {
+  Tuner t(load_scene(DAMPBOUND_SOURCE_DIR "/scenes/two-node.toml"));
+  Params p = t.params();
+  p.gamma = 0;
+  ASSERT_TRUE(t.set_params(p));
+  t.step(40);
+  const RunResult& r = t.session().result();
+  EXPECT_EQ(r.outcome, Outcome::running);  // no green "restored at 31" any more
+  EXPECT_EQ(r.first_entry, 31);
+  EXPECT_GT(r.left_at, 31);
+  EXPECT_NE(outcome_text(r).find("entered at 31, left at"), std::string::npos) << outcome_text(r);
+  t.playback().pause_at_verdict = true;
+  t.step(5000);
+  EXPECT_EQ(t.session().result().outcome, Outcome::not_settled);
+  const Pin& pin = t.pin();
+  EXPECT_EQ(pin.result.outcome, Outcome::not_settled);
+  EXPECT_EQ(pin.result.first_entry, 31);
+  EXPECT_EQ(pin.result.left_at, r.left_at);
+  EXPECT_EQ(pin.rules.rule, StopRule::settled);
 }
 
 TEST(Tuner, PinsKeepACopyOfTheTraceAndDistinctColours) {
@@ -258,6 +284,14 @@ TEST(TunerText, NeverNaN) {
   EXPECT_EQ(outcome_text(r), "diverged at 45");
   r.outcome = Outcome::restored;
   EXPECT_EQ(outcome_text(r), "restored at 45");
+  r.outcome = Outcome::settled;
+  r.settled_at = 40;
+  EXPECT_EQ(outcome_text(r), "settled at 40");
+  r.outcome = Outcome::not_settled;
+  r.iterations = 1000;
+  r.first_entry = 12;
+  r.left_at = 63;
+  EXPECT_EQ(outcome_text(r), "not settled at 1000 (entered at 12, left at 63)");
 }
 
 }  // namespace
