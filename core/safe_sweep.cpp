@@ -147,16 +147,16 @@ std::string safe_report_section(const std::vector<SweepRow>& fixed_rows,
   double r_unit = 0;
   for (double r : unit.row_sum) r_unit = std::max(r_unit, r);
   auto outcomes = [](const std::vector<SweepRow>& rows) {
-    std::uint64_t n[4] = {0, 0, 0, 0};
+    std::uint64_t n[6] = {0, 0, 0, 0, 0, 0};  // by Outcome
     for (const SweepRow& r : rows) ++n[static_cast<size_t>(r.outcome)];
-    char buf[160];
-    std::snprintf(buf, sizeof buf,
-                  "%" PRIu64 " restored, %" PRIu64 " not restored, %" PRIu64
-                  " diverged of %zu trials",
-                  n[static_cast<size_t>(Outcome::restored)],
-                  n[static_cast<size_t>(Outcome::not_restored)],
-                  n[static_cast<size_t>(Outcome::diverged)], rows.size());
-    return std::string(buf);
+    std::string text;
+    for (Outcome o : {Outcome::restored, Outcome::not_restored, Outcome::settled,
+                      Outcome::not_settled, Outcome::diverged}) {
+      const std::uint64_t k = n[static_cast<size_t>(o)];
+      if (k == 0 && o != Outcome::diverged) continue;
+      text += std::to_string(k) + " " + to_string(o) + ", ";
+    }
+    return text + "of " + std::to_string(rows.size()) + " trials";
   };
   char num[64];
   std::snprintf(num, sizeof num, "%.6g", r_unit);
