@@ -7,6 +7,7 @@
 #include "core/io.hpp"
 #include "core/report.hpp"
 #include "core/session.hpp"
+#include "core/vtu.hpp"
 
 namespace dampbound::app {
 namespace {
@@ -14,6 +15,8 @@ namespace {
 struct RunArgs {
   std::string scene, trace;
   std::string rule = "settled";  // SPEC 8: a user's question is whether it stays stable
+  std::string vtk;               // ParaView series folder (core/vtu.hpp)
+  int every = 1;
   bool json = false;
   ParamFlags flags;
 };
@@ -26,7 +29,19 @@ int run(const RunArgs& a) {
   rules.rule = stop_rule_of(a.rule);
   if (!a.trace.empty()) check_writable(a.trace);
   Session session(std::move(scene), params, rules);
-  const RunResult& r = session.run_to_end();
+  std::unique_ptr<VtuSeries> vtk;
+  StepObserver save;
+  if (!a.vtk.empty()) {
+    // Iteration 0, every N-th step and the last one; the .pvd lists them with their times.
+    vtk = std::make_unique<VtuSeries>(a.vtk);
+    vtk->add(session.model(), session.state(), session.workspace());
+    save = [&](const StepStats& st) {
+      if (st.iteration % a.every == 0 || !session.running())
+        vtk->add(session.model(), session.state(), session.workspace());
+    };
+  }
+  const RunResult& r = session.run_to_end(save);
+  if (vtk) vtk->write_collection();
   if (!a.trace.empty())
     write_file_atomic(a.trace, [&](std::ostream& out) { write_trace_csv(out, session.trace()); });
   const std::string name = session.scene().name.empty() ? a.scene : session.scene().name;
@@ -82,6 +97,12 @@ std::function<int()> setup(CLI::App& root) {
                   "write one CSV row per iteration (watched node's displacement in cm, bounds "
                   "and damping in mass unit/s, max displacement)");
   cmd->add_flag("--json", a->json, "print one JSON object instead of text");
+  cmd->add_option("--vtk", a->vtk,
+                  "write a ParaView series to this folder: step_NNNNNN.vtu (nodes with "
+                  "displacement, velocity, bounds, damping, state; springs with stiffness, "
+                  "strain) and series.pvd");
+  cmd->add_option("--every", a->every, "with --vtk: save every N-th step (and the last)")
+      ->check(CLI::Range(1, 100000000));
   return [a] { return run(*a); };
 }
 

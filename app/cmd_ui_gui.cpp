@@ -10,11 +10,13 @@
 #include "app/options.hpp"
 #include "core/error.hpp"
 #include "core/io.hpp"
+#include "core/scene_write.hpp"
 
 #if defined(DAMPBOUND_HAVE_GLFW)
 #include "ui/glfw_host.hpp"
 #include "ui/gui_app.hpp"
 #include "ui/image.hpp"
+#include "ui/tuner_export.hpp"
 #endif
 
 #ifndef DAMPBOUND_SOURCE_DIR
@@ -29,6 +31,10 @@ struct GuiArgs {
   int frames = 0, steps_per_frame = 0;
   bool stats = false, play = false, demo = false;
   std::string tab;
+  std::vector<std::string> pins;  ///< --pin KEY=VALUE[,KEY=VALUE...], repeatable
+  std::string save_scene, export_dir, export_prefix = "dampbound";
+  int expect_iterations = default_expect_tolerance().iterations;
+  double expect_displacement = default_expect_tolerance().displacement_factor;
   ParamFlags flags;
 };
 
@@ -48,8 +54,6 @@ bool have_display() {
 void print_stats(const GuiArgs& a, ui::GuiApp& app, const ui::WindowRun& run,
                  const std::string& renderer, int width, int height) {
   const Session& s = app.tuner().session();
-  const double wall_s = run.mean_frame_ms * run.frames / 1000.0;
-  const double sps = wall_s > 0 ? static_cast<double>(app.tuner().total_steps()) / wall_s : 0.0;
   std::printf(
       "{\"frames\":%d,\"iterations\":%d,\"outcome\":\"%s\",\"outcome_iteration\":%d,"
       "\"steps_per_frame\":%d,\"mean_frame_ms\":%s,\"fps\":%s,\"steps_per_second\":%s,"
@@ -58,7 +62,7 @@ void print_stats(const GuiArgs& a, ui::GuiApp& app, const ui::WindowRun& run,
       run.frames, s.state().iteration, to_string(s.result().outcome), s.result().iterations,
       app.tuner().playback().steps_per_frame, json_number(run.mean_frame_ms).c_str(),
       json_number(run.mean_frame_ms > 0 ? 1000.0 / run.mean_frame_ms : 0.0).c_str(),
-      json_number(sps).c_str(),
+      json_number(app.measured_steps_per_second()).c_str(),
       json_number(run.frames > 0 ? app.tuner().step_seconds() * 1e3 / run.frames : 0.0).c_str(),
       width, height, json_string(s.scene().name).c_str(), json_number(s.params().gamma).c_str(),
       to_string(s.params().policy), app.tuner().pins().size(), json_string(renderer).c_str());
@@ -70,6 +74,9 @@ std::string tab_title(const std::string& tab) {
   if (tab == "criteria") return "Criteria";
   if (tab == "pins") return "Pins & export";
   if (tab == "suggest") return "Suggest";
+  if (tab == "save") return "Save scene";
+  if (tab == "map") return "Map";
+  if (tab == "mesh") return "Mesh";
   return "Status";
 }
 
@@ -85,6 +92,22 @@ int run(GuiArgs& a) {
   int width = 0, height = 0;
   if (!a.size.empty()) parse_size(a.size, "--size", width, height);
   if (!a.screenshot.empty()) check_writable(a.screenshot);
+  if (!a.save_scene.empty()) {
+    try {
+      check_writable(a.save_scene);
+    } catch (const InputError& e) {
+      throw InputError(std::string("--save-scene: ") + e.what());
+    }
+  }
+  if (!a.export_dir.empty() && a.frames <= 0)
+    throw InputError("--export needs --frames N (the plots are exported at frame N)");
+  if (!a.export_dir.empty()) {
+    try {
+      ui::export_paths(a.export_dir, a.export_prefix);  // a prefix without a path separator
+    } catch (const InputError& e) {
+      throw InputError(std::string("--export-prefix: ") + e.what());
+    }
+  }
   ui::GuiOptions o;
   o.config_dir = ui::config_dir(a.config_dir);
   o.scenes_dir = std::string(DAMPBOUND_SOURCE_DIR) + "/scenes";
@@ -95,11 +118,16 @@ int run(GuiArgs& a) {
   o.play = a.play || a.frames > 0;
   o.demo = a.demo;
   o.scripted = a.frames > 0;
+  ui::GuiApp app(std::move(o));
+  for (const std::string& text : a.pins)
+    ui::pin_run(app.tuner(), ui::parse_pin_request(text, app.tuner().params(),
+                                                   app.tuner().session().rules().max_iterations));
+  app.save_tolerance().iterations = a.expect_iterations;
+  app.save_tolerance().displacement_factor = a.expect_displacement;
   if (!have_display())
     throw std::runtime_error(
         "gui: no display (DISPLAY is not set): run it under `xvfb-run -a`, or use `dampbound "
         "figure` for headless plots");
-  ui::GuiApp app(std::move(o));
   if (!a.tab.empty()) app.select_tab(tab_title(a.tab));
   if (width == 0) {
     const auto remembered = app.remembered_window_size();
@@ -116,8 +144,14 @@ int run(GuiArgs& a) {
   ui::GlfwHost host(w);
   std::signal(SIGINT, on_stop_signal);
   std::signal(SIGTERM, on_stop_signal);
-  const ui::WindowRun run = host.run([&app](ui::FrameInfo& info) {
+  std::string export_message;
+  const bool map_tab = a.tab == "map";
+  const ui::WindowRun run = host.run([&](ui::FrameInfo& info) {
+    // Scripted: the map's passes all finish before the last frame draws (the screenshot).
+    if (map_tab && info.index == a.frames - 1) app.map().wait();
     app.frame(info);
+    if (!a.export_dir.empty() && info.index == a.frames - 1)
+      export_message = app.export_plots(a.export_dir, a.export_prefix);
     if (g_stop != 0) info.close = true;
   });
   std::signal(SIGINT, SIG_DFL);
@@ -127,6 +161,13 @@ int run(GuiArgs& a) {
   if (!a.screenshot.empty()) {
     if (!run.screenshot) throw std::runtime_error("gui: the window closed before the screenshot");
     ui::write_png_atomic(*run.screenshot, a.screenshot);
+  }
+  if (!export_message.empty()) std::fprintf(stderr, "gui: %s\n", export_message.c_str());
+  if (!a.save_scene.empty()) {
+    std::vector<std::string> notes;
+    const std::string saved = app.save_scene(a.save_scene, &notes);
+    for (const std::string& n : notes) std::fprintf(stderr, "gui: %s\n", n.c_str());
+    std::fprintf(stderr, "gui: %s\n", saved.c_str());
   }
   if (a.stats) print_stats(a, app, run, host.gl_renderer(), width, height);
   return 0;
@@ -152,8 +193,30 @@ std::function<int()> setup(CLI::App& root) {
   cmd->add_option("--config-dir", a->config_dir,
                   "settings folder (default $XDG_CONFIG_HOME/dampbound or ~/.config/dampbound)");
   cmd->add_flag("--play", a->play, "start playing");
-  cmd->add_option("--tab", a->tab, "open this tab first: status, criteria, pins or suggest")
-      ->check(CLI::IsMember({"status", "criteria", "pins", "suggest"}));
+  cmd->add_option("--tab", a->tab,
+                  "open this tab first: status, criteria, pins, suggest, save, mesh or map")
+      ->check(CLI::IsMember({"status", "criteria", "pins", "suggest", "save", "mesh", "map"}));
+  cmd->add_option("--pin", a->pins,
+                  "before the first frame, run KEY=VALUE[,KEY=VALUE...] (m, kappa, gamma, dt, "
+                  "policy, factor, integrator, max_iterations, name) to its verdict and pin it; "
+                  "repeatable")
+      ->allow_extra_args(false);  // one KEY=VALUE list per --pin: a scene after it stays a scene
+  cmd->add_option("--save-scene", a->save_scene,
+                  "at exit, save the scene, its parameters and the pins with what they measured "
+                  "as [[run]]/[[expect]] tables (dampbound check FILE replays them)");
+  cmd->add_option("--expect-iterations", a->expect_iterations,
+                  "--save-scene: the verdict's iteration may move +- this many iterations")
+      ->check(CLI::Range(0, 100000000))
+      ->capture_default_str();
+  cmd->add_option("--expect-displacement", a->expect_displacement,
+                  "--save-scene: max_displacement_below = this x the measured one (1: none)")
+      ->check(CLI::Range(1.0, 1e6))
+      ->capture_default_str();
+  cmd->add_option("--export", a->export_dir,
+                  "with --frames: at the last frame, export the plots (PNG) and data (CSV) to "
+                  "this folder, as the Export button does");
+  cmd->add_option("--export-prefix", a->export_prefix, "file prefix of --export")
+      ->capture_default_str();
   cmd->add_flag("--demo", a->demo,
                 "pin a run at a quarter of the lower bound and one at it before the first frame");
   a->flags.add_to(cmd, true);

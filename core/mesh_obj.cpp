@@ -4,8 +4,6 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
-#include <map>
-#include <set>
 #include <sstream>
 #include <utility>
 
@@ -83,37 +81,22 @@ ObjMesh parse_obj(const std::string& text, const std::string& path) {
   return mesh;
 }
 
-Model model_from_obj(const ObjMesh& mesh, const MeshSprings& how) {
-  Model m;
-  for (const Vec3& v : mesh.vertices) {
-    const int i = add_node(m, v * how.scale);
-    m.anchor_scale[static_cast<size_t>(i)] = how.anchors ? 1.0 : 0.0;
-  }
-  using Edge = std::pair<int, int>;
-  const auto edge = [](int a, int b) { return Edge(std::min(a, b), std::max(a, b)); };
-  std::set<Edge> springs;
-  std::vector<Edge> order;               // edges in order of first appearance
-  std::map<Edge, std::vector<int>> far;  // per edge: the opposite corner of each triangle
+CellMesh cells_from_obj(const ObjMesh& mesh) {
+  CellMesh out;
+  out.vertices = mesh.vertices;
   for (const std::vector<int>& f : mesh.faces) {
-    const size_t n = f.size();
-    for (size_t k = 0; k < n; ++k) {
-      const Edge e = edge(f[k], f[(k + 1) % n]);
-      if (springs.insert(e).second) {
-        order.push_back(e);
-        add_spring(m, f[k], f[(k + 1) % n], 1.0);
-      }
-      if (n == 3) far[e].push_back(f[(k + 2) % 3]);
-    }
+    MeshCell c;
+    c.shape = f.size() == 3 ? CellShape::triangle : f.size() == 4 ? CellShape::quad
+                                                                  : CellShape::polygon;
+    c.corners = f;
+    c.where = static_cast<long long>(out.cells.size());
+    out.cells.push_back(std::move(c));
   }
-  if (how.bend)
-    for (const Edge& e : order) {
-      const auto it = far.find(e);
-      if (it == far.end() || it->second.size() != 2) continue;
-      const int a = it->second[0], b = it->second[1];
-      if (a == b || !springs.insert(edge(a, b)).second) continue;
-      add_spring(m, a, b, 1.0);
-    }
-  return m;
+  return out;
+}
+
+Model model_from_obj(const ObjMesh& mesh, const MeshSprings& how) {
+  return model_from_mesh(cells_from_obj(mesh), how);
 }
 
 }  // namespace dampbound

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "core/model.hpp"
+#include "core/mesh.hpp"
 
 namespace dampbound {
 
@@ -22,17 +22,12 @@ struct ObjMesh {
 /// an index out of range, or a file with no face.
 ObjMesh parse_obj(const std::string& text, const std::string& path);
 
-/// How a mesh becomes springs.
-struct MeshSprings {
-  double scale = 1.0;   ///< cm per OBJ unit
-  bool bend = false;    ///< a spring between the far corners of two triangles sharing an edge
-  bool anchors = true;  ///< an anchor at every vertex (anchor_scale 1)
-};
+/// The faces as polygon cells (triangles, quads, larger polygons) of region 0; `where` of each
+/// cell is its index among the faces.
+CellMesh cells_from_obj(const ObjMesh& mesh);
 
-/// The model of a mesh: nodes in vertex order, edge springs in order of first appearance in
-/// the faces, then the bending springs (when asked) in the order of their edges; an edge
-/// shared by more than two faces gets no bending spring, and a bending spring that would
-/// repeat an existing spring is skipped.
+/// model_from_mesh(cells_from_obj(mesh), how): quads get both diagonals and, with `bend`,
+/// flexion springs; polygons of more than 4 corners get their sides only.
 Model model_from_obj(const ObjMesh& mesh, const MeshSprings& how);
 
 }  // namespace dampbound

@@ -10,7 +10,6 @@
 
 #include "core/error.hpp"
 #include "core/io.hpp"
-#include "core/mesh_obj.hpp"
 #include "core/scene.hpp"
 #include "core/scene_reader.hpp"
 
@@ -70,30 +69,6 @@ int node_ref(const Reader& r, const SceneSpec& s, const toml::node& n, const std
   return static_cast<int>(index);
 }
 
-/// [mesh]: a Wavefront OBJ surface (core/mesh_obj.hpp), its path relative to the scene file.
-void read_mesh(const Reader& r, const toml::table& root, SceneSpec& s) {
-  const toml::table& t = r.table(*root.get("mesh"), "mesh");
-  r.check_keys(t, {"file", "scale", "bend", "anchors"}, "[mesh]");
-  const toml::node& fn = r.required(t, "file", "[mesh]");
-  std::string file = r.string(fn, "file");
-  if (file.empty()) r.fail(fn, "file must name an OBJ file");
-  if (file.front() != '/') {
-    const auto slash = r.path().find_last_of('/');
-    if (slash != std::string::npos) file = r.path().substr(0, slash + 1) + file;
-  }
-  std::string text;
-  try {
-    text = read_file_text(file);
-  } catch (const std::exception&) {
-    r.fail(fn, "cannot read the mesh file " + file);
-  }
-  MeshSprings how;
-  if (auto* n = t.get("scale")) how.scale = r.positive(*n, "scale");
-  if (auto* n = t.get("bend")) how.bend = r.boolean(*n, "bend");
-  if (auto* n = t.get("anchors")) how.anchors = r.boolean(*n, "anchors");
-  s.model = model_from_obj(parse_obj(text, file), how);
-}
-
 void read_geometry(const Reader& r, const toml::table& root, SceneSpec& s) {
   const bool has_grid = root.contains("grid");
   const bool has_nodes = root.contains("node");
@@ -102,8 +77,10 @@ void read_geometry(const Reader& r, const toml::table& root, SceneSpec& s) {
     r.fail(1, has_grid || has_nodes || has_mesh
                   ? "a scene has one geometry: [grid], [[node]] or [mesh], not several"
                   : "the scene has no geometry: add [grid], [[node]] entries or [mesh]");
+  if (root.contains("mesh_region") && !has_mesh)
+    r.fail(*root.get("mesh_region"), "[[mesh_region]] needs a [mesh] geometry");
   if (has_mesh) {
-    read_mesh(r, root, s);
+    scene_file::read_mesh(r, root, s);  // any mesh format, and its [[mesh_region]] tables
     if (root.contains("spring")) r.fail(*root.get("spring"), "[[spring]] needs [[node]] geometry");
     return;
   }
@@ -286,8 +263,8 @@ SceneSpec parse_scene(const std::string& text, const std::string& path) {
     r.fail(static_cast<int>(e.source().begin.line), std::string(e.description()));
   }
   r.check_keys(root,
-               {"name", "description", "watch", "grid", "node", "mesh", "spring", "region",
-                "params", "perturb", "protocol", "cut", "run", "expect"},
+               {"name", "description", "watch", "grid", "node", "mesh", "mesh_region", "spring",
+                "region", "params", "perturb", "protocol", "cut", "run", "expect"},
                "the scene");
   SceneSpec s;
   s.path = path;

@@ -102,4 +102,8 @@ class Reader {
 /// Reads the [[expect]] tables (core/scene_expect.cpp).
 void read_expectations(const Reader& r, const toml::table& root, SceneSpec& s);
 
+/// [mesh]: a mesh file of any format (core/mesh_formats.hpp), its path relative to the scene
+/// file, with its [[mesh_region]] tables (core/scene_mesh.cpp).
+void read_mesh(const Reader& r, const toml::table& root, SceneSpec& s);
+
 }  // namespace dampbound::scene_file

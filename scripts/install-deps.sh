@@ -10,6 +10,7 @@ PACKAGES=(
   libimgui-dev libglfw3-dev libgl-dev libegl-dev libegl-mesa0 libgl1-mesa-dri
   libgtest-dev libbenchmark-dev
   xvfb xauth fonts-dejavu-core
+  python3-meshio python3-numpy   # tests read the ParaView (VTU) output back with meshio
 )
 missing=()
 for p in "${PACKAGES[@]}"; do

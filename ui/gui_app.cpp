@@ -232,94 +232,19 @@ void GuiApp::update_stats() {
     }
     stats_.step_ms += a * ((step_s - last_step_seconds_) * 1e3 - stats_.step_ms);
   }
+  if (stats_.frames == 1) {  // the second frame starts: the start-up is over
+    run_start_time_ = t;
+    run_start_steps_ = steps;
+  }
   last_frame_time_ = t;
   last_steps_ = steps;
   last_step_seconds_ = step_s;
   ++stats_.frames;
 }
 
-namespace {
-/// The default layout for a W x H window: controls on the left, the mesh and the envelope on
-/// top, the displacement and the runs below.
-std::vector<GuiApp::WindowRect> default_layout(float W, float H) {
-  const float left = std::clamp(std::floor(W * 0.245f), 330.0f, 430.0f);
-  const float R = W - left, top = std::floor(H * 0.56f);
-  const float mesh_w = std::floor(R * 0.48f), disp_w = std::floor(R * 0.64f);
-  const float params_h = std::floor(std::clamp(560.0f, H * 0.45f, H * 0.62f));
-  return {
-      {"Parameters", 0, 0, left, params_h},
-      {"Status", 0, params_h, left, H - params_h},
-      {"Mesh view", left, 0, mesh_w, top},
-      {"Damping bounds", left + mesh_w, 0, R - mesh_w, top},
-      {"Displacement", left, top, disp_w, H - top},
-      {"Runs", left + disp_w, top, R - disp_w, H - top},
-  };
-}
-
-bool same_rect(const GuiApp::WindowRect& a, const GuiApp::WindowRect& b) {
-  return std::abs(a.x - b.x) <= 1 && std::abs(a.y - b.y) <= 1 && std::abs(a.w - b.w) <= 1 &&
-         std::abs(a.h - b.h) <= 1;
-}
-}  // namespace
-
-void GuiApp::layout_windows(const FrameInfo& info) {
-  // Remembered positions (imgui.ini) win over the default layout unless "reset layout" was
-  // asked. When the window changes size, every panel follows: one still where the default
-  // layout put it takes the default layout of the new size, one the user moved or resized
-  // keeps its place and size in proportion.
-  const float W = static_cast<float>(info.width), H = static_cast<float>(info.height);
-  layout_ = default_layout(W, H);
-  follow_.clear();
-  if (drawn_.empty()) return;  // nothing drawn yet: no rectangles to move
-  if (layout_w_ > 0 && layout_h_ > 0 && (W != layout_w_ || H != layout_h_) && !reset_layout_) {
-    const std::vector<WindowRect> before = default_layout(layout_w_, layout_h_);
-    const float sx = W / layout_w_, sy = H / layout_h_;
-    for (const WindowRect& d : drawn_) {
-      const WindowRect* was = nullptr;
-      const WindowRect* now = nullptr;
-      for (const WindowRect& r : before)
-        if (r.name == d.name) was = &r;
-      for (const WindowRect& r : layout_)
-        if (r.name == d.name) now = &r;
-      if (was != nullptr && now != nullptr && same_rect(d, *was))
-        follow_.push_back(*now);
-      else
-        follow_.push_back({d.name, std::floor(d.x * sx), std::floor(d.y * sy), std::floor(d.w * sx),
-                           std::floor(d.h * sy)});
-    }
-  }
-  layout_w_ = W;
-  layout_h_ = H;
-}
-
-bool GuiApp::begin(const char* name, int flags) {
-  const ImGuiCond cond = reset_layout_ ? ImGuiCond_Always : ImGuiCond_FirstUseEver;
-  for (const WindowRect& r : layout_) {
-    if (r.name != name) continue;
-    ImGui::SetNextWindowPos(ImVec2(r.x, r.y), cond);
-    ImGui::SetNextWindowSize(ImVec2(r.w, r.h), cond);
-  }
-  for (const WindowRect& r : follow_) {
-    if (r.name != name) continue;
-    ImGui::SetNextWindowPos(ImVec2(r.x, r.y), ImGuiCond_Always);
-    ImGui::SetNextWindowSize(ImVec2(r.w, r.h), ImGuiCond_Always);
-  }
-  // A window that overlaps no other needs no background fill: the frame is cleared to the
-  // same colour. On a software rasteriser (llvmpipe) this saves a full-screen blended fill.
-  WindowRect* last = nullptr;
-  for (WindowRect& r : drawn_)
-    if (r.name == name) last = &r;
-  bool overlaps = last == nullptr;
-  for (const WindowRect& r : drawn_)
-    if (last != nullptr && &r != last && r.x < last->x + last->w - 1 && last->x < r.x + r.w - 1 &&
-        r.y < last->y + last->h - 1 && last->y < r.y + r.h - 1)
-      overlaps = true;
-  if (!overlaps) flags |= ImGuiWindowFlags_NoBackground;
-  const bool open = ImGui::Begin(name, nullptr, flags | ImGuiWindowFlags_NoCollapse);
-  const ImVec2 pos = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
-  if (last == nullptr) drawn_.push_back({name, 0, 0, 0, 0}), last = &drawn_.back();
-  *last = {name, pos.x, pos.y, size.x, size.y};
-  return open;
+double GuiApp::measured_steps_per_second() const {
+  if (run_start_time_ < 0 || !(last_frame_time_ > run_start_time_)) return 0;
+  return static_cast<double>(last_steps_ - run_start_steps_) / (last_frame_time_ - run_start_time_);
 }
 
 void GuiApp::frame(FrameInfo& info) {
@@ -334,12 +259,18 @@ void GuiApp::frame(FrameInfo& info) {
   if (begin("Parameters", 0)) parameters_panel();
   ImGui::End();
   suggest_.poll();
-  auto tab = [&](const char* name) {
+  // Below kCompactLayoutHeight the status tabs join the runs' tabs, under short titles (the part
+  // after ### is the tab's identity, so a selected tab stays selected across sizes).
+  const bool compact = static_cast<float>(info.height) < kCompactLayoutHeight;
+  auto tab = [&](const char* name, const char* short_name = nullptr) {
     const bool selected = select_tab_ == name;
     if (selected) select_tab_.clear();
-    return ImGui::BeginTabItem(name, nullptr, selected ? ImGuiTabItemFlags_SetSelected : 0);
+    const std::string label =
+        std::string(compact && short_name != nullptr ? short_name : name) + "###" + name;
+    return ImGui::BeginTabItem(label.c_str(), nullptr,
+                               selected ? ImGuiTabItemFlags_SetSelected : 0);
   };
-  if (begin("Status", 0) && ImGui::BeginTabBar("status_tabs")) {
+  auto status_tabs = [&] {
     if (tab("Status")) {
       status_panel();
       ImGui::EndTabItem();
@@ -348,22 +279,48 @@ void GuiApp::frame(FrameInfo& info) {
       criteria_panel();
       ImGui::EndTabItem();
     }
+  };
+  if (compact && std::find(hidden_.begin(), hidden_.end(), "Status") == hidden_.end()) {
+    hidden_.push_back("Status");  // not drawn: it must not follow resizes from a stale place
+    drawn_.erase(std::remove_if(drawn_.begin(), drawn_.end(),
+                                [](const WindowRect& r) { return r.name == "Status"; }),
+                 drawn_.end());
+  }
+  if (!compact) {
+    if (begin("Status", 0) && ImGui::BeginTabBar("status_tabs")) {
+      status_tabs();
+      ImGui::EndTabBar();
+    }
+    ImGui::End();
+  }
+  if (begin("Mesh view", fixed) && ImGui::BeginTabBar("view_tabs")) {
+    if (tab("Mesh")) {
+      mesh_.draw(*tuner_);
+      ImGui::EndTabItem();
+    }
+    if (tab("Map")) {
+      map_panel();
+      ImGui::EndTabItem();
+    }
     ImGui::EndTabBar();
   }
-  ImGui::End();
-  if (begin("Mesh view", fixed)) mesh_.draw(*tuner_);
   ImGui::End();
   if (begin("Damping bounds", fixed)) plots_envelope();
   ImGui::End();
   if (begin("Displacement", fixed)) plots_displacement();
   ImGui::End();
   if (begin("Runs", 0) && ImGui::BeginTabBar("runs_tabs")) {
-    if (tab("Pins & export")) {
+    if (compact) status_tabs();
+    if (tab("Pins & export", "Pins")) {
       runs_panel();
       ImGui::EndTabItem();
     }
     if (tab("Suggest")) {
       suggest_panel();
+      ImGui::EndTabItem();
+    }
+    if (tab("Save scene", "Save")) {
+      save_panel();
       ImGui::EndTabItem();
     }
     ImGui::EndTabBar();

@@ -17,9 +17,16 @@
 #include "ui/mesh_view.hpp"
 #include "ui/settings.hpp"
 #include "ui/tuner.hpp"
+#include "ui/tuner_map.hpp"
 #include "ui/tuner_plots.hpp"
+#include "ui/tuner_save.hpp"
 
 namespace dampbound::ui {
+
+/// Below this window height (pixels) the layout is compact: the parameters take the whole
+/// left column (they need about 560 px, 62 % of the height) and the Status and Criteria tabs
+/// join the runs' tabs.
+constexpr float kCompactLayoutHeight = 900.0f;
 
 /// How the window starts.
 struct GuiOptions {
@@ -84,14 +91,29 @@ class GuiApp {
   /// The tuner state and the mesh view (tests drive them).
   Tuner& tuner() { return *tuner_; }
   MeshView& mesh_view() { return mesh_; }
-  /// Brings a tab to the front at the next frame: "Status", "Criteria", "Pins & export" or
-  /// "Suggest".
+  /// Brings a tab to the front at the next frame: "Status", "Criteria", "Pins & export",
+  /// "Suggest", "Save scene", "Mesh" or "Map".
   void select_tab(const std::string& name) { select_tab_ = name; }
   /// Starts the Suggest computation as the button does.
   void start_suggest();
   /// The Suggest computation, and the frame statistics of the window.
   TunerSuggest& suggestions() { return suggest_; }
   const GuiStats& stats() const { return stats_; }
+  /// Steps per second from the start of the second frame to the last one: the start-up
+  /// (first frame, pins run before it) left out. 0 before the third frame.
+  double measured_steps_per_second() const;
+  /// The stability map's worker and what it shows.
+  TunerMap& map() { return map_; }
+  MapView& map_view() { return map_view_; }
+  /// Export as the button does: the plots (PNG) and data (CSV) to DIR/PREFIX_*. Call inside a
+  /// frame (the PNG is rendered with the current GL context). Returns the summary line;
+  /// throws with a one-line reason.
+  std::string export_plots(const std::string& dir, const std::string& prefix);
+  /// Save as scene with the tolerances of the Save tab; returns the summary line and puts
+  /// notes (replayed runs) into *notes. Throws with a one-line reason.
+  std::string save_scene(const std::string& path, std::vector<std::string>* notes = nullptr);
+  /// The tolerances the Save tab writes [[expect]] entries with.
+  ExpectTolerance& save_tolerance() { return save_tolerance_; }
   /// Warnings met at start (a corrupt settings file, a missing scene), one line each.
   const std::vector<std::string>& warnings() const { return warnings_; }
   /// Path of the settings file and of the ImGui layout file ("" when not persisted).
@@ -112,6 +134,9 @@ class GuiApp {
   void runs_panel();
   void criteria_panel();
   void suggest_panel();
+  void save_panel();
+  void map_panel();
+  void lower_bound_line(double gamma);
   void plots_envelope();
   void plots_displacement();
   void run_demo();
@@ -123,6 +148,14 @@ class GuiApp {
   std::unique_ptr<Tuner> tuner_;
   MeshView mesh_;
   TunerSuggest suggest_;
+  TunerMap map_;
+  MapView map_view_;
+  ExpectTolerance save_tolerance_ = default_expect_tolerance();
+  std::string save_path_, save_message_;
+  std::vector<std::string> save_notes_;
+  bool save_failed_ = false;
+  double run_start_time_ = -1;  ///< start of the second frame (measured_steps_per_second)
+  long long run_start_steps_ = 0;
   TunerPlotOptions plot_options_;
   std::vector<std::string> scene_files_;
   std::vector<std::string> warnings_;
@@ -139,6 +172,7 @@ class GuiApp {
   std::vector<WindowRect> follow_;   ///< where panels go this frame after a resize
   float layout_w_ = 0, layout_h_ = 0;  ///< the window size drawn_ was laid out in
   std::vector<WindowRect> drawn_;    ///< where each window was last frame
+  std::vector<std::string> hidden_;  ///< panels not drawn in this layout (compact: Status)
   int window_w_ = 0, window_h_ = 0;  ///< size of the last frame
   std::string select_tab_;
   ImTextureID patched_font_texture_ = nullptr;

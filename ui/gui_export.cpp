@@ -95,7 +95,8 @@ std::string export_runs(Tuner& tuner, const std::vector<PlotSpec>& plots, const 
       plots, 1, 1400, 500 * static_cast<int>(std::max<size_t>(plots.size(), 1)));
   write_png_atomic(img, paths.plots_png);
   export_csv(tuner, paths);
-  return "wrote " + paths.plots_png + ", " + paths.traces_csv + ", " + paths.runs_csv;
+  return "wrote " + paths.plots_png + ", " + paths.traces_csv + ", " + paths.runs_csv + ", " +
+         paths.step_vtu;
 }
 
 }  // namespace dampbound::ui

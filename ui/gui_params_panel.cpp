@@ -116,8 +116,9 @@ void GuiApp::playback_controls() {
                           ImGui::GetStyle().ItemInnerSpacing.x);
   if (ImGui::SliderInt("steps / frame", &spf, 1, 1000, "%d", ImGuiSliderFlags_Logarithmic))
     t.playback().steps_per_frame = std::max(1, std::min(spf, 10000));
-  ImGui::Checkbox("pause at the verdict (the limit, or a divergence)",
-                  &t.playback().pause_at_verdict);
+  ImGui::Checkbox("pause at the verdict", &t.playback().pause_at_verdict);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Pause at the verdict: the iteration limit, or a divergence");
 }
 
 void GuiApp::parameters_panel() {
@@ -135,26 +136,44 @@ void GuiApp::parameters_panel() {
                         "Spring and anchor stiffness kappa (mass unit / s^2)");
   changed |= log_slider(u8"\u03B3 gamma", &p.gamma, 1e-6, 10.0,
                         "The user's viscous damping gamma (mass unit / s)");
+  // The lower bound (eq. 5) at every node: on a non-uniform mesh the worst node speaks.
+  const LowerBoundCheck lb = check_lower_bound(t.session().model());
   const double lo = lower_bound(p.m, p.kappa);
-  ImGui::Text(u8"lower bound 2\u221A(m\u03BA) = %s", fmt(lo).c_str());
+  // Per-node masses or stiffnesses (mesh geometry, regions) give per-node bounds (SPEC 3).
+  const bool per_node = lb.worst >= 0 && (!lb.uniform || std::abs(lb.lower - lo) > 1e-12 * lo);
+  if (!per_node)
+    ImGui::Text(u8"lower bound 2\u221A(m\u03BA) = %s", fmt(lo).c_str());
+  else
+    ImGui::Text(u8"lower bound at worst node #%d = %s", lb.worst, fmt(lb.lower).c_str());
   const char* set_lower = u8"\u03B3 = lower bound";
   const float button_w = ImGui::CalcTextSize(set_lower).x + 2 * ImGui::GetStyle().FramePadding.x;
   if (ImGui::GetContentRegionAvail().x - ImGui::GetItemRectSize().x >
       button_w + ImGui::GetStyle().ItemSpacing.x)
     ImGui::SameLine();  // beside the value when there is room, else below it
   if (ImGui::SmallButton(set_lower)) {
-    p.gamma = lo;
+    // The smallest gamma that puts every node at or above its bound.
+    p.gamma = per_node && lb.ratio > 0 ? p.gamma / lb.ratio : lo;
     changed = true;
   }
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Set gamma to 2 sqrt(m kappa) (paper eq. 5)");
-  const double rel = lo > 0 ? p.gamma / lo : 1.0;
-  if (std::abs(rel - 1.0) < 1e-9) {
-    wrapped_colored(gui_green(), u8"\u03B3 at the lower bound: critical damping");
-  } else if (rel < 1.0) {
-    wrapped_colored(gui_amber(),
-                    (u8"\u03B3 below the lower bound (" + fmt(rel) + " x): underdamped").c_str());
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Set gamma so that every node's gamma_i >= 2 sqrt(m_i kappa_i) (paper eq. 5),\n"
+                      "the worst node exactly at its bound");
+  const std::string worst =
+      lb.uniform ? "" : " (worst node #" + std::to_string(lb.worst) + ": " + fmt(lb.ratio) + " x)";
+  if (lb.worst < 0) {
+    ImGui::TextDisabled("no node has a lower bound");
+  } else if (std::abs(lb.ratio - 1.0) < 1e-9) {
+    wrapped_colored(gui_green(), (u8"\u03B3 at the lower bound: critical damping" + worst).c_str());
+  } else if (lb.below > 0) {
+    const std::string where = lb.uniform ? "" : " at " + std::to_string(lb.below) + " of " +
+                                                    std::to_string(lb.nodes) + " nodes";
+    wrapped_colored(gui_amber(), (u8"\u03B3 below the lower bound" + where +
+                                  (lb.uniform ? " (" + fmt(lb.ratio) + " x)" : worst) +
+                                  ": underdamped").c_str());
   } else {
-    wrapped_colored(gui_green(), (u8"\u03B3 above the lower bound (" + fmt(rel) + " x)").c_str());
+    wrapped_colored(gui_green(), (u8"\u03B3 above the lower bound" +
+                                  (lb.uniform ? " (" + fmt(lb.ratio) + " x)" : " at every node" + worst))
+                                     .c_str());
   }
   changed |= log_slider("dt (s)", &p.dt, 1e-4, 1.0, "Time step dt (s)");
   int policy = static_cast<int>(p.policy);

@@ -164,9 +164,7 @@ void GuiApp::runs_panel() {
   ImGui::InputTextWithHint("##prefix", "file prefix", &export_prefix_);
   if (ImGui::Button("Export")) {
     try {
-      const std::vector<PlotSpec> plots = {tuner_displacement_plot(t, plot_options_),
-                                           tuner_envelope_plot(t, plot_options_)};
-      export_message_ = export_runs(t, plots, export_dir_, export_prefix_);
+      export_message_ = export_plots(export_dir_, export_prefix_);
       export_failed_ = false;
     } catch (const std::exception& e) {
       export_message_ = e.what();
@@ -183,6 +181,12 @@ void GuiApp::runs_panel() {
   }
 }
 
+std::string GuiApp::export_plots(const std::string& dir, const std::string& prefix) {
+  const std::vector<PlotSpec> plots = {tuner_displacement_plot(*tuner_, plot_options_),
+                                       tuner_envelope_plot(*tuner_, plot_options_)};
+  return export_runs(*tuner_, plots, dir, prefix);
+}
+
 void GuiApp::plots_envelope() {
   const PlotSpec spec = tuner_envelope_plot(*tuner_, plot_options_);
   plot_widget("envelope", spec, ImVec2(-1.0f, -1.0f), gui_plot_style());
@@ -190,9 +194,9 @@ void GuiApp::plots_envelope() {
 
 void GuiApp::plots_displacement() {
   ImGui::Checkbox("log10 y axis", &plot_options_.log_y);
-  ImGui::SameLine();
+  same_line_if_fits(checkbox_width("max over all nodes"));
   ImGui::Checkbox("max over all nodes", &plot_options_.show_max);
-  ImGui::SameLine();
+  same_line_if_fits(checkbox_width("pinned runs"));
   ImGui::Checkbox("pinned runs", &plot_options_.show_pins);
   const PlotSpec spec = tuner_displacement_plot(*tuner_, plot_options_);
   plot_widget("displacement", spec, ImVec2(-1.0f, -1.0f), gui_plot_style());

@@ -55,4 +55,18 @@ inline void wrapped_colored(const ImVec4& color, const char* text) {
   ImGui::PopStyleColor();
 }
 
+/// SameLine() when an item `width` pixels wide still fits on the current line of the window,
+/// else nothing (the item goes to the next line): toolbars that wrap in small windows.
+inline void same_line_if_fits(float width) {
+  const float end = ImGui::GetWindowPos().x + ImGui::GetWindowContentRegionMax().x;
+  if (end - ImGui::GetItemRectMax().x - ImGui::GetStyle().ItemSpacing.x >= width)
+    ImGui::SameLine();
+}
+
+/// The width of a checkbox with `label` (pixels).
+inline float checkbox_width(const char* label) {
+  return ImGui::GetFrameHeight() + ImGui::GetStyle().ItemInnerSpacing.x +
+         ImGui::CalcTextSize(label).x;
+}
+
 }  // namespace dampbound::ui

@@ -31,13 +31,14 @@ void main() {
 const char* const kFragment = R"(#version 330 core
 in vec4 v_color;
 uniform int round_points;
+uniform float point_alpha;
 out vec4 frag;
 void main() {
   if (round_points == 1) {
     vec2 d = gl_PointCoord * 2.0 - 1.0;
     float r = dot(d, d);
     if (r > 1.0) discard;
-    frag = vec4(v_color.rgb * (1.0 - 0.35 * r), v_color.a);  // a little shading: a bead
+    frag = vec4(v_color.rgb * (1.0 - 0.35 * r), v_color.a * point_alpha);  // a shaded bead
   } else {
     frag = v_color;
   }
@@ -134,6 +135,7 @@ bool MeshRenderer::init() {
   loc_tint_ = glGetUniformLocation(program_, "tint");
   loc_use_tint_ = glGetUniformLocation(program_, "use_tint");
   loc_round_ = glGetUniformLocation(program_, "round_points");
+  loc_point_alpha_ = glGetUniformLocation(program_, "point_alpha");
   GLuint b[5];
   glGenBuffers(5, b);
   vbo_pos_ = b[0], vbo_col_ = b[1], ebo_ = b[2], vbo_anchor_ = b[3], vbo_anchor_col_ = b[4];
@@ -280,11 +282,12 @@ unsigned MeshRenderer::render(const MeshDrawData& d, int width, int height) {
     glUniform4f(loc_tint_, static_cast<float>(c & 0xFF) / 255.0f,
                 static_cast<float>((c >> 8) & 0xFF) / 255.0f,
                 static_cast<float>((c >> 16) & 0xFF) / 255.0f,
-                static_cast<float>((c >> 24) & 0xFF) / 255.0f);
+                static_cast<float>((c >> 24) & 0xFF) / 255.0f * d.spring_alpha);
     glDrawElements(GL_LINES, index_count_, GL_UNSIGNED_INT, nullptr);
   }
   glUniform1i(loc_use_tint_, 0);
   glUniform1i(loc_round_, 1);
+  glUniform1f(loc_point_alpha_, d.point_alpha);
   glDrawArrays(GL_POINTS, 0, node_count_);
   if (samples_ > 1) {  // resolve the multisampled image into the texture ImGui shows
     glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo_ms_);

@@ -24,6 +24,10 @@ struct MeshDrawData {
   std::uint64_t topology = 0;                       ///< changes whenever model->springs changes
   Mat4f view_proj = Mat4f::Identity();
   float point_size = 6.0f;  ///< node diameter (pixels)
+  /// Opacity of the spring lines (0..1): below 1 on dense meshes, where one-pixel lines a few
+  /// pixels apart beat against the pixel grid (moire).
+  float spring_alpha = 1.0f;
+  float point_alpha = 1.0f;  ///< opacity of the nodes (0..1), lowered on dense meshes too
   bool springs = true;
   bool anchors = false;  ///< lines from each anchored node to its rest position
   int samples = 1;       ///< multisampling (1: none; 4 smooths lines, costs fill rate)
@@ -61,6 +65,7 @@ class MeshRenderer {
   unsigned fbo_ms_ = 0, rb_color_ = 0, rb_depth_ = 0;  ///< multisampled (or plain) target
   unsigned fbo_tex_ = 0, tex_ = 0;                     ///< resolved texture shown by ImGui
   int loc_mvp_ = -1, loc_point_size_ = -1, loc_tint_ = -1, loc_use_tint_ = -1, loc_round_ = -1;
+  int loc_point_alpha_ = -1;
   int width_ = 0, height_ = 0, samples_ = 1, max_samples_ = 1;
   std::uint64_t topology_ = 0;
   const Model* model_ = nullptr;

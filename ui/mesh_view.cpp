@@ -9,6 +9,7 @@
 #include <string>
 
 #include "core/scene.hpp"
+#include "ui/gui_widgets.hpp"
 #include "ui/mesh_pick.hpp"
 #include "ui/mesh_style.hpp"
 
@@ -194,6 +195,22 @@ void MeshView::node_tooltip(const Tuner& tuner, const Viewport& vp) const {
   ImGui::EndTooltip();
 }
 
+float spring_spacing_px(const Model& model, const std::vector<Vec3>& x, const Mat4f& view_proj,
+                        const Viewport& vp) {
+  // The median projected length of up to 256 springs spread over the list.
+  std::vector<float> len;
+  const size_t n = model.springs.size(), stride = std::max<size_t>(1, n / 256);
+  for (size_t k = 0; k < n; k += stride) {
+    const Spring& sp = model.springs[k];
+    const ScreenPoint a = project(view_proj, vp, x[static_cast<size_t>(sp.i)].cast<float>());
+    const ScreenPoint b = project(view_proj, vp, x[static_cast<size_t>(sp.j)].cast<float>());
+    if (a.visible && b.visible) len.push_back(std::hypot(a.x - b.x, a.y - b.y));
+  }
+  if (len.empty()) return 1e9f;
+  std::nth_element(len.begin(), len.begin() + static_cast<std::ptrdiff_t>(len.size() / 2), len.end());
+  return len[len.size() / 2];
+}
+
 void MeshView::draw(Tuner& tuner) {
   const Session& s = tuner.session();
   if (fitted_scene_ != &s) {
@@ -208,12 +225,13 @@ void MeshView::draw(Tuner& tuner) {
     ImGui::SetTooltip("Drag a line across the mesh: the springs it crosses are removed.");
   ImGui::SameLine();
   if (ImGui::Button("Fit")) fit_pending_ = true;
-  ImGui::SameLine();
+  same_line_if_fits(checkbox_width("springs"));
   ImGui::Checkbox("springs", &options.show_springs);
-  ImGui::SameLine();
+  same_line_if_fits(checkbox_width("anchors"));
   ImGui::Checkbox("anchors", &options.show_anchors);
-  ImGui::SameLine();
-  ImGui::SetNextItemWidth(std::max(60.0f, ImGui::GetContentRegionAvail().x));
+  const float slider_w = ImGui::CalcTextSize("points 16 px").x + 24.0f;
+  same_line_if_fits(slider_w);
+  ImGui::SetNextItemWidth(std::max(slider_w, ImGui::GetContentRegionAvail().x));
   ImGui::SliderFloat("##points", &options.point_size, 2.0f, 16.0f, "points %.0f px");
   // The view fills the rest of the window but one line of hints.
   const float hint_h = ImGui::GetTextLineHeightWithSpacing();
@@ -239,7 +257,16 @@ void MeshView::draw(Tuner& tuner) {
   d.safe_bound = &s.workspace().safe_bound;
   d.topology = tuner.topology();
   d.view_proj = camera_.view_projection(vp.aspect());
-  d.point_size = options.point_size;
+  const float spacing = spring_spacing_px(s.model(), s.state().x, d.view_proj, vp);
+  // Dense meshes: lines a few pixels apart alias into moire, and points wider than the spacing
+  // overlap in a pattern of their own. Below ~5 px the lines and nodes fade and the points
+  // shrink to the spacing.
+  d.spring_alpha = std::clamp((spacing - 1.5f) / 4.0f, 0.15f, 1.0f);
+  d.point_size = std::min(options.point_size, std::max(2.0f, 0.9f * spacing));
+  // Below 5 px, 4x multisampling: the image is redrawn only when something moved, and the
+  // grid's aliasing is what makes the moire.
+  d.samples = spacing < 5.0f ? 4 : 1;
+  d.point_alpha = std::clamp((spacing - 1.5f) / 3.0f, 0.3f, 1.0f);
   d.springs = options.show_springs;
   d.anchors = options.show_anchors;
   const ImGuiIO& io = ImGui::GetIO();
@@ -267,9 +294,14 @@ void MeshView::draw(Tuner& tuner) {
   }
   draw_overlays(tuner, vp);
   if (hovered && drag_ == Drag::none && !cut_tool) node_tooltip(tuner, vp);
-  ImGui::TextDisabled(cut_tool ? "cut tool: drag a line across springs to remove them"
-                               : "drag: orbit | click node: watch | drag node: move it | "
-                                 "right/middle drag: pan | wheel: zoom");
+  // The hints, shortened to the width there is.
+  const char* hint = cut_tool ? "cut tool: drag a line across springs to remove them"
+                              : "drag: orbit | click node: watch | drag node: move it | "
+                                "right/middle drag: pan | wheel: zoom";
+  for (const char* shorter : {cut_tool ? "drag a line: cut" : "drag: orbit | click: watch | right: pan | wheel: zoom",
+                              cut_tool ? "drag a line: cut" : "drag: orbit | click: watch"})
+    if (ImGui::CalcTextSize(hint).x > ImGui::GetContentRegionAvail().x) hint = shorter;
+  ImGui::TextDisabled("%s", hint);
 }
 
 }  // namespace dampbound::ui

@@ -4,6 +4,7 @@
 // zooms), node picking (click a node to watch it, drag it to move it in the view plane), the
 // cut tool (drag a line; the springs it crosses are removed) and a colour legend.
 #include <cstdint>
+#include <vector>
 
 #include "ui/camera.hpp"
 #include "ui/mesh_renderer.hpp"
@@ -17,6 +18,11 @@ struct MeshViewOptions {
   bool show_anchors = false;
   float point_size = 5.0f;  ///< pixels
 };
+
+/// The median on-screen length (pixels) of up to 256 of the model's springs at positions x
+/// (cm): how dense the mesh looks (a very large number when none is visible).
+float spring_spacing_px(const Model& model, const std::vector<Vec3>& x, const Mat4f& view_proj,
+                        const Viewport& vp);
 
 class MeshView {
  public:

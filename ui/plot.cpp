@@ -221,8 +221,9 @@ PlotLayout draw_plot(ImDrawList* dl, ImVec2 top_left, ImVec2 size, const PlotSpe
                       spec.x.label);
   }
   if (!spec.y.label.empty()) {
+    // A label longer than the plot is tall is shortened with "..." rather than cut off.
     detail::draw_text_vertical(dl, f, ImVec2(fl(fr.x0) + pad + 0.5f * fs, 0.5f * (amin.y + amax.y)),
-                               style.text, spec.y.label);
+                               style.text, detail::elide(f, spec.y.label, amax.y - amin.y + 2 * fs));
   }
   if (!spec.title.empty()) {
     const ImVec2 ts = detail::text_size(tf, spec.title);

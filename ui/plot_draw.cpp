@@ -261,14 +261,32 @@ ImVec2 legend_size(const PlotSpec& spec, const TextFont& f) {
   return ImVec2(m.pad * 2.5f + m.swatch + w, m.pad * 1.2f + m.row * static_cast<float>(entries.size()));
 }
 
+std::string elide(const TextFont& f, const std::string& label, float width) {
+  if (text_size(f, label).x <= width) return label;
+  std::string s = label;
+  while (!s.empty() && text_size(f, s + "...").x > width) {
+    s.pop_back();
+    while (!s.empty() && (static_cast<unsigned char>(s.back()) & 0xC0) == 0x80) s.pop_back();
+  }
+  return s + "...";
+}
+
 void draw_legend(ImDrawList* dl, const PlotLayout& lay, const PlotSpec& spec,
                  const PlotStyle& style, const TextFont& f) {
-  const ImVec2 size = legend_size(spec, f);
+  ImVec2 size = legend_size(spec, f);
   if (size.x <= 0.0f) return;
-  const auto entries = legend_entries(spec);
+  auto entries = legend_entries(spec);
   const LegendMetrics m(f.size);
   const PixelRect& a = lay.area;
   const float gap = m.pad;
+  // A legend wider than the data area (a small window) has its labels shortened to fit in it,
+  // rather than running over the axes and out of the window.
+  const float room = static_cast<float>(a.x1 - a.x0) - 2 * gap;
+  if (spec.legend != LegendPos::Outside && size.x > room && room > m.pad * 2.5f + m.swatch + 20) {
+    const float text_w = room - m.pad * 2.5f - m.swatch;
+    for (auto& e : entries) e.label = elide(f, e.label, text_w);
+    size.x = room;
+  }
   const float left = static_cast<float>(a.x0) + gap;
   const float right = static_cast<float>(a.x1) - gap - size.x;
   const float top = static_cast<float>(a.y0) + gap;

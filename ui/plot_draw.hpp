@@ -20,6 +20,9 @@ struct TextFont {
 ImVec2 text_size(const TextFont& f, const std::string& s);
 /// Draws text with its top-left corner at pos.
 void draw_text(ImDrawList* dl, const TextFont& f, ImVec2 pos, ImU32 col, const std::string& s);
+/// `label` cut at the end, with "...", to at most `width` pixels in font f (UTF-8 safe).
+std::string elide(const TextFont& f, const std::string& label, float width);
+
 /// Draws text rotated 90 degrees counter-clockwise (reading upwards), centred at c.
 void draw_text_vertical(ImDrawList* dl, const TextFont& f, ImVec2 c, ImU32 col,
                         const std::string& s);

@@ -1,5 +1,6 @@
 #include "ui/tuner.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -34,6 +35,24 @@ std::string params_label(const Params& p) {
   return s;
 }
 
+LowerBoundCheck check_lower_bound(const Model& model) {
+  LowerBoundCheck c;
+  for (int i = 0; i < model.node_count(); ++i) {
+    const auto k = static_cast<size_t>(i);
+    if (model.fixed[k] || !(model.lower_bound[k] > 0)) continue;
+    const double r = model.gamma[k] / model.lower_bound[k];
+    ++c.nodes;
+    c.below += r < 1 ? 1 : 0;
+    if (c.worst >= 0 && std::abs(r - c.ratio) > 1e-12 * std::max(r, c.ratio)) c.uniform = false;
+    if (c.worst < 0 || r < c.ratio) {
+      c.worst = i;
+      c.ratio = r;
+      c.lower = model.lower_bound[k];
+    }
+  }
+  return c;
+}
+
 Tuner::Tuner(SceneSpec scene)
     : session_(std::make_unique<Session>(with_settled_rule(std::move(scene)))) {}
 
@@ -49,6 +68,7 @@ bool Tuner::open_scene(const std::string& path, std::string* error) {
 
 void Tuner::set_scene(SceneSpec scene) {
   session_ = std::make_unique<Session>(with_settled_rule(std::move(scene)));
+  ++scene_version_;
   playing_ = false;
   notice_.clear();
   on_new_trace();
@@ -60,12 +80,19 @@ bool Tuner::set_params(const Params& params, std::string* error) {
     if (error != nullptr) *error = why;
     return false;
   }
+  const Params& now = session_->params();
+  const bool same = now.m == params.m && now.kappa == params.kappa && now.gamma == params.gamma &&
+                    now.dt == params.dt && now.policy == params.policy &&
+                    now.factor == params.factor && now.integrator == params.integrator;
+  if (!same && session_->state().iteration > 0) replayable_ = false;
   session_->set_params(params);
   return true;
 }
 
 void Tuner::set_max_iterations(int n) {
   StopRules r = session_->rules();
+  if (r.max_iterations != (n < 1 ? 1 : n) && session_->state().iteration > 0)
+    replayable_ = false;
   r.max_iterations = n < 1 ? 1 : n;
   session_->set_rules(r);
 }
@@ -134,12 +161,14 @@ void Tuner::reset() {
 }
 
 void Tuner::perturb() {
+  replayable_ = false;
   session_->perturb();
   ++state_version_;
 }
 
 void Tuner::displace(int node, const Vec3& offset) {
   if (node < 0 || node >= session_->model().node_count() || !offset.allFinite()) return;
+  replayable_ = false;
   session_->displace(node, offset);
   ++state_version_;
 }
@@ -152,6 +181,7 @@ void Tuner::watch(int node) {
 int Tuner::cut(const std::vector<int>& springs) {
   if (springs.empty()) return 0;
   const int removed = session_->cut(springs);
+  if (removed > 0) replayable_ = false;
   if (removed > 0) ++topology_, ++state_version_;
   notice_ = "cut " + std::to_string(removed) + " springs at iteration " +
             std::to_string(session_->state().iteration);
@@ -170,6 +200,7 @@ Pin& Tuner::pin(const std::string& name) {
   TraceDecimator d(kPlotBuckets);
   p.reduced = d.update(p.trace);
   p.color = palette_color(next_color_++);
+  p.replayable = replayable_;
   pins_.push_back(std::move(p));
   return pins_.back();
 }
@@ -187,6 +218,7 @@ const std::vector<StepStats>& Tuner::reduced_trace() {
 }
 
 void Tuner::on_new_trace() {
+  replayable_ = true;
   ++generation_;
   ++topology_;
   ++state_version_;

@@ -28,6 +28,9 @@ struct Pin {
   std::vector<StepStats> reduced;  ///< decimated once for plotting
   ImU32 color = 0;
   bool visible = true;
+  /// True when the run went from the scene's start with these parameters and nothing done by
+  /// hand (no drag, cut, perturbation or mid-run change): a headless replay gives `result`.
+  bool replayable = true;
 };
 
 /// How playback advances the session.
@@ -52,6 +55,18 @@ std::string params_label(const Params& params);
 /// Short number for the panels: %.4g, and "inf", "-inf" or "-" (NaN) when not finite, so the
 /// window never shows NaN.
 std::string fmt(double x);
+
+/// The paper's lower bound (eq. 5, SPEC 3: kappa_i the stiffest spring or anchor at node i)
+/// against the user's gamma_i at every free node of a model (its current parameters).
+struct LowerBoundCheck {
+  int nodes = 0;        ///< free nodes with gamma_lo_i > 0
+  int below = 0;        ///< of them, with gamma_i < gamma_lo_i (underdamped)
+  int worst = -1;       ///< the node with the smallest gamma_i / gamma_lo_i (-1: none)
+  double ratio = 1;     ///< that smallest ratio (1: exactly at its bound)
+  double lower = 0;     ///< its gamma_lo_i (mass unit/s)
+  bool uniform = true;  ///< every node has the same ratio (one bound speaks for all)
+};
+LowerBoundCheck check_lower_bound(const Model& model);
 
 /// Buckets of the plot decimation (ui/tuner_trace.hpp): up to twice as many samples.
 constexpr size_t kPlotBuckets = 512;
@@ -106,6 +121,11 @@ class Tuner {
   /// Removes the springs (the cut tool); the bounds react at the next step. Returns how many.
   int cut(const std::vector<int>& springs);
 
+  /// True while the current run is what a headless replay of the scene with the current
+  /// parameters gives: since the last reset nothing was dragged, cut or perturbed by hand and
+  /// no parameter or the iteration limit changed after the first step.
+  bool replayable() const { return replayable_; }
+
   /// Pins the current run under `name` (params_label() when empty); returns the pin.
   Pin& pin(const std::string& name = "");
   /// Removes a pin (an index out of range is ignored).
@@ -118,6 +138,8 @@ class Tuner {
 
   /// The current trace decimated for plotting (updated incrementally).
   const std::vector<StepStats>& reduced_trace();
+  /// Changes whenever another scene is loaded.
+  std::uint64_t scene_version() const { return scene_version_; }
   /// Changes whenever the trace starts over (reset, new scene).
   std::uint64_t generation() const { return generation_; }
   /// Changes whenever the springs change (cut, reset, new scene): the renderer's cue.
@@ -162,9 +184,11 @@ class Tuner {
   /// keeps the triangles a software rasteriser must set up in check on long runs.
   TraceDecimator decimator_{kPlotBuckets};
   std::uint64_t generation_ = 1;
+  std::uint64_t scene_version_ = 1;
   std::uint64_t topology_ = 1;
   std::uint64_t state_version_ = 1;
   std::string notice_;
+  bool replayable_ = true;
   long long total_steps_ = 0;
   double step_seconds_ = 0;
   TunerCriteria criteria_;

@@ -6,6 +6,7 @@
 #include "core/error.hpp"
 #include "core/io.hpp"
 #include "core/report.hpp"
+#include "core/vtu.hpp"
 
 namespace dampbound::ui {
 
@@ -45,6 +46,7 @@ ExportPaths export_paths(const std::string& dir, const std::string& prefix) {
   p.plots_png = (base / (prefix + "_plots.png")).string();
   p.traces_csv = (base / (prefix + "_traces.csv")).string();
   p.runs_csv = (base / (prefix + "_runs.csv")).string();
+  p.step_vtu = (base / (prefix + "_step.vtu")).string();
   return p;
 }
 
@@ -73,6 +75,10 @@ void export_csv(const Tuner& tuner, const ExportPaths& paths) {
   if (!dir.empty()) std::filesystem::create_directories(dir, ec);
   write_file_atomic(paths.traces_csv, [&](std::ostream& out) { write_runs_trace_csv(out, tuner); });
   write_file_atomic(paths.runs_csv, [&](std::ostream& out) { write_runs_summary_csv(out, tuner); });
+  const Session& s = tuner.session();
+  write_file_atomic(paths.step_vtu, [&](std::ostream& out) {
+    write_vtu(out, s.model(), s.state(), s.workspace());
+  });
 }
 
 }  // namespace dampbound::ui

@@ -9,11 +9,13 @@
 
 namespace dampbound::ui {
 
-/// The files of one export: DIR/PREFIX_plots.png, DIR/PREFIX_traces.csv, DIR/PREFIX_runs.csv.
+/// The files of one export: DIR/PREFIX_plots.png, DIR/PREFIX_traces.csv, DIR/PREFIX_runs.csv,
+/// DIR/PREFIX_step.vtu.
 struct ExportPaths {
   std::string plots_png;
   std::string traces_csv;
   std::string runs_csv;
+  std::string step_vtu;  ///< DIR/PREFIX_step.vtu: the current step for ParaView (core/vtu.hpp)
 };
 
 /// The paths for `dir` ("" = the current directory) and `prefix`. Throws InputError when the
@@ -28,7 +30,7 @@ void write_runs_trace_csv(std::ostream& out, const Tuner& tuner);
 /// iterations, max_displacement, violations, unstabilisable.
 void write_runs_summary_csv(std::ostream& out, const Tuner& tuner);
 
-/// Creates the folder and writes both CSV files atomically. Throws InputError naming the
+/// Creates the folder and writes both CSV files and the current step's VTU atomically. Throws InputError naming the
 /// path when a file cannot be written.
 void export_csv(const Tuner& tuner, const ExportPaths& paths);
 

@@ -46,10 +46,44 @@ PlotSpec tuner_displacement_plot(Tuner& tuner, const TunerPlotOptions& options) 
                        std::make_move_iterator(p.series.end()));
     p.series = std::move(pins.series);
   }
+  show_coincident(p);
   for (PlotSeries& s : p.series) drop_flat_runs(s);
   const std::vector<PlotVLine> marks = verdict_markers(tuner.session().result());
   p.vlines.insert(p.vlines.end(), marks.begin(), marks.end());
   return p;
+}
+
+void show_coincident(PlotSpec& spec) {
+  std::vector<PlotSeries>& ss = spec.series;
+  const std::vector<std::string> labels = [&] {
+    std::vector<std::string> l;
+    for (const PlotSeries& s : ss) l.push_back(s.label);
+    return l;
+  }();
+  auto equal = [](double a, double b) {
+    return a == b || std::abs(a - b) <= 1e-12 * std::max(std::abs(a), std::abs(b));
+  };
+  for (size_t j = ss.size(); j-- > 1;) {
+    std::string same;
+    for (size_t i = 0; i < j; ++i) {
+      const PlotSeries &lo = ss[i], &hi = ss[j];
+      const size_t n = std::min({lo.x.size(), lo.y.size(), hi.x.size(), hi.y.size()});
+      size_t shared = 0, finite = 0;
+      for (size_t k = 0; k < n; ++k) {
+        if (!std::isfinite(lo.y[k]) || !std::isfinite(hi.y[k])) continue;
+        ++finite;
+        shared += lo.x[k] == hi.x[k] && equal(lo.y[k], hi.y[k]);
+      }
+      if (shared == 0 || 4 * shared < finite) continue;  // a few crossings are no overlap
+      ss[i].thickness = std::max(ss[i].thickness, ss[j].thickness + 3.0f);
+      // Equal wherever both have data (a pin may be shorter than the run it equals): named
+      // in the legend by the earlier label's first words ("lower bound (eq. 5)" -> "lower
+      // bound"), which keeps the legend narrow.
+      if (shared == finite && !labels[i].empty())
+        same += (same.empty() ? "" : ", ") + labels[i].substr(0, labels[i].find(" ("));
+    }
+    if (!same.empty() && !ss[j].label.empty()) ss[j].label += " (= " + same + ")";
+  }
 }
 
 void simplify_band(PlotBand& band, size_t max_columns) {
@@ -151,6 +185,7 @@ PlotSpec tuner_envelope_plot(Tuner& tuner, const TunerPlotOptions& options) {
     }
   }
   for (PlotBand& b : p.bands) simplify_band(b, 240);
+  show_coincident(p);
   for (PlotSeries& s : p.series) drop_flat_runs(s);
   // The upper bound (eq. 6) grows without limit as |v| -> 0: cap the axis at 100 x the
   // largest damping that matters, and keep the top part free for the legend.

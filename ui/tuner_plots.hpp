@@ -39,6 +39,13 @@ void simplify_band(PlotBand& band, size_t max_columns);
 /// segment): the same line with far fewer triangles to rasterise.
 void drop_flat_runs(PlotSeries& series);
 
+/// Keeps coincident lines visible: a series drawn under a later one that shares at least a
+/// quarter of its samples with it (same x, same y) is widened to the later one's width + 3 px,
+/// so it shows as an outline around it; a later series equal to an earlier one wherever both
+/// have samples has " (= <earlier label up to its first ' ('>)" added to its label. Call
+/// before drop_flat_runs (it compares sample by sample).
+void show_coincident(PlotSpec& spec);
+
 /// Sets a log y axis to the positive finite data of the series and lines, capped at `cap`
 /// (when > 0), with the top `fraction` of the axis left free (for the legend).
 void envelope_headroom(PlotSpec& spec, double cap, double fraction);

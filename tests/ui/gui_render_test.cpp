@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <filesystem>
 
+#include "core/expect.hpp"
 #include "core/scene.hpp"
 #include "ui/egl_host.hpp"
 #include "ui/gui_app.hpp"
@@ -173,6 +174,7 @@ TEST(GuiRender, PanelsFollowTheWindowSize) {
   EXPECT_FLOAT_EQ(params->x, 0);
   EXPECT_FLOAT_EQ(params->y, 0);
   EXPECT_FLOAT_EQ(params->w, 330);  // the left column's minimum width
+  EXPECT_FLOAT_EQ(params->h, 600);  // compact: the parameters take the whole column
   EXPECT_NEAR(runs->x + runs->w, 960, 1);
   EXPECT_NEAR(runs->y + runs->h, 600, 1);
   EXPECT_FLOAT_EQ(moved->x, 480);
@@ -184,6 +186,35 @@ TEST(GuiRender, PanelsFollowTheWindowSize) {
   EXPECT_NEAR(app.window_rect("Runs")->x + app.window_rect("Runs")->w, 1600, 1);
   EXPECT_NEAR(app.window_rect("Status")->y + app.window_rect("Status")->h, 1000, 1);
   write_png_atomic(img, out_path("gui_resized.png"));
+  app.release_gl();
+}
+
+// The Map tab at the smallest supported size: the worker's passes arrive while frames go on,
+// and the picture is the map; then Save scene writes a file that check passes.
+TEST(GuiRender, MapTabAndSaveScene) {
+  EglHost host(headless());
+  GuiOptions o = bare_options();
+  SceneSpec small = paper_plane_scene(12);
+  small.rules.max_iterations = 300;
+  o.scene = small;
+  GuiApp app(o);
+  app.map_view().finest = 16;
+  app.select_tab("Map");
+  host.render_frames(1024, 640, app.frame_fn(), 2);  // the first frame starts the worker
+  app.map().wait();
+  const Image img = host.render_frames(1024, 640, app.frame_fn(), 2);
+  EXPECT_FALSE(is_blank(img));
+  const auto r = app.map().result();
+  ASSERT_TRUE(r) << app.map().unsupported();
+  EXPECT_TRUE(r->finest);
+  EXPECT_EQ(r->cells.size(), 256u);
+  write_png_atomic(img, out_path("gui_map.png"));
+  app.select_tab("Save scene");
+  host.render_frames(1024, 640, app.frame_fn(), 2);
+  const std::string path = (fs::temp_directory_path() / "dampbound_gui_saved.toml").string();
+  const std::string summary = app.save_scene(path);
+  EXPECT_NE(summary.find("saved"), std::string::npos);
+  for (const auto& x : check_expectations(load_scene(path))) EXPECT_TRUE(x.pass) << x.what;
   app.release_gl();
 }
 

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "core/io.hpp"
 #include "core/scene.hpp"
 #include "ui/tuner_export.hpp"
 
@@ -188,10 +189,15 @@ TEST(TunerExport, WritesFilesAtomicallyAndRejectsBadPrefixes) {
   export_csv(t, p);
   EXPECT_TRUE(std::filesystem::exists(p.traces_csv));
   EXPECT_TRUE(std::filesystem::exists(p.runs_csv));
+  // The current step for ParaView: the tiny scene's nodes and springs at iteration 3.
+  const std::string vtu = read_file_text(p.step_vtu);
+  EXPECT_NE(vtu.find("NumberOfPoints=\"" + std::to_string(t.session().model().node_count())),
+            std::string::npos);
+  EXPECT_NE(vtu.find("Name=\"effective_damping\""), std::string::npos);
   int files = 0;
   for (const auto& e : std::filesystem::directory_iterator(dir / "sub"))
     files += e.is_regular_file();
-  EXPECT_EQ(files, 2);  // no temporary file left behind
+  EXPECT_EQ(files, 3);  // no temporary file left behind
   EXPECT_THROW(export_paths(dir.string(), "a/b"), InputError);
   EXPECT_THROW(export_paths(dir.string(), ""), InputError);
   std::filesystem::remove_all(dir);

@@ -1,0 +1,46 @@
+#pragma once
+// ParaView output (docs/meshes.md "ParaView output"): one VTK XML unstructured grid (.vtu) per
+// saved step and a .pvd collection of them with their times. Points are the nodes at their
+// current positions, cells are the springs (VTK_LINE). Arrays are base64-encoded binary
+// (header_type UInt64), so +inf (an upper bound with v = 0) survives exactly.
+#include <iosfwd>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/step.hpp"
+
+namespace dampbound {
+
+/// The node states as stored in the "state" point array.
+/// 0 within, 1 clamped, 2 violating, 3 unstabilisable, 4 fixed (NodeStatus's order).
+int state_code(NodeStatus s);
+
+/// Writes one .vtu. Point data: displacement x - X (cm, 3 components), velocity (cm/s, 3),
+/// lower = gamma_lo_i (eq. 5), upper = gamma_hi_i (eq. 6; +inf when v_i = 0), effective_damping
+/// (mass unit / s), state (Int32, state_code). Cell data per spring: stiffness kappa_ij (mass
+/// unit / s^2) and strain (l - l0) / l0 (0 for a spring of rest length 0). Positions are the
+/// state's; bounds, damping and states are those `ws` holds: the ones of the step that led to
+/// this state (evaluated at the state before it), or for iteration 0 the lower bounds, upper
+/// = +inf, the user's gamma and within/fixed.
+void write_vtu(std::ostream& out, const Model& model, const State& state, const StepWorkspace& ws);
+
+/// A series in one folder: DIR/step_NNNNNN.vtu (the iteration) and DIR/series.pvd.
+class VtuSeries {
+ public:
+  /// Creates `dir` when missing. Throws InputError naming it when it cannot be written.
+  explicit VtuSeries(std::string dir);
+  /// Writes the state as DIR/step_<iteration>.vtu and remembers its time for the .pvd.
+  void add(const Model& model, const State& state, const StepWorkspace& ws);
+  /// Writes DIR/series.pvd listing every file added so far (rewritten on each call).
+  void write_collection() const;
+  const std::string& dir() const { return dir_; }
+  /// The (time in s, file name) pairs written so far.
+  const std::vector<std::pair<double, std::string>>& files() const { return files_; }
+
+ private:
+  std::string dir_;
+  std::vector<std::pair<double, std::string>> files_;
+};
+
+}  // namespace dampbound

@@ -1,0 +1,57 @@
+# dampbound gui --pin / --save-scene / --export / --tab map: the tuner to a CI check in one
+# command, under Xvfb: tune, pin two runs, save; `check` passes on the file, and fails once a
+# parameter in it is edited; the scripted export writes what the Export button writes.
+. "$(dirname "$0")/lib.inc"
+
+if ! command -v xvfb-run >/dev/null 2>&1; then
+  echo "SKIP: xvfb-run is not installed"
+  exit 0
+fi
+XV=(xvfb-run -a -s "-screen 0 1600x1000x24 -noreset")
+CFG="$WORK/config"
+SAVED="$WORK/tuned.toml"
+
+# 1. Tune (gamma), pin two runs from the command line, save, export.
+expect_exit 0 "${XV[@]}" "$DB" gui --pin gamma=0.0005,name=under "$SRC/scenes/paper-plane.toml" \
+  --gamma 0.0015 --pin gamma=0.002,name=at --frames 5 --size 1024x640 \
+  --save-scene "$SAVED" --export "$WORK/export" --export-prefix run --config-dir "$CFG"
+expect_match "$ERR" "saved $SAVED: 2 runs, 3 expectations" "save summary"
+[ -s "$SAVED" ] && ok || bad "no saved scene"
+for f in run_plots.png run_traces.csv run_runs.csv; do
+  [ -s "$WORK/export/$f" ] && ok || bad "export: no $f"
+done
+expect_match "$(cat "$WORK/export/run_runs.csv")" '^under,' "exported runs.csv has the pin"
+
+# 2. The saved scene is a check: it passes headless.
+expect_exit 0 "$DB" check "$SAVED" --junit "$WORK/tuned.xml"
+expect_match "$OUT" 'check: [1-9][0-9]* passed, 0 failed' "saved scene passes"
+expect_match "$OUT" '\[under\] \[settled\] outcome == settled' "the pin is checked (settled rule)"
+expect_match "$(grep -c '^gamma = 0.0015' "$SAVED")" '^1$' "tuned gamma is [params]"
+
+# 3. Edit the pinned run's gamma in the file: the check fails.
+sed 's/^gamma = 0.0005$/gamma = 0.0009/' "$SAVED" >"$WORK/edited.toml"
+cmp -s "$SAVED" "$WORK/edited.toml" && bad "the edit changed nothing" || ok
+expect_exit 1 "$DB" check "$WORK/edited.toml"
+expect_match "$OUT" 'FAIL .*\[under\]' "edited run fails"
+
+# 4. The headless figure draws the saved scene's pins.
+expect_exit 0 "$DB" figure "$SAVED" -o "$WORK/fig.png"
+expect_match "$OUT" 'under ' "figure lists the pin"
+
+# 5. The Map tab (its passes finish before the last frame), at the smallest supported size.
+expect_exit 0 "${XV[@]}" "$DB" gui "$SRC/scenes/paper-plane.toml" --frames 3 --tab map \
+  --size 1024x640 --screenshot "$WORK/map.png" --config-dir "$CFG"
+[ -s "$WORK/map.png" ] && ok || bad "no map screenshot"
+
+# 6. Bad input: one line naming the flag, exit 2, nothing written.
+expect_exit 2 "${XV[@]}" "$DB" gui "$SRC/scenes/paper-plane.toml" --frames 2 --pin foo=1 \
+  --save-scene "$WORK/bad.toml" --config-dir "$CFG"
+expect_match "$ERR" '--pin foo=1: unknown key' "bad --pin named"
+expect_one_line "$ERR" "bad --pin"
+[ -e "$WORK/bad.toml" ] && bad "bad --pin wrote a file" || ok
+expect_exit 2 "$DB" gui "$SRC/scenes/paper-plane.toml" --frames 2 --save-scene /nonexistent/x.toml
+expect_match "$ERR" '--save-scene' "unwritable --save-scene named"
+expect_exit 2 "$DB" gui "$SRC/scenes/paper-plane.toml" --export "$WORK/e2"
+expect_match "$ERR" '--export needs --frames' "--export without --frames"
+
+finish

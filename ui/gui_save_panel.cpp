@@ -1,0 +1,73 @@
+// The tuner's "Save scene" tab: the current scene, its parameters and the pinned runs written
+// as a scene file whose [[expect]] tables `dampbound check` replays (ui/tuner_save.hpp).
+#include <imgui.h>
+#include <imgui_stdlib.h>
+
+#include <algorithm>
+#include <exception>
+#include <filesystem>
+#include <string>
+
+#include "ui/gui_app.hpp"
+#include "ui/gui_widgets.hpp"
+
+namespace dampbound::ui {
+
+std::string GuiApp::save_scene(const std::string& path, std::vector<std::string>* notes) {
+  return save_tuner_scene(*tuner_, path, save_tolerance_, notes);
+}
+
+void GuiApp::save_panel() {
+  Tuner& t = *tuner_;
+  int runs = 0;
+  for (const Pin& p : t.pins()) runs += p.scene == t.scene().name;
+  ImGui::TextWrapped(
+      "Writes the scene with the current parameters as [params], each of its %d pinned runs "
+      "as a [[run]], and what each run measured as an [[expect]] entry: "
+      "`dampbound check FILE` replays them headless.",
+      runs);
+  section_header("Tolerances of the [[expect]] entries");
+  const float w = std::min(ImGui::GetContentRegionAvail().x * 0.45f, 160.0f);
+  ImGui::SetNextItemWidth(w);
+  if (ImGui::InputInt("+- iterations", &save_tolerance_.iterations, 1, 10))
+    save_tolerance_.iterations = std::max(0, save_tolerance_.iterations);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("The verdict's iteration may move this far (restored, diverged)");
+  ImGui::SetNextItemWidth(w);
+  double f = save_tolerance_.displacement_factor;
+  if (ImGui::InputDouble("x final displacement", &f, 0.1, 1.0, "%.2f"))
+    save_tolerance_.displacement_factor = std::clamp(f, 1.0, 1e6);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip(
+        "max_displacement_below = this x the measured final max displacement\n"
+        "(1 = not asserted; diverged runs never)");
+  ImGui::Checkbox("assert the node-step counts", &save_tolerance_.counts);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("violations_max and unstabilisable_max = the measured node-steps");
+  section_header("File");
+  if (save_path_.empty())
+    save_path_ = (t.scene().name.empty() ? std::string("tuned") : t.scene().name) + "-tuned.toml";
+  const float bw = ImGui::CalcTextSize("Save").x + ImGui::GetStyle().FramePadding.x * 2;
+  ImGui::SetNextItemWidth(-bw - ImGui::GetStyle().ItemSpacing.x);
+  ImGui::InputTextWithHint("##save_path", "scene file (.toml)", &save_path_);
+  ImGui::SameLine();
+  if (ImGui::Button("Save")) {
+    save_notes_.clear();
+    try {
+      save_message_ = save_scene(save_path_, &save_notes_);
+      save_failed_ = false;
+    } catch (const std::exception& e) {
+      save_message_ = e.what();
+      save_failed_ = true;
+    }
+  }
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip(
+        "Runs changed by hand (dragged, cut, a parameter changed mid-run) or still running\n"
+        "are replayed headless first: the file holds what `check` will measure.");
+  if (!save_message_.empty())
+    wrapped_colored(save_failed_ ? gui_red() : gui_green(), save_message_.c_str());
+  for (const std::string& n : save_notes_) wrapped_colored(gui_amber(), n.c_str());
+}
+
+}  // namespace dampbound::ui
