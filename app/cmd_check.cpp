@@ -96,7 +96,7 @@ void write_junit(std::ostream& out, const std::vector<SceneReport>& reports) {
 
 int run(const CheckArgs& a) {
   const std::vector<std::string> paths =
-      a.paths.empty() ? std::vector<std::string>{std::string(DAMPBOUND_SOURCE_DIR) + "/scenes"}
+      a.paths.empty() ? std::vector<std::string>{shipped_scenes_dir()}
                       : a.paths;
   if (!a.junit.empty()) check_writable(a.junit);
   const auto files = scene_files(paths);

@@ -13,14 +13,11 @@
 #include "core/scene_write.hpp"
 
 #if defined(DAMPBOUND_HAVE_GLFW)
+#include "ui/frame_times.hpp"
 #include "ui/glfw_host.hpp"
 #include "ui/gui_app.hpp"
 #include "ui/image.hpp"
 #include "ui/tuner_export.hpp"
-#endif
-
-#ifndef DAMPBOUND_SOURCE_DIR
-#define DAMPBOUND_SOURCE_DIR "."
 #endif
 
 namespace dampbound::app {
@@ -51,6 +48,15 @@ bool have_display() {
   return (x != nullptr && *x != '\0') || (w != nullptr && *w != '\0');
 }
 
+/// Frame-time percentiles after the first frame (startup), in milliseconds (ui/frame_times.hpp).
+std::string frame_time_json(const ui::WindowRun& run) {
+  const ui::FrameTimeSummary f = ui::summarize_frame_times(run.frame_ms, 1);
+  return "\"frame_ms_after_first\":{\"frames\":" + std::to_string(f.frames) +
+         ",\"mean\":" + json_number(f.mean) + ",\"p50\":" + json_number(f.p50) +
+         ",\"p99\":" + json_number(f.p99) + ",\"max\":" + json_number(f.max) +
+         "},\"first_frame_ms\":" + json_number(run.frame_ms.empty() ? 0.0 : run.frame_ms[0]);
+}
+
 void print_stats(const GuiArgs& a, ui::GuiApp& app, const ui::WindowRun& run,
                  const std::string& renderer, int width, int height) {
   const Session& s = app.tuner().session();
@@ -58,14 +64,15 @@ void print_stats(const GuiArgs& a, ui::GuiApp& app, const ui::WindowRun& run,
       "{\"frames\":%d,\"iterations\":%d,\"outcome\":\"%s\",\"outcome_iteration\":%d,"
       "\"steps_per_frame\":%d,\"mean_frame_ms\":%s,\"fps\":%s,\"steps_per_second\":%s,"
       "\"step_ms_per_frame\":%s,\"width\":%d,\"height\":%d,\"scene\":%s,\"gamma\":%s,"
-      "\"policy\":\"%s\",\"pins\":%zu,\"renderer\":%s}\n",
+      "\"policy\":\"%s\",\"pins\":%zu,\"renderer\":%s,%s}\n",
       run.frames, s.state().iteration, to_string(s.result().outcome), s.result().iterations,
       app.tuner().playback().steps_per_frame, json_number(run.mean_frame_ms).c_str(),
       json_number(run.mean_frame_ms > 0 ? 1000.0 / run.mean_frame_ms : 0.0).c_str(),
       json_number(app.measured_steps_per_second()).c_str(),
       json_number(run.frames > 0 ? app.tuner().step_seconds() * 1e3 / run.frames : 0.0).c_str(),
       width, height, json_string(s.scene().name).c_str(), json_number(s.params().gamma).c_str(),
-      to_string(s.params().policy), app.tuner().pins().size(), json_string(renderer).c_str());
+      to_string(s.params().policy), app.tuner().pins().size(), json_string(renderer).c_str(),
+      frame_time_json(run).c_str());
   (void)a;
 }
 
@@ -110,7 +117,7 @@ int run(GuiArgs& a) {
   }
   ui::GuiOptions o;
   o.config_dir = ui::config_dir(a.config_dir);
-  o.scenes_dir = std::string(DAMPBOUND_SOURCE_DIR) + "/scenes";
+  o.scenes_dir = shipped_scenes_dir();
   if (!a.scene.empty()) o.scene = load_scene_arg(a.scene);
   const ParamFlags flags = a.flags;
   o.overrides = [flags](Params& p, StopRules& r) { flags.apply(p, r); };

@@ -5,6 +5,8 @@
 
 #include "app/commands.hpp"
 #include "core/error.hpp"
+#include "core/sweep_kernel.hpp"
+#include "dampbound/version.hpp"
 
 namespace dampbound::app {
 
@@ -26,6 +28,11 @@ int main(int argc, char** argv) {
       "dampbound: damping bounds that guarantee stability in mass-spring systems\n"
       "(Bhasin & Liu). Units: cm, s, and any consistent mass unit."};
   root.require_subcommand(1);
+  // The version, and which compiled variant of the sweep kernel this CPU runs.
+  root.set_version_flag("--version", std::string("dampbound ") + DAMPBOUND_VERSION +
+                                         " (sweep kernel: " +
+                                         dampbound::to_string(dampbound::best_kernel_isa()) +
+                                         ")");
   root.set_help_all_flag("--help-all", "Print help for every subcommand");
   std::map<std::string, std::function<int()>> runners;
   for (auto& entry : command_table()) runners[entry.name] = entry.setup(root);
@@ -34,6 +41,8 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForHelp& e) {
     return root.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
+    return root.exit(e);
+  } catch (const CLI::CallForVersion& e) {
     return root.exit(e);
   } catch (const CLI::ParseError& e) {
     // One line naming the flag; CLI11's own text already does.

@@ -4,11 +4,16 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
 
 #include "core/error.hpp"
 
 #ifndef DAMPBOUND_SOURCE_DIR
 #define DAMPBOUND_SOURCE_DIR "."
+#endif
+#ifndef DAMPBOUND_SCENES_FROM_BIN
+#define DAMPBOUND_SCENES_FROM_BIN "../share/dampbound/scenes"
 #endif
 
 namespace dampbound::app {
@@ -101,11 +106,30 @@ void parse_size(const std::string& text, const char* flag, int& width, int& heig
   height = h;
 }
 
+std::string shipped_scenes_dir() {
+  auto is_dir = [](const std::string& d) { return !d.empty() && ::access(d.c_str(), F_OK) == 0; };
+  if (const char* env = std::getenv("DAMPBOUND_SCENES_DIR"); env && is_dir(env)) return env;
+  // An installed dampbound: <prefix>/bin/dampbound finds <prefix>/share/dampbound/scenes.
+  char exe[4096];
+  const ssize_t len = ::readlink("/proc/self/exe", exe, sizeof exe - 1);
+  if (len > 0) {
+    const std::string path(exe, static_cast<size_t>(len));
+    const std::string installed =
+        std::filesystem::path(path.substr(0, path.rfind('/') + 1) + DAMPBOUND_SCENES_FROM_BIN)
+            .lexically_normal()
+            .string();
+    if (is_dir(installed)) return installed;
+  }
+  const std::string source = std::string(DAMPBOUND_SOURCE_DIR) + "/scenes";
+  return is_dir(source) ? source : std::string();
+}
+
 SceneSpec load_scene_arg(const std::string& arg) {
-  if (arg.find('/') == std::string::npos && ::access(arg.c_str(), F_OK) != 0) {
+  const std::string dir = shipped_scenes_dir();
+  if (arg.find('/') == std::string::npos && ::access(arg.c_str(), F_OK) != 0 && !dir.empty()) {
     std::string name = arg;
     if (name.size() < 5 || name.substr(name.size() - 5) != ".toml") name += ".toml";
-    const std::string shipped = std::string(DAMPBOUND_SOURCE_DIR) + "/scenes/" + name;
+    const std::string shipped = dir + "/" + name;
     if (::access(shipped.c_str(), F_OK) == 0) return load_scene(shipped);
   }
   return load_scene(arg);

@@ -37,8 +37,13 @@ StopRule stop_rule_of(const std::string& text);
 /// Parses "WxH" (e.g. 1200x700) given to `flag`; InputError naming the flag otherwise.
 void parse_size(const std::string& text, const char* flag, int& width, int& height);
 
+/// The folder of the shipped scenes: $DAMPBOUND_SCENES_DIR when set, else share/dampbound/scenes
+/// beside an installed executable (found from /proc/self/exe), else the source tree's scenes/
+/// (a build-tree run). "" when none exists.
+std::string shipped_scenes_dir();
+
 /// Loads a scene file; a file name without a slash that does not exist is also looked up in
-/// the scenes/ folder of the source tree, with ".toml" appended when missing.
+/// shipped_scenes_dir(), with ".toml" appended when missing.
 SceneSpec load_scene_arg(const std::string& arg);
 
 }  // namespace dampbound::app

@@ -2,6 +2,8 @@
 #include "core/linear_stability.hpp"
 #include "core/spring_block.hpp"
 
+#include "core/linear_stability_cholesky.hpp"
+
 #include <Eigen/Dense>
 #include <Spectra/MatOp/SparseSymMatProd.h>
 #include <Spectra/SymEigsSolver.h>
@@ -76,46 +78,7 @@ SparseMatrix mass_weighted(const Model& model, const SparseMatrix& K) {
   return A;
 }
 
-namespace {
-
-/// One end of the spectrum of a symmetric matrix. Lanczos with restarts (Spectra); a tiny
-/// matrix (below 13 rows, e.g. the two-node system) is solved densely.
-double extreme_eigenvalue(const SparseMatrix& A, bool largest, Eigen::VectorXd* vector = nullptr) {
-  const Eigen::Index n = A.rows();
-  if (n == 0) return 0;
-  if (n < 13) {
-    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es{Eigen::MatrixXd(A)};
-    const Eigen::Index k = largest ? n - 1 : 0;
-    if (vector) *vector = es.eigenvectors().col(k);
-    return es.eigenvalues()(k);
-  }
-  double scale = 0;  // a zero matrix leaves Lanczos no Krylov space to build
-  for (int k = 0; k < A.outerSize(); ++k)
-    for (SparseMatrix::InnerIterator it(A, k); it; ++it) scale = std::max(scale, std::abs(it.value()));
-  if (scale == 0) {
-    if (vector) *vector = Eigen::VectorXd::Unit(n, 0);
-    return 0;
-  }
-  const auto rule = largest ? Spectra::SortRule::LargestAlge : Spectra::SortRule::SmallestAlge;
-  Spectra::SparseSymMatProd<double> op(A);
-  // The low end of a mesh spectrum is clustered; a larger subspace converges in fewer restarts.
-  const Eigen::Index ncv = std::min<Eigen::Index>(n, largest ? 24 : 64);
-  Spectra::SymEigsSolver<Spectra::SparseSymMatProd<double>> eigs(op, 1, ncv);
-  eigs.init();
-  // The top of a mesh spectrum is well separated (1e-11 is cheap); the bottom of a deformed
-  // mesh is a tight cluster (e.g. 1296 out-of-plane modes near kappa_a/m), where a residual
-  // tolerance of 1e-7 still bounds the eigenvalue's error by 1e-7 lambda (Ritz values of a
-  // symmetric matrix: |theta - lambda| <= ||r||) and converges in a fraction of the time.
-  eigs.compute(rule, 5000, largest ? 1e-11 : 1e-7, rule);
-  if (eigs.info() != Spectra::CompInfo::Successful)
-    return std::numeric_limits<double>::quiet_NaN();
-  if (vector) *vector = eigs.eigenvectors().col(0);
-  return eigs.eigenvalues()(0);
-}
-
-}  // namespace
-
-double largest_eigenvalue(const SparseMatrix& A) { return extreme_eigenvalue(A, true); }
+double largest_eigenvalue(const SparseMatrix& A) { return certified_largest_eigenvalue(A).hi; }
 double smallest_eigenvalue_above(const SparseMatrix& A, double floor) {
   const Eigen::Index n = A.rows();
   if (n == 0) return 0;
@@ -138,17 +101,17 @@ double smallest_eigenvalue_above(const SparseMatrix& A, double floor) {
 }
 
 double largest_eigenpair(const SparseMatrix& A, Eigen::VectorXd& vector) {
-  return extreme_eigenvalue(A, true, &vector);
+  return certified_largest_eigenvalue(A, &vector).hi;
 }
-double smallest_eigenvalue(const SparseMatrix& A) { return extreme_eigenvalue(A, false); }
+double smallest_eigenvalue(const SparseMatrix& A) { return certified_smallest_eigenvalue(A).lo; }
 
 double max_stiffness_eigenvalue(const Model& model, const std::vector<Vec3>& x) {
   return largest_eigenvalue(mass_weighted(model, tangent_stiffness(model, x)));
 }
 
 StiffnessSpectrum stiffness_spectrum(const Model& model, const std::vector<Vec3>& x) {
-  const SparseMatrix A = mass_weighted(model, tangent_stiffness(model, x));
-  return {smallest_eigenvalue(A), largest_eigenvalue(A)};
+  const CertifiedSpectrum ends = certified_spectrum(mass_weighted(model, tangent_stiffness(model, x)));
+  return {ends.smallest.lo, ends.largest.hi};
 }
 
 LinearLimits linear_limits(double lambda_max, double m, double dt) {

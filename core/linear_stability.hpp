@@ -30,19 +30,22 @@ SparseMatrix tangent_stiffness(const Model& model, const std::vector<Vec3>& x,
 /// M^-1/2 K M^-1/2 over the free nodes: symmetric, with the eigenvalues of M^-1 K.
 SparseMatrix mass_weighted(const Model& model, const SparseMatrix& K);
 
-/// Largest and smallest algebraic eigenvalue of a symmetric sparse matrix: Lanczos
-/// (Spectra::SymEigsSolver), dense only below 13 rows. Tolerance 1e-10 relative.
+/// Largest and smallest algebraic eigenvalue of a symmetric sparse matrix, each the safe end
+/// of a certified interval (linear_stability_cholesky.hpp: shift-and-invert Lanczos from
+/// Gershgorin's bound, a Cholesky certificate): largest_eigenvalue is never low and
+/// smallest_eigenvalue never high, by at most ~1e-10 relative. Dense up to 400 rows.
 double largest_eigenvalue(const SparseMatrix& A);
 double smallest_eigenvalue(const SparseMatrix& A);
 /// The smallest eigenvalue above `floor` (zero modes skipped: motions no spring resists).
 /// Dense up to 300 rows, else the 12 smallest by Lanczos; NaN when none is found.
 double smallest_eigenvalue_above(const SparseMatrix& A, double floor);
-/// The largest eigenvalue and its unit eigenvector (for Hellmann-Feynman slopes).
+/// The largest eigenvalue (certified upper end) and its unit Ritz vector (for
+/// Hellmann-Feynman slopes).
 double largest_eigenpair(const SparseMatrix& A, Eigen::VectorXd& vector);
 
 /// Largest eigenvalue of M^-1 K, K the tangent stiffness of springs and anchors at positions
 /// x (at rest only spring directions and anchors contribute), over the free nodes.
-/// Units 1/s^2. Iterative (Lanczos / Spectra); exact to ~1e-10 relative.
+/// Units 1/s^2. The upper end of a certified interval, ~1e-10 relative wide.
 double max_stiffness_eigenvalue(const Model& model, const std::vector<Vec3>& x);
 
 /// Both ends of the spectrum of M^-1 K at x (1/s^2): what the per-mode analysis of any

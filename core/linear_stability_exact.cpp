@@ -6,6 +6,7 @@
 #include <functional>
 #include <limits>
 
+#include "core/linear_stability_cholesky.hpp"
 #include "core/step.hpp"
 
 namespace dampbound {
@@ -78,10 +79,11 @@ ExactStability exact_stability(const Model& model, const std::vector<Vec3>& x,
   e.integrator = params.integrator;
   const double h = params.dt, gamma = params.gamma;
   const SparseMatrix A = mass_weighted(model, tangent_stiffness(model, x));
-  e.spectrum = {smallest_eigenvalue(A), largest_eigenvalue(A)};
-  // Lanczos that does not converge gives NaN; K >= 0 away from compression, so 0 is a safe
-  // lower end (it only makes rho pessimistic).
-  if (std::isnan(e.spectrum.lambda_min)) e.spectrum.lambda_min = 0;
+  // Certified intervals (Cholesky, linear_stability_cholesky.hpp); the limits use the safe
+  // ends: lambda_max never low, lambda_min never high.
+  const CertifiedSpectrum ends = certified_spectrum(A);
+  e.spectrum = {ends.smallest.lo, ends.largest.hi};
+  e.lambda_max_lo = ends.largest.lo;
   const Eigen::VectorXd R = unit_rates(model);
   const double r_min = R.size() ? R.minCoeff() : 0, r_max = R.size() ? R.maxCoeff() : 0;
   e.rate_min = gamma * r_min;

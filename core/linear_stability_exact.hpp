@@ -28,6 +28,9 @@ struct ExactStability {
   double rate_min = 0;        ///< min and max of gamma_i/m_i over the free nodes (1/s)
   double rate_max = 0;
   StiffnessSpectrum spectrum;  ///< of M^-1 K at the state (1/s^2); decides stability
+  /// lambda_max lies in [lambda_max_lo, spectrum.lambda_max] (1/s^2): the upper end is
+  /// certified by a Cholesky factorisation, the lower by a Rayleigh quotient.
+  double lambda_max_lo = 0;
   /// The spectrum without zero modes (lambda = 0: motions no spring resists, e.g. the two-node
   /// system's transverse directions), whose z = 1 neither grows nor decays whatever gamma and
   /// dt. The spectral radius (the decay rate per step) is taken over it.

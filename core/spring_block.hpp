@@ -9,9 +9,10 @@ namespace dampbound {
 /// B = kappa [ (1 - l0/l) I + (l0/l) d d^T ] = kappa [ d d^T + (1 - l0/l)(I - d d^T) ]
 /// (mass unit / s^2) for a spring of stiffness `kappa`, unit direction `d`, with
 /// `ratio` = l0/l and `tension` = 1 - l0/l. B is symmetric; `b` receives its upper
-/// triangle {xx, xy, xz, yy, yz, zz}. T is double or a lane vector of doubles.
+/// triangle {xx, xy, xz, yy, yz, zz}. T is double or a lane vector of doubles. Internal
+/// linkage: each compiled variant of the batched kernel instantiates its own.
 template <class T>
-inline void spring_tangent_block(const T& kappa, const T& tension, const T& ratio, const T d[3],
+static inline void spring_tangent_block(const T& kappa, const T& tension, const T& ratio, const T d[3],
                                  T b[6]) {
   const T r0 = ratio * d[0], r1 = ratio * d[1], r2 = ratio * d[2];
   b[0] = kappa * (tension + r0 * d[0]);
@@ -23,7 +24,7 @@ inline void spring_tangent_block(const T& kappa, const T& tension, const T& rati
 }
 
 /// Index into the upper triangle {xx, xy, xz, yy, yz, zz} of row r, column c of a symmetric 3x3.
-constexpr int sym3(int r, int c) {
+static constexpr int sym3(int r, int c) {
   return r <= c ? (r == 0 ? c : r == 1 ? 2 + c : 5) : sym3(c, r);
 }
 

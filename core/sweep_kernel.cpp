@@ -1,6 +1,11 @@
 // The batched sweep kernel. Every formula below is step()'s (core/step.cpp, forces.cpp,
 // bounds.cpp, integrate.cpp), written lane-wise with the operands in the same order, so each
 // lane rounds exactly as step() does on that lane's trial.
+//
+// Compiled once as it is (the generic variant) and once more per instruction set by a wrapper
+// (core/sweep_kernel_avx2.cpp, core/sweep_kernel_avx512.cpp) that includes this file under a
+// target pragma; everything here has internal linkage, and only the factory at the end is
+// named after the variant (core/sweep_kernel_impl.hpp).
 #include "core/sweep_kernel.hpp"
 
 #include <cfloat>
@@ -8,7 +13,13 @@
 #include <stdexcept>
 
 #include "core/session.hpp"
+#include "core/sweep_kernel_impl.hpp"
 #include "core/sweep_lanes.hpp"
+#include "core/sweep_simd.hpp"
+
+#ifndef DAMPBOUND_KERNEL_VARIANT
+#define DAMPBOUND_KERNEL_VARIANT kernel_generic
+#endif
 
 namespace dampbound {
 
@@ -34,9 +45,8 @@ bool all_equal(const std::vector<double>& v) {
   return true;
 }
 
-}  // namespace
-
-struct BatchKernel::Impl {
+struct Kernel final : BatchKernel::Impl {
+  static constexpr int kLanes = BatchKernel::kLanes;
   size_t n = 0;
   DampingPolicy policy;
   StopRules rules;
@@ -58,7 +68,7 @@ struct BatchKernel::Impl {
   TrialResult result[kLanes];
   BandHistory band[kLanes];
 
-  Impl(const SceneSpec& scene, DampingPolicy pol, const StopRules& r) : policy(pol), rules(r) {
+  Kernel(const SceneSpec& scene, DampingPolicy pol, const StopRules& r) : policy(pol), rules(r) {
     const std::string why = batch_kernel_unsupported(scene);
     if (!why.empty()) throw std::invalid_argument("batched kernel: " + why);
     semi_implicit = scene.params.integrator == Integrator::semi_implicit_euler;
@@ -297,7 +307,7 @@ struct BatchKernel::Impl {
   }
 
   std::uint64_t run(const TrialSource& source, const TrialSink& sink,
-                    const std::atomic<bool>* cancel) {
+                    const std::atomic<bool>* cancel) override {
     auto refill = [&](int l) {
       std::size_t trial = 0;
       TrialParams p;
@@ -341,22 +351,21 @@ struct BatchKernel::Impl {
     }
     return lane_steps;
   }
+
+  long long spring_evaluations_per_step() const override {
+    long long anchors = 0;
+    for (double s : anchor_scale) anchors += s > 0;
+    return static_cast<long long>(springs.size()) + anchors;
+  }
 };
 
-BatchKernel::BatchKernel(const SceneSpec& scene, DampingPolicy policy, const StopRules& rules)
-    : impl_(std::make_unique<Impl>(scene, policy, rules)) {}
+}  // namespace
 
-BatchKernel::~BatchKernel() = default;
-
-std::uint64_t BatchKernel::run(const TrialSource& source, const TrialSink& sink,
-                               const std::atomic<bool>* cancel) {
-  return impl_->run(source, sink, cancel);
+namespace DAMPBOUND_KERNEL_VARIANT {
+std::unique_ptr<BatchKernel::Impl> make(const SceneSpec& scene, DampingPolicy policy,
+                                        const StopRules& rules) {
+  return std::make_unique<Kernel>(scene, policy, rules);
 }
-
-long long BatchKernel::spring_evaluations_per_step() const {
-  long long anchors = 0;
-  for (double s : impl_->anchor_scale) anchors += s > 0;
-  return static_cast<long long>(impl_->springs.size()) + anchors;
-}
+}  // namespace DAMPBOUND_KERNEL_VARIANT
 
 }  // namespace dampbound

@@ -11,6 +11,8 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "core/protocol.hpp"
@@ -53,6 +55,21 @@ using TrialSource = std::function<bool(std::size_t& id, TrialParams& params)>;
 /// Receives a finished trial.
 using TrialSink = std::function<void(std::size_t id, const TrialResult& result)>;
 
+/// The instruction sets the batched kernel is compiled for, all in every build (each a copy of
+/// core/sweep_kernel.cpp compiled with that target, core/sweep_kernel_avx*.cpp); `best` picks
+/// the widest this CPU runs, at run time. Every variant rounds exactly as step() does.
+enum class KernelIsa { best, generic, avx2, avx512 };
+
+const char* to_string(KernelIsa isa);
+/// Parses "best" | "generic" | "avx2" | "avx512"; nullopt when unknown.
+std::optional<KernelIsa> parse_kernel_isa(const std::string& s);
+/// Whether this CPU (and OS) can run `isa` (always true for best and generic).
+bool kernel_isa_supported(KernelIsa isa);
+/// What `best` resolves to on this machine: DAMPBOUND_KERNEL_ISA from the environment when it
+/// names a supported variant (for benchmarks and tests), else the widest supported one (the
+/// plain copy in a DAMPBOUND_NATIVE build for an AVX-512 host: it is compiled for the host).
+KernelIsa best_kernel_isa();
+
 /// Why the batched kernel cannot run a scene ("" when it can): cuts (topology changes
 /// mid-run) and integrators other than the paper's semi-implicit Euler and forward Euler.
 std::string batch_kernel_unsupported(const SceneSpec& scene);
@@ -63,8 +80,9 @@ class BatchKernel {
 
   /// Topology, scales, external forces, fixed nodes and initial state from `scene`; the
   /// integrator from scene.params. Throws std::invalid_argument when
-  /// batch_kernel_unsupported(scene) is not empty.
-  BatchKernel(const SceneSpec& scene, DampingPolicy policy, const StopRules& rules);
+  /// batch_kernel_unsupported(scene) is not empty, or when `isa` is not supported here.
+  BatchKernel(const SceneSpec& scene, DampingPolicy policy, const StopRules& rules,
+              KernelIsa isa = KernelIsa::best);
   ~BatchKernel();
   BatchKernel(const BatchKernel&) = delete;
   BatchKernel& operator=(const BatchKernel&) = delete;
@@ -79,9 +97,15 @@ class BatchKernel {
   /// Springs plus anchors evaluated per trial step (the benchmark's unit of work).
   long long spring_evaluations_per_step() const;
 
- private:
+  /// The variant this kernel runs (never `best`).
+  KernelIsa isa() const { return isa_; }
+
+  /// One variant's kernel (core/sweep_kernel_impl.hpp).
   struct Impl;
+
+ private:
   std::unique_ptr<Impl> impl_;
+  KernelIsa isa_ = KernelIsa::generic;
 };
 
 /// The order in which the kernel applies the springs (indices into model.springs). Each
@@ -96,7 +120,8 @@ std::vector<int> spring_schedule(const Model& model);
 /// thread and returns their results in order.
 std::vector<TrialResult> run_batched(const SceneSpec& scene, DampingPolicy policy,
                                      const StopRules& rules,
-                                     const std::vector<TrialParams>& trials);
+                                     const std::vector<TrialParams>& trials,
+                                     KernelIsa isa = KernelIsa::best);
 
 /// The reference: each trial through Session::run_to_end (the one step() of core).
 TrialResult run_reference(const SceneSpec& scene, DampingPolicy policy, const StopRules& rules,

@@ -9,6 +9,9 @@
 #include "core/sweep_simd.hpp"
 
 namespace dampbound::sweep_lanes {
+// Internal linkage, as in sweep_simd.hpp: each compiled variant of the kernel (generic,
+// AVX2, AVX-512) keeps its own copy.
+namespace {
 
 using simd::vd;
 using simd::vl;
@@ -104,4 +107,5 @@ inline vd safe_damping(const SafeBlock& s, vd mass_i, vd dt, vd lo_i, vd gu_i) {
   return lo_i > gs ? lane_max(gs, simd::splat(0.0)) : clamped_g;
 }
 
+}  // namespace
 }  // namespace dampbound::sweep_lanes

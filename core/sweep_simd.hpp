@@ -4,6 +4,12 @@
 // lane with IEEE rounding, exactly like the scalar code of step(); sqrt goes through the
 // matching SIMD instruction (also correctly rounded). With AVX-512 a vector is one zmm
 // register; on narrower machines the compiler splits it into ymm/xmm operations.
+//
+// The instruction set comes from the compiler flags (__AVX512F__, __AVX__) or, in the per-ISA
+// copies of the kernel built under a target pragma, from DAMPBOUND_SIMD_AVX512 /
+// DAMPBOUND_SIMD_AVX2 (a target pragma does not define the macros under clang). Everything
+// here has internal linkage, so the copies compiled for different targets never meet at link
+// time.
 #include <cmath>
 #include <cstdint>
 #if defined(__x86_64__) || defined(__i386__)
@@ -18,12 +24,18 @@
 #endif
 
 namespace dampbound::simd {
+namespace {
 
 /// Trials per vector: 8 doubles = 64 bytes = one AVX-512 register.
 constexpr int kLanes = 8;
 
-typedef double vd __attribute__((vector_size(kLanes * sizeof(double))));
-typedef std::int64_t vl __attribute__((vector_size(kLanes * sizeof(std::int64_t))));
+// aligned(64) is explicit: GCC otherwise derives a vector type's alignment from the target in
+// force where the type is used, so a std::vector<NodeBlock> instantiated after the AVX-512
+// target pragma of core/sweep_kernel_avx512.cpp ends would allocate 16-byte aligned blocks
+// that the kernel's AVX-512 code reads with aligned loads.
+typedef double vd __attribute__((vector_size(kLanes * sizeof(double)), aligned(64)));
+typedef std::int64_t vl __attribute__((vector_size(kLanes * sizeof(std::int64_t)), aligned(64)));
+static_assert(alignof(vd) == 64 && alignof(vl) == 64, "one AVX-512 register per vector");
 
 /// Every lane = x (keeps the sign of a zero, unlike `vd{} + x`).
 inline vd splat(double x) {
@@ -40,12 +52,12 @@ inline vl splat_int(std::int64_t x) {
 
 /// Correctly rounded square root of every lane (IEEE 754, same as std::sqrt).
 inline vd sqrt(vd x) {
-#if defined(__AVX512F__)
+#if defined(__AVX512F__) || defined(DAMPBOUND_SIMD_AVX512)
   // The masked form with every lane selected: GCC 12's _mm512_sqrt_pd reads an undefined
   // register and trips -Wmaybe-uninitialized.
   const __m512d v = reinterpret_cast<__m512d>(x);
   return reinterpret_cast<vd>(_mm512_mask_sqrt_pd(v, static_cast<__mmask8>(0xFF), v));
-#elif defined(__AVX__)
+#elif defined(__AVX__) || defined(DAMPBOUND_SIMD_AVX2)
   vd r;
   __m256d lo, hi;
   __builtin_memcpy(&lo, &x, sizeof lo);
@@ -67,4 +79,5 @@ inline vd select(vl mask, vd a, vd b) {
   return mask ? a : b;
 }
 
+}  // namespace
 }  // namespace dampbound::simd

@@ -93,9 +93,9 @@ std::vector<int> spring_schedule(const Model& model) {
 
 std::vector<TrialResult> run_batched(const SceneSpec& scene, DampingPolicy policy,
                                      const StopRules& rules,
-                                     const std::vector<TrialParams>& trials) {
+                                     const std::vector<TrialParams>& trials, KernelIsa isa) {
   std::vector<TrialResult> out(trials.size());
-  BatchKernel kernel(scene, policy, rules);
+  BatchKernel kernel(scene, policy, rules, isa);
   std::size_t next = 0;
   kernel.run(
       [&](std::size_t& id, TrialParams& p) {

@@ -6,10 +6,12 @@ SUDO=""
 if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
 PACKAGES=(
   cmake ninja-build g++ pkg-config git
-  libeigen3-dev libspectra-dev libtomlplusplus-dev libcli11-dev libstb-dev
+  libeigen3-dev libspectra-dev libtomlplusplus-dev libcli11-dev libstb-dev libsuitesparse-dev
   libimgui-dev libglfw3-dev libgl-dev libegl-dev libegl-mesa0 libgl1-mesa-dri
   libgtest-dev libbenchmark-dev
+  pybind11-dev python3-dev python3-pytest   # the Python module and its tests (and numpy)
   xvfb xauth fonts-dejavu-core
+  slurm-wlm munge                # scripts/ci/slurm.sh: a single-node Slurm on localhost
   python3-meshio python3-numpy   # tests read the ParaView (VTU) output back with meshio
 )
 missing=()

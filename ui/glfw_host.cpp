@@ -98,6 +98,7 @@ WindowRun GlfwHost::run(const FrameFn& fn) {
   const auto wall0 = Clock::now();
   FrameInfo info;
   while (glfwWindowShouldClose(win) == GLFW_FALSE) {
+    const auto frame_start = Clock::now();
     glfwPollEvents();
     // Another host (e.g. an EGL export) may have taken the thread's context meanwhile.
     glfwMakeContextCurrent(win);
@@ -120,6 +121,8 @@ WindowRun GlfwHost::run(const FrameFn& fn) {
       result.screenshot = read_pixels(fb_w, fb_h);
     }
     glfwSwapBuffers(win);
+    result.frame_ms.push_back(
+        std::chrono::duration<double, std::milli>(Clock::now() - frame_start).count());
     ++result.frames;
     if (info.close) glfwSetWindowShouldClose(win, GLFW_TRUE);
     if (opt.max_frames > 0 && result.frames >= opt.max_frames) break;

@@ -8,6 +8,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace dampbound::ui {
 
@@ -30,6 +31,7 @@ WindowOptions default_window_options();
 struct WindowRun {
   int frames = 0;
   double mean_frame_ms = 0.0;       ///< wall time per frame (includes vsync waits)
+  std::vector<double> frame_ms;     ///< each frame's wall time, event poll to buffer swap (ms)
   std::optional<Image> screenshot;  ///< set when screenshot_frame was reached
 };
 

@@ -51,8 +51,9 @@ void GuiApp::criteria_panel() {
                                 ? std::string("at rest")
                                 : "at iteration " + std::to_string(c.exact_iteration());
   ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
-  ImGui::TextWrapped("at iteration %d; exact analysis %s (%s)", t.session().state().iteration,
-                     where.c_str(), e != nullptr ? to_string(e->method) : "unavailable");
+  ImGui::TextWrapped("at iteration %d; exact analysis %s (%s)%s", t.session().state().iteration,
+                     where.c_str(), e != nullptr ? to_string(e->method) : "unavailable",
+                     c.computing() ? "; computing a new one" : "");
   ImGui::PopStyleColor();
   const ImGuiTableFlags tf = ImGuiTableFlags_SizingStretchProp | ImGuiTableFlags_ScrollY |
                              ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerH;

@@ -25,6 +25,10 @@ bool uniform_rate(const Model& m) {
   return true;
 }
 
+int free_node_count(const Model& model) {
+  return static_cast<int>(std::count(model.fixed.begin(), model.fixed.end(), 0));
+}
+
 /// The analysis itself (SPEC 7), linearised at positions x; nullopt when x is not finite or
 /// the solver fails.
 std::optional<ExactStability> analyse(const Model& model, const std::vector<Vec3>& x,
@@ -67,23 +71,26 @@ void TunerCriteria::collect() {
   Finished f = job_.get();
   last_seconds_ = f.seconds;
   // A result of the other mode (switched while it ran) is dropped; the next call starts anew.
-  if (!at_state_) return;
+  if (f.at_state != at_state_) return;
   exact_ = std::move(f.exact);
   exact_iteration_ = f.iteration;
-  exact_at_rest_ = false;
+  exact_at_rest_ = !f.at_state;
 }
 
 const ExactStability* TunerCriteria::exact(const Session& s, std::uint64_t topology,
                                            std::uint64_t state) {
-  if (!at_state_) wait();  // a result that followed the state is of no use at rest
   collect();
+  // Small meshes are analysed in the frame (tens of ms at the paper's 1296 nodes, once per
+  // change); larger ones, and every analysis that follows the state, on the worker thread.
+  const bool on_worker = at_state_ || free_node_count(s.model()) > worker_nodes_;
+  if (!on_worker) wait();  // a result that followed the state is of no use at rest
   const double now = seconds_now();
   const bool moved = at_state_ && state != state_;
   const bool changed = !have_key_ || topology != topology_ || !same_key(key_, s.params()) || moved;
   // On a large mesh the analysis takes long: while a slider is dragged (or the run goes on,
   // when it follows the state), keep the last result and recompute at most every few
   // durations, so the window stays responsive.
-  const double slow = last_seconds_ > 0.01 ? 4 * last_seconds_ : 0.0;
+  const double slow = last_seconds_ > 0.05 ? 4 * last_seconds_ : 0.0;
   const double interval = at_state_ ? std::max(follow_interval_, slow) : slow;
   const bool throttled = have_key_ && (exact_ || job_.valid()) && now - last_time_ < interval;
   if (!changed || throttled || job_.valid()) return exact_ ? &*exact_ : nullptr;
@@ -93,16 +100,18 @@ const ExactStability* TunerCriteria::exact(const Session& s, std::uint64_t topol
   state_ = state;
   key_ = s.params();
   ++exact_runs_;
-  if (at_state_) {
-    // Following the run: on a worker thread, from copies, so a frame never waits for it; the
-    // last result stays on show meanwhile.
-    const int iteration = s.state().iteration;
+  if (on_worker) {
+    // On a worker thread, from copies, so a frame never waits for it; the last result stays
+    // on show meanwhile (computing() says a new one is on its way).
+    const int iteration = at_state_ ? s.state().iteration : 0;
     job_ = std::async(std::launch::async,
-                      [model = s.model(), x = s.state().x, params = s.params(), iteration] {
+                      [model = s.model(), x = at_state_ ? s.state().x : s.model().rest,
+                       params = s.params(), iteration, at = at_state_] {
                         const double t0 = seconds_now();
                         Finished f;
                         f.exact = analyse(model, x, params);
                         f.iteration = iteration;
+                        f.at_state = at;
                         f.seconds = seconds_now() - t0;
                         return f;
                       });

@@ -17,12 +17,12 @@ namespace dampbound::ui {
 
 /// The criteria of a session. The exact linear analysis (SPEC 7) is linearised at the rest
 /// state by default (as `dampbound bounds SCENE` does) and cached until the parameters or the
-/// springs change; with set_at_current_state(true) it is linearised at the current positions
+/// springs change (on a worker thread above 5000 free nodes, the last result on show meanwhile); with set_at_current_state(true) it is linearised at the current positions
 /// (as `bounds SCENE --after N` does) and follows the run: recomputed on a worker thread at
 /// most every follow_interval (0.2 s) or four analysis durations, whichever is longer, the
 /// last result staying on show meanwhile (no frame waits for it). The paper's criteria (eqs. 5, 6 and the
 /// sec. 5 check) and the classic ones are evaluated at the current state on every call. When
-/// one analysis takes longer than 10 ms (a large mesh), a changed key is recomputed at most
+/// one analysis takes longer than 50 ms (a large mesh), a changed key is recomputed at most
 /// every four such durations. `state` is the caller's counter of state changes (Tuner's
 /// state_version()).
 class TunerCriteria {
@@ -49,6 +49,11 @@ class TunerCriteria {
   void set_follow_interval(double seconds) { follow_interval_ = seconds; }
   /// Waits for an analysis running on the worker thread and takes its result (tests).
   void wait();
+  /// True while an analysis runs on the worker thread (the one on show is the last result).
+  bool computing() const { return job_.valid(); }
+  /// Meshes with more free nodes than this are analysed at rest on the worker thread too
+  /// (default 5000; the analysis at the state always is).
+  void set_worker_nodes(int nodes) { worker_nodes_ = nodes; }
   /// Whether the analysis on show was linearised at rest, else at the state of iteration
   /// exact_iteration().
   bool exact_at_rest() const { return exact_at_rest_; }
@@ -60,6 +65,7 @@ class TunerCriteria {
   struct Finished {
     std::optional<ExactStability> exact;
     int iteration = 0;
+    bool at_state = false;  ///< linearised at the state (else at rest)
     double seconds = 0;
   };
   /// Takes the worker's result when it is ready.
@@ -73,6 +79,7 @@ class TunerCriteria {
   bool have_key_ = false;
   bool at_state_ = false;
   double follow_interval_ = 0.2;
+  int worker_nodes_ = 5000;
   int exact_iteration_ = 0;
   bool exact_at_rest_ = true;
   int exact_runs_ = 0;

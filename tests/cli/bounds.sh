@@ -10,6 +10,7 @@ for name in 'paper lower bound' 'paper upper bound' 'paper runtime check' 'Delin
   expect_match "$OUT" "^$name +[^ ]+.* (within|BEYOND|n/a) " "bounds lists '$name'"
 done
 expect_match "$OUT" 'exact lambda_max of M\^-1 K +7\.8123249 1/s\^2' "paper plane lambda_max"
+expect_match "$OUT" 'certified in \[7\.8123249[0-9]*, 7\.8123249[0-9]*\]' "lambda_max as a certified interval"
 expect_match "$OUT" 'exact gamma interval \(semi-implicit-euler\) +0\.039804692 .*within' "exact gamma interval"
 expect_match "$OUT" 'exact dt limit \(semi-implicit-euler\) +0\.50396164 s +within' "exact dt limit"
 expect_match "$OUT" 'Delingette critical stiffness +0\.040528473' "Delingette k_c"

@@ -77,6 +77,9 @@ if [ "$iters" = $((FRAMES * SPF)) ] || { [ "$outcome" = diverged ] && [ "$iters"
 else
   bad "iterations $iters, wanted $((FRAMES * SPF)) (outcome $outcome at $at)"
 fi
+# Frame-time percentiles without the startup frame (docs/gui.md).
+expect_match "$STATS" '"frame_ms_after_first":\{"frames":11,"mean":[0-9.e+-]+,"p50":[0-9.e+-]+,"p99":[0-9.e+-]+,"max":[0-9.e+-]+\},"first_frame_ms":[0-9.e+-]+' \
+  "stats: frame-time mean, p50, p99, max after the first frame"
 ms=$(json_field "$STATS" mean_frame_ms)
 awk -v m="$ms" 'BEGIN { exit !(m > 0) }' && ok || bad "mean frame time '$ms'"
 if [ -s "$WORK/gui.png" ]; then ok; else bad "no screenshot"; fi

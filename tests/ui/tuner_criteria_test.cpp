@@ -102,6 +102,33 @@ TEST(TunerCriteria, ExactAnalysisCanFollowTheState) {
   EXPECT_TRUE(c.exact_at_rest());
 }
 
+TEST(TunerCriteria, LargeMeshesAreAnalysedAtRestOnTheWorker) {
+  // Above the worker threshold (here 0 nodes, as for a 40k-node mesh) no frame waits for the
+  // analysis at rest: the first call has no result yet and says it is computing; a parameter
+  // change keeps the last result on show until the new one arrives.
+  Tuner t(plane(8));
+  TunerCriteria& c = t.criteria_state();
+  c.set_worker_nodes(0);
+  EXPECT_EQ(t.exact(), nullptr);
+  EXPECT_TRUE(c.computing());
+  c.wait();
+  EXPECT_FALSE(c.computing());
+  const ExactStability* first = t.exact();
+  ASSERT_NE(first, nullptr);
+  EXPECT_TRUE(c.exact_at_rest());
+  const double gamma_hi = first->gamma_hi;
+  Params p = t.params();
+  p.dt *= 0.5;
+  ASSERT_TRUE(t.set_params(p));
+  const ExactStability* meanwhile = t.exact();
+  ASSERT_NE(meanwhile, nullptr);
+  EXPECT_EQ(meanwhile->gamma_hi, gamma_hi);  // the last result, while the new one computes
+  EXPECT_TRUE(c.computing());
+  c.wait();
+  ASSERT_NE(t.exact(), nullptr);
+  EXPECT_GT(t.exact()->gamma_hi, gamma_hi);  // a smaller dt allows more damping (SPEC 7)
+}
+
 TEST(TunerCriteria, ExactGammaMaxIsTheIntegratorsLimit) {
   Tuner t(plane(6));
   const auto g = t.exact_gamma_max();

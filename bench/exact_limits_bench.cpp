@@ -1,0 +1,96 @@
+// Exact limits of big meshes (SPEC 7, 9), timed: the certified lambda_max of M^-1 K (sparse
+// Cholesky: Gershgorin, shift-and-invert, a factorisation as certificate), the semi-implicit
+// step's exact_stability (both ends of the spectrum, the gamma interval, the dt limit) and
+// every other integrator's limits from that spectrum. bench/exact_vs_scipy.py runs it beside
+// SciPy's eigsh on the same matrix (--matrix writes it).
+//
+//   exact_limits_bench plane N | block N [--matrix FILE]
+//
+// Prints one line of key=value pairs; times in seconds (wall clock).
+#include <chrono>
+#include <ctime>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <string>
+
+#include "bench/bench_meshes.hpp"
+#include "core/linear_stability_cholesky.hpp"
+#include "core/linear_stability_exact.hpp"
+
+namespace {
+
+using namespace dampbound;
+using Clock = std::chrono::steady_clock;
+
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+/// Processor time of this process (s): on a machine shared with other jobs, the fair measure.
+double cpu_now() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
+
+/// The full symmetric matrix in compressed columns: int64 n, int64 nnz, int64 outer[n + 1],
+/// int32 inner[nnz], float64 values[nnz] (little-endian, what numpy.fromfile reads).
+void write_matrix(const SparseMatrix& A, const std::string& path) {
+  std::ofstream out(path, std::ios::binary);
+  const long long n = A.rows(), nnz = A.nonZeros();
+  out.write(reinterpret_cast<const char*>(&n), sizeof n);
+  out.write(reinterpret_cast<const char*>(&nnz), sizeof nnz);
+  for (long long k = 0; k <= n; ++k) {
+    const long long o = A.outerIndexPtr()[k];
+    out.write(reinterpret_cast<const char*>(&o), sizeof o);
+  }
+  out.write(reinterpret_cast<const char*>(A.innerIndexPtr()), static_cast<std::streamsize>(nnz * 4));
+  out.write(reinterpret_cast<const char*>(A.valuePtr()), static_cast<std::streamsize>(nnz * 8));
+  if (!out) {
+    std::fprintf(stderr, "exact_limits_bench: cannot write %s\n", path.c_str());
+    std::exit(2);
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 3 || (std::string(argv[1]) != "plane" && std::string(argv[1]) != "block")) {
+    std::fprintf(stderr, "usage: exact_limits_bench plane N | block N [--matrix FILE]\n");
+    return 2;
+  }
+  const std::string kind = argv[1];
+  const int n = std::atoi(argv[2]);
+  std::string matrix_path;
+  if (argc == 5 && std::string(argv[3]) == "--matrix") matrix_path = argv[4];
+  if (n < 2) {
+    std::fprintf(stderr, "exact_limits_bench: N must be >= 2\n");
+    return 2;
+  }
+  Model model = kind == "plane" ? bench::plane(n) : bench::tet_block(n, n, n);
+  Params p;  // m = kappa = 0.001, gamma = 0.002, dt = 0.05: the paper's Fig. 1 setting
+  set_params(model, p);
+
+  auto t = Clock::now();
+  const SparseMatrix A = mass_weighted(model, tangent_stiffness(model, model.rest));
+  const double t_assemble = since(t);
+  t = Clock::now();
+  double c = cpu_now();
+  const EigenInterval top = certified_largest_eigenvalue(A);
+  const double t_lambda = since(t), c_lambda = cpu_now() - c;
+  t = Clock::now();
+  c = cpu_now();
+  const ExactStability e = exact_stability(model, model.rest, p, {false});
+  double worst = e.dt_max;  // keeps the other integrators' limits from being optimised away
+  for (Integrator i : {Integrator::forward_euler, Integrator::verlet, Integrator::rk4,
+                       Integrator::implicit_euler}) {
+    const double c = p.gamma / p.m;
+    const RateInterval r = uniform_rate_interval(i, e.spectrum, p.dt);
+    worst = std::min({worst, uniform_dt_max(i, e.spectrum, c), r.hi});
+  }
+  const double t_all = since(t), c_all = cpu_now() - c;
+  std::printf("kind=%s n=%d nodes=%d springs=%d rows=%lld nnz=%lld assemble_s=%.3f "
+              "lambda_max_lo=%.12g lambda_max_hi=%.12g lambda_s=%.3f lambda_cpu_s=%.3f "
+              "factorizations=%d solves=%d lambda_min=%.10g gamma_max=%.10g dt_max=%.10g "
+              "all_limits_s=%.3f all_limits_cpu_s=%.3f check=%.3g\n",
+              kind.c_str(), n, model.node_count(), model.spring_count(),
+              static_cast<long long>(A.rows()), static_cast<long long>(A.nonZeros()), t_assemble,
+              top.lo, top.hi, t_lambda, c_lambda, top.factorizations, top.solves,
+              e.spectrum.lambda_min, e.gamma_hi, e.dt_max, t_all, c_all, worst);
+  if (!matrix_path.empty()) write_matrix(A, matrix_path);
+  return 0;
+}

@@ -1,0 +1,175 @@
+// The monitor over a user's arrays: every bound and check is core's own function (bounds.cpp,
+// forces.cpp, linear_stability*.cpp) applied to a Model that holds the user's topology.
+#include "core/monitor.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "core/forces.hpp"
+#include "core/linear_stability.hpp"
+#include "core/linear_stability_exact.hpp"
+
+namespace dampbound {
+
+namespace {
+
+/// Unit parameters: with m = kappa = gamma = 1, set_params() turns the scales (the user's
+/// m_i, kappa_ij, kappa_a,i, gamma_i) into the values themselves, exactly.
+Params unit_params(double dt) {
+  Params p;
+  p.m = 1;
+  p.kappa = 1;
+  p.gamma = 1;
+  p.dt = dt;
+  return p;
+}
+
+void require(bool ok, const std::string& what) {
+  if (!ok) throw std::invalid_argument("monitor: " + what);
+}
+
+}  // namespace
+
+Monitor::Monitor(NodeScalars mass, SpringPairs springs, NodeScalars stiffness,
+                 NodeScalars rest_length) {
+  const Eigen::Index n = mass.size();
+  require(stiffness.size() == springs.rows() && rest_length.size() == springs.rows(),
+          "springs, stiffness and rest_length must have the same length");
+  for (Eigen::Index i = 0; i < n; ++i) {
+    require(std::isfinite(mass[i]) && mass[i] > 0,
+            "mass[" + std::to_string(i) + "] must be finite and > 0");
+    add_node(model_, Vec3::Zero());
+    model_.mass_scale.back() = mass[i];
+    model_.gamma_scale.back() = 0;
+  }
+  for (Eigen::Index s = 0; s < springs.rows(); ++s) {
+    const int i = springs(s, 0), j = springs(s, 1);
+    const std::string at = "spring " + std::to_string(s);
+    require(i >= 0 && j >= 0 && i < n && j < n && i != j,
+            at + ": nodes must be two different indices in 0.." + std::to_string(n - 1));
+    require(std::isfinite(stiffness[s]) && stiffness[s] > 0, at + ": stiffness must be > 0");
+    require(std::isfinite(rest_length[s]) && rest_length[s] >= 0,
+            at + ": rest_length must be >= 0");
+    Spring sp;
+    sp.i = i;
+    sp.j = j;
+    sp.rest_length = rest_length[s];
+    sp.kappa_scale = stiffness[s];
+    model_.springs.push_back(sp);
+  }
+  set_params(model_, unit_params(1.0));
+}
+
+void Monitor::check_size(Eigen::Index n, const char* what) const {
+  require(n == node_count(), std::string(what) + " has " + std::to_string(n) +
+                                 " rows, the monitor " + std::to_string(node_count()) + " nodes");
+}
+
+void Monitor::set_anchors(NodeScalars anchor_stiffness, NodeVectors rest) {
+  check_size(anchor_stiffness.size(), "anchor_stiffness");
+  check_size(rest.rows(), "rest");
+  for (int i = 0; i < node_count(); ++i) {
+    require(std::isfinite(anchor_stiffness[i]) && anchor_stiffness[i] >= 0,
+            "anchor_stiffness[" + std::to_string(i) + "] must be >= 0");
+    model_.anchor_scale[static_cast<size_t>(i)] = anchor_stiffness[i];
+    model_.rest[static_cast<size_t>(i)] = rest.row(i).transpose();
+  }
+  set_params(model_, unit_params(1.0));
+}
+
+void Monitor::set_fixed(const std::uint8_t* fixed, Eigen::Index n) {
+  check_size(n, "fixed");
+  for (Eigen::Index i = 0; i < n; ++i) model_.fixed[static_cast<size_t>(i)] = fixed[i] != 0;
+}
+
+void Monitor::lower_bounds(NodeScalarsOut out) const {
+  check_size(out.size(), "lower bound output");
+  for (int i = 0; i < node_count(); ++i) out[i] = model_.lower_bound[static_cast<size_t>(i)];
+}
+
+void Monitor::upper_bounds(NodeVectors v, NodeVectors force, double dt, NodeScalarsOut out) const {
+  check_size(v.rows(), "v");
+  check_size(force.rows(), "force");
+  check_size(out.size(), "upper bound output");
+  for (int i = 0; i < node_count(); ++i)
+    out[i] = upper_bound(v.row(i).transpose(), force.row(i).transpose(),
+                         model_.mass[static_cast<size_t>(i)], dt);
+}
+
+MonitorReport Monitor::check(NodeVectors v, NodeVectors force, NodeScalars gamma, double dt,
+                             DampingPolicy policy, double factor, NodeScalarsOut* gamma_eff,
+                             NodeScalarsOut* upper, NodeStatus* status) const {
+  check_size(v.rows(), "v");
+  check_size(force.rows(), "force");
+  check_size(gamma.size(), "gamma");
+  if (gamma_eff) check_size(gamma_eff->size(), "gamma_eff");
+  if (upper) check_size(upper->size(), "upper");
+  require(std::isfinite(dt) && dt > 0, "dt must be finite and > 0");
+  MonitorReport r;
+  for (int i = 0; i < node_count(); ++i) {
+    const size_t k = static_cast<size_t>(i);
+    if (model_.fixed[k]) {
+      if (gamma_eff) (*gamma_eff)[i] = gamma[i];
+      if (upper) (*upper)[i] = HUGE_VAL;
+      if (status) status[i] = NodeStatus::fixed;
+      continue;
+    }
+    const double lo = model_.lower_bound[k];
+    const double hi =
+        upper_bound(v.row(i).transpose(), force.row(i).transpose(), model_.mass[k], dt);
+    const DampingChoice c = effective_damping(policy, gamma[i], lo, hi, factor);
+    if (c.unstabilisable && r.unstabilisable++ == 0) r.first_unstabilisable = i;
+    if (c.violating && r.violating++ == 0) r.first_violating = i;
+    r.clamped += c.status == NodeStatus::clamped;
+    if (gamma_eff) (*gamma_eff)[i] = c.gamma;
+    if (upper) (*upper)[i] = hi;
+    if (status) status[i] = c.status;
+  }
+  return r;
+}
+
+int Monitor::internal_forces(
+    NodeVectors x,
+    Eigen::Ref<Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>> force) const {
+  check_size(x.rows(), "x");
+  check_size(force.rows(), "force");
+  std::vector<Vec3> xs(static_cast<size_t>(node_count())), f;
+  for (int i = 0; i < node_count(); ++i) xs[static_cast<size_t>(i)] = x.row(i).transpose();
+  const int zero_length = dampbound::internal_forces(model_, xs, f);
+  for (int i = 0; i < node_count(); ++i) force.row(i) = f[static_cast<size_t>(i)].transpose();
+  return zero_length;
+}
+
+MonitorLimits Monitor::exact_limits(NodeVectors x, NodeScalars gamma, double dt) const {
+  check_size(x.rows(), "x");
+  check_size(gamma.size(), "gamma");
+  require(std::isfinite(dt) && dt > 0, "dt must be finite and > 0");
+  Model model = model_;
+  for (int i = 0; i < node_count(); ++i) {
+    require(std::isfinite(gamma[i]) && gamma[i] >= 0,
+            "gamma[" + std::to_string(i) + "] must be >= 0");
+    model.gamma_scale[static_cast<size_t>(i)] = gamma[i];
+  }
+  const Params params = unit_params(dt);
+  set_params(model, params);
+  std::vector<Vec3> xs(static_cast<size_t>(node_count()));
+  for (int i = 0; i < node_count(); ++i) xs[static_cast<size_t>(i)] = x.row(i).transpose();
+  ExactOptions options;
+  options.with_radius = false;
+  const ExactStability e = exact_stability(model, xs, params, options);
+  // With params.gamma = 1, exact_stability's interval of the user's gamma is an interval of
+  // the factor s that multiplies every gamma_i.
+  MonitorLimits l;
+  l.lambda_max = e.spectrum.lambda_max;
+  l.stable = e.stable;
+  l.scale_lo = e.gamma_lo;
+  l.scale_hi = e.gamma_hi;
+  l.dt_max = e.dt_max;
+  const LinearLimits uniform = linear_limits(e.spectrum.lambda_max, 1.0, dt);
+  l.rate_max = uniform.gamma_max;
+  l.dt_max_undamped = uniform.dt_max_undamped;
+  return l;
+}
+
+}  // namespace dampbound

@@ -1,0 +1,117 @@
+#pragma once
+// The monitor: the paper's bounds over a simulator that is not dampbound. Its arrays
+// (positions, velocities, internal forces, damping) are read in place through Eigen::Map
+// views, never copied; the topology (masses, springs, anchors) is copied once, when the
+// Monitor is made. The stable public API: installed as <dampbound/monitor.hpp>.
+//
+// Units are the paper's: cm, s, and any consistent mass unit. Every function works for the
+// paper's step (semi-implicit Euler, SPEC 2): v += a dt, then x += v dt.
+#include <Eigen/Core>
+#include <cstdint>
+
+#include "core/bounds.hpp"
+#include "core/model.hpp"
+#include "core/params.hpp"
+
+namespace dampbound {
+
+/// N x 3 doubles read in place: row i is node i's (x, y, z); rows `stride` doubles apart
+/// (3 when packed, e.g. an (N, 3) C-ordered NumPy array or a std::vector<std::array<double,3>>).
+using NodeVectors = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>, 0,
+                               Eigen::OuterStride<>>;
+/// N doubles read in place, `stride` doubles apart.
+using NodeScalars = Eigen::Map<const Eigen::VectorXd, 0, Eigen::InnerStride<>>;
+/// N doubles written in place, `stride` doubles apart.
+using NodeScalarsOut = Eigen::Map<Eigen::VectorXd, 0, Eigen::InnerStride<>>;
+/// S x 2 node indices of the springs, rows `stride` ints apart.
+using SpringPairs = Eigen::Map<const Eigen::Matrix<int, Eigen::Dynamic, 2, Eigen::RowMajor>, 0,
+                               Eigen::OuterStride<>>;
+
+/// Views from pointer, count and stride (in elements of the row or scalar).
+inline NodeVectors node_vectors(const double* data, Eigen::Index n, Eigen::Index stride = 3) {
+  return NodeVectors(data, n, 3, Eigen::OuterStride<>(stride));
+}
+inline NodeScalars node_scalars(const double* data, Eigen::Index n, Eigen::Index stride = 1) {
+  return NodeScalars(data, n, Eigen::InnerStride<>(stride));
+}
+inline NodeScalarsOut node_scalars_out(double* data, Eigen::Index n, Eigen::Index stride = 1) {
+  return NodeScalarsOut(data, n, Eigen::InnerStride<>(stride));
+}
+inline SpringPairs spring_pairs(const int* data, Eigen::Index s, Eigen::Index stride = 2) {
+  return SpringPairs(data, s, 2, Eigen::OuterStride<>(stride));
+}
+
+/// What the runtime check of one step found (paper sec. 5, SPEC 3-4), over the free nodes.
+struct MonitorReport {
+  int violating = 0;         ///< nodes whose effective gamma is outside [gamma_lo, gamma_hi]
+  int unstabilisable = 0;    ///< nodes with gamma_lo > gamma_hi: no damping satisfies both
+  int clamped = 0;           ///< nodes whose gamma the policy changed, within the bounds
+  int first_violating = -1;  ///< the lowest such node index, -1 when none
+  int first_unstabilisable = -1;
+  bool ok() const { return violating == 0 && unstabilisable == 0; }
+};
+
+/// The exact linear stability of the paper's step (SPEC 7) at positions x with the user's
+/// per-node damping gamma_i, linearised at x (tangent stiffness; at rest only spring
+/// directions and anchors contribute). lambda_max by Lanczos, never a dense decomposition.
+struct MonitorLimits {
+  double lambda_max = 0;  ///< largest eigenvalue of M^-1 K (1/s^2)
+  bool stable = false;    ///< the step at dt with these gamma_i does not grow
+  double scale_lo = 0;    ///< s * gamma_i is stable at dt for scale_lo <= s < scale_hi
+  double scale_hi = 0;    ///< (may be inf)
+  double dt_max = 0;      ///< the largest stable dt with these gamma_i (s; may be inf)
+  double rate_max = 0;  ///< uniform damping rate limit: gamma_i/m_i < 2/dt - lambda_max dt/2 (1/s)
+  double dt_max_undamped = 0;  ///< 2/sqrt(lambda_max) (s)
+};
+
+/// A user's mass-spring system, seen by dampbound: masses, springs and (optional) anchors.
+class Monitor {
+ public:
+  /// masses m_i > 0 (mass unit); springs as node index pairs with stiffness kappa_ij > 0
+  /// (mass unit/s^2) and rest length l0_ij >= 0 (cm). Throws std::invalid_argument naming
+  /// the first bad entry (index out of range, i == j, m <= 0, kappa <= 0, l0 < 0, non-finite).
+  Monitor(NodeScalars mass, SpringPairs springs, NodeScalars stiffness, NodeScalars rest_length);
+
+  /// Zero-rest-length anchors to rest positions X_i (SPEC 1): force -kappa_a,i (x_i - X_i);
+  /// kappa_a,i = 0 means no anchor. Updates kappa_i of eq. 5.
+  void set_anchors(NodeScalars anchor_stiffness, NodeVectors rest);
+  /// Marks nodes that never move (nonzero = fixed): they are not judged.
+  void set_fixed(const std::uint8_t* fixed, Eigen::Index n);
+
+  int node_count() const { return model_.node_count(); }
+  /// The copy of the topology in core's terms (model.lower_bound is eq. 5 per node).
+  const Model& model() const { return model_; }
+
+  /// Paper eq. 5 per node: gamma_lo_i = 2 sqrt(m_i kappa_i), kappa_i = the largest stiffness of
+  /// the springs and anchor at i (SPEC 3) (mass unit/s).
+  void lower_bounds(NodeScalarsOut out) const;
+
+  /// Paper eq. 6 per node from the state at t: gamma_hi_i = |v_i m_i/dt + F_i| / |v_i|, +inf
+  /// when v_i = 0 (mass unit/s). `force` is the internal force F_i (springs and anchors only,
+  /// no damping, no external force), as internal_forces() computes it.
+  void upper_bounds(NodeVectors v, NodeVectors force, double dt, NodeScalarsOut out) const;
+
+  /// The runtime check of one step (paper sec. 5): bounds from (v, F) at t, the effective
+  /// damping of every free node under `policy` (SPEC 4; `factor` for upper), its status.
+  /// `gamma` is the user's gamma_i (mass unit/s). Optional outputs: `gamma_eff` (the damping
+  /// to use this step, mass unit/s), `upper` (gamma_hi_i) and `status` (one per node).
+  MonitorReport check(NodeVectors v, NodeVectors force, NodeScalars gamma, double dt,
+                      DampingPolicy policy = DampingPolicy::fixed, double factor = 1.0,
+                      NodeScalarsOut* gamma_eff = nullptr, NodeScalarsOut* upper = nullptr,
+                      NodeStatus* status = nullptr) const;
+
+  /// F_i of SPEC 1 at positions x into `force` (N x 3, packed; copies x once). Returns the
+  /// number of springs of zero length, which contribute nothing.
+  int internal_forces(
+      NodeVectors x,
+      Eigen::Ref<Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>> force) const;
+
+  /// SPEC 7's exact limits at positions x (copied once), for damping gamma_i and step dt.
+  MonitorLimits exact_limits(NodeVectors x, NodeScalars gamma, double dt) const;
+
+ private:
+  void check_size(Eigen::Index n, const char* what) const;
+  Model model_;
+};
+
+}  // namespace dampbound

@@ -1,0 +1,101 @@
+// The exact limits of SPEC 7 for a scene's model and suggest (core/suggest.hpp) in Python.
+#include <pybind11/stl.h>
+
+#include "core/error.hpp"
+#include "core/linear_stability_exact.hpp"
+#include "core/session.hpp"
+#include "core/suggest.hpp"
+#include "python/arrays.hpp"
+
+namespace dampbound::python {
+
+namespace {
+
+py::dict runs_dict(const std::vector<VerifiedRun>& runs) {
+  py::dict d;
+  for (const VerifiedRun& r : runs) d[py::str(r.label)] = py::make_tuple(r.params, r.result);
+  return d;
+}
+
+}  // namespace
+
+void bind_analysis(py::module_& m) {
+  py::class_<ExactStability>(m, "ExactStability",
+                             "SPEC 7's exact linear stability of a model at a state.")
+      .def_property_readonly(
+          "method", [](const ExactStability& e) { return std::string(to_string(e.method)); })
+      .def_readonly("uniform_rate", &ExactStability::uniform_rate, "gamma_i/m_i equal everywhere")
+      .def_property_readonly(
+          "lambda_max", [](const ExactStability& e) { return e.spectrum.lambda_max; },
+          "largest eigenvalue of M^-1 K (1/s^2)")
+      .def_property_readonly(
+          "lambda_min", [](const ExactStability& e) { return e.spectrum.lambda_min; },
+          "smallest eigenvalue of M^-1 K (1/s^2)")
+      .def_readonly("spectral_radius", &ExactStability::spectral_radius,
+                    "of one step at the user's gamma and dt (NaN: not computed)")
+      .def_readonly("stable", &ExactStability::stable, "the step does not grow")
+      .def_readonly(
+          "gamma_lo", &ExactStability::gamma_lo,
+          "the user's gamma is stable at dt for gamma_lo <= gamma < gamma_hi (mass unit/s)")
+      .def_readonly("gamma_hi", &ExactStability::gamma_hi, "(mass unit/s; may be inf)")
+      .def_readonly("dt_max", &ExactStability::dt_max, "largest stable dt at the user's gamma (s)");
+
+  m.def(
+      "exact_limits",
+      [](const Session& s) { return exact_stability(s.model(), s.state().x, s.params()); },
+      py::arg("session"),
+      "SPEC 7: the exact limits of the session's model at its current state and parameters "
+      "(lambda_max by Lanczos, never a dense decomposition of a large mesh).");
+  m.def(
+      "exact_limits",
+      [](const SceneSpec& scene, const Params* params) {
+        const Params p = params ? *params : scene.params;
+        return exact_stability(make_model(scene, p), scene.model.rest, p);
+      },
+      py::arg("scene"), py::arg("params") = nullptr,
+      "SPEC 7: the exact limits of the scene's model at rest with params (default: the "
+      "scene's).");
+
+  m.def(
+      "suggest",
+      [](const SceneSpec& scene, const Params* params, const StopRules* rules,
+         const std::string& what, bool verify) {
+        const Params p = params ? *params : scene.params;
+        const StopRules r = rules ? *rules : scene.rules;
+        SuggestOptions o;
+        o.verify = verify;
+        py::dict d;
+        if (what == "gamma") {
+          const DampingSuggestion s = suggest_damping(scene, p, r, o);
+          d["dt"] = s.dt;
+          d["gamma_min"] = s.gamma_min;
+          d["gamma_max"] = s.gamma_max;
+          d["min_by"] = s.min_by;
+          d["max_by"] = s.max_by;
+          d["empty"] = s.empty;
+          d["gamma_best"] = s.gamma_best;
+          d["best_method"] = s.best_method;
+          d["dt_max_at_gamma_min"] = s.dt_max_at_gamma_min;
+          d["runs"] = runs_dict(s.runs);
+        } else if (what == "dt") {
+          const StepSuggestion s = suggest_step(scene, p, r, o);
+          d["gamma"] = s.gamma;
+          d["dt_exact"] = s.dt_exact;
+          d["dt_all"] = s.dt_all;
+          d["dt_all_by"] = s.dt_all_by;
+          d["runs"] = runs_dict(s.runs);
+        } else {
+          throw py::value_error("what must be 'gamma' or 'dt', got '" + what + "'");
+        }
+        return d;
+      },
+      py::arg("scene"), py::arg("params") = nullptr, py::arg("rules") = nullptr,
+      py::arg("what") = "gamma", py::arg("verify") = true,
+      "Stable values for the scene (the CLI's `suggest`). what='gamma': at params.dt, the "
+      "range of the user's gamma (mass unit/s) every applicable criterion accepts "
+      "[gamma_min, gamma_max) and the fastest-settling gamma_best. what='dt': at params.gamma, "
+      "the exact largest stable dt (s) and the largest dt every criterion accepts. verify=True "
+      "runs each suggestion through a Session: runs maps a label to (Params, RunResult).");
+}
+
+}  // namespace dampbound::python

@@ -1,0 +1,253 @@
+// The `dampbound` Python module: scenes, a Session with NumPy views of its state, the
+// protocol's result, the per-node bounds (eq. 5, eq. 6), and (monitor.cpp, analysis.cpp) the
+// monitor over the user's own arrays, the exact limits and suggest. Units: cm, s and any
+// consistent mass unit, as everywhere in dampbound.
+#include <pybind11/stl.h>
+
+#include "core/error.hpp"
+#include "core/session.hpp"
+#include "dampbound/version.hpp"
+#include "python/arrays.hpp"
+
+namespace dampbound::python {
+namespace {
+
+DampingPolicy policy_of(const std::string& s) {
+  const auto p = parse_policy(s);
+  if (!p) throw py::value_error("policy must be fixed, clamp, upper or lower, got '" + s + "'");
+  return *p;
+}
+
+Integrator integrator_of(const std::string& s) {
+  const auto i = parse_integrator(s);
+  if (!i) throw py::value_error("unknown integrator '" + s + "'");
+  return *i;
+}
+
+void bind_params(py::module_& m) {
+  py::class_<Params>(m, "Params",
+                     "The user's parameters (paper eq. 1); scene scales multiply them.")
+      .def(py::init<>())
+      .def_readwrite("m", &Params::m, "node mass (mass unit)")
+      .def_readwrite("kappa", &Params::kappa, "spring and anchor stiffness (mass unit/s^2)")
+      .def_readwrite("gamma", &Params::gamma, "user's viscous damping (mass unit/s)")
+      .def_readwrite("dt", &Params::dt, "time step (s)")
+      .def_property(
+          "policy", [](const Params& p) { return std::string(to_string(p.policy)); },
+          [](Params& p, const std::string& s) { p.policy = policy_of(s); },
+          "damping policy (SPEC 4): 'fixed', 'clamp', 'upper' or 'lower'")
+      .def_readwrite("factor", &Params::factor, "multiplier of gamma_hi for policy 'upper'")
+      .def_property(
+          "integrator", [](const Params& p) { return std::string(to_string(p.integrator)); },
+          [](Params& p, const std::string& s) { p.integrator = integrator_of(s); },
+          "'semi-implicit-euler' (the paper's, default), 'forward-euler', 'verlet', 'rk4', "
+          "'implicit-euler'")
+      .def("__repr__", [](const Params& p) {
+        return "Params(m=" + std::to_string(p.m) + ", kappa=" + std::to_string(p.kappa) +
+               ", gamma=" + std::to_string(p.gamma) + ", dt=" + std::to_string(p.dt) +
+               ", policy='" + to_string(p.policy) + "')";
+      });
+
+  py::class_<StopRules>(m, "StopRules", "When a protocol run stops (SPEC 5).")
+      .def(py::init<>())
+      .def_readwrite("reference", &StopRules::reference, "perturbation magnitude (cm)")
+      .def_readwrite("restore_fraction", &StopRules::restore_fraction,
+                     "restored below fraction * reference")
+      .def_readwrite("diverge_factor", &StopRules::diverge_factor,
+                     "diverged above factor * reference")
+      .def_readwrite("max_iterations", &StopRules::max_iterations, "iteration limit")
+      .def_property(
+          "rule", [](const StopRules& r) { return std::string(to_string(r.rule)); },
+          [](StopRules& r, const std::string& s) {
+            if (!parse_stop_rule(s, r.rule))
+              throw py::value_error("rule must be first-entry or settled, got '" + s + "'");
+          },
+          "'first-entry' (the paper's, SPEC 5) or 'settled' (SPEC 8: step to the limit)");
+}
+
+void bind_results(py::module_& m) {
+  py::class_<RunResult>(m, "RunResult", "The result of a protocol run (SPEC 5).")
+      .def_property_readonly(
+          "outcome", [](const RunResult& r) { return std::string(to_string(r.outcome)); },
+          "'running', 'restored', 'diverged', 'not_restored' (first-entry "
+          "rule), 'settled', 'not_settled' (settled rule)")
+      .def_readonly("iterations", &RunResult::iterations, "iteration of the outcome")
+      .def_readonly("first_entry", &RunResult::first_entry,
+                    "first iteration below the restore threshold (0 = none)")
+      .def_readonly("left_at", &RunResult::left_at,
+                    "first iteration back at or above it after an entry (0 = none)")
+      .def_readonly("settled_at", &RunResult::settled_at,
+                    "settled rule: below the threshold from here to the limit (0 = none)")
+      .def_readonly("max_displacement", &RunResult::max_displacement,
+                    "max |x_i - X_i| at the last iteration (cm; inf if not finite)")
+      .def_readonly("violations", &RunResult::violations,
+                    "node-steps whose effective gamma was outside [gamma_lo, gamma_hi]")
+      .def_readonly("unstabilisable", &RunResult::unstabilisable,
+                    "node-steps with gamma_lo > gamma_hi")
+      .def_readonly("clamped", &RunResult::clamped, "node-steps whose gamma the policy changed")
+      .def_readonly("zero_length_springs", &RunResult::zero_length_springs,
+                    "spring-steps skipped for having no direction")
+      .def_readonly("time", &RunResult::time, "simulated time (s)");
+
+  py::class_<StepStats>(m, "StepStats", "What one step reports (SPEC 3).")
+      .def_readonly("iteration", &StepStats::iteration, "steps completed, from 1")
+      .def_readonly("time", &StepStats::time, "s, after the step")
+      .def_readonly("watched_displacement", &StepStats::watched_displacement, "cm")
+      .def_readonly("watched_lower", &StepStats::watched_lower, "gamma_lo of the watched node")
+      .def_readonly("watched_upper", &StepStats::watched_upper, "gamma_hi of the watched node")
+      .def_readonly("max_displacement", &StepStats::max_displacement, "cm, inf if not finite")
+      .def_readonly("violating", &StepStats::violating, "nodes outside the bounds")
+      .def_readonly("unstabilisable", &StepStats::unstabilisable, "nodes with gamma_lo > gamma_hi")
+      .def_readonly("clamped", &StepStats::clamped, "nodes the policy changed")
+      .def_readonly("finite", &StepStats::finite, "every coordinate finite");
+}
+
+void bind_scene(py::module_& m) {
+  py::class_<SceneSpec>(m, "Scene", "A scene file's model, parameters, perturbation and rules.")
+      .def_readonly("name", &SceneSpec::name)
+      .def_readonly("description", &SceneSpec::description)
+      .def_readonly("path", &SceneSpec::path)
+      .def_property(
+          "params", [](const SceneSpec& s) { return s.params; },
+          [](SceneSpec& s, const Params& p) { s.params = p; },
+          "the scene's parameters (a copy: assign a Params to change them)")
+      .def_property(
+          "rules", [](const SceneSpec& s) { return s.rules; },
+          [](SceneSpec& s, const StopRules& r) { s.rules = r; },
+          "the scene's stop rules (a copy: assign a StopRules to change them)")
+      .def_readonly("watched", &SceneSpec::watched, "index of the watched node")
+      .def_property_readonly("node_count", [](const SceneSpec& s) { return s.model.node_count(); })
+      .def_property_readonly("spring_count",
+                             [](const SceneSpec& s) { return s.model.spring_count(); })
+      .def_property_readonly(
+          "rest",
+          [](py::object self) { return view_of(self.cast<const SceneSpec&>().model.rest, self); },
+          "(N, 3) rest positions X_i (cm), read-only view")
+      .def(
+          "arrays",
+          [](const SceneSpec& s, const Params* params) {
+            // The model with params applied, as the arrays a Monitor takes (copies).
+            const Model mo = make_model(s, params ? *params : s.params);
+            py::array_t<int> pairs({static_cast<py::ssize_t>(mo.spring_count()), py::ssize_t{2}});
+            py::array_t<double> kappa(mo.spring_count()), l0(mo.spring_count());
+            for (int k = 0; k < mo.spring_count(); ++k) {
+              const Spring& sp = mo.springs[static_cast<size_t>(k)];
+              pairs.mutable_at(k, 0) = sp.i;
+              pairs.mutable_at(k, 1) = sp.j;
+              kappa.mutable_at(k) = sp.kappa;
+              l0.mutable_at(k) = sp.rest_length;
+            }
+            py::dict d;
+            d["mass"] = py::array_t<double>(mo.mass.size(), mo.mass.data());
+            d["gamma"] = py::array_t<double>(mo.gamma.size(), mo.gamma.data());
+            d["springs"] = pairs;
+            d["stiffness"] = kappa;
+            d["rest_length"] = l0;
+            d["anchor_stiffness"] =
+                py::array_t<double>(mo.anchor_kappa.size(), mo.anchor_kappa.data());
+            d["rest"] =
+                py::array_t<double>({static_cast<py::ssize_t>(mo.rest.size()), py::ssize_t{3}},
+                                    mo.rest.empty() ? nullptr : mo.rest.front().data());
+            d["fixed"] = py::array_t<std::uint8_t>(mo.fixed.size(), mo.fixed.data());
+            return d;
+          },
+          py::arg("params") = nullptr,
+          "The model with params (default: the scene's) applied, as NumPy arrays (copies) in "
+          "the Monitor's terms: mass (N,), gamma (N,), springs (S, 2), stiffness (S,), "
+          "rest_length (S,), anchor_stiffness (N,), rest (N, 3), fixed (N,).");
+  m.def(
+      "load_scene",
+      [](const std::string& path) {
+        try {
+          return load_scene(path);
+        } catch (const InputError& e) {
+          throw py::value_error(e.what());
+        }
+      },
+      py::arg("path"), "Loads a scene file (TOML); ValueError naming the file and line if bad.");
+  m.def("paper_plane_scene", &paper_plane_scene, py::arg("n") = 36,
+        "SPEC 5's scene built in code: an n x n grid, node (n/2, n/2) moved 5 cm along y.");
+}
+
+void bind_session(py::module_& m) {
+  py::class_<Session>(m, "Session",
+                      "A running experiment: the scene's model and state, stepped by the one "
+                      "step() of dampbound. Array properties are read-only NumPy views of the "
+                      "session's own memory (no copies), valid while the session lives.")
+      .def(py::init([](const SceneSpec& scene, const Params* params, const StopRules* rules) {
+             return Session(scene, params ? *params : scene.params, rules ? *rules : scene.rules);
+           }),
+           py::arg("scene"), py::arg("params") = nullptr, py::arg("rules") = nullptr,
+           "Starts from the scene's perturbed state; params/rules default to the scene's.")
+      .def(
+          "step",
+          [](Session& s, int n) {
+            if (n < 1) throw py::value_error("n must be >= 1");
+            for (int k = 1; k < n; ++k) s.step_once();
+            return s.step_once();
+          },
+          py::arg("n") = 1, "Takes n steps of params.dt seconds; returns the last StepStats.")
+      .def(
+          "run", [](Session& s) { return s.run_to_end(); },
+          "Steps until restored, diverged or the iteration limit (SPEC 5); returns RunResult.")
+      .def_property(
+          "params", [](const Session& s) { return s.params(); }, &Session::set_params,
+          "parameters (a copy); assign a new Params to change them at the next step")
+      .def_property_readonly("result", &Session::result, "the protocol's result so far")
+      .def_property_readonly("running", &Session::running)
+      .def_property_readonly("iteration", [](const Session& s) { return s.state().iteration; })
+      .def_property_readonly(
+          "time", [](const Session& s) { return s.state().time; }, "s")
+      .def_property_readonly(
+          "positions",
+          [](py::object self) { return view_of(self.cast<const Session&>().state().x, self); },
+          "(N, 3) positions x_i (cm), read-only view")
+      .def_property_readonly(
+          "velocities",
+          [](py::object self) { return view_of(self.cast<const Session&>().state().v, self); },
+          "(N, 3) velocities v_i (cm/s), read-only view")
+      .def_property_readonly(
+          "lower_bounds",
+          [](py::object self) {
+            return view_of(self.cast<const Session&>().model().lower_bound, self);
+          },
+          "(N,) paper eq. 5: gamma_lo_i = 2 sqrt(m_i kappa_i) (mass unit/s)")
+      .def_property_readonly(
+          "upper_bounds",
+          [](py::object self) {
+            return view_of(self.cast<const Session&>().workspace().upper_bound, self);
+          },
+          "(N,) paper eq. 6 of the last step: gamma_hi_i (mass unit/s; inf where v_i = 0)")
+      .def_property_readonly(
+          "gamma_eff",
+          [](py::object self) {
+            return view_of(self.cast<const Session&>().workspace().gamma_eff, self);
+          },
+          "(N,) the effective damping of the last step (mass unit/s)")
+      .def_property_readonly(
+          "displacements",
+          [](const Session& s) {
+            py::array_t<double> d(s.model().node_count());
+            for (int i = 0; i < s.model().node_count(); ++i)
+              d.mutable_at(i) = displacement(s.model(), s.state(), i);
+            return d;
+          },
+          "(N,) |x_i - X_i| (cm), a new array");
+}
+
+}  // namespace
+}  // namespace dampbound::python
+
+PYBIND11_MODULE(dampbound, m) {
+  using namespace dampbound::python;
+  m.doc() =
+      "dampbound: damping bounds that guarantee stability in mass-spring systems (Bhasin & "
+      "Liu). Units: cm, s, and any consistent mass unit.";
+  m.attr("__version__") = DAMPBOUND_VERSION;
+  bind_params(m);
+  bind_results(m);
+  bind_scene(m);
+  bind_session(m);
+  bind_monitor(m);
+  bind_analysis(m);
+}

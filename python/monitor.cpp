@@ -1,0 +1,163 @@
+// The monitor over the user's own NumPy arrays (core/monitor.hpp), read in place.
+#include <stdexcept>
+
+#include "python/arrays.hpp"
+
+namespace dampbound::python {
+
+namespace {
+
+/// The (S, 2) spring index pairs as int32 (converted once when given another integer type).
+py::array_t<int, py::array::c_style | py::array::forcecast> pairs_of(const py::handle& h) {
+  auto a = py::array_t<int, py::array::c_style | py::array::forcecast>::ensure(h);
+  if (!a || a.ndim() != 2 || a.shape(1) != 2)
+    throw py::value_error("springs must be an integer array of shape (S, 2)");
+  return a;
+}
+
+DampingPolicy policy_arg(const std::string& s) {
+  const auto p = parse_policy(s);
+  if (!p) throw py::value_error("policy must be fixed, clamp, upper or lower, got '" + s + "'");
+  return *p;
+}
+
+Monitor make_monitor(const py::handle& mass, const py::handle& springs, const py::handle& stiffness,
+                     const py::handle& rest_length, const py::object& anchor_stiffness,
+                     const py::object& rest, const py::object& fixed) {
+  py::array_t<double> km, ks, kl, ka, kr;
+  const auto pairs = pairs_of(springs);
+  try {
+    Monitor mon(node_scalars_of(mass, "mass", km), spring_pairs(pairs.data(), pairs.shape(0)),
+                node_scalars_of(stiffness, "stiffness", ks),
+                node_scalars_of(rest_length, "rest_length", kl));
+    if (!anchor_stiffness.is_none()) {
+      if (rest.is_none()) throw py::value_error("anchor_stiffness needs rest (N, 3)");
+      mon.set_anchors(node_scalars_of(anchor_stiffness, "anchor_stiffness", ka),
+                      node_vectors_of(rest, "rest", kr));
+    }
+    if (!fixed.is_none()) {
+      auto f = py::array_t<std::uint8_t, py::array::c_style | py::array::forcecast>::ensure(fixed);
+      if (!f || f.ndim() != 1) throw py::value_error("fixed must have shape (N,)");
+      mon.set_fixed(f.data(), f.shape(0));
+    }
+    return mon;
+  } catch (const std::invalid_argument& e) {
+    throw py::value_error(e.what());
+  }
+}
+
+}  // namespace
+
+void bind_monitor(py::module_& m) {
+  py::class_<MonitorReport>(m, "MonitorReport", "The runtime check of one step (paper sec. 5).")
+      .def_readonly("violating", &MonitorReport::violating,
+                    "nodes whose effective gamma is outside [gamma_lo, gamma_hi]")
+      .def_readonly("unstabilisable", &MonitorReport::unstabilisable,
+                    "nodes with gamma_lo > gamma_hi (no damping satisfies both)")
+      .def_readonly("clamped", &MonitorReport::clamped, "nodes the policy changed")
+      .def_readonly("first_violating", &MonitorReport::first_violating, "-1 when none")
+      .def_readonly("first_unstabilisable", &MonitorReport::first_unstabilisable, "-1 when none")
+      .def_property_readonly("ok", &MonitorReport::ok, "no node violating or unstabilisable");
+
+  py::class_<MonitorLimits>(m, "MonitorLimits", "SPEC 7's exact limits at a state.")
+      .def_readonly("lambda_max", &MonitorLimits::lambda_max,
+                    "largest eigenvalue of M^-1 K (1/s^2)")
+      .def_readonly("stable", &MonitorLimits::stable,
+                    "the step with these gamma_i, dt does not grow")
+      .def_readonly("scale_lo", &MonitorLimits::scale_lo,
+                    "s * gamma_i stable for scale_lo <= s < scale_hi")
+      .def_readonly("scale_hi", &MonitorLimits::scale_hi)
+      .def_readonly("dt_max", &MonitorLimits::dt_max, "largest stable dt with these gamma_i (s)")
+      .def_readonly("rate_max", &MonitorLimits::rate_max,
+                    "uniform gamma_i/m_i must stay below 2/dt - lambda_max dt/2 (1/s)")
+      .def_readonly("dt_max_undamped", &MonitorLimits::dt_max_undamped, "2/sqrt(lambda_max) (s)");
+
+  py::class_<Monitor>(m, "Monitor",
+                      "The paper's bounds over your own mass-spring arrays. Topology is copied "
+                      "once; per-step arrays (x, v, force, gamma) are read in place when they "
+                      "are float64 with adjacent columns.")
+      .def(py::init(&make_monitor), py::arg("mass"), py::arg("springs"), py::arg("stiffness"),
+           py::arg("rest_length"), py::arg("anchor_stiffness") = py::none(),
+           py::arg("rest") = py::none(), py::arg("fixed") = py::none(),
+           "mass (N,) m_i > 0 (mass unit); springs (S, 2) node indices; stiffness (S,) "
+           "kappa_ij (mass unit/s^2); rest_length (S,) l0_ij (cm); optional anchors: "
+           "anchor_stiffness (N,) (0 = none) with rest (N, 3) positions X_i (cm); fixed (N,).")
+      .def_property_readonly("node_count", &Monitor::node_count)
+      .def(
+          "lower_bounds",
+          [](const Monitor& mon) {
+            py::array_t<double> out(mon.node_count());
+            mon.lower_bounds(node_scalars_out(out.mutable_data(), out.shape(0)));
+            return out;
+          },
+          "(N,) paper eq. 5: gamma_lo_i = 2 sqrt(m_i kappa_i), kappa_i the largest incident "
+          "stiffness (mass unit/s)")
+      .def(
+          "upper_bounds",
+          [](const Monitor& mon, const py::handle& v, const py::handle& force, double dt) {
+            py::array_t<double> kv, kf, out(mon.node_count());
+            mon.upper_bounds(node_vectors_of(v, "v", kv), node_vectors_of(force, "force", kf), dt,
+                             node_scalars_out(out.mutable_data(), out.shape(0)));
+            return out;
+          },
+          py::arg("v"), py::arg("force"), py::arg("dt"),
+          "(N,) paper eq. 6 at t: |v_i m_i/dt + F_i| / |v_i| (mass unit/s; inf where v_i = 0). "
+          "v (N, 3) cm/s, force (N, 3) the internal force F_i, dt (s).")
+      .def(
+          "check",
+          [](const Monitor& mon, const py::handle& v, const py::handle& force,
+             const py::handle& gamma, double dt, const std::string& policy, double factor,
+             const py::object& gamma_eff) {
+            py::array_t<double> kv, kf, kg;
+            py::array_t<double> out = gamma_eff.is_none() ? py::array_t<double>(mon.node_count())
+                                                          : gamma_eff.cast<py::array_t<double>>();
+            if (out.ndim() != 1 || out.shape(0) != mon.node_count() || !out.writeable() ||
+                out.strides(0) % static_cast<py::ssize_t>(sizeof(double)) != 0)
+              throw py::value_error("gamma_eff must be a writeable float64 array of shape (N,)");
+            auto ge = node_scalars_out(out.mutable_data(), out.shape(0),
+                                       out.strides(0) / static_cast<py::ssize_t>(sizeof(double)));
+            try {
+              const MonitorReport r = mon.check(
+                  node_vectors_of(v, "v", kv), node_vectors_of(force, "force", kf),
+                  node_scalars_of(gamma, "gamma", kg), dt, policy_arg(policy), factor, &ge);
+              return py::make_tuple(r, out);
+            } catch (const std::invalid_argument& e) {
+              throw py::value_error(e.what());
+            }
+          },
+          py::arg("v"), py::arg("force"), py::arg("gamma"), py::arg("dt"),
+          py::arg("policy") = "fixed", py::arg("factor") = 1.0, py::arg("gamma_eff") = py::none(),
+          "The runtime check of one step: bounds from (v, force) at t and the effective damping "
+          "of every free node under policy (SPEC 4). gamma (N,) the user's gamma_i (mass "
+          "unit/s). Returns (MonitorReport, gamma_eff (N,)); gamma_eff is written in place when "
+          "given.")
+      .def(
+          "internal_forces",
+          [](const Monitor& mon, const py::handle& x) {
+            py::array_t<double> kx;
+            py::array_t<double> out({static_cast<py::ssize_t>(mon.node_count()), py::ssize_t{3}});
+            Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>> f(
+                out.mutable_data(), mon.node_count(), 3);
+            mon.internal_forces(node_vectors_of(x, "x", kx), f);
+            return out;
+          },
+          py::arg("x"),
+          "(N, 3) F_i of SPEC 1 at positions x (cm): springs and anchors, no damping "
+          "(mass unit cm/s^2).")
+      .def(
+          "exact_limits",
+          [](const Monitor& mon, const py::handle& x, const py::handle& gamma, double dt) {
+            py::array_t<double> kx, kg;
+            try {
+              return mon.exact_limits(node_vectors_of(x, "x", kx),
+                                      node_scalars_of(gamma, "gamma", kg), dt);
+            } catch (const std::invalid_argument& e) {
+              throw py::value_error(e.what());
+            }
+          },
+          py::arg("x"), py::arg("gamma"), py::arg("dt"),
+          "SPEC 7: the exact linear stability of the paper's step at positions x (cm) with "
+          "damping gamma (N,) and step dt (s).");
+}
+
+}  // namespace dampbound::python

@@ -1,0 +1,95 @@
+"""The module's scene and session: NumPy views, the protocol result, the bounds."""
+import math
+
+import numpy as np
+import pytest
+
+import dampbound
+
+
+def test_version_is_the_packages():
+    parts = dampbound.__version__.split(".")
+    assert len(parts) == 3 and all(p.isdigit() for p in parts)
+
+
+def test_bad_scene_file_names_the_file(tmp_path):
+    bad = tmp_path / "bad.toml"
+    bad.write_text("name = 'x'\n[params]\nm = -1\n")
+    with pytest.raises(ValueError, match="bad.toml"):
+        dampbound.load_scene(str(bad))
+
+
+def test_two_node_at_critical_damping_is_restored(scenes_dir):
+    # The paper's sec. 2 system at gamma = 2 sqrt(m kappa): critically damped, it settles.
+    scene = dampbound.load_scene(str(scenes_dir / "two-node.toml"))
+    session = dampbound.Session(scene)
+    result = session.run()
+    assert result.outcome == "restored"
+    assert 0 < result.iterations < scene.rules.max_iterations
+    assert result.violations == 0
+
+
+def test_positions_are_views_of_the_session():
+    session = dampbound.Session(dampbound.paper_plane_scene(6))
+    x = session.positions
+    assert x.shape == (36, 3) and x.dtype == np.float64
+    assert not x.flags.writeable
+    before = x.copy()
+    session.step(3)
+    # The same memory, now holding the state after three steps.
+    assert x.__array_interface__["data"][0] == session.positions.__array_interface__["data"][0]
+    assert not np.array_equal(x, before)
+    assert session.iteration == 3
+    assert session.time == pytest.approx(3 * session.params.dt)
+    assert session.velocities.shape == (36, 3)
+
+
+def test_bounds_match_the_paper_equations():
+    scene = dampbound.paper_plane_scene(6)
+    session = dampbound.Session(scene)
+    p = session.params
+    # eq. 5 with uniform stiffness: 2 sqrt(m kappa) at every node.
+    assert np.allclose(session.lower_bounds, 2 * math.sqrt(p.m * p.kappa), rtol=1e-15)
+    session.step()
+    v_before = session.velocities.copy()
+    hi = session.upper_bounds  # eq. 6 at t = 0, where every velocity is 0
+    assert np.all(np.isinf(hi))
+    session.step()
+    assert np.all(np.isfinite(session.upper_bounds[np.linalg.norm(v_before, axis=1) > 0]))
+
+
+def test_params_round_trip_and_reject_unknown_policy():
+    p = dampbound.Params()
+    p.policy = "clamp"
+    p.gamma = 0.0
+    assert p.policy == "clamp"
+    with pytest.raises(ValueError):
+        p.policy = "sometimes"
+
+
+def test_exact_limits_and_suggest_agree_on_the_two_node_system(scenes_dir):
+    scene = dampbound.load_scene(str(scenes_dir / "two-node.toml"))
+    p = scene.params
+    e = dampbound.exact_limits(scene)
+    # One free node on one spring: lambda_max = kappa/m along the spring (SPEC 7).
+    assert e.lambda_max == pytest.approx(p.kappa / p.m, rel=1e-9)
+    # gamma < 2m/dt - m lambda dt/2 (SPEC 7).
+    assert e.gamma_hi == pytest.approx(2 * p.m / p.dt - p.m * e.lambda_max * p.dt / 2, rel=1e-9)
+    s = dampbound.suggest(scene, verify=False)
+    assert s["gamma_min"] <= s["gamma_best"] < s["gamma_max"] <= e.gamma_hi * (1 + 1e-12)
+    t = dampbound.suggest(scene, what="dt", verify=True)
+    assert 0 < t["dt_all"] <= t["dt_exact"]
+    for params, result in t["runs"].values():
+        assert result.outcome != "diverged"
+
+
+def test_settled_rule_runs_to_the_limit_and_reports_the_first_entry(scenes_dir):
+    scene = dampbound.load_scene(str(scenes_dir / "two-node.toml"))
+    rules = scene.rules
+    rules.rule = "settled"
+    rules.max_iterations = 400
+    first = dampbound.Session(scene).run()
+    settled = dampbound.Session(scene, rules=rules).run()
+    assert settled.outcome == "settled" and settled.iterations == 400
+    assert settled.first_entry == first.iterations
+    assert 0 < settled.settled_at <= 400

@@ -1,0 +1,123 @@
+// The monitor over a user's arrays against core's own step() on the same model: equal bounds,
+// effective damping and counts, bit for bit; the exact limits against SPEC 7's closed form;
+// bad topology named.
+#include "core/monitor.hpp"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <stdexcept>
+
+#include "core/session.hpp"
+
+namespace dampbound {
+namespace {
+
+/// The scene's model as plain arrays, the way a user's simulator holds them.
+struct UserArrays {
+  std::vector<double> mass, gamma, stiffness, rest_length, anchor;
+  std::vector<int> pairs;
+  std::vector<std::array<double, 3>> rest;
+  explicit UserArrays(const Model& mo) {
+    for (int i = 0; i < mo.node_count(); ++i) {
+      const size_t k = static_cast<size_t>(i);
+      mass.push_back(mo.mass[k]);
+      gamma.push_back(mo.gamma[k]);
+      anchor.push_back(mo.anchor_kappa[k]);
+      rest.push_back({mo.rest[k].x(), mo.rest[k].y(), mo.rest[k].z()});
+    }
+    for (const Spring& s : mo.springs) {
+      pairs.insert(pairs.end(), {s.i, s.j});
+      stiffness.push_back(s.kappa);
+      rest_length.push_back(s.rest_length);
+    }
+  }
+  Monitor monitor() const {
+    const auto n = static_cast<Eigen::Index>(mass.size());
+    const auto s = static_cast<Eigen::Index>(stiffness.size());
+    Monitor mon(node_scalars(mass.data(), n), spring_pairs(pairs.data(), s),
+                node_scalars(stiffness.data(), s), node_scalars(rest_length.data(), s));
+    mon.set_anchors(node_scalars(anchor.data(), n), node_vectors(rest[0].data(), n));
+    return mon;
+  }
+};
+
+TEST(Monitor, MatchesStepBitForBitUnderClamp) {
+  SceneSpec scene = paper_plane_scene(7);
+  Params p = scene.params;
+  p.policy = DampingPolicy::clamp;
+  p.gamma = 0.0004;
+  Session session(scene, p, scene.rules);
+  const UserArrays user(session.model());
+  const Monitor mon = user.monitor();
+  const Eigen::Index n = mon.node_count();
+  std::vector<double> lo(static_cast<size_t>(n)), hi(lo.size()), g(lo.size());
+  mon.lower_bounds(node_scalars_out(lo.data(), n));
+  EXPECT_EQ(lo, session.model().lower_bound);
+  for (int it = 0; it < 6; ++it) {
+    const State before = session.state();
+    Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> f(n, 3);
+    mon.internal_forces(node_vectors(before.x[0].data(), n), f);
+    auto g_out = node_scalars_out(g.data(), n);
+    auto hi_out = node_scalars_out(hi.data(), n);
+    const MonitorReport r =
+        mon.check(node_vectors(before.v[0].data(), n), node_vectors(f.data(), n),
+                  node_scalars(user.gamma.data(), n), p.dt, p.policy, p.factor, &g_out, &hi_out);
+    const StepStats st = session.step_once();
+    EXPECT_EQ(hi, session.workspace().upper_bound) << "step " << it;
+    EXPECT_EQ(g, session.workspace().gamma_eff) << "step " << it;
+    EXPECT_EQ(r.violating, st.violating);
+    EXPECT_EQ(r.unstabilisable, st.unstabilisable);
+    EXPECT_EQ(r.clamped, st.clamped);
+  }
+}
+
+TEST(Monitor, UpperBoundIsEq6AndInfiniteAtRest) {
+  const double mass[] = {2.0, 3.0}, k[] = {5.0}, l0[] = {1.0};
+  const int pairs[] = {0, 1};
+  const Monitor mon(node_scalars(mass, 2), spring_pairs(pairs, 1), node_scalars(k, 1),
+                    node_scalars(l0, 1));
+  const double v[] = {0, 0, 0, 1, 2, 0}, f[] = {0, 0, 0, -4, 0, 0};
+  double hi[2];
+  mon.upper_bounds(node_vectors(v, 2), node_vectors(f, 2), 0.5, node_scalars_out(hi, 2));
+  EXPECT_TRUE(std::isinf(hi[0]));
+  // |v m/dt + F| / |v| = |(6 - 4, 12, 0)| / sqrt(5)
+  EXPECT_DOUBLE_EQ(hi[1], std::sqrt(4.0 + 144.0) / std::sqrt(5.0));
+}
+
+TEST(Monitor, ExactLimitsOfTwoFreeNodesAreSpec7s) {
+  const double mass[] = {0.5, 0.5}, k[] = {2.0}, l0[] = {1.0}, gamma[] = {0.1, 0.1};
+  const double x[] = {0, 0, 0, 1, 0, 0};
+  const int pairs[] = {0, 1};
+  const Monitor mon(node_scalars(mass, 2), spring_pairs(pairs, 1), node_scalars(k, 1),
+                    node_scalars(l0, 1));
+  const double dt = 0.1, lambda = 2 * 2.0 / 0.5;  // the stretching mode: 2 kappa/m
+  const MonitorLimits l = mon.exact_limits(node_vectors(x, 2), node_scalars(gamma, 2), dt);
+  EXPECT_NEAR(l.lambda_max, lambda, 1e-9 * lambda);
+  EXPECT_NEAR(l.rate_max, 2 / dt - lambda * dt / 2, 1e-9);
+  EXPECT_NEAR(l.dt_max_undamped, 2 / std::sqrt(lambda), 1e-9);
+  EXPECT_TRUE(l.stable);
+  // gamma_i scaled by s is stable below m (2/dt - lambda dt/2) / gamma_i.
+  EXPECT_NEAR(l.scale_hi, 0.5 * (2 / dt - lambda * dt / 2) / 0.1, 1e-6);
+}
+
+TEST(Monitor, BadTopologyIsNamed) {
+  const double mass[] = {1.0, 1.0}, k[] = {1.0}, bad_k[] = {-1.0}, l0[] = {1.0};
+  const int out_of_range[] = {0, 2}, self[] = {1, 1}, ok[] = {0, 1};
+  auto make = [&](const int* pairs, const double* kk) {
+    return Monitor(node_scalars(mass, 2), spring_pairs(pairs, 1), node_scalars(kk, 1),
+                   node_scalars(l0, 1));
+  };
+  EXPECT_THROW(make(out_of_range, k), std::invalid_argument);
+  EXPECT_THROW(make(self, k), std::invalid_argument);
+  try {
+    make(ok, bad_k);
+    FAIL() << "negative stiffness accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("spring 0"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace dampbound
