@@ -2,6 +2,7 @@
 // parameters, then every stability criterion side by side (SPEC 7, docs/criteria.md): the
 // paper's, Delingette's, Provot's, Kacic-Alesic's and the exact linear analysis of the
 // integrator, on the two-node system (or a single node) or on a scene.
+#include <cmath>
 #include <cstdio>
 #include <memory>
 #include <sstream>
@@ -12,6 +13,7 @@
 #include "core/criteria.hpp"
 #include "core/error.hpp"
 #include "core/io.hpp"
+#include "core/safe_bound.hpp"
 #include "core/session.hpp"
 
 namespace dampbound::app {
@@ -76,6 +78,48 @@ void print_paper_lines(const BoundsArgs& a) {
   }
 }
 
+/// SPEC 9's safe bound at the state, 5 significant digits, with its worst node and its ratio
+/// to the exact limit of the paper's step (SPEC 7) when that is the integrator analysed.
+void print_safe_lines(const Model& model, const State& state, const Params& p,
+                      const ExactStability& exact) {
+  const SafeBoundSummary s = safe_bound_summary(model, state.x, p.dt);
+  if (s.free_nodes == 0) return;
+  const bool paper_step = exact.integrator == Integrator::semi_implicit_euler;
+  auto g5 = [](double x) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.5g", x);
+    return std::string(buf);
+  };
+  auto ratio = [&](double safe, double ex) {
+    return paper_step && std::isfinite(ex) && ex != 0
+               ? ", exact limit " + g5(ex) + ", ratio " + g5(safe / ex)
+               : std::string();
+  };
+  std::printf("\nsafe bound (SPEC 9)   gamma_safe = %s at node %d (R = %s 1/s^2)%s\n",
+              g5(s.gamma_safe).c_str(), s.gamma_node, g5(s.row_sum).c_str(),
+              ratio(s.gamma_safe, exact.gamma_hi).c_str());
+  std::printf("safe step (SPEC 9)    dt_safe = %s at gamma = %s, node %d%s\n",
+              g5(s.dt_safe).c_str(), format_number(p.gamma).c_str(), s.dt_node,
+              ratio(s.dt_safe, exact.dt_max).c_str());
+  if (s.infeasible.empty()) {
+    std::printf("critical damping      guaranteed at every free node (gamma_lo_i <= gamma_safe_i)\n");
+  } else {
+    std::printf("critical damping      NOT guaranteed at %zu of %d nodes (gamma_lo_i > "
+                "gamma_safe_i):",
+                s.infeasible.size(), s.free_nodes);
+    for (size_t k = 0; k < s.infeasible.size() && k < 8; ++k)
+      std::printf(" node %d (dt < %s)", s.infeasible[k], g5(s.infeasible_dt[k]).c_str());
+    std::printf("%s\n", s.infeasible.size() > 8 ? " ..." : "");
+  }
+  if (s.compressed_springs > 0)
+    std::printf("                      %d compressed springs: K may not be positive "
+                "semi-definite; the safe bound guarantees nothing here\n",
+                s.compressed_springs);
+  if (!paper_step)
+    std::printf("                      (derived for the paper's semi-implicit step, not %s)\n",
+                to_string(exact.integrator));
+}
+
 int run_parameters(const BoundsArgs& a) {
   if (!a.m_opt->count() || !a.kappa_opt->count() || !a.dt_opt->count())
     throw InputError("--m, --kappa and --dt are required without a scene");
@@ -97,7 +141,9 @@ int run_parameters(const BoundsArgs& a) {
               format_number(p.gamma).c_str(), a.gamma_opt->count() ? "" : " (= gamma_lo)",
               format_number(p.dt).c_str(), to_string(p.integrator));
   const State rest = rest_state(model);
-  print_criteria(all_criteria(model, rest, p, exact_stability(model, rest.x, p)));
+  const ExactStability exact = exact_stability(model, rest.x, p);
+  print_safe_lines(model, rest, p, exact);
+  print_criteria(all_criteria(model, rest, p, exact));
   return 0;
 }
 
@@ -130,6 +176,7 @@ int run_scene(const BoundsArgs& a) {
     std::printf("state        rest (x = X, v = 0): the linearisation point of the exact analysis\n");
   const ExactStability exact = exact_stability(model, state.x, p);
   std::printf("exact method %s\n", to_string(exact.method));
+  print_safe_lines(model, state, p, exact);
   print_criteria(all_criteria(model, state, p, exact));
   return 0;
 }

@@ -71,6 +71,11 @@ int run(const RunArgs& a) {
               format_number(rules.diverge_factor * rules.reference).c_str());
   std::printf("violations   %lld node-steps, unstabilisable %lld node-steps, clamped %lld\n",
               r.violations, r.unstabilisable, r.clamped);
+  if (params.policy == DampingPolicy::safe || r.unguaranteed || r.compressed_springs)
+    std::printf("safe bound   critical damping not guaranteed in %lld node-steps (SPEC 9); "
+                "%lld compressed spring-steps%s\n",
+                r.unguaranteed, r.compressed_springs,
+                r.compressed_springs ? " (K may be indefinite there: no guarantee)" : "");
   if (r.zero_length_springs)
     std::printf("warning      %lld zero-length spring evaluations contributed no force\n",
                 r.zero_length_springs);

@@ -42,12 +42,23 @@ int print_damping(const DampingSuggestion& s) {
   std::printf("  gamma_min  %-14s set by %s\n", num(s.gamma_min).c_str(), s.min_by.c_str());
   std::printf("  gamma_max  %-14s set by %s (exclusive)\n", num(s.gamma_max).c_str(),
               s.max_by.c_str());
+  std::printf("  safe (SPEC 9) gamma < %-10s guarantees stability at every node (at rest)\n",
+              num(s.safe_max).c_str());
   std::printf("  per node class (m_i, kappa_i = max incident stiffness, gamma_scale_i):\n");
-  for (const NodeClass& c : s.classes)
+  for (const NodeClass& c : s.classes) {
     std::printf("    %5d nodes like %-5d m_i=%-10s kappa_i=%-10s scale=%-6s eq.5 %-12s gamma_i in [%s, %s)\n",
                 c.count, c.example, num(c.mass).c_str(), num(c.kappa).c_str(),
                 num(c.gamma_scale).c_str(), num(c.lower_bound).c_str(), num(c.gamma_min).c_str(),
                 num(c.gamma_max).c_str());
+    if (c.lower_bound < c.safe_max)
+      std::printf("          safe (SPEC 9): gamma_i in [%s, %s); critical damping guaranteed "
+                  "for dt < %s s\n",
+                  num(c.lower_bound).c_str(), num(c.safe_max).c_str(), num(c.dt_safe).c_str());
+    else
+      std::printf("          safe (SPEC 9): gamma_safe_i %s < eq.5: critical damping cannot be "
+                  "guaranteed at this dt; it is for dt < %s s\n",
+                  num(c.safe_max).c_str(), num(c.dt_safe).c_str());
+  }
   std::printf("  dt-only criteria at this dt:");
   for (const CriterionResult& c : s.dt_only) std::printf(" %s %s;", c.name.c_str(), to_string(c.verdict));
   std::printf("\n");
@@ -68,6 +79,8 @@ int print_step(const StepSuggestion& s) {
   std::printf("largest stable dt at gamma = %s\n", num(s.gamma).c_str());
   std::printf("  exact limit   dt < %s s (%s)\n", num(s.dt_exact).c_str(), to_string(s.exact.method));
   std::printf("  all criteria  dt <= %s s, set by %s\n", num(s.dt_all).c_str(), s.dt_all_by.c_str());
+  std::printf("  safe (SPEC 9) dt < %s s guarantees stability at every node (node %d sets it)\n",
+              num(s.dt_safe).c_str(), s.dt_safe_node);
   print_runs(s.runs);
   return 0;
 }

@@ -15,6 +15,7 @@
 #include "app/options.hpp"
 #include "core/error.hpp"
 #include "core/io.hpp"
+#include "core/safe_sweep.hpp"
 #include "core/sweep_map.hpp"
 #include "core/sweep_progress.hpp"
 #include "core/sweep_runner.hpp"
@@ -191,6 +192,10 @@ int run(const SweepArgs& a) {
   const std::string policy = to_string(rq.spec.policy);
   for (const std::string& line : summary_lines(rep.rows, policy, lambda_unit))
     std::printf("%s\n", line.c_str());
+  // SPEC 9: the safe check against the outcomes (fixed), what the safe policy promised (safe).
+  for (const std::string& line :
+       safe_summary_lines(rep.rows, policy, unit_safe_bound(rq.scene), lambda_unit))
+    std::printf("%s\n", line.c_str());
   if (!a.map.empty()) {
     SweepTable table;
     table.header = h;
@@ -223,8 +228,8 @@ std::function<int()> setup(CLI::App& root) {
   a->dt_opt = cmd->add_option("--dt", a->dt, "time steps (s): a list");
   a->factor_opt =
       cmd->add_option("--factor", a->factor, "factors of the upper bound (policy upper): a list");
-  a->policy_opt = cmd->add_option("--policy", a->policy, "damping policy (SPEC 4)")
-                      ->check(CLI::IsMember({"fixed", "clamp", "upper", "lower"}));
+  a->policy_opt = cmd->add_option("--policy", a->policy, "damping policy (SPEC 4; safe: SPEC 9)")
+                      ->check(CLI::IsMember({"fixed", "clamp", "upper", "lower", "safe"}));
   a->max_iter_opt = cmd->add_option("--max-iter", a->max_iter, "iteration limit of the protocol")
                         ->check(CLI::Range(1, 100000000));
   cmd->add_option("-o,--output", a->output, "the results CSV (written atomically at the end)")

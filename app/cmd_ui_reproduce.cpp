@@ -18,6 +18,7 @@
 #include "core/claims.hpp"
 #include "core/error.hpp"
 #include "core/io.hpp"
+#include "core/safe_sweep.hpp"
 #include "core/sweep_map.hpp"
 #include "core/sweep_progress.hpp"
 #include "core/sweep_runner.hpp"
@@ -47,10 +48,14 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
+/// `span`: the lower-bound sweep on a grid that starts at the paper's smallest value 0.0001,
+/// so that kappa/m spans the paper's whole range (up to 1000) and some trials diverge, with
+/// fixed damping ("span") or the safe policy of SPEC 9 ("safe").
 SweepOutcome reduced_sweep(const ReproduceArgs& a, const SceneSpec& scene, bool upper,
-                           StopRule rule = StopRule::first_entry) {
+                           StopRule rule = StopRule::first_entry, bool span = false,
+                           bool safe = false) {
   SweepOutcome o;
-  o.name = upper ? "upper" : "lower";
+  o.name = upper ? "upper" : safe ? "safe" : span ? "span" : "lower";
   o.rule = rule;
   o.file = o.name + (rule == StopRule::settled ? "-settled" : "");
   o.csv = a.dir + "/sweep-" + o.file + ".csv";
@@ -59,7 +64,7 @@ SweepOutcome reduced_sweep(const ReproduceArgs& a, const SceneSpec& scene, bool 
   // and quantum with a coarser step, so similarity classes stay exact.
   const int step_q = std::max(1, 1000 / a.grid);  // in units of 0.0001
   char axis[64];
-  std::snprintf(axis, sizeof axis, "%g:0.1:%g", step_q * 1e-4, step_q * 1e-4);
+  std::snprintf(axis, sizeof axis, "%g:0.1:%g", span ? 1e-4 : step_q * 1e-4, step_q * 1e-4);
   SweepRequest rq;
   rq.scene = scene;
   rq.scene_text = read_file_text(scene.path);
@@ -74,7 +79,7 @@ SweepOutcome reduced_sweep(const ReproduceArgs& a, const SceneSpec& scene, bool 
     rq.spec.factor = parse_axis("--factor", "1,1.05", AxisDomain::non_negative);
     rq.spec.rules.max_iterations = 10000;
   } else {
-    rq.spec.policy = DampingPolicy::fixed;
+    rq.spec.policy = safe ? DampingPolicy::safe : DampingPolicy::fixed;
     rq.spec.gamma_mode = GammaMode::zeta;
     rq.spec.gamma = parse_axis("--zeta", "0.25,0.5,1", AxisDomain::non_negative);
     rq.spec.factor = parse_axis("--factor", "1", AxisDomain::non_negative);
@@ -156,6 +161,7 @@ void write_report(std::ostream& out, const ReproduceArgs& a, const std::vector<C
   write_runs(out, fig2);
   out << "\nData: `fig2.csv`.\n";
   for (const SweepOutcome& s : sweeps) {
+    if (s.name == "safe" || s.name == "span") continue;  // in the next section
     out << "\n## The " << s.name << "-bound sweep, reduced"
         << (s.rule == StopRule::settled ? ", under the settled rule" : "") << "\n\n"
         << "The paper ran 1000 x 1000 (m, kappa) pairs; this reduced sweep (" << s.definition
@@ -166,6 +172,25 @@ void write_report(std::ostream& out, const ReproduceArgs& a, const std::vector<C
         << " (README, Sweeps).\n\n![stability map](map-" << s.file << ".png)\n\n";
     for (const std::string& line : s.summary) out << "    " << line << "\n";
     out << "\nData: `sweep-" << s.file << ".csv`.\n";
+  }
+  // SPEC 9: the safe policy's sweep and the two checks as predictors of divergence.
+  const SweepOutcome* span = nullptr;
+  const SweepOutcome* safe = nullptr;
+  for (const SweepOutcome& s : sweeps) {
+    if (s.name == "span") span = &s;
+    if (s.name == "safe") safe = &s;
+  }
+  if (span && safe) {
+    const SceneSpec plane = load_scene_arg(a.scene);
+    double lambda_unit = NAN;
+    try {
+      lambda_unit = unit_stiffness_eigenvalue(plane);
+    } catch (const std::exception&) {
+    }
+    out << safe_report_section(span->report.rows, span->definition, safe->report.rows,
+                               safe->definition, unit_safe_bound(plane), lambda_unit)
+        << "\n![fixed damping over the whole kappa/m range](map-span.png)\n\n"
+        << "![the same grid under the safe policy](map-safe.png)\n";
   }
 }
 
@@ -206,6 +231,9 @@ int run(const ReproduceArgs& a) {
     std::fprintf(stderr, "reproduce: upper-bound sweep ...\n");
     sweeps.push_back(reduced_sweep(a, plane, true));
     for (Claim& c : sweeps.back().claims) claims.push_back(c);
+    std::fprintf(stderr, "reproduce: fixed damping and the safe policy (SPEC 9) ...\n");
+    sweeps.push_back(reduced_sweep(a, plane, false, StopRule::first_entry, true));
+    sweeps.push_back(reduced_sweep(a, plane, false, StopRule::first_entry, true, true));
   }
   const double seconds = seconds_since(t0);
   write_file_atomic(a.dir + "/report.md", [&](std::ostream& o) {

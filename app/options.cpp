@@ -61,8 +61,8 @@ void ParamFlags::add_to(CLI::App* cmd, bool with_rules) {
   gamma_opt = cmd->add_option("--gamma", gamma, "user's viscous damping (mass unit/s)")
                   ->check(finite_non_negative());
   dt_opt = cmd->add_option("--dt", dt, "time step (s)")->check(finite_positive());
-  policy_opt = cmd->add_option("--policy", policy, "damping policy (SPEC 4)")
-                   ->check(CLI::IsMember({"fixed", "clamp", "upper", "lower"}));
+  policy_opt = cmd->add_option("--policy", policy, "damping policy (SPEC 4; safe: SPEC 9)")
+                   ->check(CLI::IsMember({"fixed", "clamp", "upper", "lower", "safe"}));
   factor_opt = cmd->add_option("--factor", factor, "multiplier of the upper bound for --policy upper")
                    ->check(finite_non_negative());
   integrator_opt =

@@ -26,7 +26,7 @@ const char* to_string(NodeStatus s) {
 }
 
 DampingChoice effective_damping(DampingPolicy policy, double gamma, double lo, double hi,
-                                double factor) {
+                                double factor, double safe) {
   DampingChoice c;
   c.unstabilisable = lo > hi;
   switch (policy) {
@@ -34,7 +34,11 @@ DampingChoice effective_damping(DampingPolicy policy, double gamma, double lo, d
     case DampingPolicy::clamp: c.gamma = c.unstabilisable ? hi : std::clamp(gamma, lo, hi); break;
     case DampingPolicy::upper: c.gamma = std::isinf(hi) ? 0.0 : factor * hi; break;
     case DampingPolicy::lower: c.gamma = lo; break;
+    case DampingPolicy::safe:
+      c.gamma = lo > safe ? std::max(safe, 0.0) : std::clamp(gamma, lo, safe);
+      break;
   }
+  c.unguaranteed = lo > safe;
   c.violating = c.gamma < lo || c.gamma > hi;
   if (c.unstabilisable)
     c.status = NodeStatus::unstabilisable;

@@ -2,6 +2,7 @@
 // The paper's damping bounds (eqs. 5, 6), the runtime check (sec. 5) and the damping
 // policies (sec. 5, "Dynamic damping"; SPEC 3-4).
 #include <cstdint>
+#include <limits>
 
 #include "core/model.hpp"
 
@@ -31,11 +32,15 @@ struct DampingChoice {
   NodeStatus status = NodeStatus::within;
   bool violating = false;       ///< gamma outside [lo, hi] (SPEC 3)
   bool unstabilisable = false;  ///< lo > hi
+  bool unguaranteed = false;    ///< lo > gamma_safe: critical damping not guaranteed (SPEC 9)
 };
 
 /// SPEC 4: fixed -> gamma; clamp -> clamp(gamma, lo, hi), hi when lo > hi; upper ->
-/// factor * hi (0 when hi = inf); lower -> lo.
+/// factor * hi (0 when hi = inf); lower -> lo. SPEC 9: safe -> clamp(gamma, lo, safe), and
+/// max(safe, 0) when lo > safe (stability first; a negative damping would feed energy in).
+/// `safe` is gamma_safe_i (safe_bound.hpp), +inf when not computed.
 DampingChoice effective_damping(DampingPolicy policy, double gamma, double lo, double hi,
-                                double factor);
+                                double factor,
+                                double safe = std::numeric_limits<double>::infinity());
 
 }  // namespace dampbound

@@ -240,6 +240,7 @@ std::vector<CriterionResult> all_criteria(const Model& model, const State& state
   std::vector<CriterionResult> out = paper_criteria(model, state, params);
   for (auto& c : classic_criteria(model, params)) out.push_back(c);
   for (auto& c : exact_criteria(exact, params)) out.push_back(c);
+  for (auto& c : safe_criteria(model, state, params, &exact)) out.push_back(c);
   return out;
 }
 

@@ -62,6 +62,15 @@ std::vector<CriterionResult> paper_criteria(const Model& model, const State& sta
 /// spectral radius of the step, the exact gamma interval and the dt limit of the integrator.
 std::vector<CriterionResult> exact_criteria(const ExactStability& exact, const Params& params);
 
+/// The safe bound of SPEC 9 at the state (core/safe_bound.hpp): gamma_safe (worst node, the
+/// user's gamma_i judged), dt_safe at the user's gamma, and the nodes where critical damping
+/// cannot be guaranteed (gamma_lo_i > gamma_safe_i). With `exact` (the paper's step) each
+/// gives its ratio to the exact limit. Where a spring is compressed K may be indefinite: the
+/// verdict is n/a and the test says so.
+std::vector<CriterionResult> safe_criteria(const Model& model, const State& state,
+                                           const Params& params,
+                                           const ExactStability* exact = nullptr);
+
 /// All of the above, in the order the `bounds` command prints them.
 std::vector<CriterionResult> all_criteria(const Model& model, const State& state,
                                           const Params& params, const ExactStability& exact);

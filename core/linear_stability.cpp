@@ -1,5 +1,6 @@
 #include "core/linear_stability_gcc.hpp"  // first: silences GCC 12 false positives
 #include "core/linear_stability.hpp"
+#include "core/spring_block.hpp"
 
 #include "core/linear_stability_cholesky.hpp"
 
@@ -45,10 +46,14 @@ SparseMatrix tangent_stiffness(const Model& model, const std::vector<Vec3>& x,
     const double l = delta.norm();
     if (!(l > 0)) continue;  // no direction: no force, no stiffness (SPEC 1)
     const Vec3 d = delta / l;
-    double tension = 1.0 - s.rest_length / l;  // (1 - l0/l)
+    const double ratio = s.rest_length / l;
+    double tension = 1.0 - ratio;  // (1 - l0/l)
     if (clamp_compression) tension = std::max(0.0, tension);
-    const Eigen::Matrix3d B =
-        s.kappa * (tension * Eigen::Matrix3d::Identity() + (s.rest_length / l) * d * d.transpose());
+    double b[6];
+    spring_tangent_block(s.kappa, tension, ratio, d.data(), b);
+    Eigen::Matrix3d B;
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) B(r, c) = b[sym3(r, c)];
     const int bi = block[static_cast<size_t>(s.i)], bj = block[static_cast<size_t>(s.j)];
     add(bi, bi, B, 1);
     add(bj, bj, B, 1);

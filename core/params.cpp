@@ -10,6 +10,7 @@ const char* to_string(DampingPolicy p) {
     case DampingPolicy::clamp: return "clamp";
     case DampingPolicy::upper: return "upper";
     case DampingPolicy::lower: return "lower";
+    case DampingPolicy::safe: return "safe";
   }
   return "?";
 }
@@ -27,7 +28,7 @@ const char* to_string(Integrator i) {
 
 std::optional<DampingPolicy> parse_policy(const std::string& s) {
   for (auto p : {DampingPolicy::fixed, DampingPolicy::clamp, DampingPolicy::upper,
-                 DampingPolicy::lower})
+                 DampingPolicy::lower, DampingPolicy::safe})
     if (s == to_string(p)) return p;
   return std::nullopt;
 }

@@ -12,6 +12,7 @@ enum class DampingPolicy {
   clamp,  ///< gamma clamped into [gamma_lo_i, gamma_hi_i]; gamma_hi_i when the interval is empty
   upper,  ///< factor * gamma_hi_i (0 when gamma_hi_i is infinite)
   lower,  ///< gamma_lo_i
+  safe,   ///< gamma clamped into [gamma_lo_i, gamma_safe_i] (SPEC 9); gamma_safe_i when empty
 };
 
 /// The time integrator. The paper's semi-implicit Euler (SPEC 2) is the default and the
@@ -40,7 +41,7 @@ inline Params default_params() { return Params{}; }
 
 const char* to_string(DampingPolicy p);
 const char* to_string(Integrator i);
-/// Parses "fixed" | "clamp" | "upper" | "lower"; nullopt when unknown.
+/// Parses "fixed" | "clamp" | "upper" | "lower" | "safe"; nullopt when unknown.
 std::optional<DampingPolicy> parse_policy(const std::string& s);
 /// Parses "semi-implicit-euler" | "forward-euler" | "verlet" | "rk4" | "implicit-euler".
 std::optional<Integrator> parse_integrator(const std::string& s);

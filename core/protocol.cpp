@@ -66,6 +66,8 @@ void accumulate(RunResult& r, const StepStats& st, const StopRules& rules) {
   r.unstabilisable += st.unstabilisable;
   r.clamped += st.clamped;
   r.zero_length_springs += st.zero_length_springs;
+  r.unguaranteed += st.unguaranteed;
+  r.compressed_springs += st.compressed_springs;
   r.max_displacement = st.max_displacement;
   r.time = st.time;
   if (r.outcome == Outcome::running) {

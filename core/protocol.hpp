@@ -78,6 +78,8 @@ struct RunResult {
   long long clamped = 0;           ///< node-steps whose gamma the policy changed
   long long zero_length_springs = 0;
   double time = 0;                 ///< simulated seconds
+  long long unguaranteed = 0;        ///< node-steps with gamma_lo > gamma_safe (SPEC 9)
+  long long compressed_springs = 0;  ///< spring-steps with l < l0: K may be indefinite (SPEC 9)
 };
 
 /// Adds one step's counts to `result` and judges it (no-op on the verdict once latched).

@@ -32,14 +32,16 @@ void write_trace_csv(std::ostream& out, const std::vector<StepStats>& trace,
   const std::string prefix = run_label.empty() ? "" : csv_field(run_label) + ",";
   if (header)
     out << (run_label.empty() ? "" : "run,") << "iteration,time,displacement,lower_bound,upper_bound,gamma,gamma_effective,"
-         "max_displacement,violating,unstabilisable,clamped,zero_length_springs\n";
+         "max_displacement,violating,unstabilisable,clamped,zero_length_springs,"
+         "safe_bound,unguaranteed,compressed_springs\n";
   for (const StepStats& s : trace)
     out << prefix << s.iteration << ',' << format_number(s.time) << ','
         << format_number(s.watched_displacement) << ',' << format_number(s.watched_lower) << ','
         << format_number(s.watched_upper) << ',' << format_number(s.watched_gamma) << ','
         << format_number(s.watched_gamma_eff) << ',' << format_number(s.max_displacement) << ','
         << s.violating << ',' << s.unstabilisable << ',' << s.clamped << ','
-        << s.zero_length_springs << '\n';
+        << s.zero_length_springs << ',' << format_number(s.watched_safe) << ','
+        << s.unguaranteed << ',' << s.compressed_springs << '\n';
 }
 
 std::string verdict_short(const RunResult& r) {
@@ -110,7 +112,8 @@ std::string result_json(const std::string& scene, const Params& p, const StopRul
      << ",\"max_displacement\":" << json_number(r.max_displacement)
      << ",\"violations\":" << r.violations << ",\"unstabilisable\":" << r.unstabilisable
      << ",\"clamped\":" << r.clamped << ",\"zero_length_springs\":" << r.zero_length_springs
-     << "}";
+     << ",\"unguaranteed\":" << r.unguaranteed
+     << ",\"compressed_springs\":" << r.compressed_springs << "}";
   return os.str();
 }
 

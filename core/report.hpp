@@ -9,7 +9,8 @@
 namespace dampbound {
 
 /// Header + one row per iteration: iteration, time, the watched node's displacement, lower and
-/// upper bound, user and effective gamma, max displacement, counts. Non-finite = "inf".
+/// upper bound, user and effective gamma, max displacement, counts, then the watched node's
+/// gamma_safe and the counts of SPEC 9. Non-finite = "inf".
 /// With a non-empty `run_label` a first column "run" holds it (figures with several runs).
 void write_trace_csv(std::ostream& out, const std::vector<StepStats>& trace,
                      const std::string& run_label = "", bool header = true);

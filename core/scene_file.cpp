@@ -30,7 +30,7 @@ void read_params(const Reader& r, const toml::table& t, Params& p) {
   if (auto* n = t.get("factor")) p.factor = r.non_negative(*n, "factor");
   if (auto* n = t.get("policy")) {
     auto pol = parse_policy(r.string(*n, "policy"));
-    if (!pol) r.fail(*n, "policy must be one of fixed, clamp, upper, lower");
+    if (!pol) r.fail(*n, "policy must be one of fixed, clamp, upper, lower, safe");
     p.policy = *pol;
   }
   if (auto* n = t.get("integrator")) {

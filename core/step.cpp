@@ -5,6 +5,7 @@
 
 #include "core/forces.hpp"
 #include "core/integrate.hpp"
+#include "core/safe_bound.hpp"
 
 namespace dampbound {
 
@@ -16,6 +17,9 @@ StepStats step(const Model& model, const Params& params, State& state, StepWorks
   ws.upper_bound.resize(n);
   ws.gamma_eff.resize(n);
   ws.status.resize(n);
+  ws.safe_bound.resize(n);
+  // SPEC 9: R_i from the tangent stiffness at t, one pass over the springs.
+  st.compressed_springs = safe_row_sums(model, state.x, ws.safe_row_sum, &ws.safe_scratch);
 
   // Bounds and effective damping from the state at t (SPEC 3-4).
   for (size_t i = 0; i < n; ++i) {
@@ -23,12 +27,16 @@ StepStats step(const Model& model, const Params& params, State& state, StepWorks
       ws.upper_bound[i] = std::numeric_limits<double>::infinity();
       ws.gamma_eff[i] = 0;
       ws.status[i] = NodeStatus::fixed;
+      ws.safe_bound[i] = std::numeric_limits<double>::infinity();
       continue;
     }
     const double hi = upper_bound(state.v[i], ws.force[i], model.mass[i], params.dt);
-    const DampingChoice c =
-        effective_damping(params.policy, model.gamma[i], model.lower_bound[i], hi, params.factor);
+    const double safe = safe_gamma(model.mass[i], params.dt, ws.safe_row_sum[i]);
+    const DampingChoice c = effective_damping(params.policy, model.gamma[i],
+                                              model.lower_bound[i], hi, params.factor, safe);
     ws.upper_bound[i] = hi;
+    ws.safe_bound[i] = safe;
+    st.unguaranteed += c.unguaranteed;
     ws.gamma_eff[i] = c.gamma;
     ws.status[i] = c.status;
     st.violating += c.violating;
@@ -40,6 +48,7 @@ StepStats step(const Model& model, const Params& params, State& state, StepWorks
   st.watched_upper = ws.upper_bound[w];
   st.watched_gamma = model.gamma[w];
   st.watched_gamma_eff = ws.gamma_eff[w];
+  st.watched_safe = ws.safe_bound[w];
 
   st.zero_length_springs += advance(model, params, state, ws);
   state.time += params.dt;

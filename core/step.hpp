@@ -16,6 +16,9 @@ struct StepWorkspace {
   std::vector<double> upper_bound;  ///< gamma_hi_i at t (eq. 6)
   std::vector<double> gamma_eff;    ///< effective damping used this step
   std::vector<NodeStatus> status;
+  std::vector<double> safe_row_sum;  ///< R_i at t (SPEC 9; 1/s^2), 0 for fixed nodes
+  std::vector<double> safe_bound;    ///< gamma_safe_i at t (SPEC 9); +inf for fixed nodes
+  std::vector<double> safe_scratch;  ///< safe_row_sums' accumulators
   std::vector<Vec3> scratch[8];  ///< integrator temporaries
 };
 
@@ -35,6 +38,9 @@ struct StepStats {
   int clamped = 0;                  ///< free nodes whose gamma the policy changed, within bounds
   int zero_length_springs = 0;      ///< springs skipped for having no direction
   bool finite = true;               ///< every coordinate finite after the step
+  double watched_safe = 0;          ///< gamma_safe of the watched node at t (SPEC 9)
+  int unguaranteed = 0;             ///< free nodes with gamma_lo > gamma_safe (SPEC 9)
+  int compressed_springs = 0;       ///< springs with l < l0 at t: K may be indefinite (SPEC 9)
 };
 
 /// Advances `state` by params.dt. Uses model's per-node m_i, gamma_i, lower_bound (from

@@ -6,6 +6,7 @@
 #include <map>
 #include <tuple>
 
+#include "core/safe_bound.hpp"
 #include "core/session.hpp"
 
 namespace dampbound {
@@ -75,6 +76,9 @@ DampingSuggestion suggest_damping(const SceneSpec& scene, const Params& params_i
 
   // Eq. 5 at every free node: gamma * gamma_scale_i >= 2 sqrt(m_i kappa_i) (SPEC 3).
   double eq5 = 0, unit_rate_max = 0;
+  std::vector<double> R;  // SPEC 9 at rest
+  safe_row_sums(model, model.rest, R);
+  s.safe_max = kInf;
   std::map<std::tuple<double, double, double>, NodeClass> classes;
   for (size_t i = 0; i < model.rest.size(); ++i) {
     if (model.fixed[i]) continue;
@@ -82,6 +86,11 @@ DampingSuggestion suggest_damping(const SceneSpec& scene, const Params& params_i
     eq5 = std::max(eq5, sc > 0 ? lo / sc : (lo > 0 ? kInf : 0.0));
     unit_rate_max = std::max(unit_rate_max, sc / model.mass[i]);
     NodeClass& c = classes[{model.mass[i], model.node_kappa[i], sc}];
+    const double safe = safe_gamma(model.mass[i], params.dt, R[i]);
+    const double dt_safe = safe_dt(model.mass[i], lo, R[i]);
+    if (sc > 0) s.safe_max = std::min(s.safe_max, safe / sc);
+    if (c.count == 0 || safe < c.safe_max) c.safe_max = safe;
+    if (c.count == 0 || dt_safe < c.dt_safe) c.dt_safe = dt_safe;
     if (c.count++ == 0) {
       c.example = static_cast<int>(i);
       c.mass = model.mass[i];
@@ -179,6 +188,16 @@ StepSuggestion suggest_step(const SceneSpec& scene, const Params& params_in, con
   s.dt_exact = s.exact.dt_max;
   s.dt_all = s.dt_exact;
   s.dt_all_by = std::string("exact limit (") + to_string(params.integrator) + ")";
+  {  // SPEC 9 at rest: the smallest dt_safe_i at the user's gamma_i
+    std::vector<double> R;
+    safe_row_sums(model, model.rest, R);
+    s.dt_safe = kInf;
+    for (size_t i = 0; i < R.size(); ++i) {
+      if (model.fixed[i]) continue;
+      const double h = safe_dt(model.mass[i], model.gamma[i], R[i]);
+      if (h < s.dt_safe) s.dt_safe = h, s.dt_safe_node = static_cast<int>(i);
+    }
+  }
   // The dt-only criteria, inverted for dt (their values do not depend on dt except k_c).
   double m_total = 0, kappa_max = 0;
   int n = 0;

@@ -32,6 +32,12 @@ struct NodeClass {
   double lower_bound = 0;    ///< eq. 5 for the class: 2 sqrt(m_i kappa_i)
   double gamma_min = 0;      ///< the accepted range of gamma_i = gamma * gamma_scale_i
   double gamma_max = 0;
+  /// SPEC 9 at rest: the class's gamma_i is guaranteed stable in [lower_bound, safe_max)
+  /// (safe_max = min gamma_safe_i over the class; below lower_bound when the class cannot be
+  /// critically damped at this dt), and dt_safe is the largest dt at which gamma_i =
+  /// lower_bound is guaranteed at every node of the class (s).
+  double safe_max = 0;
+  double dt_safe = 0;
 };
 
 struct SuggestOptions {
@@ -46,6 +52,7 @@ struct DampingSuggestion {
   double dt = 0;
   double gamma_min = 0;          ///< max(eq. 5 over nodes / gamma_scale_i, exact gamma_lo)
   double gamma_max = 0;          ///< the exact gamma_hi (exclusive)
+  double safe_max = 0;           ///< SPEC 9: the user's gamma < safe_max guarantees stability
   std::string min_by, max_by;    ///< the criterion that sets each end
   bool empty = true;             ///< gamma_min >= gamma_max: no damping satisfies all
   std::vector<CriterionResult> dt_only;  ///< Delingette, Provot, Kacic-Alesic at this dt
@@ -65,6 +72,8 @@ struct StepSuggestion {
   double gamma = 0;
   double dt_exact = 0;           ///< exact limit (exclusive)
   double dt_all = 0;             ///< min over all dt criteria (the recommendation)
+  double dt_safe = 0;            ///< SPEC 9: min over free nodes of dt_safe_i at gamma_i (s)
+  int dt_safe_node = -1;         ///< the node that sets it
   std::string dt_all_by;         ///< the criterion that sets it
   std::vector<VerifiedRun> runs;  ///< at 0.99 dt_exact and at dt_all
   ExactStability exact;

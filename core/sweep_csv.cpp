@@ -213,6 +213,7 @@ SweepTable read_sweep_csv(const std::string& path, bool keep_lines) {
       fail("bad outcome '" + f[10] + "' for rule " + to_string(t.header.rule));
     r.iterations = std::atoi(f[11].c_str());
     r.max_displacement = std::strtod(f[12].c_str(), nullptr);
+    r.unstabilisable = std::atoll(f[14].c_str());
     if (t.header.rule == StopRule::settled) {
       r.first_entry = std::atoi(f[17].c_str());
       r.left_at = std::atoi(f[18].c_str());

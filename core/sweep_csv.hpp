@@ -45,6 +45,7 @@ struct SweepRow {
   Outcome outcome = Outcome::running;
   int iterations = 0;
   double max_displacement = 0;
+  long long unstabilisable = 0;  ///< node-steps with gamma_lo > gamma_hi (the paper's check)
   int first_entry = 0;  ///< SPEC 8; under first-entry: the restore's iteration, else 0
   int left_at = 0;      ///< settled sweeps only
   int settled_at = 0;   ///< settled sweeps only

@@ -14,6 +14,7 @@
 
 #include "core/session.hpp"
 #include "core/sweep_kernel_impl.hpp"
+#include "core/sweep_lanes.hpp"
 #include "core/sweep_simd.hpp"
 
 #ifndef DAMPBOUND_KERNEL_VARIANT
@@ -25,25 +26,11 @@ namespace dampbound {
 using simd::splat;
 using simd::vd;
 using simd::vl;
+using namespace sweep_lanes;
 
 static_assert(BatchKernel::kLanes == simd::kLanes, "one lane per trial");
 
 namespace {
-
-/// One node's state in all lanes: position, velocity, internal force (x, y, z each).
-struct NodeBlock {
-  vd x[3], v[3], f[3];
-};
-
-/// Per-node, per-lane parameters when the scene's scales are not uniform.
-struct NodeParams {
-  vd mass, md, lo, gu;  // m_i, m_i/dt, gamma_lo_i, user gamma_i
-};
-
-struct SpringData {
-  int i, j;
-  double rest_length, kappa_scale;
-};
 
 /// Counts of one step, per lane.
 struct StepCounts {
@@ -71,6 +58,7 @@ struct Kernel final : BatchKernel::Impl {
   std::vector<unsigned char> fixed;
   std::vector<NodeBlock> blocks;
   std::vector<NodeParams> node_params;  // only when !uniform
+  std::vector<SafeBlock> safe_blocks;   // only for the safe policy
   // Per-lane parameters.
   vd m, kappa, gamma, dt, factor;
   vd mass, md, lo, gu;  // uniform scales: the same for every node
@@ -117,6 +105,7 @@ struct Kernel final : BatchKernel::Impl {
         n > 0 && all_equal(mass_scale) && all_equal(gamma_scale) && all_equal(kappa_max_scale);
     blocks.resize(n);
     if (!uniform) node_params.resize(n);
+    if (policy == DampingPolicy::safe) safe_blocks.resize(n);
     for (int l = 0; l < kLanes; ++l) park(l);
   }
 
@@ -238,6 +227,8 @@ struct Kernel final : BatchKernel::Impl {
           g = unstab ? hi : clamped_g;
         } else if constexpr (P == DampingPolicy::upper) {
           g = hi == inf ? zero : factor * hi;
+        } else if constexpr (P == DampingPolicy::safe) {
+          g = safe_damping(safe_blocks[i], mass_i, dt, lo_i, gu_i);
         } else {
           g = lo_i;
         }
@@ -304,6 +295,15 @@ struct Kernel final : BatchKernel::Impl {
         break;
       case DampingPolicy::lower:
         node_pass_p<DampingPolicy::lower>(sc);
+        break;
+      case DampingPolicy::safe:
+        if (uniform)
+          safe_pass<true>(springs, blocks, node_params, fixed, anchor_scale, kappa, mass,
+                          safe_blocks);
+        else
+          safe_pass<false>(springs, blocks, node_params, fixed, anchor_scale, kappa, mass,
+                           safe_blocks);
+        node_pass_p<DampingPolicy::safe>(sc);
         break;
     }
   }

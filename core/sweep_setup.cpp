@@ -122,6 +122,7 @@ std::vector<SweepRow> sweep_rows(const SweepGrid& grid, const TrialClasses& clas
     r.outcome = res.outcome;
     r.iterations = res.iterations;
     r.max_displacement = res.max_displacement;
+    r.unstabilisable = res.unstabilisable;
     r.first_entry = res.first_entry;
     r.left_at = res.left_at;
     r.settled_at = res.settled_at;

@@ -177,8 +177,8 @@ void GuiApp::parameters_panel() {
   }
   changed |= log_slider("dt (s)", &p.dt, 1e-4, 1.0, "Time step dt (s)");
   int policy = static_cast<int>(p.policy);
-  const char* policies[] = {"fixed", "clamp", "upper", "lower"};
-  if (ImGui::Combo("policy", &policy, policies, 4)) {
+  const char* policies[] = {"fixed", "clamp", "upper", "lower", "safe"};
+  if (ImGui::Combo("policy", &policy, policies, 5)) {
     p.policy = static_cast<DampingPolicy>(policy);
     changed = true;
   }
@@ -186,7 +186,8 @@ void GuiApp::parameters_panel() {
     ImGui::SetTooltip(
         "Effective damping each step (paper sec. 5):\n"
         "fixed: gamma as given\nclamp: gamma clamped into [lower, upper]\n"
-        "upper: factor x upper bound (eq. 6)\nlower: the lower bound (eq. 5)");
+        "upper: factor x upper bound (eq. 6)\nlower: the lower bound (eq. 5)\n"
+        "safe: gamma clamped into [lower, safe bound] (SPEC 9): stability guaranteed");
   ImGui::BeginDisabled(p.policy != DampingPolicy::upper);
   double fmin = 0.0, fmax = 2.0;
   changed |=

@@ -192,7 +192,9 @@ void MeshRenderer::upload(const MeshDrawData& d) {
     const Vec3& p = ok ? x[i] : m.rest[i];  // a non-finite node is hidden, never sent to GL
     for (int k = 0; k < 3; ++k) pos_[3 * i + static_cast<size_t>(k)] = static_cast<float>(p[k]);
     const NodeStatus s = i < d.status->size() ? (*d.status)[i] : NodeStatus::within;
-    set_color(&col_[4 * i], ok ? status_color(s) : IM_COL32(0, 0, 0, 0));
+    const bool unguaranteed = d.safe_bound && i < d.safe_bound->size() &&
+                              m.lower_bound[i] > (*d.safe_bound)[i];
+    set_color(&col_[4 * i], ok ? node_color(s, unguaranteed) : IM_COL32(0, 0, 0, 0));
   }
   node_count_ = static_cast<int>(n);
   glBindBuffer(GL_ARRAY_BUFFER, vbo_pos_);

@@ -18,6 +18,9 @@ struct MeshDrawData {
   const Model* model = nullptr;
   const std::vector<Vec3>* x = nullptr;             ///< current positions (cm)
   const std::vector<NodeStatus>* status = nullptr;  ///< per node; empty: all "within"
+  /// gamma_safe_i per node (SPEC 9; null or empty: not shown): nodes with gamma_lo_i above it
+  /// are drawn with node_color(status, true).
+  const std::vector<double>* safe_bound = nullptr;
   std::uint64_t topology = 0;                       ///< changes whenever model->springs changes
   Mat4f view_proj = Mat4f::Identity();
   float point_size = 6.0f;  ///< node diameter (pixels)

@@ -57,4 +57,22 @@ ImU32 watched_color() {
   return IM_COL32(255, 255, 255, 255);
 }
 
+ImU32 unguaranteed_color() { return IM_COL32(0, 215, 215, 255); }  // cyan
+
+const char* unguaranteed_label() { return "not guaranteed (SPEC 9)"; }
+
+const char* unguaranteed_help() {
+  return "gamma_lo > gamma_safe: critical damping cannot be guaranteed stable at this dt "
+         "(SPEC 9); a smaller dt would";
+}
+
+ImU32 node_color(NodeStatus status, bool unguaranteed) {
+  // Under the safe policy an infeasible node is damped at gamma_safe < gamma_lo, which the
+  // paper's bounds call violating: SPEC 9's colour says why. The paper's own alarm
+  // (unstabilisable) and fixed nodes keep theirs.
+  const bool shown = status == NodeStatus::within || status == NodeStatus::clamped ||
+                     status == NodeStatus::violating;
+  return unguaranteed && shown ? unguaranteed_color() : status_color(status);
+}
+
 }  // namespace dampbound::ui

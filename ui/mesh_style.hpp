@@ -16,6 +16,16 @@ const char* status_label(NodeStatus status);
 /// Legend explanation, e.g. "effective gamma < lower bound or > upper bound".
 const char* status_help(NodeStatus status);
 
+/// SPEC 9: a node where critical damping cannot be guaranteed at this dt (gamma_lo_i >
+/// gamma_safe_i) is drawn in this colour unless the paper's runtime check calls it
+/// unstabilisable or it is fixed; its legend text and explanation.
+ImU32 unguaranteed_color();
+const char* unguaranteed_label();
+const char* unguaranteed_help();
+
+/// The node's colour: status_color, or unguaranteed_color as above.
+ImU32 node_color(NodeStatus status, bool unguaranteed);
+
 /// Colour of the springs and of the watched-node marker.
 ImU32 spring_color();
 ImU32 watched_color();

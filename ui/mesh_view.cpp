@@ -149,22 +149,23 @@ void MeshView::draw_overlays(const Tuner& tuner, const Viewport& vp) const {
   const float line = ImGui::GetTextLineHeight() + 2.0f;
   float width = 0.0f;
   for (NodeStatus st : kLegend) width = std::max(width, ImGui::CalcTextSize(status_label(st)).x);
+  width = std::max(width, ImGui::CalcTextSize(unguaranteed_label()).x);
   const ImVec2 box0(tl.x + 8.0f, tl.y + 8.0f);
-  const ImVec2 box1(box0.x + width + 38.0f, box0.y + line * 5.0f + 10.0f);
+  const ImVec2 box1(box0.x + width + 38.0f, box0.y + line * 6.0f + 10.0f);
   dl->AddRectFilled(box0, box1, IM_COL32(20, 22, 26, 200), 4.0f);
-  for (int i = 0; i < 5; ++i) {
+  for (int i = 0; i < 6; ++i) {  // the five states, then SPEC 9's
     const ImVec2 c(box0.x + 14.0f, box0.y + 5.0f + line * (static_cast<float>(i) + 0.5f));
-    dl->AddCircleFilled(c, 5.0f, status_color(kLegend[i]), 16);
+    dl->AddCircleFilled(c, 5.0f, i < 5 ? status_color(kLegend[i]) : unguaranteed_color(), 16);
     dl->AddText(ImVec2(c.x + 12.0f, c.y - line * 0.5f + 1.0f), IM_COL32(230, 230, 230, 255),
-                status_label(kLegend[i]));
+                i < 5 ? status_label(kLegend[i]) : unguaranteed_label());
   }
   dl->PopClipRect();
   // Tooltips for the legend entries.
   const ImVec2 m = ImGui::GetIO().MousePos;
   if (m.x >= box0.x && m.x <= box1.x && m.y >= box0.y && m.y <= box1.y &&
       ImGui::IsWindowHovered()) {
-    const int i = std::clamp(static_cast<int>((m.y - box0.y - 5.0f) / line), 0, 4);
-    ImGui::SetTooltip("%s", status_help(kLegend[i]));
+    const int i = std::clamp(static_cast<int>((m.y - box0.y - 5.0f) / line), 0, 5);
+    ImGui::SetTooltip("%s", i < 5 ? status_help(kLegend[i]) : unguaranteed_help());
   }
 }
 
@@ -187,6 +188,9 @@ void MeshView::node_tooltip(const Tuner& tuner, const Viewport& vp) const {
               i < ws.upper_bound.size() ? fmt(ws.upper_bound[i]).c_str() : "-");
   ImGui::Text("gamma %s, effective %s", fmt(s.model().gamma[i]).c_str(),
               i < ws.gamma_eff.size() ? fmt(ws.gamma_eff[i]).c_str() : "-");
+  if (i < ws.safe_bound.size())  // SPEC 9
+    ImGui::Text("safe bound %s%s", fmt(ws.safe_bound[i]).c_str(),
+                s.model().lower_bound[i] > ws.safe_bound[i] ? " < lower: not guaranteed" : "");
   ImGui::TextDisabled("click: watch it; drag: move it");
   ImGui::EndTooltip();
 }
@@ -250,6 +254,7 @@ void MeshView::draw(Tuner& tuner) {
   d.model = &s.model();
   d.x = &s.state().x;
   d.status = &s.workspace().status;
+  d.safe_bound = &s.workspace().safe_bound;
   d.topology = tuner.topology();
   d.view_proj = camera_.view_projection(vp.aspect());
   const float spacing = spring_spacing_px(s.model(), s.state().x, d.view_proj, vp);

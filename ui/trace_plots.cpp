@@ -86,6 +86,9 @@ PlotSpec envelope_plot(const std::vector<StepStats>& trace, std::optional<double
   };
   series("lower bound (eq. 5)", band.y_lo, IM_COL32(31, 119, 180, 255), false, 2.0f);
   series("upper bound (eq. 6)", band.y_hi, IM_COL32(214, 39, 40, 255), false, 2.0f);
+  // SPEC 9: below this the linearised step is guaranteed stable (<= 0 is not drawn on log y).
+  series("safe bound (SPEC 9)", column(trace, [](const StepStats& s) { return s.watched_safe; }),
+         IM_COL32(23, 190, 207, 255), false, 2.0f);
   series("user gamma", column(trace, [](const StepStats& s) { return s.watched_gamma; }),
          IM_COL32(127, 127, 127, 255), true, 1.5f);
   series("effective gamma", column(trace, [](const StepStats& s) { return s.watched_gamma_eff; }),

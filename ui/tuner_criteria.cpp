@@ -136,6 +136,8 @@ const std::vector<CriterionResult>& TunerCriteria::evaluate(const Session& s,
       results_ = paper_criteria(s.model(), s.state(), s.params());
       const auto classic = classic_criteria(s.model(), s.params());
       results_.insert(results_.end(), classic.begin(), classic.end());
+      const auto safe = safe_criteria(s.model(), s.state(), s.params());  // SPEC 9: O(springs)
+      results_.insert(results_.end(), safe.begin(), safe.end());
     }
   } catch (const std::exception&) {
     // A state the criteria cannot judge (e.g. after divergence): show what is known.

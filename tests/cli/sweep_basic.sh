@@ -55,7 +55,7 @@ expect_match "$OUT" 'in 4 classes \(similarity off \(node 1 has an external forc
   "fallback with external force"
 
 # Absolute gamma, the two-node scene, every policy.
-for p in fixed clamp upper lower; do
+for p in fixed clamp upper lower safe; do
   expect_exit 0 "$DB" sweep two-node --m 0.001:0.003:0.001 --kappa 0.001:0.003:0.001 \
     --gamma 0:0.004:0.002 --policy $p --factor 1,1.05 -o "$WORK/$p.csv" --progress none
 done

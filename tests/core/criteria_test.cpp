@@ -38,7 +38,7 @@ TEST(Criteria, TwoNodeClosedForms) {
   p.gamma = 0.004;
   p.dt = 0.05;
   const auto all = two_node_criteria(p);
-  ASSERT_EQ(all.size(), 10u);
+  ASSERT_EQ(all.size(), 13u);
   EXPECT_NEAR(find(all, "paper lower").value, 2 * std::sqrt(p.m * p.kappa), 1e-15);
   EXPECT_NEAR(find(all, "Delingette").value, p.m / (kPi * kPi * p.dt * p.dt), 1e-12);
   EXPECT_NEAR(find(all, "Provot").value, kPi * std::sqrt(p.m / p.kappa), 1e-12);
@@ -49,6 +49,10 @@ TEST(Criteria, TwoNodeClosedForms) {
   const double lambda = p.kappa / p.m, c = p.gamma / p.m;
   EXPECT_NEAR(find(all, "exact dt limit").value, (std::sqrt(c * c + 4 * lambda) - c) / lambda, 1e-12);
   EXPECT_EQ(find(all, "paper upper").verdict, CriterionVerdict::not_applicable);  // at rest
+  // SPEC 9 on one spring: A is kappa/m on one row, so Gershgorin is exact.
+  EXPECT_NEAR(find(all, "safe damping bound").value, 2 * p.m / p.dt - p.kappa * p.dt / 2, 1e-12);
+  EXPECT_NEAR(find(all, "safe dt bound").value, (std::sqrt(c * c + 4 * lambda) - c) / lambda, 1e-12);
+  EXPECT_EQ(find(all, "safe check").verdict, CriterionVerdict::within);
   for (const auto& cr : all) EXPECT_FALSE(cr.formula.empty() || cr.source.empty()) << cr.name;
 }
 

@@ -181,7 +181,7 @@ TEST(BadScene, OutOfGridReferences) {
 
 TEST(BadScene, WrongTypesAndPolicy) {
   EXPECT_EQ(error_of(std::string(kGrid) + "[params]\npolicy = \"max\"\n"),
-            "bad.toml:6: policy must be one of fixed, clamp, upper, lower");
+            "bad.toml:6: policy must be one of fixed, clamp, upper, lower, safe");
   EXPECT_EQ(error_of(std::string(kGrid) + "[params]\ndt = \"fast\"\n"),
             "bad.toml:6: dt must be a number");
   EXPECT_EQ(error_of(std::string(kGrid) + "[protocol]\nmax_iterations = 0\n"),

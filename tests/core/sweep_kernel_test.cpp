@@ -85,7 +85,8 @@ TEST(SweepKernel, TwoNodeSceneEveryPolicyMatchesStep) {
     rules.rule = rule;
     Seen seen{};
     for (DampingPolicy p :
-         {DampingPolicy::fixed, DampingPolicy::clamp, DampingPolicy::upper, DampingPolicy::lower}) {
+         {DampingPolicy::fixed, DampingPolicy::clamp, DampingPolicy::upper, DampingPolicy::lower,
+           DampingPolicy::safe}) {
       const auto s = expect_same(scene, p, rules, trials);
       for (size_t k = 0; k < seen.size(); ++k) seen[k] += s[k];
     }
@@ -150,7 +151,8 @@ TEST(SweepKernel, IrregularSceneMatchesStep) {
   long long zero_length = 0;
   for (StopRule rule : {StopRule::first_entry, StopRule::settled})
     for (DampingPolicy p :
-         {DampingPolicy::fixed, DampingPolicy::clamp, DampingPolicy::upper, DampingPolicy::lower}) {
+         {DampingPolicy::fixed, DampingPolicy::clamp, DampingPolicy::upper, DampingPolicy::lower,
+           DampingPolicy::safe}) {
       rules.rule = rule;
       expect_same(scene, p, rules, trials);
       zero_length += run_batched(scene, p, rules, {trials[0]})[0].zero_length_springs;
@@ -222,10 +224,37 @@ TEST(SweepKernel, PaperPlaneBorderlineTrialsMatchStep) {
       few.push_back(t);
     }
   }
-  for (DampingPolicy p : {DampingPolicy::clamp, DampingPolicy::upper, DampingPolicy::lower}) {
+  for (DampingPolicy p : {DampingPolicy::clamp, DampingPolicy::upper, DampingPolicy::lower,
+                          DampingPolicy::safe}) {
     expect_same(scene, p, rules, few);
     expect_same(scene, p, settled, few);
   }
+}
+
+/// The safe policy (SPEC 9) through every branch: the user's gamma above gamma_safe (clamped
+/// down), inside [gamma_lo, gamma_safe], below gamma_lo (clamped up), and an empty interval
+/// (gamma_lo > gamma_safe, also with gamma_safe < 0), on the paper plane (uniform scales)
+/// and the irregular scene (per-node masses, a fixed node, a zero-length spring).
+TEST(SweepKernel, SafePolicyMatchesStepInEveryBranch) {
+  std::vector<TrialParams> trials;
+  for (double r : {1.0, 20.0, 160.0, 400.0, 2000.0})
+    for (double gamma_over_m : {0.0, 1.0, 30.0, 1e4}) {
+      TrialParams t;
+      t.m = 0.002;
+      t.kappa = r * t.m;
+      t.gamma = gamma_over_m * t.m;
+      trials.push_back(t);
+    }
+  StopRules rules;
+  rules.max_iterations = 80;
+  long long clamped = 0;
+  for (const SceneSpec& scene : {shipped("paper-plane"), irregular_scene()}) {
+    rules.reference = scene.name == "irregular" ? 0.6 : 5.0;
+    expect_same(scene, DampingPolicy::safe, rules, trials);
+    for (const TrialResult& r : run_batched(scene, DampingPolicy::safe, rules, trials))
+      clamped += r.clamped;
+  }
+  EXPECT_GT(clamped, 0);
 }
 
 TEST(SweepKernel, SpringScheduleKeepsEachNodesOrder) {

@@ -1,0 +1,59 @@
+#pragma once
+// The per-node bound that guarantees stability (SPEC 9): local (one pass over a node's
+// springs and anchor) and sufficient (Gershgorin's theorem on the semi-implicit step's exact
+// definiteness criterion, Q = 4 I - 2 dt C - dt^2 A positive definite; docs/criteria.md).
+#include <cstdint>
+#include <vector>
+
+#include "core/model.hpp"
+
+namespace dampbound {
+
+/// Gershgorin row sums of A = M^-1/2 K M^-1/2 (K the tangent stiffness at positions x, SPEC 7)
+/// over the free nodes: R_i = max over node i's three rows r of sum_s |A_rs| (all columns, the
+/// diagonal too; columns of fixed nodes drop out), 1/s^2. R_i = 0 for a fixed node.
+/// Inputs are plain arrays, one entry per node (x: cm, mass > 0, anchor_kappa: the anchor's
+/// stiffness, 0 = none, fixed: 1 = never moves) and the springs with `kappa` filled in.
+/// A spring of zero length has no direction and is skipped (SPEC 1). Springs are taken in
+/// list order (what the batched kernel mirrors bit for bit). O(springs + nodes).
+/// `scratch` (optional) keeps 9 doubles per node between calls to avoid allocation.
+/// Returns the number of compressed springs (0 < l < l0): with one, K may be indefinite and
+/// the bound guarantees nothing (SPEC 9).
+int safe_row_sums(const std::vector<Vec3>& x, const std::vector<double>& mass,
+                  const std::vector<Spring>& springs, const std::vector<double>& anchor_kappa,
+                  const std::vector<std::uint8_t>& fixed, std::vector<double>& row_sum,
+                  std::vector<double>* scratch = nullptr);
+
+/// The same over a model (set_params done) at positions x.
+int safe_row_sums(const Model& model, const std::vector<Vec3>& x, std::vector<double>& row_sum,
+                  std::vector<double>* scratch = nullptr);
+
+/// SPEC 9: gamma_safe = 2 m/dt - m dt R / 2 (mass unit / s). May be <= 0: then no damping
+/// guarantees stability at this dt.
+inline double safe_gamma(double m, double dt, double row_sum) {
+  return 2.0 * m / dt - m * dt * row_sum / 2.0;
+}
+
+/// SPEC 9: dt_safe = (sqrt(c^2 + 4 R) - c) / R with c = gamma/m (s); 2/c when R = 0
+/// (+inf when also c = 0).
+double safe_dt(double m, double gamma, double row_sum);
+
+/// The safe bound over a whole model at one state, for reports (`bounds`, `check`, the tuner).
+struct SafeBoundSummary {
+  int free_nodes = 0;
+  double gamma_safe = 0;      ///< min over free nodes of gamma_safe_i (mass unit / s)
+  int gamma_node = -1;        ///< the node where it is reached
+  double row_sum = 0;         ///< R of that node (1/s^2)
+  double dt_safe = 0;         ///< min over free nodes of dt_safe_i at the user's gamma_i (s)
+  int dt_node = -1;
+  /// Free nodes with gamma_lo_i > gamma_safe_i: critical damping cannot be guaranteed at this
+  /// dt. `infeasible_dt` is the dt_safe_i at gamma_lo_i that would make each feasible.
+  std::vector<int> infeasible;
+  std::vector<double> infeasible_dt;
+  int compressed_springs = 0;  ///< springs with l < l0: K may be indefinite (no guarantee)
+};
+
+/// Evaluates SPEC 9 at positions x with the model's m_i, gamma_i, lower bounds and step dt.
+SafeBoundSummary safe_bound_summary(const Model& model, const std::vector<Vec3>& x, double dt);
+
+}  // namespace dampbound

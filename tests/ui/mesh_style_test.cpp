@@ -1,0 +1,30 @@
+// The mesh view's colours: SPEC 9's "not guaranteed" beside the node states of the paper's
+// bounds (ui/mesh_style.cpp).
+#include "ui/mesh_style.hpp"
+
+#include <gtest/gtest.h>
+
+namespace dampbound::ui {
+namespace {
+
+TEST(MeshStyle, NotGuaranteedNodesGetTheirOwnColourUnlessThePaperRaisesItsAlarm) {
+  EXPECT_NE(unguaranteed_color(), status_color(NodeStatus::within));
+  for (NodeStatus s : {NodeStatus::within, NodeStatus::clamped, NodeStatus::violating,
+                       NodeStatus::unstabilisable, NodeStatus::fixed}) {
+    EXPECT_NE(unguaranteed_color(), status_color(s)) << status_label(s);
+    EXPECT_EQ(node_color(s, false), status_color(s)) << status_label(s);
+  }
+  // Within, clamped and (what the safe policy's damping at gamma_safe < gamma_lo is)
+  // violating show SPEC 9's colour; unstabilisable and fixed keep theirs.
+  EXPECT_EQ(node_color(NodeStatus::within, true), unguaranteed_color());
+  EXPECT_EQ(node_color(NodeStatus::clamped, true), unguaranteed_color());
+  EXPECT_EQ(node_color(NodeStatus::violating, true), unguaranteed_color());
+  EXPECT_EQ(node_color(NodeStatus::unstabilisable, true),
+            status_color(NodeStatus::unstabilisable));
+  EXPECT_EQ(node_color(NodeStatus::fixed, true), status_color(NodeStatus::fixed));
+  EXPECT_STRNE(unguaranteed_label(), "");
+  EXPECT_STRNE(unguaranteed_help(), "");
+}
+
+}  // namespace
+}  // namespace dampbound::ui
