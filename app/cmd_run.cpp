@@ -35,10 +35,10 @@ int run(const RunArgs& a) {
   if (!a.vtk.empty()) {
     // Iteration 0, every N-th step and the last one; the .pvd lists them with their times.
     vtk = std::make_unique<VtuSeries>(a.vtk);
-    vtk->add(session.model(), session.state(), session.workspace());
+    vtk->add(session.model(), session.state(), session.workspace(), session.params().dt);
     save = [&](const StepStats& st) {
       if (st.iteration % a.every == 0 || !session.running())
-        vtk->add(session.model(), session.state(), session.workspace());
+        vtk->add(session.model(), session.state(), session.workspace(), session.params().dt);
     };
   }
   const RunResult& r = session.run_to_end(save);

@@ -9,6 +9,7 @@
 #include "core/forces.hpp"
 #include "core/linear_stability.hpp"
 #include "core/linear_stability_exact.hpp"
+#include "core/safe_bound.hpp"
 
 namespace dampbound {
 
@@ -100,6 +101,40 @@ void Monitor::upper_bounds(NodeVectors v, NodeVectors force, double dt, NodeScal
 MonitorReport Monitor::check(NodeVectors v, NodeVectors force, NodeScalars gamma, double dt,
                              DampingPolicy policy, double factor, NodeScalarsOut* gamma_eff,
                              NodeScalarsOut* upper, NodeStatus* status) const {
+  require(policy != DampingPolicy::safe,
+          "the safe policy needs the positions: call check(x, v, force, gamma, dt, ...)");
+  return check_with(nullptr, v, force, gamma, dt, policy, factor, gamma_eff, upper, status);
+}
+
+MonitorReport Monitor::check(NodeVectors x, NodeVectors v, NodeVectors force, NodeScalars gamma,
+                             double dt, DampingPolicy policy, double factor,
+                             NodeScalarsOut* gamma_eff, NodeScalarsOut* upper,
+                             NodeStatus* status) const {
+  std::vector<double> safe(static_cast<size_t>(node_count()));
+  const int compressed = safe_bounds(x, dt, node_scalars_out(safe.data(), node_count()));
+  MonitorReport r = check_with(&safe, v, force, gamma, dt, policy, factor, gamma_eff, upper, status);
+  r.compressed_springs = compressed;
+  return r;
+}
+
+int Monitor::safe_bounds(NodeVectors x, double dt, NodeScalarsOut out) const {
+  check_size(x.rows(), "x");
+  check_size(out.size(), "safe bound output");
+  require(std::isfinite(dt) && dt > 0, "dt must be finite and > 0");
+  std::vector<double> row_sum;
+  const int compressed = safe_row_sums(model_, positions(x), row_sum);
+  for (int i = 0; i < node_count(); ++i) {
+    const size_t k = static_cast<size_t>(i);
+    out[i] = model_.fixed[k] ? HUGE_VAL : safe_gamma(model_.mass[k], dt, row_sum[k]);
+  }
+  return compressed;
+}
+
+// The bounds and policy of step() (core/step.cpp) node by node; `safe` is gamma_safe_i or null.
+MonitorReport Monitor::check_with(const std::vector<double>* safe, NodeVectors v,
+                                  NodeVectors force, NodeScalars gamma, double dt,
+                                  DampingPolicy policy, double factor, NodeScalarsOut* gamma_eff,
+                                  NodeScalarsOut* upper, NodeStatus* status) const {
   check_size(v.rows(), "v");
   check_size(force.rows(), "force");
   check_size(gamma.size(), "gamma");
@@ -118,10 +153,13 @@ MonitorReport Monitor::check(NodeVectors v, NodeVectors force, NodeScalars gamma
     const double lo = model_.lower_bound[k];
     const double hi =
         upper_bound(v.row(i).transpose(), force.row(i).transpose(), model_.mass[k], dt);
-    const DampingChoice c = effective_damping(policy, gamma[i], lo, hi, factor);
+    const DampingChoice c =
+        safe ? effective_damping(policy, gamma[i], lo, hi, factor, (*safe)[k])
+             : effective_damping(policy, gamma[i], lo, hi, factor);
     if (c.unstabilisable && r.unstabilisable++ == 0) r.first_unstabilisable = i;
     if (c.violating && r.violating++ == 0) r.first_violating = i;
     r.clamped += c.status == NodeStatus::clamped;
+    r.unguaranteed += c.unguaranteed;
     if (gamma_eff) (*gamma_eff)[i] = c.gamma;
     if (upper) (*upper)[i] = hi;
     if (status) status[i] = c.status;
@@ -129,14 +167,19 @@ MonitorReport Monitor::check(NodeVectors v, NodeVectors force, NodeScalars gamma
   return r;
 }
 
+std::vector<Vec3> Monitor::positions(NodeVectors x) const {
+  check_size(x.rows(), "x");
+  std::vector<Vec3> xs(static_cast<size_t>(node_count()));
+  for (int i = 0; i < node_count(); ++i) xs[static_cast<size_t>(i)] = x.row(i).transpose();
+  return xs;
+}
+
 int Monitor::internal_forces(
     NodeVectors x,
     Eigen::Ref<Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>> force) const {
-  check_size(x.rows(), "x");
   check_size(force.rows(), "force");
-  std::vector<Vec3> xs(static_cast<size_t>(node_count())), f;
-  for (int i = 0; i < node_count(); ++i) xs[static_cast<size_t>(i)] = x.row(i).transpose();
-  const int zero_length = dampbound::internal_forces(model_, xs, f);
+  std::vector<Vec3> f;
+  const int zero_length = dampbound::internal_forces(model_, positions(x), f);
   for (int i = 0; i < node_count(); ++i) force.row(i) = f[static_cast<size_t>(i)].transpose();
   return zero_length;
 }
@@ -153,8 +196,7 @@ MonitorLimits Monitor::exact_limits(NodeVectors x, NodeScalars gamma, double dt)
   }
   const Params params = unit_params(dt);
   set_params(model, params);
-  std::vector<Vec3> xs(static_cast<size_t>(node_count()));
-  for (int i = 0; i < node_count(); ++i) xs[static_cast<size_t>(i)] = x.row(i).transpose();
+  const std::vector<Vec3> xs = positions(x);
   ExactOptions options;
   options.with_radius = false;
   const ExactStability e = exact_stability(model, xs, params, options);

@@ -8,6 +8,7 @@
 // paper's step (semi-implicit Euler, SPEC 2): v += a dt, then x += v dt.
 #include <Eigen/Core>
 #include <cstdint>
+#include <vector>
 
 #include "core/bounds.hpp"
 #include "core/model.hpp"
@@ -48,6 +49,8 @@ struct MonitorReport {
   int clamped = 0;           ///< nodes whose gamma the policy changed, within the bounds
   int first_violating = -1;  ///< the lowest such node index, -1 when none
   int first_unstabilisable = -1;
+  int unguaranteed = 0;        ///< nodes with gamma_lo > gamma_safe (SPEC 9; only when checked with x)
+  int compressed_springs = 0;  ///< springs with l < l0 at x: K may be indefinite, SPEC 9 promises nothing
   bool ok() const { return violating == 0 && unstabilisable == 0; }
 };
 
@@ -93,10 +96,25 @@ class Monitor {
 
   /// The runtime check of one step (paper sec. 5): bounds from (v, F) at t, the effective
   /// damping of every free node under `policy` (SPEC 4; `factor` for upper), its status.
+  /// The `safe` policy needs the positions: use the overload that takes x (this one throws).
   /// `gamma` is the user's gamma_i (mass unit/s). Optional outputs: `gamma_eff` (the damping
   /// to use this step, mass unit/s), `upper` (gamma_hi_i) and `status` (one per node).
   MonitorReport check(NodeVectors v, NodeVectors force, NodeScalars gamma, double dt,
                       DampingPolicy policy = DampingPolicy::fixed, double factor = 1.0,
+                      NodeScalarsOut* gamma_eff = nullptr, NodeScalarsOut* upper = nullptr,
+                      NodeStatus* status = nullptr) const;
+
+  /// SPEC 9 per node at positions x: gamma_safe_i = 2 m_i/dt - m_i dt R_i / 2 (mass unit/s),
+  /// R_i the Gershgorin row sum of M^-1/2 K M^-1/2 (tangent stiffness at x); +inf for fixed
+  /// nodes. Where every gamma_i < gamma_safe_i the paper's step linearised at x cannot grow.
+  /// Returns the number of compressed springs (with one, K may be indefinite: no guarantee).
+  int safe_bounds(NodeVectors x, double dt, NodeScalarsOut out) const;
+
+  /// check() with the positions x at t as well, which the `safe` policy (SPEC 9) needs:
+  /// gamma_eff = gamma clamped into [gamma_lo_i, gamma_safe_i] (gamma_safe_i, at least 0, where
+  /// that is empty); the report counts `unguaranteed` and `compressed_springs` under any policy.
+  MonitorReport check(NodeVectors x, NodeVectors v, NodeVectors force, NodeScalars gamma,
+                      double dt, DampingPolicy policy, double factor = 1.0,
                       NodeScalarsOut* gamma_eff = nullptr, NodeScalarsOut* upper = nullptr,
                       NodeStatus* status = nullptr) const;
 
@@ -111,6 +129,11 @@ class Monitor {
 
  private:
   void check_size(Eigen::Index n, const char* what) const;
+  MonitorReport check_with(const std::vector<double>* safe, NodeVectors v, NodeVectors force,
+                           NodeScalars gamma, double dt, DampingPolicy policy, double factor,
+                           NodeScalarsOut* gamma_eff, NodeScalarsOut* upper,
+                           NodeStatus* status) const;
+  std::vector<Vec3> positions(NodeVectors x) const;
   Model model_;
 };
 

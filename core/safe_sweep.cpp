@@ -4,6 +4,7 @@
 #include <cinttypes>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include "core/bounds.hpp"
 #include "core/io.hpp"
@@ -43,6 +44,39 @@ std::string pct(std::uint64_t a, std::uint64_t b) {
 }
 
 }  // namespace
+
+double safe_edge(const SafeUnit& u, SafeAxis axis, double m, double kappa, double gamma,
+                 double dt) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const bool lowest = axis == SafeAxis::m;  // m has a lower edge, the others an upper one
+  double edge = lowest ? 0.0 : std::numeric_limits<double>::infinity();
+  bool any = false;
+  for (size_t i = 0; i < u.row_sum.size(); ++i) {
+    const double ms = u.mass_scale[i], gs = u.gamma_scale[i], R = u.row_sum[i];
+    double e = nan;  // node i's own edge
+    switch (axis) {
+      case SafeAxis::gamma:
+        if (gs > 0) e = (2 * m * ms / dt - ms * dt * R * kappa / 2) / gs;
+        break;
+      case SafeAxis::m:
+        e = (gamma * gs + ms * dt * R * kappa / 2) * dt / (2 * ms);
+        break;
+      case SafeAxis::kappa:
+        if (R > 0) e = (2 * m * ms / dt - gamma * gs) * 2 / (ms * dt * R);
+        break;
+      case SafeAxis::dt: {
+        // a dt^2 + b dt - c < 0 with a = ms R kappa / 2, b = gamma gs, c = 2 m ms.
+        const double a = ms * R * kappa / 2, b = gamma * gs, c = 2 * m * ms;
+        e = a > 0 ? (-b + std::sqrt(b * b + 4 * a * c)) / (2 * a) : (b > 0 ? c / b : nan);
+        break;
+      }
+    }
+    if (std::isnan(e)) continue;  // this node does not bound the parameter
+    any = true;
+    edge = lowest ? std::max(edge, e) : std::min(edge, e);
+  }
+  return any && edge > 0 && std::isfinite(edge) ? edge : nan;
+}
 
 bool safe_at_rest(const SafeUnit& u, double m, double kappa, double gamma, double dt) {
   for (size_t i = 0; i < u.row_sum.size(); ++i)

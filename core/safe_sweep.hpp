@@ -18,6 +18,14 @@ struct SafeUnit {
 };
 SafeUnit unit_safe_bound(const SceneSpec& scene);
 
+/// The edge of the safe check at rest along one parameter, the others as given: the largest
+/// gamma, the smallest m, the largest kappa or the largest dt (units as in Params) at which
+/// every free node has gamma * gamma_scale_i < gamma_safe_i, each node's condition
+/// gamma gs_i < 2 m ms_i / dt - ms_i dt R_i kappa / 2 solved for that parameter. NaN where no
+/// positive value satisfies it (or the parameter does not appear).
+enum class SafeAxis { m, kappa, gamma, dt };
+double safe_edge(const SafeUnit& u, SafeAxis axis, double m, double kappa, double gamma, double dt);
+
 /// The safe check at rest: gamma * gamma_scale_i < gamma_safe_i at every free node.
 bool safe_at_rest(const SafeUnit& u, double m, double kappa, double gamma, double dt);
 /// The safe policy's guarantee at rest: gamma_safe_i > 0 at every free node (dt below every

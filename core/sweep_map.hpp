@@ -24,7 +24,7 @@ enum class MapCell : signed char {
 };
 
 /// Which boundary a line is.
-enum class MapLineKind { paper, exact_linear, dt_limit };
+enum class MapLineKind { paper, exact_linear, dt_limit, safe };
 
 struct MapLine {
   std::string label;

@@ -1,5 +1,7 @@
 #include "core/vtu.hpp"
 
+#include "core/safe_bound.hpp"
+
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
@@ -9,6 +11,7 @@
 
 #include "core/error.hpp"
 #include "core/io.hpp"
+#include "core/safe_bound.hpp"
 
 namespace dampbound {
 namespace {
@@ -55,11 +58,19 @@ int state_code(NodeStatus s) {
   return static_cast<int>(s);
 }
 
-void write_vtu(std::ostream& out, const Model& model, const State& state, const StepWorkspace& ws) {
+void write_vtu(std::ostream& out, const Model& model, const State& state, const StepWorkspace& ws,
+               double dt) {
   const size_t n = model.rest.size(), ns = model.springs.size();
   const bool stepped = ws.status.size() == n;  // else iteration 0: no step has run yet
   std::vector<Vec3> disp(n);
-  std::vector<double> upper(n), gamma(n);
+  std::vector<double> upper(n), gamma(n), safe = stepped ? ws.safe_bound : std::vector<double>(n);
+  if (!stepped) {  // SPEC 9 at the initial state, as step() would evaluate it
+    std::vector<double> row_sum;
+    safe_row_sums(model, state.x, row_sum);
+    for (size_t i = 0; i < n; ++i)
+      safe[i] = model.fixed[i] ? std::numeric_limits<double>::infinity()
+                               : safe_gamma(model.mass[i], dt, row_sum[i]);
+  }
   std::vector<std::int32_t> code(n);
   for (size_t i = 0; i < n; ++i) {
     disp[i] = state.x[i] - model.rest[i];
@@ -90,6 +101,7 @@ void write_vtu(std::ostream& out, const Model& model, const State& state, const 
   data_array(out, "Float64", "lower", 1, model.lower_bound);
   data_array(out, "Float64", "upper", 1, upper);
   data_array(out, "Float64", "effective_damping", 1, gamma);
+  data_array(out, "Float64", "safe", 1, safe);
   data_array(out, "Int32", "state", 1, code);
   out << "      </PointData>\n      <CellData>\n";
   data_array(out, "Float64", "stiffness", 1, kappa);
@@ -111,11 +123,11 @@ VtuSeries::VtuSeries(std::string dir) : dir_(std::move(dir)) {
   check_writable(dir_ + "/series.pvd");
 }
 
-void VtuSeries::add(const Model& model, const State& state, const StepWorkspace& ws) {
+void VtuSeries::add(const Model& model, const State& state, const StepWorkspace& ws, double dt) {
   char name[32];
   std::snprintf(name, sizeof name, "step_%06d.vtu", state.iteration);
   write_file_atomic(dir_ + "/" + name,
-                    [&](std::ostream& out) { write_vtu(out, model, state, ws); });
+                    [&](std::ostream& out) { write_vtu(out, model, state, ws, dt); });
   files_.emplace_back(state.time, name);
 }
 

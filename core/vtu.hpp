@@ -22,8 +22,10 @@ int state_code(NodeStatus s);
 /// unit / s^2) and strain (l - l0) / l0 (0 for a spring of rest length 0). Positions are the
 /// state's; bounds, damping and states are those `ws` holds: the ones of the step that led to
 /// this state (evaluated at the state before it), or for iteration 0 the lower bounds, upper
-/// = +inf, the user's gamma and within/fixed.
-void write_vtu(std::ostream& out, const Model& model, const State& state, const StepWorkspace& ws);
+/// = +inf, the user's gamma and within/fixed. safe = gamma_safe_i of SPEC 9 (mass unit / s;
+/// +inf for fixed nodes) at the same state, with the step `dt` (s).
+void write_vtu(std::ostream& out, const Model& model, const State& state, const StepWorkspace& ws,
+               double dt);
 
 /// A series in one folder: DIR/step_NNNNNN.vtu (the iteration) and DIR/series.pvd.
 class VtuSeries {
@@ -31,7 +33,7 @@ class VtuSeries {
   /// Creates `dir` when missing. Throws InputError naming it when it cannot be written.
   explicit VtuSeries(std::string dir);
   /// Writes the state as DIR/step_<iteration>.vtu and remembers its time for the .pvd.
-  void add(const Model& model, const State& state, const StepWorkspace& ws);
+  void add(const Model& model, const State& state, const StepWorkspace& ws, double dt);
   /// Writes DIR/series.pvd listing every file added so far (rewritten on each call).
   void write_collection() const;
   const std::string& dir() const { return dir_; }

@@ -17,7 +17,7 @@ py::array_t<int, py::array::c_style | py::array::forcecast> pairs_of(const py::h
 
 DampingPolicy policy_arg(const std::string& s) {
   const auto p = parse_policy(s);
-  if (!p) throw py::value_error("policy must be fixed, clamp, upper or lower, got '" + s + "'");
+  if (!p) throw py::value_error("policy must be fixed, clamp, upper, lower or safe, got '" + s + "'");
   return *p;
 }
 
@@ -57,6 +57,10 @@ void bind_monitor(py::module_& m) {
       .def_readonly("clamped", &MonitorReport::clamped, "nodes the policy changed")
       .def_readonly("first_violating", &MonitorReport::first_violating, "-1 when none")
       .def_readonly("first_unstabilisable", &MonitorReport::first_unstabilisable, "-1 when none")
+      .def_readonly("unguaranteed", &MonitorReport::unguaranteed,
+                    "nodes with gamma_lo > gamma_safe (SPEC 9; counted when x is given)")
+      .def_readonly("compressed_springs", &MonitorReport::compressed_springs,
+                    "springs shorter than their rest length at x: SPEC 9 guarantees nothing")
       .def_property_readonly("ok", &MonitorReport::ok, "no node violating or unstabilisable");
 
   py::class_<MonitorLimits>(m, "MonitorLimits", "SPEC 7's exact limits at a state.")
@@ -107,8 +111,8 @@ void bind_monitor(py::module_& m) {
           "check",
           [](const Monitor& mon, const py::handle& v, const py::handle& force,
              const py::handle& gamma, double dt, const std::string& policy, double factor,
-             const py::object& gamma_eff) {
-            py::array_t<double> kv, kf, kg;
+             const py::object& gamma_eff, const py::object& x) {
+            py::array_t<double> kv, kf, kg, kx;
             py::array_t<double> out = gamma_eff.is_none() ? py::array_t<double>(mon.node_count())
                                                           : gamma_eff.cast<py::array_t<double>>();
             if (out.ndim() != 1 || out.shape(0) != mon.node_count() || !out.writeable() ||
@@ -117,9 +121,15 @@ void bind_monitor(py::module_& m) {
             auto ge = node_scalars_out(out.mutable_data(), out.shape(0),
                                        out.strides(0) / static_cast<py::ssize_t>(sizeof(double)));
             try {
-              const MonitorReport r = mon.check(
-                  node_vectors_of(v, "v", kv), node_vectors_of(force, "force", kf),
-                  node_scalars_of(gamma, "gamma", kg), dt, policy_arg(policy), factor, &ge);
+              const MonitorReport r =
+                  x.is_none()
+                      ? mon.check(node_vectors_of(v, "v", kv), node_vectors_of(force, "force", kf),
+                                  node_scalars_of(gamma, "gamma", kg), dt, policy_arg(policy),
+                                  factor, &ge)
+                      : mon.check(node_vectors_of(x, "x", kx), node_vectors_of(v, "v", kv),
+                                  node_vectors_of(force, "force", kf),
+                                  node_scalars_of(gamma, "gamma", kg), dt, policy_arg(policy),
+                                  factor, &ge);
               return py::make_tuple(r, out);
             } catch (const std::invalid_argument& e) {
               throw py::value_error(e.what());
@@ -127,10 +137,28 @@ void bind_monitor(py::module_& m) {
           },
           py::arg("v"), py::arg("force"), py::arg("gamma"), py::arg("dt"),
           py::arg("policy") = "fixed", py::arg("factor") = 1.0, py::arg("gamma_eff") = py::none(),
+          py::arg("x") = py::none(),
           "The runtime check of one step: bounds from (v, force) at t and the effective damping "
           "of every free node under policy (SPEC 4). gamma (N,) the user's gamma_i (mass "
           "unit/s). Returns (MonitorReport, gamma_eff (N,)); gamma_eff is written in place when "
-          "given.")
+          "given. The 'safe' policy (SPEC 9) needs the positions x (N, 3) at t (cm); with x the "
+          "report also counts unguaranteed nodes and compressed springs.")
+      .def(
+          "safe_bounds",
+          [](const Monitor& mon, const py::handle& x, double dt) {
+            py::array_t<double> kx, out(mon.node_count());
+            try {
+              mon.safe_bounds(node_vectors_of(x, "x", kx), dt,
+                              node_scalars_out(out.mutable_data(), out.shape(0)));
+            } catch (const std::invalid_argument& e) {
+              throw py::value_error(e.what());
+            }
+            return out;
+          },
+          py::arg("x"), py::arg("dt"),
+          "(N,) SPEC 9 at positions x (N, 3) cm: gamma_safe_i = 2 m_i/dt - m_i dt R_i/2 (mass "
+          "unit/s; inf for fixed nodes). Damping below it at every node keeps the paper's step, "
+          "linearised at x, from growing.")
       .def(
           "internal_forces",
           [](const Monitor& mon, const py::handle& x) {

@@ -92,7 +92,9 @@ void GuiApp::map_panel() {
   for (size_t k = 0; k < key.size() && k < short_names.size(); ++k)
     key[k].label = short_names[k];
   for (size_t k = 0; k < r->lines.size() && k < spec.series.size(); ++k)
-    key.push_back({r->lines[k].kind == MapLineKind::paper ? "lower bound" : "exact limit",
+    key.push_back({r->lines[k].kind == MapLineKind::paper  ? "lower bound"
+                   : r->lines[k].kind == MapLineKind::safe ? "safe bound"
+                                                           : "exact limit",
                    spec.series[k].color});
   key.push_back({"current", IM_COL32(255, 255, 255, 255)});
   // In a short panel the key hides behind one line and shows on hover.

@@ -88,6 +88,11 @@ PlotSpec map_panel_plot(const MapPanel& p, int max_iterations, bool with_legend,
         ser.color = IM_COL32(31, 80, 200, 255);
         ser.thickness = 3.0f;
         break;
+      case MapLineKind::safe:  // SPEC 9's sufficient bound: inside the exact limit, green
+        ser.color = IM_COL32(20, 140, 60, 255);
+        ser.dashed = true;
+        ser.thickness = 2.5f;
+        break;
       case MapLineKind::dt_limit:
         ser.color = IM_COL32(148, 40, 180, 255);
         ser.dashed = true;

@@ -209,6 +209,7 @@ MapBoundConstants map_bound_constants(const SceneSpec& scene) {
   k.lower = worst;
   k.rate_ratio = uniform ? rate : kNaN;
   k.lambda_unit = uniform && std::isfinite(rate) ? unit_stiffness_eigenvalue(scene) : kNaN;
+  k.safe = unit_safe_bound(scene);
   return k;
 }
 
@@ -230,6 +231,17 @@ std::vector<MapLine> map_bound_lines(const MapBoundConstants& k, const Params& b
         "exact linear limit (SPEC 7)", MapLineKind::exact_linear,
         [&](const Params& p, MapParam v) { return solve_exact(k, p, v); }, base, view, x_edges,
         y_edges, samples));
+  if (!k.safe.row_sum.empty() && base.integrator == Integrator::semi_implicit_euler)
+    lines.push_back(boundary(
+        "safe bound, every node (SPEC 9)", MapLineKind::safe,
+        [&](const Params& p, MapParam v) {
+          const SafeAxis axis = v == MapParam::m       ? SafeAxis::m
+                                : v == MapParam::kappa ? SafeAxis::kappa
+                                : v == MapParam::gamma ? SafeAxis::gamma
+                                                       : SafeAxis::dt;
+          return safe_edge(k.safe, axis, p.m, p.kappa, p.gamma, p.dt);
+        },
+        base, view, x_edges, y_edges, samples));
   lines.erase(std::remove_if(lines.begin(), lines.end(),
                              [](const MapLine& l) { return l.x.size() < 2; }),
               lines.end());

@@ -133,3 +133,27 @@ def test_monitor_reproduces_a_sessions_bounds_bit_for_bit():
         assert report.violating == stats.violating
         assert report.unstabilisable == stats.unstabilisable
         assert report.clamped == stats.clamped
+
+
+def test_monitor_safe_policy_matches_the_sessions_step():
+    # SPEC 9 through the monitor with the positions at t: the same effective damping as the
+    # session's step() under policy safe, bit for bit, and an absurd gamma cut down to the bound.
+    scene = dampbound.paper_plane_scene(6)
+    p = scene.params
+    p.policy = "safe"
+    p.gamma = 1.0
+    session = dampbound.Session(scene, p)
+    a = scene.arrays(p)
+    mon = dampbound.Monitor(a["mass"], a["springs"], a["stiffness"], a["rest_length"],
+                            anchor_stiffness=a["anchor_stiffness"], rest=a["rest"])
+    for _ in range(4):
+        x, v = session.positions.copy(), session.velocities.copy()
+        f = mon.internal_forces(x)
+        safe = mon.safe_bounds(x, p.dt)
+        report, g = mon.check(v, f, a["gamma"], p.dt, policy="safe", x=x)
+        stats = session.step()
+        assert np.array_equal(g, session.gamma_eff)
+        assert np.all(g <= safe) and np.all(g < 1.0)
+        assert report.clamped == stats.clamped
+    with pytest.raises(ValueError, match="positions"):
+        mon.check(v, f, a["gamma"], p.dt, policy="safe")

@@ -53,6 +53,7 @@ def check_series(name, watched, every, last):
         assert math.isclose(float(d.get("timestep")), float(rows[k]["time"]) if k else 0.0)
         if k == 0:
             assert np.all(np.isinf(pd["upper"]))
+            assert np.all(np.isinf(pd["safe"][state == 4])) and np.all(np.isfinite(pd["safe"][state != 4]))
             continue
         r = rows[k]  # --trace's row of this iteration: the watched node and the maximum
         disp = np.linalg.norm(pd["displacement"], axis=1)
@@ -62,6 +63,8 @@ def check_series(name, watched, every, last):
         up = float(r["upper_bound"])
         assert math.isclose(pd["upper"][watched], up, rel_tol=1e-12) or (math.isinf(up) and np.isinf(pd["upper"][watched]))
         assert math.isclose(pd["effective_damping"][watched], float(r["gamma_effective"]), rel_tol=1e-12)
+        sb = float(r["safe_bound"])  # SPEC 9's gamma_safe of the watched node, as --trace has it
+        assert math.isclose(pd["safe"][watched], sb, rel_tol=1e-12) or (math.isinf(sb) and np.isinf(pd["safe"][watched]))
     return m, pd
 
 tissue, tpd = check_series("tissue", int(sys.argv[2]), 20, 60)

@@ -73,6 +73,47 @@ TEST(Monitor, MatchesStepBitForBitUnderClamp) {
   }
 }
 
+// SPEC 9 through the monitor: the safe bounds and the safe policy's damping equal step()'s,
+// bit for bit, on a run whose absurd damping the policy must cut down.
+TEST(Monitor, MatchesStepBitForBitUnderSafe) {
+  SceneSpec scene = paper_plane_scene(7);
+  Params p = scene.params;
+  p.policy = DampingPolicy::safe;
+  p.gamma = 1.0;
+  Session session(scene, p, scene.rules);
+  const UserArrays user(session.model());
+  const Monitor mon = user.monitor();
+  const Eigen::Index n = mon.node_count();
+  std::vector<double> safe(static_cast<size_t>(n)), g(safe.size());
+  int clamped_steps = 0;
+  for (int it = 0; it < 6; ++it) {
+    const State before = session.state();
+    Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> f(n, 3);
+    mon.internal_forces(node_vectors(before.x[0].data(), n), f);
+    mon.safe_bounds(node_vectors(before.x[0].data(), n), p.dt, node_scalars_out(safe.data(), n));
+    auto g_out = node_scalars_out(g.data(), n);
+    const MonitorReport r = mon.check(
+        node_vectors(before.x[0].data(), n), node_vectors(before.v[0].data(), n),
+        node_vectors(f.data(), n), node_scalars(user.gamma.data(), n), p.dt, p.policy, p.factor,
+        &g_out);
+    const StepStats st = session.step_once();
+    EXPECT_EQ(safe, session.workspace().safe_bound) << "step " << it;
+    EXPECT_EQ(g, session.workspace().gamma_eff) << "step " << it;
+    EXPECT_EQ(r.unguaranteed, st.unguaranteed);
+    EXPECT_EQ(r.compressed_springs, st.compressed_springs);
+    EXPECT_EQ(r.clamped, st.clamped);
+    clamped_steps += r.clamped > 0;
+  }
+  EXPECT_EQ(clamped_steps, 6);  // gamma = 1 is far above gamma_safe ~ 0.04: every step clamps
+  for (double v : g) EXPECT_LT(v, 0.05);
+  // Without positions the safe policy cannot be evaluated: refused, not guessed.
+  Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> zero =
+      Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>::Zero(n, 3);
+  EXPECT_THROW(mon.check(node_vectors(zero.data(), n), node_vectors(zero.data(), n),
+                         node_scalars(user.gamma.data(), n), p.dt, DampingPolicy::safe),
+               std::invalid_argument);
+}
+
 TEST(Monitor, UpperBoundIsEq6AndInfiniteAtRest) {
   const double mass[] = {2.0, 3.0}, k[] = {5.0}, l0[] = {1.0};
   const int pairs[] = {0, 1};
