@@ -19,6 +19,9 @@ for obj in "$@"; do
   # Functions other than the kernel's own (internal linkage: local symbols) and its factory.
   shared=$(nm -C --defined-only "$obj" | awk '$2 ~ /^[TWV]$/ {$1=$2=""; print substr($0,3)}' |
            grep -v '::kernel_[a-z0-9]*::make(' || true)
+  # In a native build (-march=native) the whole library is compiled for this CPU: nothing
+  # shared can be more portable than the rest, so only a portable build is checked for it.
+  [ "$native" = OFF ] || shared=""
   while IFS= read -r sym; do
     [ -n "$sym" ] || continue
     body=$(awk -v s="<$sym>:" 'index($0, s) {p=1; next} /^$/ {p=0} p' <<<"$dis")
