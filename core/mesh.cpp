@@ -16,23 +16,6 @@ Edge edge(int a, int b) {
   return {std::min(a, b), std::max(a, b)};
 }
 
-size_t corner_count(CellShape s) {
-  switch (s) {
-    case CellShape::point:
-      return 1;
-    case CellShape::line:
-      return 2;
-    case CellShape::triangle:
-      return 3;
-    case CellShape::quad:
-      return 4;
-    case CellShape::tetra:
-      return 4;
-    case CellShape::polygon:
-      return 0;  // any count >= 3
-  }
-  return 0;
-}
 
 /// Twice the vector area of a polygon (the sum of the cross products of a fan from corner 0).
 Vec3 vector_area2(const std::vector<Vec3>& p, const std::vector<int>& c) {
@@ -75,6 +58,24 @@ std::vector<Edge> cell_springs(const MeshCell& c) {
 }
 
 }  // namespace
+
+size_t corner_count(CellShape s) {
+  switch (s) {
+    case CellShape::point:
+      return 1;
+    case CellShape::line:
+      return 2;
+    case CellShape::triangle:
+      return 3;
+    case CellShape::quad:
+      return 4;
+    case CellShape::tetra:
+      return 4;
+    case CellShape::polygon:
+      return 0;  // any count >= 3
+  }
+  return 0;
+}
 
 int cell_dimension(CellShape shape) {
   switch (shape) {

@@ -3,6 +3,7 @@
 // turns it into a mass-spring model: a node per vertex, a spring per unique element edge, both
 // diagonals of each quad (shear), bending springs across the shared edges of a surface, and
 // optionally masses and stiffnesses derived from the geometry (docs/meshes.md).
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <map>
@@ -15,6 +16,10 @@ namespace dampbound {
 
 /// The element kinds the readers accept. Points and lines only ever tag nodes for regions.
 enum class CellShape : std::uint8_t { point, line, triangle, quad, polygon, tetra };
+
+/// Corners of a cell of this shape (point 1, line 2, triangle 3, quad and tetra 4); 0 for a
+/// polygon, which has any count >= 3.
+std::size_t corner_count(CellShape s);
 
 /// 0 for points, 1 for lines, 2 for triangles, quads and polygons, 3 for tetrahedra.
 int cell_dimension(CellShape shape);

@@ -42,18 +42,6 @@ CellShape gmsh_shape(MeshScan& s, long long type, long long where) {
                        ": only points, lines, triangles, quadrangles and tetrahedra are read");
 }
 
-int corner_count(CellShape shape) {
-  switch (shape) {
-    case CellShape::point:
-      return 1;
-    case CellShape::line:
-      return 2;
-    case CellShape::triangle:
-      return 3;
-    default:
-      return 4;
-  }
-}
 
 class MshReader {
  public:
@@ -246,7 +234,7 @@ class MshReader {
           if (t == 0) region = v;
         }
         std::vector<long long> nodes;
-        for (int c = 0; c < corner_count(shape); ++c) nodes.push_back(s_.integer("a node tag"));
+        for (int c = 0; c < static_cast<int>(corner_count(shape)); ++c) nodes.push_back(s_.integer("a node tag"));
         add_cell(shape, nodes, region, at);
         ++k;
         continue;
@@ -266,7 +254,7 @@ class MshReader {
           if (t == 0) region = v;
         }
         std::vector<long long> nodes;
-        for (int c = 0; c < corner_count(shape); ++c)
+        for (int c = 0; c < static_cast<int>(corner_count(shape)); ++c)
           nodes.push_back(s_.binary<std::int32_t>("a node tag"));
         add_cell(shape, nodes, region, w);
       }
@@ -295,7 +283,7 @@ class MshReader {
         const long long w = s_.mark();
         tag("an element tag");
         std::vector<long long> nodes;
-        for (int c = 0; c < corner_count(shape); ++c) nodes.push_back(tag("a node tag"));
+        for (int c = 0; c < static_cast<int>(corner_count(shape)); ++c) nodes.push_back(tag("a node tag"));
         add_cell(shape, nodes, region, w);
       }
     }
