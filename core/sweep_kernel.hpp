@@ -116,12 +116,14 @@ class BatchKernel {
 /// memory and lets the CPU overlap their square roots and divisions.
 std::vector<int> spring_schedule(const Model& model);
 
-/// Convenience for tests and small sweeps: runs `trials` with the batched kernel on one
-/// thread and returns their results in order.
+/// Runs `trials` with the batched kernel on one thread and returns their results in order
+/// (tests, small sweeps, the tuner's map). When `cancel` becomes true it returns {} at the
+/// next step.
 std::vector<TrialResult> run_batched(const SceneSpec& scene, DampingPolicy policy,
                                      const StopRules& rules,
                                      const std::vector<TrialParams>& trials,
-                                     KernelIsa isa = KernelIsa::best);
+                                     KernelIsa isa = KernelIsa::best,
+                                     const std::atomic<bool>* cancel = nullptr);
 
 /// The reference: each trial through Session::step_once (the one step() of core). When
 /// `cancel` becomes true it returns at the next step with outcome `running`.

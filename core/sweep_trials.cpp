@@ -93,7 +93,8 @@ std::vector<int> spring_schedule(const Model& model) {
 
 std::vector<TrialResult> run_batched(const SceneSpec& scene, DampingPolicy policy,
                                      const StopRules& rules,
-                                     const std::vector<TrialParams>& trials, KernelIsa isa) {
+                                     const std::vector<TrialParams>& trials, KernelIsa isa,
+                                     const std::atomic<bool>* cancel) {
   std::vector<TrialResult> out(trials.size());
   BatchKernel kernel(scene, policy, rules, isa);
   std::size_t next = 0;
@@ -104,7 +105,8 @@ std::vector<TrialResult> run_batched(const SceneSpec& scene, DampingPolicy polic
         p = trials[next++];
         return true;
       },
-      [&](std::size_t id, const TrialResult& r) { out[id] = r; });
+      [&](std::size_t id, const TrialResult& r) { out[id] = r; }, cancel);
+  if (cancel != nullptr && cancel->load()) return {};
   return out;
 }
 

@@ -171,19 +171,7 @@ std::vector<TrialResult> run_map_trials(const SceneSpec& scene, const Params& ba
                                         const std::atomic<bool>* cancel) {
   SceneSpec s = scene;
   s.params = base;  // the kernel takes the integrator from the scene's parameters
-  BatchKernel kernel(s, base.policy, rules);
-  std::vector<TrialResult> out(trials.size());
-  std::size_t next = 0;
-  kernel.run(
-      [&](std::size_t& id, TrialParams& p) {
-        if (next >= trials.size()) return false;
-        id = next;
-        p = trials[next++];
-        return true;
-      },
-      [&](std::size_t id, const TrialResult& r) { out[id] = r; }, cancel);
-  if (cancel != nullptr && cancel->load()) return {};
-  return out;
+  return run_batched(s, base.policy, rules, trials, KernelIsa::best, cancel);
 }
 
 MapBoundConstants map_bound_constants(const SceneSpec& scene) {
