@@ -8,7 +8,7 @@
 #include <map>
 #include <sstream>
 
-#include "core/io.hpp"
+#include "core/io/files.hpp"
 
 namespace dampbound::ui {
 

@@ -6,7 +6,8 @@
 #include <limits>
 #include <stdexcept>
 
-#include "core/sweep_summary.hpp"
+#include "core/sweep/summary.hpp"
+#include "core/sweep/trials.hpp"
 
 namespace dampbound::ui {
 

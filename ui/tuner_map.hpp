@@ -1,7 +1,7 @@
 #pragma once
 // The tuner's stability map (GL-free): the outcome of the scene's protocol over a 2-D log
 // window around the current parameters, any two of m, kappa, gamma, dt, computed with the
-// batched sweep kernel (core/sweep_kernel.hpp) on a worker thread, coarse to fine, with the
+// batched sweep kernel (core/sweep/kernel.hpp) on a worker thread, coarse to fine, with the
 // paper's lower bound (eq. 5) and the exact linear limit (SPEC 7) as lines. The window's Map
 // tab draws it with ui/map_plot.hpp like `dampbound map`; tests/ui/tuner_map_test.cpp
 // compares its cells with `sweep`.
@@ -13,9 +13,9 @@
 #include <thread>
 #include <vector>
 
-#include "core/safe_sweep.hpp"
-#include "core/sweep_kernel.hpp"
-#include "core/sweep_map.hpp"
+#include "core/sweep/safe_edge.hpp"
+#include "core/sweep/kernel.hpp"
+#include "core/sweep/map.hpp"
 
 namespace dampbound::ui {
 

@@ -6,8 +6,8 @@
 #include <sstream>
 
 #include "core/error.hpp"
-#include "core/expect.hpp"
-#include "core/io.hpp"
+#include "core/analysis/expect.hpp"
+#include "core/io/files.hpp"
 
 namespace dampbound::ui {
 

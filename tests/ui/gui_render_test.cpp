@@ -10,7 +10,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "core/expect.hpp"
+#include "core/analysis/expect.hpp"
 #include "core/scene.hpp"
 #include "ui/egl_host.hpp"
 #include "ui/gui_app.hpp"
@@ -19,6 +19,7 @@
 #include "ui/settings.hpp"
 #include "ui/mesh_style.hpp"
 #include "ui/tuner_plots.hpp"
+#include "core/io/scene_file.hpp"
 
 namespace dampbound::ui {
 namespace {

@@ -12,9 +12,10 @@
 #include <utility>
 
 #include "core/bounds.hpp"
-#include "core/sweep_runner.hpp"
-#include "core/sweep_summary.hpp"
+#include "core/sweep/runner.hpp"
+#include "core/sweep/summary.hpp"
 #include "ui/tuner.hpp"
+#include "core/io/scene_file.hpp"
 
 namespace dampbound::ui {
 namespace {

@@ -11,6 +11,7 @@
 #include "core/bounds.hpp"
 #include "core/scene.hpp"
 #include "ui/mesh_pick.hpp"
+#include "core/io/scene_file.hpp"
 
 namespace dampbound::ui {
 namespace {
