@@ -12,7 +12,7 @@
 #include "core/bounds.hpp"
 #include "core/analysis/criteria.hpp"
 #include "core/error.hpp"
-#include "core/io/files.hpp"
+#include "core/io/format.hpp"
 #include "core/safe_bound.hpp"
 #include "core/session.hpp"
 
@@ -50,7 +50,7 @@ Vec3 parse_vec3(const std::string& text, const char* flag) {
 void print_criteria(const std::vector<CriterionResult>& criteria) {
   std::printf("\n%-44s %-24s %-7s %s\n", "criterion", "value", "verdict", "test");
   for (const CriterionResult& c : criteria) {
-    const std::string value = format_short(c.value) + (c.unit.empty() ? "" : " " + c.unit);
+    const std::string value = format_digits(c.value, 8) + (c.unit.empty() ? "" : " " + c.unit);
     std::printf("%-44s %-24s %-7s %s\n", c.name.c_str(), value.c_str(), to_string(c.verdict),
                 c.test.c_str());
     std::printf("    %s  [%s]\n", c.formula.c_str(), c.source.c_str());

@@ -12,6 +12,7 @@
 #include "core/error.hpp"
 #include "core/analysis/expect.hpp"
 #include "core/io/files.hpp"
+#include "core/io/format.hpp"
 #include "core/io/scene_file.hpp"
 
 namespace dampbound::app {

@@ -5,6 +5,7 @@
 #include "app/commands.hpp"
 #include "app/options.hpp"
 #include "core/io/files.hpp"
+#include "core/io/format.hpp"
 #include "core/io/report.hpp"
 #include "core/session.hpp"
 #include "core/io/vtu.hpp"

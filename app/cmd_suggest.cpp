@@ -9,6 +9,7 @@
 #include "app/options.hpp"
 #include "core/io/report.hpp"
 #include "core/analysis/suggest.hpp"
+#include "core/io/format.hpp"
 
 namespace dampbound::app {
 namespace {
@@ -22,8 +23,6 @@ struct SuggestArgs {
               *integrator_opt = nullptr, *max_iter_opt = nullptr;
 };
 
-std::string num(double x) { return format_short(x); }
-
 void print_runs(const std::vector<VerifiedRun>& runs) {
   if (runs.empty()) return;
   std::printf(
@@ -31,33 +30,33 @@ void print_runs(const std::vector<VerifiedRun>& runs) {
       "verified only where the run settles)\n");
   for (const VerifiedRun& r : runs)
     std::printf("  %-34s gamma=%-12s dt=%-12s %s: %s (max |x-X| %s cm)\n", r.label.c_str(),
-                num(r.params.gamma).c_str(), num(r.params.dt).c_str(),
+                format_digits(r.params.gamma, 8).c_str(), format_digits(r.params.dt, 8).c_str(),
                 r.verified() ? "verified" : "NOT verified",
-                verdict_text(r.result, r.rules).c_str(), num(r.result.max_displacement).c_str());
+                verdict_text(r.result, r.rules).c_str(), format_digits(r.result.max_displacement, 8).c_str());
 }
 
 int print_damping(const DampingSuggestion& s) {
   std::printf("damping range at dt = %s s (the user's gamma; gamma_i = gamma * gamma_scale_i)\n",
-              num(s.dt).c_str());
-  std::printf("  gamma_min  %-14s set by %s\n", num(s.gamma_min).c_str(), s.min_by.c_str());
-  std::printf("  gamma_max  %-14s set by %s (exclusive)\n", num(s.gamma_max).c_str(),
+              format_digits(s.dt, 8).c_str());
+  std::printf("  gamma_min  %-14s set by %s\n", format_digits(s.gamma_min, 8).c_str(), s.min_by.c_str());
+  std::printf("  gamma_max  %-14s set by %s (exclusive)\n", format_digits(s.gamma_max, 8).c_str(),
               s.max_by.c_str());
   std::printf("  safe (SPEC 9) gamma < %-10s guarantees stability at every node (at rest)\n",
-              num(s.safe_max).c_str());
+              format_digits(s.safe_max, 8).c_str());
   std::printf("  per node class (m_i, kappa_i = max incident stiffness, gamma_scale_i):\n");
   for (const NodeClass& c : s.classes) {
     std::printf("    %5d nodes like %-5d m_i=%-10s kappa_i=%-10s scale=%-6s eq.5 %-12s gamma_i in [%s, %s)\n",
-                c.count, c.example, num(c.mass).c_str(), num(c.kappa).c_str(),
-                num(c.gamma_scale).c_str(), num(c.lower_bound).c_str(), num(c.gamma_min).c_str(),
-                num(c.gamma_max).c_str());
+                c.count, c.example, format_digits(c.mass, 8).c_str(), format_digits(c.kappa, 8).c_str(),
+                format_digits(c.gamma_scale, 8).c_str(), format_digits(c.lower_bound, 8).c_str(), format_digits(c.gamma_min, 8).c_str(),
+                format_digits(c.gamma_max, 8).c_str());
     if (c.lower_bound < c.safe_max)
       std::printf("          safe (SPEC 9): gamma_i in [%s, %s); critical damping guaranteed "
                   "for dt < %s s\n",
-                  num(c.lower_bound).c_str(), num(c.safe_max).c_str(), num(c.dt_safe).c_str());
+                  format_digits(c.lower_bound, 8).c_str(), format_digits(c.safe_max, 8).c_str(), format_digits(c.dt_safe, 8).c_str());
     else
       std::printf("          safe (SPEC 9): gamma_safe_i %s < eq.5: critical damping cannot be "
                   "guaranteed at this dt; it is for dt < %s s\n",
-                  num(c.safe_max).c_str(), num(c.dt_safe).c_str());
+                  format_digits(c.safe_max, 8).c_str(), format_digits(c.dt_safe, 8).c_str());
   }
   std::printf("  dt-only criteria at this dt:");
   for (const CriterionResult& c : s.dt_only) std::printf(" %s %s;", c.name.c_str(), to_string(c.verdict));
@@ -65,22 +64,22 @@ int print_damping(const DampingSuggestion& s) {
   if (s.empty) {
     std::printf("no damping satisfies every criterion at this dt (gamma_min >= gamma_max)\n");
     std::printf("largest stable dt at gamma_min: %s s (try suggest --gamma %s)\n",
-                num(s.dt_max_at_gamma_min).c_str(), num(s.gamma_min).c_str());
+                format_digits(s.dt_max_at_gamma_min, 8).c_str(), format_digits(s.gamma_min, 8).c_str());
     return 1;
   }
   if (!s.dt_accepted) std::printf("warning: a dt-only criterion rejects this dt whatever the damping\n");
-  std::printf("fastest settling gamma  %s  (%s%s)\n", num(s.gamma_best).c_str(),
-              s.best_method.c_str(), std::isnan(s.best_rho) ? "" : ("; rho = " + num(s.best_rho)).c_str());
+  std::printf("fastest settling gamma  %s  (%s%s)\n", format_digits(s.gamma_best, 8).c_str(),
+              s.best_method.c_str(), std::isnan(s.best_rho) ? "" : ("; rho = " + format_digits(s.best_rho, 8)).c_str());
   print_runs(s.runs);
   return 0;
 }
 
 int print_step(const StepSuggestion& s) {
-  std::printf("largest stable dt at gamma = %s\n", num(s.gamma).c_str());
-  std::printf("  exact limit   dt < %s s (%s)\n", num(s.dt_exact).c_str(), to_string(s.exact.method));
-  std::printf("  all criteria  dt <= %s s, set by %s\n", num(s.dt_all).c_str(), s.dt_all_by.c_str());
+  std::printf("largest stable dt at gamma = %s\n", format_digits(s.gamma, 8).c_str());
+  std::printf("  exact limit   dt < %s s (%s)\n", format_digits(s.dt_exact, 8).c_str(), to_string(s.exact.method));
+  std::printf("  all criteria  dt <= %s s, set by %s\n", format_digits(s.dt_all, 8).c_str(), s.dt_all_by.c_str());
   std::printf("  safe (SPEC 9) dt < %s s guarantees stability at every node (node %d sets it)\n",
-              num(s.dt_safe).c_str(), s.dt_safe_node);
+              format_digits(s.dt_safe, 8).c_str(), s.dt_safe_node);
   print_runs(s.runs);
   return 0;
 }
@@ -100,7 +99,7 @@ int run(const SuggestArgs& a) {
   std::printf("scene        %s (%d nodes, %d springs)\n", name.c_str(), scene.model.node_count(),
               scene.model.spring_count());
   std::printf("parameters   m=%s kappa=%s dt=%s s integrator=%s max_iterations=%d\n",
-              num(p.m).c_str(), num(p.kappa).c_str(), num(p.dt).c_str(), to_string(p.integrator),
+              format_digits(p.m, 8).c_str(), format_digits(p.kappa, 8).c_str(), format_digits(p.dt, 8).c_str(), to_string(p.integrator),
               rules.max_iterations);
   SuggestOptions options;
   options.verify = !a.no_verify;

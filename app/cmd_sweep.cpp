@@ -15,6 +15,7 @@
 #include "app/options.hpp"
 #include "core/error.hpp"
 #include "core/io/files.hpp"
+#include "core/io/format.hpp"
 #include "core/sweep/safe_edge.hpp"
 #include "core/sweep/map.hpp"
 #include "core/sweep/progress.hpp"

@@ -10,6 +10,7 @@
 #include "app/options.hpp"
 #include "core/error.hpp"
 #include "core/io/files.hpp"
+#include "core/io/format.hpp"
 #include "core/io/scene_write.hpp"
 
 #if defined(DAMPBOUND_HAVE_GLFW)

@@ -10,6 +10,7 @@
 #include "app/options.hpp"
 #include "core/error.hpp"
 #include "core/io/files.hpp"
+#include "core/io/format.hpp"
 #include "core/sweep/map.hpp"
 #include "core/sweep/summary.hpp"
 #include "ui/egl_host.hpp"

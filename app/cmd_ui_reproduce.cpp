@@ -18,6 +18,7 @@
 #include "core/analysis/claims.hpp"
 #include "core/error.hpp"
 #include "core/io/files.hpp"
+#include "core/io/format.hpp"
 #include "core/sweep/safe_edge.hpp"
 #include "core/sweep/map.hpp"
 #include "core/sweep/progress.hpp"

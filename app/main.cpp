@@ -5,7 +5,7 @@
 
 #include "app/commands.hpp"
 #include "core/error.hpp"
-#include "core/io/files.hpp"
+#include "core/io/format.hpp"
 #include "core/io/scene_text.hpp"
 #include "core/sweep/kernel.hpp"
 #include "dampbound/version.hpp"

@@ -11,7 +11,7 @@
 #include <filesystem>
 
 #include "core/error.hpp"
-#include "core/io/files.hpp"
+#include "core/io/format.hpp"
 #include "core/io/scene_file.hpp"
 
 #ifndef DAMPBOUND_SOURCE_DIR

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "core/io/files.hpp"
+#include "core/io/format.hpp"
 
 namespace dampbound::ui {
 

@@ -1,6 +1,6 @@
 #include "ui/trace_plots.hpp"
 
-#include "core/io/files.hpp"
+#include "core/io/format.hpp"
 #include "core/io/report.hpp"
 
 namespace dampbound::ui {

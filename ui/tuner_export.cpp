@@ -5,6 +5,7 @@
 
 #include "core/error.hpp"
 #include "core/io/files.hpp"
+#include "core/io/format.hpp"
 #include "core/io/report.hpp"
 #include "core/io/vtu.hpp"
 

@@ -4,7 +4,6 @@
 #include <cstdio>
 #include <ostream>
 
-#include "core/io/files.hpp"
 #include "core/io/report.hpp"
 #include "core/session.hpp"
 

@@ -9,14 +9,13 @@
 
 #include "core/bounds.hpp"
 #include "core/forces.hpp"
+#include "core/io/format.hpp"
 
 namespace dampbound {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kInf = std::numeric_limits<double>::infinity();
-
-std::string num(double x) { return format_short(x); }
 
 CriterionResult criterion(std::string name, std::string source, std::string formula) {
   CriterionResult c;
@@ -29,14 +28,6 @@ CriterionResult criterion(std::string name, std::string source, std::string form
 CriterionVerdict verdict_of(bool ok) { return ok ? CriterionVerdict::within : CriterionVerdict::beyond; }
 
 }  // namespace
-
-std::string format_short(double x) {
-  if (std::isnan(x)) return "n/a";
-  if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.8g", x);
-  return buf;
-}
 
 const char* to_string(CriterionVerdict v) {
   switch (v) {
@@ -82,8 +73,8 @@ std::vector<CriterionResult> classic_criteria(const Model& model, const Params& 
     c.unit = "mass unit/s^2";
     c.value = n ? delingette_critical_stiffness(m_total, n, dt) : kInf;
     c.verdict = verdict_of(kappa_max < c.value);
-    c.test = "kappa_max = " + num(kappa_max) + (kappa_max < c.value ? " < " : " >= ") +
-             "k_c = " + num(c.value) + " (n = " + std::to_string(n) + " free nodes)";
+    c.test = "kappa_max = " + format_digits(kappa_max, 8) + (kappa_max < c.value ? " < " : " >= ") +
+             "k_c = " + format_digits(c.value, 8) + " (n = " + std::to_string(n) + " free nodes)";
     out.push_back(c);
   }
   const std::vector<double> K = combined_stiffness(model);
@@ -105,11 +96,11 @@ std::vector<CriterionResult> classic_criteria(const Model& model, const Params& 
     if (tk < ka.value) ka.value = tk, ka.node = static_cast<int>(i);
   }
   provot.verdict = verdict_of(dt < provot.value);
-  provot.test = "dt = " + num(dt) + (dt < provot.value ? " < " : " >= ") + "T0 = " +
-                num(provot.value) + " (worst node " + std::to_string(provot.node) + ")";
+  provot.test = "dt = " + format_digits(dt, 8) + (dt < provot.value ? " < " : " >= ") + "T0 = " +
+                format_digits(provot.value, 8) + " (worst node " + std::to_string(provot.node) + ")";
   ka.verdict = verdict_of(dt <= ka.value);
-  ka.test = "dt = " + num(dt) + (dt <= ka.value ? " <= " : " > ") + "2 sqrt(m/K) = " +
-            num(ka.value) + " (worst node " + std::to_string(ka.node) + ")";
+  ka.test = "dt = " + format_digits(dt, 8) + (dt <= ka.value ? " <= " : " > ") + "2 sqrt(m/K) = " +
+            format_digits(ka.value, 8) + " (worst node " + std::to_string(ka.node) + ")";
   out.push_back(provot);
   out.push_back(ka);
   return out;
@@ -131,8 +122,8 @@ std::vector<CriterionResult> paper_criteria(const Model& model, const State& sta
     const auto w = static_cast<size_t>(lo.node);
     lo.value = model.lower_bound[w];
     lo.verdict = verdict_of(model.gamma[w] >= lo.value);
-    lo.test = "gamma_i = " + num(model.gamma[w]) + (model.gamma[w] >= lo.value ? " >= " : " < ") +
-              "gamma_lo = " + num(lo.value) + " (worst node " + std::to_string(lo.node) + ")";
+    lo.test = "gamma_i = " + format_digits(model.gamma[w], 8) + (model.gamma[w] >= lo.value ? " >= " : " < ") +
+              "gamma_lo = " + format_digits(lo.value, 8) + " (worst node " + std::to_string(lo.node) + ")";
   }
   out.push_back(lo);
 
@@ -165,8 +156,8 @@ std::vector<CriterionResult> paper_criteria(const Model& model, const State& sta
   } else {
     const double g = model.gamma[static_cast<size_t>(hi.node)];
     hi.verdict = verdict_of(g <= hi.value);
-    hi.test = "gamma_i = " + num(g) + (g <= hi.value ? " <= " : " > ") + "gamma_hi = " +
-              num(hi.value) + " (worst node " + std::to_string(hi.node) + ")";
+    hi.test = "gamma_i = " + format_digits(g, 8) + (g <= hi.value ? " <= " : " > ") + "gamma_hi = " +
+              format_digits(hi.value, 8) + " (worst node " + std::to_string(hi.node) + ")";
     // Eq. 6 comes from the Euler velocity update v' = v + a dt, which the paper's step and
     // forward Euler share; for the other integrators it is shown for reference only.
     if (params.integrator != Integrator::semi_implicit_euler &&
@@ -188,14 +179,14 @@ std::vector<CriterionResult> exact_criteria(const ExactStability& e, const Param
   CriterionResult lm = criterion("exact lambda_max of M^-1 K",
                      "SPEC 7, 9 (tangent stiffness; Gershgorin, shift-and-invert, Cholesky)",
                      "largest eigenvalue of M^-1/2 K M^-1/2 at the state; lambda_min = " +
-                         num(e.spectrum.lambda_min));
+                         format_digits(e.spectrum.lambda_min, 8));
   lm.unit = "1/s^2";
   lm.value = e.spectrum.lambda_max;
   lm.verdict = CriterionVerdict::not_applicable;
   char interval[80];  // 12 digits: the interval is ~1e-10 wide
   std::snprintf(interval, sizeof interval, "[%.12g, %.12g]", e.lambda_max_lo, e.spectrum.lambda_max);
   lm.test = "a quantity, not a test; certified in " + std::string(interval) + "; dt^2 lambda_max = " +
-            num(params.dt * params.dt * e.spectrum.lambda_max);
+            format_digits(params.dt * params.dt * e.spectrum.lambda_max, 8);
   out.push_back(lm);
 
   CriterionResult rho = criterion("exact spectral radius (" + integ + ")", "SPEC 7",
@@ -203,12 +194,12 @@ std::vector<CriterionResult> exact_criteria(const ExactStability& e, const Param
   rho.value = e.spectral_radius;
   rho.verdict = verdict_of(e.stable);
   if (e.method == ExactMethod::symmetric_index)
-    rho.test = "index lambda_max(dt^2 A + 2 dt C) = " + num(e.index) + (e.index < 4 ? " < 4" : " >= 4") +
-               (std::isnan(e.spectral_radius) ? "" : ", rho = " + num(e.spectral_radius));
+    rho.test = "index lambda_max(dt^2 A + 2 dt C) = " + format_digits(e.index, 8) + (e.index < 4 ? " < 4" : " >= 4") +
+               (std::isnan(e.spectral_radius) ? "" : ", rho = " + format_digits(e.spectral_radius, 8));
   else if (std::isnan(e.spectral_radius))
     rho.test = e.stable ? "stable for every dt and gamma" : "unstable";
   else
-    rho.test = "rho = " + num(e.spectral_radius) + (e.stable ? " <= 1" : " > 1") +
+    rho.test = "rho = " + format_digits(e.spectral_radius, 8) + (e.stable ? " <= 1" : " > 1") +
                (e.radius_converged ? "" : " (estimate: Arnoldi did not converge)") +
                (e.stable && e.spectral_radius >= 1 - 1e-12 ? " (marginal: no decay)" : "") +
                (e.zero_modes ? " (zero modes, lambda = 0, excluded: z = 1 for any gamma, dt)" : "");
@@ -220,8 +211,8 @@ std::vector<CriterionResult> exact_criteria(const ExactStability& e, const Param
   gi.value = e.gamma_hi;
   const bool inside = params.gamma >= e.gamma_lo && params.gamma < e.gamma_hi;
   gi.verdict = verdict_of(inside);
-  gi.test = "gamma = " + num(params.gamma) + (inside ? " in " : " not in ") + "[" +
-            num(e.gamma_lo) + ", " + num(e.gamma_hi) + ")" +
+  gi.test = "gamma = " + format_digits(params.gamma, 8) + (inside ? " in " : " not in ") + "[" +
+            format_digits(e.gamma_lo, 8) + ", " + format_digits(e.gamma_hi, 8) + ")" +
             (e.method == ExactMethod::frozen_estimate ? " (frozen-rate estimate)" : "");
   out.push_back(gi);
 
@@ -230,8 +221,8 @@ std::vector<CriterionResult> exact_criteria(const ExactStability& e, const Param
   dm.unit = "s";
   dm.value = e.dt_max;
   dm.verdict = verdict_of(params.dt <= e.dt_max);
-  dm.test = "dt = " + num(params.dt) + (params.dt <= e.dt_max ? " <= " : " > ") + "dt_max = " +
-            num(e.dt_max) + (e.method == ExactMethod::frozen_estimate ? " (frozen-rate estimate)" : "");
+  dm.test = "dt = " + format_digits(params.dt, 8) + (params.dt <= e.dt_max ? " <= " : " > ") + "dt_max = " +
+            format_digits(e.dt_max, 8) + (e.method == ExactMethod::frozen_estimate ? " (frozen-rate estimate)" : "");
   out.push_back(dm);
   return out;
 }

@@ -19,9 +19,6 @@ enum class CriterionVerdict {
 
 const char* to_string(CriterionVerdict v);
 
-/// 8 significant digits; "inf", "-inf", and "n/a" for NaN (what the criteria tables print).
-std::string format_short(double x);
-
 /// One criterion evaluated: its quantity, what it is compared with, and the verdict.
 struct CriterionResult {
   std::string name;     ///< e.g. "Provot natural period"

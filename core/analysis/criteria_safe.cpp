@@ -7,11 +7,10 @@
 
 #include "core/analysis/criteria.hpp"
 #include "core/safe_bound.hpp"
+#include "core/io/format.hpp"
 
 namespace dampbound {
 namespace {
-
-std::string num(double x) { return format_short(x); }
 
 CriterionVerdict verdict_of(bool ok) {
   return ok ? CriterionVerdict::within : CriterionVerdict::beyond;
@@ -22,7 +21,7 @@ std::string ratio_text(double safe, double exact, const ExactStability* e) {
   if (!e || e->integrator != Integrator::semi_implicit_euler || !std::isfinite(exact) ||
       exact == 0)
     return "";
-  return "; " + num(safe / exact) + " of the exact limit " + num(exact);
+  return "; " + format_digits(safe / exact, 8) + " of the exact limit " + format_digits(exact, 8);
 }
 
 }  // namespace
@@ -55,8 +54,8 @@ std::vector<CriterionResult> safe_criteria(const Model& model, const State& stat
     if (!model.fixed[i]) over += !(model.gamma[i] < safe_gamma(model.mass[i], params.dt, R[i]));
   g.verdict = s.compressed_springs > 0 ? unknown : verdict_of(over == 0);
   g.test = std::to_string(over) + " of " + std::to_string(s.free_nodes) +
-           " nodes with gamma_i >= gamma_safe_i; smallest gamma_safe " + num(s.gamma_safe) +
-           " at node " + std::to_string(s.gamma_node) + " (R = " + num(s.row_sum) + ")" +
+           " nodes with gamma_i >= gamma_safe_i; smallest gamma_safe " + format_digits(s.gamma_safe, 8) +
+           " at node " + std::to_string(s.gamma_node) + " (R = " + format_digits(s.row_sum, 8) + ")" +
            ratio_text(s.gamma_safe, exact ? exact->gamma_hi : NAN, exact) + caveat;
   out.push_back(g);
 
@@ -68,8 +67,8 @@ std::vector<CriterionResult> safe_criteria(const Model& model, const State& stat
   d.value = s.dt_safe;
   d.node = s.dt_node;
   d.verdict = s.compressed_springs > 0 ? unknown : verdict_of(params.dt < s.dt_safe);
-  d.test = "dt = " + num(params.dt) + (params.dt < s.dt_safe ? " < " : " >= ") + "dt_safe = " +
-           num(s.dt_safe) + " (node " + std::to_string(s.dt_node) + ")" +
+  d.test = "dt = " + format_digits(params.dt, 8) + (params.dt < s.dt_safe ? " < " : " >= ") + "dt_safe = " +
+           format_digits(s.dt_safe, 8) + " (node " + std::to_string(s.dt_node) + ")" +
            ratio_text(s.dt_safe, exact ? exact->dt_max : NAN, exact) + caveat;
   out.push_back(d);
 
@@ -88,8 +87,8 @@ std::vector<CriterionResult> safe_criteria(const Model& model, const State& stat
     for (double h : s.infeasible_dt) dt_min = std::min(dt_min, h);
     c.test = std::to_string(s.infeasible.size()) + " of " + std::to_string(s.free_nodes) +
              " nodes with gamma_lo > gamma_safe (first: node " + std::to_string(c.node) +
-             ", feasible at dt < " + num(s.infeasible_dt.front()) + "); all at dt < " +
-             num(dt_min);
+             ", feasible at dt < " + format_digits(s.infeasible_dt.front(), 8) + "); all at dt < " +
+             format_digits(dt_min, 8);
   }
   out.push_back(c);
   return out;

@@ -3,7 +3,7 @@
 #include <map>
 #include <utility>
 
-#include "core/io/files.hpp"
+#include "core/io/format.hpp"
 #include "core/io/report.hpp"
 #include "core/session.hpp"
 

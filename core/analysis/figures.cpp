@@ -2,7 +2,7 @@
 
 #include <ostream>
 
-#include "core/io/files.hpp"
+#include "core/io/format.hpp"
 #include "core/io/report.hpp"
 #include "core/session.hpp"
 

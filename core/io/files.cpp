@@ -250,57 +250,5 @@ std::string read_file_text(const std::string& path, std::uint64_t max_bytes) {
   return text;
 }
 
-std::string printable(std::string_view text) {
-  std::string out;
-  out.reserve(text.size());
-  for (char c : text) {
-    const auto u = static_cast<unsigned char>(c);
-    if (u < 0x20 || u == 0x7f) {
-      char buf[8];
-      std::snprintf(buf, sizeof buf, "\\x%02x", u);
-      out += buf;
-    } else {
-      out += c;
-    }
-  }
-  return out;
-}
-
-std::string format_number(double x) {
-  if (std::isnan(x) || (std::isinf(x) && x > 0)) return "inf";
-  if (std::isinf(x)) return "-inf";
-  // The shortest of %.15g..%.17g that reads back as the same double.
-  char buf[32];
-  for (int digits = 15; digits <= 17; ++digits) {
-    std::snprintf(buf, sizeof buf, "%.*g", digits, x);
-    if (std::strtod(buf, nullptr) == x) break;
-  }
-  return buf;
-}
-
-std::string json_number(double x) { return std::isfinite(x) ? format_number(x) : "null"; }
-
-std::string json_string(const std::string& s) {
-  std::ostringstream os;
-  os << '"';
-  for (char c : s) {
-    switch (c) {
-      case '"': os << "\\\""; break;
-      case '\\': os << "\\\\"; break;
-      case '\n': os << "\\n"; break;
-      case '\t': os << "\\t"; break;
-      default:
-        if (static_cast<unsigned char>(c) < 0x20) {
-          char buf[8];
-          std::snprintf(buf, sizeof buf, "\\u%04x", c);
-          os << buf;
-        } else {
-          os << c;
-        }
-    }
-  }
-  os << '"';
-  return os.str();
-}
 
 }  // namespace dampbound

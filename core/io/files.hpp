@@ -64,16 +64,4 @@ void check_regular_input(const std::string& path);
 /// than `max_bytes`, or cannot be read.
 std::string read_file_text(const std::string& path, std::uint64_t max_bytes = kMaxInputBytes);
 
-/// TEXT with control characters (newline, escape, ...) shown as \xNN: safe on one terminal line.
-std::string printable(std::string_view text);
-
-/// Shortest decimal (15 to 17 digits) that reads back as the same double; non-finite values print as "inf" ("-inf").
-std::string format_number(double x);
-
-/// JSON number, or null when not finite (JSON has no inf or NaN).
-std::string json_number(double x);
-
-/// JSON string literal with escapes.
-std::string json_string(const std::string& s);
-
 }  // namespace dampbound

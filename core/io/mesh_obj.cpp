@@ -8,7 +8,7 @@
 #include <utility>
 
 #include "core/error.hpp"
-#include "core/io/files.hpp"
+#include "core/io/format.hpp"
 
 namespace dampbound {
 

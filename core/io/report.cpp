@@ -3,7 +3,7 @@
 #include <ostream>
 #include <sstream>
 
-#include "core/io/files.hpp"
+#include "core/io/format.hpp"
 
 namespace dampbound {
 

@@ -11,6 +11,7 @@
 
 #include "core/error.hpp"
 #include "core/io/files.hpp"
+#include "core/io/format.hpp"
 #include "core/safe_bound.hpp"
 
 namespace dampbound {

@@ -11,6 +11,7 @@
 #include "core/bounds.hpp"
 #include "core/error.hpp"
 #include "core/io/files.hpp"
+#include "core/io/format.hpp"
 #include "core/sweep/journal.hpp"
 
 namespace dampbound {

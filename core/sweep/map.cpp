@@ -7,7 +7,7 @@
 #include <cstdlib>
 
 #include "core/error.hpp"
-#include "core/io/files.hpp"
+#include "core/io/format.hpp"
 #include "core/sweep/summary.hpp"
 
 namespace dampbound {

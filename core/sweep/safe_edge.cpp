@@ -7,7 +7,7 @@
 #include <limits>
 
 #include "core/bounds.hpp"
-#include "core/io/files.hpp"
+#include "core/io/format.hpp"
 #include "core/safe_bound.hpp"
 #include "core/sweep/summary.hpp"
 

@@ -8,7 +8,7 @@
 #include "core/sweep/setup.hpp"
 #include "core/bounds.hpp"
 #include "core/error.hpp"
-#include "core/io/files.hpp"
+#include "core/io/format.hpp"
 #include "core/sweep/runner.hpp"
 
 namespace dampbound {

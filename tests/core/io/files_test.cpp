@@ -16,15 +16,6 @@
 namespace dampbound {
 namespace {
 
-TEST(Format, ShortestRoundTripAndNoNaN) {
-  EXPECT_EQ(format_number(0.05), "0.05");
-  EXPECT_EQ(format_number(0.1 + 0.2), "0.30000000000000004");
-  EXPECT_EQ(format_number(std::numeric_limits<double>::infinity()), "inf");
-  EXPECT_EQ(format_number(std::nan("")), "inf");
-  EXPECT_EQ(json_number(std::nan("")), "null");
-  EXPECT_EQ(json_string("a\"b\n"), "\"a\\\"b\\n\"");
-}
-
 TEST(AtomicWrite, WholeOrNothing) {
   const std::string path = "io_test_out.txt";
   write_file_atomic(path, [](std::ostream& o) { o << "hello\n"; });
@@ -110,11 +101,6 @@ TEST(ReadFile, RefusesDirectoriesDevicesFifosAndHugeFiles) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("more than the limit of 9 bytes"), std::string::npos);
   }
-}
-
-TEST(Printable, ControlCharactersAreEscaped) {
-  EXPECT_EQ(printable("a\nb\x1b[31m\x7f"), "a\\x0ab\\x1b[31m\\x7f");
-  EXPECT_EQ(printable("plain é"), "plain é");
 }
 
 }  // namespace
