@@ -173,18 +173,16 @@ PlotLayout draw_plot(ImDrawList* dl, ImVec2 top_left, ImVec2 size, const PlotSpe
     const float y = crisp(lay.y.to_px(t.value));
     dl->AddLine(ImVec2(amin.x, y), ImVec2(amax.x, y), t.major ? style.grid : style.grid_minor);
   }
-  for (const auto& v : spec.vlines) {
-    const double x = lay.x.to_px(v.x);
-    if (std::isnan(x)) continue;
-    detail::draw_polyline(dl, {ImVec2(fl(x), amin.y), ImVec2(fl(x), amax.y)}, v.color,
-                          v.thickness, v.dashed);
-  }
-  for (const auto& h : spec.hlines) {
-    const double y = lay.y.to_px(h.y);
-    if (std::isnan(y)) continue;
-    detail::draw_polyline(dl, {ImVec2(amin.x, fl(y)), ImVec2(amax.x, fl(y))}, h.color,
-                          h.thickness, h.dashed);
-  }
+  for (const LineAxis axis : {LineAxis::x, LineAxis::y})  // vertical lines under horizontal
+    for (const PlotRefLine& l : spec.ref_lines) {
+      if (l.axis != axis) continue;
+      const bool vertical = axis == LineAxis::x;
+      const double px = (vertical ? lay.x : lay.y).to_px(l.at);
+      if (std::isnan(px)) continue;
+      const ImVec2 from = vertical ? ImVec2(fl(px), amin.y) : ImVec2(amin.x, fl(px));
+      const ImVec2 to = vertical ? ImVec2(fl(px), amax.y) : ImVec2(amax.x, fl(px));
+      detail::draw_polyline(dl, {from, to}, l.color, l.thickness, l.dashed);
+    }
   for (const auto& s : spec.series) detail::draw_series(dl, lay, s);
   dl->PopClipRect();
 

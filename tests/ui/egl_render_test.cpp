@@ -57,11 +57,11 @@ PlotSpec line_spec() {
     s.y.push_back(i * 0.1);
   }
   spec.series.push_back(s);
-  PlotHLine h;
+  PlotRefLine h;
   h.label = "threshold";
-  h.y = 8.0;
+  h.at = 8.0;
   h.color = IM_COL32(90, 90, 90, 255);
-  spec.hlines.push_back(h);
+  spec.ref_lines.push_back(h);
   return spec;
 }
 
@@ -169,10 +169,10 @@ TEST(EglRender, BandTracesAndTiming) {
   hi.y = band.y_hi;
   spec.bands.push_back(band);
   spec.series = {lo, hi};
-  PlotHLine user;
+  PlotRefLine user;
   user.label = "user γ";
-  user.y = 4e-3;
-  spec.hlines.push_back(user);
+  user.at = 4e-3;
+  spec.ref_lines.push_back(user);
   const Image img = host().render_frames(w, h, plot_frame(spec), 5);
   EXPECT_FALSE(is_blank(img));
   const RenderStats& st = host().last_stats();
