@@ -164,7 +164,7 @@ class GuiApp {
   SavePanelState save_;
   std::string param_error_;  ///< why the last parameter change was not applied
   std::vector<std::string> warnings_;
-  std::string select_tab_;   ///< the tab to bring to the front at the next frame
+  std::string select_tab_;  ///< the tab to bring to the front at the next frame
   bool ini_loaded_ = false;
   ImTextureID nearest_font_texture_ = nullptr;  ///< the font texture set to nearest sampling
 };

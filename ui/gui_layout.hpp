@@ -52,11 +52,11 @@ class GuiLayout {
   std::optional<PanelRect> drawn(const std::string& name) const;
 
  private:
-  std::vector<PanelRect> default_;  ///< the default layout of this frame's size
-  std::vector<PanelRect> follow_;   ///< where panels go this frame after a resize
-  std::vector<PanelRect> drawn_;    ///< where each panel was last drawn
+  std::vector<PanelRect> default_;   ///< the default layout of this frame's size
+  std::vector<PanelRect> follow_;    ///< where panels go this frame after a resize
+  std::vector<PanelRect> drawn_;     ///< where each panel was last drawn
   std::vector<std::string> hidden_;  ///< panels not drawn in this layout (compact: Status)
-  float laid_w_ = 0, laid_h_ = 0;   ///< the window size drawn_ was laid out in (pixels)
+  float laid_w_ = 0, laid_h_ = 0;    ///< the window size drawn_ was laid out in (pixels)
   bool reset_ = false;
   bool compact_ = false;
 };

@@ -26,7 +26,7 @@ class FrameMeter {
 
  private:
   GuiStats stats_;
-  double last_time_ = -1;         ///< s, start of the last frame
+  double last_time_ = -1;  ///< s, start of the last frame
   long long last_steps_ = 0;
   double last_step_seconds_ = 0;  ///< s
   double run_start_time_ = -1;    ///< s, start of the second frame

@@ -62,8 +62,7 @@ inline void wrapped_colored(const ImVec4& color, const char* text) {
 /// else nothing (the item goes to the next line): toolbars that wrap in small windows.
 inline void same_line_if_fits(float width) {
   const float end = ImGui::GetWindowPos().x + ImGui::GetWindowContentRegionMax().x;
-  if (end - ImGui::GetItemRectMax().x - ImGui::GetStyle().ItemSpacing.x >= width)
-    ImGui::SameLine();
+  if (end - ImGui::GetItemRectMax().x - ImGui::GetStyle().ItemSpacing.x >= width) ImGui::SameLine();
 }
 
 /// The width of a checkbox with `label` (pixels).

@@ -20,10 +20,14 @@ double solve_lower(const MapBoundConstants& k, const Params& p, MapParam var) {
   // gamma = 2 C sqrt(m kappa) (paper eq. 5 at the worst node).
   const double C = k.lower, half = p.gamma / (2 * C);
   switch (var) {
-    case MapParam::gamma: return 2 * C * std::sqrt(p.m * p.kappa);
-    case MapParam::m: return half * half / p.kappa;
-    case MapParam::kappa: return half * half / p.m;
-    case MapParam::dt: return kNaN;
+    case MapParam::gamma:
+      return 2 * C * std::sqrt(p.m * p.kappa);
+    case MapParam::m:
+      return half * half / p.kappa;
+    case MapParam::kappa:
+      return half * half / p.m;
+    case MapParam::dt:
+      return kNaN;
   }
   return kNaN;
 }
@@ -34,10 +38,14 @@ double solve_exact(const MapBoundConstants& k, const Params& p, MapParam var) {
   const double L = k.lambda_unit, r = k.rate_ratio;
   const double m = p.m, kap = p.kappa, g = p.gamma, dt = p.dt;
   switch (var) {
-    case MapParam::gamma: return r > 0 ? (4 * m - L * kap * dt * dt) / (2 * r * dt) : kNaN;
-    case MapParam::m: return (L * kap * dt * dt + 2 * r * g * dt) / 4;
-    case MapParam::kappa: return (4 * m - 2 * r * g * dt) / (L * dt * dt);
-    case MapParam::dt: return (-r * g + std::sqrt(r * g * r * g + 4 * L * kap * m)) / (L * kap);
+    case MapParam::gamma:
+      return r > 0 ? (4 * m - L * kap * dt * dt) / (2 * r * dt) : kNaN;
+    case MapParam::m:
+      return (L * kap * dt * dt + 2 * r * g * dt) / 4;
+    case MapParam::kappa:
+      return (4 * m - 2 * r * g * dt) / (L * dt * dt);
+    case MapParam::dt:
+      return (-r * g + std::sqrt(r * g * r * g + 4 * L * kap * m)) / (L * kap);
   }
   return kNaN;
 }
@@ -86,8 +94,10 @@ MapBoundConstants map_bound_constants(const SceneSpec& scene) {
       if (!(c <= worst)) worst = c;
     }
     const double r = model.gamma[n] / model.mass[n];
-    if (std::isnan(rate)) rate = r;
-    else if (std::abs(r - rate) > 1e-12 * std::max(r, rate)) uniform = false;
+    if (std::isnan(rate))
+      rate = r;
+    else if (std::abs(r - rate) > 1e-12 * std::max(r, rate))
+      uniform = false;
   }
   k.lower = worst;
   k.rate_ratio = uniform ? rate : kNaN;
@@ -103,10 +113,10 @@ std::vector<MapLine> map_bound_lines(const MapBoundConstants& k, const Params& b
   if (std::isfinite(k.lower) && k.lower > 0) {
     const bool worst = std::abs(k.lower - 1) > 1e-12;
     lines.push_back(boundary(
-        worst ? "paper lower bound, worst node (eq. 5)" : "paper lower bound 2 sqrt(m kappa) (eq. 5)",
-        MapLineKind::paper,
-        [&](const Params& p, MapParam v) { return solve_lower(k, p, v); }, base, view, x_edges,
-        y_edges, samples));
+        worst ? "paper lower bound, worst node (eq. 5)"
+              : "paper lower bound 2 sqrt(m kappa) (eq. 5)",
+        MapLineKind::paper, [&](const Params& p, MapParam v) { return solve_lower(k, p, v); }, base,
+        view, x_edges, y_edges, samples));
   }
   if (std::isfinite(k.lambda_unit) && k.lambda_unit > 0 && std::isfinite(k.rate_ratio) &&
       base.integrator == Integrator::semi_implicit_euler)
@@ -125,9 +135,9 @@ std::vector<MapLine> map_bound_lines(const MapBoundConstants& k, const Params& b
           return safe_edge(k.safe, axis, p.m, p.kappa, p.gamma, p.dt);
         },
         base, view, x_edges, y_edges, samples));
-  lines.erase(std::remove_if(lines.begin(), lines.end(),
-                             [](const MapLine& l) { return l.x.size() < 2; }),
-              lines.end());
+  lines.erase(
+      std::remove_if(lines.begin(), lines.end(), [](const MapLine& l) { return l.x.size() < 2; }),
+      lines.end());
   return lines;
 }
 

@@ -17,10 +17,10 @@ namespace dampbound::ui {
 /// unit_stiffness_eigenvalue). Each is solved for one axis along the other, sampled on
 /// `samples` log points.
 struct MapBoundConstants {
-  double lower = 0;          ///< C above (NaN: no node has a lower bound)
-  double lambda_unit = 0;    ///< lambda_max at m = kappa = 1 (1/s^2); NaN: no exact line
-  double rate_ratio = 1;     ///< r above; NaN when it differs between nodes
-  SafeUnit safe;             ///< SPEC 9's row sums at rest (the safe bound's line; any scene)
+  double lower = 0;        ///< C above (NaN: no node has a lower bound)
+  double lambda_unit = 0;  ///< lambda_max at m = kappa = 1 (1/s^2); NaN: no exact line
+  double rate_ratio = 1;   ///< r above; NaN when it differs between nodes
+  SafeUnit safe;           ///< SPEC 9's row sums at rest (the safe bound's line; any scene)
 };
 MapBoundConstants map_bound_constants(const SceneSpec& scene);
 std::vector<MapLine> map_bound_lines(const MapBoundConstants& k, const Params& base,

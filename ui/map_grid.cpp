@@ -7,40 +7,60 @@ namespace dampbound::ui {
 
 const char* to_string(MapParam p) {
   switch (p) {
-    case MapParam::m: return "m";
-    case MapParam::kappa: return "kappa";
-    case MapParam::gamma: return "gamma";
-    case MapParam::dt: return "dt";
+    case MapParam::m:
+      return "m";
+    case MapParam::kappa:
+      return "kappa";
+    case MapParam::gamma:
+      return "gamma";
+    case MapParam::dt:
+      return "dt";
   }
   return "?";
 }
 
 std::string map_axis_label(MapParam p) {
   switch (p) {
-    case MapParam::m: return "m (mass unit)";
-    case MapParam::kappa: return "kappa (mass unit/s^2)";
-    case MapParam::gamma: return "gamma (mass unit/s)";
-    case MapParam::dt: return "dt (s)";
+    case MapParam::m:
+      return "m (mass unit)";
+    case MapParam::kappa:
+      return "kappa (mass unit/s^2)";
+    case MapParam::gamma:
+      return "gamma (mass unit/s)";
+    case MapParam::dt:
+      return "dt (s)";
   }
   return "?";
 }
 
 double get_param(const Params& params, MapParam p) {
   switch (p) {
-    case MapParam::m: return params.m;
-    case MapParam::kappa: return params.kappa;
-    case MapParam::gamma: return params.gamma;
-    case MapParam::dt: return params.dt;
+    case MapParam::m:
+      return params.m;
+    case MapParam::kappa:
+      return params.kappa;
+    case MapParam::gamma:
+      return params.gamma;
+    case MapParam::dt:
+      return params.dt;
   }
   return std::numeric_limits<double>::quiet_NaN();
 }
 
 void set_param(Params& params, MapParam p, double value) {
   switch (p) {
-    case MapParam::m: params.m = value; break;
-    case MapParam::kappa: params.kappa = value; break;
-    case MapParam::gamma: params.gamma = value; break;
-    case MapParam::dt: params.dt = value; break;
+    case MapParam::m:
+      params.m = value;
+      break;
+    case MapParam::kappa:
+      params.kappa = value;
+      break;
+    case MapParam::gamma:
+      params.gamma = value;
+      break;
+    case MapParam::dt:
+      params.dt = value;
+      break;
   }
 }
 

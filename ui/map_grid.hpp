@@ -24,10 +24,10 @@ void set_param(Params& params, MapParam p, double value);
 
 /// What the map shows: two axes, and how far the window reaches around the current point.
 struct MapView {
-  MapParam x = MapParam::dt;      ///< horizontal axis
-  MapParam y = MapParam::gamma;   ///< vertical axis
-  double decades = 1.0;           ///< the window spans centre / 10^decades .. centre * 10^decades
-  int finest = 32;                ///< cells per axis of the last (finest) pass
+  MapParam x = MapParam::dt;     ///< horizontal axis
+  MapParam y = MapParam::gamma;  ///< vertical axis
+  double decades = 1.0;          ///< the window spans centre / 10^decades .. centre * 10^decades
+  int finest = 32;               ///< cells per axis of the last (finest) pass
 };
 
 /// n cells on a log axis over [centre / 10^decades, centre * 10^decades]: n + 1 edges.

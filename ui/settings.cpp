@@ -66,77 +66,66 @@ bool is_param(const SettingRow& row) {
       row.field);
 }
 
+/// A finite number within the row's range.
+bool parse_real(const SettingRow& row, const std::string& text, double& out) {
+  return parse_double(text, out) && in_range(row, out);
+}
+
 /// Reads `text` into the row's field of `s` (or of `p`, the parameters being read); false
 /// when the text is not a valid value.
 bool read_value(const SettingRow& row, const std::string& text, GuiSettings& s, Params& p) {
-  return std::visit(
-      Overload{
-          [&](std::string GuiSettings::*f) {
-            s.*f = text;
-            return true;
-          },
-          [&](bool GuiSettings::*f) { return parse_bool(text, s.*f); },
-          [&](int GuiSettings::*f) { return parse_int(row, text, s.*f); },
-          [&](std::optional<int> GuiSettings::*f) {
-            int k = 0;
-            if (!parse_int(row, text, k)) return false;
-            s.*f = k;
-            return true;
-          },
-          [&](float GuiSettings::*f) {
-            double d = 0;
-            if (!parse_double(text, d) || !in_range(row, d)) return false;
-            s.*f = static_cast<float>(d);
-            return true;
-          },
-          [&](double Params::*f) {
-            double d = 0;
-            if (!parse_double(text, d) || !in_range(row, d)) return false;
-            p.*f = d;
-            return true;
-          },
-          [&](DampingPolicy Params::*f) {
-            const auto v = parse_policy(text);
-            if (v) p.*f = *v;
-            return v.has_value();
-          },
-          [&](Integrator Params::*f) {
-            const auto v = parse_integrator(text);
-            if (v) p.*f = *v;
-            return v.has_value();
-          },
+  const Overload read{
+      [&](std::string GuiSettings::*f) {
+        s.*f = text;
+        return true;
       },
-      row.field);
+      [&](bool GuiSettings::*f) { return parse_bool(text, s.*f); },
+      [&](int GuiSettings::*f) { return parse_int(row, text, s.*f); },
+      [&](std::optional<int> GuiSettings::*f) {
+        int k = 0;
+        if (!parse_int(row, text, k)) return false;
+        s.*f = k;
+        return true;
+      },
+      [&](float GuiSettings::*f) {
+        double d = 0;
+        if (!parse_real(row, text, d)) return false;
+        s.*f = static_cast<float>(d);
+        return true;
+      },
+      [&](double Params::*f) { return parse_real(row, text, p.*f); },
+      [&](DampingPolicy Params::*f) {
+        const auto v = parse_policy(text);
+        if (v) p.*f = *v;
+        return v.has_value();
+      },
+      [&](Integrator Params::*f) {
+        const auto v = parse_integrator(text);
+        if (v) p.*f = *v;
+        return v.has_value();
+      },
+  };
+  return std::visit(read, row.field);
 }
 
 /// The row's value as the file writes it; nullopt when it is unset (not written).
 std::optional<std::string> write_value(const SettingRow& row, const GuiSettings& s) {
+  using Text = std::optional<std::string>;
   if (is_param(row) && !s.params) return std::nullopt;
-  return std::visit(
-      Overload{
-          [&](std::string GuiSettings::*f) -> std::optional<std::string> { return s.*f; },
-          [&](bool GuiSettings::*f) -> std::optional<std::string> {
-            return s.*f ? "true" : "false";
-          },
-          [&](int GuiSettings::*f) -> std::optional<std::string> { return std::to_string(s.*f); },
-          [&](std::optional<int> GuiSettings::*f) -> std::optional<std::string> {
-            if (!(s.*f)) return std::nullopt;
-            return std::to_string(*(s.*f));
-          },
-          [&](float GuiSettings::*f) -> std::optional<std::string> {
-            return format_number(s.*f);
-          },
-          [&](double Params::*f) -> std::optional<std::string> {
-            return format_number((*s.params).*f);
-          },
-          [&](DampingPolicy Params::*f) -> std::optional<std::string> {
-            return to_string((*s.params).*f);
-          },
-          [&](Integrator Params::*f) -> std::optional<std::string> {
-            return to_string((*s.params).*f);
-          },
+  const Params& p = s.params ? *s.params : default_params();
+  const Overload write{
+      [&](std::string GuiSettings::*f) -> Text { return s.*f; },
+      [&](bool GuiSettings::*f) -> Text { return s.*f ? "true" : "false"; },
+      [&](int GuiSettings::*f) -> Text { return std::to_string(s.*f); },
+      [&](std::optional<int> GuiSettings::*f) -> Text {
+        return s.*f ? Text(std::to_string(*(s.*f))) : std::nullopt;
       },
-      row.field);
+      [&](float GuiSettings::*f) -> Text { return format_number(s.*f); },
+      [&](double Params::*f) -> Text { return format_number(p.*f); },
+      [&](DampingPolicy Params::*f) -> Text { return to_string(p.*f); },
+      [&](Integrator Params::*f) -> Text { return to_string(p.*f); },
+  };
+  return std::visit(write, row.field);
 }
 
 }  // namespace
@@ -219,8 +208,8 @@ std::optional<GuiSettings> parse_settings(const std::string& text, std::string* 
     if (eq == std::string::npos) return fail(n, "expected key = value");
     const std::string key = trim(line.substr(0, eq)), value = trim(line.substr(eq + 1));
     const auto& rows = gui_setting_rows();
-    const auto row = std::find_if(rows.begin(), rows.end(),
-                                  [&](const SettingRow& r) { return key == r.key; });
+    const auto row =
+        std::find_if(rows.begin(), rows.end(), [&](const SettingRow& r) { return key == r.key; });
     if (row == rows.end()) continue;
     any_param |= is_param(*row);
     if (!read_value(*row, value, s, p))

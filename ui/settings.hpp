@@ -23,15 +23,15 @@ struct GuiSettings {
   std::string scene_path;        ///< last scene file ("" = the default scene)
   std::optional<Params> params;  ///< last parameters used with scene_path
   std::optional<int> max_iterations;
-  int steps_per_frame;       ///< steps drawn per frame while playing
+  int steps_per_frame;  ///< steps drawn per frame while playing
   bool pause_at_verdict;
-  bool log_y;                ///< displacement plot on a log10 axis
-  bool show_max;             ///< plot the max displacement over all nodes
-  bool exact_at_state;       ///< exact analysis linearised at the current state
+  bool log_y;           ///< displacement plot on a log10 axis
+  bool show_max;        ///< plot the max displacement over all nodes
+  bool exact_at_state;  ///< exact analysis linearised at the current state
   bool show_springs;
   bool show_anchors;
-  float point_size;          ///< node size in the mesh view (pixels)
-  std::string export_dir;    ///< "" = the current directory
+  float point_size;        ///< node size in the mesh view (pixels)
+  std::string export_dir;  ///< "" = the current directory
   std::string export_prefix;
   int window_width, window_height;  ///< pixels; 0: the default size
 };
@@ -48,8 +48,8 @@ using SettingField =
 struct SettingRow {
   const char* key;
   SettingField field;
-  double lo = 0, hi = 0;   ///< numbers: valid range, inclusive (lo == hi: any finite value)
-  const char* fallback;    ///< the default, as the file writes it; nullptr: unset
+  double lo = 0, hi = 0;  ///< numbers: valid range, inclusive (lo == hi: any finite value)
+  const char* fallback;   ///< the default, as the file writes it; nullptr: unset
 };
 
 /// The options in file order.

@@ -28,7 +28,8 @@ TEST(MapBounds, BoundLinesOfAUniformScene) {
   EXPECT_DOUBLE_EQ(k.lambda_unit, unit_stiffness_eigenvalue(scene));
   Params p = scene.params;  // m = kappa = 0.001
   MapView v;                // gamma against dt
-  const auto lines = map_bound_lines(k, p, v, map_log_edges(p.dt, 1, 8), map_log_edges(0.002, 1, 8));
+  const auto lines =
+      map_bound_lines(k, p, v, map_log_edges(p.dt, 1, 8), map_log_edges(0.002, 1, 8));
   ASSERT_EQ(lines.size(), 3u);
   EXPECT_EQ(lines[0].kind, MapLineKind::paper);
   for (double y : lines[0].y) EXPECT_DOUBLE_EQ(y, lower_bound(p.m, p.kappa));
@@ -54,13 +55,14 @@ TEST(MapBounds, BoundLinesOfAUniformScene) {
   MapView kv;
   kv.x = MapParam::kappa;
   kv.y = MapParam::dt;
-  const auto kl = map_bound_lines(k, p, kv, map_log_edges(p.kappa, 1, 8), map_log_edges(p.dt, 1, 8));
+  const auto kl =
+      map_bound_lines(k, p, kv, map_log_edges(p.kappa, 1, 8), map_log_edges(p.dt, 1, 8));
   ASSERT_EQ(kl.size(), 3u);  // the lower bound: a vertical line at kappa = gamma^2 / (4 m)
   for (double x : kl[0].x) EXPECT_NEAR(x, p.gamma * p.gamma / (4 * p.m), 1e-15);
   for (size_t i = 0; i < kl[1].x.size(); ++i)
-    EXPECT_NEAR(kl[1].y[i] * kl[1].y[i] * k.lambda_unit * kl[1].x[i] / p.m +
-                    2 * p.gamma / p.m * kl[1].y[i],
-                4, 1e-9);
+    EXPECT_NEAR(
+        kl[1].y[i] * kl[1].y[i] * k.lambda_unit * kl[1].x[i] / p.m + 2 * p.gamma / p.m * kl[1].y[i],
+        4, 1e-9);
   for (size_t i = 0; i < kl[2].x.size(); ++i) {  // the safe dt at each kappa
     EXPECT_TRUE(safe_at_rest(k.safe, p.m, kl[2].x[i], p.gamma, kl[2].y[i] * (1 - 1e-9)));
     EXPECT_FALSE(safe_at_rest(k.safe, p.m, kl[2].x[i], p.gamma, kl[2].y[i] * (1 + 1e-9)));
@@ -68,7 +70,8 @@ TEST(MapBounds, BoundLinesOfAUniformScene) {
 }
 
 TEST(MapBounds, BoundLinesOfANonUniformSceneUseTheWorstNode) {
-  const SceneSpec scene = load_scene(std::string(DAMPBOUND_SOURCE_DIR) + "/scenes/stiff-region.toml");
+  const SceneSpec scene =
+      load_scene(std::string(DAMPBOUND_SOURCE_DIR) + "/scenes/stiff-region.toml");
   const MapBoundConstants k = map_bound_constants(scene);
   EXPECT_NEAR(k.lower, std::sqrt(4.0 * 10.0), 1e-12);  // 4x heavier, 10x stiffer
   EXPECT_TRUE(std::isnan(k.rate_ratio));               // gamma/m differs: no exact line

@@ -39,8 +39,8 @@ TEST(MapGrid, CellsEqualSweepOnTheSameGrid) {
   const std::vector<double> dts = {0.05, 0.2, 0.5, 0.9}, gammas = {0, 0.0005, 0.002, 0.01};
   Params base = scene.params;
   base.m = base.kappa = 0.001;
-  const std::vector<TrialResult> cells =
-      run_map_trials(scene, base, scene.rules, map_trials(base, MapParam::dt, dts, MapParam::gamma, gammas));
+  const std::vector<TrialResult> cells = run_map_trials(
+      scene, base, scene.rules, map_trials(base, MapParam::dt, dts, MapParam::gamma, gammas));
   ASSERT_EQ(cells.size(), 16u);
 
   SweepRequest rq;
