@@ -1,67 +1,45 @@
 #include "ui/map_grid.hpp"
 
 #include <cmath>
-#include <limits>
 
 namespace dampbound::ui {
 
+namespace {
+
+/// One row per MapParam, in the enum's order: its name, its axis label with the unit, and
+/// where it lives in Params.
+struct MapAxis {
+  const char* name;
+  const char* label;
+  double Params::*member;
+};
+constexpr MapAxis kMapAxes[] = {
+    {"m", "m (mass unit)", &Params::m},
+    {"kappa", "kappa (mass unit/s^2)", &Params::kappa},
+    {"gamma", "gamma (mass unit/s)", &Params::gamma},
+    {"dt", "dt (s)", &Params::dt},
+};
+
+const MapAxis& axis(MapParam p) {
+  return kMapAxes[static_cast<int>(p)];
+}
+
+}  // namespace
+
 const char* to_string(MapParam p) {
-  switch (p) {
-    case MapParam::m:
-      return "m";
-    case MapParam::kappa:
-      return "kappa";
-    case MapParam::gamma:
-      return "gamma";
-    case MapParam::dt:
-      return "dt";
-  }
-  return "?";
+  return axis(p).name;
 }
 
 std::string map_axis_label(MapParam p) {
-  switch (p) {
-    case MapParam::m:
-      return "m (mass unit)";
-    case MapParam::kappa:
-      return "kappa (mass unit/s^2)";
-    case MapParam::gamma:
-      return "gamma (mass unit/s)";
-    case MapParam::dt:
-      return "dt (s)";
-  }
-  return "?";
+  return axis(p).label;
 }
 
 double get_param(const Params& params, MapParam p) {
-  switch (p) {
-    case MapParam::m:
-      return params.m;
-    case MapParam::kappa:
-      return params.kappa;
-    case MapParam::gamma:
-      return params.gamma;
-    case MapParam::dt:
-      return params.dt;
-  }
-  return std::numeric_limits<double>::quiet_NaN();
+  return params.*axis(p).member;
 }
 
 void set_param(Params& params, MapParam p, double value) {
-  switch (p) {
-    case MapParam::m:
-      params.m = value;
-      break;
-    case MapParam::kappa:
-      params.kappa = value;
-      break;
-    case MapParam::gamma:
-      params.gamma = value;
-      break;
-    case MapParam::dt:
-      params.dt = value;
-      break;
-  }
+  params.*axis(p).member = value;
 }
 
 std::vector<double> map_log_edges(double centre, double decades, int n) {
