@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <variant>
 #include <vector>
 
 namespace dampbound::ui {
@@ -139,22 +140,29 @@ TEST(Settings, EveryRowHasOneKeyAndItsDefaultIsValid) {
   for (const SettingRow& row : gui_setting_rows()) {
     for (const std::string& k : keys) EXPECT_NE(k, row.key);
     keys.push_back(row.key);
+    // Only what may be unset (the parameters, an optional, text) goes without a default.
+    const bool may_be_unset =
+        std::holds_alternative<std::optional<int> GuiSettings::*>(row.field) ||
+        std::holds_alternative<std::string GuiSettings::*>(row.field) ||
+        std::holds_alternative<double Params::*>(row.field) ||
+        std::holds_alternative<DampingPolicy Params::*>(row.field) ||
+        std::holds_alternative<Integrator Params::*>(row.field);
+    EXPECT_TRUE(row.fallback != nullptr || may_be_unset) << row.key;
     if (row.fallback == nullptr) continue;
     // The default parses on its own line.
     std::string err;
-    EXPECT_TRUE(parse_settings(std::string("dampbound-gui-settings 1\n") + row.key + " = " +
-                                   row.fallback + "\n",
-                               &err))
+    EXPECT_TRUE(parse_settings(
+        std::string("dampbound-gui-settings 1\n") + row.key + " = " + row.fallback + "\n", &err))
         << row.key << ": " << err;
   }
 }
 
 TEST(Settings, OutOfRangeValuesAreRefusedPerOption) {
   const std::string head = "dampbound-gui-settings 1\n";
-  for (const char* line : {"max_iterations = 0", "max_iterations = 100000001",
-                           "steps_per_frame = 10001", "point_size = 0.5", "point_size = 41",
-                           "window_width = -1", "window_height = 16385", "integrator = euler",
-                           "show_max = yes", "dt = inf"}) {
+  for (const char* line :
+       {"max_iterations = 0", "max_iterations = 100000001", "steps_per_frame = 10001",
+        "point_size = 0.5", "point_size = 41", "window_width = -1", "window_height = 16385",
+        "integrator = euler", "show_max = yes", "dt = inf"}) {
     std::string err;
     EXPECT_FALSE(parse_settings(head + line + "\n", &err)) << line;
     const std::string key = std::string(line).substr(0, std::string(line).find(' '));
