@@ -10,9 +10,9 @@
 #include "app/commands.hpp"
 #include "app/options.hpp"
 #include "core/bounds.hpp"
-#include "core/criteria.hpp"
+#include "core/analysis/criteria.hpp"
 #include "core/error.hpp"
-#include "core/io.hpp"
+#include "core/io/files.hpp"
 #include "core/safe_bound.hpp"
 #include "core/session.hpp"
 

@@ -10,8 +10,9 @@
 #include "app/commands.hpp"
 #include "app/options.hpp"
 #include "core/error.hpp"
-#include "core/expect.hpp"
-#include "core/io.hpp"
+#include "core/analysis/expect.hpp"
+#include "core/io/files.hpp"
+#include "core/io/scene_file.hpp"
 
 namespace dampbound::app {
 namespace {

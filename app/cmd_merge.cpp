@@ -4,7 +4,7 @@
 
 #include "app/commands.hpp"
 #include "core/error.hpp"
-#include "core/sweep_csv.hpp"
+#include "core/sweep/csv.hpp"
 
 namespace dampbound::app {
 namespace {

@@ -4,10 +4,10 @@
 
 #include "app/commands.hpp"
 #include "app/options.hpp"
-#include "core/io.hpp"
-#include "core/report.hpp"
+#include "core/io/files.hpp"
+#include "core/io/report.hpp"
 #include "core/session.hpp"
-#include "core/vtu.hpp"
+#include "core/io/vtu.hpp"
 
 namespace dampbound::app {
 namespace {
@@ -15,7 +15,7 @@ namespace {
 struct RunArgs {
   std::string scene, trace;
   std::string rule = "settled";  // SPEC 8: a user's question is whether it stays stable
-  std::string vtk;               // ParaView series folder (core/vtu.hpp)
+  std::string vtk;               // ParaView series folder (core/io/vtu.hpp)
   int every = 1;
   bool json = false;
   ParamFlags flags;

@@ -7,8 +7,8 @@
 
 #include "app/commands.hpp"
 #include "app/options.hpp"
-#include "core/report.hpp"
-#include "core/suggest.hpp"
+#include "core/io/report.hpp"
+#include "core/analysis/suggest.hpp"
 
 namespace dampbound::app {
 namespace {

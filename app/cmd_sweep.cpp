@@ -14,12 +14,12 @@
 #include "app/commands.hpp"
 #include "app/options.hpp"
 #include "core/error.hpp"
-#include "core/io.hpp"
-#include "core/safe_sweep.hpp"
-#include "core/sweep_map.hpp"
-#include "core/sweep_progress.hpp"
-#include "core/sweep_runner.hpp"
-#include "core/sweep_summary.hpp"
+#include "core/io/files.hpp"
+#include "core/sweep/safe_edge.hpp"
+#include "core/sweep/map.hpp"
+#include "core/sweep/progress.hpp"
+#include "core/sweep/runner.hpp"
+#include "core/sweep/summary.hpp"
 
 namespace dampbound::app {
 namespace {

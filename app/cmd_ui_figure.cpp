@@ -6,9 +6,9 @@
 #include "app/commands.hpp"
 #include "app/options.hpp"
 #include "core/error.hpp"
-#include "core/figures.hpp"
-#include "core/io.hpp"
-#include "core/report.hpp"
+#include "core/analysis/figures.hpp"
+#include "core/io/files.hpp"
+#include "core/io/report.hpp"
 #include "ui/render_png.hpp"
 #include "ui/trace_plots.hpp"
 

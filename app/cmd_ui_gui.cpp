@@ -9,8 +9,8 @@
 #include "app/commands.hpp"
 #include "app/options.hpp"
 #include "core/error.hpp"
-#include "core/io.hpp"
-#include "core/scene_write.hpp"
+#include "core/io/files.hpp"
+#include "core/io/scene_write.hpp"
 
 #if defined(DAMPBOUND_HAVE_GLFW)
 #include "ui/frame_times.hpp"

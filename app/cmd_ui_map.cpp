@@ -1,4 +1,4 @@
-// dampbound map RESULTS.csv -o FILE.png: the stability map of a sweep (core/sweep_map.hpp)
+// dampbound map RESULTS.csv -o FILE.png: the stability map of a sweep (core/sweep/map.hpp)
 // drawn with the plot widget through the headless EGL host. Also the renderer behind
 // `sweep --map`, which this file registers at start-up.
 #include <algorithm>
@@ -9,9 +9,9 @@
 #include "app/commands.hpp"
 #include "app/options.hpp"
 #include "core/error.hpp"
-#include "core/io.hpp"
-#include "core/sweep_map.hpp"
-#include "core/sweep_summary.hpp"
+#include "core/io/files.hpp"
+#include "core/sweep/map.hpp"
+#include "core/sweep/summary.hpp"
 #include "ui/egl_host.hpp"
 #include "ui/map_plot.hpp"
 #include "ui/plot.hpp"

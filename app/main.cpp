@@ -5,9 +5,9 @@
 
 #include "app/commands.hpp"
 #include "core/error.hpp"
-#include "core/io.hpp"
-#include "core/scene_text.hpp"
-#include "core/sweep_kernel.hpp"
+#include "core/io/files.hpp"
+#include "core/io/scene_text.hpp"
+#include "core/sweep/kernel.hpp"
 #include "dampbound/version.hpp"
 
 namespace dampbound::app {

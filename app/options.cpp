@@ -11,7 +11,8 @@
 #include <filesystem>
 
 #include "core/error.hpp"
-#include "core/io.hpp"
+#include "core/io/files.hpp"
+#include "core/io/scene_file.hpp"
 
 #ifndef DAMPBOUND_SOURCE_DIR
 #define DAMPBOUND_SOURCE_DIR "."

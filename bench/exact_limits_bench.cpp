@@ -15,8 +15,8 @@
 #include <string>
 
 #include "bench/bench_meshes.hpp"
-#include "core/linear_stability_cholesky.hpp"
-#include "core/linear_stability_exact.hpp"
+#include "core/analysis/linear_stability_cholesky.hpp"
+#include "core/analysis/linear_stability_exact.hpp"
 
 namespace {
 

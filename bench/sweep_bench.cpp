@@ -17,7 +17,8 @@
 #include "core/bounds.hpp"
 #include "core/scene.hpp"
 #include "core/step.hpp"
-#include "core/sweep_kernel.hpp"
+#include "core/sweep/kernel.hpp"
+#include "core/io/scene_file.hpp"
 
 namespace {
 

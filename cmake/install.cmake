@@ -19,8 +19,11 @@ install(EXPORT dampboundTargets NAMESPACE dampbound::
 # `#include "core/..."` lines find each other.
 install(FILES core/monitor.hpp ${PROJECT_BINARY_DIR}/include/dampbound/version.hpp
         DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/dampbound)
-list(TRANSFORM DAMPBOUND_PUBLIC_HEADERS PREPEND ${PROJECT_SOURCE_DIR}/core/)
-install(FILES ${DAMPBOUND_PUBLIC_HEADERS} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/dampbound/core)
+foreach(header ${DAMPBOUND_PUBLIC_HEADERS})
+  get_filename_component(folder ${header} DIRECTORY)
+  install(FILES ${PROJECT_SOURCE_DIR}/core/${header}
+          DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/dampbound/core/${folder})
+endforeach()
 
 install(DIRECTORY scenes/ DESTINATION ${DAMPBOUND_INSTALL_SCENESDIR})
 install(FILES docs/dampbound.1 DESTINATION ${CMAKE_INSTALL_MANDIR}/man1)

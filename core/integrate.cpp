@@ -1,4 +1,4 @@
-#include "core/linear_stability_gcc.hpp"  // first: silences GCC 12 false positives
+#include "core/analysis/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
 #include "core/integrate.hpp"
 
 #include <Eigen/IterativeLinearSolvers>
@@ -6,7 +6,7 @@
 #include <string>
 
 #include "core/forces.hpp"
-#include "core/linear_stability.hpp"
+#include "core/analysis/linear_stability.hpp"
 
 namespace dampbound {
 

@@ -7,8 +7,8 @@
 #include <string>
 
 #include "core/forces.hpp"
-#include "core/linear_stability.hpp"
-#include "core/linear_stability_exact.hpp"
+#include "core/analysis/linear_stability.hpp"
+#include "core/analysis/linear_stability_exact.hpp"
 #include "core/safe_bound.hpp"
 
 namespace dampbound {

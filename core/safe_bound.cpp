@@ -4,8 +4,8 @@
 #include <cmath>
 #include <limits>
 
-#include "core/linear_stability.hpp"
-#include "core/spring_block.hpp"
+#include "core/analysis/linear_stability.hpp"
+#include "core/detail/spring_block.hpp"
 
 namespace dampbound {
 

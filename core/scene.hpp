@@ -85,14 +85,6 @@ Model make_grid(const GridSpec& grid);
 /// on it when scenes/ is missing; tests build small versions of it.
 SceneSpec paper_plane_scene(int n = 36);
 
-/// Loads and validates a scene file. Throws InputError("FILE:LINE: message") on any
-/// malformed or inconsistent content (unknown key, missing value, NaN, negative mass,
-/// spring to a missing node, duplicate spring, ...).
-SceneSpec load_scene(const std::string& path);
-
-/// Parses scene text; `path` is used in messages only.
-SceneSpec parse_scene(const std::string& text, const std::string& path);
-
 /// Model with set_params(params) applied.
 Model make_model(const SceneSpec& scene, const Params& params);
 

@@ -1,10 +1,10 @@
-// The exact limits of SPEC 7 for a scene's model and suggest (core/suggest.hpp) in Python.
+// The exact limits of SPEC 7 for a scene's model and suggest (core/analysis/suggest.hpp) in Python.
 #include <pybind11/stl.h>
 
 #include "core/error.hpp"
-#include "core/linear_stability_exact.hpp"
+#include "core/analysis/linear_stability_exact.hpp"
 #include "core/session.hpp"
-#include "core/suggest.hpp"
+#include "core/analysis/suggest.hpp"
 #include "python/arrays.hpp"
 
 namespace dampbound::python {

@@ -6,6 +6,7 @@
 
 #include "core/error.hpp"
 #include "core/session.hpp"
+#include "core/io/scene_file.hpp"
 #include "dampbound/version.hpp"
 #include "python/arrays.hpp"
 

@@ -9,7 +9,9 @@
 # policy and integrator, figure fig1/fig2 PNG + CSV, a small sweep CSV + map PNG, merge
 # of its shards, bounds and suggest text, check --junit). PNGs are compared as bytes:
 # stb encodes deterministically, so equal bytes mean equal pixels. The only edit made
-# before comparing is dropping JUnit's wall-clock time="..." attributes.
+# before comparing: JUnit's wall-clock time="..." attributes, a sweep's speed line and the
+# folder where each binary found the default scene are dropped. Compare builds of the same
+# configuration (a -march=native build rounds implicit Euler's sparse solves differently).
 # Exit 0 when every output matches, 1 when any differs (each difference is listed).
 set -euo pipefail
 
@@ -79,6 +81,8 @@ run_all() {  # binary out_dir
     # A sweep's speed line is wall-clock, not behaviour.
     [[ $line == sweep* ]] && sed -i '/^time  /d' "$d/stdout"
   done < <(commands)
+  # A sweep names its scene by the path where the binary found it (beside its own tree).
+  sed -i -E 's|^# scene: .*/scenes/|# scene: {scenes}/|' "$out"/files/*.csv
   [[ -f $out/files/check.xml ]] && sed -i 's/ time="[^"]*"//g; s|'"$root"'|{root}|g' "$out/files/check.xml"
   echo "$k"
 }

@@ -13,7 +13,8 @@
 #include <utility>
 
 #include "core/bounds.hpp"
-#include "core/io.hpp"
+#include "core/io/files.hpp"
+#include "core/io/scene_file.hpp"
 
 namespace dampbound::ui {
 

@@ -1,10 +1,10 @@
 // The tuner's "Criteria" tab (every stability criterion, live) and "Suggest" tab (stable
-// values from core/suggest.hpp, verified by runs, with buttons to apply them).
+// values from core/analysis/suggest.hpp, verified by runs, with buttons to apply them).
 #include <imgui.h>
 
 #include <string>
 
-#include "core/report.hpp"
+#include "core/io/report.hpp"
 #include "ui/gui_app.hpp"
 #include "ui/gui_widgets.hpp"
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "core/report.hpp"
+#include "core/io/report.hpp"
 #include "ui/gui_app.hpp"
 #include "ui/gui_widgets.hpp"
 #include "ui/map_plot.hpp"

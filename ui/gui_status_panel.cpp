@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "core/report.hpp"
+#include "core/io/report.hpp"
 #include "ui/gui_app.hpp"
 #include "ui/gui_export.hpp"
 #include "ui/gui_widgets.hpp"

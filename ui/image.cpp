@@ -9,7 +9,7 @@
 #include <cstring>
 #include <stdexcept>
 
-#include "core/io.hpp"
+#include "core/io/files.hpp"
 
 namespace dampbound::ui {
 

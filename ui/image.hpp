@@ -31,7 +31,7 @@ struct Image {
 /// `img` as PNG bytes (stb_image_write). Throws std::runtime_error for an empty image.
 std::string encode_png(const Image& img);
 
-/// Writes `img` as a PNG through core's one output writer (core/io.hpp: whole or not at all,
+/// Writes `img` as a PNG through core's one output writer (core/io/files.hpp: whole or not at all,
 /// only a regular file). Throws InputError naming the path when it cannot.
 void write_png_atomic(const Image& img, const std::string& path);
 

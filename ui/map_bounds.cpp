@@ -6,7 +6,7 @@
 #include <string>
 
 #include "core/scene.hpp"
-#include "core/sweep_summary.hpp"
+#include "core/sweep/summary.hpp"
 
 namespace dampbound::ui {
 

@@ -4,8 +4,8 @@
 // window along the other (tests/ui/map_bounds_test.cpp).
 #include <vector>
 
-#include "core/safe_sweep.hpp"
-#include "core/sweep_map.hpp"
+#include "core/sweep/map.hpp"
+#include "core/sweep/safe_edge.hpp"
 #include "ui/map_grid.hpp"
 
 namespace dampbound::ui {

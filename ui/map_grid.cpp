@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "core/sweep/trials.hpp"
+
 namespace dampbound::ui {
 
 namespace {

@@ -1,13 +1,13 @@
 #pragma once
 // The stability map's grid (GL-free): the parameter on each axis, the log window around the
 // current point, its cells' trials, and running them with the batched sweep kernel
-// (core/sweep_kernel.hpp). tests/ui/map_grid_test.cpp compares the cells with `sweep`.
+// (core/sweep/kernel.hpp). tests/ui/map_grid_test.cpp compares the cells with `sweep`.
 #include <atomic>
 #include <string>
 #include <vector>
 
 #include "core/scene.hpp"
-#include "core/sweep_kernel.hpp"
+#include "core/sweep/kernel.hpp"
 
 namespace dampbound::ui {
 

@@ -1,8 +1,8 @@
 #pragma once
-// A stability map panel (core/sweep_map.hpp, plain data) as a PlotSpec: restored cells shaded
+// A stability map panel (core/sweep/map.hpp, plain data) as a PlotSpec: restored cells shaded
 // by iteration, not restored, diverged, and the boundary lines drawn over them. Shared by
 // `dampbound map` / `sweep --map` (headless) and the tuner's Map tab.
-#include "core/sweep_map.hpp"
+#include "core/sweep/map.hpp"
 #include "ui/plot_spec.hpp"
 
 namespace dampbound::ui {

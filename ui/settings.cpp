@@ -7,7 +7,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "core/io.hpp"
+#include "core/io/files.hpp"
 
 namespace dampbound::ui {
 

@@ -1,7 +1,7 @@
 #include "ui/trace_plots.hpp"
 
-#include "core/io.hpp"
-#include "core/report.hpp"
+#include "core/io/files.hpp"
+#include "core/io/report.hpp"
 
 namespace dampbound::ui {
 

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "core/figures.hpp"
+#include "core/analysis/figures.hpp"
 #include "core/step.hpp"
 #include "ui/plot_spec.hpp"
 

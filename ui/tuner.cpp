@@ -7,7 +7,8 @@
 #include <exception>
 #include <stdexcept>
 
-#include "core/report.hpp"
+#include "core/io/report.hpp"
+#include "core/io/scene_file.hpp"
 
 namespace dampbound::ui {
 

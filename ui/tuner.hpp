@@ -153,7 +153,7 @@ class Tuner {
   double step_seconds() const { return step_seconds_; }
 
   /// The exact upper limit of gamma for the chosen integrator (SPEC 7,
-  /// core/linear_stability_exact.hpp), at rest or at the current state (TunerCriteria),
+  /// core/analysis/linear_stability_exact.hpp), at rest or at the current state (TunerCriteria),
   /// recomputed when the parameters or the springs change (or the state, when it follows
   /// it); nullopt when it is infinite or cannot be computed.
   std::optional<double> exact_gamma_max() {

@@ -1,4 +1,5 @@
 #include "ui/tuner_criteria.hpp"
+#include "core/analysis/criteria_safe.hpp"
 
 #include <algorithm>
 #include <chrono>

@@ -1,6 +1,6 @@
 #pragma once
-// The tuner's stability criteria without GL: every criterion of core/criteria.hpp
-// for the current run, updated live, and the suggestions of core/suggest.hpp computed in the
+// The tuner's stability criteria without GL: every criterion of core/analysis/criteria.hpp
+// for the current run, updated live, and the suggestions of core/analysis/suggest.hpp computed in the
 // background so the window never stalls. tests/ui/tuner_criteria_test.cpp drives it.
 #include <cstdint>
 #include <future>
@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "core/criteria.hpp"
+#include "core/analysis/criteria.hpp"
 #include "core/session.hpp"
-#include "core/suggest.hpp"
+#include "core/analysis/suggest.hpp"
 
 namespace dampbound::ui {
 

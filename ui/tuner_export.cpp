@@ -4,9 +4,9 @@
 #include <ostream>
 
 #include "core/error.hpp"
-#include "core/io.hpp"
-#include "core/report.hpp"
-#include "core/vtu.hpp"
+#include "core/io/files.hpp"
+#include "core/io/report.hpp"
+#include "core/io/vtu.hpp"
 
 namespace dampbound::ui {
 

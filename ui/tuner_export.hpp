@@ -15,7 +15,7 @@ struct ExportPaths {
   std::string plots_png;
   std::string traces_csv;
   std::string runs_csv;
-  std::string step_vtu;  ///< DIR/PREFIX_step.vtu: the current step for ParaView (core/vtu.hpp)
+  std::string step_vtu;  ///< DIR/PREFIX_step.vtu: the current step for ParaView (core/io/vtu.hpp)
 };
 
 /// The paths for `dir` ("" = the current directory) and `prefix`. Throws InputError when the

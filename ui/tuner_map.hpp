@@ -12,7 +12,7 @@
 #include <thread>
 #include <vector>
 
-#include "core/sweep_map.hpp"
+#include "core/sweep/map.hpp"
 #include "ui/map_bounds.hpp"
 #include "ui/map_grid.hpp"
 

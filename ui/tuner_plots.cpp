@@ -5,7 +5,7 @@
 #include <limits>
 #include <utility>
 
-#include "core/report.hpp"
+#include "core/io/report.hpp"
 #include "ui/trace_plots.hpp"
 
 namespace dampbound::ui {

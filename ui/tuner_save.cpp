@@ -5,10 +5,10 @@
 #include <set>
 #include <sstream>
 
+#include "core/analysis/expect.hpp"
 #include "core/error.hpp"
-#include "core/expect.hpp"
-#include "core/io.hpp"
-#include "core/report.hpp"
+#include "core/io/files.hpp"
+#include "core/io/report.hpp"
 
 namespace dampbound::ui {
 

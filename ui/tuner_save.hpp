@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "core/scene_write.hpp"
+#include "core/io/scene_write.hpp"
 #include "ui/tuner.hpp"
 
 namespace dampbound::ui {

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The per-instruction-set copies of the sweep kernel (core/sweep_kernel_avx2.cpp, _avx512.cpp)
+# The per-instruction-set copies of the sweep kernel (core/sweep/detail/kernel_avx2.cpp, _avx512.cpp)
 # must keep everything they share with the rest of the library portable: a template or inline
 # function they emit (weak symbol) may be the copy the linker keeps for the whole program, so
 # it must contain no AVX instruction. And each copy must really use its instruction set.
@@ -10,9 +10,9 @@ shift 2
 fail=0
 for obj in "$@"; do
   case "$obj" in
-    *sweep_kernel_avx512.cpp.o) wide='%zmm' ;;
-    *sweep_kernel_avx2.cpp.o) wide='%ymm' ;;
-    *sweep_kernel.cpp.o) wide='' ;;
+    *kernel_avx512.cpp.o) wide='%zmm' ;;
+    *kernel_avx2.cpp.o) wide='%ymm' ;;
+    *kernel_body.cpp.o) wide='' ;;
     *) continue ;;
   esac
   dis=$("$objdump" -d --no-show-raw-insn -C "$obj")
@@ -35,7 +35,7 @@ for obj in "$@"; do
     fail=1
   fi
   if [ -z "$wide" ] && [ "$native" = OFF ] && grep -qE '%ymm|%zmm' <<<"$dis"; then
-    echo "FAIL: the generic sweep_kernel.cpp.o uses AVX registers in a portable build" >&2
+    echo "FAIL: the generic kernel_body.cpp.o uses AVX registers in a portable build" >&2
     fail=1
   fi
   echo "$(basename "$obj"): ok ($(wc -l <<<"$shared") shared symbols checked)"

@@ -19,7 +19,7 @@ done
 
 # Forged lines with a valid checksum (inf for a restored trial, a negative count) end the
 # journal's trusted prefix: those classes run again and the CSV holds no inf or negative count.
-journal_line() {  # body -> body + FNV-1a checksum, as core/sweep_journal.cpp writes it
+journal_line() {  # body -> body + FNV-1a checksum, as core/sweep/journal.cpp writes it
   python3 -c 'import sys
 b = sys.argv[1].encode(); h = 2166136261
 for c in b: h = ((h ^ c) * 16777619) & 0xffffffff

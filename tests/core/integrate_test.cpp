@@ -1,4 +1,4 @@
-#include "core/linear_stability_gcc.hpp"  // first: silences GCC 12 false positives
+#include "core/analysis/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
 // Tests of core/integrate.cpp: every integrator against its own amplification matrix, its
 // order of accuracy, the paper's two Euler steps bit for bit, and runs just inside / outside
 // each integrator's exact limit on the paper plane.
@@ -10,10 +10,11 @@
 #include <cmath>
 #include <complex>
 
-#include "core/criteria.hpp"
-#include "core/linear_stability_exact.hpp"
+#include "core/analysis/criteria.hpp"
+#include "core/analysis/linear_stability_exact.hpp"
 #include "core/scene.hpp"
 #include "core/step.hpp"
+#include "core/io/scene_file.hpp"
 
 namespace dampbound {
 namespace {

@@ -7,7 +7,8 @@
 
 #include "core/protocol.hpp"
 #include "core/session.hpp"
-#include "test_util.hpp"
+#include "core/io/scene_file.hpp"
+#include "tests/core/test_util.hpp"
 
 namespace dampbound {
 namespace {

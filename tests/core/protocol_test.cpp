@@ -3,9 +3,10 @@
 
 #include <gtest/gtest.h>
 
-#include "core/report.hpp"
+#include "core/io/report.hpp"
 #include "core/session.hpp"
-#include "test_util.hpp"
+#include "core/io/scene_file.hpp"
+#include "tests/core/test_util.hpp"
 
 namespace dampbound {
 namespace {

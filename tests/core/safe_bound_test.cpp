@@ -1,4 +1,4 @@
-#include "core/linear_stability_gcc.hpp"  // first: silences GCC 12 false positives
+#include "core/analysis/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
 // Tests of core/safe_bound: the O(springs) row sums against the dense mass-weighted tangent
 // stiffness, SPEC 9's numbers on the paper plane, the property that the safe policy keeps the
 // dense linearised step's spectral radius <= 1 on random small meshes (and that just outside
@@ -13,10 +13,11 @@
 #include <random>
 #include <string>
 
-#include "core/linear_stability.hpp"
-#include "core/linear_stability_modes.hpp"
+#include "core/analysis/linear_stability.hpp"
+#include "core/analysis/linear_stability_modes.hpp"
 #include "core/scene.hpp"
 #include "core/step.hpp"
+#include "core/io/scene_file.hpp"
 
 namespace dampbound {
 namespace {

@@ -4,7 +4,8 @@
 #include <gtest/gtest.h>
 
 #include "core/error.hpp"
-#include "test_util.hpp"
+#include "core/io/scene_file.hpp"
+#include "tests/core/test_util.hpp"
 
 namespace dampbound {
 namespace {

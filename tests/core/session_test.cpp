@@ -5,8 +5,10 @@
 
 #include <atomic>
 
-#include "core/sweep_kernel.hpp"
-#include "test_util.hpp"
+#include "core/sweep/kernel.hpp"
+#include "core/io/scene_file.hpp"
+#include "core/sweep/trials.hpp"
+#include "tests/core/test_util.hpp"
 
 namespace dampbound {
 namespace {

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "core/error.hpp"
-#include "core/mesh.hpp"
+#include "core/io/mesh.hpp"
 
 namespace dampbound::fuzz {
 

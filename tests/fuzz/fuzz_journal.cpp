@@ -1,4 +1,4 @@
-// Fuzz target: the sweep journal reader (core/sweep_journal.cpp): a journal left by a killed
+// Fuzz target: the sweep journal reader (core/sweep/journal.cpp): a journal left by a killed
 // or broken run, or forged. Any input must be read back (its valid prefix) or refused with an
 // InputError, and what is read back must be what a run can produce.
 #include <cmath>
@@ -8,7 +8,7 @@
 #include <string>
 
 #include "core/error.hpp"
-#include "core/sweep_journal.hpp"
+#include "core/sweep/journal.hpp"
 #include "tests/fuzz/memory_file.hpp"
 
 namespace {

@@ -1,5 +1,5 @@
 // libFuzzer target: the Gmsh MSH reader (2.2 and 4.1, ASCII and binary).
-#include "core/mesh_formats.hpp"
+#include "core/io/mesh_msh.hpp"
 #include "tests/fuzz/fuzz_common.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

@@ -1,7 +1,7 @@
 // libFuzzer target: the Wavefront OBJ reader.
 #include <string>
 
-#include "core/mesh_obj.hpp"
+#include "core/io/mesh_obj.hpp"
 #include "tests/fuzz/fuzz_common.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

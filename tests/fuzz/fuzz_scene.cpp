@@ -1,4 +1,4 @@
-// Fuzz target: the TOML scene parser (core/scene_file.cpp, core/scene_text.cpp). Any input
+// Fuzz target: the TOML scene parser (core/io/scene_file.cpp, core/io/scene_text.cpp). Any input
 // must give a scene or an InputError, never a crash, a hang or another exception.
 #include <toml++/toml.h>
 
@@ -8,7 +8,8 @@
 
 #include "core/error.hpp"
 #include "core/scene.hpp"
-#include "core/scene_text.hpp"
+#include "core/io/scene_text.hpp"
+#include "core/io/scene_file.hpp"
 
 namespace {
 

@@ -1,11 +1,11 @@
-// Fuzz target: the sweep CSV reader (core/sweep_csv.cpp) that `map`, `merge` and `--resume`
+// Fuzz target: the sweep CSV reader (core/sweep/csv.cpp) that `map`, `merge` and `--resume`
 // use. Any input must be read or refused with an InputError naming the line, never a crash.
 #include <cstddef>
 #include <cstdint>
 #include <string>
 
 #include "core/error.hpp"
-#include "core/sweep_csv.hpp"
+#include "core/sweep/csv.hpp"
 #include "tests/fuzz/memory_file.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

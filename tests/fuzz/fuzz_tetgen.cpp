@@ -2,7 +2,7 @@
 // texts separated by lines "@@" (the seeds in corpus/tetgen/ are written that way).
 #include <string>
 
-#include "core/mesh_formats.hpp"
+#include "core/io/mesh_tetgen.hpp"
 #include "tests/fuzz/fuzz_common.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

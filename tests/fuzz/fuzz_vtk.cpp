@@ -1,5 +1,5 @@
 // libFuzzer target: the VTK legacy unstructured-grid reader.
-#include "core/mesh_formats.hpp"
+#include "core/io/mesh_vtk.hpp"
 #include "tests/fuzz/fuzz_common.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

@@ -2,11 +2,11 @@
 // data<->pixel map says, PNGs are written, errors are exceptions. Sample PNGs go to
 // $DAMPBOUND_UI_PNG_DIR, else ui_test_output/ in the working directory.
 #if defined(DAMPBOUND_HAVE_EGL)
+#include "tests/ui/plot_specs.hpp"
 #include "ui/egl_host.hpp"
 #include "ui/figure.hpp"
 #include "ui/image.hpp"
 #include "ui/plot.hpp"
-#include "tests/ui/plot_specs.hpp"
 
 #include <gtest/gtest.h>
 #include <imgui.h>

@@ -9,12 +9,13 @@
 #include <map>
 #include <sstream>
 
-#include "core/figures.hpp"
+#include "core/analysis/figures.hpp"
 #include "ui/egl_host.hpp"
 #include "ui/image.hpp"
 #include "ui/plot.hpp"
 #include "ui/render_png.hpp"
 #include "ui/trace_plots.hpp"
+#include "core/io/scene_file.hpp"
 
 namespace dampbound::ui {
 namespace {

@@ -13,7 +13,7 @@
 #include <map>
 #include <string>
 
-#include "core/expect.hpp"
+#include "core/analysis/expect.hpp"
 #include "core/scene.hpp"
 #include "ui/egl_host.hpp"
 #include "ui/gui_app.hpp"
@@ -22,6 +22,7 @@
 #include "ui/settings.hpp"
 #include "ui/mesh_style.hpp"
 #include "ui/tuner_plots.hpp"
+#include "core/io/scene_file.hpp"
 
 namespace dampbound::ui {
 namespace {

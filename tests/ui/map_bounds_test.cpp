@@ -8,7 +8,8 @@
 #include <string>
 
 #include "core/bounds.hpp"
-#include "core/sweep_summary.hpp"
+#include "core/io/scene_file.hpp"
+#include "core/sweep/summary.hpp"
 
 namespace dampbound::ui {
 namespace {

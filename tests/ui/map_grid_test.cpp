@@ -13,7 +13,7 @@
 #include <string>
 #include <utility>
 
-#include "core/sweep_runner.hpp"
+#include "core/sweep/runner.hpp"
 
 namespace dampbound::ui {
 namespace {

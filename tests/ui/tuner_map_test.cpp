@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "core/bounds.hpp"
+#include "core/io/scene_file.hpp"
 #include "ui/tuner.hpp"
 
 namespace dampbound::ui {

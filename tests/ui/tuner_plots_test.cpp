@@ -11,9 +11,10 @@
 #include <sstream>
 
 #include "core/error.hpp"
-#include "core/io.hpp"
+#include "core/io/files.hpp"
 #include "core/scene.hpp"
 #include "ui/tuner_export.hpp"
+#include "core/io/scene_file.hpp"
 
 namespace dampbound::ui {
 namespace {

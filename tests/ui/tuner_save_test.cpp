@@ -9,8 +9,9 @@
 #include <fstream>
 
 #include "core/error.hpp"
-#include "core/expect.hpp"
-#include "core/io.hpp"
+#include "core/analysis/expect.hpp"
+#include "core/io/files.hpp"
+#include "core/io/scene_file.hpp"
 
 namespace dampbound::ui {
 namespace {

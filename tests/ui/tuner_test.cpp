@@ -9,7 +9,8 @@
 #include <limits>
 
 #include "core/bounds.hpp"
-#include "core/report.hpp"
+#include "core/io/report.hpp"
+#include "core/io/scene_file.hpp"
 #include "core/scene.hpp"
 #include "ui/mesh_pick.hpp"
 

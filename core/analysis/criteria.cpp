@@ -1,0 +1,266 @@
+#include "core/analysis/criteria_safe.hpp"
+#include "core/analysis/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
+#include "core/analysis/criteria.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <utility>
+
+#include "core/bounds.hpp"
+#include "core/forces.hpp"
+
+namespace dampbound {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+std::string num(double x) { return format_short(x); }
+
+CriterionResult criterion(std::string name, std::string source, std::string formula) {
+  CriterionResult c;
+  c.name = std::move(name);
+  c.source = std::move(source);
+  c.formula = std::move(formula);
+  return c;
+}
+
+CriterionVerdict verdict_of(bool ok) { return ok ? CriterionVerdict::within : CriterionVerdict::beyond; }
+
+}  // namespace
+
+std::string format_short(double x) {
+  if (std::isnan(x)) return "n/a";
+  if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.8g", x);
+  return buf;
+}
+
+const char* to_string(CriterionVerdict v) {
+  switch (v) {
+    case CriterionVerdict::within: return "within";
+    case CriterionVerdict::beyond: return "BEYOND";
+    case CriterionVerdict::not_applicable: return "n/a";
+  }
+  return "?";
+}
+
+double delingette_critical_stiffness(double m_total, int n, double dt) {
+  return m_total / (n * kPi * kPi * dt * dt);
+}
+
+double provot_natural_period(double m, double kappa) { return kPi * std::sqrt(m / kappa); }
+
+double kacic_alesic_dt(double m, double K) { return 2.0 * std::sqrt(m / K); }
+
+std::vector<double> combined_stiffness(const Model& model) {
+  std::vector<double> K = model.anchor_kappa;
+  for (const Spring& s : model.springs) {
+    K[static_cast<size_t>(s.i)] += s.kappa;
+    K[static_cast<size_t>(s.j)] += s.kappa;
+  }
+  return K;
+}
+
+std::vector<CriterionResult> classic_criteria(const Model& model, const Params& params) {
+  const double dt = params.dt;
+  std::vector<CriterionResult> out;
+  double m_total = 0, kappa_max = 0;
+  int n = 0;
+  for (size_t i = 0; i < model.rest.size(); ++i)
+    if (!model.fixed[i]) {
+      m_total += model.mass[i];
+      ++n;
+      kappa_max = std::max(kappa_max, model.node_kappa[i]);
+    }
+  {
+    CriterionResult c = criterion("Delingette critical stiffness", "Delingette 2000 (paper ref. [11]), SPEC 7",
+                      "k_c = m_total / (n pi^2 dt^2); require kappa < k_c (kappa: the stiffest "
+                      "spring or anchor)");
+    c.unit = "mass unit/s^2";
+    c.value = n ? delingette_critical_stiffness(m_total, n, dt) : kInf;
+    c.verdict = verdict_of(kappa_max < c.value);
+    c.test = "kappa_max = " + num(kappa_max) + (kappa_max < c.value ? " < " : " >= ") +
+             "k_c = " + num(c.value) + " (n = " + std::to_string(n) + " free nodes)";
+    out.push_back(c);
+  }
+  const std::vector<double> K = combined_stiffness(model);
+  CriterionResult provot = criterion("Provot natural period", "Provot 1995 (paper ref. [2]), SPEC 7",
+                         "T0_i = pi sqrt(m_i / kappa_i), kappa_i = max incident stiffness "
+                         "(SPEC 3); require dt < T0 at every node");
+  provot.unit = "s";
+  provot.value = kInf;
+  CriterionResult ka = criterion("Kacic-Alesic (Verlet) step", "Kacic-Alesic et al. 2003 (paper ref. [12]), SPEC 7",
+                     "dt_i = 2 sqrt(m_i / K_i), K_i = sum of the stiffness of every spring and "
+                     "anchor at i; require dt <= dt_i at every node");
+  ka.unit = "s";
+  ka.value = kInf;
+  for (size_t i = 0; i < model.rest.size(); ++i) {
+    if (model.fixed[i]) continue;
+    const double t0 = model.node_kappa[i] > 0 ? provot_natural_period(model.mass[i], model.node_kappa[i]) : kInf;
+    if (t0 < provot.value) provot.value = t0, provot.node = static_cast<int>(i);
+    const double tk = K[i] > 0 ? kacic_alesic_dt(model.mass[i], K[i]) : kInf;
+    if (tk < ka.value) ka.value = tk, ka.node = static_cast<int>(i);
+  }
+  provot.verdict = verdict_of(dt < provot.value);
+  provot.test = "dt = " + num(dt) + (dt < provot.value ? " < " : " >= ") + "T0 = " +
+                num(provot.value) + " (worst node " + std::to_string(provot.node) + ")";
+  ka.verdict = verdict_of(dt <= ka.value);
+  ka.test = "dt = " + num(dt) + (dt <= ka.value ? " <= " : " > ") + "2 sqrt(m/K) = " +
+            num(ka.value) + " (worst node " + std::to_string(ka.node) + ")";
+  out.push_back(provot);
+  out.push_back(ka);
+  return out;
+}
+
+std::vector<CriterionResult> paper_criteria(const Model& model, const State& state,
+                                            const Params& params) {
+  std::vector<CriterionResult> out;
+  CriterionResult lo = criterion("paper lower bound", "Bhasin & Liu eq. 5, SPEC 3",
+                     "gamma_i >= gamma_lo_i = 2 sqrt(m_i kappa_i), kappa_i = max incident stiffness");
+  lo.unit = "mass unit/s";
+  double worst = kInf;
+  for (size_t i = 0; i < model.rest.size(); ++i) {
+    if (model.fixed[i]) continue;
+    const double margin = model.gamma[i] - model.lower_bound[i];
+    if (margin < worst) worst = margin, lo.node = static_cast<int>(i);
+  }
+  if (lo.node >= 0) {
+    const auto w = static_cast<size_t>(lo.node);
+    lo.value = model.lower_bound[w];
+    lo.verdict = verdict_of(model.gamma[w] >= lo.value);
+    lo.test = "gamma_i = " + num(model.gamma[w]) + (model.gamma[w] >= lo.value ? " >= " : " < ") +
+              "gamma_lo = " + num(lo.value) + " (worst node " + std::to_string(lo.node) + ")";
+  }
+  out.push_back(lo);
+
+  std::vector<Vec3> force;
+  internal_forces(model, state.x, force);
+  CriterionResult hi = criterion("paper upper bound", "Bhasin & Liu eq. 6, SPEC 3",
+                     "gamma_i <= gamma_hi_i = |v_i m_i/dt + F_i| / |v_i| at the state (inf at v_i = 0)");
+  hi.unit = "mass unit/s";
+  hi.value = kInf;
+  CriterionResult check = criterion("paper runtime check", "Bhasin & Liu sec. 5, SPEC 3",
+                        "node i unstabilisable when gamma_lo_i > gamma_hi_i");
+  check.unit = "nodes";
+  int unstabilisable = 0, moving = 0;
+  worst = kInf;
+  for (size_t i = 0; i < model.rest.size(); ++i) {
+    if (model.fixed[i]) continue;
+    const double bound = upper_bound(state.v[i], force[i], model.mass[i], params.dt);
+    if (std::isinf(bound)) continue;
+    ++moving;
+    if (model.lower_bound[i] > bound) {
+      if (check.node < 0) check.node = static_cast<int>(i);
+      ++unstabilisable;
+    }
+    if (bound - model.gamma[i] < worst) worst = bound - model.gamma[i], hi.node = static_cast<int>(i), hi.value = bound;
+  }
+  if (moving == 0) {
+    hi.verdict = check.verdict = CriterionVerdict::not_applicable;
+    hi.test = "every v_i = 0 (at rest): damping has no effect this step, gamma_hi = inf";
+    check.test = "no node moves: nothing to check";
+  } else {
+    const double g = model.gamma[static_cast<size_t>(hi.node)];
+    hi.verdict = verdict_of(g <= hi.value);
+    hi.test = "gamma_i = " + num(g) + (g <= hi.value ? " <= " : " > ") + "gamma_hi = " +
+              num(hi.value) + " (worst node " + std::to_string(hi.node) + ")";
+    // Eq. 6 comes from the Euler velocity update v' = v + a dt, which the paper's step and
+    // forward Euler share; for the other integrators it is shown for reference only.
+    if (params.integrator != Integrator::semi_implicit_euler &&
+        params.integrator != Integrator::forward_euler)
+      hi.test += "; derived for the Euler update, shown for reference";
+    check.value = unstabilisable;
+    check.verdict = verdict_of(unstabilisable == 0);
+    check.test = std::to_string(unstabilisable) + " of " + std::to_string(moving) +
+                 " moving nodes unstabilisable";
+  }
+  out.push_back(hi);
+  out.push_back(check);
+  return out;
+}
+
+std::vector<CriterionResult> exact_criteria(const ExactStability& e, const Params& params) {
+  std::vector<CriterionResult> out;
+  const std::string integ = to_string(e.integrator);
+  CriterionResult lm = criterion("exact lambda_max of M^-1 K",
+                     "SPEC 7, 9 (tangent stiffness; Gershgorin, shift-and-invert, Cholesky)",
+                     "largest eigenvalue of M^-1/2 K M^-1/2 at the state; lambda_min = " +
+                         num(e.spectrum.lambda_min));
+  lm.unit = "1/s^2";
+  lm.value = e.spectrum.lambda_max;
+  lm.verdict = CriterionVerdict::not_applicable;
+  char interval[80];  // 12 digits: the interval is ~1e-10 wide
+  std::snprintf(interval, sizeof interval, "[%.12g, %.12g]", e.lambda_max_lo, e.spectrum.lambda_max);
+  lm.test = "a quantity, not a test; certified in " + std::string(interval) + "; dt^2 lambda_max = " +
+            num(params.dt * params.dt * e.spectrum.lambda_max);
+  out.push_back(lm);
+
+  CriterionResult rho = criterion("exact spectral radius (" + integ + ")", "SPEC 7",
+                      std::string("rho of one step's amplification matrix; ") + to_string(e.method));
+  rho.value = e.spectral_radius;
+  rho.verdict = verdict_of(e.stable);
+  if (e.method == ExactMethod::symmetric_index)
+    rho.test = "index lambda_max(dt^2 A + 2 dt C) = " + num(e.index) + (e.index < 4 ? " < 4" : " >= 4") +
+               (std::isnan(e.spectral_radius) ? "" : ", rho = " + num(e.spectral_radius));
+  else if (std::isnan(e.spectral_radius))
+    rho.test = e.stable ? "stable for every dt and gamma" : "unstable";
+  else
+    rho.test = "rho = " + num(e.spectral_radius) + (e.stable ? " <= 1" : " > 1") +
+               (e.radius_converged ? "" : " (estimate: Arnoldi did not converge)") +
+               (e.stable && e.spectral_radius >= 1 - 1e-12 ? " (marginal: no decay)" : "") +
+               (e.zero_modes ? " (zero modes, lambda = 0, excluded: z = 1 for any gamma, dt)" : "");
+  out.push_back(rho);
+
+  CriterionResult gi = criterion("exact gamma interval (" + integ + ")", "SPEC 7",
+                     "the user's gamma for which the step is stable at this dt");
+  gi.unit = "mass unit/s";
+  gi.value = e.gamma_hi;
+  const bool inside = params.gamma >= e.gamma_lo && params.gamma < e.gamma_hi;
+  gi.verdict = verdict_of(inside);
+  gi.test = "gamma = " + num(params.gamma) + (inside ? " in " : " not in ") + "[" +
+            num(e.gamma_lo) + ", " + num(e.gamma_hi) + ")" +
+            (e.method == ExactMethod::frozen_estimate ? " (frozen-rate estimate)" : "");
+  out.push_back(gi);
+
+  CriterionResult dm = criterion("exact dt limit (" + integ + ")", "SPEC 7",
+                     "the largest stable dt at this gamma");
+  dm.unit = "s";
+  dm.value = e.dt_max;
+  dm.verdict = verdict_of(params.dt <= e.dt_max);
+  dm.test = "dt = " + num(params.dt) + (params.dt <= e.dt_max ? " <= " : " > ") + "dt_max = " +
+            num(e.dt_max) + (e.method == ExactMethod::frozen_estimate ? " (frozen-rate estimate)" : "");
+  out.push_back(dm);
+  return out;
+}
+
+std::vector<CriterionResult> all_criteria(const Model& model, const State& state,
+                                          const Params& params, const ExactStability& exact) {
+  std::vector<CriterionResult> out = paper_criteria(model, state, params);
+  for (auto& c : classic_criteria(model, params)) out.push_back(c);
+  for (auto& c : exact_criteria(exact, params)) out.push_back(c);
+  for (auto& c : safe_criteria(model, state, params, &exact)) out.push_back(c);
+  return out;
+}
+
+Model two_node_system(const Params& params) {
+  Model m;
+  add_node(m, Vec3::Zero());
+  add_node(m, Vec3(1, 0, 0));
+  m.fixed[0] = 1;
+  add_spring(m, 0, 1);
+  set_params(m, params);
+  return m;
+}
+
+Model single_node_system(const Params& params) {
+  Model m;
+  add_node(m, Vec3::Zero());
+  m.anchor_scale[0] = 1;
+  set_params(m, params);
+  return m;
+}
+
+}  // namespace dampbound

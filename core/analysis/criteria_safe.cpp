@@ -1,0 +1,98 @@
+#include "core/analysis/criteria_safe.hpp"
+#include "core/analysis/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
+// The per-node safe bound of SPEC 9 as criteria rows, beside the paper's and the exact ones.
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "core/analysis/criteria.hpp"
+#include "core/safe_bound.hpp"
+
+namespace dampbound {
+namespace {
+
+std::string num(double x) { return format_short(x); }
+
+CriterionVerdict verdict_of(bool ok) {
+  return ok ? CriterionVerdict::within : CriterionVerdict::beyond;
+}
+
+/// "; ratio to the exact limit r" when the exact analysis is the paper's step's.
+std::string ratio_text(double safe, double exact, const ExactStability* e) {
+  if (!e || e->integrator != Integrator::semi_implicit_euler || !std::isfinite(exact) ||
+      exact == 0)
+    return "";
+  return "; " + num(safe / exact) + " of the exact limit " + num(exact);
+}
+
+}  // namespace
+
+std::vector<CriterionResult> safe_criteria(const Model& model, const State& state,
+                                           const Params& params, const ExactStability* exact) {
+  const SafeBoundSummary s = safe_bound_summary(model, state.x, params.dt);
+  std::vector<CriterionResult> out;
+  if (s.free_nodes == 0) return out;
+  // With a compressed spring K may be indefinite: the motion itself can be unstable and no
+  // damping bound helps (SPEC 9). Say so instead of a verdict.
+  const std::string caveat =
+      s.compressed_springs > 0
+          ? "; " + std::to_string(s.compressed_springs) +
+                " compressed springs: K may not be positive semi-definite, no guarantee"
+          : "";
+  const CriterionVerdict unknown = CriterionVerdict::not_applicable;
+
+  CriterionResult g;
+  g.name = "safe damping bound";
+  g.source = "SPEC 9 (Gershgorin on Q = 4I - 2dt C - dt^2 A)";
+  g.formula = "gamma_i < gamma_safe_i = 2 m_i/dt - m_i dt R_i / 2, R_i = max row sum of |A|";
+  g.unit = "mass unit/s";
+  g.value = s.gamma_safe;
+  g.node = s.gamma_node;
+  int over = 0;
+  std::vector<double> R;
+  safe_row_sums(model, state.x, R);
+  for (size_t i = 0; i < R.size(); ++i)
+    if (!model.fixed[i]) over += !(model.gamma[i] < safe_gamma(model.mass[i], params.dt, R[i]));
+  g.verdict = s.compressed_springs > 0 ? unknown : verdict_of(over == 0);
+  g.test = std::to_string(over) + " of " + std::to_string(s.free_nodes) +
+           " nodes with gamma_i >= gamma_safe_i; smallest gamma_safe " + num(s.gamma_safe) +
+           " at node " + std::to_string(s.gamma_node) + " (R = " + num(s.row_sum) + ")" +
+           ratio_text(s.gamma_safe, exact ? exact->gamma_hi : NAN, exact) + caveat;
+  out.push_back(g);
+
+  CriterionResult d;
+  d.name = "safe dt bound";
+  d.source = "SPEC 9";
+  d.formula = "dt < dt_safe_i = (sqrt(c_i^2 + 4 R_i) - c_i) / R_i, c_i = gamma_i/m_i";
+  d.unit = "s";
+  d.value = s.dt_safe;
+  d.node = s.dt_node;
+  d.verdict = s.compressed_springs > 0 ? unknown : verdict_of(params.dt < s.dt_safe);
+  d.test = "dt = " + num(params.dt) + (params.dt < s.dt_safe ? " < " : " >= ") + "dt_safe = " +
+           num(s.dt_safe) + " (node " + std::to_string(s.dt_node) + ")" +
+           ratio_text(s.dt_safe, exact ? exact->dt_max : NAN, exact) + caveat;
+  out.push_back(d);
+
+  CriterionResult c;
+  c.name = "safe check: critical damping";
+  c.source = "SPEC 9";
+  c.formula = "critical damping guaranteed at node i when gamma_lo_i <= gamma_safe_i";
+  c.unit = "nodes";
+  c.value = static_cast<double>(s.infeasible.size());
+  c.verdict = verdict_of(s.infeasible.empty());
+  if (s.infeasible.empty()) {
+    c.test = "gamma_lo_i <= gamma_safe_i at every free node";
+  } else {
+    c.node = s.infeasible.front();
+    double dt_min = s.infeasible_dt.front();
+    for (double h : s.infeasible_dt) dt_min = std::min(dt_min, h);
+    c.test = std::to_string(s.infeasible.size()) + " of " + std::to_string(s.free_nodes) +
+             " nodes with gamma_lo > gamma_safe (first: node " + std::to_string(c.node) +
+             ", feasible at dt < " + num(s.infeasible_dt.front()) + "); all at dt < " +
+             num(dt_min);
+  }
+  out.push_back(c);
+  return out;
+}
+
+}  // namespace dampbound

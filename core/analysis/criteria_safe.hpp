@@ -1,0 +1,18 @@
+#pragma once
+// SPEC 9's safe bound as rows of the criteria table.
+#include <vector>
+
+#include "core/analysis/criteria.hpp"
+
+namespace dampbound {
+
+/// The safe bound of SPEC 9 at the state (core/safe_bound.hpp): gamma_safe (worst node, the
+/// user's gamma_i judged), dt_safe at the user's gamma, and the nodes where critical damping
+/// cannot be guaranteed (gamma_lo_i > gamma_safe_i). With `exact` (the paper's step) each
+/// gives its ratio to the exact limit. Where a spring is compressed K may be indefinite: the
+/// verdict is n/a and the test says so.
+std::vector<CriterionResult> safe_criteria(const Model& model, const State& state,
+                                           const Params& params,
+                                           const ExactStability* exact = nullptr);
+
+}  // namespace dampbound

@@ -1,0 +1,72 @@
+#include "core/analysis/expect.hpp"
+
+#include <map>
+#include <utility>
+
+#include "core/io/files.hpp"
+#include "core/io/report.hpp"
+#include "core/session.hpp"
+
+namespace dampbound {
+
+RunResult run_labelled(const SceneSpec& scene, const std::string& label, StopRule rule) {
+  Params params = scene.params;
+  StopRules rules = scene.rules;
+  for (const RunSpec& r : scene.runs)
+    if (r.label == label) params = r.params, rules = r.rules;
+  rules.rule = rule;
+  Session session(scene, params, rules);
+  return session.run_to_end();
+}
+
+std::vector<ExpectationResult> check_expectations(const SceneSpec& scene) {
+  std::map<std::pair<std::string, StopRule>, RunResult> results;
+  std::vector<ExpectationResult> out;
+  for (const Expectation& e : scene.expectations) {
+    const auto key = std::make_pair(e.run, e.rule);
+    auto it = results.find(key);
+    if (it == results.end()) it = results.emplace(key, run_labelled(scene, e.run, e.rule)).first;
+    const RunResult& r = it->second;
+    const std::string rule = std::string("[") + to_string(e.rule) + "] ";
+    auto add = [&](const std::string& what, const std::string& measured, bool pass) {
+      out.push_back({scene.path, e.line, e.run, rule + what, measured, pass});
+    };
+    // An iteration range; 0 (none) is outside every range.
+    auto range = [&](const char* name, int value, int lo, int hi) {
+      add(std::string(name) + " in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]",
+          value > 0 ? std::to_string(value) : std::string("none"), value >= lo && value <= hi);
+    };
+    if (e.outcome) {
+      StopRules rules = scene.rules;
+      for (const RunSpec& rs : scene.runs)
+        if (rs.label == e.run) rules = rs.rules;
+      rules.rule = e.rule;
+      add(std::string("outcome == ") + to_string(*e.outcome), verdict_text(r, rules),
+          r.outcome == *e.outcome);
+    }
+    if (e.iterations_min) range("iterations", r.iterations, *e.iterations_min, *e.iterations_max);
+    if (e.first_entry_min)
+      range("first_entry", r.first_entry, *e.first_entry_min, *e.first_entry_max);
+    if (e.left)
+      add(std::string("left == ") + (*e.left ? "true" : "false"),
+          r.left_at > 0 ? "left at " + std::to_string(r.left_at) : "never left",
+          (r.left_at > 0) == *e.left);
+    if (e.left_at_min) range("left_at", r.left_at, *e.left_at_min, *e.left_at_max);
+    if (e.settled_at_min) range("settled_at", r.settled_at, *e.settled_at_min, *e.settled_at_max);
+    if (e.max_displacement_below)
+      add("max displacement < " + format_number(*e.max_displacement_below) + " cm",
+          format_number(r.max_displacement), r.max_displacement < *e.max_displacement_below);
+    if (e.unstabilisable_max)
+      add("unstabilisable node-steps <= " + std::to_string(*e.unstabilisable_max),
+          std::to_string(r.unstabilisable), r.unstabilisable <= *e.unstabilisable_max);
+    if (e.violations_max)
+      add("violating node-steps <= " + std::to_string(*e.violations_max),
+          std::to_string(r.violations), r.violations <= *e.violations_max);
+    if (e.violations_min)
+      add("violating node-steps >= " + std::to_string(*e.violations_min),
+          std::to_string(r.violations), r.violations >= *e.violations_min);
+  }
+  return out;
+}
+
+}  // namespace dampbound

@@ -1,0 +1,149 @@
+#include "core/analysis/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
+#include "core/analysis/linear_stability.hpp"
+#include "core/detail/spring_block.hpp"
+
+#include "core/analysis/linear_stability_cholesky.hpp"
+
+#include <Eigen/Dense>
+#include <Spectra/MatOp/SparseSymMatProd.h>
+#include <Spectra/SymEigsSolver.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace dampbound {
+
+std::vector<int> free_blocks(const Model& model, int* free_count) {
+  std::vector<int> block(model.rest.size(), -1);
+  int count = 0;
+  for (size_t i = 0; i < block.size(); ++i)
+    if (!model.fixed[i]) block[i] = count++;
+  if (free_count) *free_count = count;
+  return block;
+}
+
+SparseMatrix tangent_stiffness(const Model& model, const std::vector<Vec3>& x,
+                               bool clamp_compression) {
+  int nfree = 0;
+  const std::vector<int> block = free_blocks(model, &nfree);
+  std::vector<Eigen::Triplet<double>> t;
+  t.reserve(model.springs.size() * 36 + model.rest.size() * 3);
+  // Adds the 3x3 block B at block (bi, bj) when both are free.
+  auto add = [&](int bi, int bj, const Eigen::Matrix3d& B, double sign) {
+    if (bi < 0 || bj < 0) return;
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c)
+        if (B(r, c) != 0) t.emplace_back(3 * bi + r, 3 * bj + c, sign * B(r, c));
+  };
+  for (size_t i = 0; i < model.rest.size(); ++i) {
+    const int b = block[i];
+    if (b >= 0 && model.anchor_kappa[i] > 0)
+      for (int r = 0; r < 3; ++r) t.emplace_back(3 * b + r, 3 * b + r, model.anchor_kappa[i]);
+  }
+  for (const Spring& s : model.springs) {
+    const Vec3 delta = x[static_cast<size_t>(s.j)] - x[static_cast<size_t>(s.i)];
+    const double l = delta.norm();
+    if (!(l > 0)) continue;  // no direction: no force, no stiffness (SPEC 1)
+    const Vec3 d = delta / l;
+    const double ratio = s.rest_length / l;
+    double tension = 1.0 - ratio;  // (1 - l0/l)
+    if (clamp_compression) tension = std::max(0.0, tension);
+    double b[6];
+    spring_tangent_block(s.kappa, tension, ratio, d.data(), b);
+    Eigen::Matrix3d B;
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) B(r, c) = b[sym3(r, c)];
+    const int bi = block[static_cast<size_t>(s.i)], bj = block[static_cast<size_t>(s.j)];
+    add(bi, bi, B, 1);
+    add(bj, bj, B, 1);
+    add(bi, bj, B, -1);
+    add(bj, bi, B, -1);
+  }
+  SparseMatrix K(3 * nfree, 3 * nfree);
+  K.setFromTriplets(t.begin(), t.end());
+  return K;
+}
+
+SparseMatrix mass_weighted(const Model& model, const SparseMatrix& K) {
+  std::vector<double> inv_sqrt_m;
+  for (size_t i = 0; i < model.rest.size(); ++i)
+    if (!model.fixed[i])
+      for (int r = 0; r < 3; ++r) inv_sqrt_m.push_back(1.0 / std::sqrt(model.mass[i]));
+  SparseMatrix A = K;
+  for (int k = 0; k < A.outerSize(); ++k)
+    for (SparseMatrix::InnerIterator it(A, k); it; ++it)
+      it.valueRef() *= inv_sqrt_m[static_cast<size_t>(it.row())] *
+                       inv_sqrt_m[static_cast<size_t>(it.col())];
+  return A;
+}
+
+double largest_eigenvalue(const SparseMatrix& A) { return certified_largest_eigenvalue(A).hi; }
+double smallest_eigenvalue_above(const SparseMatrix& A, double floor) {
+  const Eigen::Index n = A.rows();
+  if (n == 0) return 0;
+  if (n <= 300) {  // small: dense is cheap and finds every zero mode
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es{Eigen::MatrixXd(A), Eigen::EigenvaluesOnly};
+    for (Eigen::Index k = 0; k < n; ++k)
+      if (es.eigenvalues()(k) > floor) return es.eigenvalues()(k);
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+  // Large: the 12 smallest by Lanczos (a free mesh has 6 rigid modes; 12 leaves room).
+  Spectra::SparseSymMatProd<double> op(A);
+  const Eigen::Index nev = std::min<Eigen::Index>(12, n - 2);
+  Spectra::SymEigsSolver<Spectra::SparseSymMatProd<double>> eigs(op, nev, std::min<Eigen::Index>(n, 96));
+  eigs.init();
+  eigs.compute(Spectra::SortRule::SmallestAlge, 5000, 1e-11, Spectra::SortRule::SmallestAlge);
+  if (eigs.info() != Spectra::CompInfo::Successful) return std::numeric_limits<double>::quiet_NaN();
+  for (Eigen::Index k = 0; k < eigs.eigenvalues().size(); ++k)
+    if (eigs.eigenvalues()(k) > floor) return eigs.eigenvalues()(k);
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+double largest_eigenpair(const SparseMatrix& A, Eigen::VectorXd& vector) {
+  return certified_largest_eigenvalue(A, &vector).hi;
+}
+double smallest_eigenvalue(const SparseMatrix& A) { return certified_smallest_eigenvalue(A).lo; }
+
+double max_stiffness_eigenvalue(const Model& model, const std::vector<Vec3>& x) {
+  return largest_eigenvalue(mass_weighted(model, tangent_stiffness(model, x)));
+}
+
+StiffnessSpectrum stiffness_spectrum(const Model& model, const std::vector<Vec3>& x) {
+  const CertifiedSpectrum ends = certified_spectrum(mass_weighted(model, tangent_stiffness(model, x)));
+  return {ends.smallest.lo, ends.largest.hi};
+}
+
+LinearLimits linear_limits(double lambda_max, double m, double dt) {
+  LinearLimits l;
+  l.lambda_max = lambda_max;
+  // SPEC 7: lambda dt^2 < 4 - 2 c dt, c = gamma/m  =>  gamma < 2m/dt - m lambda dt / 2.
+  l.gamma_max = 2.0 * m / dt - m * lambda_max * dt / 2.0;
+  l.dt_max_undamped = lambda_max > 0 ? 2.0 / std::sqrt(lambda_max)
+                                     : std::numeric_limits<double>::infinity();
+  return l;
+}
+
+double semi_implicit_dt_max(double lambda_max, double c) {
+  // lambda dt^2 + 2 c dt - 4 = 0, the positive root; dt < 2/c when lambda = 0.
+  if (!(lambda_max > 0)) return c > 0 ? 2.0 / c : std::numeric_limits<double>::infinity();
+  return (std::sqrt(c * c + 4.0 * lambda_max) - c) / lambda_max;
+}
+
+double semi_implicit_stability_index(const Model& model, const SparseMatrix& K_weighted,
+                                     const std::vector<double>& gamma, double dt) {
+  SparseMatrix S = (dt * dt) * K_weighted;
+  std::vector<Eigen::Triplet<double>> diag;
+  int b = 0;
+  for (size_t i = 0; i < model.rest.size(); ++i) {
+    if (model.fixed[i]) continue;
+    for (int r = 0; r < 3; ++r) diag.emplace_back(3 * b + r, 3 * b + r, 2.0 * dt * gamma[i] / model.mass[i]);
+    ++b;
+  }
+  SparseMatrix D(S.rows(), S.cols());
+  D.setFromTriplets(diag.begin(), diag.end());
+  S += D;
+  return largest_eigenvalue(S);
+}
+
+}  // namespace dampbound

@@ -1,0 +1,266 @@
+#include "core/analysis/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
+#include "core/analysis/linear_stability_cholesky.hpp"
+
+#include <Eigen/Dense>
+#include <Eigen/CholmodSupport>
+#include <Spectra/SymEigsSolver.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace dampbound {
+namespace {
+
+constexpr double kEps = std::numeric_limits<double>::epsilon();
+/// The certificate's allowance for rounding in the factorisation, relative to max_r sum_s
+/// |A_rs|: a factorisation that succeeds on (hi - margin) I - A is taken to prove hi.
+constexpr double kMargin = 1e-12;
+/// Up to this many rows the dense eigenvalues are cheaper than factorisations (a 10 x 10
+/// plane, 300 rows: a few ms) and exact to rounding: lo = hi.
+constexpr Eigen::Index kDenseRows = 400;
+/// Below this many rows the fill-reducing ordering is AMD alone (CHOLMOD's default also tries
+/// nested dissection, which pays on big meshes only).
+constexpr Eigen::Index kNestedDissectionRows = 20000;
+
+/// Factorisations of sigma I - A for a changing shift sigma, by CHOLMOD's supernodal
+/// Cholesky (fill-reducing ordering chosen by CHOLMOD: AMD or nested dissection): the
+/// pattern is analysed once; each shift is one numeric factorisation of -A + sigma I.
+class ShiftedCholesky {
+ public:
+  explicit ShiftedCholesky(const SparseMatrix& A) : n_(A.rows()) {
+    std::vector<Eigen::Triplet<double>> t;
+    t.reserve(static_cast<size_t>(A.nonZeros() / 2 + n_));
+    for (Eigen::Index r = 0; r < n_; ++r) t.emplace_back(r, r, 0.0);  // the diagonal exists
+    for (int k = 0; k < A.outerSize(); ++k)
+      for (SparseMatrix::InnerIterator it(A, k); it; ++it)
+        if (it.row() >= it.col()) t.emplace_back(it.row(), it.col(), -it.value());
+    B_.resize(n_, n_);
+    B_.setFromTriplets(t.begin(), t.end());  // lower triangle of -A, duplicates summed
+    llt_.cholmod().print = 0;                // a failed factorisation is an answer, not news
+    if (n_ < kNestedDissectionRows) {         // small: AMD alone; CHOLMOD's trial of nested
+      llt_.cholmod().nmethods = 1;            // dissection costs more than it saves there
+      llt_.cholmod().method[0].ordering = CHOLMOD_AMD;
+    }
+  }
+  /// Factors sigma I - A; true when it is positive definite (every pivot > 0).
+  bool factor(double sigma) {
+    if (!analysed_) llt_.analyzePattern(B_);
+    analysed_ = true;
+    llt_.setShift(sigma);
+    llt_.factorize(B_);
+    ++factorizations;
+    ok_ = llt_.info() == Eigen::Success;
+    return ok_;
+  }
+  bool ready() const { return ok_; }
+  void solve(const double* in, double* out) {
+    ++solves;
+    Eigen::Map<Eigen::VectorXd>(out, n_) = llt_.solve(Eigen::Map<const Eigen::VectorXd>(in, n_));
+  }
+  Eigen::Index size() const { return n_; }
+  int factorizations = 0, solves = 0;
+
+ private:
+  Eigen::Index n_;
+  SparseMatrix B_;
+  Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> llt_;
+  bool analysed_ = false, ok_ = false;
+};
+
+/// A rough top Ritz value of A and its residual by k steps of plain Lanczos (matrix-vector
+/// products only, no reorthogonalisation): it only places the first shift near lambda_max;
+/// nothing certified depends on it.
+std::pair<double, double> lanczos_estimate(const SparseMatrix& A, int k) {
+  const Eigen::Index n = A.rows();
+  k = static_cast<int>(std::min<Eigen::Index>(k, n));
+  Eigen::VectorXd v = Eigen::VectorXd::LinSpaced(n, 0.3, 1.7).array().sin();
+  v /= v.norm();
+  Eigen::VectorXd previous = Eigen::VectorXd::Zero(n), w(n);
+  std::vector<double> alpha, beta;
+  double b = 0;
+  for (int j = 0; j < k; ++j) {
+    w.noalias() = A * v;
+    w -= b * previous;
+    const double a = w.dot(v);
+    w -= a * v;
+    alpha.push_back(a);
+    b = w.norm();
+    beta.push_back(b);
+    if (!(b > 0)) break;
+    previous.swap(v);
+    v = w / b;
+  }
+  const Eigen::Index m = static_cast<Eigen::Index>(alpha.size());
+  const Eigen::VectorXd diagonal = Eigen::Map<const Eigen::VectorXd>(alpha.data(), m);
+  const Eigen::VectorXd off = Eigen::Map<const Eigen::VectorXd>(beta.data(), m - 1);
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es;
+  es.computeFromTridiagonal(diagonal, off, Eigen::ComputeEigenvectors);
+  const double theta = es.eigenvalues()(m - 1);
+  // The Ritz pair's residual: beta_m times the last component of its eigenvector of T.
+  const double residual = std::abs(beta.back() * es.eigenvectors()(m - 1, m - 1));
+  return {theta, residual};
+}
+
+/// (shift I - A)^-1 as an operator for Spectra: its largest eigenvalue 1/(shift - lambda)
+/// belongs to the eigenvalue lambda of A nearest below the shift.
+struct InverseOp {
+  using Scalar = double;
+  ShiftedCholesky* factor;
+  Eigen::Index rows() const { return factor->size(); }
+  Eigen::Index cols() const { return factor->size(); }
+  void perform_op(const double* in, double* out) const { factor->solve(in, out); }
+};
+
+/// The top Ritz vector of (shift I - A)^-1 from `u` (empty: Spectra's start), to relative
+/// tolerance `tol`; inverse iteration when Lanczos does not converge in its budget.
+void inverse_lanczos(ShiftedCholesky& f, Eigen::VectorXd& u, double tol) {
+  const Eigen::Index n = f.size();
+  InverseOp op{&f};
+  Spectra::SymEigsSolver<InverseOp> eigs(op, 1, std::min<Eigen::Index>(n, 12));
+  if (u.size() == n)
+    eigs.init(u.data());
+  else
+    eigs.init();
+  eigs.compute(Spectra::SortRule::LargestAlge, 200, tol);
+  if (eigs.info() == Spectra::CompInfo::Successful && eigs.eigenvectors().cols() > 0) {
+    u = eigs.eigenvectors().col(0);
+    return;
+  }
+  if (u.size() != n) u = Eigen::VectorXd::LinSpaced(n, 0.3, 1.7).array().sin();
+  Eigen::VectorXd next(n);
+  for (int k = 0; k < 100; ++k) {
+    u /= u.norm();
+    f.solve(u.data(), next.data());
+    u.swap(next);
+  }
+  u /= u.norm();
+}
+
+/// u^T A u / u^T u, summed in long double, and a bound on its rounding error.
+struct Rayleigh {
+  double value, residual, rounding;
+};
+Rayleigh rayleigh(const SparseMatrix& A, const Eigen::VectorXd& u, double abs_row_sum,
+                  int row_nonzeros) {
+  const Eigen::VectorXd Au = A * u;
+  long double uAu = 0, uu = 0;
+  for (Eigen::Index i = 0; i < u.size(); ++i) {
+    uAu += static_cast<long double>(u(i)) * Au(i);
+    uu += static_cast<long double>(u(i)) * u(i);
+  }
+  const double q = static_cast<double>(uAu / uu);
+  // |fl(Au) - Au| <= k eps |A||u| per row (k nonzeros), and || |A| || <= max row sum of |A|.
+  const double rounding = 2 * (row_nonzeros + 2) * kEps * abs_row_sum;
+  return {q, (Au - q * u).norm() / std::sqrt(static_cast<double>(uu)), rounding};
+}
+
+}  // namespace
+
+GershgorinBounds gershgorin_bounds(const SparseMatrix& A) {
+  const Eigen::Index n = A.rows();
+  if (n == 0) return {};
+  std::vector<double> diag(static_cast<size_t>(n), 0.0), off(static_cast<size_t>(n), 0.0);
+  for (int k = 0; k < A.outerSize(); ++k)
+    for (SparseMatrix::InnerIterator it(A, k); it; ++it) {
+      if (it.row() == it.col())
+        diag[static_cast<size_t>(it.row())] += it.value();
+      else
+        off[static_cast<size_t>(it.row())] += std::abs(it.value());
+    }
+  GershgorinBounds g{std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
+  for (size_t r = 0; r < diag.size(); ++r) {
+    g.lo = std::min(g.lo, diag[r] - off[r]);
+    g.hi = std::max(g.hi, diag[r] + off[r]);
+  }
+  return g;
+}
+
+EigenInterval certified_largest_eigenvalue(const SparseMatrix& A, Eigen::VectorXd* vector) {
+  const Eigen::Index n = A.rows();
+  if (n == 0) return {};
+  if (n <= kDenseRows) {  // small: the dense eigenvalues are exact, and quicker
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es{
+        Eigen::MatrixXd(A), vector ? Eigen::ComputeEigenvectors : Eigen::EigenvaluesOnly};
+    if (vector) *vector = es.eigenvectors().col(n - 1);
+    const double value = es.eigenvalues()(n - 1);
+    return {value, value};
+  }
+  const GershgorinBounds g = gershgorin_bounds(A);
+  double abs_row_sum = 0;
+  int row_nonzeros = 0;
+  for (int k = 0; k < A.outerSize(); ++k) {  // symmetric: columns are rows
+    double sum = 0;
+    for (SparseMatrix::InnerIterator it(A, k); it; ++it) sum += std::abs(it.value());
+    abs_row_sum = std::max(abs_row_sum, sum);
+    row_nonzeros = std::max<int>(row_nonzeros, static_cast<int>(A.col(k).nonZeros()));
+  }
+  if (abs_row_sum == 0) {  // the zero matrix
+    if (vector) *vector = Eigen::VectorXd::Unit(n, 0);
+    return {};
+  }
+  const double span = g.hi - g.lo, margin = kMargin * abs_row_sum;
+  EigenInterval out;
+  ShiftedCholesky f(A);
+  Eigen::VectorXd u;
+  // Gershgorin: lambda_max <= g.hi, so (g.hi + a little) I - A is positive definite; the
+  // largest diagonal entry (a Rayleigh quotient) is below lambda_max.
+  const double gershgorin = g.hi + 1e-6 * span + margin;
+  double up = gershgorin;
+  double max_diagonal = -std::numeric_limits<double>::infinity();
+  for (Eigen::Index r = 0; r < n; ++r) max_diagonal = std::max(max_diagonal, A.coeff(r, r));
+  // The top of a big mesh's spectrum is clustered: only a shift close above lambda_max
+  // separates it from the rest. A rough Lanczos estimate places the shift; a factorisation
+  // that fails says the shift is still below lambda_max, and it moves up (at worst to
+  // Gershgorin's bound).
+  const auto [theta, residual] = lanczos_estimate(A, 200);
+  for (double step = std::max(2 * residual, 1e-6 * span);; step *= 8) {
+    const double s = theta + step + margin;
+    if (s >= gershgorin) break;
+    if (f.factor(s)) {
+      up = s;
+      break;
+    }
+  }
+  if (!f.ready() && !f.factor(gershgorin)) {
+    // Rounding trouble even at Gershgorin's shift: his bound alone, and the diagonal.
+    out.certified = false;
+    out.lo = max_diagonal;
+    out.hi = g.hi;
+    u = Eigen::VectorXd::Unit(n, 0);
+  } else {
+    inverse_lanczos(f, u, 1e-10);
+    const Rayleigh q = rayleigh(A, u, abs_row_sum, row_nonzeros);
+    const double lo = std::max(max_diagonal, q.value - q.rounding);
+    // The certificate: a factorisation just above the Rayleigh quotient.
+    const double width = 1e-10 * std::abs(q.value) + 1e-11 * span;
+    if (up - lo > width + 2 * margin && f.factor(lo + width + margin)) up = lo + width + margin;
+    out.lo = lo;
+    out.hi = up;
+  }
+  out.factorizations = f.factorizations;
+  out.solves = f.solves;
+  if (vector) *vector = u / u.norm();
+  return out;
+}
+
+CertifiedSpectrum certified_spectrum(const SparseMatrix& A) {
+  const Eigen::Index n = A.rows();
+  if (n > 0 && n <= kDenseRows) {  // one dense solve gives both ends
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es{Eigen::MatrixXd(A), Eigen::EigenvaluesOnly};
+    const double lo = es.eigenvalues()(0), hi = es.eigenvalues()(n - 1);
+    return {{lo, lo}, {hi, hi}};
+  }
+  return {certified_smallest_eigenvalue(A), certified_largest_eigenvalue(A)};
+}
+
+EigenInterval certified_smallest_eigenvalue(const SparseMatrix& A) {
+  const SparseMatrix negated = -A;
+  EigenInterval r = certified_largest_eigenvalue(negated);
+  std::swap(r.lo, r.hi);
+  r.lo = -r.lo;
+  r.hi = -r.hi;
+  return r;
+}
+
+}  // namespace dampbound

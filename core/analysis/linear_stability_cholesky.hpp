@@ -1,0 +1,55 @@
+#pragma once
+// Extreme eigenvalues of a large symmetric sparse matrix in a certified interval, by sparse
+// Cholesky (SPEC 7, 9; CHOLMOD's supernodal factorisation): Gershgorin's bound caps the
+// shifts, shift-and-invert Lanczos just above lambda_max (one factorisation, a few solves),
+// then a factorisation of (hi I - A) as the certificate that no eigenvalue lies above hi. A factorisation succeeds
+// exactly when the matrix is positive definite, so a success proves lambda_max < hi; the
+// Rayleigh quotient of the Ritz vector proves lambda_max >= lo. docs/performance.md has
+// the algorithm and its costs.
+#include <Eigen/Core>
+
+#include "core/analysis/linear_stability.hpp"
+
+namespace dampbound {
+
+/// Gershgorin's discs of a symmetric matrix (SPEC 9): every eigenvalue lies in [lo, hi],
+/// lo = min_r (A_rr - sum_{s != r} |A_rs|), hi = max_r (A_rr + sum_{s != r} |A_rs|). For
+/// A = M^-1/2 K M^-1/2 with A_rr >= 0, hi is the largest R_i of SPEC 9 (units of A).
+struct GershgorinBounds {
+  double lo = 0;
+  double hi = 0;
+};
+GershgorinBounds gershgorin_bounds(const SparseMatrix& A);
+
+/// A certified enclosure lo <= lambda <= hi of one extreme eigenvalue (units of the matrix),
+/// and what it cost.
+struct EigenInterval {
+  double lo = 0;
+  double hi = 0;
+  int factorizations = 0;  ///< numeric sparse Cholesky factorisations (one symbolic analysis)
+  int solves = 0;          ///< solves with a factor (two triangular solves each)
+  /// false only when even Gershgorin's shift did not factor (rounding): then [lo, hi] is
+  /// [largest diagonal entry, Gershgorin's bound], still an enclosure, but wide.
+  bool certified = true;
+};
+
+/// Largest eigenvalue of symmetric A. hi is certified by a successful Cholesky factorisation
+/// of (hi - margin) I - A, margin = 1e-12 * max row sum of |A| (an allowance for the
+/// factorisation's rounding); lo is the Rayleigh quotient of the Ritz vector (a lower bound
+/// for any vector). hi - lo <= ~1e-10 |lambda| + 1e-11 (Gershgorin width). Up to 400 rows
+/// the dense eigenvalue is returned (lo = hi). `vector`: the unit Ritz vector.
+EigenInterval certified_largest_eigenvalue(const SparseMatrix& A,
+                                           Eigen::VectorXd* vector = nullptr);
+
+/// Smallest eigenvalue of symmetric A: the largest of -A, negated (lo certified by
+/// Cholesky of A - lo I, hi the Rayleigh quotient).
+EigenInterval certified_smallest_eigenvalue(const SparseMatrix& A);
+
+/// Both ends at once (one dense solve up to 400 rows, else the two methods above).
+struct CertifiedSpectrum {
+  EigenInterval smallest;
+  EigenInterval largest;
+};
+CertifiedSpectrum certified_spectrum(const SparseMatrix& A);
+
+}  // namespace dampbound

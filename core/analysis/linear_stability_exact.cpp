@@ -1,0 +1,205 @@
+#include "core/analysis/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
+#include "core/analysis/linear_stability_exact.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+
+#include "core/analysis/linear_stability_cholesky.hpp"
+#include "core/step.hpp"
+
+namespace dampbound {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+/// lambda_max(h^2 A + 2 h gamma diag(R)) and its slopes in gamma and in h (Hellmann-Feynman:
+/// d lambda = u^T dS u for the unit top eigenvector u).
+struct Index {
+  double value, slope_gamma, slope_h;
+};
+Index symmetric_index(const SparseMatrix& A, const Eigen::VectorXd& R, double gamma, double h) {
+  SparseMatrix S = (h * h) * A;
+  for (Eigen::Index i = 0; i < S.rows(); ++i) S.coeffRef(i, i) += 2 * h * gamma * R(i);
+  Eigen::VectorXd u;
+  const double value = largest_eigenpair(S, u);
+  const double uRu = u.dot(R.cwiseProduct(u)), uAu = u.dot(A * u);
+  return {value, 2 * h * uRu, 2 * h * uAu + 2 * gamma * uRu};
+}
+
+/// The root of a convex increasing g on (0, t_cap] with g(t_cap) >= 0, by Newton from the
+/// right: every iterate stays right of the root, so the result is on the stable side within
+/// rounding. Returns 0 when g(0+) >= 0 already (checked by the caller).
+double newton_from_right(const std::function<std::pair<double, double>(double)>& g, double t) {
+  for (int k = 0; k < 100; ++k) {
+    const auto [value, slope] = g(t);
+    if (!(slope > 0)) break;
+    const double next = t - value / slope;
+    if (!(next > 0)) return 0;
+    if (std::abs(next - t) <= 1e-13 * t) return next;
+    t = next;
+  }
+  return t;
+}
+
+/// Per free dof, gamma_scale_i / m_i: the damping rate c_i per unit of the user's gamma.
+Eigen::VectorXd unit_rates(const Model& model) {
+  std::vector<double> scale(model.rest.size());
+  for (size_t i = 0; i < scale.size(); ++i) scale[i] = model.gamma_scale[i];
+  return damping_rates(model, scale);
+}
+
+}  // namespace
+
+const char* to_string(ExactMethod m) {
+  switch (m) {
+    case ExactMethod::per_mode: return "per-mode (uniform gamma/m)";
+    case ExactMethod::symmetric_index: return "symmetric index lambda_max(dt^2 A + 2 dt C) < 4";
+    case ExactMethod::unconditional: return "unconditional (A-stable)";
+    case ExactMethod::frozen_estimate: return "Arnoldi rho; limits are frozen-rate estimates";
+  }
+  return "?";
+}
+
+SpectralRadius spectral_radius_at(const Model& model, const SparseMatrix& K_weighted,
+                                  const ExactStability& e, const Params& params, double gamma) {
+  const Eigen::VectorXd R = unit_rates(model);
+  if (e.uniform_rate) {
+    const double r = R.size() ? R.maxCoeff() : 0;
+    return {spectrum_spectral_radius(e.integrator, e.decaying, gamma * r, params.dt), true};
+  }
+  return amplification_spectral_radius(e.integrator, K_weighted, gamma * R, params.dt);
+}
+
+ExactStability exact_stability(const Model& model, const std::vector<Vec3>& x,
+                               const Params& params, const ExactOptions& options) {
+  ExactStability e;
+  e.integrator = params.integrator;
+  const double h = params.dt, gamma = params.gamma;
+  const SparseMatrix A = mass_weighted(model, tangent_stiffness(model, x));
+  // Certified intervals (Cholesky, linear_stability_cholesky.hpp); the limits use the safe
+  // ends: lambda_max never low, lambda_min never high.
+  const CertifiedSpectrum ends = certified_spectrum(A);
+  e.spectrum = {ends.smallest.lo, ends.largest.hi};
+  e.lambda_max_lo = ends.largest.lo;
+  const Eigen::VectorXd R = unit_rates(model);
+  const double r_min = R.size() ? R.minCoeff() : 0, r_max = R.size() ? R.maxCoeff() : 0;
+  e.rate_min = gamma * r_min;
+  e.rate_max = gamma * r_max;
+  e.uniform_rate = r_max - r_min <= 1e-12 * r_max;
+  const double tiny = 1e-12 * std::max(1.0, std::abs(e.spectrum.lambda_max));
+  e.decaying = e.spectrum;
+  if (std::abs(e.spectrum.lambda_min) <= 1e-9 * std::abs(e.spectrum.lambda_max)) {
+    e.zero_modes = true;
+    const double above = smallest_eigenvalue_above(A, 1e-9 * e.spectrum.lambda_max);
+    e.decaying.lambda_min = std::isnan(above) ? e.spectrum.lambda_max : above;
+  }
+  auto rho_or_nan = [&] {
+    if (!options.with_radius) return;
+    const SpectralRadius s = spectral_radius_at(model, A, e, params, gamma);
+    e.spectral_radius = s.rho;
+    e.radius_converged = s.converged;
+  };
+
+  if (e.integrator == Integrator::implicit_euler && e.spectrum.lambda_min >= -tiny) {
+    // Backward Euler on M y'' = -K y - Gamma y' with K, Gamma >= 0 dissipates the energy
+    // y'^T M y' + y^T K y every step, for every h: no limit on dt or gamma.
+    e.method = ExactMethod::unconditional;
+    e.gamma_lo = 0;
+    e.gamma_hi = kInf;
+    e.dt_max = kInf;
+    e.stable = true;
+    e.spectral_radius = kNaN;
+    if (e.uniform_rate) rho_or_nan();
+    return e;
+  }
+  if (e.uniform_rate) {
+    e.method = ExactMethod::per_mode;
+    const double c = gamma * r_max;
+    e.spectral_radius = spectrum_spectral_radius(e.integrator, e.decaying, c, h);
+    e.stable = spectrum_spectral_radius(e.integrator, e.spectrum, c, h) <= 1 + 1e-12;
+    const RateInterval ci = uniform_rate_interval(e.integrator, e.spectrum, h);
+    if (r_max > 0) {
+      e.gamma_lo = ci.lo / r_max;
+      e.gamma_hi = ci.hi / r_max;
+    } else {  // no node is damped: gamma has no effect
+      e.gamma_lo = 0;
+      e.gamma_hi = ci.lo == 0 && !ci.empty() ? kInf : 0;
+    }
+    e.dt_max = uniform_dt_max(e.integrator, e.spectrum, c);
+    return e;
+  }
+  if (e.integrator == Integrator::semi_implicit_euler) {
+    e.method = ExactMethod::symmetric_index;
+    e.index = symmetric_index(A, R, gamma, h).value;
+    e.stable = e.index < 4 && r_min > 0;
+    e.gamma_lo = 0;
+    // gamma: g(t) = index(t, h) - 4, convex and increasing in t; g(2/(h r_max)) >= 0.
+    if (symmetric_index(A, R, 0, h).value >= 4) {
+      e.gamma_hi = 0;
+    } else {
+      e.gamma_hi = newton_from_right(
+          [&](double t) {
+            const Index i = symmetric_index(A, R, t, h);
+            return std::make_pair(i.value - 4, i.slope_gamma);
+          },
+          2 / (h * r_max));
+    }
+    // dt: g(t) = index(gamma, t) - 4, convex and increasing in t when K >= 0.
+    double cap = e.spectrum.lambda_max > 0 ? 2 / std::sqrt(e.spectrum.lambda_max) : kInf;
+    if (gamma * r_max > 0) cap = std::min(cap, 2 / (gamma * r_max));
+    e.dt_max = std::isinf(cap) ? kInf
+                               : newton_from_right(
+                                     [&](double t) {
+                                       const Index i = symmetric_index(A, R, gamma, t);
+                                       return std::make_pair(i.value - 4, i.slope_h);
+                                     },
+                                     cap);
+    rho_or_nan();
+    return e;
+  }
+  // Forward Euler, Verlet, RK4 (and implicit Euler at an indefinite K) with non-uniform rates:
+  // the verdict comes from the amplification operator; the limits from the worst uniform
+  // rate over [c_min, c_max] ("frozen coefficients", an estimate).
+  e.method = ExactMethod::frozen_estimate;
+  const RateInterval ci = uniform_rate_interval(e.integrator, e.spectrum, h);
+  e.gamma_lo = r_min > 0 ? ci.lo / r_min : (ci.lo == 0 ? 0 : kInf);
+  e.gamma_hi = ci.hi / r_max;
+  e.dt_max = kInf;
+  for (int k = 0; k <= 16; ++k) {
+    const double c = e.rate_min + (e.rate_max - e.rate_min) * k / 16;
+    e.dt_max = std::min(e.dt_max, uniform_dt_max(e.integrator, e.spectrum, c));
+  }
+  e.spectral_radius = kNaN;
+  rho_or_nan();
+  e.stable = std::isnan(e.spectral_radius)
+                 ? (gamma >= e.gamma_lo && gamma < e.gamma_hi && h <= e.dt_max)
+                 : e.spectral_radius <= 1 + 1e-9;
+  return e;
+}
+
+double perturbation_growth(const Model& model, const Params& params_in, int steps,
+                           double amplitude, unsigned seed) {
+  Params params = params_in;
+  params.policy = DampingPolicy::fixed;
+  State state = rest_state(model);
+  auto uniform = [&seed] {  // a linear congruential generator: the same numbers everywhere
+    seed = seed * 1103515245u + 12345u;
+    return static_cast<double>((seed >> 8) & 0xffffu) / 65535.0 - 0.5;
+  };
+  double before = 0;
+  for (size_t i = 0; i < state.x.size(); ++i) {
+    if (model.fixed[i]) continue;
+    const Vec3 d(uniform(), uniform(), uniform());
+    state.x[i] += (2 * amplitude) * d;
+    before = std::max(before, (state.x[i] - model.rest[i]).norm());
+  }
+  StepWorkspace ws;
+  double after = before;
+  for (int k = 0; k < steps; ++k) after = step(model, params, state, ws, 0).max_displacement;
+  return before > 0 ? after / before : 0;
+}
+
+}  // namespace dampbound

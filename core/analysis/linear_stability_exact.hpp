@@ -1,0 +1,74 @@
+#pragma once
+// The exact linear stability of one model, state and parameters, for any integrator
+// (SPEC 7): lambda range of M^-1 K, the spectral radius of the step, the interval of
+// the user's gamma that keeps the step stable at dt, and the largest stable dt at gamma.
+#include <string>
+#include <vector>
+
+#include "core/analysis/linear_stability.hpp"
+#include "core/analysis/linear_stability_modes.hpp"
+
+namespace dampbound {
+
+/// How the numbers were obtained (docs/criteria.md, "exact limits").
+enum class ExactMethod {
+  per_mode,           ///< gamma_i/m_i uniform: modes decouple; closed form or per-mode 2x2
+  symmetric_index,    ///< semi-implicit, non-uniform: lambda_max(dt^2 A + 2 dt C) < 4
+  unconditional,      ///< implicit Euler: stable for every dt > 0 and gamma >= 0
+  frozen_estimate,    ///< other explicit steps, non-uniform: limits from the worst uniform
+                      ///< rate in [c_min, c_max] (an estimate); verdict from Arnoldi's rho
+};
+
+const char* to_string(ExactMethod m);
+
+struct ExactStability {
+  Integrator integrator = Integrator::semi_implicit_euler;
+  ExactMethod method = ExactMethod::per_mode;
+  bool uniform_rate = true;   ///< gamma_i/m_i equal over the free nodes
+  double rate_min = 0;        ///< min and max of gamma_i/m_i over the free nodes (1/s)
+  double rate_max = 0;
+  StiffnessSpectrum spectrum;  ///< of M^-1 K at the state (1/s^2); decides stability
+  /// lambda_max lies in [lambda_max_lo, spectrum.lambda_max] (1/s^2): the upper end is
+  /// certified by a Cholesky factorisation, the lower by a Rayleigh quotient.
+  double lambda_max_lo = 0;
+  /// The spectrum without zero modes (lambda = 0: motions no spring resists, e.g. the two-node
+  /// system's transverse directions), whose z = 1 neither grows nor decays whatever gamma and
+  /// dt. The spectral radius (the decay rate per step) is taken over it.
+  StiffnessSpectrum decaying;
+  bool zero_modes = false;
+  double spectral_radius = 0;  ///< rho of one step at the user's gamma and dt (NaN: not computed)
+  bool radius_converged = true;
+  double index = 0;           ///< symmetric_index only: lambda_max(dt^2 A + 2 dt C); stable < 4
+  bool stable = false;        ///< rho <= 1 (bounded; rho = 1 is marginal: no decay)
+  double gamma_lo = 0;        ///< the user's gamma (gamma_i = gamma * gamma_scale_i) is stable
+  double gamma_hi = 0;        ///< at params.dt for gamma_lo <= gamma < gamma_hi (hi may be inf)
+  double dt_max = 0;          ///< the largest stable dt at the user's gamma (may be inf)
+};
+
+/// Options: the spectral radius of a non-uniform mesh costs an Arnoldi run (up to seconds);
+/// `with_radius = false` skips it where only limits are wanted (spectral_radius = NaN).
+struct ExactOptions {
+  bool with_radius = true;
+};
+
+/// The analysis at positions x for the model (set_params(params) done) and params.dt,
+/// params.integrator, with the user's gamma_i = model.gamma[i] held fixed (policy fixed).
+ExactStability exact_stability(const Model& model, const std::vector<Vec3>& x,
+                               const Params& params, const ExactOptions& options = {});
+
+/// Spectral radius of the step at the user's gamma scaled by `gamma / params.gamma`
+/// (gamma_i = gamma * gamma_scale_i), everything else as in `exact`. Exact per mode when the
+/// rate is uniform, Arnoldi otherwise.
+SpectralRadius spectral_radius_at(const Model& model, const SparseMatrix& K_weighted,
+                                  const ExactStability& exact, const Params& params,
+                                  double gamma);
+
+/// The check by simulation: runs the real step() (params.integrator, policy fixed) for
+/// `steps` steps from the rest state with every free node moved by a deterministic
+/// pseudo-random vector of size up to `amplitude` (cm; small, so the linearisation holds,
+/// and in every direction, so every mode is excited), and returns
+/// max_i |x_i - X_i| after / before. Decays (< 1) inside the exact limits, grows outside.
+double perturbation_growth(const Model& model, const Params& params, int steps,
+                           double amplitude = 1e-6, unsigned seed = 12345);
+
+}  // namespace dampbound

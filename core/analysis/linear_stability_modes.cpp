@@ -1,0 +1,258 @@
+#include "core/analysis/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
+#include "core/analysis/linear_stability_modes.hpp"
+
+#include <Eigen/Dense>
+#include <Eigen/IterativeLinearSolvers>
+#include <Spectra/GenEigsSolver.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+
+namespace dampbound {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+/// "Bounded" (stable) means rho <= 1 + kMarginal: an undamped symplectic step (rho = 1
+/// exactly) counts as stable, as in SPEC 7's dt < 2/sqrt(lambda_max) at gamma = 0.
+constexpr double kMarginal = 1e-12;
+
+/// One step of an integrator on y'' = -A y - C y', written once for a scalar mode and for a
+/// whole mesh. `ops` gives A y, C w, (1 + h C/2)^-1 r and (I + h C + h^2 A)^-1 r.
+template <class V, class Ops>
+void linear_step(Integrator integrator, const Ops& ops, double h, V& y, V& w) {
+  auto accel = [&](const V& yy, const V& ww) -> V { return -(ops.A(yy) + ops.C(ww)); };
+  switch (integrator) {
+    case Integrator::semi_implicit_euler: {  // paper eqs. 3-4: v += a h; x += v_new h
+      w = w + h * accel(y, w);
+      y = y + h * w;
+      return;
+    }
+    case Integrator::forward_euler: {  // x += v_old h; v += a h
+      const V a = accel(y, w);
+      y = y + h * w;
+      w = w + h * a;
+      return;
+    }
+    case Integrator::verlet: {  // integrate.cpp: kick h/2, drift h, kick h/2 (damping implicit)
+      const V wh = w + (h / 2) * accel(y, w);
+      y = y + h * wh;
+      w = ops.half_damp_solve(V(wh - (h / 2) * ops.A(y)), h);
+      return;
+    }
+    case Integrator::rk4: {
+      const V k1y = w, k1w = accel(y, w);
+      const V k2y = w + (h / 2) * k1w, k2w = accel(V(y + (h / 2) * k1y), k2y);
+      const V k3y = w + (h / 2) * k2w, k3w = accel(V(y + (h / 2) * k2y), k3y);
+      const V k4y = w + h * k3w, k4w = accel(V(y + h * k3y), k4y);
+      y = y + (h / 6) * (k1y + 2 * k2y + 2 * k3y + k4y);
+      w = w + (h / 6) * (k1w + 2 * k2w + 2 * k3w + k4w);
+      return;
+    }
+    case Integrator::implicit_euler: {  // (I + h C + h^2 A) w' = w - h A y; y' = y + h w'
+      w = ops.implicit_solve(V(w - h * ops.A(y)), h);
+      y = y + h * w;
+      return;
+    }
+  }
+}
+
+struct ScalarOps {
+  double lambda, c;
+  double A(double y) const { return lambda * y; }
+  double C(double w) const { return c * w; }
+  double half_damp_solve(double r, double h) const { return r / (1 + c * h / 2); }
+  double implicit_solve(double r, double h) const { return r / (1 + h * c + h * h * lambda); }
+};
+
+struct VectorOps {
+  const SparseMatrix* K;
+  const Eigen::VectorXd* rate;
+  SparseMatrix S;  ///< I + h C + h^2 A; the solver keeps a reference to it, so it lives here
+  std::unique_ptr<Eigen::ConjugateGradient<SparseMatrix, Eigen::Lower | Eigen::Upper>> cg;
+  VectorOps(Integrator integrator, const SparseMatrix& Kw, const Eigen::VectorXd& c, double h)
+      : K(&Kw), rate(&c) {
+    if (integrator != Integrator::implicit_euler) return;
+    S = (h * h) * Kw;
+    for (Eigen::Index i = 0; i < S.rows(); ++i) S.coeffRef(i, i) += 1 + h * c(i);
+    cg = std::make_unique<Eigen::ConjugateGradient<SparseMatrix, Eigen::Lower | Eigen::Upper>>();
+    cg->setTolerance(1e-13);
+    cg->compute(S);
+  }
+  VectorOps(const VectorOps&) = delete;
+  VectorOps& operator=(const VectorOps&) = delete;
+  Eigen::VectorXd A(const Eigen::VectorXd& y) const { return *K * y; }
+  Eigen::VectorXd C(const Eigen::VectorXd& w) const { return rate->cwiseProduct(w); }
+  Eigen::VectorXd half_damp_solve(const Eigen::VectorXd& r, double h) const {
+    return r.cwiseQuotient((1 + (h / 2) * rate->array()).matrix());
+  }
+  Eigen::VectorXd implicit_solve(const Eigen::VectorXd& r, double) const { return cg->solve(r); }
+};
+
+/// The amplification operator for Spectra: (y, w) stacked in one vector of 2n.
+struct AmplificationOp {
+  using Scalar = double;
+  Integrator integrator;
+  const VectorOps* ops;
+  double h;
+  Eigen::Index n;
+  int power = 1;  ///< steps per product: G^power spreads clustered magnitudes apart
+  Eigen::Index rows() const { return 2 * n; }
+  Eigen::Index cols() const { return 2 * n; }
+  void apply(const double* in, double* out) const {
+    Eigen::VectorXd y = Eigen::Map<const Eigen::VectorXd>(in, n);
+    Eigen::VectorXd w = Eigen::Map<const Eigen::VectorXd>(in + n, n);
+    for (int k = 0; k < power; ++k) linear_step(integrator, *ops, h, y, w);
+    Eigen::Map<Eigen::VectorXd>(out, n) = y;
+    Eigen::Map<Eigen::VectorXd>(out + n, n) = w;
+  }
+  void perform_op(const double* in, double* out) const { apply(in, out); }
+};
+
+/// rho estimated by the growth of ||G^k u|| over many steps: the fallback when Arnoldi does
+/// not converge (clustered magnitudes). Averages over the last half of the steps.
+double power_growth(const AmplificationOp& op, int steps) {
+  Eigen::VectorXd u = Eigen::VectorXd::LinSpaced(op.rows(), 0.3, 1.7).array().sin();
+  Eigen::VectorXd next(op.rows());
+  double log_growth = 0;
+  for (int k = 0; k < steps; ++k) {
+    u /= u.norm();
+    op.apply(u.data(), next.data());
+    if (k >= steps / 2) log_growth += std::log(next.norm());
+    u.swap(next);
+  }
+  return std::exp(log_growth / (steps - steps / 2));
+}
+
+}  // namespace
+
+Eigen::Matrix2d mode_amplification(Integrator integrator, double lambda, double c, double h) {
+  const ScalarOps ops{lambda, c};
+  Eigen::Matrix2d G;
+  for (int col = 0; col < 2; ++col) {
+    double y = col == 0 ? 1 : 0, w = col == 1 ? 1 : 0;
+    linear_step(integrator, ops, h, y, w);
+    G(0, col) = y;
+    G(1, col) = w;
+  }
+  return G;
+}
+
+double mode_spectral_radius(Integrator integrator, double lambda, double c, double h) {
+  const Eigen::Matrix2d G = mode_amplification(integrator, lambda, c, h);
+  const double tr = G.trace(), det = G.determinant();
+  const double disc = tr * tr - 4 * det;
+  if (disc >= 0) return (std::abs(tr) + std::sqrt(disc)) / 2;  // real pair: max |z|
+  return std::sqrt(det);                                        // complex pair: |z|^2 = det
+}
+
+double spectrum_spectral_radius(Integrator integrator, const StiffnessSpectrum& s, double c,
+                                double h) {
+  double rho = 0;
+  const int samples = s.lambda_max > s.lambda_min ? 64 : 1;
+  for (int k = 0; k <= samples; ++k) {
+    const double lambda = s.lambda_min + (s.lambda_max - s.lambda_min) * k / samples;
+    rho = std::max(rho, mode_spectral_radius(integrator, lambda, c, h));
+  }
+  return rho;
+}
+
+double uniform_dt_max(Integrator integrator, const StiffnessSpectrum& s, double c) {
+  if (integrator == Integrator::implicit_euler) return kInf;
+  if (integrator == Integrator::semi_implicit_euler) return semi_implicit_dt_max(s.lambda_max, c);
+  // Undamped forward Euler: |z|^2 = 1 + lambda h^2 > 1 for every h > 0 and lambda > 0.
+  if (integrator == Integrator::forward_euler && c <= 0 && s.lambda_max > 0) return 0;
+  auto stable = [&](double h) { return spectrum_spectral_radius(integrator, s, c, h) <= 1 + kMarginal; };
+  const double scale = 1.0 / std::sqrt(std::max({s.lambda_max, c * c, 1e-300}));
+  double lo = 1e-6 * scale;
+  if (!stable(lo)) return 0;
+  double hi = lo;
+  while (stable(hi)) {
+    lo = hi;
+    hi *= 1.25;
+    if (hi > 1e6 * scale) return kInf;
+  }
+  for (int k = 0; k < 200 && hi - lo > 1e-13 * hi; ++k) {
+    const double mid = 0.5 * (lo + hi);
+    (stable(mid) ? lo : hi) = mid;
+  }
+  return lo;
+}
+
+RateInterval uniform_rate_interval(Integrator integrator, const StiffnessSpectrum& s, double h) {
+  if (integrator == Integrator::implicit_euler) return {0, kInf};
+  if (integrator == Integrator::semi_implicit_euler)  // SPEC 7; empty when lambda h^2 >= 4
+    return {0, std::max(0.0, (4 - s.lambda_max * h * h) / (2 * h))};
+  auto stable = [&](double c) { return spectrum_spectral_radius(integrator, s, c, h) <= 1 + kMarginal; };
+  // No explicit step damps a mode with c h > 8; sample [0, 8/h] and refine the first run.
+  const int samples = 2000;
+  const double cap = 8 / h;
+  int first = -1, last = -1;
+  for (int k = 0; k <= samples; ++k) {
+    const bool ok = stable(cap * k / samples);
+    if (ok && first < 0) first = k;
+    if (ok) last = k;
+    if (!ok && first >= 0) break;
+  }
+  if (first < 0) return {0, 0};
+  auto refine = [&](double good, double bad) {
+    for (int k = 0; k < 200 && std::abs(bad - good) > 1e-13 * std::abs(bad); ++k) {
+      const double mid = 0.5 * (good + bad);
+      (stable(mid) ? good : bad) = mid;
+    }
+    return good;
+  };
+  RateInterval r;
+  r.lo = first == 0 ? 0 : refine(cap * first / samples, cap * (first - 1) / samples);
+  r.hi = last == samples ? kInf : refine(cap * last / samples, cap * (last + 1) / samples);
+  return r;
+}
+
+Eigen::VectorXd damping_rates(const Model& model, const std::vector<double>& gamma) {
+  std::vector<double> rates;
+  for (size_t i = 0; i < model.rest.size(); ++i)
+    if (!model.fixed[i])
+      for (int r = 0; r < 3; ++r) rates.push_back(gamma[i] / model.mass[i]);
+  return Eigen::Map<Eigen::VectorXd>(rates.data(), static_cast<Eigen::Index>(rates.size()));
+}
+
+SpectralRadius amplification_spectral_radius(Integrator integrator,
+                                             const SparseMatrix& K_weighted,
+                                             const Eigen::VectorXd& rate, double h) {
+  const Eigen::Index n = K_weighted.rows();
+  if (n == 0) return {0, true};
+  if (2 * n <= 24) {  // tiny: the dense matrix is exact and cheap
+    const Eigen::MatrixXd G = amplification_matrix_dense(integrator, K_weighted, rate, h);
+    return {G.eigenvalues().cwiseAbs().maxCoeff(), true};
+  }
+  const VectorOps ops(integrator, K_weighted, rate, h);
+  // Arnoldi on G^4: |z|^4 spreads the magnitudes of lightly damped modes, which all sit near
+  // the circle |z| = sqrt(1 - c h), four times further apart, for the price of cheap products.
+  AmplificationOp op{integrator, &ops, h, n, 4};
+  const Eigen::Index ncv = std::min<Eigen::Index>(2 * n, 40);
+  Spectra::GenEigsSolver<AmplificationOp> eigs(op, 4, ncv);
+  eigs.init();
+  eigs.compute(Spectra::SortRule::LargestMagn, 200, 1e-8);
+  if (eigs.info() == Spectra::CompInfo::Successful)
+    return {std::pow(eigs.eigenvalues().cwiseAbs().maxCoeff(), 1.0 / op.power), true};
+  return {std::pow(power_growth(op, 200), 1.0 / op.power), false};
+}
+
+Eigen::MatrixXd amplification_matrix_dense(Integrator integrator, const SparseMatrix& K_weighted,
+                                           const Eigen::VectorXd& rate, double h) {
+  const Eigen::Index n = K_weighted.rows();
+  const VectorOps ops(integrator, K_weighted, rate, h);
+  const AmplificationOp op{integrator, &ops, h, n};
+  Eigen::MatrixXd G(2 * n, 2 * n);
+  Eigen::VectorXd e = Eigen::VectorXd::Zero(2 * n), col(2 * n);
+  for (Eigen::Index k = 0; k < 2 * n; ++k) {
+    e(k) = 1;
+    op.apply(e.data(), col.data());
+    G.col(k) = col;
+    e(k) = 0;
+  }
+  return G;
+}
+
+}  // namespace dampbound

@@ -1,0 +1,72 @@
+#pragma once
+// Linear stability of every integrator (SPEC 7): one step of each integrator applied
+// to the linearised system y'' = -A y - C y' (A = M^-1/2 K M^-1/2, C = M^-1 Gamma, the
+// damping held over the step as in integrate.cpp), as a per-mode 2x2 matrix (lambda, c) and
+// as a matrix-free 2n x 2n amplification operator over a whole mesh.
+#include <Eigen/Core>
+#include <vector>
+
+#include "core/analysis/linear_stability.hpp"
+#include "core/params.hpp"
+
+namespace dampbound {
+
+/// The 2x2 amplification matrix of one step of `integrator` on the mode y'' = -lambda y - c y'
+/// with step h, acting on (y, y'). Columns are the step applied to (1, 0) and (0, 1):
+///   semi-implicit Euler  [[1 - h^2 lambda, h (1 - c h)], [-h lambda, 1 - c h]]   (SPEC 7)
+///   forward Euler        [[1, h], [-h lambda, 1 - c h]]
+///   velocity Verlet      half kick (explicit damping), drift, half kick (damping implicit)
+///   RK4                  sum_k (h J)^k / k!, k = 0..4, J = [[0, 1], [-lambda, -c]]
+///   implicit Euler       v' = (v - h lambda y)/(1 + h c + h^2 lambda), y' = y + h v'
+Eigen::Matrix2d mode_amplification(Integrator integrator, double lambda, double c, double h);
+
+/// Spectral radius of mode_amplification (max |z| of its two eigenvalues).
+double mode_spectral_radius(Integrator integrator, double lambda, double c, double h);
+
+/// max over lambda in [lambda_min, lambda_max] of mode_spectral_radius: the spectral radius
+/// of the whole step when c = gamma_i/m_i is uniform (the modes of M^-1 K decouple). Both ends
+/// and 63 points between are taken; for semi-implicit and forward Euler |z| depends on lambda
+/// through a quasi-convex function, so the ends alone are exact (docs/criteria.md).
+double spectrum_spectral_radius(Integrator integrator, const StiffnessSpectrum& spectrum,
+                                double c, double h);
+
+/// Largest dt with spectrum_spectral_radius < 1 at uniform damping rate c (1/s): closed form
+/// for semi-implicit Euler, +infinity for implicit Euler (A-stable), else bracketing and
+/// bisection to 1e-12 relative. 0 when no dt > 0 is stable (forward Euler with c = 0).
+double uniform_dt_max(Integrator integrator, const StiffnessSpectrum& spectrum, double c);
+
+/// The interval of c (1/s) with spectrum_spectral_radius < 1 at step h; empty when lo >= hi.
+/// hi may be +infinity (implicit Euler). Semi-implicit: 0 < c < (4 - lambda_max h^2)/(2h).
+struct RateInterval {
+  double lo = 0;
+  double hi = 0;
+  bool empty() const { return !(lo < hi); }
+};
+RateInterval uniform_rate_interval(Integrator integrator, const StiffnessSpectrum& spectrum,
+                                   double h);
+
+/// Spectral radius of the 2n x 2n amplification operator of one step of `integrator` on
+/// y'' = -A y - C y', A = K_weighted (mass-weighted tangent stiffness over the free nodes),
+/// C = diag(rate), rate = gamma_i/m_i per free dof (3 per free node). Matrix-free Arnoldi
+/// (Spectra::GenEigsSolver, largest magnitude, on G^4); for implicit Euler each product
+/// solves (I + h C + h^2 A) v' = r by conjugate gradients. Lightly damped meshes put n
+/// eigenvalues on nearly one circle, where Arnoldi may not converge within its budget
+/// (200 restarts); then rho is estimated from the growth of ||G^k u|| over the last 400 of
+/// 800 steps and `converged` is false (an estimate from below, good to ~1e-4 in practice).
+/// Below 25 rows the dense matrix's eigenvalues are used.
+struct SpectralRadius {
+  double rho = 0;
+  bool converged = true;
+};
+SpectralRadius amplification_spectral_radius(Integrator integrator,
+                                             const SparseMatrix& K_weighted,
+                                             const Eigen::VectorXd& rate, double h);
+
+/// The same operator as a dense matrix, for tests on small meshes only.
+Eigen::MatrixXd amplification_matrix_dense(Integrator integrator, const SparseMatrix& K_weighted,
+                                           const Eigen::VectorXd& rate, double h);
+
+/// c_i = gamma_i / m_i repeated for the 3 dofs of each free node.
+Eigen::VectorXd damping_rates(const Model& model, const std::vector<double>& gamma);
+
+}  // namespace dampbound

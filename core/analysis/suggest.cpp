@@ -1,0 +1,224 @@
+#include "core/analysis/suggest.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <tuple>
+
+#include "core/safe_bound.hpp"
+#include "core/session.hpp"
+
+namespace dampbound {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kPi = 3.14159265358979323846;
+
+/// The score of a trial run (settled rule): settled runs by their settled iteration, then the
+/// runs that did not settle by their final displacement, then the diverged by how far they got.
+std::tuple<int, int, double> score(const RunResult& r) {
+  if (r.outcome == Outcome::settled) return {0, r.settled_at, 0.0};
+  if (r.outcome == Outcome::not_settled) return {1, 0, r.max_displacement};
+  return {2, -r.iterations, 0.0};  // diverged: later is less bad
+}
+
+/// Minimises f on [lo, hi] by 400 samples, then golden section between the best sample's
+/// neighbours (f need not be unimodal on the whole interval).
+template <class F>
+double minimise(F f, double lo, double hi) {
+  const int n = 400;
+  int best = 0;
+  double fbest = kInf;
+  for (int k = 0; k <= n; ++k) {
+    const double v = f(lo + (hi - lo) * k / n);
+    if (v < fbest) fbest = v, best = k;
+  }
+  double a = lo + (hi - lo) * std::max(0, best - 1) / n, b = lo + (hi - lo) * std::min(n, best + 1) / n;
+  const double g = (std::sqrt(5.0) - 1) / 2;
+  for (int k = 0; k < 80; ++k) {
+    const double c = b - g * (b - a), d = a + g * (b - a);
+    (f(c) <= f(d) ? b : a) = (f(c) <= f(d) ? d : c);
+  }
+  const double mid = 0.5 * (a + b);
+  return f(mid) <= fbest ? mid : lo + (hi - lo) * best / n;
+}
+
+Params with_gamma(Params p, double gamma) {
+  p.gamma = gamma;
+  return p;
+}
+
+Params with_dt(Params p, double dt) {
+  p.dt = dt;
+  return p;
+}
+
+}  // namespace
+
+VerifiedRun verify_run(const SceneSpec& scene, const Params& params, const StopRules& rules,
+                       const std::string& label) {
+  StopRules settled = rules;
+  settled.rule = StopRule::settled;
+  Session session(scene, params, settled);
+  return {label, params, session.run_to_end(), settled};
+}
+
+DampingSuggestion suggest_damping(const SceneSpec& scene, const Params& params_in,
+                                  const StopRules& rules, const SuggestOptions& options) {
+  Params params = params_in;
+  params.policy = DampingPolicy::fixed;
+  DampingSuggestion s;
+  s.dt = params.dt;
+  const Model model = make_model(scene, params);
+  s.exact = exact_stability(model, model.rest, params, {false});
+
+  // Eq. 5 at every free node: gamma * gamma_scale_i >= 2 sqrt(m_i kappa_i) (SPEC 3).
+  double eq5 = 0, unit_rate_max = 0;
+  std::vector<double> R;  // SPEC 9 at rest
+  safe_row_sums(model, model.rest, R);
+  s.safe_max = kInf;
+  std::map<std::tuple<double, double, double>, NodeClass> classes;
+  for (size_t i = 0; i < model.rest.size(); ++i) {
+    if (model.fixed[i]) continue;
+    const double lo = model.lower_bound[i], sc = model.gamma_scale[i];
+    eq5 = std::max(eq5, sc > 0 ? lo / sc : (lo > 0 ? kInf : 0.0));
+    unit_rate_max = std::max(unit_rate_max, sc / model.mass[i]);
+    NodeClass& c = classes[{model.mass[i], model.node_kappa[i], sc}];
+    const double safe = safe_gamma(model.mass[i], params.dt, R[i]);
+    const double dt_safe = safe_dt(model.mass[i], lo, R[i]);
+    if (sc > 0) s.safe_max = std::min(s.safe_max, safe / sc);
+    if (c.count == 0 || safe < c.safe_max) c.safe_max = safe;
+    if (c.count == 0 || dt_safe < c.dt_safe) c.dt_safe = dt_safe;
+    if (c.count++ == 0) {
+      c.example = static_cast<int>(i);
+      c.mass = model.mass[i];
+      c.kappa = model.node_kappa[i];
+      c.gamma_scale = sc;
+      c.lower_bound = lo;
+    }
+  }
+  s.gamma_min = std::max(eq5, s.exact.gamma_lo);
+  s.min_by = eq5 >= s.exact.gamma_lo ? "paper eq. 5 (lower bound)"
+                                     : std::string("exact lower limit (") + to_string(params.integrator) + ")";
+  s.gamma_max = s.exact.gamma_hi;
+  s.max_by = std::string("exact upper limit (") + to_string(params.integrator) + ")" +
+             (s.exact.method == ExactMethod::frozen_estimate ? ", frozen-rate estimate" : "");
+  s.empty = !(s.gamma_min < s.gamma_max);
+  for (auto& [key, c] : classes) {
+    c.gamma_min = s.gamma_min * c.gamma_scale;
+    c.gamma_max = s.gamma_max * c.gamma_scale;
+    s.classes.push_back(c);
+  }
+  s.dt_only = classic_criteria(model, params);
+  for (const auto& c : s.dt_only) s.dt_accepted = s.dt_accepted && c.verdict == CriterionVerdict::within;
+
+  if (s.empty) {
+    if (std::isfinite(s.gamma_min)) {
+      const Params p = with_gamma(params, s.gamma_min);
+      const Model m = make_model(scene, p);
+      s.dt_max_at_gamma_min = exact_stability(m, m.rest, p, {false}).dt_max;
+    }
+    s.gamma_best = kNaN;
+    s.best_rho = kNaN;
+    return s;
+  }
+  // The search interval: up to the exact limit, or where no limit exists, to four times the
+  // critical damping of the stiffest mode (beyond it every mode is overdamped and slower).
+  double hi = s.gamma_max;
+  if (!std::isfinite(hi)) {
+    const double crit = 2 * std::sqrt(std::max(s.exact.spectrum.lambda_max, 0.0));  // c, 1/s
+    hi = s.gamma_min + 4 * crit / std::max(unit_rate_max, 1e-300);
+  }
+  hi = s.gamma_min + (hi - s.gamma_min) * (1 - 1e-9);  // stay inside the open end
+  if (s.exact.uniform_rate) {
+    // Exact: rho(gamma) is the max over the modes' 2x2 amplification matrices; the rate per
+    // unit gamma is that of any free node (uniform_rate: all free nodes share it).
+    double rate = 0;
+    for (size_t i = 0; i < model.rest.size(); ++i)
+      if (!model.fixed[i]) {
+        rate = model.gamma_scale[i] / model.mass[i];
+        break;
+      }
+    auto rho_free = [&](double g) {
+      return spectrum_spectral_radius(params.integrator, s.exact.decaying, g * rate, params.dt);
+    };
+    s.gamma_best = minimise(rho_free, s.gamma_min, hi);
+    s.best_rho = rho_free(s.gamma_best);
+    s.best_method = "minimum spectral radius of the step over the range (per-mode, exact)";
+  } else {
+    // Non-uniform rates: trial runs of the scene's protocol; fewest iterations to restore wins.
+    const int n = std::max(2, options.trials);
+    auto best_of = [&](double a, double b, int count, double& best_gamma, RunResult& best_run) {
+      for (int k = 0; k < count; ++k) {
+        const double g = a + (b - a) * k / (count - 1);
+        const RunResult r = verify_run(scene, with_gamma(params, g), rules, "").result;
+        if (best_gamma < 0 || score(r) < score(best_run)) best_gamma = g, best_run = r;
+      }
+    };
+    double g = -1;
+    RunResult r;
+    best_of(s.gamma_min, hi, n, g, r);
+    const double step = (hi - s.gamma_min) / (n - 1);
+    best_of(std::max(s.gamma_min, g - step), std::min(hi, g + step), 9, g, r);
+    s.gamma_best = g;
+    s.best_rho = kNaN;
+    s.best_method = "earliest settled iteration over " + std::to_string(n + 9) +
+                    " trial runs of the scene (rates gamma_i/m_i are not uniform)";
+  }
+  if (options.verify) {
+    s.runs.push_back(verify_run(scene, with_gamma(params, s.gamma_best), rules, "fastest-settling gamma"));
+    s.runs.push_back(verify_run(scene, with_gamma(params, s.gamma_min), rules, "lower end of the range"));
+    if (std::isfinite(s.gamma_max))
+      s.runs.push_back(verify_run(scene, with_gamma(params, s.gamma_min + 0.99 * (s.gamma_max - s.gamma_min)),
+                                  rules, "99% of the way to the upper end"));
+  }
+  return s;
+}
+
+StepSuggestion suggest_step(const SceneSpec& scene, const Params& params_in, const StopRules& rules,
+                            const SuggestOptions& options) {
+  Params params = params_in;
+  params.policy = DampingPolicy::fixed;
+  StepSuggestion s;
+  s.gamma = params.gamma;
+  const Model model = make_model(scene, params);
+  s.exact = exact_stability(model, model.rest, params, {false});
+  s.dt_exact = s.exact.dt_max;
+  s.dt_all = s.dt_exact;
+  s.dt_all_by = std::string("exact limit (") + to_string(params.integrator) + ")";
+  {  // SPEC 9 at rest: the smallest dt_safe_i at the user's gamma_i
+    std::vector<double> R;
+    safe_row_sums(model, model.rest, R);
+    s.dt_safe = kInf;
+    for (size_t i = 0; i < R.size(); ++i) {
+      if (model.fixed[i]) continue;
+      const double h = safe_dt(model.mass[i], model.gamma[i], R[i]);
+      if (h < s.dt_safe) s.dt_safe = h, s.dt_safe_node = static_cast<int>(i);
+    }
+  }
+  // The dt-only criteria, inverted for dt (their values do not depend on dt except k_c).
+  double m_total = 0, kappa_max = 0;
+  int n = 0;
+  for (const CriterionResult& c : classic_criteria(model, params)) {
+    if (c.name.rfind("Provot", 0) == 0 && c.value < s.dt_all) s.dt_all = c.value, s.dt_all_by = c.name;
+    if (c.name.rfind("Kacic", 0) == 0 && c.value < s.dt_all) s.dt_all = c.value, s.dt_all_by = c.name;
+  }
+  for (size_t i = 0; i < model.rest.size(); ++i)
+    if (!model.fixed[i]) m_total += model.mass[i], ++n, kappa_max = std::max(kappa_max, model.node_kappa[i]);
+  if (n > 0 && kappa_max > 0) {
+    // Delingette: kappa_max < m_total / (n pi^2 dt^2)  <=>  dt < sqrt(m_total / (n pi^2 kappa_max)).
+    const double dt_d = std::sqrt(m_total / (n * kPi * kPi * kappa_max));
+    if (dt_d < s.dt_all) s.dt_all = dt_d, s.dt_all_by = "Delingette critical stiffness";
+  }
+  if (options.verify) {
+    if (std::isfinite(s.dt_exact))
+      s.runs.push_back(verify_run(scene, with_dt(params, 0.99 * s.dt_exact), rules, "99% of the exact limit"));
+    if (std::isfinite(s.dt_all) && !(s.dt_all >= 0.99 * s.dt_exact))
+      s.runs.push_back(verify_run(scene, with_dt(params, s.dt_all), rules, "largest dt every criterion accepts"));
+  }
+  return s;
+}
+
+}  // namespace dampbound

@@ -1,0 +1,18 @@
+#pragma once
+// Scene files (docs/scenes.md): TOML text read into a SceneSpec, every error naming the file
+// and the line.
+#include <string>
+
+#include "core/scene.hpp"
+
+namespace dampbound {
+
+/// Loads and validates a scene file. Throws InputError("FILE:LINE: message") on any
+/// malformed or inconsistent content (unknown key, missing value, NaN, negative mass,
+/// spring to a missing node, duplicate spring, ...).
+SceneSpec load_scene(const std::string& path);
+
+/// Parses scene text; `path` is used in messages only.
+SceneSpec parse_scene(const std::string& text, const std::string& path);
+
+}  // namespace dampbound

@@ -1,0 +1,56 @@
+#pragma once
+// Writing scenes back as TOML (the format of core/io/scene_file.cpp, README "Scene files"), and
+// turning measured runs into [[expect]] entries: how the tuner's "Save as scene" makes a check
+// that `dampbound check FILE` replays headless.
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+#include "core/protocol.hpp"
+#include "core/scene.hpp"
+
+namespace dampbound {
+
+/// How loose the [[expect]] entries written for a measured run are.
+struct ExpectTolerance {
+  /// Each asserted iteration (the outcome's, the first entry, the exit, the settled one) must
+  /// lie within +- this many iterations of the measured one (>= 0).
+  int iterations = 2;
+  /// max_displacement_below = this x the measured final max displacement (cm), for runs that
+  /// did not diverge; <= 1 leaves it out.
+  double displacement_factor = 1.5;
+  /// Also assert violating and unstabilisable node-steps <= the measured counts.
+  bool counts = false;
+};
+
+/// The default tolerances.
+inline ExpectTolerance default_expect_tolerance() {
+  return {};
+}
+
+/// The [[expect]] entry for `result`, measured under `rule` on the run labelled `run` ("" =
+/// the scene's own [params]): the rule, the outcome, the outcome's iteration when it is not
+/// the limit (restored, diverged), and under the settled rule (SPEC 8) the first entry, whether
+/// and when the run left the band, and the settled iteration, each within the tolerance; then
+/// what the tolerance adds.
+Expectation expectation_for(const RunResult& result, const std::string& run,
+                            const ExpectTolerance& tolerance,
+                            StopRule rule = StopRule::first_entry);
+
+/// Writes `scene` as TOML that load_scene() reads back to the same model, parameters,
+/// perturbations, protocol, cuts, runs and expectations. The geometry is a [grid] when the
+/// model is the plain grid; else the source file's geometry tables (grid, node, spring,
+/// region, mesh) when they still compile to this model, with a mesh path made relative to
+/// `dest_path`; else every node and spring written out. `header` lines become comments.
+void write_scene_toml(std::ostream& out, const SceneSpec& scene, const std::string& dest_path,
+                      const std::vector<std::string>& header = {});
+
+/// write_scene_toml into a string.
+std::string scene_toml(const SceneSpec& scene, const std::string& dest_path,
+                       const std::vector<std::string>& header = {});
+
+/// True when two models have the same nodes (rest, scales, forces, fixed) and springs
+/// (ends, rest length, stiffness scale), compared exactly.
+bool same_topology(const Model& a, const Model& b);
+
+}  // namespace dampbound

@@ -1,0 +1,144 @@
+#include "core/io/vtu.hpp"
+
+#include "core/safe_bound.hpp"
+
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <limits>
+#include <ostream>
+
+#include "core/error.hpp"
+#include "core/io/files.hpp"
+#include "core/safe_bound.hpp"
+
+namespace dampbound {
+namespace {
+
+/// Base64 (RFC 4648) of a byte block.
+std::string base64(const std::vector<unsigned char>& in) {
+  static const char* abc = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  out.reserve((in.size() + 2) / 3 * 4);
+  for (size_t i = 0; i < in.size(); i += 3) {
+    const unsigned b0 = in[i], b1 = i + 1 < in.size() ? in[i + 1] : 0u,
+                   b2 = i + 2 < in.size() ? in[i + 2] : 0u;
+    out += abc[b0 >> 2];
+    out += abc[((b0 & 3u) << 4) | (b1 >> 4)];
+    out += i + 1 < in.size() ? abc[((b1 & 15u) << 2) | (b2 >> 6)] : '=';
+    out += i + 2 < in.size() ? abc[b2 & 63u] : '=';
+  }
+  return out;
+}
+
+/// A VTK binary DataArray: a UInt64 byte count, then the values, all base64-encoded together.
+template <class T>
+void data_array(std::ostream& out, const char* type, const char* name, int components,
+                const std::vector<T>& values) {
+  const std::uint64_t bytes = values.size() * sizeof(T);
+  std::vector<unsigned char> raw(sizeof bytes + bytes);
+  std::memcpy(raw.data(), &bytes, sizeof bytes);
+  if (bytes) std::memcpy(raw.data() + sizeof bytes, values.data(), bytes);
+  out << "        <DataArray type=\"" << type << "\" Name=\"" << name << "\" NumberOfComponents=\""
+      << components << "\" format=\"binary\">\n          " << base64(raw)
+      << "\n        </DataArray>\n";
+}
+
+std::vector<double> flatten(const std::vector<Vec3>& v) {
+  std::vector<double> out;
+  out.reserve(3 * v.size());
+  for (const Vec3& x : v) out.insert(out.end(), {x.x(), x.y(), x.z()});
+  return out;
+}
+
+}  // namespace
+
+int state_code(NodeStatus s) {
+  return static_cast<int>(s);
+}
+
+void write_vtu(std::ostream& out, const Model& model, const State& state, const StepWorkspace& ws,
+               double dt) {
+  const size_t n = model.rest.size(), ns = model.springs.size();
+  const bool stepped = ws.status.size() == n;  // else iteration 0: no step has run yet
+  std::vector<Vec3> disp(n);
+  std::vector<double> upper(n), gamma(n), safe = stepped ? ws.safe_bound : std::vector<double>(n);
+  if (!stepped) {  // SPEC 9 at the initial state, as step() would evaluate it
+    std::vector<double> row_sum;
+    safe_row_sums(model, state.x, row_sum);
+    for (size_t i = 0; i < n; ++i)
+      safe[i] = model.fixed[i] ? std::numeric_limits<double>::infinity()
+                               : safe_gamma(model.mass[i], dt, row_sum[i]);
+  }
+  std::vector<std::int32_t> code(n);
+  for (size_t i = 0; i < n; ++i) {
+    disp[i] = state.x[i] - model.rest[i];
+    upper[i] = stepped ? ws.upper_bound[i] : std::numeric_limits<double>::infinity();
+    gamma[i] = stepped ? ws.gamma_eff[i] : (model.fixed[i] ? 0.0 : model.gamma[i]);
+    code[i] = state_code(stepped          ? ws.status[i]
+                         : model.fixed[i] ? NodeStatus::fixed
+                                          : NodeStatus::within);
+  }
+  std::vector<std::int64_t> conn, offsets;
+  std::vector<std::uint8_t> types(ns, 3);  // VTK_LINE
+  std::vector<double> kappa(ns), strain(ns);
+  for (size_t k = 0; k < ns; ++k) {
+    const Spring& s = model.springs[k];
+    conn.insert(conn.end(), {s.i, s.j});
+    offsets.push_back(static_cast<std::int64_t>(2 * (k + 1)));
+    kappa[k] = s.kappa;
+    const double l = (state.x[size_t(s.j)] - state.x[size_t(s.i)]).norm();
+    strain[k] = s.rest_length > 0 ? (l - s.rest_length) / s.rest_length : 0.0;
+  }
+  out << "<?xml version=\"1.0\"?>\n"
+         "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
+         "header_type=\"UInt64\">\n  <UnstructuredGrid>\n"
+      << "    <Piece NumberOfPoints=\"" << n << "\" NumberOfCells=\"" << ns << "\">\n"
+      << "      <PointData>\n";
+  data_array(out, "Float64", "displacement", 3, flatten(disp));
+  data_array(out, "Float64", "velocity", 3, flatten(state.v));
+  data_array(out, "Float64", "lower", 1, model.lower_bound);
+  data_array(out, "Float64", "upper", 1, upper);
+  data_array(out, "Float64", "effective_damping", 1, gamma);
+  data_array(out, "Float64", "safe", 1, safe);
+  data_array(out, "Int32", "state", 1, code);
+  out << "      </PointData>\n      <CellData>\n";
+  data_array(out, "Float64", "stiffness", 1, kappa);
+  data_array(out, "Float64", "strain", 1, strain);
+  out << "      </CellData>\n      <Points>\n";
+  data_array(out, "Float64", "Points", 3, flatten(state.x));
+  out << "      </Points>\n      <Cells>\n";
+  data_array(out, "Int64", "connectivity", 1, conn);
+  data_array(out, "Int64", "offsets", 1, offsets);
+  data_array(out, "UInt8", "types", 1, types);
+  out << "      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n";
+}
+
+VtuSeries::VtuSeries(std::string dir) : dir_(std::move(dir)) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir_, ec);
+  if (ec || !std::filesystem::is_directory(dir_))
+    throw InputError(dir_ + ": cannot create the output folder");
+  check_writable(dir_ + "/series.pvd");
+}
+
+void VtuSeries::add(const Model& model, const State& state, const StepWorkspace& ws, double dt) {
+  char name[32];
+  std::snprintf(name, sizeof name, "step_%06d.vtu", state.iteration);
+  write_file_atomic(dir_ + "/" + name,
+                    [&](std::ostream& out) { write_vtu(out, model, state, ws, dt); });
+  files_.emplace_back(state.time, name);
+}
+
+void VtuSeries::write_collection() const {
+  write_file_atomic(dir_ + "/series.pvd", [&](std::ostream& out) {
+    out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n"
+           "  <Collection>\n";
+    for (const auto& [t, file] : files_)
+      out << "    <DataSet timestep=\"" << format_number(t) << "\" file=\"" << file << "\"/>\n";
+    out << "  </Collection>\n</VTKFile>\n";
+  });
+}
+
+}  // namespace dampbound

@@ -1,0 +1,38 @@
+// The batched kernel (core/sweep/detail/kernel_body.cpp) compiled once more for AVX2 (with FMA, BMI1/2: x86-64-v3's set),
+// under a target pragma instead of compiler flags, so that the rest of the library stays
+// portable; core/sweep/kernel.cpp runs it only on a CPU that has these features.
+// FMA is allowed but never used: the build has -ffp-contract=off, so this copy rounds as
+// step() does. Headers are included before the pragma: templates and inline functions shared
+// with other files keep the baseline target, and only the kernel's own code gets this one.
+#if defined(__x86_64__)
+#include <immintrin.h>
+
+#include <cfloat>
+#include <cmath>
+#include <cstdint>
+#include <stdexcept>
+
+#include "core/sweep/detail/kernel_avx2.hpp"
+#include "core/session.hpp"
+#include "core/sweep/kernel.hpp"
+#include "core/sweep/detail/kernel_body.hpp"
+
+#define DAMPBOUND_KERNEL_VARIANT kernel_avx2
+#define DAMPBOUND_SIMD_AVX2 1
+// The feature list is kernel_isa_supported()'s (core/sweep/kernel.cpp).
+#if defined(__clang__)
+#pragma clang attribute push(__attribute__((target("avx2,avx,fma,bmi,bmi2,popcnt"))), apply_to = function)
+#else
+#pragma GCC push_options
+#pragma GCC target("avx2,avx,fma,bmi,bmi2,popcnt")
+#endif
+
+#include "core/sweep/detail/kernel_body.cpp"
+#include "core/sweep/trials.hpp"
+
+#if defined(__clang__)
+#pragma clang attribute pop
+#else
+#pragma GCC pop_options
+#endif
+#endif  // __x86_64__

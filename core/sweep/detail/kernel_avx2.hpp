@@ -1,0 +1,13 @@
+#pragma once
+// The batched kernel compiled for AVX2 (kernel_avx2.cpp: kernel_body.cpp under a target pragma).
+#include <memory>
+
+#include "core/sweep/detail/kernel_body.hpp"
+
+namespace dampbound {
+
+namespace kernel_avx2 {
+std::unique_ptr<BatchKernel::Impl> make(const SceneSpec&, DampingPolicy, const StopRules&);
+}
+
+}  // namespace dampbound

@@ -1,0 +1,83 @@
+#pragma once
+// Lane vectors for the batched sweep kernel (core/sweep/detail/kernel_body.cpp): one double per trial,
+// kLanes trials side by side. GCC/Clang vector extensions give + - * / and comparisons lane by
+// lane with IEEE rounding, exactly like the scalar code of step(); sqrt goes through the
+// matching SIMD instruction (also correctly rounded). With AVX-512 a vector is one zmm
+// register; on narrower machines the compiler splits it into ymm/xmm operations.
+//
+// The instruction set comes from the compiler flags (__AVX512F__, __AVX__) or, in the per-ISA
+// copies of the kernel built under a target pragma, from DAMPBOUND_SIMD_AVX512 /
+// DAMPBOUND_SIMD_AVX2 (a target pragma does not define the macros under clang). Everything
+// here has internal linkage, so the copies compiled for different targets never meet at link
+// time.
+#include <cmath>
+#include <cstdint>
+#if defined(__x86_64__) || defined(__i386__)
+#include <immintrin.h>
+#endif
+
+// Without AVX-512 (DAMPBOUND_NATIVE=OFF) GCC warns that passing these 64-byte vectors
+// by value has another ABI than with it. They never cross a translation unit (only
+// core/sweep/detail/kernel_body.cpp includes this header), so the warning does not apply.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wpsabi"
+#endif
+
+namespace dampbound::simd {
+namespace {
+
+/// Trials per vector: 8 doubles = 64 bytes = one AVX-512 register.
+constexpr int kLanes = 8;
+
+// aligned(64) is explicit: GCC otherwise derives a vector type's alignment from the target in
+// force where the type is used, so a std::vector<NodeBlock> instantiated after the AVX-512
+// target pragma of core/sweep/detail/kernel_avx512.cpp ends would allocate 16-byte aligned blocks
+// that the kernel's AVX-512 code reads with aligned loads.
+typedef double vd __attribute__((vector_size(kLanes * sizeof(double)), aligned(64)));
+typedef std::int64_t vl __attribute__((vector_size(kLanes * sizeof(std::int64_t)), aligned(64)));
+static_assert(alignof(vd) == 64 && alignof(vl) == 64, "one AVX-512 register per vector");
+
+/// Every lane = x (keeps the sign of a zero, unlike `vd{} + x`).
+inline vd splat(double x) {
+  vd r;
+  for (int l = 0; l < kLanes; ++l) r[l] = x;
+  return r;
+}
+
+inline vl splat_int(std::int64_t x) {
+  vl r;
+  for (int l = 0; l < kLanes; ++l) r[l] = x;
+  return r;
+}
+
+/// Correctly rounded square root of every lane (IEEE 754, same as std::sqrt).
+inline vd sqrt(vd x) {
+#if defined(__AVX512F__) || defined(DAMPBOUND_SIMD_AVX512)
+  // The masked form with every lane selected: GCC 12's _mm512_sqrt_pd reads an undefined
+  // register and trips -Wmaybe-uninitialized.
+  const __m512d v = reinterpret_cast<__m512d>(x);
+  return reinterpret_cast<vd>(_mm512_mask_sqrt_pd(v, static_cast<__mmask8>(0xFF), v));
+#elif defined(__AVX__) || defined(DAMPBOUND_SIMD_AVX2)
+  vd r;
+  __m256d lo, hi;
+  __builtin_memcpy(&lo, &x, sizeof lo);
+  __builtin_memcpy(&hi, reinterpret_cast<const char*>(&x) + sizeof lo, sizeof hi);
+  lo = _mm256_sqrt_pd(lo);
+  hi = _mm256_sqrt_pd(hi);
+  __builtin_memcpy(&r, &lo, sizeof lo);
+  __builtin_memcpy(reinterpret_cast<char*>(&r) + sizeof lo, &hi, sizeof hi);
+  return r;
+#else
+  vd r;
+  for (int l = 0; l < kLanes; ++l) r[l] = std::sqrt(x[l]);
+  return r;
+#endif
+}
+
+/// Lane-wise `mask ? a : b` (mask lanes are all ones or zero, as comparisons give).
+inline vd select(vl mask, vd a, vd b) {
+  return mask ? a : b;
+}
+
+}  // namespace
+}  // namespace dampbound::simd

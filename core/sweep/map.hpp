@@ -1,0 +1,70 @@
+#pragma once
+// The stability map of a sweep as plain data: outcome cells over (kappa/m, zeta) or
+// (kappa/m, factor) and over (m, kappa) per slice, with the paper's predicted boundary and the
+// exact linear one (SPEC 7) as lines. Drawing it is the UI's job (app/cmd_ui_map.cpp), which
+// registers itself as the map renderer when the build has the headless EGL host.
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/sweep/csv.hpp"
+
+namespace dampbound {
+
+/// What a map cell shows: the majority outcome of its trials. Under the settled rule (SPEC 8)
+/// restored means settled, not_restored means never entered the band, and entered_left is a
+/// trial that entered the band, then left it and was not back in at the limit.
+enum class MapCell : signed char {
+  empty = -1,
+  restored = 0,
+  not_restored = 1,
+  diverged = 2,
+  entered_left = 3
+};
+
+/// Which boundary a line is.
+enum class MapLineKind { paper, exact_linear, dt_limit, safe };
+
+struct MapLine {
+  std::string label;
+  MapLineKind kind = MapLineKind::paper;
+  std::vector<double> x, y;
+};
+
+/// One heat map: cell (ix, iy) spans [x_edges[ix], x_edges[ix+1]] x [y_edges[iy],
+/// y_edges[iy+1]]; cells are row-major with rows along y.
+struct MapPanel {
+  std::string title, x_label, y_label;
+  bool x_log = false, y_log = false;
+  std::vector<double> x_edges, y_edges;
+  std::vector<MapCell> cells;
+  std::vector<double> iterations;  ///< mean iteration of the restored (settled) trials of a cell
+  std::vector<MapLine> lines;
+};
+
+struct StabilityMap {
+  std::string title;
+  std::vector<MapPanel> panels;
+  int max_iterations = 0;            ///< the protocol's limit (restored cells are shaded up to it)
+  StopRule rule = StopRule::first_entry;  ///< the rule of the sweep (SPEC 8)
+  std::vector<std::string> summary;  ///< outcome counts and prediction checks
+};
+
+struct MapOptions {
+  std::optional<double> dt;  ///< which dt to draw when the sweep has several (default: first)
+  int ratio_bins = 200;      ///< log bins of kappa/m
+  int grid_bins = 200;       ///< at most this many cells along m and along kappa
+  int max_slices = 3;        ///< (m, kappa) panels, one per zeta or factor value
+};
+
+/// Builds the map from a sweep's rows and header. `lambda_unit` is
+/// unit_stiffness_eigenvalue() of the sweep's scene (NaN: no exact linear lines).
+StabilityMap build_stability_map(const SweepTable& table, double lambda_unit,
+                                 const MapOptions& options = {});
+
+/// Draws a map into a PNG (throws on failure). Empty when the build has no EGL host.
+using MapRenderer = std::function<void(const StabilityMap& map, const std::string& png)>;
+MapRenderer& map_renderer();
+
+}  // namespace dampbound

@@ -1,0 +1,56 @@
+#pragma once
+// How often the paper's predictions, and the exact linear limits of SPEC 7, held on a sweep.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/scene.hpp"
+#include "core/sweep/csv.hpp"
+
+namespace dampbound {
+
+/// lambda_max of M^-1 K at rest with m = kappa = 1 (1/s^2). M^-1 K scales with kappa/m, so
+/// lambda_max(m, kappa) = this * kappa/m for any trial of the scene.
+double unit_stiffness_eigenvalue(const SceneSpec& scene);
+
+/// SPEC 7 for uniform gamma/m: the step is linearly stable about rest iff
+/// 0 < gamma dt/m < 2 and lambda_max dt^2 < 4 - 2 gamma dt/m, i.e.
+/// gamma < gamma_max = 2 m/dt - m lambda_max dt/2 (gamma = 0 is marginal: not unstable).
+bool linearly_unstable(double m, double kappa, double gamma, double dt, double lambda_unit);
+
+/// One prediction: "condition => expected outcome" held in `held` of `of` trials.
+struct PredictionCheck {
+  std::string claim;
+  std::uint64_t held = 0;
+  std::uint64_t of = 0;
+};
+
+/// The checks that apply to the sweep's policy: for fixed damping the paper's lower bound
+/// (zeta < 1 => not restored, zeta >= 1 => restored) and the exact linear limit (unstable =>
+/// diverged, stable => not diverged); for policy upper the paper's Fig. 2 claims (factor 1 =>
+/// restored, factor > 1 => diverged); for lower and clamp "within the bounds => restored".
+std::vector<PredictionCheck> check_predictions(const std::vector<SweepRow>& rows,
+                                               const std::string& policy, double lambda_unit);
+
+/// "key=value" out of a header definition ("policy", "max-iter", ...); "" when absent.
+std::string definition_value(const std::string& definition, const std::string& key);
+
+/// The rule a sweep's rows were judged by (SPEC 8): settled when any row is settled or
+/// not_settled, else first-entry.
+StopRule rows_rule(const std::vector<SweepRow>& rows);
+
+/// How often the settled rule overturned the paper's verdict (SPEC 8): of the trials that
+/// entered the band (first-entry: restored), those that did not settle.
+struct Overturned {
+  std::uint64_t entered = 0;   ///< trials with a first entry (the paper's restored)
+  std::uint64_t left = 0;      ///< ... then not settled at the limit
+  std::uint64_t diverged = 0;  ///< ... then diverged
+};
+Overturned count_overturned(const std::vector<SweepRow>& rows);
+
+/// The lines printed after a sweep: outcome counts (under the settled rule also the number of
+/// first-entry verdicts it overturned) and the prediction checks.
+std::vector<std::string> summary_lines(const std::vector<SweepRow>& rows, const std::string& policy,
+                                       double lambda_unit);
+
+}  // namespace dampbound

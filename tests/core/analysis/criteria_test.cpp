@@ -1,0 +1,158 @@
+// Tests of core/criteria: each criterion's closed form on the two-node system, its verdict
+// flipping at its threshold, the paper's bounds at a moving state, the non-uniform
+// generalisation (kappa_i = max incident stiffness, K_i = the sum) and how the classic
+// criteria compare with the exact limit on the paper plane.
+#include "core/analysis/criteria.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/bounds.hpp"
+#include "core/forces.hpp"
+#include "core/scene.hpp"
+#include "core/io/scene_file.hpp"
+
+namespace dampbound {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+std::string source_path(const std::string& rel) { return std::string(DAMPBOUND_SOURCE_DIR) + "/" + rel; }
+
+const CriterionResult& find(const std::vector<CriterionResult>& all, const std::string& prefix) {
+  for (const auto& c : all)
+    if (c.name.rfind(prefix, 0) == 0) return c;
+  throw std::runtime_error("no criterion " + prefix);
+}
+
+std::vector<CriterionResult> two_node_criteria(const Params& p) {
+  const Model m = two_node_system(p);
+  const State rest = rest_state(m);
+  return all_criteria(m, rest, p, exact_stability(m, rest.x, p));
+}
+
+TEST(Criteria, TwoNodeClosedForms) {
+  Params p;
+  p.m = 0.003;
+  p.kappa = 0.02;
+  p.gamma = 0.004;
+  p.dt = 0.05;
+  const auto all = two_node_criteria(p);
+  ASSERT_EQ(all.size(), 13u);
+  EXPECT_NEAR(find(all, "paper lower").value, 2 * std::sqrt(p.m * p.kappa), 1e-15);
+  EXPECT_NEAR(find(all, "Delingette").value, p.m / (kPi * kPi * p.dt * p.dt), 1e-12);
+  EXPECT_NEAR(find(all, "Provot").value, kPi * std::sqrt(p.m / p.kappa), 1e-12);
+  EXPECT_NEAR(find(all, "Kacic").value, 2 * std::sqrt(p.m / p.kappa), 1e-12);
+  EXPECT_NEAR(find(all, "exact lambda_max").value, p.kappa / p.m, 1e-12);
+  // SPEC 7: gamma < 2 m/dt - m lambda dt / 2 and dt < (sqrt(c^2 + 4 lambda) - c)/lambda.
+  EXPECT_NEAR(find(all, "exact gamma interval").value, 2 * p.m / p.dt - p.kappa * p.dt / 2, 1e-12);
+  const double lambda = p.kappa / p.m, c = p.gamma / p.m;
+  EXPECT_NEAR(find(all, "exact dt limit").value, (std::sqrt(c * c + 4 * lambda) - c) / lambda, 1e-12);
+  EXPECT_EQ(find(all, "paper upper").verdict, CriterionVerdict::not_applicable);  // at rest
+  // SPEC 9 on one spring: A is kappa/m on one row, so Gershgorin is exact.
+  EXPECT_NEAR(find(all, "safe damping bound").value, 2 * p.m / p.dt - p.kappa * p.dt / 2, 1e-12);
+  EXPECT_NEAR(find(all, "safe dt bound").value, (std::sqrt(c * c + 4 * lambda) - c) / lambda, 1e-12);
+  EXPECT_EQ(find(all, "safe check").verdict, CriterionVerdict::within);
+  for (const auto& cr : all) EXPECT_FALSE(cr.formula.empty() || cr.source.empty()) << cr.name;
+}
+
+TEST(Criteria, VerdictsFlipAtTheirThresholds) {
+  Params p;
+  p.m = 0.001;
+  p.kappa = 0.001;
+  p.gamma = 0;
+  auto verdict = [&](const char* name, double dt, double gamma) {
+    Params q = p;
+    q.dt = dt;
+    q.gamma = gamma;
+    return find(two_node_criteria(q), name).verdict;
+  };
+  const double ka = 2 * std::sqrt(p.m / p.kappa), t0 = kPi * std::sqrt(p.m / p.kappa);
+  const double dt_d = std::sqrt(p.m / (kPi * kPi * p.kappa));  // kappa = k_c(dt)
+  EXPECT_EQ(verdict("Kacic", 0.999 * ka, 0), CriterionVerdict::within);
+  EXPECT_EQ(verdict("Kacic", 1.001 * ka, 0), CriterionVerdict::beyond);
+  EXPECT_EQ(verdict("Provot", 0.999 * t0, 0), CriterionVerdict::within);
+  EXPECT_EQ(verdict("Provot", 1.001 * t0, 0), CriterionVerdict::beyond);
+  EXPECT_EQ(verdict("Delingette", 0.999 * dt_d, 0), CriterionVerdict::within);
+  EXPECT_EQ(verdict("Delingette", 1.001 * dt_d, 0), CriterionVerdict::beyond);
+  // On one spring the exact undamped limit is Kacic-Alesic's: dt < 2 sqrt(m/kappa).
+  EXPECT_EQ(verdict("exact dt limit", 0.999 * ka, 0), CriterionVerdict::within);
+  EXPECT_EQ(verdict("exact dt limit", 1.001 * ka, 0), CriterionVerdict::beyond);
+  const double lo = 2 * std::sqrt(p.m * p.kappa), hi = 2 * p.m / 0.05 - p.kappa * 0.05 / 2;
+  EXPECT_EQ(verdict("paper lower", 0.05, lo), CriterionVerdict::within);
+  EXPECT_EQ(verdict("paper lower", 0.05, 0.999 * lo), CriterionVerdict::beyond);
+  EXPECT_EQ(verdict("exact gamma", 0.05, 0.999 * hi), CriterionVerdict::within);
+  EXPECT_EQ(verdict("exact gamma", 0.05, 1.001 * hi), CriterionVerdict::beyond);
+  EXPECT_EQ(verdict("exact spectral", 0.05, 0.999 * hi), CriterionVerdict::within);
+  EXPECT_EQ(verdict("exact spectral", 0.05, 1.001 * hi), CriterionVerdict::beyond);
+}
+
+TEST(Criteria, PaperBoundsAtAMovingState) {
+  Params p;
+  p.m = 0.001;
+  p.kappa = 1;
+  p.gamma = 0.01;
+  p.dt = 0.05;
+  const Model m = two_node_system(p);
+  State s = rest_state(m);
+  s.x[1].x() = 1.02;  // stretched: F = -0.02 along x
+  s.v[1] = Vec3(1, 0, 0);
+  std::vector<Vec3> f;
+  internal_forces(m, s.x, f);
+  const auto all = paper_criteria(m, s, p);
+  const double hi = upper_bound(s.v[1], f[1], p.m, p.dt);
+  EXPECT_NEAR(find(all, "paper upper").value, hi, 1e-15);
+  EXPECT_EQ(find(all, "paper upper").node, 1);
+  // gamma_lo = 2 sqrt(0.001) = 0.063 > gamma_hi = |0.02 - 0.02| / 1 ~ 0: unstabilisable.
+  EXPECT_EQ(find(all, "paper runtime").value, 1);
+  EXPECT_EQ(find(all, "paper runtime").verdict, CriterionVerdict::beyond);
+}
+
+TEST(Criteria, NonUniformGeneralisation) {
+  // stiff-region.toml: a square of nodes (a, b in 12..24) 4x heavier, springs inside it and
+  // its anchors 10x stiffer. kappa_i = max incident stiffness (SPEC 3), K_i = the sum.
+  const SceneSpec s = load_scene(source_path("scenes/stiff-region.toml"));
+  Params p = s.params;
+  p.gamma = 0.005;
+  const Model m = make_model(s, p);
+  auto node = [](int a, int b) { return static_cast<size_t>(a * 36 + b); };
+  const double k = p.kappa;
+  EXPECT_DOUBLE_EQ(m.node_kappa[node(18, 18)], 10 * k);
+  EXPECT_DOUBLE_EQ(m.node_kappa[node(12, 18)], 10 * k);  // on the edge: inner springs 10x
+  EXPECT_DOUBLE_EQ(m.node_kappa[node(11, 18)], k);       // outside: springs across the edge 1x
+  EXPECT_NEAR(m.lower_bound[node(18, 18)], 2 * std::sqrt(4 * p.m * 10 * k), 1e-15);
+  const std::vector<double> K = combined_stiffness(m);
+  EXPECT_NEAR(K[node(18, 18)], 6 * 10 * k + 10 * k, 1e-15);      // 6 springs + anchor
+  EXPECT_NEAR(K[node(12, 18)], 4 * 10 * k + 2 * k + 10 * k, 1e-15);
+  EXPECT_NEAR(K[node(0, 5)], 4 * k + k, 1e-15);  // border node outside: 3 edges, 1 diagonal
+  const State rest = rest_state(m);
+  const auto all = all_criteria(m, rest, p, exact_stability(m, rest.x, p, {false}));
+  const CriterionResult& lo = find(all, "paper lower");
+  EXPECT_NEAR(lo.value, 2 * std::sqrt(4 * p.m * 10 * k), 1e-15);  // the worst node is inside
+  EXPECT_EQ(lo.verdict, CriterionVerdict::beyond);                 // gamma 0.005 < 0.0126
+  EXPECT_NEAR(find(all, "Kacic").value, 2 * std::sqrt(4 * p.m / (70 * k)), 1e-12);
+  EXPECT_NEAR(find(all, "Provot").value, kPi * std::sqrt(4 * p.m / (10 * k)), 1e-12);
+}
+
+TEST(Criteria, ClassicCriteriaAgainstTheExactLimitOnThePaperPlane) {
+  // Undamped, lambda_max = 7.812 kappa/m: the exact limit is dt < 2/sqrt(7.812) = 0.7155 s.
+  // Kacic-Alesic (2 sqrt(m/7 kappa) = 0.7559 s) and Provot (pi s) accept dt = 0.73 s, which
+  // is unstable; Delingette (dt < 1/pi s) is 2.2x too cautious.
+  const SceneSpec s = load_scene(source_path("scenes/paper-plane.toml"));
+  Params p = s.params;
+  p.gamma = 0;
+  p.dt = 0.73;
+  const Model m = make_model(s, p);
+  const State rest = rest_state(m);
+  const auto all = all_criteria(m, rest, p, exact_stability(m, rest.x, p));
+  EXPECT_EQ(find(all, "Kacic").verdict, CriterionVerdict::within);
+  EXPECT_EQ(find(all, "Provot").verdict, CriterionVerdict::within);
+  EXPECT_EQ(find(all, "Delingette").verdict, CriterionVerdict::beyond);
+  EXPECT_EQ(find(all, "exact dt limit").verdict, CriterionVerdict::beyond);
+  EXPECT_NEAR(find(all, "exact dt limit").value, 2 / std::sqrt(7.8123249218733), 1e-9);
+  EXPECT_NEAR(find(all, "Kacic").value, 2 * std::sqrt(1.0 / 7), 1e-12);
+}
+
+}  // namespace
+}  // namespace dampbound

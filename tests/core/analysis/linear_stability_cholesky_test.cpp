@@ -1,0 +1,113 @@
+#include "core/analysis/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
+// Tests of core/linear_stability_cholesky: Gershgorin's bounds (SPEC 9's R_i on the paper
+// plane), certified intervals that enclose the dense eigenvalues (meshes at rest and deformed,
+// a clustered top, a matrix with negative eigenvalues), and their width.
+#include "core/analysis/linear_stability_cholesky.hpp"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <cmath>
+
+#include "core/scene.hpp"
+
+namespace dampbound {
+namespace {
+
+Eigen::VectorXd dense_eigenvalues(const SparseMatrix& A) {
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es{Eigen::MatrixXd(A), Eigen::EigenvaluesOnly};
+  return es.eigenvalues();
+}
+
+SparseMatrix plane_matrix(int n, double deform) {
+  Model m = make_grid(GridSpec{n, n, 0.57, true, true});
+  Params p;
+  p.m = 0.002;
+  p.kappa = 0.05;
+  set_params(m, p);
+  std::vector<Vec3> x = m.rest;
+  unsigned seed = 3;
+  for (auto& q : x)
+    for (int k = 0; k < 3; ++k) {
+      seed = seed * 1103515245u + 12345u;
+      q[k] += deform * (static_cast<double>((seed >> 8) & 0xffffu) / 65535.0 - 0.5);
+    }
+  return mass_weighted(m, tangent_stiffness(m, x));
+}
+
+/// Checks lo <= lambda <= hi and the width promised in the header.
+void expect_encloses(const EigenInterval& r, double lambda, double scale) {
+  EXPECT_LE(r.lo, lambda + 1e-13 * scale);
+  EXPECT_GE(r.hi, lambda);
+  EXPECT_LE(r.hi - r.lo, 1e-10 * std::abs(lambda) + 2e-11 * scale + 1e-11 * scale);
+}
+
+TEST(Gershgorin, PaperPlaneRowSumsAreSpec9sBound) {
+  // SPEC 9: an interior node of the paper plane has R_i = 9 kappa/m, the largest of all.
+  Model m = make_grid(GridSpec{12, 12, 0.57, true, true});
+  Params p;
+  p.m = 0.001;
+  p.kappa = 0.001;
+  set_params(m, p);
+  const SparseMatrix A = mass_weighted(m, tangent_stiffness(m, m.rest));
+  const GershgorinBounds g = gershgorin_bounds(A);
+  EXPECT_NEAR(g.hi, 9.0, 1e-12);
+  const Eigen::VectorXd ev = dense_eigenvalues(A);
+  EXPECT_LE(ev.maxCoeff(), g.hi);
+  EXPECT_GE(ev.minCoeff(), g.lo);
+}
+
+TEST(CertifiedEigenvalue, EnclosesTheDenseEigenvaluesOfMeshes) {
+  for (double deform : {0.0, 0.2}) {
+    const SparseMatrix A = plane_matrix(12, deform);
+    const Eigen::VectorXd ev = dense_eigenvalues(A);
+    const GershgorinBounds g = gershgorin_bounds(A);
+    const double scale = g.hi - g.lo;
+    Eigen::VectorXd u;
+    const EigenInterval top = certified_largest_eigenvalue(A, &u);
+    expect_encloses(top, ev.maxCoeff(), scale);
+    EXPECT_NEAR(u.norm(), 1.0, 1e-12);
+    EXPECT_GE(top.factorizations, 2);  // Gershgorin's shift, then at least one closer
+    const EigenInterval bottom = certified_smallest_eigenvalue(A);
+    expect_encloses(bottom, ev.minCoeff(), scale);
+  }
+}
+
+TEST(CertifiedEigenvalue, ClusteredTopAndNegativeEigenvalues) {
+  // A path Laplacian (tightly clustered top for n = 400) shifted so that half the spectrum is
+  // negative, plus two eigenvalues 1e-7 apart at the top.
+  const int n = 400;
+  std::vector<Eigen::Triplet<double>> t;
+  for (int i = 0; i < n; ++i) {
+    t.emplace_back(i, i, 2.0 - 2.0);
+    if (i + 1 < n) {
+      t.emplace_back(i, i + 1, -1.0);
+      t.emplace_back(i + 1, i, -1.0);
+    }
+  }
+  t.emplace_back(n, n, 2.5);
+  t.emplace_back(n + 1, n + 1, 2.5 - 1e-7);
+  SparseMatrix A(n + 2, n + 2);
+  A.setFromTriplets(t.begin(), t.end());
+  const Eigen::VectorXd ev = dense_eigenvalues(A);
+  const EigenInterval top = certified_largest_eigenvalue(A);
+  expect_encloses(top, ev.maxCoeff(), 4.5);
+  EXPECT_NEAR(top.hi, 2.5, 1e-9);
+  const EigenInterval bottom = certified_smallest_eigenvalue(A);
+  expect_encloses(bottom, ev.minCoeff(), 4.5);
+  EXPECT_LT(bottom.lo, -1.99);
+}
+
+TEST(CertifiedEigenvalue, PaperPlaneLambdaMax) {
+  // The paper plane (SPEC 5) at kappa = m: lambda_max = 7.8123249218733 (docs/criteria.md).
+  const SceneSpec s = paper_plane_scene();
+  const Model m = make_model(s, s.params);
+  const SparseMatrix A = mass_weighted(m, tangent_stiffness(m, m.rest));
+  const EigenInterval r = certified_largest_eigenvalue(A);
+  EXPECT_LE(r.lo, 7.8123249218733 + 1e-12);
+  EXPECT_GE(r.hi, 7.8123249218733 - 1e-12);
+  EXPECT_LT(r.hi - r.lo, 1e-9);
+}
+
+}  // namespace
+}  // namespace dampbound
