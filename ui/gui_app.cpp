@@ -30,6 +30,19 @@ void warn(std::vector<std::string>& out, const std::string& text) {
 }
 }  // namespace
 
+template <class Link>
+void GuiApp::link_settings(GuiSettings& s, Link&& link) {
+  link(s.steps_per_frame, tuner_->playback().steps_per_frame);
+  link(s.pause_at_verdict, tuner_->playback().pause_at_verdict);
+  link(s.log_y, plot_options_.log_y);
+  link(s.show_max, plot_options_.show_max);
+  link(s.show_springs, mesh_.options.show_springs);
+  link(s.show_anchors, mesh_.options.show_anchors);
+  link(s.point_size, mesh_.options.point_size);
+  link(s.export_dir, runs_.export_dir);
+  link(s.export_prefix, runs_.export_prefix);
+}
+
 GuiApp::GuiApp(GuiOptions options) : options_(std::move(options)) {
   std::string warning;
   if (!options_.config_dir.empty()) settings_ = load_gui_settings(settings_path(), &warning);
@@ -37,8 +50,8 @@ GuiApp::GuiApp(GuiOptions options) : options_(std::move(options)) {
   std::error_code ec;
   if (!options_.scenes_dir.empty()) {
     for (const auto& e : std::filesystem::directory_iterator(options_.scenes_dir, ec))
-      if (e.path().extension() == ".toml") scene_files_.push_back(e.path().string());
-    std::sort(scene_files_.begin(), scene_files_.end());
+      if (e.path().extension() == ".toml") scene_.files.push_back(e.path().string());
+    std::sort(scene_.files.begin(), scene_.files.end());
   }
   std::optional<SceneSpec> scene = options_.scene;
   bool remembered = false;
@@ -59,8 +72,7 @@ GuiApp::GuiApp(GuiOptions options) : options_(std::move(options)) {
       scene->name += " (built in)";
     }
   }
-  scene_path_ = scene->path;
-  open_path_ = scene_path_;
+  scene_.path = scene_.typed = scene->path;
   tuner_ = std::make_unique<Tuner>(std::move(*scene));
   Params p = tuner_->params();
   StopRules r = tuner_->session().rules();
@@ -71,18 +83,9 @@ GuiApp::GuiApp(GuiOptions options) : options_(std::move(options)) {
   if (!tuner_->set_params(p, &why)) warn(warnings_, "ignoring parameters: " + why);
   tuner_->set_max_iterations(r.max_iterations);
   tuner_->reset();
-  PlaybackOptions& pb = tuner_->playback();
-  pb.steps_per_frame =
-      options_.steps_per_frame > 0 ? options_.steps_per_frame : settings_.steps_per_frame;
-  pb.pause_at_verdict = settings_.pause_at_verdict;
-  plot_options_.log_y = settings_.log_y;
-  plot_options_.show_max = settings_.show_max;
+  link_settings(settings_, [](const auto& saved, auto& live) { live = saved; });
   tuner_->criteria_state().set_at_current_state(settings_.exact_at_state);
-  mesh_.options.show_springs = settings_.show_springs;
-  mesh_.options.show_anchors = settings_.show_anchors;
-  mesh_.options.point_size = settings_.point_size;
-  export_dir_ = settings_.export_dir;
-  export_prefix_ = settings_.export_prefix;
+  if (options_.steps_per_frame > 0) tuner_->playback().steps_per_frame = options_.steps_per_frame;
   if (options_.demo) run_demo();
   if (options_.play) tuner_->set_playing(true);
   if (!warnings_.empty()) tuner_->set_notice(warnings_.back());
@@ -120,31 +123,19 @@ void GuiApp::run_demo() {
   tuner_->reset();
 }
 
-GuiSettings GuiApp::current_settings() const {
+GuiSettings GuiApp::current_settings() {
   GuiSettings s = settings_;
-  s.scene_path = scene_path_;
+  link_settings(s, [](auto& saved, const auto& live) { saved = live; });
+  s.scene_path = scene_.path;
   s.params = tuner_->params();
   s.max_iterations = tuner_->session().rules().max_iterations;
-  s.steps_per_frame = tuner_->playback().steps_per_frame;
-  s.pause_at_verdict = tuner_->playback().pause_at_verdict;
-  s.log_y = plot_options_.log_y;
-  s.show_max = plot_options_.show_max;
   s.exact_at_state = tuner_->criteria_state().at_current_state();
-  s.show_springs = mesh_.options.show_springs;
-  s.show_anchors = mesh_.options.show_anchors;
-  s.point_size = mesh_.options.point_size;
-  s.export_dir = export_dir_;
-  s.export_prefix = export_prefix_;
-  if (window_w_ > 0 && window_h_ > 0) {
-    s.window_width = window_w_;
-    s.window_height = window_h_;
-  }
   return s;
 }
 
 void GuiApp::load_layout_once() {
-  if (layout_loaded_) return;
-  layout_loaded_ = true;
+  if (ini_loaded_) return;
+  ini_loaded_ = true;
   if (options_.scripted) ImGui::GetIO().ConfigFlags |= ImGuiConfigFlags_NoMouse;
   const auto& bg = options_.background;
   ImGui::GetStyle().Colors[ImGuiCol_WindowBg] = ImVec4(bg[0], bg[1], bg[2], 1.0f);
@@ -159,8 +150,8 @@ void GuiApp::load_layout_once() {
   ImGui::LoadIniSettingsFromMemory(text.c_str(), text.size());
   // The remembered panels were laid out in a window of the remembered size: when this window
   // has another size, they follow it from the second frame on (layout_windows).
-  layout_w_ = static_cast<float>(settings_.window_width);
-  layout_h_ = static_cast<float>(settings_.window_height);
+  layout_.set_remembered_size(static_cast<float>(settings_.window_width),
+                              static_cast<float>(settings_.window_height));
 }
 
 void GuiApp::save_layout_if_needed(bool force) {
@@ -196,8 +187,8 @@ void GuiApp::nearest_font_texture() {
   // texel fetch instead of four. Lines then take their anti-aliasing from geometry.
   ImGuiIO& io = ImGui::GetIO();
   const ImTextureID tex = io.Fonts->TexID;
-  if (tex == nullptr || tex == patched_font_texture_) return;
-  patched_font_texture_ = tex;
+  if (tex == nullptr || tex == nearest_font_texture_) return;
+  nearest_font_texture_ = tex;
   ImGui::GetStyle().AntiAliasedLinesUseTex = false;
   GLint bound = 0;
   glGetIntegerv(GL_TEXTURE_BINDING_2D, &bound);
@@ -219,50 +210,21 @@ FrameFn GuiApp::frame_fn() {
   return [this](FrameInfo& info) { frame(info); };
 }
 
-void GuiApp::update_stats() {
-  const double t = now_s();
-  const long long steps = tuner_->total_steps();
-  const double step_s = tuner_->step_seconds();
-  if (last_frame_time_ >= 0) {
-    const double dt = t - last_frame_time_;
-    const double a = stats_.frames < 3 ? 1.0 : 0.05;  // smoothing over ~20 frames
-    stats_.frame_ms += a * (dt * 1e3 - stats_.frame_ms);
-    if (dt > 0) {
-      const double sps = static_cast<double>(steps - last_steps_) / dt;
-      stats_.steps_per_second += a * (sps - stats_.steps_per_second);
-    }
-    stats_.step_ms += a * ((step_s - last_step_seconds_) * 1e3 - stats_.step_ms);
-  }
-  if (stats_.frames == 1) {  // the second frame starts: the start-up is over
-    run_start_time_ = t;
-    run_start_steps_ = steps;
-  }
-  last_frame_time_ = t;
-  last_steps_ = steps;
-  last_step_seconds_ = step_s;
-  ++stats_.frames;
-}
-
-double GuiApp::measured_steps_per_second() const {
-  if (run_start_time_ < 0 || !(last_frame_time_ > run_start_time_)) return 0;
-  return static_cast<double>(last_steps_ - run_start_steps_) / (last_frame_time_ - run_start_time_);
-}
-
 void GuiApp::frame(FrameInfo& info) {
   nearest_font_texture();
   load_layout_once();
-  update_stats();
-  window_w_ = info.width;
-  window_h_ = info.height;
+  meter_.tick(now_s(), tuner_->total_steps(), tuner_->step_seconds());
+  settings_.window_width = info.width;
+  settings_.window_height = info.height;
   tuner_->advance();
-  layout_windows(info);
+  layout_.update(static_cast<float>(info.width), static_cast<float>(info.height));
   const int fixed = ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse;
-  if (begin("Parameters", 0)) parameters_panel();
+  if (layout_.begin("Parameters", 0)) parameters_panel();
   ImGui::End();
   suggest_.poll();
   // Below kCompactLayoutHeight the status tabs join the runs' tabs, under short titles (the part
   // after ### is the tab's identity, so a selected tab stays selected across sizes).
-  const bool compact = static_cast<float>(info.height) < kCompactLayoutHeight;
+  const bool compact = layout_.compact();
   auto tab = [&](const char* name, const char* short_name = nullptr) {
     const bool selected = select_tab_ == name;
     if (selected) select_tab_.clear();
@@ -281,20 +243,14 @@ void GuiApp::frame(FrameInfo& info) {
       ImGui::EndTabItem();
     }
   };
-  if (compact && std::find(hidden_.begin(), hidden_.end(), "Status") == hidden_.end()) {
-    hidden_.push_back("Status");  // not drawn: it must not follow resizes from a stale place
-    drawn_.erase(std::remove_if(drawn_.begin(), drawn_.end(),
-                                [](const WindowRect& r) { return r.name == "Status"; }),
-                 drawn_.end());
-  }
   if (!compact) {
-    if (begin("Status", 0) && ImGui::BeginTabBar("status_tabs")) {
+    if (layout_.begin("Status", 0) && ImGui::BeginTabBar("status_tabs")) {
       status_tabs();
       ImGui::EndTabBar();
     }
     ImGui::End();
   }
-  if (begin("Mesh view", fixed) && ImGui::BeginTabBar("view_tabs")) {
+  if (layout_.begin("Mesh view", fixed) && ImGui::BeginTabBar("view_tabs")) {
     if (tab("Mesh")) {
       mesh_.draw(*tuner_);
       ImGui::EndTabItem();
@@ -306,11 +262,11 @@ void GuiApp::frame(FrameInfo& info) {
     ImGui::EndTabBar();
   }
   ImGui::End();
-  if (begin("Damping bounds", fixed)) plots_envelope();
+  if (layout_.begin("Damping bounds", fixed)) plots_envelope();
   ImGui::End();
-  if (begin("Displacement", fixed)) plots_displacement();
+  if (layout_.begin("Displacement", fixed)) plots_displacement();
   ImGui::End();
-  if (begin("Runs", 0) && ImGui::BeginTabBar("runs_tabs")) {
+  if (layout_.begin("Runs", 0) && ImGui::BeginTabBar("runs_tabs")) {
     if (compact) status_tabs();
     if (tab("Pins & export", "Pins")) {
       runs_panel();
@@ -327,7 +283,7 @@ void GuiApp::frame(FrameInfo& info) {
     ImGui::EndTabBar();
   }
   ImGui::End();
-  reset_layout_ = false;
+  layout_.end_frame();
   save_layout_if_needed(false);
 }
 

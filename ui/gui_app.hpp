@@ -14,6 +14,9 @@
 
 #include "core/scene.hpp"
 #include "ui/frame_renderer.hpp"
+#include "ui/gui_layout.hpp"
+#include "ui/gui_stats.hpp"
+#include "ui/gui_widgets.hpp"
 #include "ui/mesh_view.hpp"
 #include "ui/settings.hpp"
 #include "ui/tuner.hpp"
@@ -22,11 +25,6 @@
 #include "ui/tuner_save.hpp"
 
 namespace dampbound::ui {
-
-/// Below this window height (pixels) the layout is compact: the parameters take the whole
-/// left column (they need about 560 px, 62 % of the height) and the Status and Criteria tabs
-/// join the runs' tabs.
-constexpr float kCompactLayoutHeight = 900.0f;
 
 /// How the window starts.
 struct GuiOptions {
@@ -44,12 +42,27 @@ struct GuiOptions {
   std::array<float, 4> background = gui_render_options().clear_color;
 };
 
-/// Frame statistics of the window.
-struct GuiStats {
-  int frames = 0;
-  double frame_ms = 0;          ///< smoothed wall time between frames
-  double steps_per_second = 0;  ///< smoothed
-  double step_ms = 0;           ///< smoothed time in step() per frame
+/// The scene picker: the scenes of the source tree and a field to open any other file.
+struct ScenePickerState {
+  std::vector<std::string> files;  ///< the *.toml files of scenes_dir, sorted
+  std::string path;                ///< file of the current scene ("" when built in code)
+  std::string typed;               ///< the "open a file" text field
+  std::string error;               ///< why the last scene did not open
+};
+
+/// The "Pins & export" tab: the next pin's name, where Export writes, what it said.
+struct RunsPanelState {
+  std::string pin_name;
+  std::string export_dir, export_prefix;
+  ActionMessage export_result;
+};
+
+/// The "Save scene" tab: the tolerances of the [[expect]] entries, the file, what Save said.
+struct SavePanelState {
+  ExpectTolerance tolerance = default_expect_tolerance();
+  std::string path;
+  ActionMessage result;
+  std::vector<std::string> notes;  ///< runs replayed headless before saving
 };
 
 class GuiApp {
@@ -76,16 +89,9 @@ class GuiApp {
     return {settings_.window_width, settings_.window_height};
   }
 
-  /// A panel's place: name, position and size in pixels.
-  struct WindowRect {
-    std::string name;
-    float x, y, w, h;
-  };
   /// Where the panel `name` was drawn in the last frame (tests).
-  std::optional<WindowRect> window_rect(const std::string& name) const {
-    for (const WindowRect& r : drawn_)
-      if (r.name == name) return r;
-    return std::nullopt;
+  std::optional<PanelRect> window_rect(const std::string& name) const {
+    return layout_.drawn(name);
   }
 
   /// The tuner state and the mesh view (tests drive them).
@@ -98,10 +104,10 @@ class GuiApp {
   void start_suggest();
   /// The Suggest computation, and the frame statistics of the window.
   TunerSuggest& suggestions() { return suggest_; }
-  const GuiStats& stats() const { return stats_; }
+  const GuiStats& stats() const { return meter_.stats(); }
   /// Steps per second from the start of the second frame to the last one: the start-up
   /// (first frame, pins run before it) left out. 0 before the third frame.
-  double measured_steps_per_second() const;
+  double measured_steps_per_second() const { return meter_.measured_steps_per_second(); }
   /// The stability map's worker and what it shows.
   TunerMap& map() { return map_; }
   MapView& map_view() { return map_view_; }
@@ -113,7 +119,7 @@ class GuiApp {
   /// notes (replayed runs) into *notes. Throws with a one-line reason.
   std::string save_scene(const std::string& path, std::vector<std::string>* notes = nullptr);
   /// The tolerances the Save tab writes [[expect]] entries with.
-  ExpectTolerance& save_tolerance() { return save_tolerance_; }
+  ExpectTolerance& save_tolerance() { return save_.tolerance; }
   /// Warnings met at start (a corrupt settings file, a missing scene), one line each.
   const std::vector<std::string>& warnings() const { return warnings_; }
   /// Path of the settings file and of the ImGui layout file ("" when not persisted).
@@ -124,11 +130,9 @@ class GuiApp {
   void load_layout_once();
   void nearest_font_texture();
   void save_layout_if_needed(bool force);
-  void layout_windows(const FrameInfo& info);
-  /// ImGui::Begin with the default position and size of the layout.
-  bool begin(const char* name, int flags);
   void parameters_panel();
   void scene_picker();
+  void open_scene(const std::string& path);
   void playback_controls();
   void status_panel();
   void runs_panel();
@@ -136,50 +140,33 @@ class GuiApp {
   void suggest_panel();
   void save_panel();
   void map_panel();
-  void lower_bound_line(double gamma);
   void plots_envelope();
   void plots_displacement();
   void run_demo();
-  void update_stats();
-  GuiSettings current_settings() const;
+  /// Calls link(remembered, live) for each setting the frame edits in place: loading the
+  /// settings copies one way, saving them the other.
+  template <class Link>
+  void link_settings(GuiSettings& s, Link&& link);
+  GuiSettings current_settings();
 
   GuiOptions options_;
-  GuiSettings settings_;
+  GuiSettings settings_;  ///< as loaded; the window size follows the frames
   std::unique_ptr<Tuner> tuner_;
   MeshView mesh_;
   TunerSuggest suggest_;
   TunerMap map_;
   MapView map_view_;
-  ExpectTolerance save_tolerance_ = default_expect_tolerance();
-  std::string save_path_, save_message_;
-  std::vector<std::string> save_notes_;
-  bool save_failed_ = false;
-  double run_start_time_ = -1;  ///< start of the second frame (measured_steps_per_second)
-  long long run_start_steps_ = 0;
   TunerPlotOptions plot_options_;
-  std::vector<std::string> scene_files_;
+  GuiLayout layout_;
+  FrameMeter meter_;
+  ScenePickerState scene_;
+  RunsPanelState runs_;
+  SavePanelState save_;
+  std::string param_error_;  ///< why the last parameter change was not applied
   std::vector<std::string> warnings_;
-  std::string scene_path_;  ///< file of the current scene ("" when built in code)
-  std::string open_path_;   ///< the "open a file" text field
-  std::string scene_error_;
-  std::string param_error_;
-  std::string pin_name_;
-  std::string export_dir_, export_prefix_, export_message_;
-  bool export_failed_ = false;
-  bool layout_loaded_ = false;
-  bool reset_layout_ = false;
-  std::vector<WindowRect> layout_;
-  std::vector<WindowRect> follow_;   ///< where panels go this frame after a resize
-  float layout_w_ = 0, layout_h_ = 0;  ///< the window size drawn_ was laid out in
-  std::vector<WindowRect> drawn_;    ///< where each window was last frame
-  std::vector<std::string> hidden_;  ///< panels not drawn in this layout (compact: Status)
-  int window_w_ = 0, window_h_ = 0;  ///< size of the last frame
-  std::string select_tab_;
-  ImTextureID patched_font_texture_ = nullptr;
-  GuiStats stats_;
-  double last_frame_time_ = -1;
-  long long last_steps_ = 0;
-  double last_step_seconds_ = 0;
+  std::string select_tab_;  ///< the tab to bring to the front at the next frame
+  bool ini_loaded_ = false;
+  ImTextureID nearest_font_texture_ = nullptr;  ///< the font texture set to nearest sampling
 };
 
 }  // namespace dampbound::ui

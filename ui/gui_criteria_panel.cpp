@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "core/io/report.hpp"
 #include "ui/gui_app.hpp"
 #include "ui/gui_widgets.hpp"
 
@@ -27,7 +28,7 @@ void run_line(const VerifiedRun& r) {
   const ImVec4 c = outcome_color(r.result);
   ImGui::BulletText("%s:", r.label.c_str());
   ImGui::SameLine();
-  ImGui::TextColored(c, "%s", outcome_text(r.result).c_str());
+  ImGui::TextColored(c, "%s", verdict_short(r.result).c_str());
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("%s\nmax |x - X| = %s cm", params_label(r.params).c_str(),
                       fmt(r.result.max_displacement).c_str());

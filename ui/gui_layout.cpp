@@ -1,24 +1,35 @@
-// The tuner window's layout: the default place of each panel for a window size (compact
-// below kCompactLayoutHeight), panels following a resize, and ImGui::Begin at those places.
+#include "ui/gui_layout.hpp"
+
 #include <imgui.h>
 
 #include <algorithm>
 #include <cmath>
-#include <string>
-#include <vector>
-
-#include "ui/gui_app.hpp"
 
 namespace dampbound::ui {
 
 namespace {
 
-/// The default layout for a W x H window: controls on the left, the mesh and the envelope on
-/// top, the displacement and the runs below.
-std::vector<GuiApp::WindowRect> default_layout(float W, float H) {
+bool same_rect(const PanelRect& a, const PanelRect& b) {
+  return std::abs(a.x - b.x) <= 1 && std::abs(a.y - b.y) <= 1 && std::abs(a.w - b.w) <= 1 &&
+         std::abs(a.h - b.h) <= 1;
+}
+
+const PanelRect* find(const std::vector<PanelRect>& rects, const std::string& name) {
+  for (const PanelRect& r : rects)
+    if (r.name == name) return &r;
+  return nullptr;
+}
+
+}  // namespace
+
+bool compact_layout(float height) {
+  return height < kCompactLayoutHeight;
+}
+
+std::vector<PanelRect> default_layout(float W, float H) {
+  const bool compact = compact_layout(H);
   const float left = std::clamp(std::floor(W * 0.245f), 330.0f, 430.0f);
-  const float R = W - left, top = std::floor(H * (H < kCompactLayoutHeight ? 0.5f : 0.56f));
-  const bool compact = H < kCompactLayoutHeight;
+  const float R = W - left, top = std::floor(H * (compact ? 0.5f : 0.56f));
   // The runs' tabs need about 330 px; in a compact window they take the status tabs too.
   const float runs_w = compact ? std::max(std::floor(R * 0.5f), 330.0f)
                                : std::max(std::floor(R * 0.36f), std::min(330.0f, R * 0.5f));
@@ -35,65 +46,71 @@ std::vector<GuiApp::WindowRect> default_layout(float W, float H) {
   };
 }
 
-bool same_rect(const GuiApp::WindowRect& a, const GuiApp::WindowRect& b) {
-  return std::abs(a.x - b.x) <= 1 && std::abs(a.y - b.y) <= 1 && std::abs(a.w - b.w) <= 1 &&
-         std::abs(a.h - b.h) <= 1;
+std::vector<PanelRect> panels_after_resize(const std::vector<PanelRect>& drawn, float from_w,
+                                           float from_h, float to_w, float to_h) {
+  const std::vector<PanelRect> before = default_layout(from_w, from_h);
+  const std::vector<PanelRect> after = default_layout(to_w, to_h);
+  const float sx = to_w / from_w, sy = to_h / from_h;
+  std::vector<PanelRect> out;
+  for (const PanelRect& d : drawn) {
+    const PanelRect* was = find(before, d.name);
+    const PanelRect* now = find(after, d.name);
+    if (was != nullptr && now != nullptr && same_rect(d, *was))
+      out.push_back(*now);
+    else
+      out.push_back({d.name, std::floor(d.x * sx), std::floor(d.y * sy), std::floor(d.w * sx),
+                     std::floor(d.h * sy)});
+  }
+  return out;
 }
-}  // namespace
 
-void GuiApp::layout_windows(const FrameInfo& info) {
-  // Remembered positions (imgui.ini) win over the default layout unless "reset layout" was
-  // asked. When the window changes size, every panel follows: one still where the default
-  // layout put it takes the default layout of the new size, one the user moved or resized
-  // keeps its place and size in proportion.
-  const float W = static_cast<float>(info.width), H = static_cast<float>(info.height);
-  layout_ = default_layout(W, H);
+void GuiLayout::set_remembered_size(float width, float height) {
+  laid_w_ = width;
+  laid_h_ = height;
+}
+
+void GuiLayout::update(float W, float H) {
+  default_ = default_layout(W, H);
+  compact_ = compact_layout(H);
+  if (compact_ && std::find(hidden_.begin(), hidden_.end(), "Status") == hidden_.end()) {
+    hidden_.push_back("Status");  // not drawn: it must not follow resizes from a stale place
+    drawn_.erase(std::remove_if(drawn_.begin(), drawn_.end(),
+                                [](const PanelRect& r) { return r.name == "Status"; }),
+                 drawn_.end());
+  }
   follow_.clear();
   if (drawn_.empty()) return;  // nothing drawn yet: no rectangles to move
-  if (layout_w_ > 0 && layout_h_ > 0 && (W != layout_w_ || H != layout_h_) && !reset_layout_) {
-    const std::vector<WindowRect> before = default_layout(layout_w_, layout_h_);
-    const float sx = W / layout_w_, sy = H / layout_h_;
-    for (const WindowRect& d : drawn_) {
-      const WindowRect* was = nullptr;
-      const WindowRect* now = nullptr;
-      for (const WindowRect& r : before)
-        if (r.name == d.name) was = &r;
-      for (const WindowRect& r : layout_)
-        if (r.name == d.name) now = &r;
-      if (was != nullptr && now != nullptr && same_rect(d, *was))
-        follow_.push_back(*now);
-      else
-        follow_.push_back({d.name, std::floor(d.x * sx), std::floor(d.y * sy), std::floor(d.w * sx),
-                           std::floor(d.h * sy)});
-    }
-  }
-  layout_w_ = W;
-  layout_h_ = H;
+  if (laid_w_ > 0 && laid_h_ > 0 && (W != laid_w_ || H != laid_h_) && !reset_)
+    follow_ = panels_after_resize(drawn_, laid_w_, laid_h_, W, H);
+  laid_w_ = W;
+  laid_h_ = H;
 }
 
-bool GuiApp::begin(const char* name, int flags) {
+std::optional<PanelRect> GuiLayout::drawn(const std::string& name) const {
+  const PanelRect* r = find(drawn_, name);
+  return r != nullptr ? std::optional<PanelRect>(*r) : std::nullopt;
+}
+
+bool GuiLayout::begin(const char* name, int flags) {
   // A panel that was hidden (the compact layout's Status) comes back where the layout says.
   const auto was_hidden = std::find(hidden_.begin(), hidden_.end(), name);
   const bool back = was_hidden != hidden_.end();
   if (back) hidden_.erase(was_hidden);
-  const ImGuiCond cond = reset_layout_ || back ? ImGuiCond_Always : ImGuiCond_FirstUseEver;
-  for (const WindowRect& r : layout_) {
-    if (r.name != name) continue;
-    ImGui::SetNextWindowPos(ImVec2(r.x, r.y), cond);
-    ImGui::SetNextWindowSize(ImVec2(r.w, r.h), cond);
-  }
-  for (const WindowRect& r : follow_) {
-    if (r.name != name) continue;
-    ImGui::SetNextWindowPos(ImVec2(r.x, r.y), ImGuiCond_Always);
-    ImGui::SetNextWindowSize(ImVec2(r.w, r.h), ImGuiCond_Always);
-  }
+  const ImGuiCond cond = reset_ || back ? ImGuiCond_Always : ImGuiCond_FirstUseEver;
+  auto place = [](const PanelRect* r, ImGuiCond c) {
+    if (r == nullptr) return;
+    ImGui::SetNextWindowPos(ImVec2(r->x, r->y), c);
+    ImGui::SetNextWindowSize(ImVec2(r->w, r->h), c);
+  };
+  place(find(default_, name), cond);
+  place(find(follow_, name), ImGuiCond_Always);
   // A window that overlaps no other needs no background fill: the frame is cleared to the
   // same colour. On a software rasteriser (llvmpipe) this saves a full-screen blended fill.
-  WindowRect* last = nullptr;
-  for (WindowRect& r : drawn_)
+  PanelRect* last = nullptr;
+  for (PanelRect& r : drawn_)
     if (r.name == name) last = &r;
   bool overlaps = last == nullptr;
-  for (const WindowRect& r : drawn_)
+  for (const PanelRect& r : drawn_)
     if (last != nullptr && &r != last && r.x < last->x + last->w - 1 && last->x < r.x + r.w - 1 &&
         r.y < last->y + last->h - 1 && last->y < r.y + r.h - 1)
       overlaps = true;

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "core/io/report.hpp"
 #include "ui/gui_app.hpp"
 #include "ui/gui_widgets.hpp"
 #include "ui/map_plot.hpp"
@@ -130,12 +131,10 @@ void GuiApp::map_panel() {
     // The current point: a cross of two lines, a dark one under a white one.
     const ImU32 c = k == 0 ? IM_COL32(0, 0, 0, 255) : IM_COL32(255, 255, 255, 255);
     const float w = k == 0 ? 4.0f : 1.5f;
-    spec.vlines.push_back({k == 1 ? "current point" : "", cx, c, false, w});
-    spec.hlines.push_back({"", cy, c, false, w});
+    spec.ref_lines.push_back({k == 1 ? "current point" : "", LineAxis::x, cx, c, false, w});
+    spec.ref_lines.push_back({"", LineAxis::y, cy, c, false, w});
   }
-  PlotStyle style = plot_style_dark();
-  style.plot_background = 0;
-  const PlotLayout lay = plot_widget("map", spec, ImVec2(-1.0f, -1.0f), style);
+  const PlotLayout lay = plot_widget("map", spec, ImVec2(-1.0f, -1.0f), gui_plot_style());
   const ImVec2 mouse = ImGui::GetIO().MousePos;
   if (!ImGui::IsItemHovered() || !lay.area.contains(mouse.x, mouse.y)) return;
   const int ix = cell_of(r->x_edges, lay.x.from_px(mouse.x));
@@ -153,7 +152,7 @@ void GuiApp::map_panel() {
   as_run.first_entry = cell.first_entry;
   as_run.left_at = cell.left_at;
   as_run.settled_at = cell.settled_at;
-  ImGui::TextColored(outcome_color(as_run), "%s", outcome_text(as_run).c_str());
+  ImGui::TextColored(outcome_color(as_run), "%s", verdict_short(as_run).c_str());
   ImGui::TextDisabled("click: run with these values");
   ImGui::EndTooltip();
   if (ImGui::IsItemClicked(ImGuiMouseButton_Left)) {

@@ -44,44 +44,36 @@ bool key_pressed(ImGuiKey key) {
 
 }  // namespace
 
+void GuiApp::open_scene(const std::string& path) {
+  std::string err;
+  if (tuner_->open_scene(path, &err)) {
+    scene_.path = scene_.typed = path;
+    scene_.error.clear();
+  } else {
+    scene_.error = err;
+  }
+}
+
 void GuiApp::scene_picker() {
-  const std::string current = std::filesystem::path(scene_path_).stem().string();
   ImGui::SetNextItemWidth(-1.0f);
-  const std::string preview = scene_path_.empty() ? tuner_->scene().name : current;
+  const std::string preview = scene_.path.empty()
+                                  ? tuner_->scene().name
+                                  : std::filesystem::path(scene_.path).stem().string();
   if (ImGui::BeginCombo("##scene", preview.c_str())) {
-    for (const std::string& f : scene_files_) {
+    for (const std::string& f : scene_.files) {
       const std::string stem = std::filesystem::path(f).stem().string();
-      if (ImGui::Selectable(stem.c_str(), f == scene_path_)) {
-        std::string err;
-        if (tuner_->open_scene(f, &err)) {
-          scene_path_ = open_path_ = f;
-          scene_error_.clear();
-        } else {
-          scene_error_ = err;
-        }
-      }
+      if (ImGui::Selectable(stem.c_str(), f == scene_.path)) open_scene(f);
     }
     ImGui::EndCombo();
   }
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("The scenes of the source tree (scenes/*.toml).");
   const float open_w = ImGui::CalcTextSize("Open").x + ImGui::GetStyle().FramePadding.x * 2;
   ImGui::SetNextItemWidth(-open_w - ImGui::GetStyle().ItemSpacing.x);
-  const bool enter = ImGui::InputTextWithHint("##path", "scene file (.toml) or name", &open_path_,
+  const bool enter = ImGui::InputTextWithHint("##path", "scene file (.toml) or name", &scene_.typed,
                                               ImGuiInputTextFlags_EnterReturnsTrue);
   ImGui::SameLine();
-  if (ImGui::Button("Open") || enter) {
-    std::string err;
-    const std::string path = resolve_scene(open_path_, options_.scenes_dir);
-    if (tuner_->open_scene(path, &err)) {
-      scene_path_ = open_path_ = path;
-      scene_error_.clear();
-    } else {
-      scene_error_ = err;
-    }
-  }
-  if (!scene_error_.empty()) {
-    wrapped_colored(gui_red(), scene_error_.c_str());
-  }
+  if (ImGui::Button("Open") || enter) open_scene(resolve_scene(scene_.typed, options_.scenes_dir));
+  if (!scene_.error.empty()) wrapped_colored(gui_red(), scene_.error.c_str());
   if (!tuner_->scene().description.empty()) {
     ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
     ImGui::TextWrapped("%s", tuner_->scene().description.c_str());

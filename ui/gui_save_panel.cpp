@@ -4,7 +4,6 @@
 #include <imgui_stdlib.h>
 
 #include <algorithm>
-#include <exception>
 #include <filesystem>
 #include <string>
 
@@ -14,7 +13,7 @@
 namespace dampbound::ui {
 
 std::string GuiApp::save_scene(const std::string& path, std::vector<std::string>* notes) {
-  return save_tuner_scene(*tuner_, path, save_tolerance_, notes);
+  return save_tuner_scene(*tuner_, path, save_.tolerance, notes);
 }
 
 void GuiApp::save_panel() {
@@ -29,45 +28,38 @@ void GuiApp::save_panel() {
   section_header("Tolerances of the [[expect]] entries");
   const float w = std::min(ImGui::GetContentRegionAvail().x * 0.45f, 160.0f);
   ImGui::SetNextItemWidth(w);
-  if (ImGui::InputInt("+- iterations", &save_tolerance_.iterations, 1, 10))
-    save_tolerance_.iterations = std::max(0, save_tolerance_.iterations);
+  if (ImGui::InputInt("+- iterations", &save_.tolerance.iterations, 1, 10))
+    save_.tolerance.iterations = std::max(0, save_.tolerance.iterations);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("The verdict's iteration may move this far (restored, diverged)");
   ImGui::SetNextItemWidth(w);
-  double f = save_tolerance_.displacement_factor;
+  double f = save_.tolerance.displacement_factor;
   if (ImGui::InputDouble("x final displacement", &f, 0.1, 1.0, "%.2f"))
-    save_tolerance_.displacement_factor = std::clamp(f, 1.0, 1e6);
+    save_.tolerance.displacement_factor = std::clamp(f, 1.0, 1e6);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip(
         "max_displacement_below = this x the measured final max displacement\n"
         "(1 = not asserted; diverged runs never)");
-  ImGui::Checkbox("assert the node-step counts", &save_tolerance_.counts);
+  ImGui::Checkbox("assert the node-step counts", &save_.tolerance.counts);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("violations_max and unstabilisable_max = the measured node-steps");
   section_header("File");
-  if (save_path_.empty())
-    save_path_ = (t.scene().name.empty() ? std::string("tuned") : t.scene().name) + "-tuned.toml";
+  if (save_.path.empty())
+    save_.path = (t.scene().name.empty() ? std::string("tuned") : t.scene().name) + "-tuned.toml";
   const float bw = ImGui::CalcTextSize("Save").x + ImGui::GetStyle().FramePadding.x * 2;
   ImGui::SetNextItemWidth(-bw - ImGui::GetStyle().ItemSpacing.x);
-  ImGui::InputTextWithHint("##save_path", "scene file (.toml)", &save_path_);
+  ImGui::InputTextWithHint("##save_path", "scene file (.toml)", &save_.path);
   ImGui::SameLine();
   if (ImGui::Button("Save")) {
-    save_notes_.clear();
-    try {
-      save_message_ = save_scene(save_path_, &save_notes_);
-      save_failed_ = false;
-    } catch (const std::exception& e) {
-      save_message_ = e.what();
-      save_failed_ = true;
-    }
+    save_.notes.clear();
+    save_.result.run([&] { return save_scene(save_.path, &save_.notes); });
   }
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip(
         "Runs changed by hand (dragged, cut, a parameter changed mid-run) or still running\n"
         "are replayed headless first: the file holds what `check` will measure.");
-  if (!save_message_.empty())
-    wrapped_colored(save_failed_ ? gui_red() : gui_green(), save_message_.c_str());
-  for (const std::string& n : save_notes_) wrapped_colored(gui_amber(), n.c_str());
+  save_.result.show();
+  for (const std::string& n : save_.notes) wrapped_colored(gui_amber(), n.c_str());
 }
 
 }  // namespace dampbound::ui

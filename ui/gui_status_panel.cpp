@@ -2,9 +2,9 @@
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
-#include <exception>
 #include <string>
 
+#include "core/io/report.hpp"
 #include "ui/gui_app.hpp"
 #include "ui/gui_export.hpp"
 #include "ui/gui_widgets.hpp"
@@ -30,14 +30,6 @@ void row(const char* label, const std::string& value, const ImVec4* color = null
   }
 }
 
-/// The dark plot style with a transparent data area: the window colour shows through, and a
-/// software rasteriser is spared the fill.
-PlotStyle gui_plot_style() {
-  PlotStyle s = plot_style_dark();
-  s.plot_background = 0;
-  return s;
-}
-
 }  // namespace
 
 void GuiApp::status_panel() {
@@ -56,7 +48,7 @@ void GuiApp::status_panel() {
     row("iteration",
         std::to_string(s.state().iteration) + "   (t = " + fmt(s.state().time) + " s)");
     const ImVec4 oc = outcome_color(r);
-    row("outcome", outcome_text(r), &oc);
+    row("outcome", verdict_short(r), &oc);
     // SPEC 8: the band history, so a run that entered and left is read as such.
     const auto at = [](int it) { return it > 0 ? std::to_string(it) : std::string("-"); };
     row("first entry", at(r.first_entry) + " (the paper's restored)");
@@ -91,16 +83,17 @@ void GuiApp::status_panel() {
     count_row("violating", last ? last->violating : 0, r.violations, true);
     count_row("unstabilisable", last ? last->unstabilisable : 0, r.unstabilisable, true);
     count_row("clamped", last ? last->clamped : 0, r.clamped, false);
-    row("frame", fmt(stats_.frame_ms) + " ms (" +
-                     fmt(stats_.frame_ms > 0 ? 1000.0 / stats_.frame_ms : 0.0) + " fps)");
-    row("speed", fmt(stats_.steps_per_second) + " steps/s");
+    const GuiStats& st = meter_.stats();
+    row("frame", fmt(st.frame_ms) + " ms (" + fmt(st.frame_ms > 0 ? 1000.0 / st.frame_ms : 0.0) +
+                     " fps)");
+    row("speed", fmt(st.steps_per_second) + " steps/s");
     ImGui::EndTable();
   }
   if (!tuner_->notice().empty()) {
     const bool bad = r.outcome == Outcome::diverged || !warnings_.empty();
     wrapped_colored(bad ? gui_red() : gui_amber(), tuner_->notice().c_str());
   }
-  if (ImGui::SmallButton("Reset layout")) reset_layout_ = true;
+  if (ImGui::SmallButton("Reset layout")) layout_.request_reset();
 }
 
 void GuiApp::runs_panel() {
@@ -108,11 +101,11 @@ void GuiApp::runs_panel() {
   const float pin_w = ImGui::CalcTextSize("Pin run").x + ImGui::GetStyle().FramePadding.x * 2;
   ImGui::SetNextItemWidth(-pin_w - ImGui::GetStyle().ItemSpacing.x);
   const std::string hint = params_label(t.params());
-  ImGui::InputTextWithHint("##pin_name", hint.c_str(), &pin_name_);
+  ImGui::InputTextWithHint("##pin_name", hint.c_str(), &runs_.pin_name);
   ImGui::SameLine();
   if (ImGui::Button("Pin run")) {
-    t.pin(pin_name_);
-    pin_name_.clear();
+    t.pin(runs_.pin_name);
+    runs_.pin_name.clear();
   }
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip(
@@ -141,10 +134,10 @@ void GuiApp::runs_panel() {
       ImGui::InputText("##name", &p.name);
       ImGui::PopStyleColor();
       if (ImGui::IsItemHovered())
-        ImGui::SetTooltip("%s\n%s", outcome_text(p.result).c_str(), params_label(p.params).c_str());
+        ImGui::SetTooltip("%s\n%s", verdict_short(p.result).c_str(), params_label(p.params).c_str());
       ImGui::TableNextColumn();
       const ImVec4 oc = outcome_color(p.result);
-      ImGui::TextColored(oc, "%s", outcome_text(p.result).c_str());
+      ImGui::TextColored(oc, "%s", verdict_short(p.result).c_str());
       ImGui::TableNextColumn();
       if (ImGui::SmallButton("x")) remove = static_cast<int>(i);
       if (ImGui::IsItemHovered()) ImGui::SetTooltip("Remove this pin");
@@ -158,27 +151,18 @@ void GuiApp::runs_panel() {
   section_header("Export plots (PNG) and data (CSV)");
   const float half = (ImGui::GetContentRegionAvail().x - ImGui::GetStyle().ItemSpacing.x) * 0.5f;
   ImGui::SetNextItemWidth(half);
-  ImGui::InputTextWithHint("##dir", "folder (default: here)", &export_dir_);
+  ImGui::InputTextWithHint("##dir", "folder (default: here)", &runs_.export_dir);
   ImGui::SameLine();
   ImGui::SetNextItemWidth(-1.0f);
-  ImGui::InputTextWithHint("##prefix", "file prefix", &export_prefix_);
-  if (ImGui::Button("Export")) {
-    try {
-      export_message_ = export_plots(export_dir_, export_prefix_);
-      export_failed_ = false;
-    } catch (const std::exception& e) {
-      export_message_ = e.what();
-      export_failed_ = true;
-    }
-  }
+  ImGui::InputTextWithHint("##prefix", "file prefix", &runs_.export_prefix);
+  if (ImGui::Button("Export"))
+    runs_.export_result.run([&] { return export_plots(runs_.export_dir, runs_.export_prefix); });
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip(
         "Writes PREFIX_plots.png, PREFIX_traces.csv (one row per run and\n"
         "iteration) and PREFIX_runs.csv (one row per run), each atomically");
-  if (!export_message_.empty()) {
-    ImGui::SameLine();
-    wrapped_colored(export_failed_ ? gui_red() : gui_green(), export_message_.c_str());
-  }
+  if (!runs_.export_result.text.empty()) ImGui::SameLine();
+  runs_.export_result.show();
 }
 
 std::string GuiApp::export_plots(const std::string& dir, const std::string& prefix) {

@@ -2,7 +2,11 @@
 // Small ImGui helpers shared by the tuner's panels.
 #include <imgui.h>
 
+#include <exception>
+#include <string>
+
 #include "core/protocol.hpp"
+#include "ui/plot.hpp"
 
 namespace dampbound::ui {
 
@@ -24,7 +28,6 @@ inline ImVec4 gui_green() {
 inline ImVec4 outcome_color(const RunResult& r) {
   switch (r.outcome) {
     case Outcome::settled:
-      return r.left_at > 0 ? gui_amber() : gui_green();
     case Outcome::restored:
       return r.left_at > 0 ? gui_amber() : gui_green();
     case Outcome::diverged:
@@ -59,8 +62,7 @@ inline void wrapped_colored(const ImVec4& color, const char* text) {
 /// else nothing (the item goes to the next line): toolbars that wrap in small windows.
 inline void same_line_if_fits(float width) {
   const float end = ImGui::GetWindowPos().x + ImGui::GetWindowContentRegionMax().x;
-  if (end - ImGui::GetItemRectMax().x - ImGui::GetStyle().ItemSpacing.x >= width)
-    ImGui::SameLine();
+  if (end - ImGui::GetItemRectMax().x - ImGui::GetStyle().ItemSpacing.x >= width) ImGui::SameLine();
 }
 
 /// The width of a checkbox with `label` (pixels).
@@ -68,5 +70,34 @@ inline float checkbox_width(const char* label) {
   return ImGui::GetFrameHeight() + ImGui::GetStyle().ItemInnerSpacing.x +
          ImGui::CalcTextSize(label).x;
 }
+
+/// The dark plot style with a transparent data area: the window colour shows through, and a
+/// software rasteriser is spared the fill.
+inline PlotStyle gui_plot_style() {
+  PlotStyle s = plot_style_dark();
+  s.plot_background = 0;
+  return s;
+}
+
+/// The one-line result of a button's action (Export, Save): what it did, or why it failed.
+struct ActionMessage {
+  std::string text;
+  bool failed = false;
+  /// Runs `action` (returning the summary line); an exception's message becomes the text.
+  template <class Action>
+  void run(Action&& action) {
+    try {
+      text = action();
+      failed = false;
+    } catch (const std::exception& e) {
+      text = e.what();
+      failed = true;
+    }
+  }
+  /// The text, green or red, wrapped; nothing before the first run.
+  void show() const {
+    if (!text.empty()) wrapped_colored(failed ? gui_red() : gui_green(), text.c_str());
+  }
+};
 
 }  // namespace dampbound::ui

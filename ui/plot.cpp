@@ -98,15 +98,28 @@ bool x_labels_fit(const TextFont& f, const std::vector<Tick>& ticks, const AxisM
   return true;
 }
 
+/// The text and spacing of a plot (pixels), from the style's fonts: one source for the layout
+/// and the drawing.
+struct PlotMetrics {
+  TextFont body, heading;
+  float fs;        ///< body font size
+  float pad;       ///< margin around the plot's parts
+  float tick_len;  ///< length of a major tick
+  explicit PlotMetrics(const PlotStyle& style)
+      : body(body_font(style)),
+        heading(heading_font(style)),
+        fs(body.size),
+        pad(std::round(0.6f * fs)),
+        tick_len(std::round(0.35f * fs)) {}
+};
+
 }  // namespace
 
 PlotLayout layout_plot(ImVec2 top_left, ImVec2 size, const PlotSpec& spec,
                        const PlotStyle& style) {
-  const TextFont f = body_font(style);
-  const TextFont tf = heading_font(style);
-  const float fs = f.size;
-  const float pad = std::round(0.6f * fs);
-  const float tick_len = std::round(0.35f * fs);
+  const PlotMetrics m(style);
+  const TextFont &f = m.body, &tf = m.heading;
+  const float fs = m.fs, pad = m.pad, tick_len = m.tick_len;
   PlotLayout lay;
   lay.frame = {top_left.x, top_left.y, top_left.x + size.x, top_left.y + size.y};
   const PixelRect& fr = lay.frame;
@@ -143,11 +156,9 @@ PlotLayout layout_plot(ImVec2 top_left, ImVec2 size, const PlotSpec& spec,
 PlotLayout draw_plot(ImDrawList* dl, ImVec2 top_left, ImVec2 size, const PlotSpec& spec,
                      const PlotStyle& style) {
   const PlotLayout lay = layout_plot(top_left, size, spec, style);
-  const TextFont f = body_font(style);
-  const TextFont tf = heading_font(style);
-  const float fs = f.size;
-  const float pad = std::round(0.6f * fs);
-  const float tick_len = std::round(0.35f * fs);
+  const PlotMetrics m(style);
+  const TextFont &f = m.body, &tf = m.heading;
+  const float fs = m.fs, pad = m.pad, tick_len = m.tick_len;
   const PixelRect& a = lay.area;
   const PixelRect& fr = lay.frame;
   const ImVec2 amin(static_cast<float>(a.x0), static_cast<float>(a.y0));
@@ -173,18 +184,16 @@ PlotLayout draw_plot(ImDrawList* dl, ImVec2 top_left, ImVec2 size, const PlotSpe
     const float y = crisp(lay.y.to_px(t.value));
     dl->AddLine(ImVec2(amin.x, y), ImVec2(amax.x, y), t.major ? style.grid : style.grid_minor);
   }
-  for (const auto& v : spec.vlines) {
-    const double x = lay.x.to_px(v.x);
-    if (std::isnan(x)) continue;
-    detail::draw_polyline(dl, {ImVec2(fl(x), amin.y), ImVec2(fl(x), amax.y)}, v.color,
-                          v.thickness, v.dashed);
-  }
-  for (const auto& h : spec.hlines) {
-    const double y = lay.y.to_px(h.y);
-    if (std::isnan(y)) continue;
-    detail::draw_polyline(dl, {ImVec2(amin.x, fl(y)), ImVec2(amax.x, fl(y))}, h.color,
-                          h.thickness, h.dashed);
-  }
+  for (const LineAxis axis : {LineAxis::x, LineAxis::y})  // vertical lines under horizontal
+    for (const PlotRefLine& l : spec.ref_lines) {
+      if (l.axis != axis) continue;
+      const bool vertical = axis == LineAxis::x;
+      const double px = (vertical ? lay.x : lay.y).to_px(l.at);
+      if (std::isnan(px)) continue;
+      const ImVec2 from = vertical ? ImVec2(fl(px), amin.y) : ImVec2(amin.x, fl(px));
+      const ImVec2 to = vertical ? ImVec2(fl(px), amax.y) : ImVec2(amax.x, fl(px));
+      detail::draw_polyline(dl, {from, to}, l.color, l.thickness, l.dashed);
+    }
   for (const auto& s : spec.series) detail::draw_series(dl, lay, s);
   dl->PopClipRect();
 

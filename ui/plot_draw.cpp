@@ -206,12 +206,10 @@ std::vector<LegendEntry> legend_entries(const PlotSpec& spec) {
   for (const auto& b : spec.bands) {
     if (!b.label.empty()) e.push_back({b.label, b.color, true, false, 0.0f});
   }
-  for (const auto& h : spec.hlines) {
-    if (!h.label.empty()) e.push_back({h.label, h.color, false, h.dashed, h.thickness});
-  }
-  for (const auto& v : spec.vlines) {
-    if (!v.label.empty()) e.push_back({v.label, v.color, false, v.dashed, v.thickness});
-  }
+  for (const LineAxis axis : {LineAxis::y, LineAxis::x})  // horizontal lines listed first
+    for (const PlotRefLine& l : spec.ref_lines)
+      if (l.axis == axis && !l.label.empty())
+        e.push_back({l.label, l.color, false, l.dashed, l.thickness});
   for (const auto& c : spec.heatmap.legend) {
     if (!c.label.empty()) e.push_back({c.label, c.color, true, false, 0.0f});
   }
@@ -239,13 +237,11 @@ double hidden_data(const PlotLayout& lay, const PlotSpec& spec, const PixelRect&
     }
   }
   const double line_penalty = 20.0;
-  for (const auto& h : spec.hlines) {
-    const double y = lay.y.to_px(h.y);
-    if (y >= box.y0 && y <= box.y1) score += line_penalty;
-  }
-  for (const auto& v : spec.vlines) {
-    const double x = lay.x.to_px(v.x);
-    if (x >= box.x0 && x <= box.x1) score += line_penalty;
+  for (const PlotRefLine& l : spec.ref_lines) {
+    const bool vertical = l.axis == LineAxis::x;
+    const double px = (vertical ? lay.x : lay.y).to_px(l.at);
+    if (px >= (vertical ? box.x0 : box.y0) && px <= (vertical ? box.x1 : box.y1))
+      score += line_penalty;
   }
   return score;
 }

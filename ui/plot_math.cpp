@@ -88,7 +88,8 @@ Range plot_x_range(const PlotSpec& spec) {
     }
   }
   for (const auto& b : spec.bands) acc.add(b.x);
-  for (const auto& v : spec.vlines) acc.add(v.x);
+  for (const PlotRefLine& l : spec.ref_lines)
+    if (l.axis == LineAxis::x) acc.add(l.at);
   if (!spec.heatmap.empty()) {
     acc.add(spec.heatmap.x_edges.front());
     acc.add(spec.heatmap.x_edges.back());
@@ -114,7 +115,8 @@ Range plot_y_range(const PlotSpec& spec, const Range& xr) {
       acc.add(b.y_hi[i]);
     }
   }
-  for (const auto& h : spec.hlines) acc.add(h.y);
+  for (const PlotRefLine& l : spec.ref_lines)
+    if (l.axis == LineAxis::y) acc.add(l.at);
   if (!spec.heatmap.empty()) {
     acc.add(spec.heatmap.y_edges.front());
     acc.add(spec.heatmap.y_edges.back());

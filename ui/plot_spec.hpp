@@ -33,19 +33,16 @@ struct PlotBand {
   ImU32 color = IM_COL32(44, 160, 44, 70);  ///< usually translucent
 };
 
-/// Horizontal line across the whole plot at data y (e.g. the 1 % restore threshold).
-struct PlotHLine {
-  std::string label;
-  double y = 0.0;
-  ImU32 color = IM_COL32(127, 127, 127, 255);
-  bool dashed = true;
-  float thickness = 1.5f;
-};
+/// The axis a reference line marks a value of: x (a vertical line) or y (a horizontal one).
+enum class LineAxis { x, y };
 
-/// Vertical line across the whole plot at data x.
-struct PlotVLine {
+/// A line across the whole plot at one data value, in either orientation (as ImPlot's
+/// PlotInfLines): horizontal at a y (the 1 % restore threshold), vertical at an x (the
+/// iteration of a verdict).
+struct PlotRefLine {
   std::string label;
-  double x = 0.0;
+  LineAxis axis = LineAxis::y;
+  double at = 0.0;  ///< the data value on `axis`
   ImU32 color = IM_COL32(127, 127, 127, 255);
   bool dashed = true;
   float thickness = 1.5f;
@@ -83,15 +80,14 @@ struct AxisSpec {
 /// Outside puts it right of the plot area, shrinking the area.
 enum class LegendPos { Auto, TopRight, TopLeft, BottomRight, BottomLeft, Outside, Hidden };
 
-/// Everything one plot shows. Drawing order: heatmap, bands, grid, lines, series, legend.
+/// Everything one plot shows. Drawing order: heatmap, bands, grid, reference lines, series, legend.
 struct PlotSpec {
   std::string title;
   AxisSpec x;
   AxisSpec y;
   std::vector<PlotSeries> series;
   std::vector<PlotBand> bands;
-  std::vector<PlotHLine> hlines;
-  std::vector<PlotVLine> vlines;
+  std::vector<PlotRefLine> ref_lines;  ///< drawn vertical ones first, listed horizontal ones first
   PlotHeatmap heatmap;
   LegendPos legend = LegendPos::Auto;
 };

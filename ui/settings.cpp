@@ -1,11 +1,10 @@
 #include "ui/settings.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <functional>
-#include <map>
 #include <sstream>
 
 #include "core/io/files.hpp"
@@ -31,13 +30,6 @@ bool parse_double(const std::string& v, double& out) {
   return end != nullptr && *end == '\0' && std::isfinite(out);
 }
 
-bool parse_int(const std::string& v, int& out, int lo, int hi) {
-  double d = 0;
-  if (!parse_double(v, d) || d != std::floor(d) || d < lo || d > hi) return false;
-  out = static_cast<int>(d);
-  return true;
-}
-
 bool parse_bool(const std::string& v, bool& out) {
   if (v == "true" || v == "1")
     out = true;
@@ -48,11 +40,130 @@ bool parse_bool(const std::string& v, bool& out) {
   return true;
 }
 
-const char* b(bool v) {
-  return v ? "true" : "false";
+/// A number within [row.lo, row.hi] (any finite value when lo == hi).
+bool in_range(const SettingRow& row, double v) {
+  return row.lo == row.hi || (v >= row.lo && v <= row.hi);
+}
+
+bool parse_int(const SettingRow& row, const std::string& v, int& out) {
+  double d = 0;
+  if (!parse_double(v, d) || d != std::floor(d) || !in_range(row, d)) return false;
+  out = static_cast<int>(d);
+  return true;
+}
+
+/// The visitor of a SettingField: one call per alternative.
+template <class... F>
+struct Overload : F... {
+  using F::operator()...;
+};
+template <class... F>
+Overload(F...) -> Overload<F...>;
+
+/// True for the rows that live in GuiSettings::params.
+bool is_param(const SettingRow& row) {
+  return std::visit(
+      Overload{[](auto GuiSettings::*) { return false; }, [](auto Params::*) { return true; }},
+      row.field);
+}
+
+/// A finite number within the row's range.
+bool parse_real(const SettingRow& row, const std::string& text, double& out) {
+  return parse_double(text, out) && in_range(row, out);
+}
+
+/// Reads `text` into the row's field of `s` (or of `p`, the parameters being read); false
+/// when the text is not a valid value.
+bool read_value(const SettingRow& row, const std::string& text, GuiSettings& s, Params& p) {
+  const Overload read{
+      [&](std::string GuiSettings::*f) {
+        s.*f = text;
+        return true;
+      },
+      [&](bool GuiSettings::*f) { return parse_bool(text, s.*f); },
+      [&](int GuiSettings::*f) { return parse_int(row, text, s.*f); },
+      [&](std::optional<int> GuiSettings::*f) {
+        int k = 0;
+        if (!parse_int(row, text, k)) return false;
+        s.*f = k;
+        return true;
+      },
+      [&](float GuiSettings::*f) {
+        double d = 0;
+        if (!parse_real(row, text, d)) return false;
+        s.*f = static_cast<float>(d);
+        return true;
+      },
+      [&](double Params::*f) { return parse_real(row, text, p.*f); },
+      [&](DampingPolicy Params::*f) {
+        const auto v = parse_policy(text);
+        if (v) p.*f = *v;
+        return v.has_value();
+      },
+      [&](Integrator Params::*f) {
+        const auto v = parse_integrator(text);
+        if (v) p.*f = *v;
+        return v.has_value();
+      },
+  };
+  return std::visit(read, row.field);
+}
+
+/// The row's value as the file writes it; nullopt when it is unset (not written).
+std::optional<std::string> write_value(const SettingRow& row, const GuiSettings& s) {
+  using Text = std::optional<std::string>;
+  if (is_param(row) && !s.params) return std::nullopt;
+  const Params& p = s.params ? *s.params : default_params();
+  const Overload write{
+      [&](std::string GuiSettings::*f) -> Text { return s.*f; },
+      [&](bool GuiSettings::*f) -> Text { return s.*f ? "true" : "false"; },
+      [&](int GuiSettings::*f) -> Text { return std::to_string(s.*f); },
+      [&](std::optional<int> GuiSettings::*f) -> Text {
+        return s.*f ? Text(std::to_string(*(s.*f))) : std::nullopt;
+      },
+      [&](float GuiSettings::*f) -> Text { return format_number(s.*f); },
+      [&](double Params::*f) -> Text { return format_number(p.*f); },
+      [&](DampingPolicy Params::*f) -> Text { return to_string(p.*f); },
+      [&](Integrator Params::*f) -> Text { return to_string(p.*f); },
+  };
+  return std::visit(write, row.field);
 }
 
 }  // namespace
+
+const std::vector<SettingRow>& gui_setting_rows() {
+  using S = GuiSettings;
+  static const std::vector<SettingRow> rows = {
+      {"scene", &S::scene_path, 0, 0, ""},
+      {"m", &Params::m, 0, 0, nullptr},
+      {"kappa", &Params::kappa, 0, 0, nullptr},
+      {"gamma", &Params::gamma, 0, 0, nullptr},
+      {"dt", &Params::dt, 0, 0, nullptr},
+      {"policy", &Params::policy, 0, 0, nullptr},
+      {"factor", &Params::factor, 0, 0, nullptr},
+      {"integrator", &Params::integrator, 0, 0, nullptr},
+      {"max_iterations", &S::max_iterations, 1, 100000000, nullptr},
+      {"steps_per_frame", &S::steps_per_frame, 1, 10000, "10"},
+      {"pause_at_verdict", &S::pause_at_verdict, 0, 0, "false"},
+      {"log_y", &S::log_y, 0, 0, "false"},
+      {"show_max", &S::show_max, 0, 0, "true"},
+      {"exact_at_state", &S::exact_at_state, 0, 0, "false"},
+      {"show_springs", &S::show_springs, 0, 0, "true"},
+      {"show_anchors", &S::show_anchors, 0, 0, "false"},
+      {"point_size", &S::point_size, 1, 40, "5"},
+      {"export_dir", &S::export_dir, 0, 0, ""},
+      {"export_prefix", &S::export_prefix, 0, 0, "dampbound"},
+      {"window_width", &S::window_width, 0, 16384, "0"},
+      {"window_height", &S::window_height, 0, 16384, "0"},
+  };
+  return rows;
+}
+
+GuiSettings::GuiSettings() {
+  Params unused = default_params();
+  for (const SettingRow& row : gui_setting_rows())
+    if (row.fallback != nullptr) read_value(row, row.fallback, *this, unused);
+}
 
 GuiSettings default_gui_settings() {
   return GuiSettings{};
@@ -68,33 +179,10 @@ std::string config_dir(const std::string& override_dir) {
 }
 
 std::string serialize_settings(const GuiSettings& s) {
-  std::ostringstream o;
-  o << kHeader << "\n";
-  o << "scene = " << s.scene_path << "\n";
-  if (s.params) {
-    const Params& p = *s.params;
-    o << "m = " << format_number(p.m) << "\n";
-    o << "kappa = " << format_number(p.kappa) << "\n";
-    o << "gamma = " << format_number(p.gamma) << "\n";
-    o << "dt = " << format_number(p.dt) << "\n";
-    o << "policy = " << to_string(p.policy) << "\n";
-    o << "factor = " << format_number(p.factor) << "\n";
-    o << "integrator = " << to_string(p.integrator) << "\n";
-  }
-  if (s.max_iterations) o << "max_iterations = " << *s.max_iterations << "\n";
-  o << "steps_per_frame = " << s.steps_per_frame << "\n";
-  o << "pause_at_verdict = " << b(s.pause_at_verdict) << "\n";
-  o << "log_y = " << b(s.log_y) << "\n";
-  o << "show_max = " << b(s.show_max) << "\n";
-  o << "exact_at_state = " << b(s.exact_at_state) << "\n";
-  o << "show_springs = " << b(s.show_springs) << "\n";
-  o << "show_anchors = " << b(s.show_anchors) << "\n";
-  o << "point_size = " << format_number(s.point_size) << "\n";
-  o << "export_dir = " << s.export_dir << "\n";
-  o << "export_prefix = " << s.export_prefix << "\n";
-  o << "window_width = " << s.window_width << "\n";
-  o << "window_height = " << s.window_height << "\n";
-  return o.str();
+  std::string out = std::string(kHeader) + "\n";
+  for (const SettingRow& row : gui_setting_rows())
+    if (const auto v = write_value(row, s)) out += std::string(row.key) + " = " + *v + "\n";
+  return out;
 }
 
 std::optional<GuiSettings> parse_settings(const std::string& text, std::string* error) {
@@ -108,90 +196,6 @@ std::optional<GuiSettings> parse_settings(const std::string& text, std::string* 
   std::istringstream in(text);
   std::string raw;
   int n = 0;
-  // Each known key parses its value into s (or p); false means a bad value.
-  const std::map<std::string, std::function<bool(const std::string&)>> keys = {
-      {"scene",
-       [&](const std::string& v) {
-         s.scene_path = v;
-         return true;
-       }},
-      {"m",
-       [&](const std::string& v) {
-         any_param = true;
-         return parse_double(v, p.m);
-       }},
-      {"kappa",
-       [&](const std::string& v) {
-         any_param = true;
-         return parse_double(v, p.kappa);
-       }},
-      {"gamma",
-       [&](const std::string& v) {
-         any_param = true;
-         return parse_double(v, p.gamma);
-       }},
-      {"dt",
-       [&](const std::string& v) {
-         any_param = true;
-         return parse_double(v, p.dt);
-       }},
-      {"factor",
-       [&](const std::string& v) {
-         any_param = true;
-         return parse_double(v, p.factor);
-       }},
-      {"policy",
-       [&](const std::string& v) {
-         any_param = true;
-         const auto pol = parse_policy(v);
-         if (pol) p.policy = *pol;
-         return pol.has_value();
-       }},
-      {"integrator",
-       [&](const std::string& v) {
-         any_param = true;
-         const auto i = parse_integrator(v);
-         if (i) p.integrator = *i;
-         return i.has_value();
-       }},
-      {"max_iterations",
-       [&](const std::string& v) {
-         int k = 0;
-         if (!parse_int(v, k, 1, 100000000)) return false;
-         s.max_iterations = k;
-         return true;
-       }},
-      {"steps_per_frame",
-       [&](const std::string& v) { return parse_int(v, s.steps_per_frame, 1, 10000); }},
-      {"pause_at_verdict", [&](const std::string& v) { return parse_bool(v, s.pause_at_verdict); }},
-      {"log_y", [&](const std::string& v) { return parse_bool(v, s.log_y); }},
-      {"show_max", [&](const std::string& v) { return parse_bool(v, s.show_max); }},
-      {"exact_at_state",
-       [&](const std::string& v) { return parse_bool(v, s.exact_at_state); }},
-      {"show_springs", [&](const std::string& v) { return parse_bool(v, s.show_springs); }},
-      {"show_anchors", [&](const std::string& v) { return parse_bool(v, s.show_anchors); }},
-      {"point_size",
-       [&](const std::string& v) {
-         double d = 0;
-         if (!parse_double(v, d) || d < 1 || d > 40) return false;
-         s.point_size = static_cast<float>(d);
-         return true;
-       }},
-      {"export_dir",
-       [&](const std::string& v) {
-         s.export_dir = v;
-         return true;
-       }},
-      {"export_prefix",
-       [&](const std::string& v) {
-         s.export_prefix = v;
-         return true;
-       }},
-      {"window_width",
-       [&](const std::string& v) { return parse_int(v, s.window_width, 0, 16384); }},
-      {"window_height",
-       [&](const std::string& v) { return parse_int(v, s.window_height, 0, 16384); }},
-  };
   while (std::getline(in, raw)) {
     ++n;
     if (raw.find('\0') != std::string::npos) return fail(n, "binary data");
@@ -204,9 +208,13 @@ std::optional<GuiSettings> parse_settings(const std::string& text, std::string* 
     const size_t eq = line.find('=');
     if (eq == std::string::npos) return fail(n, "expected key = value");
     const std::string key = trim(line.substr(0, eq)), value = trim(line.substr(eq + 1));
-    const auto it = keys.find(key);
-    if (it == keys.end()) continue;
-    if (!it->second(value)) return fail(n, "bad value for " + key + ": '" + value + "'");
+    const auto& rows = gui_setting_rows();
+    const auto row =
+        std::find_if(rows.begin(), rows.end(), [&](const SettingRow& r) { return key == r.key; });
+    if (row == rows.end()) continue;
+    any_param |= is_param(*row);
+    if (!read_value(*row, value, s, p))
+      return fail(n, "bad value for " + key + ": '" + value + "'");
   }
   if (n == 0) return fail(1, "empty file");
   if (any_param) {

@@ -3,30 +3,57 @@
 // small text file of `key = value` lines), next to ImGui's window layout (imgui.ini), in
 // $XDG_CONFIG_HOME/dampbound (default ~/.config/dampbound) or a --config-dir. A corrupt
 // file is ignored with a one-line warning, never a crash. No GL (tests/ui/settings_test.cpp).
+//
+// Every option is one row of one table (gui_setting_rows()): its key, where it lives, its
+// valid range and its default. Reading, checking, writing and the defaults all loop over
+// that table, so a new option is a field here and a row there.
 #include <optional>
 #include <string>
+#include <variant>
+#include <vector>
 
 #include "core/params.hpp"
 
 namespace dampbound::ui {
 
-/// The tuner's remembered state. Unset optionals mean "the scene's own".
+/// The tuner's remembered state. Unset optionals mean "the scene's own". A default-constructed
+/// value holds the table's defaults.
 struct GuiSettings {
+  GuiSettings();
   std::string scene_path;        ///< last scene file ("" = the default scene)
   std::optional<Params> params;  ///< last parameters used with scene_path
   std::optional<int> max_iterations;
-  int steps_per_frame = 10;
-  bool pause_at_verdict = false;
-  bool log_y = false;    ///< displacement plot on a log10 axis
-  bool show_max = true;  ///< plot the max displacement over all nodes
-  bool exact_at_state = false;  ///< exact analysis linearised at the current state
-  bool show_springs = true;
-  bool show_anchors = false;
-  float point_size = 5.0f;  ///< node size in the mesh view (pixels)
-  std::string export_dir;   ///< "" = the current directory
-  std::string export_prefix = "dampbound";
-  int window_width = 0, window_height = 0;  ///< 0: the default size
+  int steps_per_frame;  ///< steps drawn per frame while playing
+  bool pause_at_verdict;
+  bool log_y;           ///< displacement plot on a log10 axis
+  bool show_max;        ///< plot the max displacement over all nodes
+  bool exact_at_state;  ///< exact analysis linearised at the current state
+  bool show_springs;
+  bool show_anchors;
+  float point_size;        ///< node size in the mesh view (pixels)
+  std::string export_dir;  ///< "" = the current directory
+  std::string export_prefix;
+  int window_width, window_height;  ///< pixels; 0: the default size
 };
+
+/// Where one option lives: a member of GuiSettings, or of its Params (the parameter rows,
+/// written only when the settings hold parameters). The alternative says how the value is
+/// read and written: text as is, numbers range-checked, flags true/false, enums by name.
+using SettingField =
+    std::variant<std::string GuiSettings::*, bool GuiSettings::*, int GuiSettings::*,
+                 std::optional<int> GuiSettings::*, float GuiSettings::*, double Params::*,
+                 DampingPolicy Params::*, Integrator Params::*>;
+
+/// One option of the settings file.
+struct SettingRow {
+  const char* key;
+  SettingField field;
+  double lo = 0, hi = 0;  ///< numbers: valid range, inclusive (lo == hi: any finite value)
+  const char* fallback;   ///< the default, as the file writes it; nullptr: unset
+};
+
+/// The options in file order.
+const std::vector<SettingRow>& gui_setting_rows();
 
 /// The defaults (no scene, the scene's own parameters, 10 steps per frame).
 GuiSettings default_gui_settings();

@@ -51,10 +51,10 @@ PlotSpec displacement_plot(const std::vector<TraceView>& views, bool log_y, doub
     }
   }
   if (threshold > 0) {
-    PlotHLine h;
+    PlotRefLine h;
     h.label = "restore threshold " + format_number(threshold) + " cm";
-    h.y = threshold;
-    p.hlines.push_back(h);
+    h.at = threshold;
+    p.ref_lines.push_back(h);
   }
   return p;
 }
@@ -95,11 +95,11 @@ PlotSpec envelope_plot(const std::vector<StepStats>& trace, std::optional<double
          IM_COL32(255, 127, 14, 255), false, 2.0f);
   p.bands.push_back(std::move(band));
   if (exact_gamma_max && *exact_gamma_max > 0) {
-    PlotHLine h;
+    PlotRefLine h;
     h.label = "exact linear limit (SPEC 7)";
-    h.y = *exact_gamma_max;
+    h.at = *exact_gamma_max;
     h.color = IM_COL32(148, 103, 189, 255);
-    p.hlines.push_back(h);
+    p.ref_lines.push_back(h);
   }
   return p;
 }

@@ -20,8 +20,6 @@ std::string fmt(double x) {
   return buf;
 }
 
-std::string outcome_text(const RunResult& r) { return verdict_short(r); }
-
 SceneSpec with_settled_rule(SceneSpec scene) {
   scene.rules.rule = StopRule::settled;
   return scene;
@@ -124,7 +122,7 @@ int Tuner::step(int n) {
     if (after == Outcome::diverged) {
       ++taken;
       playing_ = false;
-      notice_ = outcome_text(session_->result()) + ": the run stopped; reset to go on";
+      notice_ = verdict_short(session_->result()) + ": the run stopped; reset to go on";
       break;
     }
     if (before == Outcome::running && after != Outcome::running && playback_.pause_at_verdict) {

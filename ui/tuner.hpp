@@ -41,10 +41,6 @@ struct PlaybackOptions {
   size_t max_trace = 1000000;     ///< pause when the trace holds this many steps (~100 MB)
 };
 
-/// "running", "settled at N", "not settled at N (entered at K, left at L)", "diverged at N"
-/// (and the first-entry rule's "restored at N", "not restored at N").
-std::string outcome_text(const RunResult& result);
-
 /// The scene with the settled rule (SPEC 8): the tuner answers "does it stay stable?".
 SceneSpec with_settled_rule(SceneSpec scene);
 

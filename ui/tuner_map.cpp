@@ -3,17 +3,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <limits>
 #include <stdexcept>
-
-#include "core/sweep/summary.hpp"
-#include "core/sweep/trials.hpp"
 
 namespace dampbound::ui {
 
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 bool same_rules(const StopRules& a, const StopRules& b) {
   return a.max_iterations == b.max_iterations && a.restore_fraction == b.restore_fraction &&
@@ -37,59 +31,6 @@ bool near_centre(double value, double centre, double decades) {
   return value > 0 && centre > 0 && std::abs(std::log10(value / centre)) <= decades / 2;
 }
 
-/// Solves a boundary equation for `var` with the other parameters from `p`; NaN when `var`
-/// does not appear or has no positive solution.
-double solve_lower(const MapBoundConstants& k, const Params& p, MapParam var) {
-  // gamma = 2 C sqrt(m kappa) (paper eq. 5 at the worst node).
-  const double C = k.lower, half = p.gamma / (2 * C);
-  switch (var) {
-    case MapParam::gamma: return 2 * C * std::sqrt(p.m * p.kappa);
-    case MapParam::m: return half * half / p.kappa;
-    case MapParam::kappa: return half * half / p.m;
-    case MapParam::dt: return kNaN;
-  }
-  return kNaN;
-}
-
-double solve_exact(const MapBoundConstants& k, const Params& p, MapParam var) {
-  // lambda_unit kappa dt^2 + 2 r gamma dt = 4 m: SPEC 7's lambda_max dt^2 < 4 - 2 c dt with
-  // lambda_max = lambda_unit kappa / m and c = r gamma / m, multiplied by m.
-  const double L = k.lambda_unit, r = k.rate_ratio;
-  const double m = p.m, kap = p.kappa, g = p.gamma, dt = p.dt;
-  switch (var) {
-    case MapParam::gamma: return r > 0 ? (4 * m - L * kap * dt * dt) / (2 * r * dt) : kNaN;
-    case MapParam::m: return (L * kap * dt * dt + 2 * r * g * dt) / 4;
-    case MapParam::kappa: return (4 * m - 2 * r * g * dt) / (L * dt * dt);
-    case MapParam::dt: return (-r * g + std::sqrt(r * g * r * g + 4 * L * kap * m)) / (L * kap);
-  }
-  return kNaN;
-}
-
-/// The curve of `solve` across the window: sampled along x solving for y, or along y solving
-/// for x when y does not appear in the equation.
-template <class Solve>
-MapLine boundary(const std::string& label, MapLineKind kind, Solve solve, const Params& base,
-                 const MapView& v, const std::vector<double>& xe, const std::vector<double>& ye,
-                 int samples) {
-  MapLine line;
-  line.label = label;
-  line.kind = kind;
-  const bool along_x = std::isfinite(solve(base, v.y)) || !std::isfinite(solve(base, v.x));
-  const std::vector<double>& e = along_x ? xe : ye;
-  const MapParam free = along_x ? v.x : v.y, solved = along_x ? v.y : v.x;
-  const double l0 = std::log10(e.front()), l1 = std::log10(e.back());
-  for (int i = 0; i <= samples; ++i) {
-    Params p = base;
-    const double t = std::pow(10.0, l0 + (l1 - l0) * i / samples);
-    set_param(p, free, t);
-    const double s = solve(p, solved);
-    if (!(std::isfinite(s) && s > 0)) continue;
-    (along_x ? line.x : line.y).push_back(t);
-    (along_x ? line.y : line.x).push_back(s);
-  }
-  return line;
-}
-
 std::vector<int> passes(int finest) {
   std::vector<int> out;
   finest = std::max(finest, 2);
@@ -99,143 +40,6 @@ std::vector<int> passes(int finest) {
 }
 
 }  // namespace
-
-const char* to_string(MapParam p) {
-  switch (p) {
-    case MapParam::m: return "m";
-    case MapParam::kappa: return "kappa";
-    case MapParam::gamma: return "gamma";
-    case MapParam::dt: return "dt";
-  }
-  return "?";
-}
-
-std::string map_axis_label(MapParam p) {
-  switch (p) {
-    case MapParam::m: return "m (mass unit)";
-    case MapParam::kappa: return "kappa (mass unit/s^2)";
-    case MapParam::gamma: return "gamma (mass unit/s)";
-    case MapParam::dt: return "dt (s)";
-  }
-  return "?";
-}
-
-double get_param(const Params& params, MapParam p) {
-  switch (p) {
-    case MapParam::m: return params.m;
-    case MapParam::kappa: return params.kappa;
-    case MapParam::gamma: return params.gamma;
-    case MapParam::dt: return params.dt;
-  }
-  return kNaN;
-}
-
-void set_param(Params& params, MapParam p, double value) {
-  switch (p) {
-    case MapParam::m: params.m = value; break;
-    case MapParam::kappa: params.kappa = value; break;
-    case MapParam::gamma: params.gamma = value; break;
-    case MapParam::dt: params.dt = value; break;
-  }
-}
-
-std::vector<double> map_log_edges(double centre, double decades, int n) {
-  std::vector<double> e;
-  const double l = std::log10(centre);
-  for (int i = 0; i <= n; ++i) e.push_back(std::pow(10.0, l - decades + 2 * decades * i / n));
-  return e;
-}
-
-std::vector<double> map_cell_centres(const std::vector<double>& edges) {
-  std::vector<double> c;
-  for (size_t i = 0; i + 1 < edges.size(); ++i) c.push_back(std::sqrt(edges[i] * edges[i + 1]));
-  return c;
-}
-
-std::vector<TrialParams> map_trials(const Params& base, MapParam x, const std::vector<double>& xs,
-                                    MapParam y, const std::vector<double>& ys) {
-  std::vector<TrialParams> out;
-  out.reserve(xs.size() * ys.size());
-  for (double yv : ys)
-    for (double xv : xs) {
-      Params p = base;
-      set_param(p, x, xv);
-      set_param(p, y, yv);
-      out.push_back({p.m, p.kappa, p.gamma, p.dt, p.factor});
-    }
-  return out;
-}
-
-std::vector<TrialResult> run_map_trials(const SceneSpec& scene, const Params& base,
-                                        const StopRules& rules,
-                                        const std::vector<TrialParams>& trials,
-                                        const std::atomic<bool>* cancel) {
-  SceneSpec s = scene;
-  s.params = base;  // the kernel takes the integrator from the scene's parameters
-  return run_batched(s, base.policy, rules, trials, KernelIsa::best, cancel);
-}
-
-MapBoundConstants map_bound_constants(const SceneSpec& scene) {
-  MapBoundConstants k;
-  Params unit = scene.params;
-  unit.m = unit.kappa = unit.gamma = 1;
-  const Model model = make_model(scene, unit);
-  double worst = kNaN, rate = kNaN;
-  bool uniform = true;
-  for (int i = 0; i < model.node_count(); ++i) {
-    const auto n = static_cast<size_t>(i);
-    if (model.fixed[n]) continue;
-    // With gamma_i = gamma gamma_scale_i: gamma_i >= 2 sqrt(m_i kappa_i) iff
-    // gamma >= 2 sqrt(m kappa) sqrt(mass_scale_i kappa_scale_i) / gamma_scale_i.
-    if (model.gamma[n] > 0 && model.lower_bound[n] > 0) {
-      const double c = model.lower_bound[n] / (2 * model.gamma[n]);
-      if (!(c <= worst)) worst = c;
-    }
-    const double r = model.gamma[n] / model.mass[n];
-    if (std::isnan(rate)) rate = r;
-    else if (std::abs(r - rate) > 1e-12 * std::max(r, rate)) uniform = false;
-  }
-  k.lower = worst;
-  k.rate_ratio = uniform ? rate : kNaN;
-  k.lambda_unit = uniform && std::isfinite(rate) ? unit_stiffness_eigenvalue(scene) : kNaN;
-  k.safe = unit_safe_bound(scene);
-  return k;
-}
-
-std::vector<MapLine> map_bound_lines(const MapBoundConstants& k, const Params& base,
-                                     const MapView& view, const std::vector<double>& x_edges,
-                                     const std::vector<double>& y_edges, int samples) {
-  std::vector<MapLine> lines;
-  if (std::isfinite(k.lower) && k.lower > 0) {
-    const bool worst = std::abs(k.lower - 1) > 1e-12;
-    lines.push_back(boundary(
-        worst ? "paper lower bound, worst node (eq. 5)" : "paper lower bound 2 sqrt(m kappa) (eq. 5)",
-        MapLineKind::paper,
-        [&](const Params& p, MapParam v) { return solve_lower(k, p, v); }, base, view, x_edges,
-        y_edges, samples));
-  }
-  if (std::isfinite(k.lambda_unit) && k.lambda_unit > 0 && std::isfinite(k.rate_ratio) &&
-      base.integrator == Integrator::semi_implicit_euler)
-    lines.push_back(boundary(
-        "exact linear limit (SPEC 7)", MapLineKind::exact_linear,
-        [&](const Params& p, MapParam v) { return solve_exact(k, p, v); }, base, view, x_edges,
-        y_edges, samples));
-  if (!k.safe.row_sum.empty() && base.integrator == Integrator::semi_implicit_euler)
-    lines.push_back(boundary(
-        "safe bound, every node (SPEC 9)", MapLineKind::safe,
-        [&](const Params& p, MapParam v) {
-          const SafeAxis axis = v == MapParam::m       ? SafeAxis::m
-                                : v == MapParam::kappa ? SafeAxis::kappa
-                                : v == MapParam::gamma ? SafeAxis::gamma
-                                                       : SafeAxis::dt;
-          return safe_edge(k.safe, axis, p.m, p.kappa, p.gamma, p.dt);
-        },
-        base, view, x_edges, y_edges, samples));
-  lines.erase(std::remove_if(lines.begin(), lines.end(),
-                             [](const MapLine& l) { return l.x.size() < 2; }),
-              lines.end());
-  return lines;
-}
 
 MapPanel map_result_panel(const MapResult& r) {
   MapPanel p;
@@ -287,12 +91,15 @@ void TunerMap::reap(bool all) {
   }
 }
 
+void TunerMap::retire_job() {
+  if (!job_) return;
+  job_->cancel = true;
+  retired_.push_back(std::move(job_));
+  job_.reset();
+}
+
 void TunerMap::stop() {
-  if (job_) {
-    job_->cancel = true;
-    retired_.push_back(std::move(job_));
-    job_.reset();
-  }
+  retire_job();
   reap(true);
 }
 
@@ -319,11 +126,7 @@ void TunerMap::follow(const SceneSpec& scene, std::uint64_t scene_key, const Par
       !near_centre(get_param(params, view.x), get_param(centre_, view.x), view.decades) ||
       !near_centre(get_param(params, view.y), get_param(centre_, view.y), view.decades);
   if (!restart) return;
-  if (job_) {  // cancelled first, so that it publishes nothing of the old scene
-    job_->cancel = true;
-    retired_.push_back(std::move(job_));
-    job_.reset();
-  }
+  retire_job();  // cancelled first, so that it publishes nothing of the old scene
   if (scene_key != scene_key_) {
     std::lock_guard<std::mutex> lock(mutex_);
     bounds_.reset();
@@ -334,11 +137,6 @@ void TunerMap::follow(const SceneSpec& scene, std::uint64_t scene_key, const Par
 
 void TunerMap::start(const SceneSpec& scene, const Params& centre, const StopRules& rules,
                      const MapView& view) {
-  if (job_) {  // cancelled; it ends after its current step, joined later
-    job_->cancel = true;
-    retired_.push_back(std::move(job_));
-    job_.reset();
-  }
   started_ = true;
   ++starts_;
   centre_ = centre;

@@ -5,20 +5,23 @@
 #include <limits>
 #include <utility>
 
+#include "core/io/report.hpp"
 #include "ui/trace_plots.hpp"
 
 namespace dampbound::ui {
 
 std::string current_run_label(const Tuner& tuner) {
-  return "current: " + outcome_text(tuner.session().result());
+  return "current: " + verdict_short(tuner.session().result());
 }
 
-std::vector<PlotVLine> verdict_markers(const RunResult& r) {
+std::vector<PlotRefLine> verdict_markers(const RunResult& r) {
   const ImU32 green = IM_COL32(80, 200, 100, 255), amber = IM_COL32(235, 170, 40, 255),
               red = IM_COL32(225, 60, 60, 255);
-  std::vector<PlotVLine> out;
+  std::vector<PlotRefLine> out;
   const auto mark = [&](const char* what, int it, ImU32 color, bool dashed) {
-    if (it > 0) out.push_back({std::string(what) + " " + std::to_string(it), static_cast<double>(it), color, dashed});
+    if (it > 0)
+      out.push_back({std::string(what) + " " + std::to_string(it), LineAxis::x,
+                     static_cast<double>(it), color, dashed});
   };
   mark("first entry", r.first_entry, green, true);
   mark("left at", r.left_at, amber, true);
@@ -39,7 +42,7 @@ PlotSpec tuner_displacement_plot(Tuner& tuner, const TunerPlotOptions& options) 
     for (const Pin& pin : tuner.pins())
       if (pin.visible)
         views.push_back(
-            {pin.name + " (" + outcome_text(pin.result) + ")", &pin.reduced, pin.color});
+            {pin.name + " (" + verdict_short(pin.result) + ")", &pin.reduced, pin.color});
     PlotSpec pins = displacement_plot(views, options.log_y, 0, false);
     // Pins first, so the live run is drawn on top of them.
     pins.series.insert(pins.series.end(), std::make_move_iterator(p.series.begin()),
@@ -48,8 +51,8 @@ PlotSpec tuner_displacement_plot(Tuner& tuner, const TunerPlotOptions& options) 
   }
   show_coincident(p);
   for (PlotSeries& s : p.series) drop_flat_runs(s);
-  const std::vector<PlotVLine> marks = verdict_markers(tuner.session().result());
-  p.vlines.insert(p.vlines.end(), marks.begin(), marks.end());
+  const std::vector<PlotRefLine> marks = verdict_markers(tuner.session().result());
+  p.ref_lines.insert(p.ref_lines.end(), marks.begin(), marks.end());
   return p;
 }
 
@@ -150,10 +153,10 @@ void envelope_headroom(PlotSpec& spec, double cap, double fraction) {
         lo = std::min(lo, v);
         hi = std::max(hi, v);
       }
-  for (const PlotHLine& h : spec.hlines)
-    if (std::isfinite(h.y) && h.y > 0) {
-      lo = std::min(lo, h.y);
-      hi = std::max(hi, h.y);
+  for (const PlotRefLine& l : spec.ref_lines)
+    if (l.axis == LineAxis::y && std::isfinite(l.at) && l.at > 0) {
+      lo = std::min(lo, l.at);
+      hi = std::max(hi, l.at);
     }
   if (!(hi > 0) || !std::isfinite(lo)) return;
   if (cap > 0) hi = std::min(hi, cap);

@@ -22,7 +22,7 @@ std::string current_run_label(const Tuner& tuner);
 /// Vertical markers of a run's band history (SPEC 8): "first entry K" (green, dashed),
 /// "left at L" (amber, dashed), "settled at S" (green, solid), "diverged at D" (red, solid);
 /// only those that happened.
-std::vector<PlotVLine> verdict_markers(const RunResult& result);
+std::vector<PlotRefLine> verdict_markers(const RunResult& result);
 
 /// Displacement of the watched node (and the max over nodes) against iteration for the
 /// current run and the visible pins, with the 1 % restore threshold line and the current

@@ -5,9 +5,10 @@
 #include <set>
 #include <sstream>
 
-#include "core/error.hpp"
 #include "core/analysis/expect.hpp"
+#include "core/error.hpp"
 #include "core/io/files.hpp"
+#include "core/io/report.hpp"
 
 namespace dampbound::ui {
 
@@ -38,7 +39,7 @@ RunResult checked_result(const SceneSpec& scene, const std::string& label,
   const RunResult r = run_labelled(scene, label, rules.rule);
   if (notes != nullptr)
     notes->push_back(who + (replayable ? " had no verdict yet" : " was changed by hand") +
-                     ": saved with its headless replay, " + outcome_text(r));
+                     ": saved with its headless replay, " + verdict_short(r));
   return r;
 }
 

@@ -5,46 +5,27 @@
 
 namespace dampbound::ui {
 
-namespace {
-/// min/max that ignore NaN on either side (std::fmin/fmax semantics).
-double lo_of(double a, double b) {
-  return std::fmin(a, b);
-}
-double hi_of(double a, double b) {
-  return std::fmax(a, b);
-}
-}  // namespace
-
-void merge_min(StepStats& lo, const StepStats& s) {
-  lo.iteration = std::min(lo.iteration, s.iteration);
-  lo.time = lo_of(lo.time, s.time);
-  lo.watched_displacement = lo_of(lo.watched_displacement, s.watched_displacement);
-  lo.watched_lower = lo_of(lo.watched_lower, s.watched_lower);
-  lo.watched_upper = lo_of(lo.watched_upper, s.watched_upper);
-  lo.watched_gamma = lo_of(lo.watched_gamma, s.watched_gamma);
-  lo.watched_gamma_eff = lo_of(lo.watched_gamma_eff, s.watched_gamma_eff);
-  lo.max_displacement = lo_of(lo.max_displacement, s.max_displacement);
-  lo.violating = std::min(lo.violating, s.violating);
-  lo.unstabilisable = std::min(lo.unstabilisable, s.unstabilisable);
-  lo.clamped = std::min(lo.clamped, s.clamped);
-  lo.zero_length_springs = std::min(lo.zero_length_springs, s.zero_length_springs);
-  lo.finite = lo.finite && s.finite;
-}
-
-void merge_max(StepStats& hi, const StepStats& s) {
-  hi.iteration = std::max(hi.iteration, s.iteration);
-  hi.time = hi_of(hi.time, s.time);
-  hi.watched_displacement = hi_of(hi.watched_displacement, s.watched_displacement);
-  hi.watched_lower = hi_of(hi.watched_lower, s.watched_lower);
-  hi.watched_upper = hi_of(hi.watched_upper, s.watched_upper);
-  hi.watched_gamma = hi_of(hi.watched_gamma, s.watched_gamma);
-  hi.watched_gamma_eff = hi_of(hi.watched_gamma_eff, s.watched_gamma_eff);
-  hi.max_displacement = hi_of(hi.max_displacement, s.max_displacement);
-  hi.violating = std::max(hi.violating, s.violating);
-  hi.unstabilisable = std::max(hi.unstabilisable, s.unstabilisable);
-  hi.clamped = std::max(hi.clamped, s.clamped);
-  hi.zero_length_springs = std::max(hi.zero_length_springs, s.zero_length_springs);
-  hi.finite = hi.finite && s.finite;
+void merge_into(StepStats& e, const StepStats& s, BucketEnd which) {
+  const bool lo = which == BucketEnd::lo;
+  // std::fmin / std::fmax ignore a NaN on either side.
+  const auto real = [lo](double& a, double b) { a = lo ? std::fmin(a, b) : std::fmax(a, b); };
+  const auto count = [lo](int& a, int b) { a = lo ? std::min(a, b) : std::max(a, b); };
+  count(e.iteration, s.iteration);
+  real(e.time, s.time);
+  real(e.watched_displacement, s.watched_displacement);
+  real(e.watched_lower, s.watched_lower);
+  real(e.watched_upper, s.watched_upper);
+  real(e.watched_gamma, s.watched_gamma);
+  real(e.watched_gamma_eff, s.watched_gamma_eff);
+  real(e.max_displacement, s.max_displacement);
+  count(e.violating, s.violating);
+  count(e.unstabilisable, s.unstabilisable);
+  count(e.clamped, s.clamped);
+  count(e.zero_length_springs, s.zero_length_springs);
+  e.finite = e.finite && s.finite;
+  real(e.watched_safe, s.watched_safe);
+  count(e.unguaranteed, s.unguaranteed);
+  count(e.compressed_springs, s.compressed_springs);
 }
 
 TraceDecimator::TraceDecimator(size_t max_buckets)
@@ -54,8 +35,8 @@ void TraceDecimator::add(const StepStats& s) {
   if (partial_.count == 0) {
     partial_.lo = partial_.hi = s;
   } else {
-    merge_min(partial_.lo, s);
-    merge_max(partial_.hi, s);
+    merge_into(partial_.lo, s, BucketEnd::lo);
+    merge_into(partial_.hi, s, BucketEnd::hi);
   }
   if (++partial_.count < bucket_) return;
   full_.push_back(partial_);
@@ -66,8 +47,8 @@ void TraceDecimator::add(const StepStats& s) {
   merged.reserve(full_.size() / 2 + 1);
   for (size_t i = 0; i + 1 < full_.size(); i += 2) {
     Bucket b = full_[i];
-    merge_min(b.lo, full_[i + 1].lo);
-    merge_max(b.hi, full_[i + 1].hi);
+    merge_into(b.lo, full_[i + 1].lo, BucketEnd::lo);
+    merge_into(b.hi, full_[i + 1].hi, BucketEnd::hi);
     b.count += full_[i + 1].count;
     merged.push_back(b);
   }

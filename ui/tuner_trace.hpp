@@ -46,9 +46,12 @@ class TraceDecimator {
   std::vector<StepStats> out_;
 };
 
-/// Field-wise merge of two bucket ends: `lo` keeps minima and the earlier iteration, `hi`
-/// maxima and the later one. Exposed for tests.
-void merge_min(StepStats& lo, const StepStats& s);
-void merge_max(StepStats& hi, const StepStats& s);
+/// The end of a bucket a merge builds: its field-wise minima or maxima.
+enum class BucketEnd { lo, hi };
+
+/// Field-wise merge of `s` into a bucket end: `lo` keeps minima (and the earlier iteration),
+/// `hi` maxima (and the later one); a NaN field is ignored, `finite` holds only when both are
+/// finite. One fold over every field of StepStats serves both ends. Exposed for tests.
+void merge_into(StepStats& end, const StepStats& s, BucketEnd which);
 
 }  // namespace dampbound::ui

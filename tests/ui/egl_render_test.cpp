@@ -2,6 +2,7 @@
 // data<->pixel map says, PNGs are written, errors are exceptions. Sample PNGs go to
 // $DAMPBOUND_UI_PNG_DIR, else ui_test_output/ in the working directory.
 #if defined(DAMPBOUND_HAVE_EGL)
+#include "tests/ui/plot_specs.hpp"
 #include "ui/egl_host.hpp"
 #include "ui/figure.hpp"
 #include "ui/image.hpp"
@@ -10,6 +11,7 @@
 #include <gtest/gtest.h>
 #include <imgui.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -41,30 +43,6 @@ EglHost& host() {
   return *h;
 }
 
-const ImU32 kRed = IM_COL32(220, 20, 30, 255);
-
-PlotSpec line_spec() {
-  PlotSpec spec;
-  spec.title = "y = x";
-  spec.x.label = "x (cm)";
-  spec.y.label = "y (cm)";
-  PlotSeries s;
-  s.label = "y = x";
-  s.color = kRed;
-  s.thickness = 3.0f;
-  for (int i = 0; i <= 100; ++i) {
-    s.x.push_back(i * 0.1);
-    s.y.push_back(i * 0.1);
-  }
-  spec.series.push_back(s);
-  PlotHLine h;
-  h.label = "threshold";
-  h.y = 8.0;
-  h.color = IM_COL32(90, 90, 90, 255);
-  spec.hlines.push_back(h);
-  return spec;
-}
-
 TEST(EglRender, LineLandsWhereTheTransformSays) {
   const int w = 1200, h = 700;
   const PlotSpec spec = line_spec();
@@ -91,9 +69,6 @@ TEST(EglRender, LineLandsWhereTheTransformSays) {
   EXPECT_EQ(back.width, w);
   EXPECT_EQ(back.height, h);
   EXPECT_EQ(back.rgba, img.rgba);
-  const RenderStats& st = host().last_stats();
-  std::printf("1200x700 line plot: first frame %.1f ms, then %.1f ms/frame, readback %.1f ms\n",
-              st.first_frame_ms, st.mean_frame_ms, st.readback_ms);
 }
 
 TEST(EglRender, HeatmapBandsLogAxesLegend) {
@@ -142,42 +117,48 @@ TEST(EglRender, HeatmapBandsLogAxesLegend) {
   write_png_atomic(img, out_path("egl_heatmap.png"));
 }
 
-TEST(EglRender, BandTracesAndTiming) {
+TEST(EglRender, BandTracesAndLines) {
   const int w = 1200, h = 700;
-  PlotSpec spec;
-  spec.title = "Damping bounds of the watched node";
-  spec.x.label = "iteration";
-  spec.y.label = "damping γ";
-  spec.y.log = true;
-  PlotBand band;
-  band.label = "feasible damping";
-  PlotSeries lo, hi, trace;
-  lo.label = "lower bound 2√(mκ) (eq. 5)";
-  lo.color = palette_color(0);
-  hi.label = "upper bound (eq. 6)";
-  hi.color = palette_color(3);
-  const int n = 10000;
-  for (int i = 0; i < n; ++i) {
-    const double t = i;
-    band.x.push_back(t);
-    band.y_lo.push_back(2e-3);
-    const double up = 1e-3 + 0.05 * std::exp(-t / 3000.0) * (1.0 + 0.9 * std::sin(t * 0.05));
-    band.y_hi.push_back(i % 1000 == 0 ? std::numeric_limits<double>::infinity() : up);
+  const PlotSpec spec = band_spec();
+  PlotLayout lay;
+  const Image img = host().render_frames(w, h, [&](FrameInfo&) {
+    lay = draw_plot(ImGui::GetBackgroundDrawList(), ImVec2(0, 0), ImVec2(w, h), spec,
+                    plot_style_light());
+  });
+  auto px = [&](double t, double gamma) {
+    return std::pair<int, int>(static_cast<int>(std::lround(lay.x.to_px(t))),
+                               static_cast<int>(std::lround(lay.y.to_px(gamma))));
+  };
+  // The lower bound (eq. 5) at 2e-3 and the upper bound where the sample says, in their
+  // colours, at iterations away from the breaks (every 1000th upper sample is +inf).
+  for (double t : {1500.0, 2500.0, 3500.0}) {
+    SCOPED_TRACE("iteration " + std::to_string(t));
+    const auto [lx, ly] = px(t, 2e-3);
+    EXPECT_TRUE(has_color_near(img, lx, ly, 2, rgba_from_u32(palette_color(0)), 16));
+    const auto [ux, uy] = px(t, band_upper(static_cast<int>(t)));
+    EXPECT_TRUE(has_color_near(img, ux, uy, 3, rgba_from_u32(palette_color(3)), 16));
   }
-  lo.x = hi.x = band.x;
-  lo.y = band.y_lo;
-  hi.y = band.y_hi;
-  spec.bands.push_back(band);
-  spec.series = {lo, hi};
-  PlotHLine user;
-  user.label = "user γ";
-  user.y = 4e-3;
-  spec.hlines.push_back(user);
-  const Image img = host().render_frames(w, h, plot_frame(spec), 5);
-  EXPECT_FALSE(is_blank(img));
-  const RenderStats& st = host().last_stats();
-  std::printf("1200x700 band + two 10000-point traces: first frame %.1f ms, then %.1f ms/frame\n",
-              st.first_frame_ms, st.mean_frame_ms);
+  // The user's gamma: a dashed grey line at 4e-3 across the plot, darker than the band it
+  // crosses: its dashes cover a good part of its row, and a few rows off it nothing does.
+  auto luma = [](Rgba c) { return (c.r + c.g + c.b) / 3; };
+  auto dark_columns = [&](int row) {
+    int n = 0;
+    for (int x = static_cast<int>(lay.area.x0) + 2; x < static_cast<int>(lay.area.x1) - 2; ++x)
+      n += luma(img.pixel(x, row)) + 40 < luma(img.pixel(x, row - 4));
+    return n;
+  };
+  const int user_row = px(0, 4e-3).second;
+  const int width = static_cast<int>(lay.area.x1 - lay.area.x0);
+  EXPECT_GT(std::max(dark_columns(user_row), dark_columns(user_row + 1)), width / 4);
+  EXPECT_LT(dark_columns(user_row - 8), width / 10);
+  // The feasible band is shaded (greenish) between the bounds; above it, late on, the plot
+  // area is its plain background.
+  const auto [ix, iy] = px(300, 1.5e-2);
+  const Rgba in = img.pixel(ix, iy);
+  EXPECT_GT(in.g, in.r + 20);
+  EXPECT_GT(in.g, in.b + 20);
+  const auto [ox, oy] = px(9350, 2.5e-2);
+  EXPECT_EQ(img.pixel(ox, oy), rgba_from_u32(plot_style_light().plot_background));
   write_png_atomic(img, out_path("egl_band.png"));
 }
 

@@ -113,8 +113,9 @@ TEST(Figure, ReadableLabels) {
   EXPECT_NE(spec.y.label.find("(cm)"), std::string::npos);
   ASSERT_EQ(spec.series.size(), 3u);
   EXPECT_NE(spec.series[0].label.find("gamma = 0.0005"), std::string::npos);
-  ASSERT_EQ(spec.hlines.size(), 1u);
-  EXPECT_DOUBLE_EQ(spec.hlines[0].y, 0.05);
+  ASSERT_EQ(spec.ref_lines.size(), 1u);
+  EXPECT_EQ(spec.ref_lines[0].axis, LineAxis::y);
+  EXPECT_DOUBLE_EQ(spec.ref_lines[0].at, 0.05);
 }
 
 }  // namespace

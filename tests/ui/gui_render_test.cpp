@@ -6,9 +6,12 @@
 #include <gtest/gtest.h>
 #include <imgui.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <string>
 
 #include "core/analysis/expect.hpp"
 #include "core/scene.hpp"
@@ -50,6 +53,18 @@ EglOptions headless() {
   EglOptions eo;
   eo.render = gui_render_options();
   return eo;
+}
+
+/// Pixels of `img` inside `r` (window pixels) matching `color` to within `tolerance`.
+long count_in(const Image& img, const PanelRect& r, Rgba color, int tolerance) {
+  long n = 0;
+  for (int y = std::max(0, static_cast<int>(r.y)); y < std::min(img.height, static_cast<int>(r.y + r.h)); ++y)
+    for (int x = std::max(0, static_cast<int>(r.x)); x < std::min(img.width, static_cast<int>(r.x + r.w)); ++x) {
+      const Rgba p = img.pixel(x, y);
+      n += std::abs(p.r - color.r) <= tolerance && std::abs(p.g - color.g) <= tolerance &&
+           std::abs(p.b - color.b) <= tolerance;
+    }
+  return n;
 }
 
 /// options() with nothing persisted and no demo pins.
@@ -112,21 +127,40 @@ TEST(GuiRender, WholeWindowHeadless) {
       },
       frames);
   EXPECT_EQ(app.tuner().session().state().iteration, frames * 4);
-  EXPECT_FALSE(is_blank(img));
-  // The mesh view drew its nodes: many pixels of the "within bounds" colour.
-  EXPECT_GT(count_color(img, rgba_from_u32(status_color(NodeStatus::within)), 10), 200);
-  // The pinned runs' colours are on the plots.
-  for (const Pin& p : app.tuner().pins())
-    EXPECT_GT(count_color(img, rgba_from_u32(p.color), 12), 20);
   write_png_atomic(img, out_path("gui_window.png"));
-  // The export wrote a readable, non-blank figure and the CSVs.
+  // 1280 x 800 is compact: five panels, each inside the window (none cut off), no Status.
+  EXPECT_FALSE(app.window_rect("Status"));
+  std::map<std::string, PanelRect> panel;
+  for (const char* name : {"Parameters", "Mesh view", "Damping bounds", "Displacement", "Runs"}) {
+    const auto r = app.window_rect(name);
+    ASSERT_TRUE(r) << name;
+    EXPECT_GE(r->x, 0) << name;
+    EXPECT_GE(r->y, 0) << name;
+    EXPECT_LE(r->x + r->w, 1280) << name;
+    EXPECT_LE(r->y + r->h, 800) << name;
+    EXPECT_GT(r->w, 300) << name;
+    EXPECT_GT(r->h, 300) << name;
+    panel[name] = *r;
+  }
+  // The mesh view drew its nodes in the "within bounds" colour, inside its own panel (the
+  // colour also names the watched node's state in the status).
+  EXPECT_GT(count_in(img, panel["Mesh view"], rgba_from_u32(status_color(NodeStatus::within)), 10),
+            100);
+  // Each pinned run is drawn in its colour on both plots, in their panels.
+  for (const Pin& p : app.tuner().pins()) {
+    EXPECT_GT(count_in(img, panel["Damping bounds"], rgba_from_u32(p.color), 12), 20) << p.name;
+    EXPECT_GT(count_in(img, panel["Displacement"], rgba_from_u32(p.color), 12), 20) << p.name;
+  }
+  // The export wrote a light figure with both plots (displacement on top, then the
+  // envelope), each showing the first pin, and the CSVs.
   EXPECT_NE(export_summary.find("test_plots.png"), std::string::npos);
   const Image fig = read_png((config / "export" / "test_plots.png").string());
   EXPECT_EQ(fig.width, 1400);
   EXPECT_EQ(fig.height, 1000);
-  EXPECT_FALSE(is_blank(fig));
-  EXPECT_EQ(fig.pixel(2, 2), (Rgba{255, 255, 255, 255}));  // a light figure
-  EXPECT_GT(count_color(fig, rgba_from_u32(app.tuner().pins()[0].color), 12), 50);
+  EXPECT_EQ(fig.pixel(2, 2), (Rgba{255, 255, 255, 255}));
+  const Rgba pin0 = rgba_from_u32(app.tuner().pins()[0].color);
+  EXPECT_GT(count_in(fig, {"top", 0, 0, 1400, 500}, pin0, 12), 50);
+  EXPECT_GT(count_in(fig, {"bottom", 0, 500, 1400, 500}, pin0, 12), 50);
   write_png_atomic(fig, out_path("gui_export.png"));
   EXPECT_TRUE(fs::exists(config / "export" / "test_traces.csv"));
   EXPECT_TRUE(fs::exists(config / "export" / "test_runs.csv"));

@@ -1,21 +1,14 @@
-// The tuner's stability map without a window (ui/tuner_map.hpp): its cells against `sweep` on
-// the same grid, the worker's passes and when it restarts, and the boundary lines.
+// The tuner's stability map without a window (ui/tuner_map.hpp): the worker's passes and when
+// it restarts.
 #include "ui/tuner_map.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstring>
-#include <filesystem>
-#include <map>
-#include <set>
-#include <utility>
 
 #include "core/bounds.hpp"
-#include "core/sweep/runner.hpp"
-#include "core/sweep/summary.hpp"
-#include "ui/tuner.hpp"
 #include "core/io/scene_file.hpp"
+#include "ui/tuner.hpp"
 
 namespace dampbound::ui {
 namespace {
@@ -25,77 +18,6 @@ SceneSpec small_plane() {
   s.name = "small-plane";
   s.rules.max_iterations = 300;
   return s;
-}
-
-std::uint64_t bits(double x) {
-  std::uint64_t b = 0;
-  std::memcpy(&b, &x, sizeof b);
-  return b;
-}
-
-// The map's cells are the outcomes `dampbound sweep` finds for the same trials: the same
-// grid of (dt, gamma) run once through the map and once through the sweep runner (its
-// similarity classes, its kernel threads, its CSV rows).
-TEST(TunerMap, CellsEqualSweepOnTheSameGrid) {
-  const SceneSpec scene = small_plane();
-  const std::vector<double> dts = {0.05, 0.2, 0.5, 0.9}, gammas = {0, 0.0005, 0.002, 0.01};
-  Params base = scene.params;
-  base.m = base.kappa = 0.001;
-  const std::vector<TrialResult> cells =
-      run_map_trials(scene, base, scene.rules, map_trials(base, MapParam::dt, dts, MapParam::gamma, gammas));
-  ASSERT_EQ(cells.size(), 16u);
-
-  SweepRequest rq;
-  rq.scene = scene;
-  rq.scene_text = "small-plane built in code";
-  rq.spec.m = parse_axis("--m", "0.001", AxisDomain::positive);
-  rq.spec.kappa = parse_axis("--kappa", "0.001", AxisDomain::positive);
-  rq.spec.gamma = parse_axis("--gamma", "0,0.0005,0.002,0.01", AxisDomain::non_negative);
-  rq.spec.dt = parse_axis("--dt", "0.05,0.2,0.5,0.9", AxisDomain::positive);
-  rq.spec.factor = parse_axis("--factor", "1", AxisDomain::non_negative);
-  rq.spec.policy = DampingPolicy::fixed;
-  rq.spec.rules = scene.rules;
-  const auto dir = std::filesystem::temp_directory_path() / "dampbound_tuner_map_sweep";
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  rq.output = (dir / "sweep.csv").string();
-  rq.threads = 2;
-  const SweepReport rep = run_sweep(rq);
-  ASSERT_EQ(rep.rows.size(), 16u);
-  std::map<std::pair<double, double>, const SweepRow*> by;
-  for (const SweepRow& r : rep.rows) by[{r.dt, r.gamma}] = &r;
-  std::set<Outcome> seen;
-  for (size_t iy = 0; iy < gammas.size(); ++iy)
-    for (size_t ix = 0; ix < dts.size(); ++ix) {
-      SCOPED_TRACE("dt " + std::to_string(dts[ix]) + ", gamma " + std::to_string(gammas[iy]));
-      const TrialResult& c = cells[iy * dts.size() + ix];
-      const auto it = by.find({dts[ix], gammas[iy]});
-      ASSERT_NE(it, by.end());
-      EXPECT_EQ(c.outcome, it->second->outcome);
-      EXPECT_EQ(c.iterations, it->second->iterations);
-      EXPECT_EQ(bits(c.max_displacement), bits(it->second->max_displacement));
-      seen.insert(c.outcome);
-    }
-  // The grid crosses the outcomes, so the comparison means something.
-  EXPECT_GE(seen.size(), 2u);
-  EXPECT_TRUE(seen.count(Outcome::diverged));
-}
-
-TEST(TunerMap, LogGridAroundTheCentre) {
-  const auto e = map_log_edges(0.01, 1.0, 4);
-  ASSERT_EQ(e.size(), 5u);
-  EXPECT_NEAR(e.front(), 0.001, 1e-15);
-  EXPECT_NEAR(e[2], 0.01, 1e-15);
-  EXPECT_NEAR(e.back(), 0.1, 1e-14);
-  const auto c = map_cell_centres(e);
-  ASSERT_EQ(c.size(), 4u);
-  EXPECT_NEAR(c[0], std::sqrt(e[0] * e[1]), 1e-18);
-  Params p = default_params();
-  const auto trials = map_trials(p, MapParam::kappa, {1, 2}, MapParam::m, {3, 4, 5});
-  ASSERT_EQ(trials.size(), 6u);
-  EXPECT_EQ(trials[1].kappa, 2);  // x fastest
-  EXPECT_EQ(trials[1].m, 3);
-  EXPECT_EQ(trials[4].m, 5);
 }
 
 TEST(TunerMap, WorkerPassesCoarseToFineAndFollowsTheCentre) {
@@ -143,66 +65,6 @@ TEST(TunerMap, SceneTheKernelCannotRunSaysWhy) {
   map.follow(scene, 1, scene.params, scene.rules, MapView{});
   EXPECT_NE(map.unsupported(), "");
   EXPECT_FALSE(map.result());
-}
-
-TEST(TunerMap, BoundLinesOfAUniformScene) {
-  const SceneSpec scene = small_plane();
-  const MapBoundConstants k = map_bound_constants(scene);
-  EXPECT_DOUBLE_EQ(k.lower, 1.0);
-  EXPECT_DOUBLE_EQ(k.rate_ratio, 1.0);
-  EXPECT_DOUBLE_EQ(k.lambda_unit, unit_stiffness_eigenvalue(scene));
-  Params p = scene.params;  // m = kappa = 0.001
-  MapView v;                // gamma against dt
-  const auto lines = map_bound_lines(k, p, v, map_log_edges(p.dt, 1, 8), map_log_edges(0.002, 1, 8));
-  ASSERT_EQ(lines.size(), 3u);
-  EXPECT_EQ(lines[0].kind, MapLineKind::paper);
-  for (double y : lines[0].y) EXPECT_DOUBLE_EQ(y, lower_bound(p.m, p.kappa));
-  EXPECT_EQ(lines[1].kind, MapLineKind::exact_linear);
-  ASSERT_GT(lines[1].x.size(), 10u);
-  for (size_t i = 0; i < lines[1].x.size(); ++i) {
-    // On the line the step is at SPEC 7's limit: stable just below it, unstable just above.
-    const double dt = lines[1].x[i], g = lines[1].y[i];
-    EXPECT_FALSE(linearly_unstable(p.m, p.kappa, g * (1 - 1e-9), dt, k.lambda_unit));
-    EXPECT_TRUE(linearly_unstable(p.m, p.kappa, g * (1 + 1e-9), dt, k.lambda_unit));
-  }
-  // SPEC 9's safe bound: on its line the safe check at rest flips, and it lies inside the exact
-  // limit (sufficient, never looser).
-  EXPECT_EQ(lines[2].kind, MapLineKind::safe);
-  ASSERT_GT(lines[2].x.size(), 10u);
-  for (size_t i = 0; i < lines[2].x.size(); ++i) {
-    const double dt = lines[2].x[i], g = lines[2].y[i];
-    EXPECT_TRUE(safe_at_rest(k.safe, p.m, p.kappa, g * (1 - 1e-9), dt));
-    EXPECT_FALSE(safe_at_rest(k.safe, p.m, p.kappa, g * (1 + 1e-9), dt));
-    EXPECT_FALSE(linearly_unstable(p.m, p.kappa, g, dt, k.lambda_unit));
-  }
-  // dt against kappa: the exact limit is solved for dt where kappa is the axis.
-  MapView kv;
-  kv.x = MapParam::kappa;
-  kv.y = MapParam::dt;
-  const auto kl = map_bound_lines(k, p, kv, map_log_edges(p.kappa, 1, 8), map_log_edges(p.dt, 1, 8));
-  ASSERT_EQ(kl.size(), 3u);  // the lower bound: a vertical line at kappa = gamma^2 / (4 m)
-  for (double x : kl[0].x) EXPECT_NEAR(x, p.gamma * p.gamma / (4 * p.m), 1e-15);
-  for (size_t i = 0; i < kl[1].x.size(); ++i)
-    EXPECT_NEAR(kl[1].y[i] * kl[1].y[i] * k.lambda_unit * kl[1].x[i] / p.m +
-                    2 * p.gamma / p.m * kl[1].y[i],
-                4, 1e-9);
-  for (size_t i = 0; i < kl[2].x.size(); ++i) {  // the safe dt at each kappa
-    EXPECT_TRUE(safe_at_rest(k.safe, p.m, kl[2].x[i], p.gamma, kl[2].y[i] * (1 - 1e-9)));
-    EXPECT_FALSE(safe_at_rest(k.safe, p.m, kl[2].x[i], p.gamma, kl[2].y[i] * (1 + 1e-9)));
-  }
-}
-
-TEST(TunerMap, BoundLinesOfANonUniformSceneUseTheWorstNode) {
-  const SceneSpec scene = load_scene(std::string(DAMPBOUND_SOURCE_DIR) + "/scenes/stiff-region.toml");
-  const MapBoundConstants k = map_bound_constants(scene);
-  EXPECT_NEAR(k.lower, std::sqrt(4.0 * 10.0), 1e-12);  // 4x heavier, 10x stiffer
-  EXPECT_TRUE(std::isnan(k.rate_ratio));               // gamma/m differs: no exact line
-  EXPECT_TRUE(std::isnan(k.lambda_unit));
-  const auto lines = map_bound_lines(k, scene.params, MapView{}, map_log_edges(0.05, 1, 8),
-                                     map_log_edges(0.02, 1, 8));
-  ASSERT_EQ(lines.size(), 2u);  // the worst node's lower bound and the safe bound
-  EXPECT_NEAR(lines[0].y[0], 2 * std::sqrt(40.0) * std::sqrt(0.001 * 0.001), 1e-15);
-  EXPECT_EQ(lines[1].kind, MapLineKind::safe);
 }
 
 // The parameters panel's lower-bound line on a non-uniform mesh: the worst node speaks.

@@ -51,8 +51,11 @@ TEST(TunerPlots, PinsAreOverlaidUntilHiddenOrRemoved) {
   EXPECT_TRUE(has_series(d, "slow one"));
   EXPECT_TRUE(has_series(d, "current"));
   EXPECT_TRUE(has_series(d, "max over nodes"));
-  ASSERT_EQ(d.hlines.size(), 1u);
-  EXPECT_DOUBLE_EQ(d.hlines[0].y, 0.05);                     // 1 % of the 5 cm perturbation
+  ASSERT_FALSE(d.ref_lines.empty());
+  EXPECT_EQ(d.ref_lines[0].axis, LineAxis::y);               // the threshold, horizontal
+  EXPECT_DOUBLE_EQ(d.ref_lines[0].at, 0.05);                 // 1 % of the 5 cm perturbation
+  for (size_t i = 1; i < d.ref_lines.size(); ++i)            // the rest: verdict markers
+    EXPECT_EQ(d.ref_lines[i].axis, LineAxis::x);
   EXPECT_EQ(d.series.back().label.rfind("current", 0), 0u);  // live run drawn last
   PlotSpec e = tuner_envelope_plot(t, o);
   EXPECT_TRUE(has_series(e, "slow one"));
@@ -79,16 +82,17 @@ TEST(TunerPlots, VerdictMarkersShowEntryExitAndSettled) {
   r.left_at = 231;
   r.outcome = Outcome::settled;
   r.settled_at = 262;
-  const std::vector<PlotVLine> m = verdict_markers(r);
+  const std::vector<PlotRefLine> m = verdict_markers(r);
   ASSERT_EQ(m.size(), 3u);
   EXPECT_EQ(m[0].label, "first entry 230");
-  EXPECT_DOUBLE_EQ(m[0].x, 230);
+  EXPECT_EQ(m[0].axis, LineAxis::x);
+  EXPECT_DOUBLE_EQ(m[0].at, 230);
   EXPECT_EQ(m[1].label, "left at 231");
   EXPECT_EQ(m[2].label, "settled at 262");
   EXPECT_FALSE(m[2].dashed);
   r.outcome = Outcome::diverged;
   r.iterations = 300;
-  const std::vector<PlotVLine> d = verdict_markers(r);
+  const std::vector<PlotRefLine> d = verdict_markers(r);
   ASSERT_EQ(d.size(), 3u);
   EXPECT_EQ(d[2].label, "diverged at 300");
   // The live plot carries them.
@@ -99,7 +103,7 @@ TEST(TunerPlots, VerdictMarkersShowEntryExitAndSettled) {
   t.step(40);
   const PlotSpec spec = tuner_displacement_plot(t, TunerPlotOptions{});
   int marks = 0;
-  for (const PlotVLine& v : spec.vlines)
+  for (const PlotRefLine& v : spec.ref_lines)
     marks += v.label == "first entry 31" || v.label.rfind("left at ", 0) == 0;
   EXPECT_EQ(marks, 2);
 }

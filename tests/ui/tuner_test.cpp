@@ -9,9 +9,10 @@
 #include <limits>
 
 #include "core/bounds.hpp"
+#include "core/io/report.hpp"
+#include "core/io/scene_file.hpp"
 #include "core/scene.hpp"
 #include "ui/mesh_pick.hpp"
-#include "core/io/scene_file.hpp"
 
 namespace dampbound::ui {
 namespace {
@@ -133,7 +134,7 @@ TEST(Tuner, AnUndampedOscillatorEntersLeavesAndThePinKeepsItAll) {
   EXPECT_EQ(r.outcome, Outcome::running);  // no green "restored at 31" any more
   EXPECT_EQ(r.first_entry, 31);
   EXPECT_GT(r.left_at, 31);
-  EXPECT_NE(outcome_text(r).find("entered at 31, left at"), std::string::npos) << outcome_text(r);
+  EXPECT_NE(verdict_short(r).find("entered at 31, left at"), std::string::npos) << verdict_short(r);
   t.playback().pause_at_verdict = true;
   t.step(5000);
   EXPECT_EQ(t.session().result().outcome, Outcome::not_settled);
@@ -280,20 +281,20 @@ TEST(TunerText, NeverNaN) {
   EXPECT_EQ(fmt(-std::numeric_limits<double>::infinity()), "-inf");
   EXPECT_EQ(fmt(0.002), "0.002");
   RunResult r;
-  EXPECT_EQ(outcome_text(r), "running");
+  EXPECT_EQ(verdict_short(r), "running");
   r.outcome = Outcome::diverged;
   r.iterations = 45;
-  EXPECT_EQ(outcome_text(r), "diverged at 45");
+  EXPECT_EQ(verdict_short(r), "diverged at 45");
   r.outcome = Outcome::restored;
-  EXPECT_EQ(outcome_text(r), "restored at 45");
+  EXPECT_EQ(verdict_short(r), "restored at 45");
   r.outcome = Outcome::settled;
   r.settled_at = 40;
-  EXPECT_EQ(outcome_text(r), "settled at 40");
+  EXPECT_EQ(verdict_short(r), "settled at 40");
   r.outcome = Outcome::not_settled;
   r.iterations = 1000;
   r.first_entry = 12;
   r.left_at = 63;
-  EXPECT_EQ(outcome_text(r), "not settled at 1000 (entered at 12, left at 63)");
+  EXPECT_EQ(verdict_short(r), "not settled at 1000 (entered at 12, left at 63)");
 }
 
 }  // namespace

@@ -92,13 +92,39 @@ TEST(TraceDecimator, MergeIgnoresNaN) {
   lo.watched_displacement = 1;
   hi.watched_displacement = 1;
   s.watched_displacement = std::numeric_limits<double>::quiet_NaN();
-  merge_min(lo, s);
-  merge_max(hi, s);
+  merge_into(lo, s, BucketEnd::lo);
+  merge_into(hi, s, BucketEnd::hi);
   EXPECT_EQ(lo.watched_displacement, 1);
   EXPECT_EQ(hi.watched_displacement, 1);
   s.finite = false;
-  merge_max(hi, s);
+  merge_into(hi, s, BucketEnd::hi);
   EXPECT_FALSE(hi.finite);
+}
+
+TEST(TraceDecimator, MergeFoldsEveryField) {
+  // Each end takes the minima or the maxima of every field, the SPEC 9 ones included.
+  StepStats a, b;
+  a.iteration = 3, b.iteration = 7;
+  a.time = 0.3, b.time = 0.7;
+  a.watched_safe = 2, b.watched_safe = 5;
+  a.unguaranteed = 4, b.unguaranteed = 1;
+  a.compressed_springs = 0, b.compressed_springs = 9;
+  a.violating = 2, b.violating = 6;
+  StepStats lo = a, hi = a;
+  merge_into(lo, b, BucketEnd::lo);
+  merge_into(hi, b, BucketEnd::hi);
+  EXPECT_EQ(lo.iteration, 3);
+  EXPECT_EQ(hi.iteration, 7);
+  EXPECT_EQ(lo.time, 0.3);
+  EXPECT_EQ(hi.time, 0.7);
+  EXPECT_EQ(lo.watched_safe, 2);
+  EXPECT_EQ(hi.watched_safe, 5);
+  EXPECT_EQ(lo.unguaranteed, 1);
+  EXPECT_EQ(hi.unguaranteed, 4);
+  EXPECT_EQ(lo.compressed_springs, 0);
+  EXPECT_EQ(hi.compressed_springs, 9);
+  EXPECT_EQ(lo.violating, 2);
+  EXPECT_EQ(hi.violating, 6);
 }
 
 }  // namespace
