@@ -12,14 +12,6 @@
 
 namespace dampbound::ui {
 
-std::string fmt(double x) {
-  if (std::isnan(x)) return "-";
-  if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.4g", x);
-  return buf;
-}
-
 SceneSpec with_settled_rule(SceneSpec scene) {
   scene.rules.rule = StopRule::settled;
   return scene;

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "core/io/format.hpp"
 #include "core/session.hpp"
 #include "ui/plot_spec.hpp"
 #include "ui/tuner_criteria.hpp"
@@ -50,7 +51,7 @@ std::string params_label(const Params& params);
 
 /// Short number for the panels: %.4g, and "inf", "-inf" or "-" (NaN) when not finite, so the
 /// window never shows NaN.
-std::string fmt(double x);
+inline std::string fmt(double x) { return format_digits(x, 4, "-"); }
 
 /// The paper's lower bound (eq. 5, SPEC 3: kappa_i the stiffest spring or anchor at node i)
 /// against the user's gamma_i at every free node of a model (its current parameters).

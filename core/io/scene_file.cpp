@@ -107,12 +107,8 @@ void read_geometry(const Reader& r, const toml::table& root, SceneSpec& s) {
     if (root.contains("spring")) r.fail(*root.get("spring"), "[[spring]] needs [[node]] geometry");
     return;
   }
-  const toml::array* nodes = root.get("node")->as_array();
-  if (!nodes) r.fail(*root.get("node"), "node must be an array of tables [[node]]");
-  for (auto&& e : *nodes) {
-    const toml::table& t = r.table(e, "[[node]]");
-    r.check_keys(t, {"x", "fixed", "mass_scale", "gamma_scale", "anchor_scale", "force"},
-                 "[[node]]");
+  for (const toml::table& t : r.tables(root, "node", {"x", "fixed", "mass_scale", "gamma_scale",
+                                                     "anchor_scale", "force"})) {
     const int i = add_node(s.model, r.vec3(r.required(t, "x", "[[node]]"), "x"));
     const auto k = static_cast<size_t>(i);
     if (auto* n = t.get("fixed")) s.model.fixed[k] = r.boolean(*n, "fixed");
@@ -125,40 +121,28 @@ void read_geometry(const Reader& r, const toml::table& root, SceneSpec& s) {
   // An empty model has no node to watch or perturb, and step() needs one.
   if (s.model.node_count() == 0) r.fail(*root.get("node"), "the scene has no node");
   std::set<std::pair<int, int>> seen;
-  if (auto* springs_node = root.get("spring")) {
-    const toml::array* springs = springs_node->as_array();
-    if (!springs) r.fail(*springs_node, "spring must be an array of tables [[spring]]");
-    for (auto&& e : *springs) {
-      const toml::table& t = r.table(e, "[[spring]]");
-      r.check_keys(t, {"nodes", "rest_length", "kappa_scale"}, "[[spring]]");
-      const toml::node& nn = r.required(t, "nodes", "[[spring]]");
-      const toml::array* ends = nn.as_array();
-      if (!ends || ends->size() != 2) r.fail(nn, "nodes must be [i, j]");
-      const int i = node_ref(r, s, *ends->get(0), "spring node");
-      const int j = node_ref(r, s, *ends->get(1), "spring node");
-      if (i == j) r.fail(nn, "a spring needs two different nodes (got " + std::to_string(i) + ")");
-      if (!seen.insert({std::min(i, j), std::max(i, j)}).second)
-        r.fail(nn, "duplicate spring " + std::to_string(i) + "-" + std::to_string(j));
-      double ks = 1;
-      if (auto* n = t.get("kappa_scale")) ks = r.positive(*n, "kappa_scale");
-      add_spring(s.model, i, j, ks);
-      if (auto* n = t.get("rest_length"))
-        s.model.springs.back().rest_length = r.non_negative(*n, "rest_length");
-    }
+  for (const toml::table& t : r.tables(root, "spring", {"nodes", "rest_length", "kappa_scale"})) {
+    const toml::node& nn = r.required(t, "nodes", "[[spring]]");
+    const toml::array* ends = nn.as_array();
+    if (!ends || ends->size() != 2) r.fail(nn, "nodes must be [i, j]");
+    const int i = node_ref(r, s, *ends->get(0), "spring node");
+    const int j = node_ref(r, s, *ends->get(1), "spring node");
+    if (i == j) r.fail(nn, "a spring needs two different nodes (got " + std::to_string(i) + ")");
+    if (!seen.insert({std::min(i, j), std::max(i, j)}).second)
+      r.fail(nn, "duplicate spring " + std::to_string(i) + "-" + std::to_string(j));
+    double ks = 1;
+    if (auto* n = t.get("kappa_scale")) ks = r.positive(*n, "kappa_scale");
+    add_spring(s.model, i, j, ks);
+    if (auto* n = t.get("rest_length"))
+      s.model.springs.back().rest_length = r.non_negative(*n, "rest_length");
   }
 }
 
 /// [[region]]: scales for the nodes (and springs with both ends) inside a box of rest space.
 void read_regions(const Reader& r, const toml::table& root, SceneSpec& s) {
-  const toml::node* rn = root.get("region");
-  if (!rn) return;
-  const toml::array* regions = rn->as_array();
-  if (!regions) r.fail(*rn, "region must be an array of tables [[region]]");
-  for (auto&& e : *regions) {
-    const toml::table& t = r.table(e, "[[region]]");
-    r.check_keys(
-        t, {"min", "max", "mass_scale", "kappa_scale", "gamma_scale", "anchor_scale", "fixed"},
-        "[[region]]");
+  for (const toml::table& t : r.tables(root, "region",
+                                       {"min", "max", "mass_scale", "kappa_scale", "gamma_scale",
+                                       "anchor_scale", "fixed"})) {
     const Vec3 lo = r.vec3(r.required(t, "min", "[[region]]"), "min");
     const Vec3 hi = r.vec3(r.required(t, "max", "[[region]]"), "max");
     auto inside = [&](int i) {
@@ -187,13 +171,7 @@ void read_regions(const Reader& r, const toml::table& root, SceneSpec& s) {
 }
 
 void read_perturbations(const Reader& r, const toml::table& root, SceneSpec& s) {
-  const toml::node* pn = root.get("perturb");
-  if (!pn) return;
-  const toml::array* list = pn->as_array();
-  if (!list) r.fail(*pn, "perturb must be an array of tables [[perturb]]");
-  for (auto&& e : *list) {
-    const toml::table& t = r.table(e, "[[perturb]]");
-    r.check_keys(t, {"node", "displacement", "velocity"}, "[[perturb]]");
+  for (const toml::table& t : r.tables(root, "perturb", {"node", "displacement", "velocity"})) {
     Perturbation p;
     p.node = node_ref(r, s, r.required(t, "node", "[[perturb]]"), "perturb node");
     if (s.model.fixed[static_cast<size_t>(p.node)])
@@ -221,13 +199,7 @@ void read_protocol(const Reader& r, const toml::table& root, SceneSpec& s) {
 }
 
 void read_cuts(const Reader& r, const toml::table& root, SceneSpec& s) {
-  const toml::node* cn = root.get("cut");
-  if (!cn) return;
-  const toml::array* list = cn->as_array();
-  if (!list) r.fail(*cn, "cut must be an array of tables [[cut]]");
-  for (auto&& e : *list) {
-    const toml::table& t = r.table(e, "[[cut]]");
-    r.check_keys(t, {"iteration", "from", "to"}, "[[cut]]");
+  for (const toml::table& t : r.tables(root, "cut", {"iteration", "from", "to"})) {
     CutEvent c;
     const long long it = r.integer(r.required(t, "iteration", "[[cut]]"), "iteration");
     if (it < 0 || it > 100000000) r.fail(t, "cut iteration must be in 0..100000000");
@@ -240,17 +212,10 @@ void read_cuts(const Reader& r, const toml::table& root, SceneSpec& s) {
 }
 
 void read_runs(const Reader& r, const toml::table& root, SceneSpec& s) {
-  const toml::node* rn = root.get("run");
-  if (!rn) return;
-  const toml::array* list = rn->as_array();
-  if (!list) r.fail(*rn, "run must be an array of tables [[run]]");
   std::set<std::string> labels;
-  for (auto&& e : *list) {
-    const toml::table& t = r.table(e, "[[run]]");
-    r.check_keys(
-        t,
-        {"label", "m", "kappa", "gamma", "dt", "policy", "factor", "integrator", "max_iterations"},
-        "[[run]]");
+  for (const toml::table& t : r.tables(root, "run",
+                                       {"label", "m", "kappa", "gamma", "dt", "policy", "factor",
+                                       "integrator", "max_iterations"})) {
     RunSpec run{r.string(r.required(t, "label", "[[run]]"), "label"), s.params, s.rules};
     check_plain_text(run.label, "run label", r.path(), static_cast<int>(t.source().begin.line));
     if (run.label.empty() || !labels.insert(run.label).second)

@@ -23,17 +23,10 @@ void read_range(const Reader& r, const toml::node& n, const std::string& key,
 }  // namespace
 
 void read_expectations(const Reader& r, const toml::table& root, SceneSpec& s) {
-  const toml::node* en = root.get("expect");
-  if (!en) return;
-  const toml::array* list = en->as_array();
-  if (!list) r.fail(*en, "expect must be an array of tables [[expect]]");
-  for (auto&& e : *list) {
-    const toml::table& t = r.table(e, "[[expect]]");
-    r.check_keys(t,
-                 {"run", "rule", "outcome", "iterations", "first_entry", "left", "left_at",
-                  "settled_at", "max_displacement_below", "unstabilisable_max", "violations_max",
-                  "violations_min"},
-                 "[[expect]]");
+  for (const toml::table& t : r.tables(root, "expect",
+                                       {"run", "rule", "outcome", "iterations", "first_entry",
+                                       "left", "left_at", "settled_at", "max_displacement_below",
+                                       "unstabilisable_max", "violations_max", "violations_min"})) {
     Expectation x;
     x.line = static_cast<int>(t.source().begin.line);
     if (auto* n = t.get("run")) {

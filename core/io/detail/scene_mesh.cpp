@@ -51,17 +51,10 @@ const std::vector<int>& region_of(const Reader& r, const toml::table& t, const C
 /// it), fixes them, gives them an external force, or pulls each by `displacement` at t = 0.
 void read_mesh_regions(const Reader& r, const toml::table& root, const CellMesh& mesh,
                        SceneSpec& s) {
-  const toml::node* rn = root.get("mesh_region");
-  if (!rn) return;
-  const toml::array* list = rn->as_array();
-  if (!list) r.fail(*rn, "mesh_region must be an array of tables [[mesh_region]]");
   const auto regions = region_nodes(mesh);
-  for (auto&& e : *list) {
-    const toml::table& t = r.table(e, "[[mesh_region]]");
-    r.check_keys(t,
-                 {"tag", "name", "fixed", "mass_scale", "kappa_scale", "gamma_scale",
-                  "anchor_scale", "force", "displacement"},
-                 "[[mesh_region]]");
+  for (const toml::table& t : r.tables(root, "mesh_region",
+                                       {"tag", "name", "fixed", "mass_scale", "kappa_scale",
+                                       "gamma_scale", "anchor_scale", "force", "displacement"})) {
     const std::vector<int>& nodes = region_of(r, t, mesh, regions);
     Model& m = s.model;
     for (int i : nodes) {

@@ -1,6 +1,7 @@
 #pragma once
 // The scene file reader's checked accessors (core/io/scene_file.cpp and the files that read parts
 // of a scene): every error names the file and the line. Private to core.
+#include <functional>
 #include <toml++/toml.h>
 
 #include <cmath>
@@ -44,6 +45,25 @@ class Reader {
   const toml::table& table(const toml::node& n, const std::string& what) const {
     if (!n.is_table()) fail(n, what + " must be a table");
     return *n.as_table();
+  }
+
+  /// The array of tables [[KEY]] of `root` (none when absent), each checked to be a table with
+  /// only `allowed` keys.
+  std::vector<std::reference_wrapper<const toml::table>> tables(const toml::table& root,
+                                                               const std::string& key,
+                                                               Keys allowed) const {
+    std::vector<std::reference_wrapper<const toml::table>> out;
+    const toml::node* n = root.get(key);
+    if (!n) return out;
+    const toml::array* list = n->as_array();
+    const std::string what = "[[" + key + "]]";
+    if (!list) fail(*n, key + " must be an array of tables " + what);
+    for (auto&& e : *list) {
+      const toml::table& t = table(e, what);
+      check_keys(t, allowed, what);
+      out.emplace_back(t);
+    }
+    return out;
   }
 
   double number(const toml::node& n, const std::string& what) const {
