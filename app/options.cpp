@@ -97,9 +97,7 @@ CLI::Option* add_rule_option(CLI::App* cmd, std::string& rule, const std::string
 }
 
 StopRule stop_rule_of(const std::string& text) {
-  StopRule r = StopRule::first_entry;
-  parse_stop_rule(text, r);
-  return r;
+  return parse_stop_rule(text).value_or(StopRule::first_entry);
 }
 
 void parse_size(const std::string& text, const char* flag, int& width, int& height) {

@@ -204,7 +204,7 @@ ImU32 Tuner::current_color() const {
   return palette_color(0);
 }
 
-const std::vector<StepStats>& Tuner::reduced_trace() {
+const std::vector<StepSample>& Tuner::reduced_trace() {
   return decimator_.update(session_->trace(), generation_);
 }
 

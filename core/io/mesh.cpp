@@ -170,8 +170,8 @@ void check_mesh(const CellMesh& mesh, const std::function<std::string(const Mesh
                            (top == 3 ? "tetrahedron" : "face") + " uses");
 }
 
-Model model_from_mesh(const CellMesh& mesh, const MeshSprings& how) {
-  Model m;
+ModelSpec model_from_mesh(const CellMesh& mesh, const MeshSprings& how) {
+  ModelSpec m;
   std::vector<Vec3> p;
   for (const Vec3& v : mesh.vertices) {
     p.push_back(v * how.scale);

@@ -80,7 +80,7 @@ struct MeshSprings {
 /// triangles, the far corners; across an edge shared by exactly two quads, at each end the
 /// neighbours on either side along the line through the edge (Provot's flexion springs). A
 /// bending spring that would repeat an existing spring is skipped.
-Model model_from_mesh(const CellMesh& mesh, const MeshSprings& how);
+ModelSpec model_from_mesh(const CellMesh& mesh, const MeshSprings& how);
 
 /// For each region tag, the nodes of the cells (of any dimension) that carry it.
 std::map<int, std::vector<int>> region_nodes(const CellMesh& mesh);
