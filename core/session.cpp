@@ -3,6 +3,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "core/error.hpp"
+
 namespace dampbound {
 
 Session::Session(SceneSpec scene, const Params& params, const StopRules& rules)
@@ -39,8 +41,7 @@ const RunResult& Session::run_to_end(const StepObserver& on_step) {
 }
 
 void Session::set_params(const Params& params) {
-  const std::string err = validate(params);
-  if (!err.empty()) throw std::invalid_argument(err);
+  if (const auto why = validate(params)) throw InputError(*why);
   params_ = params;
   model_ = compile_model(model_, params_);
 }

@@ -25,7 +25,7 @@ class Session {
   const RunResult& run_to_end(const StepObserver& on_step = {});
 
   /// New parameters take effect at the next step (the model is compiled again); the state
-  /// and any cuts are kept.
+  /// and any cuts are kept. Throws InputError naming the parameter when validate() refuses.
   void set_params(const Params& params);
   void set_rules(const StopRules& rules) { rules_ = rules; }
   /// Watch another node (an index); the trace keeps what was watched before.

@@ -165,13 +165,7 @@ void bind_scene(py::module_& m) {
           "rest_length (S,), anchor_stiffness (N,), rest (N, 3), fixed (N,).");
   m.def(
       "load_scene",
-      [](const std::string& path) {
-        try {
-          return load_scene(path);
-        } catch (const InputError& e) {
-          throw py::value_error(e.what());
-        }
-      },
+      [](const std::string& path) { return load_scene(path); },
       py::arg("path"), "Loads a scene file (TOML); ValueError naming the file and line if bad.");
   m.def("paper_plane_scene", &paper_plane_scene, py::arg("n") = 36,
         "SPEC 5's scene built in code: an n x n grid, node (n/2, n/2) moved 5 cm along y.");
@@ -252,6 +246,14 @@ PYBIND11_MODULE(dampbound, m) {
       "dampbound: damping bounds that guarantee stability in mass-spring systems (Bhasin & "
       "Liu). Units: cm, s, and any consistent mass unit.";
   m.attr("__version__") = DAMPBOUND_VERSION;
+  // Bad input (a scene file, a parameter) is core's InputError: Python's ValueError.
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const dampbound::InputError& e) {
+      PyErr_SetString(PyExc_ValueError, e.what());
+    }
+  });
   bind_params(m);
   bind_results(m);
   bind_scene(m);

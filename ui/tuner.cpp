@@ -66,9 +66,8 @@ void Tuner::set_scene(SceneSpec scene) {
 }
 
 bool Tuner::set_params(const Params& params, std::string* error) {
-  const std::string why = validate(params);
-  if (!why.empty()) {
-    if (error != nullptr) *error = why;
+  if (const auto why = validate(params)) {
+    if (error != nullptr) *error = *why;
     return false;
   }
   const Params& now = session_->params();

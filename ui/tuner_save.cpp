@@ -140,8 +140,7 @@ PinRequest parse_pin_request(const std::string& text, const Params& base, int ma
     }
   }
   if (!any) bad("expected KEY=VALUE");
-  const std::string why = validate(r.params);
-  if (!why.empty()) bad(why);
+  if (const auto why = validate(r.params)) bad(*why);
   return r;
 }
 
