@@ -9,8 +9,8 @@
 
 namespace dampbound {
 
-/// Bad input: the message names the file and line, the flag or the parameter. The CLI prints it on one line
-/// and exits with code 2.
+/// Bad input: the message names the file and line, the flag or the parameter. The CLI prints
+/// it on one line and exits with code 2.
 class InputError : public std::runtime_error {
  public:
   explicit InputError(const std::string& what) : std::runtime_error(what) {}
