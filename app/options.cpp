@@ -97,9 +97,7 @@ CLI::Option* add_rule_option(CLI::App* cmd, std::string& rule, const std::string
 }
 
 StopRule stop_rule_of(const std::string& text) {
-  StopRule r = StopRule::first_entry;
-  parse_stop_rule(text, r);
-  return r;
+  return parse_stop_rule(text).value_or(StopRule::first_entry);
 }
 
 void parse_size(const std::string& text, const char* flag, int& width, int& height) {
@@ -133,14 +131,7 @@ std::string shipped_scenes_dir() {
 }
 
 SceneSpec load_scene_arg(const std::string& arg) {
-  const std::string dir = shipped_scenes_dir();
-  if (arg.find('/') == std::string::npos && ::access(arg.c_str(), F_OK) != 0 && !dir.empty()) {
-    std::string name = arg;
-    if (name.size() < 5 || name.substr(name.size() - 5) != ".toml") name += ".toml";
-    const std::string shipped = dir + "/" + name;
-    if (::access(shipped.c_str(), F_OK) == 0) return load_scene(shipped);
-  }
-  return load_scene(arg);
+  return load_scene(resolve_scene(arg, shipped_scenes_dir()));
 }
 
 }  // namespace dampbound::app

@@ -40,14 +40,14 @@ std::optional<Integrator> parse_integrator(const std::string& s) {
   return std::nullopt;
 }
 
-std::string validate(const Params& p) {
+std::optional<std::string> validate(const Params& p) {
   auto positive = [](double x) { return std::isfinite(x) && x > 0; };
   if (!positive(p.m)) return "m must be a finite number > 0";
   if (!positive(p.kappa)) return "kappa must be a finite number > 0";
   if (!std::isfinite(p.gamma) || p.gamma < 0) return "gamma must be a finite number >= 0";
   if (!positive(p.dt)) return "dt must be a finite number > 0";
   if (!std::isfinite(p.factor) || p.factor < 0) return "factor must be a finite number >= 0";
-  return {};
+  return std::nullopt;
 }
 
 }  // namespace dampbound

@@ -46,7 +46,7 @@ std::optional<DampingPolicy> parse_policy(const std::string& s);
 /// Parses "semi-implicit-euler" | "forward-euler" | "verlet" | "rk4" | "implicit-euler".
 std::optional<Integrator> parse_integrator(const std::string& s);
 
-/// Empty when the parameters are usable, else a message naming the offending parameter.
-std::string validate(const Params& p);
+/// What makes the parameters unusable, naming the parameter; nullopt when they are usable.
+std::optional<std::string> validate(const Params& p);
 
 }  // namespace dampbound

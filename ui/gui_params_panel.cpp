@@ -8,6 +8,7 @@
 #include <string>
 
 #include "core/bounds.hpp"
+#include "core/io/scene_file.hpp"
 #include "ui/gui_app.hpp"
 #include "ui/gui_widgets.hpp"
 
@@ -23,19 +24,6 @@ bool log_slider(const char* label, double* v, double lo, double hi, const char* 
                           ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_NoRoundToFormat);
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s\nCtrl+click to type a value.", help);
   return changed;
-}
-
-/// A path as typed, or a scene name looked up in `scenes_dir` ("two-node", "two-node.toml").
-std::string resolve_scene(const std::string& text, const std::string& scenes_dir) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  if (fs::exists(text, ec) || text.find('/') != std::string::npos || scenes_dir.empty())
-    return text;
-  for (const std::string& name : {text, text + ".toml"}) {
-    const fs::path p = fs::path(scenes_dir) / name;
-    if (fs::is_regular_file(p, ec)) return p.string();
-  }
-  return text;
 }
 
 bool key_pressed(ImGuiKey key) {

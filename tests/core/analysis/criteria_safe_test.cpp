@@ -16,13 +16,11 @@ namespace {
 struct TwoNode {
   SceneSpec scene = load_scene(test::source_path("scenes/two-node.toml"));
   Params params = scene.params;  // m = kappa = 0.001, gamma = 0.002, dt = 0.05
-  Model model;
-  State state;
-  TwoNode() { set(params); }
+  Model model = compile_model(scene.model, params);
+  State state = rest_state(model);
   void set(const Params& p) {
     params = p;
-    model = scene.model;
-    set_params(model, params);
+    model = compile_model(scene.model, params);
     state = rest_state(model);
   }
 };
@@ -95,7 +93,8 @@ TEST(CriteriaSafe, CompressedSpringGivesNoVerdict) {
 
 TEST(CriteriaSafe, NoFreeNodeNoRows) {
   TwoNode t;
-  t.model.fixed[1] = 1;
+  t.scene.model.fixed[1] = 1;
+  t.set(t.params);
   EXPECT_TRUE(safe_criteria(t.model, t.state, t.params).empty());
 }
 

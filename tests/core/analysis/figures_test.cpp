@@ -23,7 +23,7 @@ void expect_same_run(const SceneSpec& scene, const FigureRun& run) {
   ASSERT_EQ(run.trace.size(), session.trace().size());
   for (size_t k = 0; k < run.trace.size(); ++k) {
     EXPECT_EQ(run.trace[k].iteration, session.trace()[k].iteration);
-    EXPECT_EQ(run.trace[k].watched_displacement, session.trace()[k].watched_displacement);
+    EXPECT_EQ(run.trace[k].watched.displacement, session.trace()[k].watched.displacement);
   }
 }
 

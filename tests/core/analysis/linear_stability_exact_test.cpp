@@ -16,8 +16,7 @@ namespace {
 struct TwoNode {
   SceneSpec scene = load_scene(test::source_path("scenes/two-node.toml"));
   Params params = scene.params;  // m = kappa = 0.001, gamma = 0.002 (c = 2), dt = 0.05
-  Model model = scene.model;
-  TwoNode() { set_params(model, params); }
+  Model model = compile_model(scene.model, params);
 };
 
 TEST(LinearStabilityExact, TwoNodeClosedForms) {
@@ -75,16 +74,16 @@ TEST(LinearStabilityExact, SimulationAgreesWithTheLimits) {
 
 TEST(LinearStabilityExact, UnequalMassesTakeTheSymmetricIndex) {
   // A chain fixed at one end: 0 (fixed) - 1 - 2, node 2 twice as heavy, so gamma/m differs.
-  Model m;
-  for (int k = 0; k < 3; ++k) add_node(m, Vec3(k, 0, 0));
-  add_spring(m, 0, 1);
-  add_spring(m, 1, 2);
-  m.fixed[0] = 1;
-  m.mass_scale[2] = 2;
+  ModelSpec spec;
+  for (int k = 0; k < 3; ++k) add_node(spec, Vec3(k, 0, 0));
+  add_spring(spec, 0, 1);
+  add_spring(spec, 1, 2);
+  spec.fixed[0] = 1;
+  spec.mass_scale[2] = 2;
   Params p;
   p.m = 0.001, p.kappa = 0.001, p.gamma = 0.002, p.dt = 0.05;
   p.policy = DampingPolicy::fixed;
-  set_params(m, p);
+  const Model m = compile_model(spec, p);
   const ExactStability e = exact_stability(m, m.rest, p);
   EXPECT_EQ(e.method, ExactMethod::symmetric_index);
   EXPECT_FALSE(e.uniform_rate);

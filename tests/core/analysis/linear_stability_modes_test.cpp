@@ -84,9 +84,8 @@ TEST(LinearStabilityModes, TwoNodeSystemEigenvalues) {
   // it; gamma = 0.002 is critical: c = gamma/m = 2. With h = 0.05 the x mode's trace is
   // 2 - h^2 - c h = 1.8975 and its determinant 1 - c h = 0.9: z = 0.96 and 0.9375. The
   // transverse modes (lambda = 0) give 1 and 0.9, twice.
-  SceneSpec s = load_scene(test::source_path("scenes/two-node.toml"));
-  Model& m = s.model;
-  set_params(m, s.params);
+  const SceneSpec s = load_scene(test::source_path("scenes/two-node.toml"));
+  const Model m = compile_model(s.model, s.params);
   const SparseMatrix K = mass_weighted(m, tangent_stiffness(m, m.rest));
   const Eigen::VectorXd rate = damping_rates(m, m.gamma);
   ASSERT_EQ(rate.size(), 3);

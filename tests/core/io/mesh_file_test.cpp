@@ -19,7 +19,7 @@ CellMesh small_block(const std::string& file) {
   return read_mesh_file(test::source_path("tests/fuzz/corpus/" + file));
 }
 
-std::set<std::pair<int, int>> spring_set(const Model& m) {
+std::set<std::pair<int, int>> spring_set(const ModelSpec& m) {
   std::set<std::pair<int, int>> out;
   for (const Spring& s : m.springs) out.insert({std::min(s.i, s.j), std::max(s.i, s.j)});
   return out;
@@ -49,7 +49,7 @@ TEST(MeshFile, EveryFormatGivesTheSameBlock) {
   const char* files[] = {"msh/block-22.msh",  "msh/block-22b.msh", "msh/block-41.msh",
                          "msh/block-41b.msh", "tetgen/block.ele",  "vtk/block.vtk"};
   const CellMesh ref = small_block(files[0]);
-  const Model ref_model = model_from_mesh(ref, MeshSprings{});
+  const ModelSpec ref_model = model_from_mesh(ref, MeshSprings{});
   ASSERT_EQ(ref.vertices.size(), 48u);
   // Edges of the Kuhn subdivision: 104 along the axes, 75 face diagonals, 18 body diagonals.
   EXPECT_EQ(ref_model.spring_count(), 104 + 75 + 18);

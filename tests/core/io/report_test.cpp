@@ -15,21 +15,21 @@ const char* kHeader =
     "max_displacement,violating,unstabilisable,clamped,zero_length_springs,"
     "safe_bound,unguaranteed,compressed_springs\n";
 
-StepStats row(int it) {
-  StepStats s;
+StepSample row(int it) {
+  StepSample s;
   s.iteration = it;
   s.time = 0.05 * it;
-  s.watched_displacement = 0.5;
-  s.watched_lower = 0.002;
-  s.watched_upper = std::numeric_limits<double>::infinity();
-  s.watched_gamma = 0.001;
-  s.watched_gamma_eff = 0.001;
+  s.watched.displacement = 0.5;
+  s.watched.lower = 0.002;
+  s.watched.upper = std::numeric_limits<double>::infinity();
+  s.watched.gamma = 0.001;
+  s.watched.gamma_eff = 0.001;
   s.max_displacement = 0.25;
   s.violating = 1;
   s.unstabilisable = 2;
   s.clamped = 3;
   s.zero_length_springs = 4;
-  s.watched_safe = std::nan("");
+  s.watched.safe = std::nan("");
   s.unguaranteed = 5;
   s.compressed_springs = 6;
   return s;

@@ -61,17 +61,26 @@ std::vector<T> array_of(const std::string& xml, const std::string& name, const s
   return out;
 }
 
+Params two_node_params() {
+  Params p;
+  p.m = 0.001, p.kappa = 0.001, p.gamma = 0.002, p.dt = 0.05;
+  return p;
+}
+
+Model two_node_model() {
+  ModelSpec spec;
+  add_node(spec, Vec3(0, 0, 0));
+  add_node(spec, Vec3(1, 0, 0));
+  add_spring(spec, 0, 1);
+  spec.fixed[0] = 1;
+  return compile_model(spec, two_node_params());
+}
+
 struct TwoNodes {
-  Model model;
-  Params params;
+  Params params = two_node_params();
+  Model model = two_node_model();
   State state;
   TwoNodes() {
-    add_node(model, Vec3(0, 0, 0));
-    add_node(model, Vec3(1, 0, 0));
-    add_spring(model, 0, 1);
-    model.fixed[0] = 1;
-    params.m = 0.001, params.kappa = 0.001, params.gamma = 0.002, params.dt = 0.05;
-    set_params(model, params);
     state = rest_state(model);
     state.x[1] = Vec3(1.5, 0, 0.25);
     state.v[1] = Vec3(0.1, -0.2, 0);
@@ -117,7 +126,7 @@ TEST(Vtu, ArraysAtIterationZero) {
 TEST(Vtu, AfterAStepTheWorkspaceValues) {
   TwoNodes t;
   StepWorkspace ws;
-  step(t.model, t.params, t.state, ws, 1);
+  step(t.model, t.params, t.state, ws);
   std::ostringstream out;
   write_vtu(out, t.model, t.state, ws, t.params.dt);
   const std::string xml = out.str();

@@ -69,7 +69,7 @@ TEST(SceneMesh, MeshRegionErrorsNameTheSceneLine) {
   const SceneSpec s = load_scene(scene);
   MeshSprings how;
   how.density = 1.0;
-  const Model plain = model_from_mesh(read_mesh_file(mesh), how);
+  const ModelSpec plain = model_from_mesh(read_mesh_file(mesh), how);
   const auto probe = region_nodes(read_mesh_file(mesh)).at(3);
   for (int i : probe)
     EXPECT_DOUBLE_EQ(s.model.mass_scale[size_t(i)], 2 * plain.mass_scale[size_t(i)]);
