@@ -63,13 +63,12 @@ void ParamFlags::add_to(CLI::App* cmd, bool with_rules) {
                   ->check(finite_non_negative());
   dt_opt = cmd->add_option("--dt", dt, "time step (s)")->check(finite_positive());
   policy_opt = cmd->add_option("--policy", policy, "damping policy (SPEC 4; safe: SPEC 9)")
-                   ->check(CLI::IsMember({"fixed", "clamp", "upper", "lower", "safe"}));
+                   ->check(CLI::IsMember(policy_names()));
   factor_opt = cmd->add_option("--factor", factor, "multiplier of the upper bound for --policy upper")
                    ->check(finite_non_negative());
   integrator_opt =
       cmd->add_option("--integrator", integrator, "time integrator (default: the paper's)")
-          ->check(CLI::IsMember(
-              {"semi-implicit-euler", "forward-euler", "verlet", "rk4", "implicit-euler"}));
+          ->check(CLI::IsMember(integrator_names()));
   if (with_rules)
     max_iter_opt = cmd->add_option("--max-iter", max_iter, "iteration limit of the protocol")
                        ->check(CLI::Range(1, 100000000));

@@ -27,17 +27,27 @@ const char* to_string(Integrator i) {
 }
 
 std::optional<DampingPolicy> parse_policy(const std::string& s) {
-  for (auto p : {DampingPolicy::fixed, DampingPolicy::clamp, DampingPolicy::upper,
-                 DampingPolicy::lower, DampingPolicy::safe})
+  for (auto p : kPolicies)
     if (s == to_string(p)) return p;
   return std::nullopt;
 }
 
 std::optional<Integrator> parse_integrator(const std::string& s) {
-  for (auto i : {Integrator::semi_implicit_euler, Integrator::forward_euler, Integrator::verlet,
-                 Integrator::rk4, Integrator::implicit_euler})
+  for (auto i : kIntegrators)
     if (s == to_string(i)) return i;
   return std::nullopt;
+}
+
+std::vector<std::string> policy_names() {
+  std::vector<std::string> out;
+  for (auto p : kPolicies) out.emplace_back(to_string(p));
+  return out;
+}
+
+std::vector<std::string> integrator_names() {
+  std::vector<std::string> out;
+  for (auto i : kIntegrators) out.emplace_back(to_string(i));
+  return out;
 }
 
 std::optional<std::string> validate(const Params& p) {

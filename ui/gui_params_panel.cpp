@@ -156,10 +156,14 @@ void GuiApp::parameters_panel() {
                                      .c_str());
   }
   changed |= log_slider("dt (s)", &p.dt, 1e-4, 1.0, "Time step dt (s)");
-  int policy = static_cast<int>(p.policy);
-  const char* policies[] = {"fixed", "clamp", "upper", "lower", "safe"};
-  if (ImGui::Combo("policy", &policy, policies, 5)) {
-    p.policy = static_cast<DampingPolicy>(policy);
+  int policy = 0;
+  while (kPolicies[policy] != p.policy) ++policy;
+  auto policy_name = [](void*, int k, const char** out) {
+    *out = to_string(kPolicies[k]);
+    return true;
+  };
+  if (ImGui::Combo("policy", &policy, policy_name, nullptr, IM_ARRAYSIZE(kPolicies))) {
+    p.policy = kPolicies[policy];
     changed = true;
   }
   if (ImGui::IsItemHovered())

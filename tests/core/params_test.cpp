@@ -20,12 +20,11 @@ TEST(Params, DefaultsAreThePapersFigure1Setting) {
 }
 
 TEST(Params, EveryPolicyAndIntegratorNameParsesBack) {
-  for (auto x : {DampingPolicy::fixed, DampingPolicy::clamp, DampingPolicy::upper,
-                 DampingPolicy::lower, DampingPolicy::safe})
-    EXPECT_EQ(parse_policy(to_string(x)), x) << to_string(x);
-  for (auto x : {Integrator::semi_implicit_euler, Integrator::forward_euler, Integrator::verlet,
-                 Integrator::rk4, Integrator::implicit_euler})
-    EXPECT_EQ(parse_integrator(to_string(x)), x) << to_string(x);
+  for (auto x : kPolicies) EXPECT_EQ(parse_policy(to_string(x)), x) << to_string(x);
+  for (auto x : kIntegrators) EXPECT_EQ(parse_integrator(to_string(x)), x) << to_string(x);
+  EXPECT_EQ(policy_names(), (std::vector<std::string>{"fixed", "clamp", "upper", "lower", "safe"}));
+  EXPECT_EQ(integrator_names().size(), 5u);
+  EXPECT_EQ(integrator_names().front(), "semi-implicit-euler");
   EXPECT_STREQ(to_string(Integrator::semi_implicit_euler), "semi-implicit-euler");
   EXPECT_FALSE(parse_policy("Clamp"));
   EXPECT_FALSE(parse_policy(""));
