@@ -146,5 +146,15 @@ iterations = [1, 40]
             "bad.toml:6: expect refers to run 'nope', which is not declared");
 }
 
+TEST(ResolveScene, ANameIsLookedUpAmongTheScenesAPathIsNot) {
+  const std::string dir = test::source_path("scenes");
+  EXPECT_EQ(resolve_scene("two-node", dir), dir + "/two-node.toml");
+  EXPECT_EQ(resolve_scene("two-node.toml", dir), dir + "/two-node.toml");
+  EXPECT_EQ(resolve_scene("./two-node", dir), "./two-node");  // a path: as typed
+  EXPECT_EQ(resolve_scene("no-such-scene", dir), "no-such-scene");
+  EXPECT_EQ(resolve_scene("two-node", ""), "two-node");  // no scene folder
+  EXPECT_EQ(load_scene(resolve_scene("two-node", dir)).model.node_count(), 2);
+}
+
 }  // namespace
 }  // namespace dampbound
