@@ -126,9 +126,12 @@ double critical_ratio(double zeta, double lambda_unit, double dt) {
 StabilityMap build_stability_map(const SweepTable& table, double lambda_unit,
                                  const MapOptions& opt) {
   if (table.rows.empty()) throw InputError("map: the sweep has no rows");
-  const std::string policy = definition_value(table.header.definition, "policy");
-  const bool upper = policy == "upper";
-  const bool gamma_policy = policy == "fixed" || policy == "clamp";
+  const std::optional<DampingPolicy> policy = table.header.policy;
+  const bool upper = policy == DampingPolicy::upper;
+  const bool gamma_policy = policy == DampingPolicy::fixed || policy == DampingPolicy::clamp;
+  // A policy this build does not know is shown as the definition says it.
+  const std::string policy_name =
+      policy ? to_string(*policy) : definition_value(table.header.definition, "policy");
   const double dt = opt.dt ? *opt.dt : table.rows.front().dt;
   std::vector<const SweepRow*> rows;
   for (const SweepRow& r : table.rows)
@@ -138,7 +141,7 @@ StabilityMap build_stability_map(const SweepTable& table, double lambda_unit,
 
   StabilityMap map;
   map.max_iterations = std::atoi(definition_value(table.header.definition, "max-iter").c_str());
-  map.title = table.header.scene_name + ": policy " + policy + ", dt = " + format_number(dt) +
+  map.title = table.header.scene_name + ": policy " + policy_name + ", dt = " + format_number(dt) +
               " s, " + std::to_string(map.max_iterations) + " iterations";
   map.summary = summary_lines(table.rows, policy, lambda_unit);
   map.rule = table.header.rule;

@@ -166,6 +166,7 @@ SweepReport run_sweep(const SweepRequest& rq) {
   SweepReport rep;
   SweepHeader& h = rep.header;
   h.definition = sweep_definition(rq.spec);
+  h.policy = rq.spec.policy;
   h.sweep_id = sweep_id(rq.scene_text, h.definition);
   h.scene_path = absolute_path(rq.scene.path);
   h.scene_name = rq.scene.name;

@@ -68,6 +68,7 @@ TEST(SweepCsv, RoundTripGivesTheRowsOfTheRun) {
     EXPECT_EQ(t.header.trials, w.grid.trials());
     EXPECT_EQ(t.header.classes, w.classes.count());
     EXPECT_EQ(t.header.rule, rule);
+    EXPECT_EQ(t.header.policy, DampingPolicy::fixed);  // parsed once, from the definition
     const std::vector<SweepRow> mem = sweep_rows(w.grid, w.classes, w.results, 1, 1);
     ASSERT_EQ(t.rows.size(), mem.size());
     ASSERT_EQ(t.lines.size(), mem.size());
@@ -132,6 +133,13 @@ TEST(SweepCsv, ForgedOrBrokenFilesAreRefused) {
   EXPECT_THROW(read_sweep_csv(write_file("cut.csv", text.substr(0, text.find("trial,m,")))),
                InputError);
   EXPECT_THROW(read_sweep_csv(temp_path("no-such-file.csv")), InputError);
+  // A policy this build does not know is read as none (no prediction checks), not refused.
+  EXPECT_EQ(read_sweep_csv(write_file("upper.csv", replaced("policy=fixed", "policy=upper")))
+                .header.policy,
+            DampingPolicy::upper);
+  EXPECT_EQ(read_sweep_csv(write_file("nopolicy.csv", replaced("policy=fixed", "policy=sticky")))
+                .header.policy,
+            std::nullopt);
 }
 
 TEST(SweepCsv, ColumnsAndHash) {

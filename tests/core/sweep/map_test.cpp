@@ -23,6 +23,7 @@ SweepTable small_table(const SceneSpec& scene, DampingPolicy policy) {
   SweepTable t;
   t.header.scene_name = scene.name;
   t.header.definition = sweep_definition(s);
+  t.header.policy = policy;
   t.header.trials = grid.trials();
   t.rows = sweep_rows(grid, classes, run_batched(scene, policy, s.rules, reps), 1, 1);
   return t;
@@ -35,7 +36,7 @@ TEST(SweepMap, FixedPolicyMapHasCellsForEveryTrialAndTheExactLimit) {
   EXPECT_EQ(map.max_iterations, 150);
   EXPECT_NE(map.title.find("policy fixed"), std::string::npos) << map.title;
   EXPECT_EQ(map.rule, StopRule::first_entry);
-  EXPECT_EQ(map.summary, summary_lines(t.rows, "fixed", unit_stiffness_eigenvalue(scene)));
+  EXPECT_EQ(map.summary, summary_lines(t.rows, DampingPolicy::fixed, unit_stiffness_eigenvalue(scene)));
   ASSERT_GE(map.panels.size(), 2u);
   bool exact = false;
   for (const MapPanel& p : map.panels) {

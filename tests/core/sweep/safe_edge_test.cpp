@@ -78,7 +78,7 @@ TEST(SweepSafeEdge, ConfusionCountsEachPredictor) {
   }
   const std::string md = confusion_markdown(scores);
   EXPECT_NE(md.find('|'), std::string::npos);
-  EXPECT_FALSE(safe_summary_lines({safe_ok, unsafe_div}, "fixed", u, lambda).empty());
+  EXPECT_FALSE(safe_summary_lines({safe_ok, unsafe_div}, DampingPolicy::fixed, u, lambda).empty());
   EXPECT_EQ(divergence_confusion({safe_ok}, u, std::nan("")).size(), 2u);
 }
 

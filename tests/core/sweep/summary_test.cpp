@@ -30,7 +30,7 @@ TEST(SweepSummary, CountsAndPaperChecksOnAHandGrid) {
   const std::vector<SweepRow> rows = {row(0.5, Outcome::not_restored), row(0.5, Outcome::restored),
                                       row(1, Outcome::restored), row(2, Outcome::restored),
                                       row(2, Outcome::diverged)};
-  const auto lines = summary_lines(rows, "fixed", no_lambda);
+  const auto lines = summary_lines(rows, DampingPolicy::fixed, no_lambda);
   ASSERT_EQ(lines.size(), 3u);
   EXPECT_EQ(lines[0], "outcomes     3 restored, 1 not restored, 1 diverged (of 5 trials)");
   EXPECT_NE(lines[1].find("zeta < 1"), std::string::npos);
@@ -43,21 +43,22 @@ TEST(SweepSummary, PoliciesPickTheirChecks) {
   const double no_lambda = std::numeric_limits<double>::quiet_NaN();
   std::vector<SweepRow> rows = {row(1, Outcome::restored), row(1, Outcome::diverged)};
   rows[1].factor = 1.5;
-  const auto upper = check_predictions(rows, "upper", no_lambda);
+  const auto upper = check_predictions(rows, DampingPolicy::upper, no_lambda);
   ASSERT_EQ(upper.size(), 2u);
   EXPECT_EQ(upper[0].held, 1u);
   EXPECT_EQ(upper[0].of, 1u);
   EXPECT_EQ(upper[1].held, 1u);
   EXPECT_EQ(upper[1].of, 1u);
-  const auto clamp = check_predictions(rows, "clamp", no_lambda);
+  const auto clamp = check_predictions(rows, DampingPolicy::clamp, no_lambda);
   ASSERT_EQ(clamp.size(), 1u);
   EXPECT_EQ(clamp[0].held, 1u);
   EXPECT_EQ(clamp[0].of, 2u);
-  EXPECT_TRUE(check_predictions(rows, "safe", no_lambda).empty());
+  EXPECT_TRUE(check_predictions(rows, DampingPolicy::safe, no_lambda).empty());
+  EXPECT_TRUE(check_predictions(rows, std::nullopt, 3.0).empty());
   // With lambda the fixed policy adds the exact linear checks (SPEC 7).
   // Both rows are linearly stable: only the "stable => not diverged" check applies.
-  const auto fixed = check_predictions(rows, "fixed", 3.0);
-  ASSERT_EQ(fixed.size(), check_predictions(rows, "fixed", no_lambda).size() + 1);
+  const auto fixed = check_predictions(rows, DampingPolicy::fixed, 3.0);
+  ASSERT_EQ(fixed.size(), check_predictions(rows, DampingPolicy::fixed, no_lambda).size() + 1);
   EXPECT_EQ(fixed.back().claim, "linearly stable (SPEC 7) => not diverged");
   EXPECT_EQ(fixed.back().held, 1u);
   EXPECT_EQ(fixed.back().of, 2u);
@@ -74,7 +75,7 @@ TEST(SweepSummary, SettledRuleCountsOverturnedVerdicts) {
   EXPECT_EQ(o.entered, 3u);
   EXPECT_EQ(o.left, 1u);
   EXPECT_EQ(o.diverged, 1u);
-  const auto lines = summary_lines(rows, "fixed", std::nan(""));
+  const auto lines = summary_lines(rows, DampingPolicy::fixed, std::nan(""));
   ASSERT_GE(lines.size(), 2u);
   EXPECT_EQ(lines[0],
             "outcomes     1 settled, 2 not settled (1 of them entered the band, then left), 1 "
