@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "core/analysis/linear_stability.hpp"
 #include "core/error.hpp"
 #include "core/io/format.hpp"
 #include "core/sweep/summary.hpp"
@@ -111,7 +112,8 @@ MapLine vertical(const std::string& label, MapLineKind kind, double x, const Map
 /// SPEC 7 with gamma = 2 zeta sqrt(m kappa): unstable above
 /// zeta_max(r) = (2/dt - lambda_1 r dt/2) / (2 sqrt r), r = kappa/m.
 double zeta_max(double r, double lambda_unit, double dt) {
-  return (2 / dt - lambda_unit * r * dt / 2) / (2 * std::sqrt(r));
+  // spec7_gamma_max at m = 1 is gamma_max/m: 2/dt - lambda dt/2, rounded as written above.
+  return spec7_gamma_max(lambda_unit * r, 1, dt) / (2 * std::sqrt(r));
 }
 
 /// The ratio r at which zeta_max(r) = zeta: the positive root in sqrt(r) of

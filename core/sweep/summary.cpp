@@ -17,9 +17,7 @@ double unit_stiffness_eigenvalue(const SceneSpec& scene) {
 }
 
 bool linearly_unstable(double m, double kappa, double gamma, double dt, double lambda_unit) {
-  const double lambda = lambda_unit * kappa / m;
-  const double c_dt = gamma / m * dt;
-  return !(c_dt < 2) || !(lambda * dt * dt < 4 - 2 * c_dt);
+  return spec7_unstable(lambda_unit * kappa / m, gamma / m, dt);
 }
 
 std::string definition_value(const std::string& definition, const std::string& key) {
