@@ -206,8 +206,7 @@ std::function<int()> setup(CLI::App& root) {
                      ->check(finite_non_negative());
   a->integrator_opt =
       cmd->add_option("--integrator", a->integrator, "integrator whose exact limits are shown")
-          ->check(CLI::IsMember(
-              {"semi-implicit-euler", "forward-euler", "verlet", "rk4", "implicit-euler"}));
+          ->check(CLI::IsMember(integrator_names()));
   cmd->add_option("--system", a->system, "without a scene: two-node (default) or single-node")
       ->check(CLI::IsMember({"two-node", "single-node"}));
   cmd->add_option("--after", a->after,

@@ -125,7 +125,7 @@ std::function<int()> setup(CLI::App& root) {
   a->dt_opt->excludes(a->gamma_opt);
   a->integrator_opt =
       cmd->add_option("--integrator", a->integrator, "integrator (default: the scene's)")
-          ->check(CLI::IsMember({"semi-implicit-euler", "forward-euler", "verlet", "rk4", "implicit-euler"}));
+          ->check(CLI::IsMember(integrator_names()));
   a->max_iter_opt = cmd->add_option("--max-iter", a->max_iter, "iteration limit of the verification runs")
                         ->check(CLI::Range(1, 100000000));
   cmd->add_option("--trials", a->trials, "trial runs for the best damping of a non-uniform model")

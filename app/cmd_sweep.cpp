@@ -230,7 +230,7 @@ std::function<int()> setup(CLI::App& root) {
   a->factor_opt =
       cmd->add_option("--factor", a->factor, "factors of the upper bound (policy upper): a list");
   a->policy_opt = cmd->add_option("--policy", a->policy, "damping policy (SPEC 4; safe: SPEC 9)")
-                      ->check(CLI::IsMember({"fixed", "clamp", "upper", "lower", "safe"}));
+                      ->check(CLI::IsMember(policy_names()));
   a->max_iter_opt = cmd->add_option("--max-iter", a->max_iter, "iteration limit of the protocol")
                         ->check(CLI::Range(1, 100000000));
   cmd->add_option("-o,--output", a->output, "the results CSV (written atomically at the end)")

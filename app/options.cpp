@@ -63,13 +63,12 @@ void ParamFlags::add_to(CLI::App* cmd, bool with_rules) {
                   ->check(finite_non_negative());
   dt_opt = cmd->add_option("--dt", dt, "time step (s)")->check(finite_positive());
   policy_opt = cmd->add_option("--policy", policy, "damping policy (SPEC 4; safe: SPEC 9)")
-                   ->check(CLI::IsMember({"fixed", "clamp", "upper", "lower", "safe"}));
+                   ->check(CLI::IsMember(policy_names()));
   factor_opt = cmd->add_option("--factor", factor, "multiplier of the upper bound for --policy upper")
                    ->check(finite_non_negative());
   integrator_opt =
       cmd->add_option("--integrator", integrator, "time integrator (default: the paper's)")
-          ->check(CLI::IsMember(
-              {"semi-implicit-euler", "forward-euler", "verlet", "rk4", "implicit-euler"}));
+          ->check(CLI::IsMember(integrator_names()));
   if (with_rules)
     max_iter_opt = cmd->add_option("--max-iter", max_iter, "iteration limit of the protocol")
                        ->check(CLI::Range(1, 100000000));
@@ -97,9 +96,7 @@ CLI::Option* add_rule_option(CLI::App* cmd, std::string& rule, const std::string
 }
 
 StopRule stop_rule_of(const std::string& text) {
-  StopRule r = StopRule::first_entry;
-  parse_stop_rule(text, r);
-  return r;
+  return parse_stop_rule(text).value_or(StopRule::first_entry);
 }
 
 void parse_size(const std::string& text, const char* flag, int& width, int& height) {
@@ -133,14 +130,7 @@ std::string shipped_scenes_dir() {
 }
 
 SceneSpec load_scene_arg(const std::string& arg) {
-  const std::string dir = shipped_scenes_dir();
-  if (arg.find('/') == std::string::npos && ::access(arg.c_str(), F_OK) != 0 && !dir.empty()) {
-    std::string name = arg;
-    if (name.size() < 5 || name.substr(name.size() - 5) != ".toml") name += ".toml";
-    const std::string shipped = dir + "/" + name;
-    if (::access(shipped.c_str(), F_OK) == 0) return load_scene(shipped);
-  }
-  return load_scene(arg);
+  return load_scene(resolve_scene(arg, shipped_scenes_dir()));
 }
 
 }  // namespace dampbound::app

@@ -7,14 +7,14 @@ namespace dampbound::bench {
 
 /// An n x n paper plane (SPEC 5: spacing 0.57 cm, one diagonal per cell, an anchor per node):
 /// n^2 nodes, 3 n^2 - 4 n + 1 springs.
-inline Model plane(int n) { return make_grid(GridSpec{n, n, 0.57, true, true}); }
+inline ModelSpec plane(int n) { return make_grid(GridSpec{n, n, 0.57, true, true}); }
 
 /// A block of nx x ny x nz nodes, spacing h = 0.57 cm, each cube cut into the 6 tetrahedra of
 /// Kuhn's triangulation: the tetrahedra's edges are the springs from every node (a, b, c) to
 /// (a, b, c) + e for the 7 non-zero e in {0, 1}^3 (7 springs per interior node). The bottom
 /// layer (b = 0) is fixed, no anchors: a slab of tissue resting on a support.
-inline Model tet_block(int nx, int ny, int nz) {
-  Model model;
+inline ModelSpec tet_block(int nx, int ny, int nz) {
+  ModelSpec model;
   const double h = 0.57;
   auto index = [&](int a, int b, int c) { return (a * ny + b) * nz + c; };
   for (int a = 0; a < nx; ++a)

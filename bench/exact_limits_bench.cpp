@@ -61,9 +61,9 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "exact_limits_bench: N must be >= 2\n");
     return 2;
   }
-  Model model = kind == "plane" ? bench::plane(n) : bench::tet_block(n, n, n);
-  Params p;  // m = kappa = 0.001, gamma = 0.002, dt = 0.05: the paper's Fig. 1 setting
-  set_params(model, p);
+  const Params p;  // m = kappa = 0.001, gamma = 0.002, dt = 0.05: the paper's Fig. 1 setting
+  const Model model =
+      compile_model(kind == "plane" ? bench::plane(n) : bench::tet_block(n, n, n), p);
 
   auto t = Clock::now();
   const SparseMatrix A = mass_weighted(model, tangent_stiffness(model, model.rest));

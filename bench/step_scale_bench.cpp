@@ -30,10 +30,10 @@ size_t model_bytes(const Model& m) {
          bytes(m.anchor_kappa) + bytes(m.node_kappa) + bytes(m.lower_bound);
 }
 
-void measure(const char* kind, Model model) {
+void measure(const char* kind, ModelSpec spec) {
   Params p;
   p.policy = DampingPolicy::clamp;
-  set_params(model, p);
+  const Model model = compile_model(std::move(spec), p);
   State s = rest_state(model);
   unsigned seed = 1;
   for (size_t i = 0; i < s.x.size(); ++i) {
@@ -44,12 +44,12 @@ void measure(const char* kind, Model model) {
     }
   }
   StepWorkspace ws;
-  step(model, p, s, ws, 0);  // sizes the workspace
+  step(model, p, s, ws);  // sizes the workspace
   int steps = 0;
   const double t0 = cpu_now();
   double seconds = 0;
   while (seconds < 0.5) {
-    step(model, p, s, ws, 0);
+    step(model, p, s, ws);
     ++steps;
     seconds = cpu_now() - t0;
   }
@@ -60,8 +60,9 @@ void measure(const char* kind, Model model) {
               "  %6.1f bytes/node + %zu bytes/spring = %7.1f MB\n",
               kind, model.node_count(), model.spring_count(), steps,
               seconds * 1e9 / (steps * nodes), seconds * 1e9 / (steps * double(model.spring_count())),
-              static_cast<double>(per_node) / nodes, sizeof(Spring),
-              static_cast<double>(per_node + bytes(model.springs)) / 1e6);
+              static_cast<double>(per_node) / nodes, sizeof(Spring) + sizeof(double),
+              static_cast<double>(per_node + bytes(model.springs) + bytes(model.spring_kappa)) /
+                  1e6);
 }
 
 }  // namespace

@@ -151,12 +151,12 @@ void BM_PlainStep(benchmark::State& state) {
   params.m = t.m;
   params.kappa = t.kappa;
   params.gamma = t.gamma;
-  const Model model = make_model(scene, params);
+  const Model model = compile_model(scene.model, params);
   State s = initial_state(scene);
   StepWorkspace ws;
   long long steps = 0;
   for (auto _ : state) {
-    benchmark::DoNotOptimize(step(model, params, s, ws, scene.watched));
+    benchmark::DoNotOptimize(step(model, params, s, ws));
     ++steps;
   }
   const double per_step = model.spring_count() + model.anchor_count();

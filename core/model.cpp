@@ -5,69 +5,77 @@
 
 namespace dampbound {
 
-int Model::anchor_count() const {
+int ModelSpec::anchor_count() const {
   return static_cast<int>(
       std::count_if(anchor_scale.begin(), anchor_scale.end(), [](double s) { return s > 0; }));
 }
 
-int add_node(Model& model, const Vec3& position) {
-  model.rest.push_back(position);
-  model.mass_scale.push_back(1);
-  model.gamma_scale.push_back(1);
-  model.anchor_scale.push_back(0);
-  model.external_force.push_back(Vec3::Zero());
-  model.fixed.push_back(0);
-  return model.node_count() - 1;
+int add_node(ModelSpec& spec, const Vec3& position) {
+  spec.rest.push_back(position);
+  spec.mass_scale.push_back(1);
+  spec.gamma_scale.push_back(1);
+  spec.anchor_scale.push_back(0);
+  spec.external_force.push_back(Vec3::Zero());
+  spec.fixed.push_back(0);
+  return spec.node_count() - 1;
 }
 
-void add_spring(Model& model, int i, int j, double kappa_scale) {
+void add_spring(ModelSpec& spec, int i, int j, double kappa_scale) {
   Spring s;
   s.i = i;
   s.j = j;
-  s.rest_length = (model.rest[static_cast<size_t>(j)] - model.rest[static_cast<size_t>(i)]).norm();
+  s.rest_length = (spec.rest[static_cast<size_t>(j)] - spec.rest[static_cast<size_t>(i)]).norm();
   s.kappa_scale = kappa_scale;
-  model.springs.push_back(s);
+  spec.springs.push_back(s);
 }
 
-void set_params(Model& model, const Params& params) {
+Model compile_model(ModelSpec spec, const Params& params) {
+  Model model;
+  static_cast<ModelSpec&>(model) = std::move(spec);
   const size_t n = model.rest.size();
   model.mass.resize(n);
   model.gamma.resize(n);
   model.anchor_kappa.resize(n);
   model.node_kappa.assign(n, 0.0);
   model.lower_bound.resize(n);
+  model.spring_kappa.resize(model.springs.size());
   for (size_t i = 0; i < n; ++i) {
     model.mass[i] = params.m * model.mass_scale[i];
     model.gamma[i] = params.gamma * model.gamma_scale[i];
     model.anchor_kappa[i] = params.kappa * model.anchor_scale[i];
     model.node_kappa[i] = model.anchor_kappa[i];
   }
-  for (Spring& s : model.springs) {
-    s.kappa = params.kappa * s.kappa_scale;
+  for (size_t k = 0; k < model.springs.size(); ++k) {
+    const Spring& s = model.springs[k];
+    const double kappa = params.kappa * s.kappa_scale;
+    model.spring_kappa[k] = kappa;
     auto& ki = model.node_kappa[static_cast<size_t>(s.i)];
     auto& kj = model.node_kappa[static_cast<size_t>(s.j)];
-    ki = std::max(ki, s.kappa);
-    kj = std::max(kj, s.kappa);
+    ki = std::max(ki, kappa);
+    kj = std::max(kj, kappa);
   }
   // Paper eq. 5 with kappa_i = the largest stiffness incident to i (SPEC 3). A node with no
   // spring and no anchor has kappa_i = 0 and so a lower bound of 0.
   for (size_t i = 0; i < n; ++i)
     model.lower_bound[i] = 2.0 * std::sqrt(model.mass[i] * model.node_kappa[i]);
+  return model;
 }
 
-void remove_springs(Model& model, std::vector<int> indices, const Params& params) {
-  std::sort(indices.begin(), indices.end());
-  indices.erase(std::unique(indices.begin(), indices.end()), indices.end());
-  for (auto it = indices.rbegin(); it != indices.rend(); ++it)
-    if (*it >= 0 && *it < model.spring_count())
-      model.springs.erase(model.springs.begin() + *it);
-  set_params(model, params);
+ModelSpec without_springs(ModelSpec spec, const std::vector<int>& indices) {
+  std::vector<std::uint8_t> cut(spec.springs.size(), 0);
+  for (int k : indices)
+    if (k >= 0 && k < spec.spring_count()) cut[static_cast<size_t>(k)] = 1;
+  size_t kept = 0;
+  for (size_t k = 0; k < spec.springs.size(); ++k)
+    if (!cut[k]) spec.springs[kept++] = spec.springs[k];
+  spec.springs.resize(kept);
+  return spec;
 }
 
-State rest_state(const Model& model) {
+State rest_state(const ModelSpec& spec) {
   State s;
-  s.x = model.rest;
-  s.v.assign(model.rest.size(), Vec3::Zero());
+  s.x = spec.rest;
+  s.v.assign(spec.rest.size(), Vec3::Zero());
   return s;
 }
 

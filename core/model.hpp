@@ -1,7 +1,9 @@
 #pragma once
-// The mass-spring model of paper eq. 1 (SPEC 1): nodes, springs, zero-rest-length anchors.
-// Topology and per-element scales are fixed by the scene; set_params() turns the user's
-// uniform m, kappa, gamma into the per-node and per-spring values the step uses.
+// The mass-spring model of paper eq. 1 (SPEC 1) in two stages, as MuJoCo's mjSpec and mjModel:
+// a ModelSpec is plain topology data (rest positions, per-element scales, springs) read from a
+// file or built in code; compile_model() joins it with the user's uniform m, kappa, gamma into
+// a Model, complete and never changed afterwards. Every function downstream takes a
+// const Model&; a parameter change or a cut compiles a new one.
 #include <Eigen/Core>
 #include <cstdint>
 #include <vector>
@@ -18,12 +20,11 @@ struct Spring {
   int j = 0;
   double rest_length = 0;  ///< l0_ij >= 0 (cm)
   double kappa_scale = 1;  ///< > 0
-  double kappa = 0;        ///< kappa_ij, filled by set_params (mass unit / s^2)
 };
 
-/// Topology, rest state and derived per-node values. Plain data: no GL, no I/O.
-struct Model {
-  // --- fixed by the scene ---
+/// Topology, rest state and per-element scales: what a scene or mesh file describes. Plain
+/// data, edited freely (add_node, add_spring, without_springs); no parameter is in it.
+struct ModelSpec {
   std::vector<Vec3> rest;            ///< X_i, rest positions (cm)
   std::vector<double> mass_scale;    ///< m_i = m * mass_scale_i
   std::vector<double> gamma_scale;   ///< user gamma_i = gamma * gamma_scale_i
@@ -32,16 +33,31 @@ struct Model {
   std::vector<std::uint8_t> fixed;   ///< 1 = the node never moves
   std::vector<Spring> springs;
 
-  // --- derived by set_params ---
-  std::vector<double> mass;          ///< m_i
-  std::vector<double> gamma;         ///< the user's gamma_i (before the policy)
-  std::vector<double> anchor_kappa;  ///< kappa_a,i
-  std::vector<double> node_kappa;    ///< kappa_i of eq. 5: max stiffness incident to i (SPEC 3)
-  std::vector<double> lower_bound;   ///< gamma_lo_i = 2 sqrt(m_i kappa_i) (eq. 5)
-
   int node_count() const { return static_cast<int>(rest.size()); }
   int spring_count() const { return static_cast<int>(springs.size()); }
   int anchor_count() const;
+};
+
+class Model;
+/// The one way to make a Model: every per-node and per-spring value of SPEC 1 and 3 from the
+/// spec's scales and the uniform params.m, params.kappa, params.gamma.
+Model compile_model(ModelSpec spec, const Params& params);
+
+/// A compiled model: its spec plus the per-node and per-spring values the step reads. Only
+/// compile_model() makes one, so no Model is ever without them; pass it as const Model&.
+/// compile_model(model, params) recompiles its topology with other parameters.
+class Model : public ModelSpec {
+ public:
+  std::vector<double> mass;          ///< m_i (mass unit)
+  std::vector<double> gamma;         ///< the user's gamma_i before the policy (mass unit / s)
+  std::vector<double> anchor_kappa;  ///< kappa_a,i (mass unit / s^2)
+  std::vector<double> spring_kappa;  ///< kappa_ij of spring k (mass unit / s^2)
+  std::vector<double> node_kappa;    ///< kappa_i of eq. 5: max stiffness incident to i (SPEC 3)
+  std::vector<double> lower_bound;   ///< gamma_lo_i = 2 sqrt(m_i kappa_i) (eq. 5; mass unit / s)
+
+ private:
+  Model() = default;
+  friend Model compile_model(ModelSpec spec, const Params& params);
 };
 
 /// Positions and velocities at time t; iteration counts completed steps.
@@ -53,25 +69,21 @@ struct State {
 };
 
 /// Appends a free node at `position` with unit scales and no anchor; returns its index.
-int add_node(Model& model, const Vec3& position);
+int add_node(ModelSpec& spec, const Vec3& position);
 
 /// Appends a spring whose rest length is the current distance of its nodes' rest positions.
-void add_spring(Model& model, int i, int j, double kappa_scale = 1);
+void add_spring(ModelSpec& spec, int i, int j, double kappa_scale = 1);
 
-/// Fills mass, gamma, spring and anchor stiffness, node_kappa and lower_bound from `params`.
-/// Call after any change of m, kappa or gamma, or of the topology.
-void set_params(Model& model, const Params& params);
-
-/// Removes the springs with the given indices (any order, duplicates allowed) and refreshes
-/// node_kappa and lower_bound: the topology change of a cut (paper sec. 5).
-void remove_springs(Model& model, std::vector<int> indices, const Params& params);
+/// The spec without the springs of the given indices (any order, duplicates and out-of-range
+/// indices allowed): the topology change of a cut (paper sec. 5).
+ModelSpec without_springs(ModelSpec spec, const std::vector<int>& indices);
 
 /// The state at rest: x = X, v = 0, t = 0.
-State rest_state(const Model& model);
+State rest_state(const ModelSpec& spec);
 
 /// |x_i - X_i| (cm).
-inline double displacement(const Model& model, const State& state, int i) {
-  return (state.x[static_cast<size_t>(i)] - model.rest[static_cast<size_t>(i)]).norm();
+inline double displacement(const ModelSpec& spec, const State& state, int i) {
+  return (state.x[static_cast<size_t>(i)] - spec.rest[static_cast<size_t>(i)]).norm();
 }
 
 }  // namespace dampbound

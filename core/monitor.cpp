@@ -15,7 +15,7 @@ namespace dampbound {
 
 namespace {
 
-/// Unit parameters: with m = kappa = gamma = 1, set_params() turns the scales (the user's
+/// Unit parameters: with m = kappa = gamma = 1, compile_model() turns the scales (the user's
 /// m_i, kappa_ij, kappa_a,i, gamma_i) into the values themselves, exactly.
 Params unit_params(double dt) {
   Params p;
@@ -35,14 +35,15 @@ void require(bool ok, const std::string& what) {
 Monitor::Monitor(NodeScalars mass, SpringPairs springs, NodeScalars stiffness,
                  NodeScalars rest_length) {
   const Eigen::Index n = mass.size();
+  ModelSpec spec;
   require(stiffness.size() == springs.rows() && rest_length.size() == springs.rows(),
           "springs, stiffness and rest_length must have the same length");
   for (Eigen::Index i = 0; i < n; ++i) {
     require(std::isfinite(mass[i]) && mass[i] > 0,
             "mass[" + std::to_string(i) + "] must be finite and > 0");
-    add_node(model_, Vec3::Zero());
-    model_.mass_scale.back() = mass[i];
-    model_.gamma_scale.back() = 0;
+    add_node(spec, Vec3::Zero());
+    spec.mass_scale.back() = mass[i];
+    spec.gamma_scale.back() = 0;
   }
   for (Eigen::Index s = 0; s < springs.rows(); ++s) {
     const int i = springs(s, 0), j = springs(s, 1);
@@ -57,9 +58,9 @@ Monitor::Monitor(NodeScalars mass, SpringPairs springs, NodeScalars stiffness,
     sp.j = j;
     sp.rest_length = rest_length[s];
     sp.kappa_scale = stiffness[s];
-    model_.springs.push_back(sp);
+    spec.springs.push_back(sp);
   }
-  set_params(model_, unit_params(1.0));
+  model_ = compile_model(std::move(spec), unit_params(1.0));
 }
 
 void Monitor::check_size(Eigen::Index n, const char* what) const {
@@ -70,18 +71,21 @@ void Monitor::check_size(Eigen::Index n, const char* what) const {
 void Monitor::set_anchors(NodeScalars anchor_stiffness, NodeVectors rest) {
   check_size(anchor_stiffness.size(), "anchor_stiffness");
   check_size(rest.rows(), "rest");
+  ModelSpec spec = model_;
   for (int i = 0; i < node_count(); ++i) {
     require(std::isfinite(anchor_stiffness[i]) && anchor_stiffness[i] >= 0,
             "anchor_stiffness[" + std::to_string(i) + "] must be >= 0");
-    model_.anchor_scale[static_cast<size_t>(i)] = anchor_stiffness[i];
-    model_.rest[static_cast<size_t>(i)] = rest.row(i).transpose();
+    spec.anchor_scale[static_cast<size_t>(i)] = anchor_stiffness[i];
+    spec.rest[static_cast<size_t>(i)] = rest.row(i).transpose();
   }
-  set_params(model_, unit_params(1.0));
+  model_ = compile_model(std::move(spec), unit_params(1.0));
 }
 
 void Monitor::set_fixed(const std::uint8_t* fixed, Eigen::Index n) {
   check_size(n, "fixed");
-  for (Eigen::Index i = 0; i < n; ++i) model_.fixed[static_cast<size_t>(i)] = fixed[i] != 0;
+  ModelSpec spec = model_;
+  for (Eigen::Index i = 0; i < n; ++i) spec.fixed[static_cast<size_t>(i)] = fixed[i] != 0;
+  model_ = compile_model(std::move(spec), unit_params(1.0));
 }
 
 void Monitor::lower_bounds(NodeScalarsOut out) const {
@@ -188,14 +192,14 @@ MonitorLimits Monitor::exact_limits(NodeVectors x, NodeScalars gamma, double dt)
   check_size(x.rows(), "x");
   check_size(gamma.size(), "gamma");
   require(std::isfinite(dt) && dt > 0, "dt must be finite and > 0");
-  Model model = model_;
+  ModelSpec spec = model_;
   for (int i = 0; i < node_count(); ++i) {
     require(std::isfinite(gamma[i]) && gamma[i] >= 0,
             "gamma[" + std::to_string(i) + "] must be >= 0");
-    model.gamma_scale[static_cast<size_t>(i)] = gamma[i];
+    spec.gamma_scale[static_cast<size_t>(i)] = gamma[i];
   }
   const Params params = unit_params(dt);
-  set_params(model, params);
+  const Model model = compile_model(std::move(spec), params);
   const std::vector<Vec3> xs = positions(x);
   ExactOptions options;
   options.with_radius = false;

@@ -134,7 +134,7 @@ class Monitor {
                            NodeScalarsOut* gamma_eff, NodeScalarsOut* upper,
                            NodeStatus* status) const;
   std::vector<Vec3> positions(NodeVectors x) const;
-  Model model_;
+  Model model_ = compile_model(ModelSpec{}, Params{});  ///< compiled with unit m, kappa, gamma
 };
 
 }  // namespace dampbound

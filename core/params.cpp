@@ -27,27 +27,37 @@ const char* to_string(Integrator i) {
 }
 
 std::optional<DampingPolicy> parse_policy(const std::string& s) {
-  for (auto p : {DampingPolicy::fixed, DampingPolicy::clamp, DampingPolicy::upper,
-                 DampingPolicy::lower, DampingPolicy::safe})
+  for (auto p : kPolicies)
     if (s == to_string(p)) return p;
   return std::nullopt;
 }
 
 std::optional<Integrator> parse_integrator(const std::string& s) {
-  for (auto i : {Integrator::semi_implicit_euler, Integrator::forward_euler, Integrator::verlet,
-                 Integrator::rk4, Integrator::implicit_euler})
+  for (auto i : kIntegrators)
     if (s == to_string(i)) return i;
   return std::nullopt;
 }
 
-std::string validate(const Params& p) {
+std::vector<std::string> policy_names() {
+  std::vector<std::string> out;
+  for (auto p : kPolicies) out.emplace_back(to_string(p));
+  return out;
+}
+
+std::vector<std::string> integrator_names() {
+  std::vector<std::string> out;
+  for (auto i : kIntegrators) out.emplace_back(to_string(i));
+  return out;
+}
+
+std::optional<std::string> validate(const Params& p) {
   auto positive = [](double x) { return std::isfinite(x) && x > 0; };
   if (!positive(p.m)) return "m must be a finite number > 0";
   if (!positive(p.kappa)) return "kappa must be a finite number > 0";
   if (!std::isfinite(p.gamma) || p.gamma < 0) return "gamma must be a finite number >= 0";
   if (!positive(p.dt)) return "dt must be a finite number > 0";
   if (!std::isfinite(p.factor) || p.factor < 0) return "factor must be a finite number >= 0";
-  return {};
+  return std::nullopt;
 }
 
 }  // namespace dampbound

@@ -3,6 +3,7 @@
 // and how the effective damping is chosen from gamma each step (SPEC 4).
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace dampbound {
 
@@ -39,14 +40,25 @@ struct Params {
 /// The defaults: the paper's Fig. 1 setting at gamma = 2*sqrt(m*kappa).
 inline Params default_params() { return Params{}; }
 
+/// Every policy and every integrator, in the order menus and flags list them.
+inline constexpr DampingPolicy kPolicies[] = {DampingPolicy::fixed, DampingPolicy::clamp,
+                                              DampingPolicy::upper, DampingPolicy::lower,
+                                              DampingPolicy::safe};
+inline constexpr Integrator kIntegrators[] = {Integrator::semi_implicit_euler,
+                                              Integrator::forward_euler, Integrator::verlet,
+                                              Integrator::rk4, Integrator::implicit_euler};
+
 const char* to_string(DampingPolicy p);
 const char* to_string(Integrator i);
+/// The names of kPolicies and kIntegrators (what flags and menus accept).
+std::vector<std::string> policy_names();
+std::vector<std::string> integrator_names();
 /// Parses "fixed" | "clamp" | "upper" | "lower" | "safe"; nullopt when unknown.
 std::optional<DampingPolicy> parse_policy(const std::string& s);
 /// Parses "semi-implicit-euler" | "forward-euler" | "verlet" | "rk4" | "implicit-euler".
 std::optional<Integrator> parse_integrator(const std::string& s);
 
-/// Empty when the parameters are usable, else a message naming the offending parameter.
-std::string validate(const Params& p);
+/// What makes the parameters unusable, naming the parameter; nullopt when they are usable.
+std::optional<std::string> validate(const Params& p);
 
 }  // namespace dampbound

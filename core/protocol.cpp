@@ -23,13 +23,10 @@ const char* to_string(StopRule r) {
   return r == StopRule::settled ? "settled" : "first-entry";
 }
 
-bool parse_stop_rule(const std::string& text, StopRule& rule) {
+std::optional<StopRule> parse_stop_rule(const std::string& text) {
   for (StopRule r : {StopRule::first_entry, StopRule::settled})
-    if (text == to_string(r)) {
-      rule = r;
-      return true;
-    }
-  return false;
+    if (text == to_string(r)) return r;
+  return std::nullopt;
 }
 
 Outcome judge(const StopRules& rules, const StepStats& stats) {
@@ -79,18 +76,6 @@ void accumulate(RunResult& r, const StepStats& st, const StopRules& rules) {
     r.below_since = band.below_since;
     if (r.outcome == Outcome::settled) r.settled_at = band.below_since;
   }
-}
-
-RunResult run_protocol(const Model& model, const Params& params, State& state,
-                       const StopRules& rules, int watched, const StepObserver& on_step) {
-  StepWorkspace ws;
-  RunResult r;
-  while (r.outcome == Outcome::running) {
-    const StepStats st = step(model, params, state, ws, watched);
-    accumulate(r, st, rules);
-    if (on_step) on_step(st);
-  }
-  return r;
 }
 
 }  // namespace dampbound

@@ -4,6 +4,7 @@
 // the run stayed below the restore threshold.
 #include <array>
 #include <functional>
+#include <optional>
 #include <string>
 
 #include "core/step.hpp"
@@ -17,8 +18,8 @@ enum class StopRule {
 };
 
 const char* to_string(StopRule r);  ///< "first-entry" or "settled"
-/// Parses "first-entry" or "settled"; false for anything else.
-bool parse_stop_rule(const std::string& text, StopRule& rule);
+/// Parses "first-entry" or "settled"; nullopt for anything else.
+std::optional<StopRule> parse_stop_rule(const std::string& text);
 
 /// When a run stops (SPEC 5, 8). Thresholds are relative to the perturbation's magnitude.
 struct StopRules {
@@ -58,8 +59,8 @@ struct BandHistory {
 /// coordinate is) in `band` and returns the verdict under rules.rule: diverged whenever the
 /// divergence test of SPEC 5 fires; first-entry: restored at the first entry, not_restored at
 /// the limit; settled: at the limit settled when below there (since band.below_since), else
-/// not_settled. Returns running otherwise. Every verdict path (Session, run_protocol, the
-/// batched kernel) calls this one function.
+/// not_settled. Returns running otherwise. Every verdict path (Session, the batched kernel)
+/// calls this one function.
 Outcome judge_band(const StopRules& rules, BandHistory& band, int iteration,
                    double max_displacement, bool finite);
 
@@ -85,10 +86,7 @@ struct RunResult {
 /// Adds one step's counts to `result` and judges it (no-op on the verdict once latched).
 void accumulate(RunResult& result, const StepStats& stats, const StopRules& rules);
 
-using StepObserver = std::function<void(const StepStats&)>;
-
-/// Steps `state` until judge() says anything but running. `on_step` sees every step.
-RunResult run_protocol(const Model& model, const Params& params, State& state,
-                       const StopRules& rules, int watched, const StepObserver& on_step = {});
+/// Sees every step of a run (Session::run_to_end).
+using StepObserver = std::function<void(const StepSample&)>;
 
 }  // namespace dampbound

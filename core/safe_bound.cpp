@@ -9,10 +9,11 @@
 
 namespace dampbound {
 
-int safe_row_sums(const std::vector<Vec3>& x, const std::vector<double>& mass,
-                  const std::vector<Spring>& springs, const std::vector<double>& anchor_kappa,
-                  const std::vector<std::uint8_t>& fixed, std::vector<double>& row_sum,
+int safe_row_sums(const Model& model, const std::vector<Vec3>& x, std::vector<double>& row_sum,
                   std::vector<double>* scratch) {
+  const std::vector<double>& mass = model.mass;
+  const std::vector<double>& anchor_kappa = model.anchor_kappa;
+  const std::vector<std::uint8_t>& fixed = model.fixed;
   const size_t n = x.size();
   std::vector<double> local;
   std::vector<double>& acc = scratch ? *scratch : local;
@@ -28,7 +29,8 @@ int safe_row_sums(const std::vector<Vec3>& x, const std::vector<double>& mass,
     return (std::abs(b[sym3(r, 0)]) + std::abs(b[sym3(r, 1)])) + std::abs(b[sym3(r, 2)]);
   };
   int compressed = 0;
-  for (const Spring& s : springs) {
+  for (size_t k = 0; k < model.springs.size(); ++k) {
+    const Spring& s = model.springs[k];
     const size_t i = static_cast<size_t>(s.i), j = static_cast<size_t>(s.j);
     const Vec3 delta = x[j] - x[i];
     const double l = delta.norm();
@@ -38,7 +40,7 @@ int safe_row_sums(const std::vector<Vec3>& x, const std::vector<double>& mass,
     const double tension = 1.0 - ratio;
     compressed += tension < 0;
     double b[6];
-    spring_tangent_block(s.kappa, tension, ratio, d, b);
+    spring_tangent_block(model.spring_kappa[k], tension, ratio, d, b);
     // K_ii += B, K_jj += B, K_ij = K_ji = -B; A_rs = K_rs / sqrt(m_r m_s).
     const double w = 1.0 / std::sqrt(mass[i] * mass[j]);
     for (size_t node : {i, j}) {
@@ -59,12 +61,6 @@ int safe_row_sums(const std::vector<Vec3>& x, const std::vector<double>& mass,
     row_sum[i] = std::max(std::max(r0, r1), r2);
   }
   return compressed;
-}
-
-int safe_row_sums(const Model& model, const std::vector<Vec3>& x, std::vector<double>& row_sum,
-                  std::vector<double>* scratch) {
-  return safe_row_sums(x, model.mass, model.springs, model.anchor_kappa, model.fixed, row_sum,
-                       scratch);
 }
 
 double safe_dt(double m, double gamma, double row_sum) {

@@ -12,19 +12,11 @@ namespace dampbound {
 /// Gershgorin row sums of A = M^-1/2 K M^-1/2 (K the tangent stiffness at positions x, SPEC 7)
 /// over the free nodes: R_i = max over node i's three rows r of sum_s |A_rs| (all columns, the
 /// diagonal too; columns of fixed nodes drop out), 1/s^2. R_i = 0 for a fixed node.
-/// Inputs are plain arrays, one entry per node (x: cm, mass > 0, anchor_kappa: the anchor's
-/// stiffness, 0 = none, fixed: 1 = never moves) and the springs with `kappa` filled in.
-/// A spring of zero length has no direction and is skipped (SPEC 1). Springs are taken in
+/// Reads the model's m_i, anchor and spring stiffnesses and fixed flags; x in cm. A spring of zero length has no direction and is skipped (SPEC 1). Springs are taken in
 /// list order (what the batched kernel mirrors bit for bit). O(springs + nodes).
 /// `scratch` (optional) keeps 9 doubles per node between calls to avoid allocation.
 /// Returns the number of compressed springs (0 < l < l0): with one, K may be indefinite and
 /// the bound guarantees nothing (SPEC 9).
-int safe_row_sums(const std::vector<Vec3>& x, const std::vector<double>& mass,
-                  const std::vector<Spring>& springs, const std::vector<double>& anchor_kappa,
-                  const std::vector<std::uint8_t>& fixed, std::vector<double>& row_sum,
-                  std::vector<double>* scratch = nullptr);
-
-/// The same over a model (set_params done) at positions x.
 int safe_row_sums(const Model& model, const std::vector<Vec3>& x, std::vector<double>& row_sum,
                   std::vector<double>* scratch = nullptr);
 

@@ -4,8 +4,8 @@
 
 namespace dampbound {
 
-Model make_grid(const GridSpec& g) {
-  Model m;
+ModelSpec make_grid(const GridSpec& g) {
+  ModelSpec m;
   auto index = [&](int a, int b) { return a * g.nz + b; };
   for (int a = 0; a < g.nx; ++a)
     for (int b = 0; b < g.nz; ++b) {
@@ -40,12 +40,6 @@ SceneSpec paper_plane_scene(int n) {
   return s;
 }
 
-Model make_model(const SceneSpec& scene, const Params& params) {
-  Model m = scene.model;
-  set_params(m, params);
-  return m;
-}
-
 State initial_state(const SceneSpec& scene) {
   State s = rest_state(scene.model);
   for (const Perturbation& p : scene.perturbations) {
@@ -69,7 +63,7 @@ bool segments_cross(const double p[2], const double q[2], const double r[2], con
 }
 }  // namespace
 
-std::vector<int> springs_crossing(const Model& model, const std::vector<Vec3>& x,
+std::vector<int> springs_crossing(const ModelSpec& model, const std::vector<Vec3>& x,
                                   const double from[2], const double to[2]) {
   std::vector<int> out;
   for (int k = 0; k < model.spring_count(); ++k) {

@@ -64,7 +64,7 @@ struct SceneSpec {
   std::string name;
   std::string description;
   std::string path;               ///< file it was loaded from ("" when built in code)
-  Model model;                    ///< topology and scales; set_params not yet applied
+  ModelSpec model;                ///< topology and scales; compile_model() adds parameters
   std::optional<GridSpec> grid;   ///< set when the geometry is a generated grid
   Params params = default_params();
   StopRules rules = default_stop_rules();
@@ -77,7 +77,7 @@ struct SceneSpec {
 
 /// Builds the grid's nodes, springs (a,b)-(a+1,b), (a,b)-(a,b+1), one diagonal
 /// (a,b)-(a+1,b+1) per cell, rest length = initial length, and anchors (SPEC 5).
-Model make_grid(const GridSpec& grid);
+ModelSpec make_grid(const GridSpec& grid);
 
 /// SPEC 5's scene built in code: an n x n grid (n = 36 is the paper's mesh; the file
 /// scenes/paper-plane.toml describes the same scene, which a test checks), node (n/2, n/2)
@@ -85,14 +85,11 @@ Model make_grid(const GridSpec& grid);
 /// on it when scenes/ is missing; tests build small versions of it.
 SceneSpec paper_plane_scene(int n = 36);
 
-/// Model with set_params(params) applied.
-Model make_model(const SceneSpec& scene, const Params& params);
-
 /// The rest state with the scene's perturbations applied.
 State initial_state(const SceneSpec& scene);
 
 /// Indices of springs whose xz-projection at positions x crosses the cut's segment.
-std::vector<int> springs_crossing(const Model& model, const std::vector<Vec3>& x,
+std::vector<int> springs_crossing(const ModelSpec& model, const std::vector<Vec3>& x,
                                   const double from[2], const double to[2]);
 
 }  // namespace dampbound

@@ -3,40 +3,47 @@
 #include <stdexcept>
 #include <utility>
 
+#include "core/error.hpp"
+
 namespace dampbound {
 
 Session::Session(SceneSpec scene, const Params& params, const StopRules& rules)
-    : scene_(std::move(scene)), params_(params), rules_(rules) {
+    : scene_(std::move(scene)),
+      params_(params),
+      rules_(rules),
+      model_(compile_model(scene_.model, params_)) {
   watched_ = scene_.watched;
   reset();
 }
 
 Session::Session(SceneSpec scene) : Session(scene, scene.params, scene.rules) {}
 
-const StepStats& Session::step_once() {
+const StepSample& Session::step_once() {
   for (const CutEvent& c : scene_.cuts)
     if (c.iteration == state_.iteration) cut(springs_crossing(model_, state_.x, c.from, c.to));
+  StepSample sample;
+  static_cast<StepStats&>(sample) = step(model_, params_, state_, ws_);
+  sample.watched = sample_node(model_, state_, ws_, watched_);
   if (keep_trace_ || trace_.empty())
-    trace_.push_back(step(model_, params_, state_, ws_, watched_));
+    trace_.push_back(sample);
   else
-    trace_.back() = step(model_, params_, state_, ws_, watched_);
-  accumulate(result_, trace_.back(), rules_);
+    trace_.back() = sample;
+  accumulate(result_, sample, rules_);
   return trace_.back();
 }
 
 const RunResult& Session::run_to_end(const StepObserver& on_step) {
   while (running()) {
-    const StepStats& st = step_once();
+    const StepSample& st = step_once();
     if (on_step) on_step(st);
   }
   return result_;
 }
 
 void Session::set_params(const Params& params) {
-  const std::string err = validate(params);
-  if (!err.empty()) throw std::invalid_argument(err);
+  if (const auto why = validate(params)) throw InputError(*why);
   params_ = params;
-  dampbound::set_params(model_, params_);
+  model_ = compile_model(model_, params_);
 }
 
 void Session::set_watched(int node) {
@@ -45,7 +52,7 @@ void Session::set_watched(int node) {
 }
 
 void Session::reset() {
-  model_ = make_model(scene_, params_);
+  model_ = compile_model(scene_.model, params_);
   state_ = initial_state(scene_);
   trace_.clear();
   result_ = RunResult{};
@@ -66,7 +73,7 @@ void Session::displace(int node, const Vec3& offset) {
 
 SceneSpec Session::current_scene() const {
   SceneSpec s = scene_;
-  s.model = model_;  // set_params is applied again by make_model, which is harmless
+  s.model = model_;  // the topology as cut so far, without this run's parameters
   s.cuts.clear();
   // step_once applies a cut due at iteration k before the step that leaves iteration k.
   for (const CutEvent& c : scene_.cuts)
@@ -76,7 +83,7 @@ SceneSpec Session::current_scene() const {
 
 int Session::cut(const std::vector<int>& springs) {
   const int before = model_.spring_count();
-  remove_springs(model_, springs, params_);
+  model_ = compile_model(without_springs(model_, springs), params_);
   const int removed = before - model_.spring_count();
   springs_cut_ += removed;
   return removed;

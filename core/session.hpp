@@ -16,14 +16,16 @@ class Session {
   /// Starts with the scene's own parameters and stop rules.
   explicit Session(SceneSpec scene);
 
-  /// One step: applies the scene's cuts due at this iteration, calls step(), records the
-  /// stats in the trace and updates the result. The first non-running verdict is latched.
-  const StepStats& step_once();
+  /// One step: applies the scene's cuts due at this iteration, calls step(), records its
+  /// stats and the watched node's values in the trace and updates the result. The first
+  /// non-running verdict is latched.
+  const StepSample& step_once();
 
   /// Steps until the verdict is no longer running; returns the result.
   const RunResult& run_to_end(const StepObserver& on_step = {});
 
-  /// New parameters take effect at the next step; the state and any cuts are kept.
+  /// New parameters take effect at the next step (the model is compiled again); the state
+  /// and any cuts are kept. Throws InputError naming the parameter when validate() refuses.
   void set_params(const Params& params);
   void set_rules(const StopRules& rules) { rules_ = rules; }
   /// Watch another node (an index); the trace keeps what was watched before.
@@ -50,7 +52,7 @@ class Session {
   int watched() const { return watched_; }
   /// Every step's stats since the last reset, or only the last step's after
   /// set_keep_trace(false).
-  const std::vector<StepStats>& trace() const { return trace_; }
+  const std::vector<StepSample>& trace() const { return trace_; }
   /// Whether trace() keeps every step (about 100 bytes each: 10 GB for 1e8 iterations) or
   /// only the last; a run that writes no trace keeps only the last.
   void set_keep_trace(bool keep) { keep_trace_ = keep; }
@@ -67,7 +69,7 @@ class Session {
   State state_;
   StepWorkspace ws_;
   int watched_ = 0;
-  std::vector<StepStats> trace_;
+  std::vector<StepSample> trace_;
   RunResult result_;
   int springs_cut_ = 0;
   bool keep_trace_ = true;

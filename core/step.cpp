@@ -9,8 +9,7 @@
 
 namespace dampbound {
 
-StepStats step(const Model& model, const Params& params, State& state, StepWorkspace& ws,
-               int watched) {
+StepStats step(const Model& model, const Params& params, State& state, StepWorkspace& ws) {
   const size_t n = model.rest.size();
   StepStats st;
   st.zero_length_springs = internal_forces(model, state.x, ws.force);
@@ -43,13 +42,6 @@ StepStats step(const Model& model, const Params& params, State& state, StepWorks
     st.unstabilisable += c.unstabilisable;
     st.clamped += c.status == NodeStatus::clamped;
   }
-  const size_t w = static_cast<size_t>(watched);
-  st.watched_lower = model.lower_bound[w];
-  st.watched_upper = ws.upper_bound[w];
-  st.watched_gamma = model.gamma[w];
-  st.watched_gamma_eff = ws.gamma_eff[w];
-  st.watched_safe = ws.safe_bound[w];
-
   st.zero_length_springs += advance(model, params, state, ws);
   state.time += params.dt;
   st.iteration = ++state.iteration;
@@ -67,9 +59,20 @@ StepStats step(const Model& model, const Params& params, State& state, StepWorks
     }
   }
   st.max_displacement = max_d;
-  const double dw = (state.x[w] - model.rest[w]).norm();
-  st.watched_displacement = std::isfinite(dw) ? dw : std::numeric_limits<double>::infinity();
   return st;
+}
+
+NodeSample sample_node(const Model& model, const State& state, const StepWorkspace& ws, int node) {
+  const size_t c = static_cast<size_t>(node);
+  NodeSample s;
+  const double d = (state.x[c] - model.rest[c]).norm();
+  s.displacement = std::isfinite(d) ? d : std::numeric_limits<double>::infinity();
+  s.lower = model.lower_bound[c];
+  s.upper = ws.upper_bound[c];
+  s.gamma = model.gamma[c];
+  s.gamma_eff = ws.gamma_eff[c];
+  s.safe = ws.safe_bound[c];
+  return s;
 }
 
 }  // namespace dampbound

@@ -22,30 +22,41 @@ struct StepWorkspace {
   std::vector<Vec3> scratch[8];  ///< integrator temporaries
 };
 
-/// What one step reports (SPEC 3): the watched node's bounds and displacement
-/// and the whole model's maximum displacement and counts.
+/// What one step reports about the whole model (SPEC 3): its maximum displacement and counts.
 struct StepStats {
   int iteration = 0;   ///< steps completed, counting from 1
   double time = 0;     ///< s, after the step
-  double watched_displacement = 0;  ///< |x_c - X_c| after the step (cm)
-  double watched_lower = 0;         ///< gamma_lo of the watched node
-  double watched_upper = 0;         ///< gamma_hi of the watched node at t (may be +inf)
-  double watched_gamma = 0;         ///< the user's gamma of the watched node
-  double watched_gamma_eff = 0;     ///< its effective gamma this step
   double max_displacement = 0;      ///< max_i |x_i - X_i| after the step (cm); inf if not finite
   int violating = 0;                ///< free nodes whose effective gamma is outside the bounds
   int unstabilisable = 0;           ///< free nodes with gamma_lo > gamma_hi
   int clamped = 0;                  ///< free nodes whose gamma the policy changed, within bounds
   int zero_length_springs = 0;      ///< springs skipped for having no direction
   bool finite = true;               ///< every coordinate finite after the step
-  double watched_safe = 0;          ///< gamma_safe of the watched node at t (SPEC 9)
   int unguaranteed = 0;             ///< free nodes with gamma_lo > gamma_safe (SPEC 9)
   int compressed_springs = 0;       ///< springs with l < l0 at t: K may be indefinite (SPEC 9)
 };
 
-/// Advances `state` by params.dt. Uses model's per-node m_i, gamma_i, lower_bound (from
-/// set_params) and params.dt, policy, factor and integrator. `watched` is a node index.
-StepStats step(const Model& model, const Params& params, State& state, StepWorkspace& ws,
-               int watched);
+/// Advances `state` by params.dt: bounds from the state at t, the policy's effective damping
+/// (SPEC 3-4), then params.integrator. Reads the model's m_i, gamma_i and lower_bound; leaves
+/// every per-node value of the step in `ws`. Pure apart from `state` and `ws`.
+StepStats step(const Model& model, const Params& params, State& state, StepWorkspace& ws);
+
+/// What one node showed in the step just taken (mass units / s; displacement in cm).
+struct NodeSample {
+  double displacement = 0;  ///< |x_c - X_c| after the step; inf if not finite
+  double lower = 0;         ///< gamma_lo
+  double upper = 0;         ///< gamma_hi at t (may be +inf)
+  double gamma = 0;         ///< the user's gamma
+  double gamma_eff = 0;     ///< the effective gamma of the step
+  double safe = 0;          ///< gamma_safe at t (SPEC 9)
+};
+
+/// Reads node `node`'s values of the step just taken from the model, state and workspace.
+NodeSample sample_node(const Model& model, const State& state, const StepWorkspace& ws, int node);
+
+/// One step as a run records it: the whole model's stats and the watched node's values.
+struct StepSample : StepStats {
+  NodeSample watched;
+};
 
 }  // namespace dampbound

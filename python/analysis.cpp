@@ -50,7 +50,7 @@ void bind_analysis(py::module_& m) {
       "exact_limits",
       [](const SceneSpec& scene, const Params* params) {
         const Params p = params ? *params : scene.params;
-        return exact_stability(make_model(scene, p), scene.model.rest, p);
+        return exact_stability(compile_model(scene.model, p), scene.model.rest, p);
       },
       py::arg("scene"), py::arg("params") = nullptr,
       "SPEC 7: the exact limits of the scene's model at rest with params (default: the "

@@ -60,8 +60,9 @@ void bind_params(py::module_& m) {
       .def_property(
           "rule", [](const StopRules& r) { return std::string(to_string(r.rule)); },
           [](StopRules& r, const std::string& s) {
-            if (!parse_stop_rule(s, r.rule))
-              throw py::value_error("rule must be first-entry or settled, got '" + s + "'");
+            const auto rule = parse_stop_rule(s);
+            if (!rule) throw py::value_error("rule must be first-entry or settled, got '" + s + "'");
+            r.rule = *rule;
           },
           "'first-entry' (the paper's, SPEC 5) or 'settled' (SPEC 8: step to the limit)");
 }
@@ -90,17 +91,23 @@ void bind_results(py::module_& m) {
                     "spring-steps skipped for having no direction")
       .def_readonly("time", &RunResult::time, "simulated time (s)");
 
-  py::class_<StepStats>(m, "StepStats", "What one step reports (SPEC 3).")
-      .def_readonly("iteration", &StepStats::iteration, "steps completed, from 1")
-      .def_readonly("time", &StepStats::time, "s, after the step")
-      .def_readonly("watched_displacement", &StepStats::watched_displacement, "cm")
-      .def_readonly("watched_lower", &StepStats::watched_lower, "gamma_lo of the watched node")
-      .def_readonly("watched_upper", &StepStats::watched_upper, "gamma_hi of the watched node")
-      .def_readonly("max_displacement", &StepStats::max_displacement, "cm, inf if not finite")
-      .def_readonly("violating", &StepStats::violating, "nodes outside the bounds")
-      .def_readonly("unstabilisable", &StepStats::unstabilisable, "nodes with gamma_lo > gamma_hi")
-      .def_readonly("clamped", &StepStats::clamped, "nodes the policy changed")
-      .def_readonly("finite", &StepStats::finite, "every coordinate finite");
+  py::class_<NodeSample>(m, "NodeSample", "What the watched node showed in one step.")
+      .def_readonly("displacement", &NodeSample::displacement, "|x_c - X_c| (cm)")
+      .def_readonly("lower", &NodeSample::lower, "gamma_lo")
+      .def_readonly("upper", &NodeSample::upper, "gamma_hi at t (may be inf)")
+      .def_readonly("gamma", &NodeSample::gamma, "the user's gamma")
+      .def_readonly("gamma_eff", &NodeSample::gamma_eff, "the effective gamma of the step")
+      .def_readonly("safe", &NodeSample::safe, "gamma_safe at t (SPEC 9)");
+
+  py::class_<StepSample>(m, "StepSample", "What one step reports (SPEC 3).")
+      .def_readonly("iteration", &StepSample::iteration, "steps completed, from 1")
+      .def_readonly("time", &StepSample::time, "s, after the step")
+      .def_readonly("watched", &StepSample::watched, "the watched node's NodeSample")
+      .def_readonly("max_displacement", &StepSample::max_displacement, "cm, inf if not finite")
+      .def_readonly("violating", &StepSample::violating, "nodes outside the bounds")
+      .def_readonly("unstabilisable", &StepSample::unstabilisable, "nodes with gamma_lo > gamma_hi")
+      .def_readonly("clamped", &StepSample::clamped, "nodes the policy changed")
+      .def_readonly("finite", &StepSample::finite, "every coordinate finite");
 }
 
 void bind_scene(py::module_& m) {
@@ -128,14 +135,14 @@ void bind_scene(py::module_& m) {
           "arrays",
           [](const SceneSpec& s, const Params* params) {
             // The model with params applied, as the arrays a Monitor takes (copies).
-            const Model mo = make_model(s, params ? *params : s.params);
+            const Model mo = compile_model(s.model, params ? *params : s.params);
             py::array_t<int> pairs({static_cast<py::ssize_t>(mo.spring_count()), py::ssize_t{2}});
             py::array_t<double> kappa(mo.spring_count()), l0(mo.spring_count());
             for (int k = 0; k < mo.spring_count(); ++k) {
               const Spring& sp = mo.springs[static_cast<size_t>(k)];
               pairs.mutable_at(k, 0) = sp.i;
               pairs.mutable_at(k, 1) = sp.j;
-              kappa.mutable_at(k) = sp.kappa;
+              kappa.mutable_at(k) = mo.spring_kappa[static_cast<size_t>(k)];
               l0.mutable_at(k) = sp.rest_length;
             }
             py::dict d;
@@ -158,13 +165,7 @@ void bind_scene(py::module_& m) {
           "rest_length (S,), anchor_stiffness (N,), rest (N, 3), fixed (N,).");
   m.def(
       "load_scene",
-      [](const std::string& path) {
-        try {
-          return load_scene(path);
-        } catch (const InputError& e) {
-          throw py::value_error(e.what());
-        }
-      },
+      [](const std::string& path) { return load_scene(path); },
       py::arg("path"), "Loads a scene file (TOML); ValueError naming the file and line if bad.");
   m.def("paper_plane_scene", &paper_plane_scene, py::arg("n") = 36,
         "SPEC 5's scene built in code: an n x n grid, node (n/2, n/2) moved 5 cm along y.");
@@ -187,7 +188,7 @@ void bind_session(py::module_& m) {
             for (int k = 1; k < n; ++k) s.step_once();
             return s.step_once();
           },
-          py::arg("n") = 1, "Takes n steps of params.dt seconds; returns the last StepStats.")
+          py::arg("n") = 1, "Takes n steps of params.dt seconds; returns the last StepSample.")
       .def(
           "run", [](Session& s) { return s.run_to_end(); },
           "Steps until restored, diverged or the iteration limit (SPEC 5); returns RunResult.")
@@ -245,6 +246,14 @@ PYBIND11_MODULE(dampbound, m) {
       "dampbound: damping bounds that guarantee stability in mass-spring systems (Bhasin & "
       "Liu). Units: cm, s, and any consistent mass unit.";
   m.attr("__version__") = DAMPBOUND_VERSION;
+  // Bad input (a scene file, a parameter) is core's InputError: Python's ValueError.
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const dampbound::InputError& e) {
+      PyErr_SetString(PyExc_ValueError, e.what());
+    }
+  });
   bind_params(m);
   bind_results(m);
   bind_scene(m);

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "core/bounds.hpp"
+#include "core/io/scene_file.hpp"
 #include "ui/gui_app.hpp"
 #include "ui/gui_widgets.hpp"
 
@@ -23,19 +24,6 @@ bool log_slider(const char* label, double* v, double lo, double hi, const char* 
                           ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_NoRoundToFormat);
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s\nCtrl+click to type a value.", help);
   return changed;
-}
-
-/// A path as typed, or a scene name looked up in `scenes_dir` ("two-node", "two-node.toml").
-std::string resolve_scene(const std::string& text, const std::string& scenes_dir) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  if (fs::exists(text, ec) || text.find('/') != std::string::npos || scenes_dir.empty())
-    return text;
-  for (const std::string& name : {text, text + ".toml"}) {
-    const fs::path p = fs::path(scenes_dir) / name;
-    if (fs::is_regular_file(p, ec)) return p.string();
-  }
-  return text;
 }
 
 bool key_pressed(ImGuiKey key) {
@@ -168,10 +156,14 @@ void GuiApp::parameters_panel() {
                                      .c_str());
   }
   changed |= log_slider("dt (s)", &p.dt, 1e-4, 1.0, "Time step dt (s)");
-  int policy = static_cast<int>(p.policy);
-  const char* policies[] = {"fixed", "clamp", "upper", "lower", "safe"};
-  if (ImGui::Combo("policy", &policy, policies, 5)) {
-    p.policy = static_cast<DampingPolicy>(policy);
+  int policy = 0;
+  while (kPolicies[policy] != p.policy) ++policy;
+  auto policy_name = [](void*, int k, const char** out) {
+    *out = to_string(kPolicies[k]);
+    return true;
+  };
+  if (ImGui::Combo("policy", &policy, policy_name, nullptr, IM_ARRAYSIZE(kPolicies))) {
+    p.policy = kPolicies[policy];
     changed = true;
   }
   if (ImGui::IsItemHovered())

@@ -37,7 +37,7 @@ void GuiApp::status_panel() {
   const Model& m = s.model();
   const RunResult& r = s.result();
   const StopRules& rules = s.rules();
-  const StepStats* last = s.trace().empty() ? nullptr : &s.trace().back();
+  const StepSample* last = s.trace().empty() ? nullptr : &s.trace().back();
   if (ImGui::BeginTable("status", 2, ImGuiTableFlags_SizingStretchProp)) {
     ImGui::TableSetupColumn("k", ImGuiTableColumnFlags_WidthFixed);
     ImGui::TableSetupColumn("v", ImGuiTableColumnFlags_WidthStretch);
@@ -70,10 +70,10 @@ void GuiApp::status_panel() {
     const ImVec4 wc = ImGui::ColorConvertU32ToFloat4(status_color(ns));
     row("watched node", "#" + std::to_string(w) + ", " + status_label(ns), &wc);
     if (last != nullptr) {
-      row("  |x - X|", fmt(last->watched_displacement) + " cm");
-      row("  bounds", fmt(last->watched_lower) + " .. " + fmt(last->watched_upper));
+      row("  |x - X|", fmt(last->watched.displacement) + " cm");
+      row("  bounds", fmt(last->watched.lower) + " .. " + fmt(last->watched.upper));
       row("  gamma",
-          fmt(last->watched_gamma) + " (effective " + fmt(last->watched_gamma_eff) + ")");
+          fmt(last->watched.gamma) + " (effective " + fmt(last->watched.gamma_eff) + ")");
     }
     const ImVec4 amber = gui_amber();
     auto count_row = [&](const char* label, int now, long long total, bool warn_if_any) {

@@ -81,7 +81,7 @@ MapBoundConstants map_bound_constants(const SceneSpec& scene) {
   MapBoundConstants k;
   Params unit = scene.params;
   unit.m = unit.kappa = unit.gamma = 1;
-  const Model model = make_model(scene, unit);
+  const Model model = compile_model(scene.model, unit);
   double worst = kNaN, rate = kNaN;
   bool uniform = true;
   for (int i = 0; i < model.node_count(); ++i) {

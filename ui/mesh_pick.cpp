@@ -64,7 +64,7 @@ bool segments_intersect(const Vec2f& a0, const Vec2f& a1, const Vec2f& b0, const
   return false;
 }
 
-std::vector<int> springs_crossing_screen(const Model& model, const std::vector<ScreenPoint>& points,
+std::vector<int> springs_crossing_screen(const ModelSpec& model, const std::vector<ScreenPoint>& points,
                                          const Vec2f& p0, const Vec2f& p1) {
   std::vector<int> out;
   for (int s = 0; s < model.spring_count(); ++s) {

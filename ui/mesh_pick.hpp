@@ -23,7 +23,7 @@ bool segments_intersect(const Vec2f& a0, const Vec2f& a1, const Vec2f& b0, const
 
 /// Indices of the springs whose projected segment crosses the screen segment p0-p1 (the cut
 /// tool's drag line). A spring with an endpoint behind the camera is never cut.
-std::vector<int> springs_crossing_screen(const Model& model, const std::vector<ScreenPoint>& points,
+std::vector<int> springs_crossing_screen(const ModelSpec& model, const std::vector<ScreenPoint>& points,
                                          const Vec2f& p0, const Vec2f& p1);
 
 /// Axis-aligned bounding box of the finite positions; false when there are none.

@@ -195,7 +195,7 @@ void MeshView::node_tooltip(const Tuner& tuner, const Viewport& vp) const {
   ImGui::EndTooltip();
 }
 
-float spring_spacing_px(const Model& model, const std::vector<Vec3>& x, const Mat4f& view_proj,
+float spring_spacing_px(const ModelSpec& model, const std::vector<Vec3>& x, const Mat4f& view_proj,
                         const Viewport& vp) {
   // The median projected length of up to 256 springs spread over the list.
   std::vector<float> len;

@@ -21,7 +21,7 @@ struct MeshViewOptions {
 
 /// The median on-screen length (pixels) of up to 256 of the model's springs at positions x
 /// (cm): how dense the mesh looks (a very large number when none is visible).
-float spring_spacing_px(const Model& model, const std::vector<Vec3>& x, const Mat4f& view_proj,
+float spring_spacing_px(const ModelSpec& model, const std::vector<Vec3>& x, const Mat4f& view_proj,
                         const Viewport& vp);
 
 class MeshView {

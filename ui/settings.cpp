@@ -218,8 +218,7 @@ std::optional<GuiSettings> parse_settings(const std::string& text, std::string* 
   }
   if (n == 0) return fail(1, "empty file");
   if (any_param) {
-    const std::string why = validate(p);
-    if (!why.empty()) return fail(n, why);
+    if (const auto why = validate(p)) return fail(n, *why);
     s.params = p;
   }
   return s;

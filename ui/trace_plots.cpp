@@ -6,18 +6,18 @@
 namespace dampbound::ui {
 
 namespace {
-std::vector<double> iterations(const std::vector<StepStats>& t) {
+std::vector<double> iterations(const std::vector<StepSample>& t) {
   std::vector<double> x;
   x.reserve(t.size());
-  for (const StepStats& s : t) x.push_back(s.iteration);
+  for (const StepSample& s : t) x.push_back(s.iteration);
   return x;
 }
 
 template <typename Field>
-std::vector<double> column(const std::vector<StepStats>& t, Field f) {
+std::vector<double> column(const std::vector<StepSample>& t, Field f) {
   std::vector<double> y;
   y.reserve(t.size());
-  for (const StepStats& s : t) y.push_back(f(s));
+  for (const StepSample& s : t) y.push_back(f(s));
   return y;
 }
 }  // namespace
@@ -36,14 +36,14 @@ PlotSpec displacement_plot(const std::vector<TraceView>& views, bool log_y, doub
     PlotSeries s;
     s.label = v.label;
     s.x = iterations(*v.trace);
-    s.y = column(*v.trace, [](const StepStats& st) { return st.watched_displacement; });
+    s.y = column(*v.trace, [](const StepSample& st) { return st.watched.displacement; });
     s.color = v.color;
     p.series.push_back(std::move(s));
     if (show_max) {
       PlotSeries m;
       m.label = v.label + " (max over nodes)";
       m.x = p.series.back().x;
-      m.y = column(*v.trace, [](const StepStats& st) { return st.max_displacement; });
+      m.y = column(*v.trace, [](const StepSample& st) { return st.max_displacement; });
       m.color = with_alpha(v.color, 150);
       m.dashed = true;
       m.thickness = 1.5f;
@@ -59,7 +59,7 @@ PlotSpec displacement_plot(const std::vector<TraceView>& views, bool log_y, doub
   return p;
 }
 
-PlotSpec envelope_plot(const std::vector<StepStats>& trace, std::optional<double> exact_gamma_max,
+PlotSpec envelope_plot(const std::vector<StepSample>& trace, std::optional<double> exact_gamma_max,
                        const std::string& title) {
   PlotSpec p;
   p.title = title.empty() ? "Damping bounds of the watched node" : title;
@@ -70,8 +70,8 @@ PlotSpec envelope_plot(const std::vector<StepStats>& trace, std::optional<double
   PlotBand band;
   band.label = "feasible band";
   band.x = x;
-  band.y_lo = column(trace, [](const StepStats& s) { return s.watched_lower; });
-  band.y_hi = column(trace, [](const StepStats& s) { return s.watched_upper; });
+  band.y_lo = column(trace, [](const StepSample& s) { return s.watched.lower; });
+  band.y_hi = column(trace, [](const StepSample& s) { return s.watched.upper; });
   band.color = IM_COL32(44, 160, 44, 60);
   auto series = [&](const char* label, std::vector<double> y, ImU32 color, bool dashed,
                     float thickness) {
@@ -87,11 +87,11 @@ PlotSpec envelope_plot(const std::vector<StepStats>& trace, std::optional<double
   series("lower bound (eq. 5)", band.y_lo, IM_COL32(31, 119, 180, 255), false, 2.0f);
   series("upper bound (eq. 6)", band.y_hi, IM_COL32(214, 39, 40, 255), false, 2.0f);
   // SPEC 9: below this the linearised step is guaranteed stable (<= 0 is not drawn on log y).
-  series("safe bound (SPEC 9)", column(trace, [](const StepStats& s) { return s.watched_safe; }),
+  series("safe bound (SPEC 9)", column(trace, [](const StepSample& s) { return s.watched.safe; }),
          IM_COL32(23, 190, 207, 255), false, 2.0f);
-  series("user gamma", column(trace, [](const StepStats& s) { return s.watched_gamma; }),
+  series("user gamma", column(trace, [](const StepSample& s) { return s.watched.gamma; }),
          IM_COL32(127, 127, 127, 255), true, 1.5f);
-  series("effective gamma", column(trace, [](const StepStats& s) { return s.watched_gamma_eff; }),
+  series("effective gamma", column(trace, [](const StepSample& s) { return s.watched.gamma_eff; }),
          IM_COL32(255, 127, 14, 255), false, 2.0f);
   p.bands.push_back(std::move(band));
   if (exact_gamma_max && *exact_gamma_max > 0) {

@@ -14,7 +14,7 @@ namespace dampbound::ui {
 /// One trace to draw, with its legend label and colour.
 struct TraceView {
   std::string label;
-  const std::vector<StepStats>* trace = nullptr;
+  const std::vector<StepSample>* trace = nullptr;
   ImU32 color = 0;
 };
 
@@ -26,7 +26,7 @@ PlotSpec displacement_plot(const std::vector<TraceView>& views, bool log_y, doub
 /// The bound envelope of the watched node against iteration on a log axis: the lower bound
 /// (eq. 5), the upper bound (eq. 6), the user's gamma and the effective gamma, with the
 /// feasible band [lower, upper] shaded; `exact_gamma_max`, when given, as a line (SPEC 7).
-PlotSpec envelope_plot(const std::vector<StepStats>& trace,
+PlotSpec envelope_plot(const std::vector<StepSample>& trace,
                        std::optional<double> exact_gamma_max = std::nullopt,
                        const std::string& title = "");
 

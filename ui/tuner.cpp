@@ -66,9 +66,8 @@ void Tuner::set_scene(SceneSpec scene) {
 }
 
 bool Tuner::set_params(const Params& params, std::string* error) {
-  const std::string why = validate(params);
-  if (!why.empty()) {
-    if (error != nullptr) *error = why;
+  if (const auto why = validate(params)) {
+    if (error != nullptr) *error = *why;
     return false;
   }
   const Params& now = session_->params();
@@ -204,7 +203,7 @@ ImU32 Tuner::current_color() const {
   return palette_color(0);
 }
 
-const std::vector<StepStats>& Tuner::reduced_trace() {
+const std::vector<StepSample>& Tuner::reduced_trace() {
   return decimator_.update(session_->trace(), generation_);
 }
 

@@ -25,8 +25,8 @@ struct Pin {
   StopRules rules;
   RunResult result;
   int watched = 0;
-  std::vector<StepStats> trace;    ///< every step (exported to CSV)
-  std::vector<StepStats> reduced;  ///< decimated once for plotting
+  std::vector<StepSample> trace;    ///< every step (exported to CSV)
+  std::vector<StepSample> reduced;  ///< decimated once for plotting
   ImU32 color = 0;
   bool visible = true;
   /// True when the run went from the scene's start with these parameters and nothing done by
@@ -134,7 +134,7 @@ class Tuner {
   ImU32 current_color() const;
 
   /// The current trace decimated for plotting (updated incrementally).
-  const std::vector<StepStats>& reduced_trace();
+  const std::vector<StepSample>& reduced_trace();
   /// Changes whenever another scene is loaded.
   std::uint64_t scene_version() const { return scene_version_; }
   /// Changes whenever the trace starts over (reset, new scene).

@@ -33,7 +33,7 @@ std::vector<PlotRefLine> verdict_markers(const RunResult& r) {
 PlotSpec tuner_displacement_plot(Tuner& tuner, const TunerPlotOptions& options) {
   const StopRules& rules = tuner.session().rules();
   const double threshold = rules.restore_fraction * rules.reference;
-  const std::vector<StepStats>& current = tuner.reduced_trace();
+  const std::vector<StepSample>& current = tuner.reduced_trace();
   PlotSpec p = displacement_plot(
       {{current_run_label(tuner), &current, tuner.current_color()}}, options.log_y, threshold,
       options.show_max, "Displacement of node " + std::to_string(tuner.session().watched()));
@@ -168,7 +168,7 @@ void envelope_headroom(PlotSpec& spec, double cap, double fraction) {
 }
 
 PlotSpec tuner_envelope_plot(Tuner& tuner, const TunerPlotOptions& options) {
-  const std::vector<StepStats>& current = tuner.reduced_trace();
+  const std::vector<StepSample>& current = tuner.reduced_trace();
   PlotSpec p = envelope_plot(current, tuner.exact_gamma_max(),
                              "Damping bounds of node " + std::to_string(tuner.session().watched()));
   p.x.min = 0;
@@ -180,9 +180,9 @@ PlotSpec tuner_envelope_plot(Tuner& tuner, const TunerPlotOptions& options) {
       s.color = pin.color;
       s.dashed = true;
       s.thickness = 1.5f;
-      for (const StepStats& st : pin.reduced) {
+      for (const StepSample& st : pin.reduced) {
         s.x.push_back(st.iteration);
-        s.y.push_back(st.watched_gamma_eff);
+        s.y.push_back(st.watched.gamma_eff);
       }
       p.series.push_back(std::move(s));
     }
@@ -193,8 +193,8 @@ PlotSpec tuner_envelope_plot(Tuner& tuner, const TunerPlotOptions& options) {
   // The upper bound (eq. 6) grows without limit as |v| -> 0: cap the axis at 100 x the
   // largest damping that matters, and keep the top part free for the legend.
   double ref = tuner.exact_gamma_max().value_or(0.0);
-  for (const StepStats& st : current)
-    for (double v : {st.watched_lower, st.watched_gamma, st.watched_gamma_eff})
+  for (const StepSample& st : current)
+    for (double v : {st.watched.lower, st.watched.gamma, st.watched.gamma_eff})
       if (std::isfinite(v)) ref = std::max(ref, v);
   envelope_headroom(p, ref > 0 ? 100 * ref : 0.0, 0.4);
   return p;

@@ -17,9 +17,9 @@ namespace {
 /// The run's result at its verdict, from its trace: accumulate() over the steps up to the
 /// verdict, as run_protocol does (the session may have stepped on past the verdict, and its
 /// final displacement and counts with it).
-RunResult result_at_verdict(const std::vector<StepStats>& trace, const StopRules& rules) {
+RunResult result_at_verdict(const std::vector<StepSample>& trace, const StopRules& rules) {
   RunResult r;
-  for (const StepStats& st : trace) {
+  for (const StepSample& st : trace) {
     accumulate(r, st, rules);
     if (r.outcome != Outcome::running) break;
   }
@@ -29,7 +29,7 @@ RunResult result_at_verdict(const std::vector<StepStats>& trace, const StopRules
 /// The result a check of `label` will see: the run's own, taken at its verdict, when it can
 /// be replayed as it went; else a headless replay.
 RunResult checked_result(const SceneSpec& scene, const std::string& label,
-                         const std::vector<StepStats>& trace, const StopRules& rules,
+                         const std::vector<StepSample>& trace, const StopRules& rules,
                          bool replayable, const std::string& who,
                          std::vector<std::string>* notes) {
   if (replayable) {
@@ -140,8 +140,7 @@ PinRequest parse_pin_request(const std::string& text, const Params& base, int ma
     }
   }
   if (!any) bad("expected KEY=VALUE");
-  const std::string why = validate(r.params);
-  if (!why.empty()) bad(why);
+  if (const auto why = validate(r.params)) bad(*why);
   return r;
 }
 

@@ -5,25 +5,25 @@
 
 namespace dampbound::ui {
 
-void merge_into(StepStats& e, const StepStats& s, BucketEnd which) {
+void merge_into(StepSample& e, const StepSample& s, BucketEnd which) {
   const bool lo = which == BucketEnd::lo;
   // std::fmin / std::fmax ignore a NaN on either side.
   const auto real = [lo](double& a, double b) { a = lo ? std::fmin(a, b) : std::fmax(a, b); };
   const auto count = [lo](int& a, int b) { a = lo ? std::min(a, b) : std::max(a, b); };
   count(e.iteration, s.iteration);
   real(e.time, s.time);
-  real(e.watched_displacement, s.watched_displacement);
-  real(e.watched_lower, s.watched_lower);
-  real(e.watched_upper, s.watched_upper);
-  real(e.watched_gamma, s.watched_gamma);
-  real(e.watched_gamma_eff, s.watched_gamma_eff);
+  real(e.watched.displacement, s.watched.displacement);
+  real(e.watched.lower, s.watched.lower);
+  real(e.watched.upper, s.watched.upper);
+  real(e.watched.gamma, s.watched.gamma);
+  real(e.watched.gamma_eff, s.watched.gamma_eff);
   real(e.max_displacement, s.max_displacement);
   count(e.violating, s.violating);
   count(e.unstabilisable, s.unstabilisable);
   count(e.clamped, s.clamped);
   count(e.zero_length_springs, s.zero_length_springs);
   e.finite = e.finite && s.finite;
-  real(e.watched_safe, s.watched_safe);
+  real(e.watched.safe, s.watched.safe);
   count(e.unguaranteed, s.unguaranteed);
   count(e.compressed_springs, s.compressed_springs);
 }
@@ -31,7 +31,7 @@ void merge_into(StepStats& e, const StepStats& s, BucketEnd which) {
 TraceDecimator::TraceDecimator(size_t max_buckets)
     : max_buckets_(std::max<size_t>(max_buckets, 2)) {}
 
-void TraceDecimator::add(const StepStats& s) {
+void TraceDecimator::add(const StepSample& s) {
   if (partial_.count == 0) {
     partial_.lo = partial_.hi = s;
   } else {
@@ -71,7 +71,7 @@ void TraceDecimator::rebuild_output() {
   if (partial_.count > 0) emit(partial_);
 }
 
-const std::vector<StepStats>& TraceDecimator::update(const std::vector<StepStats>& trace,
+const std::vector<StepSample>& TraceDecimator::update(const std::vector<StepSample>& trace,
                                                      std::uint64_t generation) {
   if (generation != generation_ || trace.size() < consumed_) {
     generation_ = generation;

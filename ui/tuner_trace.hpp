@@ -22,19 +22,19 @@ class TraceDecimator {
 
   /// Brings the reduced trace up to date with `trace`: reads only the samples added since the
   /// last call, and starts over when `generation` changed or the trace got shorter.
-  const std::vector<StepStats>& update(const std::vector<StepStats>& trace,
+  const std::vector<StepSample>& update(const std::vector<StepSample>& trace,
                                        std::uint64_t generation = 0);
   /// The reduced trace of the last update().
-  const std::vector<StepStats>& reduced() const { return out_; }
+  const std::vector<StepSample>& reduced() const { return out_; }
   /// Samples per bucket now (1 while every sample is kept).
   size_t bucket_size() const { return bucket_; }
 
  private:
   struct Bucket {
-    StepStats lo, hi;
+    StepSample lo, hi;
     size_t count = 0;
   };
-  void add(const StepStats& s);
+  void add(const StepSample& s);
   void rebuild_output();
 
   size_t max_buckets_;
@@ -43,7 +43,7 @@ class TraceDecimator {
   std::uint64_t generation_ = 0;
   std::vector<Bucket> full_;
   Bucket partial_;
-  std::vector<StepStats> out_;
+  std::vector<StepSample> out_;
 };
 
 /// The end of a bucket a merge builds: its field-wise minima or maxima.
@@ -51,7 +51,7 @@ enum class BucketEnd { lo, hi };
 
 /// Field-wise merge of `s` into a bucket end: `lo` keeps minima (and the earlier iteration),
 /// `hi` maxima (and the later one); a NaN field is ignored, `finite` holds only when both are
-/// finite. One fold over every field of StepStats serves both ends. Exposed for tests.
-void merge_into(StepStats& end, const StepStats& s, BucketEnd which);
+/// finite. One fold over every field of StepSample serves both ends. Exposed for tests.
+void merge_into(StepSample& end, const StepSample& s, BucketEnd which);
 
 }  // namespace dampbound::ui

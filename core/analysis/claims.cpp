@@ -19,10 +19,6 @@ const char* to_string(ClaimVerdict v) {
 }
 
 namespace {
-std::string outcome_text(const RunResult& r) {
-  return std::string(to_string(r.outcome)) + " at iteration " + std::to_string(r.iterations);
-}
-
 bool settled(const RunResult& r) { return r.outcome == Outcome::settled; }
 }  // namespace
 
@@ -46,10 +42,10 @@ std::string both_verdicts(const FigureRun& run, const RunResult& s) {
                      (p.outcome == Outcome::diverged && s.outcome == Outcome::diverged &&
                       s.iterations == p.iterations);
   if (agree && p.outcome == Outcome::restored)
-    return outcome_text(p) + " and settled there, below the band to the limit " +
+    return verdict_short(p) + " and settled there, below the band to the limit " +
            std::to_string(rules.max_iterations) + " (both rules)";
-  if (agree) return outcome_text(p) + " (both rules)";
-  return outcome_text(p) + " by the first entry; settled rule: " + verdict_text(s, rules);
+  if (agree) return verdict_short(p) + " (both rules)";
+  return verdict_short(p) + " by the first entry; settled rule: " + verdict_text(s, rules);
 }
 
 std::vector<Claim> fig1_claims(const FigureData& fig, const std::vector<RunResult>& st) {

@@ -48,9 +48,10 @@ double kacic_alesic_dt(double m, double K) { return 2.0 * std::sqrt(m / K); }
 
 std::vector<double> combined_stiffness(const Model& model) {
   std::vector<double> K = model.anchor_kappa;
-  for (const Spring& s : model.springs) {
-    K[static_cast<size_t>(s.i)] += s.kappa;
-    K[static_cast<size_t>(s.j)] += s.kappa;
+  for (size_t k = 0; k < model.springs.size(); ++k) {
+    const Spring& s = model.springs[k];
+    K[static_cast<size_t>(s.i)] += model.spring_kappa[k];
+    K[static_cast<size_t>(s.j)] += model.spring_kappa[k];
   }
   return K;
 }
@@ -237,21 +238,19 @@ std::vector<CriterionResult> all_criteria(const Model& model, const State& state
 }
 
 Model two_node_system(const Params& params) {
-  Model m;
+  ModelSpec m;
   add_node(m, Vec3::Zero());
   add_node(m, Vec3(1, 0, 0));
   m.fixed[0] = 1;
   add_spring(m, 0, 1);
-  set_params(m, params);
-  return m;
+  return compile_model(std::move(m), params);
 }
 
 Model single_node_system(const Params& params) {
-  Model m;
+  ModelSpec m;
   add_node(m, Vec3::Zero());
   m.anchor_scale[0] = 1;
-  set_params(m, params);
-  return m;
+  return compile_model(std::move(m), params);
 }
 
 }  // namespace dampbound

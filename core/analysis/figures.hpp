@@ -16,7 +16,7 @@ struct FigureRun {
   Params params;
   StopRules rules;
   RunResult result;
-  std::vector<StepStats> trace;
+  std::vector<StepSample> trace;
 };
 
 struct FigureData {

@@ -41,7 +41,8 @@ SparseMatrix tangent_stiffness(const Model& model, const std::vector<Vec3>& x,
     if (b >= 0 && model.anchor_kappa[i] > 0)
       for (int r = 0; r < 3; ++r) t.emplace_back(3 * b + r, 3 * b + r, model.anchor_kappa[i]);
   }
-  for (const Spring& s : model.springs) {
+  for (size_t k = 0; k < model.springs.size(); ++k) {
+    const Spring& s = model.springs[k];
     const Vec3 delta = x[static_cast<size_t>(s.j)] - x[static_cast<size_t>(s.i)];
     const double l = delta.norm();
     if (!(l > 0)) continue;  // no direction: no force, no stiffness (SPEC 1)
@@ -50,7 +51,7 @@ SparseMatrix tangent_stiffness(const Model& model, const std::vector<Vec3>& x,
     double tension = 1.0 - ratio;  // (1 - l0/l)
     if (clamp_compression) tension = std::max(0.0, tension);
     double b[6];
-    spring_tangent_block(s.kappa, tension, ratio, d.data(), b);
+    spring_tangent_block(model.spring_kappa[k], tension, ratio, d.data(), b);
     Eigen::Matrix3d B;
     for (int r = 0; r < 3; ++r)
       for (int c = 0; c < 3; ++c) B(r, c) = b[sym3(r, c)];

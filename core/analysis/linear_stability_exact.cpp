@@ -198,7 +198,7 @@ double perturbation_growth(const Model& model, const Params& params_in, int step
   }
   StepWorkspace ws;
   double after = before;
-  for (int k = 0; k < steps; ++k) after = step(model, params, state, ws, 0).max_displacement;
+  for (int k = 0; k < steps; ++k) after = step(model, params, state, ws).max_displacement;
   return before > 0 ? after / before : 0;
 }
 

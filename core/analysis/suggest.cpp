@@ -71,7 +71,7 @@ DampingSuggestion suggest_damping(const SceneSpec& scene, const Params& params_i
   params.policy = DampingPolicy::fixed;
   DampingSuggestion s;
   s.dt = params.dt;
-  const Model model = make_model(scene, params);
+  const Model model = compile_model(scene.model, params);
   s.exact = exact_stability(model, model.rest, params, {false});
 
   // Eq. 5 at every free node: gamma * gamma_scale_i >= 2 sqrt(m_i kappa_i) (SPEC 3).
@@ -117,7 +117,7 @@ DampingSuggestion suggest_damping(const SceneSpec& scene, const Params& params_i
   if (s.empty) {
     if (std::isfinite(s.gamma_min)) {
       const Params p = with_gamma(params, s.gamma_min);
-      const Model m = make_model(scene, p);
+      const Model m = compile_model(scene.model, p);
       s.dt_max_at_gamma_min = exact_stability(m, m.rest, p, {false}).dt_max;
     }
     s.gamma_best = kNaN;
@@ -183,7 +183,7 @@ StepSuggestion suggest_step(const SceneSpec& scene, const Params& params_in, con
   params.policy = DampingPolicy::fixed;
   StepSuggestion s;
   s.gamma = params.gamma;
-  const Model model = make_model(scene, params);
+  const Model model = compile_model(scene.model, params);
   s.exact = exact_stability(model, model.rest, params, {false});
   s.dt_exact = s.exact.dt_max;
   s.dt_all = s.dt_exact;

@@ -112,7 +112,8 @@ double tetra_signed_volume(const Vec3& a, const Vec3& b, const Vec3& c, const Ve
   return (b - a).dot((c - a).cross(d - a)) / 6.0;
 }
 
-std::string cell_problem(const std::vector<Vec3>& vertices, const MeshCell& cell, int orientation) {
+std::optional<std::string> cell_problem(const std::vector<Vec3>& vertices, const MeshCell& cell,
+                                        int orientation) {
   const auto& k = cell.corners;
   const size_t want = corner_count(cell.shape);
   if ((want && k.size() != want) || (!want && k.size() < 3))
@@ -132,7 +133,7 @@ std::string cell_problem(const std::vector<Vec3>& vertices, const MeshCell& cell
     for (size_t j = i + 1; j < k.size(); ++j)
       longest = std::max(longest, (vertices[size_t(k[i])] - vertices[size_t(k[j])]).norm());
   const int dim = cell_dimension(cell.shape);
-  if (dim == 0) return "";
+  if (dim == 0) return std::nullopt;
   const double size = dim == 1 ? longest : measure(vertices, cell);
   // Relative to the longest edge: 1e-12 of a regular element's measure is degenerate.
   if (!(size > 1e-12 * std::pow(longest, dim)))
@@ -147,7 +148,7 @@ std::string cell_problem(const std::vector<Vec3>& vertices, const MeshCell& cell
     if ((v > 0 ? 1 : -1) != orientation)
       return "inverted tetrahedron (signed volume " + std::to_string(v) + ")";
   }
-  return "";
+  return std::nullopt;
 }
 
 void check_mesh(const CellMesh& mesh, const std::function<std::string(const MeshCell&)>& where) {
@@ -170,8 +171,8 @@ void check_mesh(const CellMesh& mesh, const std::function<std::string(const Mesh
                            (top == 3 ? "tetrahedron" : "face") + " uses");
 }
 
-Model model_from_mesh(const CellMesh& mesh, const MeshSprings& how) {
-  Model m;
+ModelSpec model_from_mesh(const CellMesh& mesh, const MeshSprings& how) {
+  ModelSpec m;
   std::vector<Vec3> p;
   for (const Vec3& v : mesh.vertices) {
     p.push_back(v * how.scale);

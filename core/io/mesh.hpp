@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -49,8 +50,8 @@ struct CellMesh {
 /// tetrahedron a negative signed volume when `orientation` is +1 (Gmsh, VTK: det(x1-x0,
 /// x2-x0, x3-x0) > 0) or a sign different from `orientation` when it is -1. 0 skips the
 /// orientation test.
-std::string cell_problem(const std::vector<Vec3>& vertices, const MeshCell& cell,
-                         int orientation = 1);
+std::optional<std::string> cell_problem(const std::vector<Vec3>& vertices,
+                                        const MeshCell& cell, int orientation = 1);
 
 /// The signed volume of a tetrahedron (cm^3 when the positions are in cm): det / 6.
 double tetra_signed_volume(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
@@ -80,7 +81,7 @@ struct MeshSprings {
 /// triangles, the far corners; across an edge shared by exactly two quads, at each end the
 /// neighbours on either side along the line through the edge (Provot's flexion springs). A
 /// bending spring that would repeat an existing spring is skipped.
-Model model_from_mesh(const CellMesh& mesh, const MeshSprings& how);
+ModelSpec model_from_mesh(const CellMesh& mesh, const MeshSprings& how);
 
 /// For each region tag, the nodes of the cells (of any dimension) that carry it.
 std::map<int, std::vector<int>> region_nodes(const CellMesh& mesh);

@@ -212,8 +212,7 @@ class MshReader {
                            ", which $Nodes does not define");
       c.corners.push_back(it->second);
     }
-    const std::string why = cell_problem(mesh_.vertices, c, 1);
-    if (!why.empty()) s_.fail_at(at, why);
+    if (const auto why = cell_problem(mesh_.vertices, c, 1)) s_.fail_at(at, *why);
     mesh_.cells.push_back(std::move(c));
   }
 

@@ -102,7 +102,7 @@ CellMesh cells_from_obj(const ObjMesh& mesh) {
   return out;
 }
 
-Model model_from_obj(const ObjMesh& mesh, const MeshSprings& how) {
+ModelSpec model_from_obj(const ObjMesh& mesh, const MeshSprings& how) {
   return model_from_mesh(cells_from_obj(mesh), how);
 }
 

@@ -28,6 +28,6 @@ CellMesh cells_from_obj(const ObjMesh& mesh);
 
 /// model_from_mesh(cells_from_obj(mesh), how): quads get both diagonals and, with `bend`,
 /// flexion springs; polygons of more than 4 corners get their sides only.
-Model model_from_obj(const ObjMesh& mesh, const MeshSprings& how);
+ModelSpec model_from_obj(const ObjMesh& mesh, const MeshSprings& how);
 
 }  // namespace dampbound

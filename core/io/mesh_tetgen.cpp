@@ -81,7 +81,7 @@ CellMesh parse_tetgen(const std::string& node, const std::string& node_name, con
     }
     // TetGen writes one orientation for the whole mesh: the first tetrahedron's is the
     // reference, and a tetrahedron of the other sign is inverted.
-    if (orientation == 0 && cell_problem(mesh.vertices, c, 0).empty()) {
+    if (orientation == 0 && !cell_problem(mesh.vertices, c, 0)) {
       const auto& q = c.corners;
       orientation =
           tetra_signed_volume(mesh.vertices[size_t(q[0])], mesh.vertices[size_t(q[1])],
@@ -89,8 +89,7 @@ CellMesh parse_tetgen(const std::string& node, const std::string& node_name, con
               ? 1
               : -1;
     }
-    const std::string why = cell_problem(mesh.vertices, c, orientation);
-    if (!why.empty()) s.fail_at(at, why);
+    if (const auto why = cell_problem(mesh.vertices, c, orientation)) s.fail_at(at, *why);
     mesh.cells.push_back(std::move(c));
   }
   if (!s.at_end()) s.fail("more lines than the header's " + std::to_string(n) + " tetrahedra");
@@ -108,8 +107,7 @@ CellMesh parse_tetgen(const std::string& node, const std::string& node_name, con
       c.where = at;
       c.corners = corners(f, 3, base, mesh.vertices.size());
       if (markers) c.region = region_value(f, static_cast<double>(f.integer("a boundary marker")));
-      const std::string why = cell_problem(mesh.vertices, c, 0);
-      if (!why.empty()) f.fail_at(at, why);
+      if (const auto why = cell_problem(mesh.vertices, c, 0)) f.fail_at(at, *why);
       mesh.cells.push_back(std::move(c));
     }
     if (!f.at_end()) f.fail("more lines than the header's " + std::to_string(nf) + " faces");

@@ -27,20 +27,20 @@ std::string band_json(const StopRules& rules, const RunResult& r) {
 }
 }  // namespace
 
-void write_trace_csv(std::ostream& out, const std::vector<StepStats>& trace,
+void write_trace_csv(std::ostream& out, const std::vector<StepSample>& trace,
                      const std::string& run_label, bool header) {
   const std::string prefix = run_label.empty() ? "" : csv_field(run_label) + ",";
   if (header)
     out << (run_label.empty() ? "" : "run,") << "iteration,time,displacement,lower_bound,upper_bound,gamma,gamma_effective,"
          "max_displacement,violating,unstabilisable,clamped,zero_length_springs,"
          "safe_bound,unguaranteed,compressed_springs\n";
-  for (const StepStats& s : trace)
+  for (const StepSample& s : trace)
     out << prefix << s.iteration << ',' << format_number(s.time) << ','
-        << format_number(s.watched_displacement) << ',' << format_number(s.watched_lower) << ','
-        << format_number(s.watched_upper) << ',' << format_number(s.watched_gamma) << ','
-        << format_number(s.watched_gamma_eff) << ',' << format_number(s.max_displacement) << ','
+        << format_number(s.watched.displacement) << ',' << format_number(s.watched.lower) << ','
+        << format_number(s.watched.upper) << ',' << format_number(s.watched.gamma) << ','
+        << format_number(s.watched.gamma_eff) << ',' << format_number(s.max_displacement) << ','
         << s.violating << ',' << s.unstabilisable << ',' << s.clamped << ','
-        << s.zero_length_springs << ',' << format_number(s.watched_safe) << ','
+        << s.zero_length_springs << ',' << format_number(s.watched.safe) << ','
         << s.unguaranteed << ',' << s.compressed_springs << '\n';
 }
 

@@ -12,7 +12,7 @@ namespace dampbound {
 /// upper bound, user and effective gamma, max displacement, counts, then the watched node's
 /// gamma_safe and the counts of SPEC 9. Non-finite = "inf".
 /// With a non-empty `run_label` a first column "run" holds it (figures with several runs).
-void write_trace_csv(std::ostream& out, const std::vector<StepStats>& trace,
+void write_trace_csv(std::ostream& out, const std::vector<StepSample>& trace,
                      const std::string& run_label = "", bool header = true);
 
 /// The verdict in words, with the band history of SPEC 8: e.g. "entered the 1% band at 12,

@@ -2,6 +2,7 @@
 #include <toml++/toml.h>
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -270,6 +271,18 @@ SceneSpec parse_scene(const std::string& text, const std::string& path) {
 
 SceneSpec load_scene(const std::string& path) {
   return parse_scene(read_file_text(path, kMaxSceneBytes), path);
+}
+
+std::string resolve_scene(const std::string& text, const std::string& scenes_dir) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (text.find('/') != std::string::npos || scenes_dir.empty() || fs::exists(text, ec))
+    return text;
+  for (const std::string& name : {text, text + ".toml"}) {
+    const fs::path p = fs::path(scenes_dir) / name;
+    if (fs::is_regular_file(p, ec)) return p.string();
+  }
+  return text;
 }
 
 }  // namespace dampbound

@@ -15,4 +15,9 @@ SceneSpec load_scene(const std::string& path);
 /// Parses scene text; `path` is used in messages only.
 SceneSpec parse_scene(const std::string& text, const std::string& path);
 
+/// What a scene argument names: `text` itself when it is a path (has a '/', or exists), else
+/// the scene of that name in `scenes_dir` ("two-node" or "two-node.toml") when there is one,
+/// else `text` (whose load then reports it missing). The CLI and the tuner both use it.
+std::string resolve_scene(const std::string& text, const std::string& scenes_dir);
+
 }  // namespace dampbound

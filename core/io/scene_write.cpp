@@ -149,7 +149,7 @@ std::string source_geometry(const SceneSpec& s, const std::string& dest_path) {
 }
 
 /// Every node and spring written out ([[node]] / [[spring]]).
-void explicit_geometry(std::ostream& out, const Model& m) {
+void explicit_geometry(std::ostream& out, const ModelSpec& m) {
   for (int i = 0; i < m.node_count(); ++i) {
     const auto k = static_cast<size_t>(i);
     Table t{{"x", vec3(m.rest[k])}};
@@ -209,7 +209,7 @@ Table expect_table(const Expectation& e) {
 
 }  // namespace
 
-bool same_topology(const Model& a, const Model& b) {
+bool same_topology(const ModelSpec& a, const ModelSpec& b) {
   if (a.rest != b.rest || a.mass_scale != b.mass_scale || a.gamma_scale != b.gamma_scale ||
       a.anchor_scale != b.anchor_scale || a.external_force != b.external_force ||
       a.fixed != b.fixed || a.springs.size() != b.springs.size())

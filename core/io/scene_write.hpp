@@ -51,6 +51,6 @@ std::string scene_toml(const SceneSpec& scene, const std::string& dest_path,
 
 /// True when two models have the same nodes (rest, scales, forces, fixed) and springs
 /// (ends, rest length, stiffness scale), compared exactly.
-bool same_topology(const Model& a, const Model& b);
+bool same_topology(const ModelSpec& a, const ModelSpec& b);
 
 }  // namespace dampbound

@@ -88,7 +88,7 @@ void write_vtu(std::ostream& out, const Model& model, const State& state, const 
     const Spring& s = model.springs[k];
     conn.insert(conn.end(), {s.i, s.j});
     offsets.push_back(static_cast<std::int64_t>(2 * (k + 1)));
-    kappa[k] = s.kappa;
+    kappa[k] = model.spring_kappa[k];
     const double l = (state.x[size_t(s.j)] - state.x[size_t(s.i)]).norm();
     strain[k] = s.rest_length > 0 ? (l - s.rest_length) / s.rest_length : 0.0;
   }

@@ -211,7 +211,7 @@ double SweepGrid::zeta(std::uint64_t t) const {
 }
 
 std::string similarity_unavailable(const SceneSpec& scene) {
-  const Model& m = scene.model;
+  const ModelSpec& m = scene.model;
   for (size_t i = 0; i < m.external_force.size(); ++i)
     if (m.external_force[i] != Vec3::Zero())
       return "node " + std::to_string(i) + " has an external force";

@@ -17,7 +17,7 @@ SafeUnit unit_safe_bound(const SceneSpec& scene) {
   Params p = scene.params;
   p.m = 1;
   p.kappa = 1;
-  const Model model = make_model(scene, p);
+  const Model model = compile_model(scene.model, p);
   std::vector<double> R;
   safe_row_sums(model, model.rest, R);
   SafeUnit u;

@@ -12,7 +12,7 @@ double unit_stiffness_eigenvalue(const SceneSpec& scene) {
   Params p = scene.params;
   p.m = 1;
   p.kappa = 1;
-  const Model model = make_model(scene, p);
+  const Model model = compile_model(scene.model, p);
   return max_stiffness_eigenvalue(model, model.rest);
 }
 

@@ -45,7 +45,7 @@ std::string batch_kernel_unsupported(const SceneSpec& scene) {
 
 // Greedy list scheduling: among the springs whose nodes have no earlier spring pending, take
 // the first one that shares no node with the last kWindow applied (see sweep_kernel.hpp).
-std::vector<int> spring_schedule(const Model& model) {
+std::vector<int> spring_schedule(const ModelSpec& model) {
   const std::vector<Spring>& list = model.springs;
   const size_t nodes = model.rest.size();
   constexpr int kWindow = 6;

@@ -21,7 +21,7 @@ Params trial_params(const Params& base, DampingPolicy policy, const TrialParams&
 /// relative order; springs on different nodes are interleaved so that consecutive ones share
 /// no node, which keeps one spring's force update from waiting on the previous one's through
 /// memory and lets the CPU overlap their square roots and divisions.
-std::vector<int> spring_schedule(const Model& model);
+std::vector<int> spring_schedule(const ModelSpec& model);
 
 /// Runs `trials` with the batched kernel on one thread and returns their results in order
 /// (tests, small sweeps, the tuner's map). When `cancel` becomes true it returns {} at the

@@ -39,7 +39,7 @@ double run_oscillator(Integrator in, double lambda, double c, double T, int n) {
   State s = rest_state(m);
   s.x[0].y() = 1;
   StepWorkspace ws;
-  for (int k = 0; k < n; ++k) step(m, p, s, ws, 0);
+  for (int k = 0; k < n; ++k) step(m, p, s, ws);
   return s.x[0].y();
 }
 
@@ -60,7 +60,7 @@ TEST(Integrate, EachStepIsItsAmplificationMatrix) {
     const Vec3 x0 = s.x[0], v0 = s.v[0];
     StepWorkspace ws;
     for (int n = 1; n <= 25; ++n) {
-      step(m, p, s, ws, 0);
+      step(m, p, s, ws);
       Gn = G * Gn;
       for (int k = 0; k < 3; ++k) {
         const Eigen::Vector2d want = Gn * Eigen::Vector2d(x0[k], v0[k]);
@@ -93,7 +93,7 @@ TEST(Integrate, SemiImplicitClosedFormOfItsRecurrence) {
     s.v[0].z() = v0;
     StepWorkspace ws;
     for (int n = 1; n <= 60; ++n) {
-      step(m, p, s, ws, 0);
+      step(m, p, s, ws);
       const double want = (A * std::pow(z1, n) + B * std::pow(z2, n)).real();
       ASSERT_NEAR(s.x[0].z(), want, 1e-10 * (1 + std::abs(want))) << "lambda " << lambda << " n " << n;
     }
@@ -120,13 +120,13 @@ TEST(Integrate, PaperEulerStepsBitForBit) {
     Params p = s.params;
     p.integrator = in;
     p.gamma = 0.0013;
-    Model m = make_model(s, p);
+    Model m = compile_model(s.model, p);
     m.external_force[5] = Vec3(0.001, 0, -0.002);
     State st = initial_state(s), ref;
     StepWorkspace ws;
     for (int k = 0; k < 5; ++k) {
       ref = st;
-      step(m, p, st, ws, s.watched);
+      step(m, p, st, ws);
       for (size_t i = 0; i < st.x.size(); ++i) {
         const Vec3 a = (ws.force[i] - ws.gamma_eff[i] * ref.v[i] + m.external_force[i]) / m.mass[i];
         Vec3 v = ref.v[i], x = ref.x[i];
@@ -149,18 +149,18 @@ TEST(Integrate, FixedNodesStayAndZeroLengthSpringsAreCounted) {
   p.dt = 0.05;
   for (Integrator in : kAll) {
     p.integrator = in;
-    Model m;
-    add_node(m, Vec3::Zero());
-    add_node(m, Vec3(1, 0, 0));
-    add_node(m, Vec3(1, 0, 0));  // on top of node 1: a zero-length spring
-    m.fixed[0] = 1;
-    add_spring(m, 0, 1);
-    add_spring(m, 1, 2);
-    set_params(m, p);
+    ModelSpec spec;
+    add_node(spec, Vec3::Zero());
+    add_node(spec, Vec3(1, 0, 0));
+    add_node(spec, Vec3(1, 0, 0));  // on top of node 1: a zero-length spring
+    spec.fixed[0] = 1;
+    add_spring(spec, 0, 1);
+    add_spring(spec, 1, 2);
+    const Model m = compile_model(std::move(spec), p);
     State s = rest_state(m);
     s.v[0] = Vec3(1, 1, 1);  // a fixed node's velocity must not move it
     StepWorkspace ws;
-    const StepStats st = step(m, p, s, ws, 1);
+    const StepStats st = step(m, p, s, ws);
     EXPECT_EQ(s.x[0], Vec3::Zero()) << to_string(in);
     EXPECT_TRUE(st.finite) << to_string(in);
     EXPECT_GE(st.zero_length_springs, 1) << to_string(in);
@@ -179,11 +179,11 @@ TEST(Integrate, EachIntegratorDecaysInsideItsLimitAndGrowsOutside) {
   for (Integrator in : kAll) {
     Params p = s.params;
     p.integrator = in;
-    const Model m = make_model(s, p);
+    const Model m = compile_model(s.model, p);
     const ExactStability e = exact_stability(m, m.rest, p);
     ASSERT_EQ(e.method, in == Integrator::implicit_euler ? ExactMethod::unconditional : ExactMethod::per_mode);
     auto check = [&](const char* what, Params q, bool inside, int steps = 0) {
-      const Model mq = make_model(s, q);
+      const Model mq = compile_model(s.model, q);
       const double rho = spectrum_spectral_radius(in, e.spectrum, q.gamma / q.m, q.dt);
       ASSERT_EQ(rho <= 1, inside) << to_string(in) << " " << what << " rho " << rho;
       const double growth = perturbation_growth(mq, q, steps ? steps : steps_for(rho));

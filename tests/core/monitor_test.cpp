@@ -27,9 +27,10 @@ struct UserArrays {
       anchor.push_back(mo.anchor_kappa[k]);
       rest.push_back({mo.rest[k].x(), mo.rest[k].y(), mo.rest[k].z()});
     }
-    for (const Spring& s : mo.springs) {
+    for (size_t k = 0; k < mo.springs.size(); ++k) {
+      const Spring& s = mo.springs[k];
       pairs.insert(pairs.end(), {s.i, s.j});
-      stiffness.push_back(s.kappa);
+      stiffness.push_back(mo.spring_kappa[k]);
       rest_length.push_back(s.rest_length);
     }
   }

@@ -81,19 +81,24 @@ TEST(Protocol, UndampedStiffPaperPlaneDiverges) {
   EXPECT_NE(json.find("\"outcome\":\"diverged\""), std::string::npos);
 }
 
-TEST(Protocol, RunProtocolAndSessionAgree) {
+TEST(Protocol, SessionIsThePureStepPlusAccumulate) {
+  // A bare loop over step() and accumulate() gives the Session's verdict and counts: the
+  // Session adds nothing to the physics, only the watched node's samples.
   SceneSpec s = paper_plane();
   Params p = s.params;
   p.gamma = 0.001;
   Session session(s, p, s.rules);
   const RunResult a = session.run_to_end();
-  Model model = make_model(s, p);
+  const Model model = compile_model(s.model, p);
   State st = initial_state(s);
-  const RunResult b = run_protocol(model, p, st, s.rules, s.watched);
+  StepWorkspace ws;
+  RunResult b;
+  while (b.outcome == Outcome::running) accumulate(b, step(model, p, st, ws), s.rules);
   EXPECT_EQ(a.outcome, b.outcome);
   EXPECT_EQ(a.iterations, b.iterations);
   EXPECT_EQ(a.max_displacement, b.max_displacement);
   EXPECT_EQ(a.violations, b.violations);
+  EXPECT_EQ(session.trace().back().watched.displacement, displacement(model, st, s.watched));
 }
 
 TEST(Protocol, UpperPolicyAtRestAndAboveTheBound) {
@@ -104,25 +109,25 @@ TEST(Protocol, UpperPolicyAtRestAndAboveTheBound) {
   p.factor = 1.05;
   p.kappa = 0.1, p.m = 0.005;
   Session session(s, p, s.rules);
-  const StepStats& first = session.step_once();
+  const StepSample& first = session.step_once();
   // At t = 0 every v is 0: gamma_hi = inf, the policy gives 0, below the lower bound.
   EXPECT_EQ(first.violating, 1296);
   EXPECT_EQ(first.unstabilisable, 0);
-  EXPECT_EQ(first.watched_gamma_eff, 0.0);
-  const StepStats second = session.step_once();
+  EXPECT_EQ(first.watched.gamma_eff, 0.0);
+  const StepSample second = session.step_once();
   EXPECT_GT(second.violating, 0);
-  EXPECT_NEAR(second.watched_gamma_eff, 1.05 * second.watched_upper, 1e-15);
+  EXPECT_NEAR(second.watched.gamma_eff, 1.05 * second.watched.upper, 1e-15);
 }
 
 TEST(Session, ParameterChangeTakesEffectNextStep) {
   Session session(paper_plane());
   session.step_once();
-  EXPECT_DOUBLE_EQ(session.trace().back().watched_lower, 0.002);
+  EXPECT_DOUBLE_EQ(session.trace().back().watched.lower, 0.002);
   Params p = session.params();
   p.kappa = 0.004;  // lower bound 2 sqrt(0.001 * 0.004) = 0.004
   session.set_params(p);
   session.step_once();
-  EXPECT_DOUBLE_EQ(session.trace().back().watched_lower, 0.004);
+  EXPECT_DOUBLE_EQ(session.trace().back().watched.lower, 0.004);
   EXPECT_EQ(session.trace().back().iteration, 2);
 }
 
@@ -137,8 +142,8 @@ TEST(Session, CutRemovesCrossingSpringsAndBoundsReact) {
   EXPECT_EQ(crossing.size(), 71u);
   EXPECT_EQ(cut.cut(crossing), 71);
   EXPECT_EQ(cut.model().spring_count(), 3745 - 71);
-  const StepStats a = cut.step_once(), b = whole.step_once();
-  EXPECT_NE(a.watched_upper, b.watched_upper);  // the node next to the cut lost springs
+  const StepSample a = cut.step_once(), b = whole.step_once();
+  EXPECT_NE(a.watched.upper, b.watched.upper);  // the node next to the cut lost springs
   cut.reset();
   EXPECT_EQ(cut.model().spring_count(), 3745);
   EXPECT_TRUE(cut.trace().empty());
@@ -178,7 +183,7 @@ TEST(Session, CurrentSceneHasTheCutsMadeSoFar) {
   p.kappa *= 2;
   Session fresh(now, p, session.rules());
   EXPECT_EQ(fresh.model().spring_count(), now.model.spring_count());
-  EXPECT_DOUBLE_EQ(fresh.model().springs.front().kappa, 2 * session.model().springs.front().kappa);
+  EXPECT_DOUBLE_EQ(fresh.model().spring_kappa.front(), 2 * session.model().spring_kappa.front());
   EXPECT_DOUBLE_EQ(fresh.state().x[666].y(), 5.0);
   EXPECT_EQ(fresh.state().iteration, 0);
 }

@@ -59,8 +59,7 @@ struct RandomMesh {
 
 RandomMesh random_mesh(std::mt19937& rng, int draw) {
   std::uniform_real_distribution<double> u(0.0, 1.0);
-  RandomMesh r;
-  Model& m = r.model;
+  ModelSpec m;
   if (draw % 3 == 2) {
     add_node(m, Vec3::Zero());
     const Vec3 axes[] = {Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ(), -Vec3::UnitX()};
@@ -86,14 +85,13 @@ RandomMesh random_mesh(std::mt19937& rng, int draw) {
   Params p;
   p.m = 0.001 + 0.01 * u(rng);
   p.kappa = 0.001 + 0.5 * u(rng);
-  set_params(m, p);
-  r.x = m.rest;
-  for (size_t i = 0; i < r.x.size(); ++i)
-    if (!m.fixed[i]) r.x[i] += Vec3(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5) * 0.6;
+  std::vector<Vec3> x = m.rest;
+  for (size_t i = 0; i < x.size(); ++i)
+    if (!m.fixed[i]) x[i] += Vec3(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5) * 0.6;
   for (Spring& s : m.springs)  // stretched at x: l0 <= l
-    s.rest_length = (r.x[static_cast<size_t>(s.j)] - r.x[static_cast<size_t>(s.i)]).norm() *
+    s.rest_length = (x[static_cast<size_t>(s.j)] - x[static_cast<size_t>(s.i)]).norm() *
                     (u(rng) < 0.2 ? 0.0 : 0.3 + 0.7 * u(rng));
-  return r;
+  return RandomMesh{compile_model(std::move(m), p), std::move(x)};
 }
 
 TEST(SafeBound, RowSumsMatchTheDenseMassWeightedStiffness) {
@@ -112,26 +110,26 @@ TEST(SafeBound, PaperPlaneMatchesSpec9) {
   Params p = s.params;
   p.m = p.kappa = 0.001;
   p.dt = 0.05;
-  set_params(s.model, p);
+  const Model m = compile_model(s.model, p);
   std::vector<double> R;
-  safe_row_sums(s.model, s.model.rest, R);
+  safe_row_sums(m, m.rest, R);
   EXPECT_NEAR(R[18 * 36 + 18], 9.0, 1e-12);  // interior node: 9 kappa/m
   p.gamma = 0.002;
-  set_params(s.model, p);
-  const SafeBoundSummary sum = safe_bound_summary(s.model, s.model.rest, p.dt);
+  const Model mg = compile_model(s.model, p);
+  const SafeBoundSummary sum = safe_bound_summary(mg, mg.rest, p.dt);
   EXPECT_EQ(sum.free_nodes, 1296);
   EXPECT_NEAR(sum.gamma_safe, 0.039775, 1e-12);
   EXPECT_TRUE(sum.infeasible.empty());
-  const LinearLimits exact = linear_limits(max_stiffness_eigenvalue(s.model, s.model.rest), p.m, p.dt);
+  const LinearLimits exact = linear_limits(max_stiffness_eigenvalue(mg, mg.rest), p.m, p.dt);
   EXPECT_NEAR(exact.gamma_max, 0.039805, 5e-7);
   EXPECT_LT(sum.gamma_safe, exact.gamma_max);
   p.gamma = 0;
-  set_params(s.model, p);
-  EXPECT_NEAR(safe_bound_summary(s.model, s.model.rest, p.dt).dt_safe, 2.0 / 3.0, 1e-12);
+  const Model m0 = compile_model(s.model, p);
+  EXPECT_NEAR(safe_bound_summary(m0, m0.rest, p.dt).dt_safe, 2.0 / 3.0, 1e-12);
   EXPECT_NEAR(exact.dt_max_undamped, 0.7155, 5e-5);
   // At dt = 0.6 an interior node has gamma_safe = 2m/dt - m dt 9/2 = 0.00063 < gamma_lo =
   // 0.002: critical damping cannot be guaranteed there; the dt_safe at gamma_lo would.
-  const SafeBoundSummary at_big_dt = safe_bound_summary(s.model, s.model.rest, 0.6);
+  const SafeBoundSummary at_big_dt = safe_bound_summary(m0, m0.rest, 0.6);
   EXPECT_GT(at_big_dt.infeasible.size(), 1000u);
   EXPECT_NEAR(at_big_dt.infeasible_dt[0], safe_dt(0.001, 0.002, R[at_big_dt.infeasible[0]]), 0);
   EXPECT_LT(at_big_dt.infeasible_dt[0], 0.6);
@@ -186,31 +184,34 @@ TEST(SafeBound, StepUnderSafePolicyClampsAnAbsurdDamping) {
   Params p = s.params;
   p.gamma = 1.0;
   p.policy = DampingPolicy::safe;
-  set_params(s.model, p);
+  const Model m = compile_model(s.model, p);
   State st = initial_state(s);
   StepWorkspace ws;
-  const StepStats stats = step(s.model, p, st, ws, s.watched);
+  const StepStats stats = step(m, p, st, ws);
   EXPECT_EQ(stats.unguaranteed, 0);
   EXPECT_EQ(stats.compressed_springs, 0);
-  EXPECT_LT(stats.watched_gamma_eff, 0.0398);
-  EXPECT_EQ(stats.watched_gamma_eff, stats.watched_safe);
+  const NodeSample w = sample_node(m, st, ws, s.watched);
+  EXPECT_LT(w.gamma_eff, 0.0398);
+  EXPECT_EQ(w.gamma_eff, w.safe);
   for (size_t i = 0; i < ws.gamma_eff.size(); ++i) EXPECT_EQ(ws.gamma_eff[i], ws.safe_bound[i]);
 }
 
 TEST(SafeBound, FollowsACutAtTheNextStep) {
   SceneSpec s = shipped("paper-plane");
-  set_params(s.model, s.params);
-  State st = rest_state(s.model);
+  const Model whole = compile_model(s.model, s.params);
+  State st = rest_state(whole);
   StepWorkspace ws;
-  step(s.model, s.params, st, ws, 0);
+  step(whole, s.params, st, ws);
   const std::vector<double> before = ws.safe_bound;
   std::vector<int> incident;  // every spring of the node (18, 18)
   for (int k = 0; k < s.model.spring_count(); ++k)
     if (s.model.springs[static_cast<size_t>(k)].i == 18 * 36 + 18 ||
         s.model.springs[static_cast<size_t>(k)].j == 18 * 36 + 18)
       incident.push_back(k);
-  remove_springs(s.model, incident, s.params);
-  step(s.model, s.params, st, ws, 0);
+  const Model cut = compile_model(without_springs(s.model, incident), s.params);
+  EXPECT_EQ(incident.size(), 6u);  // 4 along the axes, 2 diagonals
+  EXPECT_EQ(cut.spring_count(), whole.spring_count() - 6);
+  step(cut, s.params, st, ws);
   EXPECT_GT(ws.safe_bound[18 * 36 + 18], before[18 * 36 + 18]);
   EXPECT_GT(ws.safe_bound[19 * 36 + 19], before[19 * 36 + 19]);  // its diagonal neighbour
   EXPECT_EQ(ws.safe_bound[18 * 36 + 19], before[18 * 36 + 19]);  // x rows still sum to 9

@@ -78,7 +78,7 @@ TEST(PaperPlane, UniformLowerBound) {
   const SceneSpec s = load_scene(test::source_path("scenes/paper-plane.toml"));
   Params p;
   p.m = 0.005, p.kappa = 0.1;
-  const Model m = make_model(s, p);
+  const Model m = compile_model(s.model, p);
   for (double lo : m.lower_bound) EXPECT_DOUBLE_EQ(lo, 2 * std::sqrt(0.005 * 0.1));
 }
 
@@ -108,7 +108,7 @@ kappa_scale = 10
                                   "region.toml");
   Params p;
   p.m = 1, p.kappa = 1;
-  const Model m = make_model(s, p);
+  const Model m = compile_model(s.model, p);
   // Nodes with a = 2 are inside: mass 2, and springs between two of them are 10x stiffer.
   EXPECT_EQ(m.mass[2 * 3 + 1], 2.0);
   EXPECT_EQ(m.mass[1 * 3 + 1], 1.0);

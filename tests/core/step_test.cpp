@@ -42,7 +42,7 @@ TEST_P(StepClosedForm, MatchesRecurrence) {
   s.x[0].y() = x0;
   StepWorkspace ws;
   for (int n = 1; n <= 300; ++n) {
-    step(model, p, s, ws, 0);
+    step(model, p, s, ws);
     const double expected = closed_form(x0, k.kappa / k.m, k.gamma / k.m, k.dt, n);
     ASSERT_NEAR(s.x[0].y(), expected, 1e-9 * (1 + std::abs(expected))) << "n=" << n;
     ASSERT_EQ(s.x[0].x(), 0.0);
@@ -72,14 +72,17 @@ TEST(Step, UsesNewVelocityForPosition) {
   s.x[0] = Vec3(1, 0, 0);
   s.v[0] = Vec3(0.4, 0, 0);
   StepWorkspace ws;
-  const StepStats st = step(model, p, s, ws, 0);
+  const StepStats st = step(model, p, s, ws);
   const double a = (-3 * 1.0 - 0.5 * 0.4) / 2;
   const double v1 = 0.4 + a * 0.1, x1 = 1 + v1 * 0.1;
   EXPECT_DOUBLE_EQ(s.v[0].x(), v1);
   EXPECT_DOUBLE_EQ(s.x[0].x(), x1);
   EXPECT_EQ(st.iteration, 1);
   EXPECT_DOUBLE_EQ(st.time, 0.1);
-  EXPECT_DOUBLE_EQ(st.watched_displacement, std::abs(x1));
+  const NodeSample w = sample_node(model, s, ws, 0);
+  EXPECT_DOUBLE_EQ(w.displacement, std::abs(x1));
+  EXPECT_DOUBLE_EQ(w.gamma_eff, 0.5);
+  EXPECT_DOUBLE_EQ(w.lower, 2 * std::sqrt(2.0 * 3.0));
 }
 
 TEST(Step, FixedNodeNeverMoves) {
@@ -94,28 +97,28 @@ TEST(Step, FixedNodeNeverMoves) {
 TEST(Step, ExternalForceAccelerates) {
   Params p;
   p.m = 2, p.gamma = 0, p.dt = 0.5;
-  Model model;
-  add_node(model, Vec3::Zero());
-  model.external_force[0] = Vec3(0, -4, 0);
-  set_params(model, p);
+  ModelSpec spec;
+  add_node(spec, Vec3::Zero());
+  spec.external_force[0] = Vec3(0, -4, 0);
+  const Model model = compile_model(std::move(spec), p);
   State s = rest_state(model);
   StepWorkspace ws;
-  step(model, p, s, ws, 0);
+  step(model, p, s, ws);
   EXPECT_DOUBLE_EQ(s.v[0].y(), -1.0);   // a = -2, v = -1
   EXPECT_DOUBLE_EQ(s.x[0].y(), -0.5);   // x = v_new dt
 }
 
 TEST(Step, ZeroLengthSpringIsCountedNotNaN) {
   Params p;
-  Model model;
-  add_node(model, Vec3::Zero());
-  add_node(model, Vec3(1, 0, 0));
-  add_spring(model, 0, 1);
-  set_params(model, p);
+  ModelSpec spec;
+  add_node(spec, Vec3::Zero());
+  add_node(spec, Vec3(1, 0, 0));
+  add_spring(spec, 0, 1);
+  const Model model = compile_model(std::move(spec), p);
   State s = rest_state(model);
   s.x[1] = s.x[0];  // both nodes on the same point: no direction
   StepWorkspace ws;
-  const StepStats st = step(model, p, s, ws, 1);
+  const StepStats st = step(model, p, s, ws);
   EXPECT_EQ(st.zero_length_springs, 1);
   EXPECT_TRUE(st.finite);
   EXPECT_TRUE(s.x[1].allFinite());
@@ -131,9 +134,9 @@ TEST(Step, DeterministicTraces) {
   b.run_to_end();
   ASSERT_EQ(a.trace().size(), b.trace().size());
   for (size_t k = 0; k < a.trace().size(); ++k) {
-    const StepStats &x = a.trace()[k], &y = b.trace()[k];
-    ASSERT_EQ(std::memcmp(&x.watched_displacement, &y.watched_displacement, sizeof(double)), 0);
-    ASSERT_EQ(std::memcmp(&x.watched_upper, &y.watched_upper, sizeof(double)), 0);
+    const StepSample &x = a.trace()[k], &y = b.trace()[k];
+    ASSERT_EQ(std::memcmp(&x.watched.displacement, &y.watched.displacement, sizeof(double)), 0);
+    ASSERT_EQ(std::memcmp(&x.watched.upper, &y.watched.upper, sizeof(double)), 0);
     ASSERT_EQ(std::memcmp(&x.max_displacement, &y.max_displacement, sizeof(double)), 0);
     ASSERT_EQ(x.violating, y.violating);
   }

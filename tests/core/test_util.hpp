@@ -1,6 +1,7 @@
 #pragma once
 // Shared helpers of the core tests.
 #include <string>
+#include <utility>
 
 #include "core/model.hpp"
 #include "core/scene.hpp"
@@ -13,11 +14,10 @@ inline std::string source_path(const std::string& rel) {
 
 /// One free node on a zero-rest-length anchor: the single damped oscillator.
 inline Model single_oscillator(const Params& p) {
-  Model m;
+  ModelSpec m;
   add_node(m, Vec3::Zero());
   m.anchor_scale[0] = 1;
-  set_params(m, p);
-  return m;
+  return compile_model(std::move(m), p);
 }
 
 }  // namespace dampbound::test

@@ -44,7 +44,7 @@ struct TopView {
   OrbitCamera cam;
   Viewport vp{0, 0, 900, 700};
   Mat4f m;
-  explicit TopView(const Model& model) {
+  explicit TopView(const ModelSpec& model) {
     Vec3f lo, hi;
     bounding_box(model.rest, lo, hi);
     cam.fit(lo, hi);
@@ -64,7 +64,7 @@ TEST(SpringsCrossingScreen, MatchesTheCoreCutOfThePlane) {
   GridSpec g;
   g.nx = g.nz = 12;
   g.spacing = 1.0;
-  const Model model = make_grid(g);
+  const ModelSpec model = make_grid(g);
   const TopView v(model);
   const auto pts = project_points(v.m, v.vp, model.rest);
   const double cuts[3][4] = {{5.5, -1, 5.5, 12}, {-1, 2.3, 8.7, 9.1}, {2.2, 3.3, 7.7, 4.4}};
@@ -80,7 +80,7 @@ TEST(SpringsCrossingScreen, MatchesTheCoreCutOfThePlane) {
 }
 
 TEST(SpringsCrossingScreen, SkipsSpringsBehindTheCameraAndShortLines) {
-  Model model;
+  ModelSpec model;
   add_node(model, Vec3(0, 0, 0));
   add_node(model, Vec3(1, 0, 0));
   add_spring(model, 0, 1);

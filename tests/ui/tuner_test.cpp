@@ -43,15 +43,15 @@ TEST(Tuner, ParameterChangeTakesEffectAtTheNextStepWithoutRestart) {
   const auto& tr = t.session().trace();
   ASSERT_EQ(tr.size(), 6u);  // the trace goes on: no restart
   EXPECT_EQ(t.session().state().iteration, 6);
-  EXPECT_DOUBLE_EQ(tr[4].watched_gamma, default_params().gamma);
-  EXPECT_DOUBLE_EQ(tr[5].watched_gamma, 0.0005);
-  EXPECT_DOUBLE_EQ(tr[4].watched_lower, lower_bound(0.001, 0.001));
-  EXPECT_DOUBLE_EQ(tr[5].watched_lower, lower_bound(0.001, 0.004));
+  EXPECT_DOUBLE_EQ(tr[4].watched.gamma, default_params().gamma);
+  EXPECT_DOUBLE_EQ(tr[5].watched.gamma, 0.0005);
+  EXPECT_DOUBLE_EQ(tr[4].watched.lower, lower_bound(0.001, 0.001));
+  EXPECT_DOUBLE_EQ(tr[5].watched.lower, lower_bound(0.001, 0.004));
   // The policy too.
   p.policy = DampingPolicy::lower;
   ASSERT_TRUE(t.set_params(p));
   t.step(1);
-  EXPECT_DOUBLE_EQ(tr.back().watched_gamma_eff, tr.back().watched_lower);
+  EXPECT_DOUBLE_EQ(tr.back().watched.gamma_eff, tr.back().watched.lower);
 }
 
 TEST(Tuner, InvalidParametersAreRefusedAndChangeNothing) {
@@ -187,7 +187,7 @@ TEST(Tuner, WatchAndDisplace) {
   t.displace(3, Vec3(std::numeric_limits<double>::infinity(), 0, 0));  // refused
   EXPECT_TRUE(t.session().state().x[3].allFinite());
   t.step(1);
-  EXPECT_GT(t.session().trace().back().watched_displacement, 1.0);
+  EXPECT_GT(t.session().trace().back().watched.displacement, 1.0);
 }
 
 TEST(Tuner, TheScenesOwnCutChangesTheTopology) {
@@ -240,7 +240,7 @@ TEST(Tuner, CutWithTheScreenToolWhileRunningAndTheBoundsReact) {
   t.step(1);
   twin.step(1);
   EXPECT_EQ(t.session().trace().size(), 4u);
-  EXPECT_NE(t.session().trace().back().watched_upper, twin.session().trace().back().watched_upper);
+  EXPECT_NE(t.session().trace().back().watched.upper, twin.session().trace().back().watched.upper);
   // A reset brings the springs back.
   t.reset();
   EXPECT_EQ(t.session().model().spring_count(), before);

@@ -11,24 +11,24 @@
 namespace dampbound::ui {
 namespace {
 
-std::vector<StepStats> make_trace(int n) {
-  std::vector<StepStats> t(static_cast<size_t>(n));
+std::vector<StepSample> make_trace(int n) {
+  std::vector<StepSample> t(static_cast<size_t>(n));
   for (int i = 0; i < n; ++i) {
-    StepStats& s = t[static_cast<size_t>(i)];
+    StepSample& s = t[static_cast<size_t>(i)];
     s.iteration = i + 1;
     s.time = 0.05 * (i + 1);
-    s.watched_displacement = 5.0 * std::exp(-i / 3000.0) * std::abs(std::cos(i * 0.37));
-    s.max_displacement = s.watched_displacement + 0.1;
-    s.watched_lower = 0.002;
-    s.watched_upper = i % 97 == 0 ? std::numeric_limits<double>::infinity() : 0.01 + i * 1e-6;
+    s.watched.displacement = 5.0 * std::exp(-i / 3000.0) * std::abs(std::cos(i * 0.37));
+    s.max_displacement = s.watched.displacement + 0.1;
+    s.watched.lower = 0.002;
+    s.watched.upper = i % 97 == 0 ? std::numeric_limits<double>::infinity() : 0.01 + i * 1e-6;
     s.violating = i % 13;
   }
   return t;
 }
 
-double max_of(const std::vector<StepStats>& t) {
+double max_of(const std::vector<StepSample>& t) {
   double m = 0;
-  for (const auto& s : t) m = std::max(m, s.watched_displacement);
+  for (const auto& s : t) m = std::max(m, s.watched.displacement);
   return m;
 }
 
@@ -39,7 +39,7 @@ TEST(TraceDecimator, ShortTracesAreKeptExactly) {
   ASSERT_EQ(r.size(), 50u);
   for (size_t i = 0; i < r.size(); ++i) {
     EXPECT_EQ(r[i].iteration, t[i].iteration);
-    EXPECT_EQ(r[i].watched_displacement, t[i].watched_displacement);
+    EXPECT_EQ(r[i].watched.displacement, t[i].watched.displacement);
   }
   EXPECT_EQ(d.bucket_size(), 1u);
 }
@@ -56,16 +56,16 @@ TEST(TraceDecimator, LongTracesStayBoundedAndKeepTheExtremes) {
   // Iterations never go backwards, and the infinite upper bound survives as a maximum.
   for (size_t i = 1; i < r.size(); ++i) EXPECT_LE(r[i - 1].iteration, r[i].iteration);
   EXPECT_TRUE(std::any_of(r.begin(), r.end(),
-                          [](const StepStats& s) { return std::isinf(s.watched_upper); }));
+                          [](const StepSample& s) { return std::isinf(s.watched.upper); }));
   EXPECT_TRUE(
-      std::any_of(r.begin(), r.end(), [](const StepStats& s) { return s.violating == 12; }));
+      std::any_of(r.begin(), r.end(), [](const StepSample& s) { return s.violating == 12; }));
 }
 
 TEST(TraceDecimator, IncrementalUpdatesEqualOneShot) {
   const auto t = make_trace(20000);
   TraceDecimator once(128), step(128);
   const auto& a = once.update(t);
-  std::vector<StepStats> growing;
+  std::vector<StepSample> growing;
   for (size_t i = 0; i < t.size(); i += 777) {
     growing.insert(growing.end(), t.begin() + static_cast<long>(i),
                    t.begin() + static_cast<long>(std::min(i + 777, t.size())));
@@ -75,7 +75,7 @@ TEST(TraceDecimator, IncrementalUpdatesEqualOneShot) {
   ASSERT_EQ(a.size(), b.size());
   for (size_t i = 0; i < a.size(); ++i) {
     EXPECT_EQ(a[i].iteration, b[i].iteration);
-    EXPECT_EQ(a[i].watched_displacement, b[i].watched_displacement);
+    EXPECT_EQ(a[i].watched.displacement, b[i].watched.displacement);
   }
 }
 
@@ -88,14 +88,14 @@ TEST(TraceDecimator, StartsOverOnANewGenerationOrAShorterTrace) {
 }
 
 TEST(TraceDecimator, MergeIgnoresNaN) {
-  StepStats lo, hi, s;
-  lo.watched_displacement = 1;
-  hi.watched_displacement = 1;
-  s.watched_displacement = std::numeric_limits<double>::quiet_NaN();
+  StepSample lo, hi, s;
+  lo.watched.displacement = 1;
+  hi.watched.displacement = 1;
+  s.watched.displacement = std::numeric_limits<double>::quiet_NaN();
   merge_into(lo, s, BucketEnd::lo);
   merge_into(hi, s, BucketEnd::hi);
-  EXPECT_EQ(lo.watched_displacement, 1);
-  EXPECT_EQ(hi.watched_displacement, 1);
+  EXPECT_EQ(lo.watched.displacement, 1);
+  EXPECT_EQ(hi.watched.displacement, 1);
   s.finite = false;
   merge_into(hi, s, BucketEnd::hi);
   EXPECT_FALSE(hi.finite);
@@ -103,22 +103,22 @@ TEST(TraceDecimator, MergeIgnoresNaN) {
 
 TEST(TraceDecimator, MergeFoldsEveryField) {
   // Each end takes the minima or the maxima of every field, the SPEC 9 ones included.
-  StepStats a, b;
+  StepSample a, b;
   a.iteration = 3, b.iteration = 7;
   a.time = 0.3, b.time = 0.7;
-  a.watched_safe = 2, b.watched_safe = 5;
+  a.watched.safe = 2, b.watched.safe = 5;
   a.unguaranteed = 4, b.unguaranteed = 1;
   a.compressed_springs = 0, b.compressed_springs = 9;
   a.violating = 2, b.violating = 6;
-  StepStats lo = a, hi = a;
+  StepSample lo = a, hi = a;
   merge_into(lo, b, BucketEnd::lo);
   merge_into(hi, b, BucketEnd::hi);
   EXPECT_EQ(lo.iteration, 3);
   EXPECT_EQ(hi.iteration, 7);
   EXPECT_EQ(lo.time, 0.3);
   EXPECT_EQ(hi.time, 0.7);
-  EXPECT_EQ(lo.watched_safe, 2);
-  EXPECT_EQ(hi.watched_safe, 5);
+  EXPECT_EQ(lo.watched.safe, 2);
+  EXPECT_EQ(hi.watched.safe, 5);
   EXPECT_EQ(lo.unguaranteed, 1);
   EXPECT_EQ(hi.unguaranteed, 4);
   EXPECT_EQ(lo.compressed_springs, 0);

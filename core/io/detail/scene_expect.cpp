@@ -36,10 +36,9 @@ void read_expectations(const Reader& r, const toml::table& root, SceneSpec& s) {
       if (!found) r.fail(*n, "expect refers to run '" + x.run + "', which is not declared");
     }
     if (auto* n = t.get("rule")) {
-      StopRule rule{};
-      if (!parse_stop_rule(r.string(*n, "rule"), rule))
-        r.fail(*n, "rule must be first-entry or settled");
-      x.rule = rule;
+      const auto rule = parse_stop_rule(r.string(*n, "rule"));
+      if (!rule) r.fail(*n, "rule must be first-entry or settled");
+      x.rule = *rule;
     }
     const bool settled = x.rule == StopRule::settled;
     if (auto* n = t.get("outcome")) {

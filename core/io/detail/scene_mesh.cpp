@@ -56,7 +56,7 @@ void read_mesh_regions(const Reader& r, const toml::table& root, const CellMesh&
                                        {"tag", "name", "fixed", "mass_scale", "kappa_scale",
                                        "gamma_scale", "anchor_scale", "force", "displacement"})) {
     const std::vector<int>& nodes = region_of(r, t, mesh, regions);
-    Model& m = s.model;
+    ModelSpec& m = s.model;
     for (int i : nodes) {
       const auto k = static_cast<size_t>(i);
       if (auto* n = t.get("fixed")) m.fixed[k] = r.boolean(*n, "fixed");

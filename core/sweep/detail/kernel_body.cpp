@@ -73,7 +73,7 @@ struct Kernel final : BatchKernel::Impl {
     const std::string why = batch_kernel_unsupported(scene);
     if (!why.empty()) throw std::invalid_argument("batched kernel: " + why);
     semi_implicit = scene.params.integrator == Integrator::semi_implicit_euler;
-    const Model& mo = scene.model;
+    const ModelSpec& mo = scene.model;
     n = mo.rest.size();
     const State s0 = initial_state(scene);
     rest.resize(3 * n);
@@ -138,7 +138,7 @@ struct Kernel final : BatchKernel::Impl {
     gamma[l] = p.gamma;
     dt[l] = p.dt;
     factor[l] = p.factor;
-    // Model::set_params and upper_bound(): m_i = m*scale, m_i/dt, 2 sqrt(m_i kappa_i).
+    // compile_model() and upper_bound(): m_i = m*scale, m_i/dt, 2 sqrt(m_i kappa_i).
     // Lane l of each vector is assigned one by one: Clang does not bind a reference to a
     // vector element.
     auto node_values = [&](size_t i, vd& ms, vd& mds, vd& los, vd& gus) {

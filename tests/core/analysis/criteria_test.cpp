@@ -115,7 +115,7 @@ TEST(Criteria, NonUniformGeneralisation) {
   const SceneSpec s = load_scene(source_path("scenes/stiff-region.toml"));
   Params p = s.params;
   p.gamma = 0.005;
-  const Model m = make_model(s, p);
+  const Model m = compile_model(s.model, p);
   auto node = [](int a, int b) { return static_cast<size_t>(a * 36 + b); };
   const double k = p.kappa;
   EXPECT_DOUBLE_EQ(m.node_kappa[node(18, 18)], 10 * k);
@@ -143,7 +143,7 @@ TEST(Criteria, ClassicCriteriaAgainstTheExactLimitOnThePaperPlane) {
   Params p = s.params;
   p.gamma = 0;
   p.dt = 0.73;
-  const Model m = make_model(s, p);
+  const Model m = compile_model(s.model, p);
   const State rest = rest_state(m);
   const auto all = all_criteria(m, rest, p, exact_stability(m, rest.x, p));
   EXPECT_EQ(find(all, "Kacic").verdict, CriterionVerdict::within);

@@ -20,11 +20,10 @@ Eigen::VectorXd dense_eigenvalues(const SparseMatrix& A) {
 }
 
 SparseMatrix plane_matrix(int n, double deform) {
-  Model m = make_grid(GridSpec{n, n, 0.57, true, true});
   Params p;
   p.m = 0.002;
   p.kappa = 0.05;
-  set_params(m, p);
+  const Model m = compile_model(make_grid(GridSpec{n, n, 0.57, true, true}), p);
   std::vector<Vec3> x = m.rest;
   unsigned seed = 3;
   for (auto& q : x)
@@ -44,11 +43,10 @@ void expect_encloses(const EigenInterval& r, double lambda, double scale) {
 
 TEST(Gershgorin, PaperPlaneRowSumsAreSpec9sBound) {
   // SPEC 9: an interior node of the paper plane has R_i = 9 kappa/m, the largest of all.
-  Model m = make_grid(GridSpec{12, 12, 0.57, true, true});
   Params p;
   p.m = 0.001;
   p.kappa = 0.001;
-  set_params(m, p);
+  const Model m = compile_model(make_grid(GridSpec{12, 12, 0.57, true, true}), p);
   const SparseMatrix A = mass_weighted(m, tangent_stiffness(m, m.rest));
   const GershgorinBounds g = gershgorin_bounds(A);
   EXPECT_NEAR(g.hi, 9.0, 1e-12);
@@ -101,7 +99,7 @@ TEST(CertifiedEigenvalue, ClusteredTopAndNegativeEigenvalues) {
 TEST(CertifiedEigenvalue, PaperPlaneLambdaMax) {
   // The paper plane (SPEC 5) at kappa = m: lambda_max = 7.8123249218733 (docs/criteria.md).
   const SceneSpec s = paper_plane_scene();
-  const Model m = make_model(s, s.params);
+  const Model m = compile_model(s.model, s.params);
   const SparseMatrix A = mass_weighted(m, tangent_stiffness(m, m.rest));
   const EigenInterval r = certified_largest_eigenvalue(A);
   EXPECT_LE(r.lo, 7.8123249218733 + 1e-12);

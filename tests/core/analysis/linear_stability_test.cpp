@@ -26,9 +26,7 @@ Model grid_model(int nx, int nz, const Params& p) {
   g.nx = nx;
   g.nz = nz;
   g.spacing = 0.57;
-  Model m = make_grid(g);
-  set_params(m, p);
-  return m;
+  return compile_model(make_grid(g), p);
 }
 
 /// A small non-uniform grid: the first rows heavier and stiffer (like stiff-region.toml).
@@ -37,12 +35,11 @@ Model nonuniform_grid(int nx, int nz, const Params& p) {
   g.nx = nx;
   g.nz = nz;
   g.spacing = 0.57;
-  Model m = make_grid(g);
+  ModelSpec m = make_grid(g);
   for (int i = 0; i < 2 * nz; ++i) m.mass_scale[static_cast<size_t>(i)] = 4, m.anchor_scale[static_cast<size_t>(i)] = 10;
   for (Spring& s : m.springs)
     if (s.i < 2 * nz && s.j < 2 * nz) s.kappa_scale = 10;
-  set_params(m, p);
-  return m;
+  return compile_model(std::move(m), p);
 }
 
 Eigen::VectorXd dense_eigenvalues(const SparseMatrix& A) {
@@ -132,13 +129,13 @@ TEST(LinearStability, TwoNodeClosedForm) {
 TEST(LinearStability, PaperPlaneLambdaMax) {
   const SceneSpec s = load_scene(source_path("scenes/paper-plane.toml"));
   Params p = s.params;  // m = kappa = 0.001
-  const Model m = make_model(s, p);
+  const Model m = compile_model(s.model, p);
   const StiffnessSpectrum sp = stiffness_spectrum(m, m.rest);
   EXPECT_NEAR(sp.lambda_max, 7.8123249218733, 1e-9);  // measured; docs/criteria.md
   EXPECT_NEAR(sp.lambda_min, 1.0, 1e-9);              // the anchors: kappa/m
   p.kappa = 0.1;  // lambda scales with kappa/m (SPEC 6)
   p.m = 0.005;
-  const Model m2 = make_model(s, p);
+  const Model m2 = compile_model(s.model, p);
   EXPECT_NEAR(max_stiffness_eigenvalue(m2, m2.rest), 20 * sp.lambda_max, 1e-8 * 20 * sp.lambda_max);
 }
 
@@ -157,8 +154,8 @@ TEST(LinearStability, SymmetricIndexIsExactForNonUniformDamping) {
     EXPECT_EQ(index < 4, rho <= 1 + 1e-12) << "gamma " << gamma << " index " << index << " rho " << rho;
   }
   p.gamma = 0.005;
-  set_params(const_cast<Model&>(m), p);
-  const ExactStability e = exact_stability(m, m.rest, p);
+  const Model m5 = compile_model(m, p);
+  const ExactStability e = exact_stability(m5, m5.rest, p);
   ASSERT_EQ(e.method, ExactMethod::symmetric_index);
   auto rho_at = [&](double gamma, double dt) {
     const std::vector<double> g(m.rest.size(), gamma);
@@ -216,8 +213,7 @@ TEST(LinearStability, TwoNodeRunsDecayInsideAndGrowOutside) {
   for (double f : {0.98, 1.02}) {
     Params q = p;
     q.gamma = f * gamma_max;
-    Model m = base;
-    set_params(m, q);
+    const Model m = compile_model(base, q);
     const double rho = spectrum_spectral_radius(q.integrator, {p.kappa / p.m, p.kappa / p.m}, q.gamma / q.m, q.dt);
     const double growth = perturbation_growth(m, q, steps_for(rho));
     if (f < 1) EXPECT_LT(growth, 1.0) << growth;
@@ -228,7 +224,7 @@ TEST(LinearStability, TwoNodeRunsDecayInsideAndGrowOutside) {
 TEST(LinearStability, StiffRegionRunsDecayInsideAndGrowOutside) {
   const SceneSpec s = load_scene(source_path("scenes/stiff-region.toml"));
   const Params p = s.params;  // m = kappa = 0.001, gamma = 0.02, dt = 0.05
-  const Model m = make_model(s, p);
+  const Model m = compile_model(s.model, p);
   const ExactStability e = exact_stability(m, m.rest, p, {false});
   ASSERT_EQ(e.method, ExactMethod::symmetric_index);
   EXPECT_FALSE(e.uniform_rate);
@@ -237,7 +233,7 @@ TEST(LinearStability, StiffRegionRunsDecayInsideAndGrowOutside) {
   for (double f : {0.95, 1.05}) {
     Params q = p;
     q.gamma = f * e.gamma_hi;
-    Model mq = make_model(s, q);
+    Model mq = compile_model(s.model, q);
     const double g1 = perturbation_growth(mq, q, f < 1 ? 300 : 120);
     q = p;
     q.dt = f * e.dt_max;

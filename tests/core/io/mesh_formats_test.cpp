@@ -33,7 +33,7 @@ CellMesh small_block(const std::string& file) {
   return read_mesh_file(test::source_path(kCorpus + file));
 }
 
-std::set<std::pair<int, int>> spring_set(const Model& m) {
+std::set<std::pair<int, int>> spring_set(const ModelSpec& m) {
   std::set<std::pair<int, int>> out;
   for (const Spring& s : m.springs) out.insert({std::min(s.i, s.j), std::max(s.i, s.j)});
   return out;
@@ -59,7 +59,7 @@ TEST(MeshFormats, EveryFormatGivesTheSameBlock) {
   const char* files[] = {"msh/block-22.msh",  "msh/block-22b.msh", "msh/block-41.msh",
                          "msh/block-41b.msh", "tetgen/block.ele",  "vtk/block.vtk"};
   const CellMesh ref = small_block(files[0]);
-  const Model ref_model = model_from_mesh(ref, MeshSprings{});
+  const ModelSpec ref_model = model_from_mesh(ref, MeshSprings{});
   ASSERT_EQ(ref.vertices.size(), 48u);
   // Edges of the Kuhn subdivision: 104 along the axes, 75 face diagonals, 18 body diagonals.
   EXPECT_EQ(ref_model.spring_count(), 104 + 75 + 18);
@@ -87,7 +87,7 @@ TEST(MeshFormats, LumpedMassesAndVolumeWeightedStiffness) {
   how.scale = 2.0;  // the block becomes 3 x 2 x 3 cm: 18 cm^3
   how.density = 0.5;
   how.young = 3.0;
-  const Model m = model_from_mesh(small_block("msh/block-41.msh"), how);
+  const ModelSpec m = model_from_mesh(small_block("msh/block-41.msh"), how);
   double mass = 0, moment = 0;
   for (double s : m.mass_scale) mass += s;
   EXPECT_NEAR(mass, 0.5 * 18.0, 1e-12);  // density x volume, split to the corners
@@ -111,7 +111,7 @@ TEST(MeshFormats, QuadsGetShearAndFlexionSprings) {
   MeshSprings how;
   EXPECT_EQ(model_from_obj(mesh, how).spring_count(), 760 + 2 * 361);  // sides + diagonals
   how.bend = true;
-  const Model bent = model_from_obj(mesh, how);
+  const ModelSpec bent = model_from_obj(mesh, how);
   // Flexion springs (a-1, b)-(a+1, b) and (a, b-1)-(a, b+1): 18 x 20 in each direction.
   EXPECT_EQ(bent.spring_count(), 760 + 722 + 720);
   const auto springs = spring_set(bent);
@@ -211,7 +211,7 @@ TEST(MeshFormats, MeshRegionErrorsNameTheSceneLine) {
   const SceneSpec s = load_scene(scene);
   MeshSprings how;
   how.density = 1.0;
-  const Model plain = model_from_mesh(read_mesh_file(mesh), how);
+  const ModelSpec plain = model_from_mesh(read_mesh_file(mesh), how);
   const auto probe = region_nodes(read_mesh_file(mesh)).at(3);
   for (int i : probe)
     EXPECT_DOUBLE_EQ(s.model.mass_scale[size_t(i)], 2 * plain.mass_scale[size_t(i)]);

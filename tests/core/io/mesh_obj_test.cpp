@@ -70,7 +70,7 @@ TEST(MeshObj, EdgesOnceBendingSpringsAcrossSharedEdgesAnchorsAndScale) {
   const ObjMesh m = parse_obj(kSquare, "square.obj");
   MeshSprings how;
   how.scale = 2.0;
-  Model plain = model_from_obj(m, how);
+  ModelSpec plain = model_from_obj(m, how);
   ASSERT_EQ(plain.node_count(), 4);
   EXPECT_EQ(plain.rest[2], Vec3(2, 0, 2));
   // 0-1, 1-2, 2-0 then 2-3, 3-0: the shared edge once, in order of first appearance.
@@ -82,7 +82,7 @@ TEST(MeshObj, EdgesOnceBendingSpringsAcrossSharedEdgesAnchorsAndScale) {
   for (double a : plain.anchor_scale) EXPECT_EQ(a, 1.0);
   how.bend = true;
   how.anchors = false;
-  Model bent = model_from_obj(m, how);
+  ModelSpec bent = model_from_obj(m, how);
   ASSERT_EQ(bent.spring_count(), 6);  // + the far corners 1-3 across the shared edge 0-2
   EXPECT_EQ(std::min(bent.springs[5].i, bent.springs[5].j), 1);
   EXPECT_EQ(std::max(bent.springs[5].i, bent.springs[5].j), 3);

@@ -109,7 +109,7 @@ TEST(SweepKernel, TwoNodeSceneEveryPolicyMatchesStep) {
 SceneSpec irregular_scene() {
   SceneSpec s;
   s.name = "irregular";
-  Model& m = s.model;
+  ModelSpec& m = s.model;
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(0.0, 1.0);
   for (int i = 0; i < 23; ++i) add_node(m, Vec3(u(rng) * 3, u(rng) * 0.5, u(rng) * 3));
@@ -261,7 +261,7 @@ TEST(SweepKernel, SafePolicyMatchesStepInEveryBranch) {
 
 TEST(SweepKernel, SpringScheduleKeepsEachNodesOrder) {
   const SceneSpec scene = shipped("paper-plane");
-  const Model& m = scene.model;
+  const ModelSpec& m = scene.model;
   const std::vector<int> order = spring_schedule(m);
   ASSERT_EQ(order.size(), m.springs.size());
   std::vector<int> seen(m.springs.size(), 0);
