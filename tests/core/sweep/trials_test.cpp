@@ -59,7 +59,7 @@ TEST(SweepTrials, TrialParamsFillTheTrialsValues) {
 
 TEST(SweepTrials, ScheduleKeepsEachNodesSpringOrder) {
   const SceneSpec scene = test::shipped_scene("paper-plane");
-  const Model model = make_model(scene, scene.params);
+  const ModelSpec& model = scene.model;
   const std::vector<int> order = spring_schedule(model);
   ASSERT_EQ(order.size(), model.springs.size());
   std::vector<int> sorted = order;
