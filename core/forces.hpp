@@ -1,15 +1,32 @@
 #pragma once
 // The internal force F_i of paper eq. 6 (SPEC 1): spring and anchor forces only, no damping,
 // no external force.
+#include <cstdint>
 #include <vector>
 
 #include "core/model.hpp"
+#include "core/node_threads.hpp"
 
 namespace dampbound {
 
+/// Threads and buffers of the two-pass spring loops (forces here, SPEC 9's row sums in
+/// safe_bound.hpp): pass 1 evaluates each spring once into `values`, pass 2 gathers each
+/// node's springs in index order (Model::incident), so every node's sum is added in the
+/// order of a serial loop over the springs and the result has the same bits on any number of
+/// threads. step() keeps one in its workspace.
+struct SpringPass {
+  NodeThreads threads;
+  std::vector<double> values;        ///< per-spring intermediate values (up to 7 doubles each)
+  std::vector<std::uint8_t> skip;    ///< per spring: 1 = no direction (zero or NaN length)
+  std::vector<int> counts;           ///< per-chunk counts
+};
+
 /// F_i = sum_j kappa_ij (l_ij - l0_ij) d_ij  -  kappa_a,i (x_i - X_i),  d_ij = (x_j - x_i)/l_ij
-/// (paper eq. 1, SPEC 1). `force` is resized to the node count. A spring of zero current
-/// length has no direction and contributes nothing; the return value counts such springs.
-int internal_forces(const Model& model, const std::vector<Vec3>& x, std::vector<Vec3>& force);
+/// (paper eq. 1, SPEC 1), each node's springs added in spring order after its anchor term.
+/// `force` is resized to the node count. A spring of zero current length has no direction and
+/// contributes nothing; the return value counts such springs. `pass` (optional) brings
+/// threads and keeps the buffers between calls.
+int internal_forces(const Model& model, const std::vector<Vec3>& x, std::vector<Vec3>& force,
+                    SpringPass* pass = nullptr);
 
 }  // namespace dampbound

@@ -13,25 +13,29 @@ namespace dampbound {
 namespace {
 
 /// Paper eqs. 3-4 (SPEC 2): a = (F - gamma v + f)/m; v += a dt; x += v_new dt.
-void semi_implicit_euler(const Model& model, double dt, State& s, const StepWorkspace& ws) {
-  for (size_t i = 0; i < s.x.size(); ++i) {
-    if (model.fixed[i]) continue;
-    const Vec3 a = (ws.force[i] - ws.gamma_eff[i] * s.v[i] + model.external_force[i]) /
-                   model.mass[i];
-    s.v[i] += a * dt;
-    s.x[i] += s.v[i] * dt;
-  }
+void semi_implicit_euler(const Model& model, double dt, State& s, StepWorkspace& ws) {
+  ws.pass.threads.run(s.x.size(), [&](int, size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) {
+      if (model.fixed[i]) continue;
+      const Vec3 a = (ws.force[i] - ws.gamma_eff[i] * s.v[i] + model.external_force[i]) /
+                     model.mass[i];
+      s.v[i] += a * dt;
+      s.x[i] += s.v[i] * dt;
+    }
+  });
 }
 
 /// Forward (explicit) Euler: x += v_old dt; v += a dt.
-void forward_euler(const Model& model, double dt, State& s, const StepWorkspace& ws) {
-  for (size_t i = 0; i < s.x.size(); ++i) {
-    if (model.fixed[i]) continue;
-    const Vec3 a = (ws.force[i] - ws.gamma_eff[i] * s.v[i] + model.external_force[i]) /
-                   model.mass[i];
-    s.x[i] += s.v[i] * dt;
-    s.v[i] += a * dt;
-  }
+void forward_euler(const Model& model, double dt, State& s, StepWorkspace& ws) {
+  ws.pass.threads.run(s.x.size(), [&](int, size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) {
+      if (model.fixed[i]) continue;
+      const Vec3 a = (ws.force[i] - ws.gamma_eff[i] * s.v[i] + model.external_force[i]) /
+                     model.mass[i];
+      s.x[i] += s.v[i] * dt;
+      s.v[i] += a * dt;
+    }
+  });
 }
 
 /// a_i = (F_i - gamma_i v_i + f_i) / m_i with gamma_i held from the state at t.
@@ -55,7 +59,7 @@ int verlet(const Model& model, double h, State& s, StepWorkspace& ws) {
     s.v[i] += (h / 2) * acceleration(model, ws, i, ws.force[i], s.v[i]);
     s.x[i] += h * s.v[i];
   }
-  const int zero = internal_forces(model, s.x, force_new);
+  const int zero = internal_forces(model, s.x, force_new, &ws.pass);
   for (size_t i = 0; i < s.x.size(); ++i) {
     if (model.fixed[i]) continue;
     const Vec3 kick = s.v[i] + (h / 2) * (force_new[i] + model.external_force[i]) / model.mass[i];
@@ -91,7 +95,7 @@ int rk4(const Model& model, double h, State& s, StepWorkspace& ws) {
   for (int stage = 0; stage < 3; ++stage) {
     for (size_t i = 0; i < n; ++i)
       if (!model.fixed[i]) xt[i] = s.x[i] + (c[stage] * h) * vk[i];
-    zero += internal_forces(model, xt, ft);
+    zero += internal_forces(model, xt, ft, &ws.pass);
     for (size_t i = 0; i < n; ++i) {
       if (model.fixed[i]) continue;
       vk[i] = s.v[i] + (c[stage] * h) * ak[i];

@@ -54,6 +54,21 @@ Model compile_model(ModelSpec spec, const Params& params) {
     ki = std::max(ki, kappa);
     kj = std::max(kj, kappa);
   }
+  // Incidence lists by counting sort: springs are visited in index order, so each node's
+  // list is sorted. A spring from a node to itself is listed once (it has no direction).
+  model.incident_offset.assign(n + 1, 0);
+  for (const Spring& s : model.springs) {
+    ++model.incident_offset[static_cast<size_t>(s.i) + 1];
+    if (s.j != s.i) ++model.incident_offset[static_cast<size_t>(s.j) + 1];
+  }
+  for (size_t i = 0; i < n; ++i) model.incident_offset[i + 1] += model.incident_offset[i];
+  model.incident.resize(static_cast<size_t>(model.incident_offset[n]));
+  std::vector<int> fill(model.incident_offset.begin(), model.incident_offset.end() - 1);
+  for (int k = 0; k < model.spring_count(); ++k) {
+    const Spring& s = model.springs[static_cast<size_t>(k)];
+    model.incident[static_cast<size_t>(fill[static_cast<size_t>(s.i)]++)] = k;
+    if (s.j != s.i) model.incident[static_cast<size_t>(fill[static_cast<size_t>(s.j)]++)] = ~k;
+  }
   // Paper eq. 5 with kappa_i = the largest stiffness incident to i (SPEC 3). A node with no
   // spring and no anchor has kappa_i = 0 and so a lower bound of 0.
   for (size_t i = 0; i < n; ++i)

@@ -54,6 +54,11 @@ class Model : public ModelSpec {
   std::vector<double> spring_kappa;  ///< kappa_ij of spring k (mass unit / s^2)
   std::vector<double> node_kappa;    ///< kappa_i of eq. 5: max stiffness incident to i (SPEC 3)
   std::vector<double> lower_bound;   ///< gamma_lo_i = 2 sqrt(m_i kappa_i) (eq. 5; mass unit / s)
+  /// The springs at node i, in increasing index: incident[incident_offset[i] ..
+  /// incident_offset[i + 1]), k where i is spring k's first node, ~k where it is its second.
+  /// What lets a per-node loop add its springs in the serial order (step() on threads).
+  std::vector<int> incident_offset;
+  std::vector<int> incident;
 
  private:
   Model() = default;

@@ -5,61 +5,73 @@
 #include <limits>
 
 #include "core/analysis/linear_stability.hpp"
+#include "core/forces.hpp"
 #include "core/detail/spring_block.hpp"
 
 namespace dampbound {
 
 int safe_row_sums(const Model& model, const std::vector<Vec3>& x, std::vector<double>& row_sum,
-                  std::vector<double>* scratch) {
+                  SpringPass* pass) {
+  SpringPass local;
+  SpringPass& p = pass ? *pass : local;
   const std::vector<double>& mass = model.mass;
-  const std::vector<double>& anchor_kappa = model.anchor_kappa;
   const std::vector<std::uint8_t>& fixed = model.fixed;
-  const size_t n = x.size();
-  std::vector<double> local;
-  std::vector<double>& acc = scratch ? *scratch : local;
-  // Per node: the diagonal block K_ii (upper triangle, 6) and the row sums of |A| over the
-  // off-diagonal blocks (3). The anchor adds kappa_a I to K_ii (SPEC 7).
-  acc.assign(9 * n, 0.0);
-  for (size_t i = 0; i < n; ++i) {
-    double* a = &acc[9 * i];
-    a[0] = a[3] = a[5] = anchor_kappa[i];
-  }
+  const size_t n = x.size(), ns = model.springs.size();
   // |b| summed along row r of a symmetric block, left to right.
   auto row_abs = [](const double* b, int r) {
     return (std::abs(b[sym3(r, 0)]) + std::abs(b[sym3(r, 1)])) + std::abs(b[sym3(r, 2)]);
   };
-  int compressed = 0;
-  for (size_t k = 0; k < model.springs.size(); ++k) {
-    const Spring& s = model.springs[k];
-    const size_t i = static_cast<size_t>(s.i), j = static_cast<size_t>(s.j);
-    const Vec3 delta = x[j] - x[i];
-    const double l = delta.norm();
-    if (!(l > 0)) continue;  // no direction: no force, no stiffness (SPEC 1)
-    const double d[3] = {delta[0] / l, delta[1] / l, delta[2] / l};
-    const double ratio = s.rest_length / l;
-    const double tension = 1.0 - ratio;
-    compressed += tension < 0;
-    double b[6];
-    spring_tangent_block(model.spring_kappa[k], tension, ratio, d, b);
-    // K_ii += B, K_jj += B, K_ij = K_ji = -B; A_rs = K_rs / sqrt(m_r m_s).
-    const double w = 1.0 / std::sqrt(mass[i] * mass[j]);
-    for (size_t node : {i, j}) {
-      if (fixed[node]) continue;
-      double* a = &acc[9 * node];
-      for (int k = 0; k < 6; ++k) a[k] = a[k] + b[k];
-      if (!fixed[node == i ? j : i])
-        for (int r = 0; r < 3; ++r) a[6 + r] = a[6 + r] + row_abs(b, r) * w;
+  // Pass 1, per spring: its tangent block B (upper triangle, 6) and w = 1/sqrt(m_i m_j).
+  constexpr size_t kStride = 7;
+  p.values.resize(kStride * ns);
+  p.skip.resize(ns);
+  p.counts.assign(static_cast<size_t>(p.threads.chunks(ns)), 0);
+  p.threads.run(ns, [&](int chunk, size_t begin, size_t end) {
+    int compressed = 0;
+    for (size_t k = begin; k < end; ++k) {
+      const Spring& s = model.springs[k];
+      const size_t i = static_cast<size_t>(s.i), j = static_cast<size_t>(s.j);
+      const Vec3 delta = x[j] - x[i];
+      const double l = delta.norm();
+      p.skip[k] = !(l > 0);  // no direction: no force, no stiffness (SPEC 1)
+      if (p.skip[k]) continue;
+      const double d[3] = {delta[0] / l, delta[1] / l, delta[2] / l};
+      const double ratio = s.rest_length / l;
+      const double tension = 1.0 - ratio;
+      compressed += tension < 0;
+      double* b = &p.values[kStride * k];
+      spring_tangent_block(model.spring_kappa[k], tension, ratio, d, b);
+      b[6] = 1.0 / std::sqrt(mass[i] * mass[j]);
     }
-  }
+    p.counts[static_cast<size_t>(chunk)] = compressed;
+  });
+  // Pass 2, per free node, its springs in index order: K_ii += B (the anchor adds kappa_a I,
+  // SPEC 7), and the row sums of |A| over the off-diagonal blocks, A_rs = K_rs / sqrt(m_r
+  // m_s) with K_ij = -B; columns of fixed nodes drop out.
   row_sum.assign(n, 0.0);
-  for (size_t i = 0; i < n; ++i) {
-    if (fixed[i]) continue;
-    const double* a = &acc[9 * i];
-    const double r0 = row_abs(a, 0) / mass[i] + a[6];
-    const double r1 = row_abs(a, 1) / mass[i] + a[7];
-    const double r2 = row_abs(a, 2) / mass[i] + a[8];
-    row_sum[i] = std::max(std::max(r0, r1), r2);
-  }
+  p.threads.run(n, [&](int, size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) {
+      if (fixed[i]) continue;
+      const double ka = model.anchor_kappa[i];
+      double a[9] = {ka, 0, 0, ka, 0, ka, 0, 0, 0};
+      for (int e = model.incident_offset[i]; e < model.incident_offset[i + 1]; ++e) {
+        const int k = model.incident[static_cast<size_t>(e)];
+        const size_t spring = static_cast<size_t>(k >= 0 ? k : ~k);
+        if (p.skip[spring]) continue;
+        const Spring& s = model.springs[spring];
+        const double* b = &p.values[kStride * spring];
+        for (int q = 0; q < 6; ++q) a[q] = a[q] + b[q];
+        if (!fixed[static_cast<size_t>(k >= 0 ? s.j : s.i)])
+          for (int r = 0; r < 3; ++r) a[6 + r] = a[6 + r] + row_abs(b, r) * b[6];
+      }
+      const double r0 = row_abs(a, 0) / mass[i] + a[6];
+      const double r1 = row_abs(a, 1) / mass[i] + a[7];
+      const double r2 = row_abs(a, 2) / mass[i] + a[8];
+      row_sum[i] = std::max(std::max(r0, r1), r2);
+    }
+  });
+  int compressed = 0;
+  for (int c : p.counts) compressed += c;
   return compressed;
 }
 

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/forces.hpp"
 #include "core/model.hpp"
 
 namespace dampbound {
@@ -12,13 +13,14 @@ namespace dampbound {
 /// Gershgorin row sums of A = M^-1/2 K M^-1/2 (K the tangent stiffness at positions x, SPEC 7)
 /// over the free nodes: R_i = max over node i's three rows r of sum_s |A_rs| (all columns, the
 /// diagonal too; columns of fixed nodes drop out), 1/s^2. R_i = 0 for a fixed node.
-/// Reads the model's m_i, anchor and spring stiffnesses and fixed flags; x in cm. A spring of zero length has no direction and is skipped (SPEC 1). Springs are taken in
-/// list order (what the batched kernel mirrors bit for bit). O(springs + nodes).
-/// `scratch` (optional) keeps 9 doubles per node between calls to avoid allocation.
+/// Reads the model's m_i, anchor and spring stiffnesses and fixed flags; x in cm. A spring of
+/// zero length has no direction and is skipped (SPEC 1). Each node's springs are added in
+/// index order (what the batched kernel mirrors bit for bit), so any thread count gives the
+/// same bits. O(springs + nodes); `pass` (optional) brings the threads and keeps 7 doubles per spring between calls.
 /// Returns the number of compressed springs (0 < l < l0): with one, K may be indefinite and
 /// the bound guarantees nothing (SPEC 9).
 int safe_row_sums(const Model& model, const std::vector<Vec3>& x, std::vector<double>& row_sum,
-                  std::vector<double>* scratch = nullptr);
+                  SpringPass* pass = nullptr);
 
 /// SPEC 9: gamma_safe = 2 m/dt - m dt R / 2 (mass unit / s). May be <= 0: then no damping
 /// guarantees stability at this dt.

@@ -1,5 +1,6 @@
 #include "core/step.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -9,38 +10,60 @@
 
 namespace dampbound {
 
+namespace {
+
+/// What one chunk of nodes counts in a step; chunks combine exactly (integers, max).
+struct ChunkStats {
+  int violating = 0, unstabilisable = 0, clamped = 0, unguaranteed = 0;
+  double max_displacement = 0;
+  bool finite = true;
+};
+
+}  // namespace
+
 StepStats step(const Model& model, const Params& params, State& state, StepWorkspace& ws) {
   const size_t n = model.rest.size();
+  NodeThreads& threads = ws.pass.threads;
   StepStats st;
-  st.zero_length_springs = internal_forces(model, state.x, ws.force);
+  st.zero_length_springs = internal_forces(model, state.x, ws.force, &ws.pass);
   ws.upper_bound.resize(n);
   ws.gamma_eff.resize(n);
   ws.status.resize(n);
   ws.safe_bound.resize(n);
   // SPEC 9: R_i from the tangent stiffness at t, one pass over the springs.
-  st.compressed_springs = safe_row_sums(model, state.x, ws.safe_row_sum, &ws.safe_scratch);
+  st.compressed_springs = safe_row_sums(model, state.x, ws.safe_row_sum, &ws.pass);
 
   // Bounds and effective damping from the state at t (SPEC 3-4).
-  for (size_t i = 0; i < n; ++i) {
-    if (model.fixed[i]) {
-      ws.upper_bound[i] = std::numeric_limits<double>::infinity();
-      ws.gamma_eff[i] = 0;
-      ws.status[i] = NodeStatus::fixed;
-      ws.safe_bound[i] = std::numeric_limits<double>::infinity();
-      continue;
+  std::vector<ChunkStats> chunk(static_cast<size_t>(threads.chunks(n)));
+  threads.run(n, [&](int c, size_t begin, size_t end) {
+    ChunkStats& cs = chunk[static_cast<size_t>(c)];
+    for (size_t i = begin; i < end; ++i) {
+      if (model.fixed[i]) {
+        ws.upper_bound[i] = std::numeric_limits<double>::infinity();
+        ws.gamma_eff[i] = 0;
+        ws.status[i] = NodeStatus::fixed;
+        ws.safe_bound[i] = std::numeric_limits<double>::infinity();
+        continue;
+      }
+      const double hi = upper_bound(state.v[i], ws.force[i], model.mass[i], params.dt);
+      const double safe = safe_gamma(model.mass[i], params.dt, ws.safe_row_sum[i]);
+      const DampingChoice d = effective_damping(params.policy, model.gamma[i],
+                                                model.lower_bound[i], hi, params.factor, safe);
+      ws.upper_bound[i] = hi;
+      ws.safe_bound[i] = safe;
+      ws.gamma_eff[i] = d.gamma;
+      ws.status[i] = d.status;
+      cs.unguaranteed += d.unguaranteed;
+      cs.violating += d.violating;
+      cs.unstabilisable += d.unstabilisable;
+      cs.clamped += d.status == NodeStatus::clamped;
     }
-    const double hi = upper_bound(state.v[i], ws.force[i], model.mass[i], params.dt);
-    const double safe = safe_gamma(model.mass[i], params.dt, ws.safe_row_sum[i]);
-    const DampingChoice c = effective_damping(params.policy, model.gamma[i],
-                                              model.lower_bound[i], hi, params.factor, safe);
-    ws.upper_bound[i] = hi;
-    ws.safe_bound[i] = safe;
-    st.unguaranteed += c.unguaranteed;
-    ws.gamma_eff[i] = c.gamma;
-    ws.status[i] = c.status;
-    st.violating += c.violating;
-    st.unstabilisable += c.unstabilisable;
-    st.clamped += c.status == NodeStatus::clamped;
+  });
+  for (const ChunkStats& cs : chunk) {
+    st.unguaranteed += cs.unguaranteed;
+    st.violating += cs.violating;
+    st.unstabilisable += cs.unstabilisable;
+    st.clamped += cs.clamped;
   }
   st.zero_length_springs += advance(model, params, state, ws);
   state.time += params.dt;
@@ -48,17 +71,22 @@ StepStats step(const Model& model, const Params& params, State& state, StepWorks
   st.time = state.time;
 
   // Displacements after the step; a non-finite coordinate makes the step non-finite.
-  double max_d = 0;
-  for (size_t i = 0; i < n; ++i) {
-    const double d = (state.x[i] - model.rest[i]).norm();
-    if (!std::isfinite(d)) {
-      st.finite = false;
-      max_d = std::numeric_limits<double>::infinity();
-    } else if (d > max_d) {
-      max_d = d;
+  threads.run(n, [&](int c, size_t begin, size_t end) {
+    ChunkStats& cs = chunk[static_cast<size_t>(c)];
+    for (size_t i = begin; i < end; ++i) {
+      const double d = (state.x[i] - model.rest[i]).norm();
+      if (!std::isfinite(d)) {
+        cs.finite = false;
+        cs.max_displacement = std::numeric_limits<double>::infinity();
+      } else if (d > cs.max_displacement) {
+        cs.max_displacement = d;
+      }
     }
+  });
+  for (const ChunkStats& cs : chunk) {
+    st.finite = st.finite && cs.finite;
+    st.max_displacement = std::max(st.max_displacement, cs.max_displacement);
   }
-  st.max_displacement = max_d;
   return st;
 }
 

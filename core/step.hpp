@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "core/bounds.hpp"
+#include "core/forces.hpp"
 #include "core/model.hpp"
 
 namespace dampbound {
@@ -18,8 +19,10 @@ struct StepWorkspace {
   std::vector<NodeStatus> status;
   std::vector<double> safe_row_sum;  ///< R_i at t (SPEC 9; 1/s^2), 0 for fixed nodes
   std::vector<double> safe_bound;    ///< gamma_safe_i at t (SPEC 9); +inf for fixed nodes
-  std::vector<double> safe_scratch;  ///< safe_row_sums' accumulators
-  std::vector<Vec3> scratch[8];  ///< integrator temporaries
+  std::vector<Vec3> scratch[8];      ///< integrator temporaries
+  /// The threads of the per-node loops (1 by default: pass.threads.set_threads(T)) and the
+  /// per-spring buffers of the spring loops. Any thread count gives the same bits.
+  SpringPass pass;
 };
 
 /// What one step reports about the whole model (SPEC 3): its maximum displacement and counts.

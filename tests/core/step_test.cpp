@@ -143,5 +143,113 @@ TEST(Step, DeterministicTraces) {
   for (size_t i = 0; i < a.state().x.size(); ++i) ASSERT_EQ(a.state().x[i], b.state().x[i]);
 }
 
+/// A perturbed 3D lattice big enough to split (9261 nodes, ~60k springs): varied scales, some
+/// fixed nodes, an external force, stretched and compressed springs.
+Model lattice(const Params& p) {
+  ModelSpec m;
+  const int k = 21;
+  for (int a = 0; a < k; ++a)
+    for (int b = 0; b < k; ++b)
+      for (int c = 0; c < k; ++c) {
+        const int i = add_node(m, Vec3(a, b, c) * 0.5);
+        m.mass_scale.back() = 1 + (i % 7) * 0.25;
+        m.gamma_scale.back() = 1 + (i % 5) * 0.5;
+        m.anchor_scale.back() = i % 3 == 0 ? 2.0 : 0.0;
+        m.fixed.back() = b == 0 && a % 4 == 0;
+        m.external_force.back() = Vec3(0, -1e-4 * (i % 2), 0);
+      }
+  auto at = [&](int a, int b, int c) { return (a * k + b) * k + c; };
+  for (int a = 0; a < k; ++a)
+    for (int b = 0; b < k; ++b)
+      for (int c = 0; c < k; ++c)
+        for (int e = 1; e < 8; ++e) {
+          const int a2 = a + (e & 1), b2 = b + ((e >> 1) & 1), c2 = c + ((e >> 2) & 1);
+          if (a2 < k && b2 < k && c2 < k) add_spring(m, at(a, b, c), at(a2, b2, c2), 1 + (e % 3));
+        }
+  return compile_model(std::move(m), p);
+}
+
+State shaken(const Model& model) {
+  State s = rest_state(model);
+  unsigned seed = 5;
+  for (size_t i = 0; i < s.x.size(); ++i)
+    for (int d = 0; d < 3; ++d) {
+      seed = seed * 1103515245u + 12345u;
+      s.x[i][d] += 0.2 * (static_cast<double>((seed >> 8) & 0xffffu) / 65535.0 - 0.5);
+    }
+  return s;
+}
+
+template <class T>
+bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
+}
+
+TEST(Step, ForcesAreTheSerialScatterSumsBitForBit) {
+  // The reference: one loop over the springs adding +f to i and -f to j (the summation order
+  // every node's force must keep on threads).
+  Params p;
+  const Model m = lattice(p);
+  const State s = shaken(m);
+  std::vector<Vec3> want(m.rest.size());
+  for (size_t i = 0; i < want.size(); ++i) want[i] = -m.anchor_kappa[i] * (s.x[i] - m.rest[i]);
+  for (size_t k = 0; k < m.springs.size(); ++k) {
+    const Spring& sp = m.springs[k];
+    const Vec3 delta = s.x[size_t(sp.j)] - s.x[size_t(sp.i)];
+    const double l = delta.norm();
+    const Vec3 f = (m.spring_kappa[k] * (l - sp.rest_length) / l) * delta;
+    want[size_t(sp.i)] += f;
+    want[size_t(sp.j)] -= f;
+  }
+  for (int threads : {1, 2, 3}) {
+    SpringPass pass;
+    pass.threads.set_threads(threads);
+    std::vector<Vec3> got;
+    EXPECT_EQ(internal_forces(m, s.x, got, &pass), 0);
+    EXPECT_TRUE(same_bits(got, want)) << threads << " threads";
+  }
+}
+
+TEST(Step, AnyThreadCountGivesTheSameBits) {
+  for (Integrator in : {Integrator::semi_implicit_euler, Integrator::forward_euler,
+                        Integrator::verlet, Integrator::rk4}) {
+    for (DampingPolicy policy : {DampingPolicy::clamp, DampingPolicy::safe}) {
+      Params p;
+      p.integrator = in;
+      p.policy = policy;
+      p.dt = 0.02;
+      const Model m = lattice(p);
+      State one = shaken(m);
+      StepWorkspace ws1;
+      std::vector<StepStats> serial;
+      for (int k = 0; k < 15; ++k) serial.push_back(step(m, p, one, ws1));
+      for (int threads : {2, 3, 4}) {
+        SCOPED_TRACE(std::string(to_string(in)) + " " + to_string(policy) + " " +
+                     std::to_string(threads) + " threads");
+        State many = shaken(m);
+        StepWorkspace ws;
+        ws.pass.threads.set_threads(threads);
+        ASSERT_GE(ws.pass.threads.chunks(m.rest.size()), 2);
+        for (int k = 0; k < 15; ++k) {
+          const StepStats st = step(m, p, many, ws);
+          ASSERT_EQ(std::memcmp(&st.max_displacement, &serial[size_t(k)].max_displacement,
+                                sizeof(double)),
+                    0);
+          ASSERT_EQ(st.violating, serial[size_t(k)].violating);
+          ASSERT_EQ(st.clamped, serial[size_t(k)].clamped);
+          ASSERT_EQ(st.unguaranteed, serial[size_t(k)].unguaranteed);
+          ASSERT_EQ(st.compressed_springs, serial[size_t(k)].compressed_springs);
+          ASSERT_EQ(st.finite, serial[size_t(k)].finite);
+        }
+        EXPECT_TRUE(same_bits(many.x, one.x));
+        EXPECT_TRUE(same_bits(many.v, one.v));
+        EXPECT_TRUE(same_bits(ws.gamma_eff, ws1.gamma_eff));
+        EXPECT_TRUE(same_bits(ws.safe_bound, ws1.safe_bound));
+        EXPECT_GT(serial.back().compressed_springs, 0);
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace dampbound

@@ -1,0 +1,110 @@
+#include "core/node_threads.hpp"
+
+#include <algorithm>
+#include <condition_variable>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace dampbound {
+
+/// Workers wait for a new generation, run their chunk of the current job and count down.
+struct NodeThreads::Pool {
+  std::vector<std::thread> workers;
+  std::mutex mutex;
+  std::condition_variable wake, done;
+  const std::function<void(int, std::size_t, std::size_t)>* job = nullptr;
+  std::size_t n = 0;
+  int chunks = 0;
+  int pending = 0;
+  unsigned long generation = 0;
+  bool stopping = false;
+
+  explicit Pool(int threads) {
+    for (int t = 1; t < threads; ++t) workers.emplace_back([this, t] { work(t); });
+  }
+
+  ~Pool() {
+    {
+      std::lock_guard<std::mutex> lock(mutex);
+      stopping = true;
+    }
+    wake.notify_all();
+    for (std::thread& w : workers) w.join();
+  }
+
+  static std::size_t begin_of(std::size_t n, int chunks, int c) {
+    return n * static_cast<std::size_t>(c) / static_cast<std::size_t>(chunks);
+  }
+
+  void work(int t) {
+    unsigned long seen = 0;
+    for (;;) {
+      std::unique_lock<std::mutex> lock(mutex);
+      wake.wait(lock, [&] { return stopping || generation != seen; });
+      if (stopping) return;
+      seen = generation;
+      if (t >= chunks) continue;  // this job needs fewer threads
+      const auto* f = job;
+      const std::size_t count = n;
+      const int parts = chunks;
+      lock.unlock();
+      (*f)(t, begin_of(count, parts, t), begin_of(count, parts, t + 1));
+      lock.lock();
+      if (--pending == 0) done.notify_one();
+    }
+  }
+
+  void run(std::size_t count, int parts,
+           const std::function<void(int, std::size_t, std::size_t)>& fn) {
+    {
+      std::lock_guard<std::mutex> lock(mutex);
+      job = &fn;
+      n = count;
+      chunks = parts;
+      pending = parts - 1;
+      ++generation;
+    }
+    wake.notify_all();
+    fn(0, 0, begin_of(count, parts, 1));
+    std::unique_lock<std::mutex> lock(mutex);
+    done.wait(lock, [&] { return pending == 0; });
+    job = nullptr;
+  }
+};
+
+NodeThreads::NodeThreads() = default;
+NodeThreads::NodeThreads(int threads) { set_threads(threads); }
+NodeThreads::NodeThreads(const NodeThreads& other) : threads_(other.threads_) {}
+
+NodeThreads& NodeThreads::operator=(const NodeThreads& other) {
+  if (this != &other) set_threads(other.threads_);
+  return *this;
+}
+
+NodeThreads::~NodeThreads() = default;
+
+void NodeThreads::set_threads(int threads) {
+  if (threads <= 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  if (threads == threads_) return;
+  pool_.reset();
+  threads_ = threads;
+}
+
+int NodeThreads::chunks(std::size_t n) const {
+  const std::size_t by_size = std::max<std::size_t>(1, n / kMinItemsPerThread);
+  return static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(threads_), by_size));
+}
+
+void NodeThreads::run(std::size_t n,
+                      const std::function<void(int, std::size_t, std::size_t)>& fn) {
+  const int parts = chunks(n);
+  if (parts <= 1) {
+    fn(0, 0, n);
+    return;
+  }
+  if (!pool_) pool_ = std::make_unique<Pool>(threads_);
+  pool_->run(n, parts, fn);
+}
+
+}  // namespace dampbound

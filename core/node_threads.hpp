@@ -1,0 +1,42 @@
+#pragma once
+// Threads for the per-node loops of step(): a small persistent pool that splits [0, n) into
+// contiguous chunks, one per thread. Every loop it runs writes disjoint per-node outputs or
+// per-chunk partial results that the caller combines exactly (integer counts, max), so a
+// step gives the same bits on any number of threads.
+#include <cstddef>
+#include <functional>
+#include <memory>
+
+namespace dampbound {
+
+class NodeThreads {
+ public:
+  /// Below this many items per thread a loop runs on fewer threads (one for small models):
+  /// waking a thread costs about as much as 2k nodes of work.
+  static constexpr std::size_t kMinItemsPerThread = 2048;
+
+  NodeThreads();
+  explicit NodeThreads(int threads);
+  /// A copy has the same thread count and threads of its own, started when first needed.
+  NodeThreads(const NodeThreads& other);
+  NodeThreads& operator=(const NodeThreads& other);
+  ~NodeThreads();
+
+  /// 1 (the default) runs every loop on the caller's thread; 0 means one per hardware thread.
+  void set_threads(int threads);
+  int threads() const { return threads_; }
+
+  /// How many chunks run(n, ...) splits n items into: between 1 and threads().
+  int chunks(std::size_t n) const;
+
+  /// Calls fn(chunk, begin, end) for the chunks(n) contiguous ranges covering [0, n), chunk 0
+  /// on the calling thread, and returns when all are done. fn must not call run().
+  void run(std::size_t n, const std::function<void(int, std::size_t, std::size_t)>& fn);
+
+ private:
+  struct Pool;
+  int threads_ = 1;
+  std::unique_ptr<Pool> pool_;
+};
+
+}  // namespace dampbound

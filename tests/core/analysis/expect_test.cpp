@@ -1,0 +1,97 @@
+// Scene expectations (core/analysis/expect.hpp): which run is judged, and every field judged
+// pass or fail against the run's result, with the measured value in words.
+#include "core/analysis/expect.hpp"
+
+#include <gtest/gtest.h>
+
+#include "core/io/scene_file.hpp"
+#include "core/session.hpp"
+#include "tests/core/test_util.hpp"
+
+namespace dampbound {
+namespace {
+
+SceneSpec two_node() { return load_scene(test::source_path("scenes/two-node.toml")); }
+
+TEST(Expect, RunLabelledPicksTheRunsParametersAndRule) {
+  SceneSpec s = two_node();
+  RunSpec soft;
+  soft.label = "soft";
+  soft.params = s.params;
+  soft.params.gamma = 0.0002;  // a tenth of critical
+  soft.rules = s.rules;
+  s.runs.push_back(soft);
+  const RunResult own = run_labelled(s, "");
+  Session direct(s, s.params, s.rules);
+  const RunResult by_hand = direct.run_to_end();
+  EXPECT_EQ(own.outcome, by_hand.outcome);
+  EXPECT_EQ(own.iterations, by_hand.iterations);
+  EXPECT_EQ(own.outcome, Outcome::restored);  // critical damping restores the pull
+  const RunResult ringing = run_labelled(s, "soft");
+  Session soft_session(s, soft.params, soft.rules);
+  EXPECT_EQ(ringing.iterations, soft_session.run_to_end().iterations);
+  EXPECT_NE(ringing.iterations, own.iterations);  // it swings through the band sooner
+  // The settled rule steps to the limit.
+  const RunResult settled = run_labelled(s, "", StopRule::settled);
+  EXPECT_EQ(settled.outcome, Outcome::settled);
+  EXPECT_EQ(settled.iterations, s.rules.max_iterations);
+  EXPECT_EQ(settled.first_entry, own.first_entry);
+}
+
+TEST(Expect, NoExpectationsNoResults) {
+  EXPECT_TRUE(check_expectations(two_node()).empty());
+}
+
+TEST(Expect, EachFieldIsJudged) {
+  SceneSpec s = two_node();
+  const RunResult r = run_labelled(s, "");
+  const int n = r.iterations;
+  Expectation pass;
+  pass.line = 40;
+  pass.outcome = Outcome::restored;
+  pass.iterations_min = n, pass.iterations_max = n;
+  pass.first_entry_min = 1, pass.first_entry_max = n;
+  pass.left = false;
+  pass.max_displacement_below = 0.005;  // restored: below 1% of the 0.5 cm pull
+  pass.violations_max = 0;
+  pass.unstabilisable_max = 0;
+  Expectation fail;
+  fail.line = 41;
+  fail.outcome = Outcome::diverged;
+  fail.iterations_min = n + 1, fail.iterations_max = n + 10;
+  fail.settled_at_min = 1, fail.settled_at_max = 1000;  // none under the first-entry rule
+  fail.left = true;
+  fail.violations_min = 1;
+  s.expectations = {pass, fail};
+  const std::vector<ExpectationResult> out = check_expectations(s);
+  ASSERT_EQ(out.size(), 7u + 5u);
+  for (size_t k = 0; k < 7; ++k) {
+    SCOPED_TRACE(out[k].what);
+    EXPECT_TRUE(out[k].pass);
+    EXPECT_EQ(out[k].line, 40);
+    EXPECT_EQ(out[k].scene, s.path);
+    EXPECT_EQ(out[k].run, "");
+  }
+  for (size_t k = 7; k < out.size(); ++k) {
+    SCOPED_TRACE(out[k].what);
+    EXPECT_FALSE(out[k].pass);
+    EXPECT_EQ(out[k].line, 41);
+  }
+  const std::string ns = std::to_string(n);
+  EXPECT_EQ(out[0].what, "[first-entry] outcome == restored");
+  EXPECT_EQ(out[1].what, "[first-entry] iterations in [" + ns + ", " + ns + "]");
+  EXPECT_EQ(out[1].measured, ns);
+  EXPECT_EQ(out[3].what, "[first-entry] left == false");
+  EXPECT_EQ(out[3].measured, "never left");
+  EXPECT_EQ(out[5].what, "[first-entry] unstabilisable node-steps <= 0");
+  EXPECT_EQ(out[6].what, "[first-entry] violating node-steps <= 0");
+  EXPECT_EQ(out[6].measured, "0");
+  EXPECT_EQ(out[7].what, "[first-entry] outcome == diverged");
+  EXPECT_EQ(out[9].what, "[first-entry] left == true");
+  EXPECT_EQ(out[10].what, "[first-entry] settled_at in [1, 1000]");
+  EXPECT_EQ(out[10].measured, "none");  // 0 is outside every range
+  EXPECT_EQ(out[11].what, "[first-entry] violating node-steps >= 1");
+}
+
+}  // namespace
+}  // namespace dampbound

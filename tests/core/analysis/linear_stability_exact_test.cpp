@@ -1,0 +1,105 @@
+// The exact linear stability (core/analysis/linear_stability_exact.hpp): on the two-node
+// system every number has a closed form; a chain with unequal masses takes the symmetric
+// index; the simulation check agrees with the limits.
+#include "core/analysis/linear_stability_exact.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/io/scene_file.hpp"
+#include "tests/core/test_util.hpp"
+
+namespace dampbound {
+namespace {
+
+struct TwoNode {
+  SceneSpec scene = load_scene(test::source_path("scenes/two-node.toml"));
+  Params params = scene.params;  // m = kappa = 0.001, gamma = 0.002 (c = 2), dt = 0.05
+  Model model = compile_model(scene.model, params);
+};
+
+TEST(LinearStabilityExact, TwoNodeClosedForms) {
+  const TwoNode t;
+  const ExactStability e = exact_stability(t.model, t.model.rest, t.params);
+  EXPECT_EQ(e.method, ExactMethod::per_mode);
+  EXPECT_STREQ(to_string(e.method), "per-mode (uniform gamma/m)");
+  EXPECT_TRUE(e.uniform_rate);
+  EXPECT_DOUBLE_EQ(e.rate_min, 2.0);
+  EXPECT_DOUBLE_EQ(e.rate_max, 2.0);
+  // M^-1 K: kappa/m = 1 along the spring, 0 across it (two zero modes).
+  EXPECT_NEAR(e.spectrum.lambda_max, 1.0, 1e-9);
+  EXPECT_LE(e.lambda_max_lo, e.spectrum.lambda_max);
+  EXPECT_NEAR(e.spectrum.lambda_min, 0.0, 1e-9);
+  EXPECT_TRUE(e.zero_modes);
+  EXPECT_NEAR(e.decaying.lambda_min, 1.0, 1e-9);
+  // The x mode: z = 0.96 and 0.9375 (trace 1.8975, determinant 0.9).
+  EXPECT_NEAR(e.spectral_radius, 0.96, 1e-9);
+  EXPECT_TRUE(e.stable);
+  // SPEC 7: c < (4 - lambda h^2)/(2 h) = 39.975 -> gamma < 0.039975; dt < 2 sqrt 2 - 2 at c = 2.
+  EXPECT_EQ(e.gamma_lo, 0.0);
+  EXPECT_NEAR(e.gamma_hi, 0.039975, 1e-12);
+  EXPECT_NEAR(e.dt_max, 2 * std::sqrt(2.0) - 2, 1e-9);
+}
+
+TEST(LinearStabilityExact, ImplicitEulerIsUnconditional) {
+  TwoNode t;
+  t.params.integrator = Integrator::implicit_euler;
+  const ExactStability e = exact_stability(t.model, t.model.rest, t.params);
+  EXPECT_EQ(e.method, ExactMethod::unconditional);
+  EXPECT_TRUE(e.stable);
+  EXPECT_TRUE(std::isinf(e.gamma_hi));
+  EXPECT_TRUE(std::isinf(e.dt_max));
+  EXPECT_LT(e.spectral_radius, 1.0);  // uniform rate: the per-mode radius
+}
+
+TEST(LinearStabilityExact, SpectralRadiusAtAnotherGamma) {
+  const TwoNode t;
+  const ExactStability e = exact_stability(t.model, t.model.rest, t.params);
+  const SparseMatrix A = mass_weighted(t.model, tangent_stiffness(t.model, t.model.rest));
+  // gamma = 0: c = 0, the undamped x mode has |z| = 1.
+  EXPECT_NEAR(spectral_radius_at(t.model, A, e, t.params, 0.0).rho, 1.0, 1e-12);
+  EXPECT_NEAR(spectral_radius_at(t.model, A, e, t.params, 0.002).rho, 0.96, 1e-9);
+  EXPECT_GT(spectral_radius_at(t.model, A, e, t.params, 0.041).rho, 1.0);  // past gamma_hi
+}
+
+TEST(LinearStabilityExact, SimulationAgreesWithTheLimits) {
+  TwoNode t;
+  EXPECT_LT(perturbation_growth(t.model, t.params, 200), 1.0);
+  t.params.dt = 1.0;  // > 2 sqrt 2 - 2: z = (-1 - sqrt 5)/2 per step
+  EXPECT_GT(perturbation_growth(t.model, t.params, 20), 100.0);
+  // Deterministic: the same seed, the same number.
+  EXPECT_EQ(perturbation_growth(t.model, t.params, 5), perturbation_growth(t.model, t.params, 5));
+}
+
+TEST(LinearStabilityExact, UnequalMassesTakeTheSymmetricIndex) {
+  // A chain fixed at one end: 0 (fixed) - 1 - 2, node 2 twice as heavy, so gamma/m differs.
+  ModelSpec spec;
+  for (int k = 0; k < 3; ++k) add_node(spec, Vec3(k, 0, 0));
+  add_spring(spec, 0, 1);
+  add_spring(spec, 1, 2);
+  spec.fixed[0] = 1;
+  spec.mass_scale[2] = 2;
+  Params p;
+  p.m = 0.001, p.kappa = 0.001, p.gamma = 0.002, p.dt = 0.05;
+  p.policy = DampingPolicy::fixed;
+  const Model m = compile_model(spec, p);
+  const ExactStability e = exact_stability(m, m.rest, p);
+  EXPECT_EQ(e.method, ExactMethod::symmetric_index);
+  EXPECT_FALSE(e.uniform_rate);
+  EXPECT_DOUBLE_EQ(e.rate_min, 1.0);  // gamma / (2 m)
+  EXPECT_DOUBLE_EQ(e.rate_max, 2.0);
+  EXPECT_TRUE(e.stable);
+  EXPECT_LT(e.index, 4.0);
+  EXPECT_GT(e.dt_max, p.dt);
+  EXPECT_GT(e.gamma_hi, p.gamma);
+  // Inside the dt limit the perturbation decays, past it it grows.
+  Params in = p, out = p;
+  in.dt = 0.9 * e.dt_max;
+  out.dt = 1.2 * e.dt_max;
+  EXPECT_LT(perturbation_growth(m, in, 2000), 1.0);
+  EXPECT_GT(perturbation_growth(m, out, 2000), 1.0);
+}
+
+}  // namespace
+}  // namespace dampbound

@@ -1,0 +1,113 @@
+// Linear stability of every integrator (core/analysis/linear_stability_modes.hpp): the 2x2
+// mode matrices against their formulas, and the two-node system's known eigenvalues.
+#include "core/analysis/linear_stability_modes.hpp"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "core/io/scene_file.hpp"
+#include "tests/core/test_util.hpp"
+
+namespace dampbound {
+namespace {
+
+const double kInf = std::numeric_limits<double>::infinity();
+
+void expect_matrix_near(const Eigen::Matrix2d& a, const Eigen::Matrix2d& b) {
+  for (int r = 0; r < 2; ++r)
+    for (int c = 0; c < 2; ++c) EXPECT_NEAR(a(r, c), b(r, c), 1e-14) << r << "," << c;
+}
+
+TEST(LinearStabilityModes, ModeMatricesFollowTheirFormulas) {
+  const double lambda = 3.0, c = 0.5, h = 0.1;
+  Eigen::Matrix2d semi, fwd, imp;
+  semi << 1 - h * h * lambda, h * (1 - c * h), -h * lambda, 1 - c * h;  // SPEC 7
+  fwd << 1, h, -h * lambda, 1 - c * h;
+  const double d = 1 + h * c + h * h * lambda;
+  imp << 1 - h * h * lambda / d, h / d, -h * lambda / d, 1 / d;
+  expect_matrix_near(mode_amplification(Integrator::semi_implicit_euler, lambda, c, h), semi);
+  expect_matrix_near(mode_amplification(Integrator::forward_euler, lambda, c, h), fwd);
+  expect_matrix_near(mode_amplification(Integrator::implicit_euler, lambda, c, h), imp);
+  Eigen::Matrix2d J, term = Eigen::Matrix2d::Identity(), rk4 = Eigen::Matrix2d::Identity();
+  J << 0, 1, -lambda, -c;
+  for (int k = 1; k <= 4; ++k) {
+    term = term * (h * J) / k;
+    rk4 += term;
+  }
+  expect_matrix_near(mode_amplification(Integrator::rk4, lambda, c, h), rk4);
+  // Verlet undamped is the leapfrog: [[1 - h^2 l/2, h], [-h l (1 - h^2 l/4), 1 - h^2 l/2]].
+  Eigen::Matrix2d leap;
+  leap << 1 - h * h * lambda / 2, h, -h * lambda * (1 - h * h * lambda / 4), 1 - h * h * lambda / 2;
+  expect_matrix_near(mode_amplification(Integrator::verlet, lambda, 0, h), leap);
+}
+
+TEST(LinearStabilityModes, SemiImplicitRadius) {
+  // det = 1 - c h; complex eigenvalues (c h small) have |z| = sqrt(1 - c h).
+  EXPECT_NEAR(mode_spectral_radius(Integrator::semi_implicit_euler, 1.0, 0.0, 0.5), 1.0, 1e-14);
+  EXPECT_NEAR(mode_spectral_radius(Integrator::semi_implicit_euler, 1.0, 0.2, 0.5),
+              std::sqrt(0.9), 1e-14);
+  // lambda h^2 > 4 - 2 c h: unstable.
+  EXPECT_GT(mode_spectral_radius(Integrator::semi_implicit_euler, 1.0, 0.0, 2.1), 1.0);
+  // Forward Euler undamped: |z|^2 = 1 + lambda h^2.
+  EXPECT_NEAR(mode_spectral_radius(Integrator::forward_euler, 4.0, 0.0, 0.5), std::sqrt(2.0),
+              1e-14);
+}
+
+TEST(LinearStabilityModes, UniformLimits) {
+  const StiffnessSpectrum s{0.5, 1.0};
+  // Semi-implicit, c = 2: lambda dt^2 < 4 - 2 c dt -> dt^2 + 4 dt - 4 < 0 -> dt < 2 sqrt 2 - 2.
+  EXPECT_NEAR(uniform_dt_max(Integrator::semi_implicit_euler, s, 2.0), 2 * std::sqrt(2.0) - 2,
+              1e-12);
+  EXPECT_EQ(uniform_dt_max(Integrator::implicit_euler, s, 0.0), kInf);
+  EXPECT_EQ(uniform_dt_max(Integrator::forward_euler, s, 0.0), 0.0);
+  // Forward Euler with damping: stable up to some dt, and at that dt the radius is 1.
+  const double fe = uniform_dt_max(Integrator::forward_euler, s, 1.0);
+  EXPECT_GT(fe, 0.0);
+  EXPECT_NEAR(spectrum_spectral_radius(Integrator::forward_euler, s, 1.0, fe), 1.0, 1e-9);
+  const RateInterval semi = uniform_rate_interval(Integrator::semi_implicit_euler, s, 0.5);
+  EXPECT_EQ(semi.lo, 0.0);
+  EXPECT_DOUBLE_EQ(semi.hi, (4 - 1.0 * 0.25) / (2 * 0.5));
+  EXPECT_TRUE(uniform_rate_interval(Integrator::semi_implicit_euler, s, 2.0).empty());
+  EXPECT_EQ(uniform_rate_interval(Integrator::implicit_euler, s, 10.0).hi, kInf);
+  // RK4's interval ends where its radius reaches 1.
+  const RateInterval rk = uniform_rate_interval(Integrator::rk4, s, 0.5);
+  ASSERT_FALSE(rk.empty());
+  EXPECT_NEAR(spectrum_spectral_radius(Integrator::rk4, s, rk.hi, 0.5), 1.0, 1e-9);
+}
+
+TEST(LinearStabilityModes, TwoNodeSystemEigenvalues) {
+  // Node 1 of scenes/two-node.toml at rest: lambda = kappa/m = 1 along the spring, 0 across
+  // it; gamma = 0.002 is critical: c = gamma/m = 2. With h = 0.05 the x mode's trace is
+  // 2 - h^2 - c h = 1.8975 and its determinant 1 - c h = 0.9: z = 0.96 and 0.9375. The
+  // transverse modes (lambda = 0) give 1 and 0.9, twice.
+  const SceneSpec s = load_scene(test::source_path("scenes/two-node.toml"));
+  const Model m = compile_model(s.model, s.params);
+  const SparseMatrix K = mass_weighted(m, tangent_stiffness(m, m.rest));
+  const Eigen::VectorXd rate = damping_rates(m, m.gamma);
+  ASSERT_EQ(rate.size(), 3);
+  for (int k = 0; k < 3; ++k) EXPECT_DOUBLE_EQ(rate(k), 2.0);
+  const Eigen::MatrixXd G = amplification_matrix_dense(Integrator::semi_implicit_euler, K, rate, 0.05);
+  ASSERT_EQ(G.rows(), 6);
+  Eigen::VectorXcd z = G.eigenvalues();
+  std::vector<double> got;
+  for (Eigen::Index k = 0; k < z.size(); ++k) {
+    EXPECT_NEAR(z(k).imag(), 0.0, 1e-12);
+    got.push_back(z(k).real());
+  }
+  std::sort(got.begin(), got.end());
+  const std::vector<double> want = {0.9, 0.9, 0.9375, 0.96, 1.0, 1.0};
+  for (size_t k = 0; k < 6; ++k) EXPECT_NEAR(got[k], want[k], 1e-6) << k;
+  const SpectralRadius rho =
+      amplification_spectral_radius(Integrator::semi_implicit_euler, K, rate, 0.05);
+  EXPECT_TRUE(rho.converged);
+  EXPECT_NEAR(rho.rho, 1.0, 1e-9);
+  // The x mode alone.
+  EXPECT_NEAR(mode_spectral_radius(Integrator::semi_implicit_euler, 1.0, 2.0, 0.05), 0.96, 1e-12);
+}
+
+}  // namespace
+}  // namespace dampbound
