@@ -190,7 +190,7 @@ int run(const SweepArgs& a) {
   } catch (const std::exception& e) {
     std::printf("warning      no lambda_max for the exact linear limit: %s\n", e.what());
   }
-  const std::string policy = to_string(rq.spec.policy);
+  const DampingPolicy policy = rq.spec.policy;
   for (const std::string& line : summary_lines(rep.rows, policy, lambda_unit))
     std::printf("%s\n", line.c_str());
   // SPEC 9: the safe check against the outcomes (fixed), what the safe policy promised (safe).

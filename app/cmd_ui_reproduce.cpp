@@ -100,7 +100,7 @@ SweepOutcome reduced_sweep(const ReproduceArgs& a, const SceneSpec& scene, bool 
     lambda_unit = unit_stiffness_eigenvalue(scene);
   } catch (const std::exception&) {
   }
-  const std::string policy = to_string(rq.spec.policy);
+  const DampingPolicy policy = rq.spec.policy;
   o.summary = summary_lines(o.report.rows, policy, lambda_unit);
   const std::string grid = std::to_string(rq.spec.m.values.size()) + " x " +
                            std::to_string(rq.spec.kappa.values.size()) + " (m, kappa) grid";

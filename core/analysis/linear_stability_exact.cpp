@@ -148,7 +148,7 @@ ExactStability exact_stability(const Model& model, const std::vector<Vec3>& x,
           2 / (h * r_max));
     }
     // dt: g(t) = index(gamma, t) - 4, convex and increasing in t when K >= 0.
-    double cap = e.spectrum.lambda_max > 0 ? 2 / std::sqrt(e.spectrum.lambda_max) : kInf;
+    double cap = spec7_dt_max_undamped(e.spectrum.lambda_max);
     if (gamma * r_max > 0) cap = std::min(cap, 2 / (gamma * r_max));
     e.dt_max = std::isinf(cap) ? kInf
                                : newton_from_right(

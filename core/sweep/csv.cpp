@@ -13,6 +13,7 @@
 #include "core/io/files.hpp"
 #include "core/io/format.hpp"
 #include "core/sweep/journal.hpp"
+#include "core/sweep/summary.hpp"
 
 namespace dampbound {
 
@@ -89,6 +90,47 @@ void write_sweep_header(std::FILE* out, const SweepHeader& h) {
   std::fprintf(out, "%s\n", sweep_csv_columns(h.rule));
 }
 
+void for_each_sweep_row(const SweepGrid& grid, const TrialClasses& classes,
+                        const std::vector<TrialResult>& class_results, int shard, int shards,
+                        const SweepRowVisitor& visit) {
+  const SweepSpec& s = grid.spec();
+  auto values = [](const Axis& a) {
+    std::vector<double> v;
+    for (const Decimal& d : a.values) v.push_back(d.value());
+    return v;
+  };
+  const auto mv = values(s.m), kv = values(s.kappa), gv = values(s.gamma), dv = values(s.dt),
+             fv = values(s.factor);
+  for (std::uint64_t t = 0; t < grid.trials(); ++t) {
+    const std::uint32_t c = classes.class_of[t];
+    if (static_cast<int>(c % static_cast<std::uint32_t>(shards)) != shard - 1) continue;
+    const SweepGrid::Index ix = grid.index(t);
+    SweepRow r;
+    r.trial = t;
+    r.m = mv[ix.m];
+    r.kappa = kv[ix.kappa];
+    const double lo = lower_bound(r.m, r.kappa);
+    if (s.gamma_mode == GammaMode::zeta) {
+      r.zeta = gv[ix.gamma];
+      r.gamma = r.zeta * lo;
+    } else {
+      r.gamma = gv[ix.gamma];
+      r.zeta = r.gamma / lo;
+    }
+    r.dt = dv[ix.dt];
+    r.factor = fv[ix.factor];
+    const TrialResult& res = class_results[c];
+    r.outcome = res.outcome;
+    r.iterations = res.iterations;
+    r.max_displacement = res.max_displacement;
+    r.unstabilisable = res.unstabilisable;
+    r.first_entry = res.first_entry;
+    r.left_at = res.left_at;
+    r.settled_at = res.settled_at;
+    visit(r, ix, c, res);
+  }
+}
+
 void write_sweep_rows(std::FILE* out, const SweepGrid& grid, const TrialClasses& classes,
                       const std::vector<TrialResult>& class_results, int shard, int shards) {
   const SweepSpec& s = grid.spec();
@@ -97,34 +139,25 @@ void write_sweep_rows(std::FILE* out, const SweepGrid& grid, const TrialClasses&
     for (const Decimal& d : a.values) t.push_back(d.text());
     return t;
   };
-  auto values = [](const Axis& a) {
-    std::vector<double> v;
-    for (const Decimal& d : a.values) v.push_back(d.value());
-    return v;
-  };
+  // The axis values as given; gamma in zeta mode and zeta otherwise are computed.
   const auto mt = texts(s.m), kt = texts(s.kappa), gt = texts(s.gamma), dtt = texts(s.dt),
              ft = texts(s.factor);
-  const auto mv = values(s.m), kv = values(s.kappa), gv = values(s.gamma);
   const bool zeta_mode = s.gamma_mode == GammaMode::zeta;
   const char* policy = to_string(s.policy);
   std::string line;
-  for (std::uint64_t t = 0; t < grid.trials(); ++t) {
-    const std::uint32_t c = classes.class_of[t];
-    if (static_cast<int>(c % static_cast<std::uint32_t>(shards)) != shard - 1) continue;
-    const SweepGrid::Index ix = grid.index(t);
-    const double lo = lower_bound(mv[ix.m], kv[ix.kappa]);
-    const double gamma = zeta_mode ? gv[ix.gamma] * lo : gv[ix.gamma];
-    const TrialResult& r = class_results[c];
+  for_each_sweep_row(grid, classes, class_results, shard, shards,
+                     [&](const SweepRow& row, const SweepGrid::Index& ix, std::uint32_t c,
+                         const TrialResult& r) {
     char head[64];
-    std::snprintf(head, sizeof head, "%" PRIu64 ",", t);
+    std::snprintf(head, sizeof head, "%" PRIu64 ",", row.trial);
     line = head;
-    line += mt[ix.m] + ',' + kt[ix.kappa] + ',' + format_number(gamma) + ',';
-    line += zeta_mode ? gt[ix.gamma] : format_number(gamma / lo);
+    line += mt[ix.m] + ',' + kt[ix.kappa] + ',' + format_number(row.gamma) + ',';
+    line += zeta_mode ? gt[ix.gamma] : format_number(row.zeta);
     line += ',' + dtt[ix.dt] + ',' + policy + ',' + ft[ix.factor] + ',';
     char tail[200];
     std::snprintf(tail, sizeof tail, "%" PRIu32 ",%d,%s,%d,", c,
-                  classes.representative[c] == t ? 1 : 0, outcome_text(r.outcome).c_str(),
-                  r.iterations);
+                  classes.representative[c] == row.trial ? 1 : 0,
+                  outcome_text(r.outcome).c_str(), r.iterations);
     line += tail;
     line += format_number(r.max_displacement);
     std::snprintf(tail, sizeof tail, ",%lld,%lld,%lld,%lld", r.violations, r.unstabilisable,
@@ -136,7 +169,7 @@ void write_sweep_rows(std::FILE* out, const SweepGrid& grid, const TrialClasses&
     }
     line += '\n';
     std::fwrite(line.data(), 1, line.size(), out);
-  }
+  });
 }
 
 SweepTable read_sweep_csv(const std::string& path, bool keep_lines) {
@@ -170,8 +203,10 @@ SweepTable read_sweep_csv(const std::string& path, bool keep_lines) {
           h.scene_path = value;
         else if (key == "scene-name")
           h.scene_name = value;
-        else if (key == "definition")
+        else if (key == "definition") {
           h.definition = value;
+          h.policy = parse_policy(definition_value(value, "policy"));
+        }
         else if (key == "trials" || key == "classes") {
           // A sweep has at most 2^32 classes (class indices are 32 bits), and so many trials.
           char* end = nullptr;

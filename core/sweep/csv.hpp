@@ -4,6 +4,8 @@
 // the file an unsharded run writes.
 #include <cstdint>
 #include <cstdio>
+#include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -17,6 +19,9 @@ struct SweepHeader {
   std::string scene_path;  ///< the scene file (absolute when known)
   std::string scene_name;
   std::string definition;  ///< the axes, policy and protocol in words
+  /// The damping policy of the definition: set by the runner, parsed once from "policy=" in
+  /// the definition when a CSV is read back (nullopt when it names none this build knows).
+  std::optional<DampingPolicy> policy;
   std::uint64_t trials = 0;
   std::uint64_t classes = 0;
   std::string similarity;  ///< "on" or "off (reason)"
@@ -33,11 +38,6 @@ const char* sweep_csv_columns(StopRule rule = StopRule::first_entry);
 /// Writes the '#' lines and the column line.
 void write_sweep_header(std::FILE* out, const SweepHeader& h);
 
-/// Writes one row per trial whose class is in `shard` of `shards` (class % shards ==
-/// shard - 1), in trial order. `class_results[c]` is the result of class c's representative.
-void write_sweep_rows(std::FILE* out, const SweepGrid& grid, const TrialClasses& classes,
-                      const std::vector<TrialResult>& class_results, int shard, int shards);
-
 /// A sweep CSV read back: the header and, per row, the fields the map and merge need.
 struct SweepRow {
   std::uint64_t trial = 0;
@@ -50,6 +50,20 @@ struct SweepRow {
   int left_at = 0;      ///< settled sweeps only
   int settled_at = 0;   ///< settled sweeps only
 };
+
+/// Builds the row of every trial whose class is in `shard` of `shards` (class % shards ==
+/// shard - 1), in trial order, and hands it to `visit` with the trial's grid index, its class
+/// and the class's result (`class_results[c]`: the result of class c's representative). The
+/// one place rows are made from a grid: the CSV writer and sweep_rows() both use it.
+using SweepRowVisitor = std::function<void(const SweepRow& row, const SweepGrid::Index& index,
+                                           std::uint32_t cls, const TrialResult& result)>;
+void for_each_sweep_row(const SweepGrid& grid, const TrialClasses& classes,
+                        const std::vector<TrialResult>& class_results, int shard, int shards,
+                        const SweepRowVisitor& visit);
+
+/// Writes the rows of for_each_sweep_row as CSV lines.
+void write_sweep_rows(std::FILE* out, const SweepGrid& grid, const TrialClasses& classes,
+                      const std::vector<TrialResult>& class_results, int shard, int shards);
 
 struct SweepTable {
   SweepHeader header;

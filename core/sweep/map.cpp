@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "core/analysis/linear_stability.hpp"
 #include "core/error.hpp"
 #include "core/io/format.hpp"
 #include "core/sweep/summary.hpp"
@@ -111,7 +112,8 @@ MapLine vertical(const std::string& label, MapLineKind kind, double x, const Map
 /// SPEC 7 with gamma = 2 zeta sqrt(m kappa): unstable above
 /// zeta_max(r) = (2/dt - lambda_1 r dt/2) / (2 sqrt r), r = kappa/m.
 double zeta_max(double r, double lambda_unit, double dt) {
-  return (2 / dt - lambda_unit * r * dt / 2) / (2 * std::sqrt(r));
+  // spec7_gamma_max at m = 1 is gamma_max/m: 2/dt - lambda dt/2, rounded as written above.
+  return spec7_gamma_max(lambda_unit * r, 1, dt) / (2 * std::sqrt(r));
 }
 
 /// The ratio r at which zeta_max(r) = zeta: the positive root in sqrt(r) of
@@ -126,9 +128,12 @@ double critical_ratio(double zeta, double lambda_unit, double dt) {
 StabilityMap build_stability_map(const SweepTable& table, double lambda_unit,
                                  const MapOptions& opt) {
   if (table.rows.empty()) throw InputError("map: the sweep has no rows");
-  const std::string policy = definition_value(table.header.definition, "policy");
-  const bool upper = policy == "upper";
-  const bool gamma_policy = policy == "fixed" || policy == "clamp";
+  const std::optional<DampingPolicy> policy = table.header.policy;
+  const bool upper = policy == DampingPolicy::upper;
+  const bool gamma_policy = policy == DampingPolicy::fixed || policy == DampingPolicy::clamp;
+  // A policy this build does not know is shown as the definition says it.
+  const std::string policy_name =
+      policy ? to_string(*policy) : definition_value(table.header.definition, "policy");
   const double dt = opt.dt ? *opt.dt : table.rows.front().dt;
   std::vector<const SweepRow*> rows;
   for (const SweepRow& r : table.rows)
@@ -138,7 +143,7 @@ StabilityMap build_stability_map(const SweepTable& table, double lambda_unit,
 
   StabilityMap map;
   map.max_iterations = std::atoi(definition_value(table.header.definition, "max-iter").c_str());
-  map.title = table.header.scene_name + ": policy " + policy + ", dt = " + format_number(dt) +
+  map.title = table.header.scene_name + ": policy " + policy_name + ", dt = " + format_number(dt) +
               " s, " + std::to_string(map.max_iterations) + " iterations";
   map.summary = summary_lines(table.rows, policy, lambda_unit);
   map.rule = table.header.rule;

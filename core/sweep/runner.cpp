@@ -139,6 +139,33 @@ std::uint64_t run_classes(const SweepRequest& rq, const SweepGrid& grid,
   return lane_steps.load();
 }
 
+/// The CSV's metadata: the sweep's identity, definition, size and part.
+SweepHeader sweep_header(const SweepRequest& rq, const SweepGrid& grid,
+                         const TrialClasses& classes) {
+  SweepHeader h;
+  h.definition = sweep_definition(rq.spec);
+  h.policy = rq.spec.policy;
+  h.sweep_id = sweep_id(rq.scene_text, h.definition);
+  h.scene_path = absolute_path(rq.scene.path);
+  h.scene_name = rq.scene.name;
+  h.trials = grid.trials();
+  h.classes = classes.count();
+  h.similarity = classes.similarity ? "on" : "off (" + classes.reason + ")";
+  h.shard = rq.shard;
+  h.shards = rq.shards;
+  h.rule = rq.spec.rules.rule;
+  return h;
+}
+
+/// The rows of a finished CSV, read back by a resume that finds nothing to do.
+void report_already_complete(const std::string& csv, SweepReport& rep) {
+  rep.already_complete = true;
+  for (SweepRow& r : read_sweep_csv(csv).rows) {
+    ++rep.outcome_trials[static_cast<size_t>(r.outcome)];
+    rep.rows.push_back(r);
+  }
+}
+
 }  // namespace
 
 double process_cpu_seconds() {
@@ -164,17 +191,8 @@ SweepReport run_sweep(const SweepRequest& rq) {
 
   const TrialClasses classes = find_classes(grid, similarity_unavailable(rq.scene));
   SweepReport rep;
-  SweepHeader& h = rep.header;
-  h.definition = sweep_definition(rq.spec);
-  h.sweep_id = sweep_id(rq.scene_text, h.definition);
-  h.scene_path = absolute_path(rq.scene.path);
-  h.scene_name = rq.scene.name;
-  h.trials = grid.trials();
-  h.classes = classes.count();
-  h.similarity = classes.similarity ? "on" : "off (" + classes.reason + ")";
-  h.shard = rq.shard;
-  h.shards = rq.shards;
-  h.rule = rq.spec.rules.rule;
+  rep.header = sweep_header(rq, grid, classes);
+  const SweepHeader& h = rep.header;
   rep.plain_reason = rq.use_kernel ? batch_kernel_unsupported(rq.scene) : "--plain";
   rep.batched = rep.plain_reason.empty();
 
@@ -198,11 +216,7 @@ SweepReport run_sweep(const SweepRequest& rq) {
   const std::string identity =
       h.sweep_id + " " + std::to_string(rq.shard) + "/" + std::to_string(rq.shards);
   if (rq.resume && !journal_exists && csv_identity(rq.output) == identity) {
-    rep.already_complete = true;
-    for (SweepRow& r : read_sweep_csv(rq.output).rows) {
-      ++rep.outcome_trials[static_cast<size_t>(r.outcome)];
-      rep.rows.push_back(r);
-    }
+    report_already_complete(rq.output, rep);
     rep.seconds = seconds_since(t0);
     return rep;
   }

@@ -126,11 +126,11 @@ std::string confusion_markdown(const std::vector<PredictorScore>& scores) {
 }
 
 std::vector<std::string> safe_summary_lines(const std::vector<SweepRow>& rows,
-                                            const std::string& policy, const SafeUnit& unit,
+                                            std::optional<DampingPolicy> policy, const SafeUnit& unit,
                                             double lambda_unit) {
   std::vector<std::string> lines;
   char buf[512];
-  if (policy == "fixed") {
+  if (policy == DampingPolicy::fixed) {
     for (const PredictorScore& p : divergence_confusion(rows, unit, lambda_unit)) {
       const Confusion& c = p.c;
       std::snprintf(buf, sizeof buf,
@@ -140,7 +140,7 @@ std::vector<std::string> safe_summary_lines(const std::vector<SweepRow>& rows,
                     c.false_neg + c.true_neg, c.false_neg);
       lines.push_back(buf);
     }
-  } else if (policy == "safe") {
+  } else if (policy == DampingPolicy::safe) {
     std::uint64_t guaranteed = 0, guaranteed_div = 0, open = 0, open_div = 0;
     std::vector<const SweepRow*> surprises;
     for (const SweepRow& r : rows) {
@@ -215,7 +215,7 @@ std::string safe_report_section(const std::vector<SweepRow>& fixed_rows,
   s += "\nThe same grid under the `safe` policy (gamma clamped into [gamma_lo_i, "
        "gamma_safe_i] at every step; " + safe_definition + "): " + outcomes(safe_rows) +
        ".\n\n";
-  for (const std::string& line : safe_summary_lines(safe_rows, "safe", unit, lambda_unit))
+  for (const std::string& line : safe_summary_lines(safe_rows, DampingPolicy::safe, unit, lambda_unit))
     s += "    " + line + "\n";
   s += "\nData: `sweep-span.csv`, `sweep-safe.csv`.\n";
   return s;

@@ -3,6 +3,7 @@
 // confusion of the paper's runtime check and the safe check as predictors of divergence
 // under fixed damping, and what the safe policy promises.
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -54,7 +55,7 @@ std::string confusion_markdown(const std::vector<PredictorScore>& scores);
 /// policy safe how many trials diverged where the policy guarantees stability at rest and
 /// where it cannot (gamma_safe_i <= 0 somewhere), naming the first few of each.
 std::vector<std::string> safe_summary_lines(const std::vector<SweepRow>& rows,
-                                            const std::string& policy, const SafeUnit& unit,
+                                            std::optional<DampingPolicy> policy, const SafeUnit& unit,
                                             double lambda_unit);
 
 /// The `reproduce` report's section "What guarantees stability" (markdown): the safe bound

@@ -6,7 +6,6 @@
 #include <string>
 
 #include "core/sweep/setup.hpp"
-#include "core/bounds.hpp"
 #include "core/error.hpp"
 #include "core/io/format.hpp"
 #include "core/sweep/runner.hpp"
@@ -92,43 +91,10 @@ std::string sweep_definition(const SweepSpec& s) {
 std::vector<SweepRow> sweep_rows(const SweepGrid& grid, const TrialClasses& classes,
                                  const std::vector<TrialResult>& class_results, int shard,
                                  int shards) {
-  const SweepSpec& s = grid.spec();
-  auto values = [](const Axis& a) {
-    std::vector<double> v;
-    for (const Decimal& d : a.values) v.push_back(d.value());
-    return v;
-  };
-  const auto mv = values(s.m), kv = values(s.kappa), gv = values(s.gamma), dv = values(s.dt),
-             fv = values(s.factor);
   std::vector<SweepRow> rows;
-  for (std::uint64_t t = 0; t < grid.trials(); ++t) {
-    const std::uint32_t c = classes.class_of[t];
-    if (static_cast<int>(c % static_cast<std::uint32_t>(shards)) != shard - 1) continue;
-    const SweepGrid::Index ix = grid.index(t);
-    SweepRow r;
-    r.trial = t;
-    r.m = mv[ix.m];
-    r.kappa = kv[ix.kappa];
-    const double lo = lower_bound(r.m, r.kappa);
-    if (s.gamma_mode == GammaMode::zeta) {
-      r.zeta = gv[ix.gamma];
-      r.gamma = r.zeta * lo;
-    } else {
-      r.gamma = gv[ix.gamma];
-      r.zeta = r.gamma / lo;
-    }
-    r.dt = dv[ix.dt];
-    r.factor = fv[ix.factor];
-    const TrialResult& res = class_results[c];
-    r.outcome = res.outcome;
-    r.iterations = res.iterations;
-    r.max_displacement = res.max_displacement;
-    r.unstabilisable = res.unstabilisable;
-    r.first_entry = res.first_entry;
-    r.left_at = res.left_at;
-    r.settled_at = res.settled_at;
-    rows.push_back(r);
-  }
+  for_each_sweep_row(grid, classes, class_results, shard, shards,
+                     [&](const SweepRow& r, const SweepGrid::Index&, std::uint32_t,
+                         const TrialResult&) { rows.push_back(r); });
   return rows;
 }
 

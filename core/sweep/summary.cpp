@@ -17,9 +17,7 @@ double unit_stiffness_eigenvalue(const SceneSpec& scene) {
 }
 
 bool linearly_unstable(double m, double kappa, double gamma, double dt, double lambda_unit) {
-  const double lambda = lambda_unit * kappa / m;
-  const double c_dt = gamma / m * dt;
-  return !(c_dt < 2) || !(lambda * dt * dt < 4 - 2 * c_dt);
+  return spec7_unstable(lambda_unit * kappa / m, gamma / m, dt);
 }
 
 std::string definition_value(const std::string& definition, const std::string& key) {
@@ -37,7 +35,7 @@ std::string definition_value(const std::string& definition, const std::string& k
 }
 
 std::vector<PredictionCheck> check_predictions(const std::vector<SweepRow>& rows,
-                                               const std::string& policy, double lambda_unit) {
+                                               std::optional<DampingPolicy> policy, double lambda_unit) {
   std::vector<PredictionCheck> out;
   // Under the settled rule (SPEC 8) "restored" reads "settled": the claim is judged by the
   // rule the sweep ran under, and the text says which.
@@ -64,7 +62,7 @@ std::vector<PredictionCheck> check_predictions(const std::vector<SweepRow>& rows
   };
   const auto diverged = [](const SweepRow& r) { return r.outcome == Outcome::diverged; };
   const auto not_diverged = [](const SweepRow& r) { return r.outcome != Outcome::diverged; };
-  if (policy == "fixed") {
+  if (policy == DampingPolicy::fixed) {
     check(
         "gamma < lower bound (zeta < 1, eq. 5) => not restored (paper sec. 4)",
         [](const SweepRow& r) { return r.zeta < 1; }, not_restored);
@@ -72,7 +70,7 @@ std::vector<PredictionCheck> check_predictions(const std::vector<SweepRow>& rows
         "gamma >= lower bound (zeta >= 1) => restored within the limit (paper Fig. 1)",
         [](const SweepRow& r) { return r.zeta >= 1; }, restored);
   }
-  if (policy == "fixed" && std::isfinite(lambda_unit) && lambda_unit > 0) {
+  if (policy == DampingPolicy::fixed && std::isfinite(lambda_unit) && lambda_unit > 0) {
     auto unstable = [lambda_unit](const SweepRow& r) {
       return linearly_unstable(r.m, r.kappa, r.gamma, r.dt, lambda_unit);
     };
@@ -82,7 +80,7 @@ std::vector<PredictionCheck> check_predictions(const std::vector<SweepRow>& rows
         "linearly stable (SPEC 7) => not diverged", [&](const SweepRow& r) { return !unstable(r); },
         not_diverged);
   }
-  if (policy == "upper") {
+  if (policy == DampingPolicy::upper) {
     check(
         "factor <= 1 (damping at the upper bound, eq. 6) => restored (paper Fig. 2)",
         [](const SweepRow& r) { return r.factor <= 1; }, restored);
@@ -90,9 +88,9 @@ std::vector<PredictionCheck> check_predictions(const std::vector<SweepRow>& rows
         "factor > 1 (damping above the upper bound) => diverged (paper Fig. 2)",
         [](const SweepRow& r) { return r.factor > 1; }, diverged);
   }
-  if (policy == "lower" || policy == "clamp")
+  if (policy == DampingPolicy::lower || policy == DampingPolicy::clamp)
     check(
-        "damping kept within the bounds (policy " + policy + ") => restored (paper sec. 5)",
+        "damping kept within the bounds (policy " + std::string(to_string(*policy)) + ") => restored (paper sec. 5)",
         [](const SweepRow&) { return true; }, restored);
   return out;
 }
@@ -115,8 +113,8 @@ Overturned count_overturned(const std::vector<SweepRow>& rows) {
   return o;
 }
 
-std::vector<std::string> summary_lines(const std::vector<SweepRow>& rows, const std::string& policy,
-                                       double lambda_unit) {
+std::vector<std::string> summary_lines(const std::vector<SweepRow>& rows,
+                                       std::optional<DampingPolicy> policy, double lambda_unit) {
   std::uint64_t n[6] = {0, 0, 0, 0, 0, 0};
   for (const SweepRow& r : rows) ++n[static_cast<size_t>(r.outcome)];
   std::vector<std::string> lines;

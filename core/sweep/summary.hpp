@@ -1,6 +1,7 @@
 #pragma once
 // How often the paper's predictions, and the exact linear limits of SPEC 7, held on a sweep.
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -28,9 +29,10 @@ struct PredictionCheck {
 /// The checks that apply to the sweep's policy: for fixed damping the paper's lower bound
 /// (zeta < 1 => not restored, zeta >= 1 => restored) and the exact linear limit (unstable =>
 /// diverged, stable => not diverged); for policy upper the paper's Fig. 2 claims (factor 1 =>
-/// restored, factor > 1 => diverged); for lower and clamp "within the bounds => restored".
+/// restored, factor > 1 => diverged); for lower and clamp "within the bounds => restored";
+/// none for safe or an unknown policy (nullopt).
 std::vector<PredictionCheck> check_predictions(const std::vector<SweepRow>& rows,
-                                               const std::string& policy, double lambda_unit);
+                                               std::optional<DampingPolicy> policy, double lambda_unit);
 
 /// "key=value" out of a header definition ("policy", "max-iter", ...); "" when absent.
 std::string definition_value(const std::string& definition, const std::string& key);
@@ -50,7 +52,7 @@ Overturned count_overturned(const std::vector<SweepRow>& rows);
 
 /// The lines printed after a sweep: outcome counts (under the settled rule also the number of
 /// first-entry verdicts it overturned) and the prediction checks.
-std::vector<std::string> summary_lines(const std::vector<SweepRow>& rows, const std::string& policy,
-                                       double lambda_unit);
+std::vector<std::string> summary_lines(const std::vector<SweepRow>& rows,
+                                       std::optional<DampingPolicy> policy, double lambda_unit);
 
 }  // namespace dampbound
