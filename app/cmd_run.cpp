@@ -19,6 +19,7 @@ struct RunArgs {
   std::string vtk;               // ParaView series folder (core/io/vtu.hpp)
   int every = 1;
   bool json = false;
+  int threads = 1;
   ParamFlags flags;
 };
 
@@ -31,6 +32,7 @@ int run(const RunArgs& a) {
   if (!a.trace.empty()) check_writable(a.trace);
   Session session(std::move(scene), params, rules);
   session.set_keep_trace(!a.trace.empty());  // without --trace, memory stays flat
+  session.set_threads(a.threads);
   std::unique_ptr<VtuSeries> vtk;
   StepObserver save;
   if (!a.vtk.empty()) {
@@ -105,6 +107,10 @@ std::function<int()> setup(CLI::App& root) {
                   "strain) and series.pvd");
   cmd->add_option("--every", a->every, "with --vtk: save every N-th step (and the last)")
       ->check(CLI::Range(1, 100000000));
+  cmd->add_option("--threads", a->threads,
+                  "threads for each step's node loops (0 = one per hardware thread); the "
+                  "results are the same bits on any count")
+      ->check(CLI::Range(0, 1024));
   return [a] { return run(*a); };
 }
 

@@ -75,10 +75,14 @@ struct NodeThreads::Pool {
 
 NodeThreads::NodeThreads() = default;
 NodeThreads::NodeThreads(int threads) { set_threads(threads); }
-NodeThreads::NodeThreads(const NodeThreads& other) : threads_(other.threads_) {}
+NodeThreads::NodeThreads(const NodeThreads& other)
+    : threads_(other.threads_), grain_(other.grain_) {}
 
 NodeThreads& NodeThreads::operator=(const NodeThreads& other) {
-  if (this != &other) set_threads(other.threads_);
+  if (this != &other) {
+    set_threads(other.threads_);
+    grain_ = other.grain_;
+  }
   return *this;
 }
 
@@ -92,7 +96,7 @@ void NodeThreads::set_threads(int threads) {
 }
 
 int NodeThreads::chunks(std::size_t n) const {
-  const std::size_t by_size = std::max<std::size_t>(1, n / kMinItemsPerThread);
+  const std::size_t by_size = std::max<std::size_t>(1, n / grain_);
   return static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(threads_), by_size));
 }
 

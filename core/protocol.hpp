@@ -64,20 +64,25 @@ struct BandHistory {
 Outcome judge_band(const StopRules& rules, BandHistory& band, int iteration,
                    double max_displacement, bool finite);
 
-/// The result of one protocol run.
-struct RunResult {
+/// What every runner reports about a run, the Session and the batched sweep kernel alike:
+/// the verdict, its band history (SPEC 8) and the counts. A sweep's CSV row is made of it.
+struct TrialResult {
   Outcome outcome = Outcome::running;
   int iterations = 0;              ///< the iteration at which the outcome was reached
   int first_entry = 0;  ///< first iteration below the restore threshold; 0 = none yet
   int left_at = 0;      ///< first iteration back at or above it after an entry; 0 = none
   int settled_at = 0;   ///< settled rule: from here on below the threshold to the limit; 0 = none
-  int below_since = 0;  ///< below the threshold since this iteration (0 if above): the settled
-                        ///< candidate while a run goes on
   double max_displacement = 0;     ///< max_i |x_i - X_i| at the last iteration (inf if not finite)
   long long violations = 0;        ///< node-steps whose effective gamma was outside the bounds
   long long unstabilisable = 0;    ///< node-steps with gamma_lo > gamma_hi
   long long clamped = 0;           ///< node-steps whose gamma the policy changed
   long long zero_length_springs = 0;
+};
+
+/// A Session's result: the TrialResult and what only a Session tracks while the run goes on.
+struct RunResult : TrialResult {
+  int below_since = 0;  ///< below the threshold since this iteration (0 if above): the settled
+                        ///< candidate while a run goes on
   double time = 0;                 ///< simulated seconds
   long long unguaranteed = 0;        ///< node-steps with gamma_lo > gamma_safe (SPEC 9)
   long long compressed_springs = 0;  ///< spring-steps with l < l0: K may be indefinite (SPEC 9)

@@ -28,6 +28,9 @@ class Session {
   /// and any cuts are kept. Throws InputError naming the parameter when validate() refuses.
   void set_params(const Params& params);
   void set_rules(const StopRules& rules) { rules_ = rules; }
+  /// Threads for step()'s per-node loops (1 by default, 0 = one per hardware thread): the
+  /// trajectory is the same bits on any count; meshes of 100k nodes and more gain from it.
+  void set_threads(int threads) { ws_.pass.threads.set_threads(threads); }
   /// Watch another node (an index); the trace keeps what was watched before.
   void set_watched(int node);
   /// Back to the scene's topology (cuts undone) and perturbed state; clears trace and result.

@@ -29,20 +29,6 @@ struct TrialParams {
   double factor = 1;
 };
 
-/// What a sweep keeps of a trial: RunResult without the time.
-struct TrialResult {
-  Outcome outcome = Outcome::running;
-  int iterations = 0;
-  double max_displacement = 0;   ///< cm, at the last iteration; inf when not finite
-  long long violations = 0;      ///< node-steps outside [gamma_lo, gamma_hi]
-  long long unstabilisable = 0;  ///< node-steps with gamma_lo > gamma_hi
-  long long clamped = 0;
-  long long zero_length_springs = 0;
-  int first_entry = 0;  ///< first iteration below the restore threshold; 0 = none (SPEC 8)
-  int left_at = 0;      ///< first iteration at or above it after an entry; 0 = none
-  int settled_at = 0;   ///< settled rule: below from here to the limit; 0 = none
-};
-
 /// Hands out the next trial: fills `id` and `params`, or returns false when none is left.
 /// Called from the kernel's own thread only.
 using TrialSource = std::function<bool(std::size_t& id, TrialParams& params)>;
@@ -50,8 +36,8 @@ using TrialSource = std::function<bool(std::size_t& id, TrialParams& params)>;
 using TrialSink = std::function<void(std::size_t id, const TrialResult& result)>;
 
 /// The instruction sets the batched kernel is compiled for, all in every build (each a copy of
-/// core/sweep/detail/kernel_body.cpp compiled with that target, core/sweep_kernel_avx*.cpp); `best` picks
-/// the widest this CPU runs, at run time. Every variant rounds exactly as step() does.
+/// core/sweep/detail/kernel_body.cpp compiled with that target, detail/kernel_avx*.cpp);
+/// `best` picks the widest this CPU runs, at run time. Every variant rounds exactly as step() does.
 enum class KernelIsa { best, generic, avx2, avx512 };
 
 const char* to_string(KernelIsa isa);

@@ -9,21 +9,6 @@
 
 namespace dampbound {
 
-TrialResult to_trial_result(const RunResult& r) {
-  TrialResult t;
-  t.outcome = r.outcome;
-  t.iterations = r.iterations;
-  t.max_displacement = r.max_displacement;
-  t.violations = r.violations;
-  t.unstabilisable = r.unstabilisable;
-  t.clamped = r.clamped;
-  t.zero_length_springs = r.zero_length_springs;
-  t.first_entry = r.first_entry;
-  t.left_at = r.left_at;
-  t.settled_at = r.settled_at;
-  return t;
-}
-
 Params trial_params(const Params& base, DampingPolicy policy, const TrialParams& t) {
   Params p = base;
   p.m = t.m;
@@ -119,7 +104,7 @@ TrialResult run_reference(const SceneSpec& scene, DampingPolicy policy, const St
     if (cancel && cancel->load(std::memory_order_relaxed)) return TrialResult{};
     session.step_once();
   }
-  return to_trial_result(session.result());
+  return session.result();  // its TrialResult part
 }
 
 }  // namespace dampbound

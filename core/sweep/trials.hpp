@@ -9,8 +9,6 @@
 
 namespace dampbound {
 
-/// The same numbers from a RunResult (Session::run_to_end, run_protocol).
-TrialResult to_trial_result(const RunResult& r);
 
 /// Params of a scene with a trial's values and the sweep's policy filled in.
 Params trial_params(const Params& base, DampingPolicy policy, const TrialParams& t);

@@ -19,6 +19,15 @@ expect_match "$OUT" '"outcome":"diverged"' "stiff undamped run diverges"
 if grep -qi nan "$WORK/div.csv" <<<"$OUT"; then bad "NaN in output"; else ok; fi
 if grep -qi nan "$WORK/div.csv"; then bad "NaN in trace"; else ok; fi
 
+# Threads: a 36100-node plane (big enough to split the node loops) gives the same trace
+# bytes on 1 and 3 threads.
+sed -e 's/nx = 36/nx = 190/; s/nz = 36/nz = 190/; s/policy = "fixed"/policy = "clamp"/' \
+  "$SRC/scenes/paper-plane.toml" >"$WORK/big-plane.toml"
+expect_exit 0 "$DB" run "$WORK/big-plane.toml" --max-iter 60 --trace "$WORK/t1.csv" --threads 1
+expect_exit 0 "$DB" run "$WORK/big-plane.toml" --max-iter 60 --trace "$WORK/t3.csv" --threads 3
+cmp -s "$WORK/t1.csv" "$WORK/t3.csv" && ok || bad "trace differs between 1 and 3 threads"
+expect_exit 2 "$DB" run two-node --threads -1
+
 # Trace: a header and one row per iteration.
 expect_exit 0 "$DB" run paper-plane --gamma 0.001 --max-iter 40 --trace "$WORK/t.csv" --json
 iters=$(printf '%s' "$OUT" | sed -E 's/.*"iterations":([0-9]+).*/\1/')

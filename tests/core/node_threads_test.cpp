@@ -14,6 +14,7 @@ namespace {
 TEST(NodeThreads, ChunksCoverTheRangeOnceInOrder) {
   for (int threads : {1, 2, 3, 8}) {
     NodeThreads pool(threads);
+    pool.set_grain(1000);
     for (size_t n : {size_t(0), size_t(5), size_t(4095), size_t(4096), size_t(100003)}) {
       const int chunks = pool.chunks(n);
       ASSERT_GE(chunks, 1);

@@ -204,6 +204,7 @@ TEST(Step, ForcesAreTheSerialScatterSumsBitForBit) {
   for (int threads : {1, 2, 3}) {
     SpringPass pass;
     pass.threads.set_threads(threads);
+    pass.threads.set_grain(1000);  // split this 9261-node model
     std::vector<Vec3> got;
     EXPECT_EQ(internal_forces(m, s.x, got, &pass), 0);
     EXPECT_TRUE(same_bits(got, want)) << threads << " threads";
@@ -229,6 +230,7 @@ TEST(Step, AnyThreadCountGivesTheSameBits) {
         State many = shaken(m);
         StepWorkspace ws;
         ws.pass.threads.set_threads(threads);
+        ws.pass.threads.set_grain(1000);  // split this 9261-node model
         ASSERT_GE(ws.pass.threads.chunks(m.rest.size()), 2);
         for (int k = 0; k < 15; ++k) {
           const StepStats st = step(m, p, many, ws);

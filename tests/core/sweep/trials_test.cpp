@@ -14,32 +14,6 @@
 namespace dampbound {
 namespace {
 
-TEST(SweepTrials, ToTrialResultKeepsEveryCount) {
-  RunResult r;
-  r.outcome = Outcome::not_settled;
-  r.iterations = 42;
-  r.first_entry = 3;
-  r.left_at = 7;
-  r.settled_at = 0;
-  r.max_displacement = 0.25;
-  r.violations = 11;
-  r.unstabilisable = 12;
-  r.clamped = 13;
-  r.zero_length_springs = 14;
-  r.time = 99;
-  const TrialResult t = to_trial_result(r);
-  EXPECT_EQ(t.outcome, Outcome::not_settled);
-  EXPECT_EQ(t.iterations, 42);
-  EXPECT_EQ(t.first_entry, 3);
-  EXPECT_EQ(t.left_at, 7);
-  EXPECT_EQ(t.settled_at, 0);
-  EXPECT_EQ(t.max_displacement, 0.25);
-  EXPECT_EQ(t.violations, 11);
-  EXPECT_EQ(t.unstabilisable, 12);
-  EXPECT_EQ(t.clamped, 13);
-  EXPECT_EQ(t.zero_length_springs, 14);
-}
-
 TEST(SweepTrials, TrialParamsFillTheTrialsValues) {
   Params base;
   TrialParams t;
