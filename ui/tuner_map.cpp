@@ -146,7 +146,7 @@ void TunerMap::start(const SceneSpec& scene, const Params& centre, const StopRul
   s.params = centre;
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    unsupported_ = batch_kernel_unsupported(s);
+    unsupported_ = batch_kernel_unsupported(s).value_or("");
     if (!(get_param(centre, view.x) > 0) || !(get_param(centre, view.y) > 0))
       unsupported_ = std::string("the map's axes are logarithmic: ") + to_string(view.x) +
                      " and " + to_string(view.y) + " must be > 0";

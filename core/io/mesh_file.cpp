@@ -35,16 +35,16 @@ std::string text_of(const std::string& path, bool optional = false) {
 
 }  // namespace
 
-std::string mesh_format(const std::string& path, const std::string& format) {
+std::optional<std::string> mesh_format(const std::string& path, const std::string& format) {
   const std::string key = format.empty() ? extension(path) : format;
   if (key == "obj" || key == "msh" || key == "vtk") return key;
   if (key == "tetgen" || key == "node" || key == "ele") return "tetgen";
-  return "";
+  return std::nullopt;
 }
 
 CellMesh read_mesh_file(const std::string& path, const std::string& format,
                         const std::string& region_array) {
-  const std::string f = mesh_format(path, format);
+  const std::optional<std::string> f = mesh_format(path, format);
   if (f == "obj") {
     const std::string text = text_of(path);
     return cells_from_obj(parse_obj(text, path));

@@ -1,5 +1,6 @@
 #pragma once
 // Mesh files of every format, by name: the format from the extension, then its reader.
+#include <optional>
 #include <string>
 
 #include "core/io/mesh.hpp"
@@ -7,8 +8,8 @@
 namespace dampbound {
 
 /// The formats by key: "obj", "msh", "tetgen", "vtk"; from a file name's extension when
-/// `format` is empty (.obj, .msh, .node/.ele, .vtk). Empty when unknown.
-std::string mesh_format(const std::string& path, const std::string& format = {});
+/// `format` is empty (.obj, .msh, .node/.ele, .vtk). nullopt when unknown.
+std::optional<std::string> mesh_format(const std::string& path, const std::string& format = {});
 
 /// Reads a mesh file of any format (`format` as for mesh_format). For TetGen, `path` may name
 /// the .node or the .ele file; the other and a .face file beside it are read too.

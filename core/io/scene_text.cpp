@@ -113,19 +113,17 @@ void check_scene_text(const std::string& text, const std::string& path) {
 void set_scene_paths_unrestricted(bool allow) { g_unrestricted = allow; }
 bool scene_paths_unrestricted() { return g_unrestricted; }
 
-std::string scene_relative_path(const std::string& scene_path, const std::string& file,
-                                std::string& why) {
+std::string scene_relative_path(const std::string& scene_path, const std::string& file) {
   if (!g_unrestricted) {
     if (file.front() == '/') {
-      why = "is an absolute path; a scene names files in its own folder (--allow-any-path "
-            "lifts this)";
-      return "";
+      throw InputError(
+          "is an absolute path; a scene names files in its own folder (--allow-any-path "
+          "lifts this)");
     }
     for (size_t start = 0; start <= file.size();) {
       const size_t slash = std::min(file.find('/', start), file.size());
       if (file.compare(start, slash - start, "..") == 0 && slash - start == 2) {
-        why = "climbs out of the scene's folder with '..' (--allow-any-path lifts this)";
-        return "";
+        throw InputError("climbs out of the scene's folder with '..' (--allow-any-path lifts this)");
       }
       start = slash + 1;
     }

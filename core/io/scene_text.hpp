@@ -23,10 +23,10 @@ void check_scene_text(const std::string& text, const std::string& path);
 void set_scene_paths_unrestricted(bool allow);
 bool scene_paths_unrestricted();
 
-/// The path of FILE named by the scene at SCENE_PATH: relative to the scene's folder. Returns
-/// "" with `why` set when FILE is absolute or climbs out of the folder and the rule applies.
-std::string scene_relative_path(const std::string& scene_path, const std::string& file,
-                                std::string& why);
+/// The path of FILE named by the scene at SCENE_PATH: relative to the scene's folder. Throws
+/// InputError saying why when FILE is absolute or climbs out of the folder and the rule
+/// applies (the caller adds the file and line).
+std::string scene_relative_path(const std::string& scene_path, const std::string& file);
 
 /// Throws InputError("PATH:LINE: WHAT ...") when TEXT (a name or label that reaches CSV
 /// headers and terminals) holds a control character (newline, escape, ...).

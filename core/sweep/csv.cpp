@@ -21,17 +21,11 @@ namespace {
 
 constexpr const char* kMagic = "# dampbound sweep v1";
 
-std::string outcome_text(Outcome o) {
-  return to_string(o);
-}
-
-bool parse_outcome(const std::string& s, Outcome& o, StopRule rule) {
+/// A final verdict of `rule` by its name; nullopt for any other text.
+std::optional<Outcome> parse_outcome(const std::string& s, StopRule rule) {
   for (Outcome c : final_outcomes(rule))
-    if (s == to_string(c)) {
-      o = c;
-      return true;
-    }
-  return false;
+    if (s == to_string(c)) return c;
+  return std::nullopt;
 }
 
 std::vector<std::string> split(const std::string& line, char sep) {
@@ -157,7 +151,7 @@ void write_sweep_rows(std::FILE* out, const SweepGrid& grid, const TrialClasses&
     char tail[200];
     std::snprintf(tail, sizeof tail, "%" PRIu32 ",%d,%s,%d,", c,
                   classes.representative[c] == row.trial ? 1 : 0,
-                  outcome_text(r.outcome).c_str(), r.iterations);
+                  to_string(r.outcome), r.iterations);
     line += tail;
     line += format_number(r.max_displacement);
     std::snprintf(tail, sizeof tail, ",%lld,%lld,%lld,%lld", r.violations, r.unstabilisable,
@@ -205,7 +199,7 @@ SweepTable read_sweep_csv(const std::string& path, bool keep_lines) {
           h.scene_name = value;
         else if (key == "definition") {
           h.definition = value;
-          h.policy = parse_policy(definition_value(value, "policy"));
+          if (const auto p = definition_value(value, "policy")) h.policy = parse_policy(*p);
         }
         else if (key == "trials" || key == "classes") {
           // A sweep has at most 2^32 classes (class indices are 32 bits), and so many trials.
@@ -245,8 +239,9 @@ SweepTable read_sweep_csv(const std::string& path, bool keep_lines) {
     for (int k = 0; k < 5; ++k)
       *nums[k] = std::strtod(f[static_cast<size_t>(k) + 1].c_str(), nullptr);
     r.factor = std::strtod(f[7].c_str(), nullptr);
-    if (!parse_outcome(f[10], r.outcome, t.header.rule))
-      fail("bad outcome '" + f[10] + "' for rule " + to_string(t.header.rule));
+    const auto outcome = parse_outcome(f[10], t.header.rule);
+    if (!outcome) fail("bad outcome '" + f[10] + "' for rule " + to_string(t.header.rule));
+    r.outcome = *outcome;
     r.iterations = std::atoi(f[11].c_str());
     r.max_displacement = std::strtod(f[12].c_str(), nullptr);
     r.unstabilisable = std::atoll(f[14].c_str());

@@ -210,7 +210,7 @@ double SweepGrid::zeta(std::uint64_t t) const {
   return p.gamma / lower_bound(p.m, p.kappa);
 }
 
-std::string similarity_unavailable(const SceneSpec& scene) {
+std::optional<std::string> similarity_unavailable(const SceneSpec& scene) {
   const ModelSpec& m = scene.model;
   for (size_t i = 0; i < m.external_force.size(); ++i)
     if (m.external_force[i] != Vec3::Zero())
@@ -228,7 +228,7 @@ std::string similarity_unavailable(const SceneSpec& scene) {
   for (const Spring& s : m.springs) stiffness.push_back(s.kappa_scale);
   if (!stiffness.empty() && !uniform(stiffness))
     return "the stiffness is not uniform (kappa_scale / anchor scale)";
-  return {};
+  return std::nullopt;
 }
 
 namespace {
@@ -279,11 +279,11 @@ bool integers(const Axis& axis, int scale, std::vector<std::int64_t>& out) {
 
 }  // namespace
 
-TrialClasses find_classes(const SweepGrid& grid, const std::string& scene_reason) {
+TrialClasses find_classes(const SweepGrid& grid, const std::optional<std::string>& scene_reason) {
   const SweepSpec& s = grid.spec();
   TrialClasses tc;
   const std::uint64_t n = grid.trials();
-  tc.reason = !s.allow_similarity ? "turned off (--no-similarity)" : scene_reason;
+  tc.reason = !s.allow_similarity ? "turned off (--no-similarity)" : scene_reason.value_or("");
   const bool uses_gamma = s.policy == DampingPolicy::fixed || s.policy == DampingPolicy::clamp;
   const bool absolute = s.gamma_mode == GammaMode::absolute && uses_gamma;
   int scale = 0;

@@ -81,10 +81,10 @@ class SweepGrid {
   std::uint64_t trials_ = 0;
 };
 
-/// Why trials with equal kappa/m, gamma/m and dt may not be merged on this scene ("" when
-/// they may): SPEC 6 needs uniform m, kappa, gamma (every mass, gamma and stiffness scale
+/// Why trials with equal kappa/m, gamma/m and dt may not be merged on this scene (nullopt
+/// when they may): SPEC 6 needs uniform m, kappa, gamma (every mass, gamma and stiffness scale
 /// equal) and no external force. Dividing eq. 1 by m then leaves only kappa/m and gamma/m.
-std::string similarity_unavailable(const SceneSpec& scene);
+std::optional<std::string> similarity_unavailable(const SceneSpec& scene);
 
 /// Similarity classes of a grid.
 struct TrialClasses {
@@ -100,7 +100,7 @@ struct TrialClasses {
 /// or the reduced triple (a, b, c) for absolute gamma; plus dt, and factor under policy
 /// upper. Policies upper and lower ignore the user's gamma, so it is left out of their key.
 /// `scene_reason` (from similarity_unavailable) turns similarity off.
-TrialClasses find_classes(const SweepGrid& grid, const std::string& scene_reason);
+TrialClasses find_classes(const SweepGrid& grid, const std::optional<std::string>& scene_reason);
 
 /// Bytes of memory the classes of a grid with `trials` trials need at most.
 std::uint64_t class_memory_bound(std::uint64_t trials);

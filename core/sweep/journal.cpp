@@ -85,8 +85,8 @@ std::string journal_line(const JournalEntry& e) {
   return with_checksum(body, n);
 }
 
-bool parse_journal_line(const std::string& line, JournalEntry& e) {
-  if (!checksum_ok(line)) return false;
+std::optional<JournalEntry> parse_journal_line(const std::string& line) {
+  if (!checksum_ok(line)) return std::nullopt;
   char code = 0;
   char disp[64];
   JournalEntry x;
@@ -95,11 +95,11 @@ bool parse_journal_line(const std::string& line, JournalEntry& e) {
   if (std::sscanf(line.c_str(), "%" SCNu32 " %c %d %63s %lld %lld %lld %lld%n", &x.cls, &code,
                   &r.iterations, disp, &r.violations, &r.unstabilisable, &r.clamped,
                   &r.zero_length_springs, &used) != 8)
-    return false;
+    return std::nullopt;
   const bool band = line.compare(static_cast<size_t>(used), 3, " b ") == 0;
   if (band && std::sscanf(line.c_str() + used, " b %d %d %d", &r.first_entry, &r.left_at,
                           &r.settled_at) != 3)
-    return false;
+    return std::nullopt;
   char* end = nullptr;
   r.max_displacement = std::strtod(disp, &end);
   // A line with a good checksum can still be forged or come from a broken build: what no
@@ -108,7 +108,7 @@ bool parse_journal_line(const std::string& line, JournalEntry& e) {
   if (*end != '\0' || r.iterations < 0 || r.violations < 0 || r.unstabilisable < 0 ||
       r.clamped < 0 || r.zero_length_springs < 0 || r.max_displacement < 0 ||
       (!std::isfinite(r.max_displacement) && code != 'd'))
-    return false;
+    return std::nullopt;
   switch (code) {
     case 'r':
       r.outcome = Outcome::restored;
@@ -126,11 +126,10 @@ bool parse_journal_line(const std::string& line, JournalEntry& e) {
       r.outcome = Outcome::not_settled;
       break;
     default:
-      return false;
+      return std::nullopt;
   }
   if (!band && r.outcome == Outcome::restored) r.first_entry = r.iterations;
-  e = x;
-  return true;
+  return x;
 }
 
 std::string journal_time_line(const JournalTime& t) {
@@ -140,15 +139,14 @@ std::string journal_time_line(const JournalTime& t) {
   return with_checksum(body, n);
 }
 
-bool parse_journal_time_line(const std::string& line, JournalTime& t) {
-  if (line.rfind("t ", 0) != 0 || !checksum_ok(line)) return false;
+std::optional<JournalTime> parse_journal_time_line(const std::string& line) {
+  if (line.rfind("t ", 0) != 0 || !checksum_ok(line)) return std::nullopt;
   JournalTime x;
   if (std::sscanf(line.c_str(), "t %d %lf %lf %" SCNu64, &x.run, &x.wall_s, &x.cpu_s, &x.classes) !=
           4 ||
       x.run < 1 || !(x.wall_s >= 0) || !(x.cpu_s >= 0))
-    return false;
-  t = x;
-  return true;
+    return std::nullopt;
+  return x;
 }
 
 JournalContents read_journal(const std::string& path, const std::string& header,
@@ -171,17 +169,17 @@ JournalContents read_journal(const std::string& path, const std::string& header,
   // Only whole lines (ending in '\n') with a good checksum count; the first bad one ends
   // the valid prefix (what follows it was written after the last completed sync).
   while (std::getline(in, line)) {
-    JournalTime t;
-    if (!in.eof() && parse_journal_time_line(line, t)) {
-      times[t.run] = t;
+    if (const auto t = in.eof() ? std::nullopt : parse_journal_time_line(line)) {
+      times[t->run] = *t;
       jc.valid_bytes += line.size() + 1;
       continue;
     }
-    JournalEntry e;
-    if (in.eof() || !parse_journal_line(line, e)) {
+    const auto parsed = in.eof() ? std::nullopt : parse_journal_line(line);
+    if (!parsed) {
       ++jc.dropped_lines;
       break;
     }
+    const JournalEntry& e = *parsed;
     if (e.cls >= classes)
       throw InputError(path + ": class " + std::to_string(e.cls) + " is not in this sweep");
     jc.valid_bytes += line.size() + 1;

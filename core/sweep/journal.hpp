@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,9 +24,9 @@ struct JournalEntry {
 };
 
 /// The journal line of an entry (with checksum and newline), and its inverse; parse returns
-/// false for anything malformed or with a wrong checksum (a torn write).
+/// nullopt for anything malformed or with a wrong checksum (a torn write).
 std::string journal_line(const JournalEntry& e);
-bool parse_journal_line(const std::string& line, JournalEntry& e);
+std::optional<JournalEntry> parse_journal_line(const std::string& line);
 
 /// How long one run of a sweep had worked when it last synced its journal: a run (the first,
 /// or a --resume) writes its number, its wall and CPU seconds so far and the classes it has
@@ -40,7 +41,7 @@ struct JournalTime {
 /// The journal line of a time record ("t RUN WALL CPU CLASSES" and a checksum), and its
 /// inverse.
 std::string journal_time_line(const JournalTime& t);
-bool parse_journal_time_line(const std::string& line, JournalTime& t);
+std::optional<JournalTime> parse_journal_time_line(const std::string& line);
 
 /// What a journal held.
 struct JournalContents {

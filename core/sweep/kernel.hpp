@@ -50,9 +50,9 @@ bool kernel_isa_supported(KernelIsa isa);
 /// plain copy in a DAMPBOUND_NATIVE build for an AVX-512 host: it is compiled for the host).
 KernelIsa best_kernel_isa();
 
-/// Why the batched kernel cannot run a scene ("" when it can): cuts (topology changes
+/// Why the batched kernel cannot run a scene (nullopt when it can): cuts (topology changes
 /// mid-run) and integrators other than the paper's semi-implicit Euler and forward Euler.
-std::string batch_kernel_unsupported(const SceneSpec& scene);
+std::optional<std::string> batch_kernel_unsupported(const SceneSpec& scene);
 
 class BatchKernel {
  public:
@@ -60,7 +60,7 @@ class BatchKernel {
 
   /// Topology, scales, external forces, fixed nodes and initial state from `scene`; the
   /// integrator from scene.params. Throws std::invalid_argument when
-  /// batch_kernel_unsupported(scene) is not empty, or when `isa` is not supported here.
+  /// batch_kernel_unsupported(scene) gives a reason, or when `isa` is not supported here.
   BatchKernel(const SceneSpec& scene, DampingPolicy policy, const StopRules& rules,
               KernelIsa isa = KernelIsa::best);
   ~BatchKernel();

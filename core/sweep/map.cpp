@@ -133,7 +133,8 @@ StabilityMap build_stability_map(const SweepTable& table, double lambda_unit,
   const bool gamma_policy = policy == DampingPolicy::fixed || policy == DampingPolicy::clamp;
   // A policy this build does not know is shown as the definition says it.
   const std::string policy_name =
-      policy ? to_string(*policy) : definition_value(table.header.definition, "policy");
+      policy ? to_string(*policy)
+             : definition_value(table.header.definition, "policy").value_or("");
   const double dt = opt.dt ? *opt.dt : table.rows.front().dt;
   std::vector<const SweepRow*> rows;
   for (const SweepRow& r : table.rows)
@@ -142,7 +143,8 @@ StabilityMap build_stability_map(const SweepTable& table, double lambda_unit,
   const bool have_lambda = std::isfinite(lambda_unit) && lambda_unit > 0;
 
   StabilityMap map;
-  map.max_iterations = std::atoi(definition_value(table.header.definition, "max-iter").c_str());
+  map.max_iterations =
+      std::atoi(definition_value(table.header.definition, "max-iter").value_or("0").c_str());
   map.title = table.header.scene_name + ": policy " + policy_name + ", dt = " + format_number(dt) +
               " s, " + std::to_string(map.max_iterations) + " iterations";
   map.summary = summary_lines(table.rows, policy, lambda_unit);

@@ -193,7 +193,8 @@ SweepReport run_sweep(const SweepRequest& rq) {
   SweepReport rep;
   rep.header = sweep_header(rq, grid, classes);
   const SweepHeader& h = rep.header;
-  rep.plain_reason = rq.use_kernel ? batch_kernel_unsupported(rq.scene) : "--plain";
+  rep.plain_reason =
+      rq.use_kernel ? batch_kernel_unsupported(rq.scene).value_or("") : std::string("--plain");
   rep.batched = rep.plain_reason.empty();
 
   // Trials per class, and the classes of this shard.

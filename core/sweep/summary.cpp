@@ -20,7 +20,8 @@ bool linearly_unstable(double m, double kappa, double gamma, double dt, double l
   return spec7_unstable(lambda_unit * kappa / m, gamma / m, dt);
 }
 
-std::string definition_value(const std::string& definition, const std::string& key) {
+std::optional<std::string> definition_value(const std::string& definition,
+                                            const std::string& key) {
   const std::string needle = key + "=";
   size_t p = 0;
   while ((p = definition.find(needle, p)) != std::string::npos) {
@@ -31,7 +32,7 @@ std::string definition_value(const std::string& definition, const std::string& k
     }
     p += needle.size();
   }
-  return {};
+  return std::nullopt;
 }
 
 std::vector<PredictionCheck> check_predictions(const std::vector<SweepRow>& rows,

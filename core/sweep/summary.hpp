@@ -34,8 +34,9 @@ struct PredictionCheck {
 std::vector<PredictionCheck> check_predictions(const std::vector<SweepRow>& rows,
                                                std::optional<DampingPolicy> policy, double lambda_unit);
 
-/// "key=value" out of a header definition ("policy", "max-iter", ...); "" when absent.
-std::string definition_value(const std::string& definition, const std::string& key);
+/// "key=value" out of a header definition ("policy", "max-iter", ...); nullopt when absent.
+std::optional<std::string> definition_value(const std::string& definition,
+                                            const std::string& key);
 
 /// The rule a sweep's rows were judged by (SPEC 8): settled when any row is settled or
 /// not_settled, else first-entry.

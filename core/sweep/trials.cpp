@@ -20,12 +20,12 @@ Params trial_params(const Params& base, DampingPolicy policy, const TrialParams&
   return p;
 }
 
-std::string batch_kernel_unsupported(const SceneSpec& scene) {
+std::optional<std::string> batch_kernel_unsupported(const SceneSpec& scene) {
   if (!scene.cuts.empty()) return "the scene cuts springs during the run";
   const Integrator in = scene.params.integrator;
   if (in != Integrator::semi_implicit_euler && in != Integrator::forward_euler)
     return std::string("integrator ") + to_string(in);
-  return {};
+  return std::nullopt;
 }
 
 // Greedy list scheduling: among the springs whose nodes have no earlier spring pending, take

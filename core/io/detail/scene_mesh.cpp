@@ -92,16 +92,18 @@ void read_mesh(const Reader& r, const toml::table& root, SceneSpec& s) {
   const toml::node& fn = r.required(t, "file", "[mesh]");
   std::string file = r.string(fn, "file");
   if (file.empty()) r.fail(fn, "file must name a mesh file");
-  std::string why;  // docs/hardening.md: in the scene's folder unless --allow-any-path
   const std::string named = file;
-  file = scene_relative_path(r.path(), named, why);
-  if (file.empty()) r.fail(fn, "mesh file '" + named + "' " + why);
+  try {  // docs/hardening.md: in the scene's folder unless --allow-any-path
+    file = scene_relative_path(r.path(), named);
+  } catch (const InputError& e) {
+    r.fail(fn, "mesh file '" + named + "' " + e.what());
+  }
   std::string format;
   if (auto* n = t.get("format")) {
     format = r.string(*n, "format");
-    if (mesh_format(file, format).empty() || format == "node" || format == "ele")
+    if (!mesh_format(file, format) || format == "node" || format == "ele")
       r.fail(*n, "format must be one of obj, msh, tetgen, vtk");
-  } else if (mesh_format(file).empty()) {
+  } else if (!mesh_format(file)) {
     r.fail(fn, "cannot tell the format of " + file +
                    " from its extension: set format = \"obj\", "
                    "\"msh\", \"tetgen\" or \"vtk\"");

@@ -70,8 +70,8 @@ struct Kernel final : BatchKernel::Impl {
   BandHistory band[kLanes];
 
   Kernel(const SceneSpec& scene, DampingPolicy pol, const StopRules& r) : policy(pol), rules(r) {
-    const std::string why = batch_kernel_unsupported(scene);
-    if (!why.empty()) throw std::invalid_argument("batched kernel: " + why);
+    if (const auto why = batch_kernel_unsupported(scene))
+      throw std::invalid_argument("batched kernel: " + *why);
     semi_implicit = scene.params.integrator == Integrator::semi_implicit_euler;
     const ModelSpec& mo = scene.model;
     n = mo.rest.size();

@@ -31,10 +31,10 @@ TEST(MeshFile, FormatFromTheExtensionOrTheName) {
   EXPECT_EQ(mesh_format("b.node"), "tetgen");
   EXPECT_EQ(mesh_format("b.ele"), "tetgen");
   EXPECT_EQ(mesh_format("b.vtk"), "vtk");
-  EXPECT_EQ(mesh_format("b.stl"), "");
+  EXPECT_EQ(mesh_format("b.stl"), std::nullopt);
   EXPECT_EQ(mesh_format("b.stl", "msh"), "msh");
   EXPECT_EQ(mesh_format("B.MSH"), "msh");
-  EXPECT_EQ(mesh_format("dir.v2/mesh"), "");  // a dot in a folder is no extension
+  EXPECT_EQ(mesh_format("dir.v2/mesh"), std::nullopt);  // a dot in a folder is no extension
   try {
     read_mesh_file("m.stl");
     ADD_FAILURE() << "read an .stl";

@@ -117,7 +117,7 @@ TEST(SweepClasses, ReducedFractionsOnTheIntegerGrid) {
 TEST(SweepClasses, AbsoluteGammaUsesTheReducedTriple) {
   // (m, kappa, gamma) = (1, 2, 1) q and (2, 4, 2) q are one class; (2, 4, 1) q is not.
   const SweepGrid g(small_spec("0.001,0.002", "0.002,0.004", GammaMode::absolute, "0.001,0.002"));
-  const TrialClasses c = find_classes(g, "");
+  const TrialClasses c = find_classes(g, std::nullopt);
   ASSERT_TRUE(c.similarity);
   auto trial = [&](int gi, int mi, int ki) {
     return static_cast<std::uint64_t>((gi * 2 + mi) * 2 + ki);
@@ -129,26 +129,26 @@ TEST(SweepClasses, AbsoluteGammaUsesTheReducedTriple) {
 
 TEST(SweepClasses, FallsBackWhenTheSceneIsNotUniform) {
   SceneSpec s = shipped("paper-plane");
-  EXPECT_EQ(similarity_unavailable(s), "");
+  EXPECT_EQ(similarity_unavailable(s), std::nullopt);
   s.model.external_force[3] = Vec3(0, -1, 0);
-  EXPECT_NE(similarity_unavailable(s), "");
+  EXPECT_TRUE(similarity_unavailable(s));
   SceneSpec t = shipped("paper-plane");
   t.model.mass_scale[10] = 2;
-  EXPECT_NE(similarity_unavailable(t), "");
+  EXPECT_TRUE(similarity_unavailable(t));
   const SweepGrid g(small_spec("0.001:0.004:0.001", "0.001:0.004:0.001", GammaMode::zeta, "1"));
   const TrialClasses c = find_classes(g, similarity_unavailable(t));
   EXPECT_FALSE(c.similarity);
   EXPECT_EQ(c.count(), g.trials());
   SweepSpec off = g.spec();
   off.allow_similarity = false;
-  EXPECT_EQ(find_classes(SweepGrid(off), "").count(), g.trials());
+  EXPECT_EQ(find_classes(SweepGrid(off), std::nullopt).count(), g.trials());
 }
 
 TEST(SweepClasses, UpperPolicyIgnoresGammaButKeepsFactor) {
   SweepSpec s = small_spec("0.001,0.002", "0.002,0.004", GammaMode::zeta, "0.5,1");
   s.factor = parse_axis("--factor", "1,1.05", AxisDomain::non_negative);
   s.policy = DampingPolicy::upper;
-  const TrialClasses c = find_classes(SweepGrid(s), "");
+  const TrialClasses c = find_classes(SweepGrid(s), std::nullopt);
   // kappa/m in {2, 4, 1, 2} -> 3 ratios, times 2 factors; zeta does not matter.
   EXPECT_EQ(c.count(), 6u);
 }

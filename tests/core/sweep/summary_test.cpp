@@ -98,7 +98,7 @@ TEST(SweepSummary, DefinitionValues) {
   EXPECT_EQ(definition_value(d, "policy"), "fixed");
   EXPECT_EQ(definition_value(d, "m"), "1");
   EXPECT_EQ(definition_value(d, "max-iter"), "300");
-  EXPECT_EQ(definition_value(d, "rule"), "");
+  EXPECT_EQ(definition_value(d, "rule"), std::nullopt);
   EXPECT_EQ(definition_value("xm=1 m=2", "m"), "2");
 }
 
