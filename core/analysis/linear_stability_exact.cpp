@@ -73,110 +73,150 @@ SpectralRadius spectral_radius_at(const Model& model, const SparseMatrix& K_weig
   return amplification_spectral_radius(e.integrator, K_weighted, gamma * R, params.dt);
 }
 
-ExactStability exact_stability(const Model& model, const std::vector<Vec3>& x,
-                               const Params& params, const ExactOptions& options) {
-  ExactStability e;
+namespace {
+
+/// The inputs every method shares: A = M^-1/2 K M^-1/2 at x, its certified ends (lambda_max
+/// never low, lambda_min never high), the damping rates r_i = gamma_i / (gamma m_i) and the
+/// spectrum of the decaying modes (zero modes set aside).
+struct ExactInputs {
+  SparseMatrix A;
+  Eigen::VectorXd R;
+  double r_min = 0, r_max = 0;
+};
+
+ExactInputs spectrum_and_rates(const Model& model, const std::vector<Vec3>& x,
+                               const Params& params, ExactStability& e) {
+  ExactInputs in;
   e.integrator = params.integrator;
-  const double h = params.dt, gamma = params.gamma;
-  const SparseMatrix A = mass_weighted(model, tangent_stiffness(model, x));
-  // Certified intervals (Cholesky, linear_stability_cholesky.hpp); the limits use the safe
-  // ends: lambda_max never low, lambda_min never high.
-  const CertifiedSpectrum ends = certified_spectrum(A);
+  in.A = mass_weighted(model, tangent_stiffness(model, x));
+  const CertifiedSpectrum ends = certified_spectrum(in.A);
   e.spectrum = {ends.smallest.lo, ends.largest.hi};
   e.lambda_max_lo = ends.largest.lo;
-  const Eigen::VectorXd R = unit_rates(model);
-  const double r_min = R.size() ? R.minCoeff() : 0, r_max = R.size() ? R.maxCoeff() : 0;
-  e.rate_min = gamma * r_min;
-  e.rate_max = gamma * r_max;
-  e.uniform_rate = r_max - r_min <= 1e-12 * r_max;
-  const double tiny = 1e-12 * std::max(1.0, std::abs(e.spectrum.lambda_max));
+  in.R = unit_rates(model);
+  in.r_min = in.R.size() ? in.R.minCoeff() : 0;
+  in.r_max = in.R.size() ? in.R.maxCoeff() : 0;
+  e.rate_min = params.gamma * in.r_min;
+  e.rate_max = params.gamma * in.r_max;
+  e.uniform_rate = in.r_max - in.r_min <= 1e-12 * in.r_max;
   e.decaying = e.spectrum;
   if (std::abs(e.spectrum.lambda_min) <= 1e-9 * std::abs(e.spectrum.lambda_max)) {
     e.zero_modes = true;
-    const double above = smallest_eigenvalue_above(A, 1e-9 * e.spectrum.lambda_max);
+    const double above = smallest_eigenvalue_above(in.A, 1e-9 * e.spectrum.lambda_max);
     e.decaying.lambda_min = std::isnan(above) ? e.spectrum.lambda_max : above;
   }
-  auto rho_or_nan = [&] {
-    if (!options.with_radius) return;
-    const SpectralRadius s = spectral_radius_at(model, A, e, params, gamma);
-    e.spectral_radius = s.rho;
-    e.radius_converged = s.converged;
-  };
+  return in;
+}
 
-  if (e.integrator == Integrator::implicit_euler && e.spectrum.lambda_min >= -tiny) {
-    // Backward Euler on M y'' = -K y - Gamma y' with K, Gamma >= 0 dissipates the energy
-    // y'^T M y' + y^T K y every step, for every h: no limit on dt or gamma.
-    e.method = ExactMethod::unconditional;
-    e.gamma_lo = 0;
-    e.gamma_hi = kInf;
-    e.dt_max = kInf;
-    e.stable = true;
-    e.spectral_radius = kNaN;
-    if (e.uniform_rate) rho_or_nan();
-    return e;
-  }
-  if (e.uniform_rate) {
-    e.method = ExactMethod::per_mode;
-    const double c = gamma * r_max;
-    e.spectral_radius = spectrum_spectral_radius(e.integrator, e.decaying, c, h);
-    e.stable = spectrum_spectral_radius(e.integrator, e.spectrum, c, h) <= 1 + 1e-12;
-    const RateInterval ci = uniform_rate_interval(e.integrator, e.spectrum, h);
-    if (r_max > 0) {
-      e.gamma_lo = ci.lo / r_max;
-      e.gamma_hi = ci.hi / r_max;
-    } else {  // no node is damped: gamma has no effect
-      e.gamma_lo = 0;
-      e.gamma_hi = ci.lo == 0 && !ci.empty() ? kInf : 0;
-    }
-    e.dt_max = uniform_dt_max(e.integrator, e.spectrum, c);
-    return e;
-  }
-  if (e.integrator == Integrator::semi_implicit_euler) {
-    e.method = ExactMethod::symmetric_index;
-    e.index = symmetric_index(A, R, gamma, h).value;
-    e.stable = e.index < 4 && r_min > 0;
-    e.gamma_lo = 0;
-    // gamma: g(t) = index(t, h) - 4, convex and increasing in t; g(2/(h r_max)) >= 0.
-    if (symmetric_index(A, R, 0, h).value >= 4) {
-      e.gamma_hi = 0;
-    } else {
-      e.gamma_hi = newton_from_right(
-          [&](double t) {
-            const Index i = symmetric_index(A, R, t, h);
-            return std::make_pair(i.value - 4, i.slope_gamma);
-          },
-          2 / (h * r_max));
-    }
-    // dt: g(t) = index(gamma, t) - 4, convex and increasing in t when K >= 0.
-    double cap = spec7_dt_max_undamped(e.spectrum.lambda_max);
-    if (gamma * r_max > 0) cap = std::min(cap, 2 / (gamma * r_max));
-    e.dt_max = std::isinf(cap) ? kInf
-                               : newton_from_right(
-                                     [&](double t) {
-                                       const Index i = symmetric_index(A, R, gamma, t);
-                                       return std::make_pair(i.value - 4, i.slope_h);
-                                     },
-                                     cap);
-    rho_or_nan();
-    return e;
-  }
-  // Forward Euler, Verlet, RK4 (and implicit Euler at an indefinite K) with non-uniform rates:
-  // the verdict comes from the amplification operator; the limits from the worst uniform
-  // rate over [c_min, c_max] ("frozen coefficients", an estimate).
-  e.method = ExactMethod::frozen_estimate;
+/// The spectral radius of the step's amplification operator, when asked for (else NaN).
+void add_radius(const Model& model, const ExactInputs& in, const Params& params,
+                const ExactOptions& options, ExactStability& e) {
+  e.spectral_radius = kNaN;
+  if (!options.with_radius) return;
+  const SpectralRadius s = spectral_radius_at(model, in.A, e, params, params.gamma);
+  e.spectral_radius = s.rho;
+  e.radius_converged = s.converged;
+}
+
+/// Backward Euler on M y'' = -K y - Gamma y' with K, Gamma >= 0 dissipates the energy
+/// y'^T M y' + y^T K y every step, for every h: no limit on dt or gamma.
+void unconditional(ExactStability& e) {
+  e.method = ExactMethod::unconditional;
+  e.gamma_lo = 0;
+  e.gamma_hi = kInf;
+  e.dt_max = kInf;
+  e.stable = true;
+}
+
+/// Uniform rates: every mode is a scalar recurrence; the limits are exact per mode.
+void per_mode(const ExactInputs& in, const Params& params, ExactStability& e) {
+  const double h = params.dt;
+  e.method = ExactMethod::per_mode;
+  const double c = params.gamma * in.r_max;
+  e.spectral_radius = spectrum_spectral_radius(e.integrator, e.decaying, c, h);
+  e.stable = spectrum_spectral_radius(e.integrator, e.spectrum, c, h) <= 1 + 1e-12;
   const RateInterval ci = uniform_rate_interval(e.integrator, e.spectrum, h);
-  e.gamma_lo = r_min > 0 ? ci.lo / r_min : (ci.lo == 0 ? 0 : kInf);
-  e.gamma_hi = ci.hi / r_max;
+  if (in.r_max > 0) {
+    e.gamma_lo = ci.lo / in.r_max;
+    e.gamma_hi = ci.hi / in.r_max;
+  } else {  // no node is damped: gamma has no effect
+    e.gamma_lo = 0;
+    e.gamma_hi = ci.lo == 0 && !ci.empty() ? kInf : 0;
+  }
+  e.dt_max = uniform_dt_max(e.integrator, e.spectrum, c);
+}
+
+/// The paper's step with non-uniform rates: the exact definiteness index (SPEC 7) and its
+/// roots in gamma and in dt.
+void symmetric_index_limits(const ExactInputs& in, const Params& params, ExactStability& e) {
+  const double h = params.dt, gamma = params.gamma;
+  const SparseMatrix& A = in.A;
+  const Eigen::VectorXd& R = in.R;
+  e.method = ExactMethod::symmetric_index;
+  e.index = symmetric_index(A, R, gamma, h).value;
+  e.stable = e.index < 4 && in.r_min > 0;
+  e.gamma_lo = 0;
+  // gamma: g(t) = index(t, h) - 4, convex and increasing in t; g(2/(h r_max)) >= 0.
+  if (symmetric_index(A, R, 0, h).value >= 4) {
+    e.gamma_hi = 0;
+  } else {
+    e.gamma_hi = newton_from_right(
+        [&](double t) {
+          const Index i = symmetric_index(A, R, t, h);
+          return std::make_pair(i.value - 4, i.slope_gamma);
+        },
+        2 / (h * in.r_max));
+  }
+  // dt: g(t) = index(gamma, t) - 4, convex and increasing in t when K >= 0.
+  double cap = spec7_dt_max_undamped(e.spectrum.lambda_max);
+  if (gamma * in.r_max > 0) cap = std::min(cap, 2 / (gamma * in.r_max));
+  e.dt_max = std::isinf(cap) ? kInf
+                             : newton_from_right(
+                                   [&](double t) {
+                                     const Index i = symmetric_index(A, R, gamma, t);
+                                     return std::make_pair(i.value - 4, i.slope_h);
+                                   },
+                                   cap);
+}
+
+/// Forward Euler, Verlet, RK4 (and implicit Euler at an indefinite K) with non-uniform
+/// rates: the limits from the worst uniform rate over [c_min, c_max] ("frozen
+/// coefficients", an estimate); the verdict from the amplification operator when measured.
+void frozen_estimate(const ExactInputs& in, const Params& params, ExactStability& e) {
+  e.method = ExactMethod::frozen_estimate;
+  const RateInterval ci = uniform_rate_interval(e.integrator, e.spectrum, params.dt);
+  e.gamma_lo = in.r_min > 0 ? ci.lo / in.r_min : (ci.lo == 0 ? 0 : kInf);
+  e.gamma_hi = ci.hi / in.r_max;
   e.dt_max = kInf;
   for (int k = 0; k <= 16; ++k) {
     const double c = e.rate_min + (e.rate_max - e.rate_min) * k / 16;
     e.dt_max = std::min(e.dt_max, uniform_dt_max(e.integrator, e.spectrum, c));
   }
-  e.spectral_radius = kNaN;
-  rho_or_nan();
-  e.stable = std::isnan(e.spectral_radius)
-                 ? (gamma >= e.gamma_lo && gamma < e.gamma_hi && h <= e.dt_max)
-                 : e.spectral_radius <= 1 + 1e-9;
+}
+
+}  // namespace
+
+ExactStability exact_stability(const Model& model, const std::vector<Vec3>& x,
+                               const Params& params, const ExactOptions& options) {
+  ExactStability e;
+  const ExactInputs in = spectrum_and_rates(model, x, params, e);
+  const double tiny = 1e-12 * std::max(1.0, std::abs(e.spectrum.lambda_max));
+  if (e.integrator == Integrator::implicit_euler && e.spectrum.lambda_min >= -tiny) {
+    unconditional(e);
+    e.spectral_radius = kNaN;
+    if (e.uniform_rate) add_radius(model, in, params, options, e);
+  } else if (e.uniform_rate) {
+    per_mode(in, params, e);
+  } else if (e.integrator == Integrator::semi_implicit_euler) {
+    symmetric_index_limits(in, params, e);
+    add_radius(model, in, params, options, e);
+  } else {
+    frozen_estimate(in, params, e);
+    add_radius(model, in, params, options, e);
+    e.stable = std::isnan(e.spectral_radius)
+                   ? (params.gamma >= e.gamma_lo && params.gamma < e.gamma_hi &&
+                      params.dt <= e.dt_max)
+                   : e.spectral_radius <= 1 + 1e-9;
+  }
   return e;
 }
 

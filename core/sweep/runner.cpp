@@ -175,19 +175,110 @@ double process_cpu_seconds() {
          1e-6 * static_cast<double>(ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);
 }
 
-SweepReport run_sweep(const SweepRequest& rq) {
-  const Clock::time_point t0 = Clock::now();
-  const double cpu0 = process_cpu_seconds();
-  SweepGrid grid(rq.spec);
+namespace {
+
+/// The output checks before any work: the sizes, writable CSV and journal paths, and a journal
+/// left by an interrupted run only with --resume. Returns whether that journal exists.
+bool check_outputs(const SweepRequest& rq, const SweepGrid& grid, const std::string& journal_path) {
   check_sweep_resources(grid, rq.output, rq.shards);
   check_writable(rq.output);
-  const std::string journal_path = rq.output + ".journal";
   check_writable(journal_path);  // not a directory or a device
   const bool journal_exists = ::access(journal_path.c_str(), F_OK) == 0;
   if (journal_exists && !rq.resume)
     throw InputError("-o: " + journal_path +
                      " exists: an earlier run of this sweep was interrupted; add --resume to "
                      "finish it, or delete the journal to start over");
+  return journal_exists;
+}
+
+/// This shard's classes and what is known of them: each class's trial count, its result and
+/// whether it is finished, and the progress counters.
+struct ShardState {
+  const SweepRequest& rq;
+  std::vector<std::uint32_t> multiplicity;
+  std::vector<TrialResult> results;
+  std::vector<std::uint8_t> finished;
+  SweepProgress progress;
+
+  ShardState(const SweepRequest& request, const TrialClasses& classes)
+      : rq(request),
+        multiplicity(classes.count(), 0),
+        results(classes.count()),
+        finished(classes.count(), 0) {
+    for (std::uint32_t c : classes.class_of) ++multiplicity[c];
+    for (std::uint32_t c = 0; c < classes.count(); ++c)
+      if (in_shard(c)) {
+        ++progress.classes_total;
+        progress.trials_total += multiplicity[c];
+      }
+  }
+
+  bool in_shard(std::uint32_t c) const {
+    return static_cast<int>(c % static_cast<std::uint32_t>(rq.shards)) == rq.shard - 1;
+  }
+
+  void finish(std::uint32_t c, const TrialResult& r) {
+    results[c] = r;
+    finished[c] = 1;
+    progress.trials_done += multiplicity[c];
+  }
+
+  /// The classes still to run, in a fixed shuffled order: the cost of a class varies along
+  /// the grid, so shuffling keeps the threads balanced and the time-remaining estimate honest.
+  std::vector<std::uint32_t> todo() const {
+    std::vector<std::uint32_t> out;
+    for (std::uint32_t c = 0; c < finished.size(); ++c)
+      if (in_shard(c) && !finished[c]) out.push_back(c);
+    std::mt19937_64 rng(0x5eedULL);
+    for (size_t i = out.size(); i > 1; --i) std::swap(out[i - 1], out[rng() % i]);
+    return out;
+  }
+};
+
+/// Opens the journal: with --resume and a journal on disk, takes its finished classes into
+/// `state` and its earlier runs' times into `rep`, and cuts off a damaged tail; else starts a
+/// new one. `run` is this run's number in the journal's time records.
+std::unique_ptr<Journal> open_journal(const std::string& journal_path, bool journal_exists,
+                                      const std::string& journal_header,
+                                      std::uint32_t class_count, ShardState& state,
+                                      SweepReport& rep, int& run) {
+  const SweepRequest& rq = state.rq;
+  run = 1;
+  if (!(rq.resume && journal_exists))
+    return std::make_unique<Journal>(journal_path, journal_header);
+  const JournalContents jc = read_journal(journal_path, journal_header, class_count);
+  run = jc.runs + 1;
+  rep.earlier_runs = jc.runs;
+  rep.earlier_seconds = jc.wall_s;
+  rep.earlier_cpu_seconds = jc.cpu_s;
+  rep.untimed_classes =
+      jc.entries.size() > jc.timed_classes ? jc.entries.size() - jc.timed_classes : 0;
+  for (const JournalEntry& e : jc.entries) {
+    if (!state.in_shard(e.cls))
+      throw InputError(journal_path + ": class " + std::to_string(e.cls) + " is not in shard " +
+                       std::to_string(rq.shard) + "/" + std::to_string(rq.shards));
+    state.finish(e.cls, e.result);
+    ++state.progress.classes_resumed;
+  }
+  // Cuts a damaged tail off (valid_bytes 0: not even the header survived, start afresh).
+  return std::make_unique<Journal>(journal_path, journal_header, jc.valid_bytes);
+}
+
+/// The threads a sweep uses: --threads, or one per hardware thread, at most one per class.
+int sweep_threads(const SweepRequest& rq, size_t classes_to_run) {
+  const int threads =
+      rq.threads > 0 ? rq.threads : static_cast<int>(std::thread::hardware_concurrency());
+  return std::max(1, std::min<int>(threads, static_cast<int>(std::max<size_t>(classes_to_run, 1))));
+}
+
+}  // namespace
+
+SweepReport run_sweep(const SweepRequest& rq) {
+  const Clock::time_point t0 = Clock::now();
+  const double cpu0 = process_cpu_seconds();
+  SweepGrid grid(rq.spec);
+  const std::string journal_path = rq.output + ".journal";
+  const bool journal_exists = check_outputs(rq, grid, journal_path);
 
   const TrialClasses classes = find_classes(grid, similarity_unavailable(rq.scene));
   SweepReport rep;
@@ -196,21 +287,8 @@ SweepReport run_sweep(const SweepRequest& rq) {
   rep.plain_reason =
       rq.use_kernel ? batch_kernel_unsupported(rq.scene).value_or("") : std::string("--plain");
   rep.batched = rep.plain_reason.empty();
-
-  // Trials per class, and the classes of this shard.
-  const auto in_shard = [&](std::uint32_t c) {
-    return static_cast<int>(c % static_cast<std::uint32_t>(rq.shards)) == rq.shard - 1;
-  };
-  std::vector<std::uint32_t> multiplicity(classes.count(), 0);
-  for (std::uint32_t c : classes.class_of) ++multiplicity[c];
-  std::vector<TrialResult> results(classes.count());
-  std::vector<std::uint8_t> finished(classes.count(), 0);
-  SweepProgress pr;
-  for (std::uint32_t c = 0; c < classes.count(); ++c)
-    if (in_shard(c)) {
-      ++pr.classes_total;
-      pr.trials_total += multiplicity[c];
-    }
+  ShardState state(rq, classes);
+  SweepProgress& pr = state.progress;
   rep.trials = pr.trials_total;
   rep.classes = pr.classes_total;
 
@@ -224,30 +302,9 @@ SweepReport run_sweep(const SweepRequest& rq) {
 
   const std::string journal_header =
       "dampbound-journal v1 sweep=" + identity + " classes=" + std::to_string(classes.count());
-  std::unique_ptr<Journal> journal;
-  int run = 1;  // this run's number in the journal's time records
-  if (rq.resume && journal_exists) {
-    const JournalContents jc = read_journal(journal_path, journal_header, classes.count());
-    run = jc.runs + 1;
-    rep.earlier_runs = jc.runs;
-    rep.earlier_seconds = jc.wall_s;
-    rep.earlier_cpu_seconds = jc.cpu_s;
-    rep.untimed_classes =
-        jc.entries.size() > jc.timed_classes ? jc.entries.size() - jc.timed_classes : 0;
-    for (const JournalEntry& e : jc.entries) {
-      if (!in_shard(e.cls))
-        throw InputError(journal_path + ": class " + std::to_string(e.cls) + " is not in shard " +
-                         std::to_string(rq.shard) + "/" + std::to_string(rq.shards));
-      results[e.cls] = e.result;
-      finished[e.cls] = 1;
-      ++pr.classes_resumed;
-      pr.trials_done += multiplicity[e.cls];
-    }
-    // Cuts a damaged tail off (valid_bytes 0: not even the header survived, start afresh).
-    journal = std::make_unique<Journal>(journal_path, journal_header, jc.valid_bytes);
-  } else {
-    journal = std::make_unique<Journal>(journal_path, journal_header);
-  }
+  int run = 1;
+  const std::unique_ptr<Journal> journal = open_journal(
+      journal_path, journal_exists, journal_header, classes.count(), state, rep, run);
   pr.classes_done = pr.classes_resumed;
   pr.trials_resumed = pr.trials_done;
   rep.classes_resumed = pr.classes_resumed;
@@ -258,26 +315,15 @@ SweepReport run_sweep(const SweepRequest& rq) {
     journal->add_time({run, seconds_since(t0), process_cpu_seconds() - cpu0, rep.classes_run});
   };
 
-  // The classes still to run, in a fixed shuffled order: the cost of a class varies along the
-  // grid, so shuffling keeps the threads balanced and the time-remaining estimate honest.
-  std::vector<std::uint32_t> todo;
-  for (std::uint32_t c = 0; c < classes.count(); ++c)
-    if (in_shard(c) && !finished[c]) todo.push_back(c);
-  std::mt19937_64 rng(0x5eedULL);
-  for (size_t i = todo.size(); i > 1; --i) std::swap(todo[i - 1], todo[rng() % i]);
-
-  int threads = rq.threads > 0 ? rq.threads : static_cast<int>(std::thread::hardware_concurrency());
-  threads = std::max(1, std::min<int>(threads, static_cast<int>(std::max<size_t>(todo.size(), 1))));
+  const std::vector<std::uint32_t> todo = state.todo();
   Clock::time_point last_sync = Clock::now();
   rep.lane_steps = run_classes(
-      rq, grid, classes, todo, rep.batched, threads,
+      rq, grid, classes, todo, rep.batched, sweep_threads(rq, todo.size()),
       [&](std::uint32_t c, const TrialResult& r) {
-        results[c] = r;
-        finished[c] = 1;
+        state.finish(c, r);
         journal->add({c, r});
         ++pr.classes_done;
         ++rep.classes_run;
-        pr.trials_done += multiplicity[c];
       },
       [&](bool last) {
         if (last || seconds_since(last_sync) >= rq.sync_interval_s) {
@@ -295,13 +341,15 @@ SweepReport run_sweep(const SweepRequest& rq) {
     rep.cancelled = true;
     return rep;
   }
+
+  // Every class of the shard is done: the CSV, written whole or not at all.
   rep.spring_evaluations_per_step = rq.scene.model.spring_count() + rq.scene.model.anchor_count();
   write_durably(rq.output, [&](std::FILE* f) {
     write_sweep_header(f, h);
-    write_sweep_rows(f, grid, classes, results, rq.shard, rq.shards);
+    write_sweep_rows(f, grid, classes, state.results, rq.shard, rq.shards);
   });
   journal->remove();
-  rep.rows = sweep_rows(grid, classes, results, rq.shard, rq.shards);
+  rep.rows = sweep_rows(grid, classes, state.results, rq.shard, rq.shards);
   for (const SweepRow& r : rep.rows) ++rep.outcome_trials[static_cast<size_t>(r.outcome)];
   rep.seconds = seconds_since(t0);
   rep.cpu_seconds = process_cpu_seconds() - cpu0;
