@@ -1,7 +1,10 @@
 #pragma once
 // Shared helpers of the core tests.
+#include <functional>
 #include <string>
 #include <utility>
+
+#include "core/error.hpp"
 
 #include "core/model.hpp"
 #include "core/scene.hpp"
@@ -10,6 +13,16 @@ namespace dampbound::test {
 
 inline std::string source_path(const std::string& rel) {
   return std::string(DAMPBOUND_SOURCE_DIR) + "/" + rel;
+}
+
+/// The message of the InputError that `f` throws, or "" when it throws none.
+inline std::string input_error(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
 }
 
 /// One free node on a zero-rest-length anchor: the single damped oscillator.

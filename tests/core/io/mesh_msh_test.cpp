@@ -15,12 +15,7 @@ namespace dampbound {
 namespace {
 
 std::string msh_error(const std::string& text) {
-  try {
-    parse_msh(text.data(), text.size(), "m.msh");
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
+  return test::input_error([&] { parse_msh(text.data(), text.size(), "m.msh"); });
 }
 
 const std::string kHead =

@@ -19,12 +19,7 @@ namespace {
 
 /// The error message of parse_obj on `text` ("" when it parses).
 std::string obj_error(const std::string& text) {
-  try {
-    parse_obj(text, "m.obj");
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
+  return test::input_error([&] { parse_obj(text, "m.obj"); });
 }
 
 /// A unit square in the xz-plane as two triangles sharing the edge 0-2.

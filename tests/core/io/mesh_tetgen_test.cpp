@@ -8,18 +8,10 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "tests/core/test_util.hpp"
 
 namespace dampbound {
 namespace {
-
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
 
 const std::string kNode = "4 3 0 0\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n";
 
@@ -42,11 +34,11 @@ TEST(MeshTetgen, NumbersFromTheFirstNodeAndReadsAttributesAndFaces) {
 }
 
 TEST(MeshTetgen, BadInputNamesTheLine) {
-  EXPECT_EQ(error_of([&] { parse_tetgen(kNode, "b.node", "1 4 0\n1 1 2 3 4\n", "b.ele"); }), "");
-  EXPECT_EQ(error_of([&] { parse_tetgen(kNode, "b.node", "1 4 0\n1 1 2 3 5\n", "b.ele"); }),
+  EXPECT_EQ(test::input_error([&] { parse_tetgen(kNode, "b.node", "1 4 0\n1 1 2 3 4\n", "b.ele"); }), "");
+  EXPECT_EQ(test::input_error([&] { parse_tetgen(kNode, "b.node", "1 4 0\n1 1 2 3 5\n", "b.ele"); }),
             "b.ele:2: node number 5 does not exist (nodes are 1..4)");
   // Every tetrahedron must have the orientation of the first one.
-  EXPECT_EQ(error_of([&] {
+  EXPECT_EQ(test::input_error([&] {
               parse_tetgen(kNode, "b.node", "2 4 0\n1 1 2 3 4\n2 1 3 2 4\n", "b.ele");
             }).substr(0, 30),
             "b.ele:3: inverted tetrahedron ");

@@ -7,17 +7,13 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "tests/core/test_util.hpp"
 
 namespace dampbound {
 namespace {
 
 std::string vtk_error(const std::string& text) {
-  try {
-    parse_vtk(text.data(), text.size(), "m.vtk");
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
+  return test::input_error([&] { parse_vtk(text.data(), text.size(), "m.vtk"); });
 }
 
 const std::string kTetra =

@@ -50,12 +50,7 @@ TEST(TwoNode, Shape) {
 
 /// Parses `text` and returns the InputError message ("" if it parsed).
 std::string error_of(const std::string& text) {
-  try {
-    parse_scene(text, "bad.toml");
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
+  return test::input_error([&] { parse_scene(text, "bad.toml"); });
 }
 
 const char* kGrid = "[grid]\nnx = 4\nnz = 4\nspacing = 1.0\n";

@@ -9,6 +9,7 @@
 #include "core/error.hpp"
 #include "core/scene.hpp"
 #include "core/io/scene_file.hpp"
+#include "tests/core/test_util.hpp"
 
 namespace dampbound {
 namespace {
@@ -16,12 +17,7 @@ namespace {
 const char* kGrid = "[grid]\nnx = 3\nnz = 3\nspacing = 1.0\n";
 
 std::string error_of(const std::string& text) {
-  try {
-    parse_scene(text, "bad.toml");
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
+  return test::input_error([&] { parse_scene(text, "bad.toml"); });
 }
 
 bool starts(const std::string& s, const std::string& prefix) { return s.rfind(prefix, 0) == 0; }

@@ -10,18 +10,10 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "tests/core/test_util.hpp"
 
 namespace dampbound {
 namespace {
-
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
 
 /// The number `text` scans as, or the message it fails with.
 std::string scan_number(const std::string& text) {
@@ -54,7 +46,7 @@ TEST(MeshScan, WordsAndLineNumbers) {
   EXPECT_FALSE(s.at_end());
   EXPECT_EQ(s.word("w"), "d");
   EXPECT_TRUE(s.at_end());
-  EXPECT_EQ(error_of([&] { s.word("the last node"); }),
+  EXPECT_EQ(test::input_error([&] { s.word("the last node"); }),
             "f.txt:4: unexpected end of file (the last node expected)");
 }
 
@@ -90,7 +82,7 @@ TEST(MeshScan, Integers) {
   MeshScan s(text.data(), text.size(), "f");
   EXPECT_EQ(s.integer_in("count", 0, 10), 5);
   EXPECT_EQ(s.integer_in("count", 0, 10), 0);
-  EXPECT_EQ(error_of([&] { s.integer_in("count", 0, 10); }), "f:1: count 11 is outside 0..10");
+  EXPECT_EQ(test::input_error([&] { s.integer_in("count", 0, 10); }), "f:1: count 11 is outside 0..10");
 }
 
 TEST(MeshScan, CommentsOnlyWhenAsked) {
@@ -123,7 +115,7 @@ TEST(MeshScan, BinaryValuesAndByteOffsets) {
   EXPECT_EQ(s.binary<double>("x"), -1.25);
   EXPECT_EQ(s.remaining(), 2u);
   EXPECT_EQ(s.mark(), 19);  // no whitespace skipping in binary mode
-  EXPECT_EQ(error_of([&] { s.binary<double>("y"); }),
+  EXPECT_EQ(test::input_error([&] { s.binary<double>("y"); }),
             "b.msh: byte 19: truncated file: 8 bytes of y expected, 2 left");
   EXPECT_EQ(s.location(5), "b.msh: byte 5");
   s.set_binary(false);
@@ -137,19 +129,19 @@ TEST(MeshScan, SkipPastCountsTheLinesItCrosses) {
   EXPECT_EQ(s.where(), 3);
   EXPECT_EQ(s.word("w"), "c");
   EXPECT_EQ(s.where(), 4);
-  EXPECT_EQ(error_of([&] { s.skip_past("$EndElements"); }),
+  EXPECT_EQ(test::input_error([&] { s.skip_past("$EndElements"); }),
             "f:4: truncated file: no $EndElements");
 }
 
 TEST(MeshScan, CountsTheDataCannotHold) {
   const std::string text = "0123456789";  // 10 bytes left
   MeshScan s(text.data(), text.size(), "f");
-  EXPECT_EQ(error_of([&] { check_count(s, 5, 2, "nodes"); }), "");
-  EXPECT_EQ(error_of([&] { check_count(s, 6, 2, "nodes"); }),
+  EXPECT_EQ(test::input_error([&] { check_count(s, 5, 2, "nodes"); }), "");
+  EXPECT_EQ(test::input_error([&] { check_count(s, 6, 2, "nodes"); }),
             "f:1: the file is too short for 6 nodes");
-  EXPECT_EQ(error_of([&] { check_count(s, -1, 2, "nodes"); }),
+  EXPECT_EQ(test::input_error([&] { check_count(s, -1, 2, "nodes"); }),
             "f:1: the file is too short for -1 nodes");
-  EXPECT_EQ(error_of([&] { check_count(s, 10, 0, "points"); }), "");  // min 0 counts as 1
+  EXPECT_EQ(test::input_error([&] { check_count(s, 10, 0, "points"); }), "");  // min 0 counts as 1
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "core/error.hpp"
+#include "tests/core/test_util.hpp"
 
 namespace dampbound {
 namespace {
@@ -15,12 +16,7 @@ const std::string kScene =
     "[[run]]\nlabel = \"soft\"\ngamma = 0.0005\n";  // lines 5-7
 
 std::string error_of(const std::string& expect) {
-  try {
-    parse_scene(kScene + expect, "e.toml");
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
+  return test::input_error([&] { parse_scene(kScene + expect, "e.toml"); });
 }
 
 TEST(SceneExpect, EveryField) {

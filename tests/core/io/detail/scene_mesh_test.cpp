@@ -17,15 +17,6 @@
 namespace dampbound {
 namespace {
 
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
-
 TEST(SceneMesh, TissueBlockScene) {
   const SceneSpec s = load_scene(test::source_path("scenes/tissue-block.toml"));
   EXPECT_EQ(s.model.node_count(), 27 * 11 * 21);
@@ -49,7 +40,7 @@ TEST(SceneMesh, MeshRegionErrorsNameTheSceneLine) {
   const std::string mesh = test::source_path("tests/fuzz/corpus/msh/block-41.msh");
   auto scene_error = [&](const std::string& toml) {
     std::ofstream(scene) << "[mesh]\nfile = \"" << mesh << "\"\n" << toml;
-    return error_of([&] { load_scene(scene); });
+    return test::input_error([&] { load_scene(scene); });
   };
   EXPECT_EQ(scene_error("[[mesh_region]]\nname = \"probe\"\nfixed = true\n"), "");
   EXPECT_EQ(scene_error("[[mesh_region]]\nname = \"bone\"\n"),
