@@ -240,7 +240,7 @@ struct ShardState {
 /// new one. `run` is this run's number in the journal's time records.
 std::unique_ptr<Journal> open_journal(const std::string& journal_path, bool journal_exists,
                                       const std::string& journal_header,
-                                      std::uint32_t class_count, ShardState& state,
+                                      std::uint64_t class_count, ShardState& state,
                                       SweepReport& rep, int& run) {
   const SweepRequest& rq = state.rq;
   run = 1;
