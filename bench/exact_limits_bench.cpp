@@ -85,11 +85,11 @@ int main(int argc, char** argv) {
   const double t_all = since(t), c_all = cpu_now() - c;
   std::printf("kind=%s n=%d nodes=%d springs=%d rows=%lld nnz=%lld assemble_s=%.3f "
               "lambda_max_lo=%.12g lambda_max_hi=%.12g lambda_s=%.3f lambda_cpu_s=%.3f "
-              "factorizations=%d solves=%d lambda_min=%.10g gamma_max=%.10g dt_max=%.10g "
+              "lanczos_steps=%d factorizations=%d solves=%d lambda_min=%.10g gamma_max=%.10g dt_max=%.10g "
               "all_limits_s=%.3f all_limits_cpu_s=%.3f check=%.3g\n",
               kind.c_str(), n, model.node_count(), model.spring_count(),
               static_cast<long long>(A.rows()), static_cast<long long>(A.nonZeros()), t_assemble,
-              top.lo, top.hi, t_lambda, c_lambda, top.factorizations, top.solves,
+              top.lo, top.hi, t_lambda, c_lambda, top.lanczos_steps, top.factorizations, top.solves,
               e.spectrum.lambda_min, e.gamma_hi, e.dt_max, t_all, c_all, worst);
   if (!matrix_path.empty()) write_matrix(A, matrix_path);
   return 0;

@@ -31,6 +31,14 @@ def load(path):
     return scipy.sparse.csc_matrix((values, inner, outer), shape=(n, n)).tocsr()
 
 
+def blas_in_use():
+    """The BLAS library this process loaded (through numpy/scipy): the alternative Debian
+    selected, or what LD_LIBRARY_PATH put first; the benchmark inherits the same lookup."""
+    with open("/proc/self/maps") as f:
+        paths = {line.split()[-1] for line in f if "libblas" in line or "openblas" in line}
+    return ", ".join(sorted(os.path.realpath(p) for p in paths)) or "unknown"
+
+
 def run(bench, kind, n, scipy_limit):
     with tempfile.TemporaryDirectory() as tmp:
         path = os.path.join(tmp, "A.bin")
@@ -44,7 +52,7 @@ def run(bench, kind, n, scipy_limit):
            "ours_cpu": float(ours["lambda_cpu_s"]), "all_s": float(ours["all_limits_s"]),
            "all_cpu": float(ours["all_limits_cpu_s"]), "lo": float(ours["lambda_max_lo"]),
            "hi": float(ours["lambda_max_hi"]), "fact": int(ours["factorizations"]),
-           "solves": int(ours["solves"])}
+           "solves": int(ours["solves"]), "steps": int(ours["lanczos_steps"])}
     if nodes > scipy_limit:
         row["scipy_s"] = None
         return row
@@ -70,8 +78,9 @@ def main():
     cases = [("plane", int(s)) for s in a.planes.split(",") if s] + \
             [("block", int(s)) for s in a.blocks.split(",") if s]
     print("times: wall clock s (processor s); ratio = eigsh / dampbound, of processor times")
+    print(f"BLAS (this process and the benchmark's): {blas_in_use()}; {os.cpu_count()} cores")
     print(f"{'mesh':<14}{'nodes':>9}{'springs':>9}  {'dampbound lambda_max':>21}{'all limits':>18}"
-          f"{'fact/solves':>12}  {'eigsh':>18}{'ratio':>8}  lambda_max certified [lo, hi] / eigsh")
+          f"{'steps/fact/solves':>18}  {'eigsh':>18}{'ratio':>8}  lambda_max certified [lo, hi] / eigsh")
     for kind, n in cases:
         r = run(a.bench, kind, n, a.no_scipy_above)
         sci = ("%8.2f (%7.2f)" % (r["scipy_s"], r["scipy_cpu"])) if r["scipy_s"] is not None else "%18s" % "-"
@@ -83,7 +92,7 @@ def main():
         ours = "%9.3f (%8.3f)" % (r["ours_s"], r["ours_cpu"])
         alls = "%7.3f (%7.3f)" % (r["all_s"], r["all_cpu"])
         print(f"{r['mesh']:<14}{r['nodes']:>9}{r['springs']:>9}  {ours:>21}{alls:>18}"
-              f"{'%d/%d' % (r['fact'], r['solves']):>12}  {sci}{ratio}  "
+              f"{'%d/%d/%d' % (r['steps'], r['fact'], r['solves']):>18}  {sci}{ratio}  "
               f"[{r['lo']:.10g}, {r['hi']:.10g}] / {value}{inside}", flush=True)
 
 

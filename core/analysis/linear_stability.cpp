@@ -79,6 +79,34 @@ SparseMatrix mass_weighted(const Model& model, const SparseMatrix& K) {
   return A;
 }
 
+std::optional<double> psd_floor(const Model& model, const std::vector<Vec3>& x,
+                                bool clamp_compression) {
+  double floor = std::numeric_limits<double>::infinity();
+  double m_min = std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < model.rest.size(); ++i)
+    if (!model.fixed[i]) {
+      floor = std::min(floor, model.anchor_kappa[i] / model.mass[i]);
+      m_min = std::min(m_min, model.mass[i]);
+    }
+  if (!std::isfinite(floor)) return std::nullopt;  // no free node
+  // The negative part a rounding-short spring adds, kappa |1 - l0/l| (I - d d^T), has
+  // absolute row sums below 2 per 3x3 block, twice per row (diagonal and off-diagonal
+  // block), divided by sqrt(m_i m_j) >= m_min: per node at most 4 sum kappa |t| / m_min.
+  std::vector<double> deficit(model.rest.size(), 0.0);
+  for (size_t k = 0; k < model.springs.size(); ++k) {
+    const Spring& s = model.springs[k];
+    const double l = (x[static_cast<size_t>(s.j)] - x[static_cast<size_t>(s.i)]).norm();
+    if (!(l > 0)) continue;  // skipped by tangent_stiffness too
+    const double tension = 1.0 - s.rest_length / l;
+    if (clamp_compression || tension >= 0) continue;
+    if (tension < -1e-12) return std::nullopt;  // truly compressed: B may be indefinite
+    deficit[static_cast<size_t>(s.i)] += model.spring_kappa[k] * -tension;
+    deficit[static_cast<size_t>(s.j)] += model.spring_kappa[k] * -tension;
+  }
+  const double worst = deficit.empty() ? 0 : *std::max_element(deficit.begin(), deficit.end());
+  return floor - 4 * worst / m_min;
+}
+
 double largest_eigenvalue(const SparseMatrix& A) { return certified_largest_eigenvalue(A).hi; }
 double smallest_eigenvalue_above(const SparseMatrix& A, double floor) {
   const Eigen::Index n = A.rows();
@@ -111,7 +139,8 @@ double max_stiffness_eigenvalue(const Model& model, const std::vector<Vec3>& x) 
 }
 
 StiffnessSpectrum stiffness_spectrum(const Model& model, const std::vector<Vec3>& x) {
-  const CertifiedSpectrum ends = certified_spectrum(mass_weighted(model, tangent_stiffness(model, x)));
+  const CertifiedSpectrum ends =
+      certified_spectrum(mass_weighted(model, tangent_stiffness(model, x)), psd_floor(model, x));
   return {ends.smallest.lo, ends.largest.hi};
 }
 

@@ -5,6 +5,7 @@
 // interval and the largest stable dt. Per-integrator mode analysis is in
 // linear_stability_modes.hpp; docs/criteria.md has the derivations.
 #include <Eigen/SparseCore>
+#include <optional>
 #include <vector>
 
 #include "core/model.hpp"
@@ -29,6 +30,15 @@ SparseMatrix tangent_stiffness(const Model& model, const std::vector<Vec3>& x,
 
 /// M^-1/2 K M^-1/2 over the free nodes: symmetric, with the eigenvalues of M^-1 K.
 SparseMatrix mass_weighted(const Model& model, const SparseMatrix& K);
+
+/// A proved lower bound on lambda_min of M^-1 K at x (1/s^2), from the splitting
+/// K = diag(kappa_a,i I) + sum of the spring blocks B: B's eigenvalues are kappa (1 - l0/l)
+/// (twice) and kappa, so with no spring compressed every B is positive semidefinite and
+/// lambda_min >= min_i kappa_a,i / m_i over the free nodes. Springs shorter than their rest
+/// length only by rounding (1 - l0/l >= -1e-12) are allowed, less a bound on their part;
+/// with a compressed spring (and no `clamp_compression`), or no free node: nullopt.
+std::optional<double> psd_floor(const Model& model, const std::vector<Vec3>& x,
+                                bool clamp_compression = false);
 
 /// Largest and smallest algebraic eigenvalue of a symmetric sparse matrix, each the safe end
 /// of a certified interval (linear_stability_cholesky.hpp: shift-and-invert Lanczos from

@@ -1,5 +1,6 @@
 #include "core/analysis/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
 #include "core/analysis/linear_stability_cholesky.hpp"
+#include "core/analysis/detail/tridiagonal.hpp"
 
 #include <Eigen/Dense>
 #include <Eigen/CholmodSupport>
@@ -68,16 +69,30 @@ class ShiftedCholesky {
   bool analysed_ = false, ok_ = false;
 };
 
-/// A rough top Ritz value of A and its residual by k steps of plain Lanczos (matrix-vector
-/// products only, no reorthogonalisation): it only places the first shift near lambda_max;
-/// nothing certified depends on it.
-std::pair<double, double> lanczos_estimate(const SparseMatrix& A, int k) {
+/// A rough top Ritz value of A by plain Lanczos (matrix-vector products only, no
+/// reorthogonalisation) and an estimate of how far below lambda_max it still is: it only
+/// places the first shift near lambda_max; nothing certified depends on it.
+struct TopEstimate {
+  double theta = 0;     ///< the top Ritz value (below lambda_max, up to rounding)
+  double residual = 0;  ///< its Lanczos residual: some eigenvalue lies within it
+  double error = 0;     ///< lambda_max - theta extrapolated from the last checkpoints
+  int steps = 0;
+};
+
+/// Up to kLanczosSteps steps, checked every kLanczosCheck: the Ritz value converges
+/// geometrically, so with d the rise over the last window and q its ratio to the rise over
+/// the one before, lambda_max - theta ~ d q / (1 - q). It stops once that is below
+/// 1e-7 |theta|: a shift that close separates even a clustered top.
+constexpr int kLanczosSteps = 400, kLanczosCheck = 50;
+TopEstimate lanczos_estimate(const SparseMatrix& A) {
   const Eigen::Index n = A.rows();
-  k = static_cast<int>(std::min<Eigen::Index>(k, n));
+  const int k = static_cast<int>(std::min<Eigen::Index>(kLanczosSteps, n));
   Eigen::VectorXd v = Eigen::VectorXd::LinSpaced(n, 0.3, 1.7).array().sin();
   v /= v.norm();
   Eigen::VectorXd previous = Eigen::VectorXd::Zero(n), w(n);
   std::vector<double> alpha, beta;
+  std::vector<double> checkpoints;  // top Ritz value every kLanczosCheck steps
+  TopEstimate e;
   double b = 0;
   for (int j = 0; j < k; ++j) {
     w.noalias() = A * v;
@@ -87,19 +102,28 @@ std::pair<double, double> lanczos_estimate(const SparseMatrix& A, int k) {
     alpha.push_back(a);
     b = w.norm();
     beta.push_back(b);
-    if (!(b > 0)) break;
+    if (!(b > 0)) break;  // an invariant subspace: theta is an eigenvalue
     previous.swap(v);
     v = w / b;
+    if ((j + 1) % kLanczosCheck != 0) continue;
+    checkpoints.push_back(detail::largest_tridiagonal_eigenvalue(alpha.data(), beta.data(), j + 1));
+    const size_t c = checkpoints.size();
+    if (c < 3) continue;
+    const double rise = checkpoints[c - 1] - checkpoints[c - 2];
+    const double before = checkpoints[c - 2] - checkpoints[c - 3];
+    const double q = before > 0 ? std::clamp(rise / before, 0.5, 0.9) : 0.9;
+    e.error = std::max(rise, 0.0) * q / (1 - q);
+    if (e.error < 1e-7 * std::abs(checkpoints[c - 1])) break;
   }
-  const Eigen::Index m = static_cast<Eigen::Index>(alpha.size());
-  const Eigen::VectorXd diagonal = Eigen::Map<const Eigen::VectorXd>(alpha.data(), m);
-  const Eigen::VectorXd off = Eigen::Map<const Eigen::VectorXd>(beta.data(), m - 1);
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es;
-  es.computeFromTridiagonal(diagonal, off, Eigen::ComputeEigenvectors);
-  const double theta = es.eigenvalues()(m - 1);
+  const int m = static_cast<int>(alpha.size());
+  e.theta = detail::largest_tridiagonal_eigenvalue(alpha.data(), beta.data(), m);
+  e.steps = m;
   // The Ritz pair's residual: beta_m times the last component of its eigenvector of T.
-  const double residual = std::abs(beta.back() * es.eigenvectors()(m - 1, m - 1));
-  return {theta, residual};
+  e.residual = std::abs(beta.back()) *
+               detail::last_eigenvector_component(alpha.data(), beta.data(), m, e.theta);
+  if (!std::isfinite(e.residual)) e.residual = std::abs(e.theta);  // no estimate: be wide
+  if (checkpoints.size() < 3) e.error = e.residual;  // too few steps to extrapolate
+  return e;
 }
 
 /// (shift I - A)^-1 as an operator for Spectra: its largest eigenvalue 1/(shift - lambda)
@@ -117,7 +141,7 @@ struct InverseOp {
 void inverse_lanczos(ShiftedCholesky& f, Eigen::VectorXd& u, double tol) {
   const Eigen::Index n = f.size();
   InverseOp op{&f};
-  Spectra::SymEigsSolver<InverseOp> eigs(op, 1, std::min<Eigen::Index>(n, 12));
+  Spectra::SymEigsSolver<InverseOp> eigs(op, 1, std::min<Eigen::Index>(n, 8));
   if (u.size() == n)
     eigs.init(u.data());
   else
@@ -155,6 +179,42 @@ Rayleigh rayleigh(const SparseMatrix& A, const Eigen::VectorXd& u, double abs_ro
   return {q, (Au - q * u).norm() / std::sqrt(static_cast<double>(uu)), rounding};
 }
 
+/// What both ends need from the rows of A: Gershgorin's discs, the largest row sum of |A|
+/// and row count (the rounding allowances), the extreme diagonal entries (Rayleigh quotients
+/// of unit vectors).
+struct RowBounds {
+  GershgorinBounds gershgorin;
+  double abs_row_sum = 0;
+  int row_nonzeros = 0;
+  double min_diagonal = std::numeric_limits<double>::infinity();
+  double max_diagonal = -std::numeric_limits<double>::infinity();
+  double margin() const { return kMargin * abs_row_sum; }
+};
+RowBounds row_bounds(const SparseMatrix& A) {
+  RowBounds b;
+  b.gershgorin = gershgorin_bounds(A);
+  for (int k = 0; k < A.outerSize(); ++k) {  // symmetric: columns are rows
+    double sum = 0, diagonal = 0;
+    int count = 0;
+    for (SparseMatrix::InnerIterator it(A, k); it; ++it) {
+      sum += std::abs(it.value());
+      ++count;
+      if (it.row() == k) diagonal += it.value();
+    }
+    b.abs_row_sum = std::max(b.abs_row_sum, sum);
+    b.row_nonzeros = std::max(b.row_nonzeros, count);
+    b.min_diagonal = std::min(b.min_diagonal, diagonal);
+    b.max_diagonal = std::max(b.max_diagonal, diagonal);
+  }
+  return b;
+}
+
+/// How far above the Rayleigh quotient `value` the certificate is tried (units of A): the
+/// promised width of the interval, ~1e-10 relative.
+double certificate_width(double value, double span) {
+  return 1e-10 * std::abs(value) + 1e-11 * span;
+}
+
 }  // namespace
 
 GershgorinBounds gershgorin_bounds(const SparseMatrix& A) {
@@ -186,20 +246,15 @@ EigenInterval certified_largest_eigenvalue(const SparseMatrix& A, Eigen::VectorX
     const double value = es.eigenvalues()(n - 1);
     return {value, value};
   }
-  const GershgorinBounds g = gershgorin_bounds(A);
-  double abs_row_sum = 0;
-  int row_nonzeros = 0;
-  for (int k = 0; k < A.outerSize(); ++k) {  // symmetric: columns are rows
-    double sum = 0;
-    for (SparseMatrix::InnerIterator it(A, k); it; ++it) sum += std::abs(it.value());
-    abs_row_sum = std::max(abs_row_sum, sum);
-    row_nonzeros = std::max<int>(row_nonzeros, static_cast<int>(A.col(k).nonZeros()));
-  }
+  const RowBounds rows = row_bounds(A);
+  const GershgorinBounds g = rows.gershgorin;
+  const double abs_row_sum = rows.abs_row_sum;
+  const int row_nonzeros = rows.row_nonzeros;
   if (abs_row_sum == 0) {  // the zero matrix
     if (vector) *vector = Eigen::VectorXd::Unit(n, 0);
     return {};
   }
-  const double span = g.hi - g.lo, margin = kMargin * abs_row_sum;
+  const double span = g.hi - g.lo, margin = rows.margin();
   EigenInterval out;
   ShiftedCholesky f(A);
   Eigen::VectorXd u;
@@ -207,20 +262,24 @@ EigenInterval certified_largest_eigenvalue(const SparseMatrix& A, Eigen::VectorX
   // largest diagonal entry (a Rayleigh quotient) is below lambda_max.
   const double gershgorin = g.hi + 1e-6 * span + margin;
   double up = gershgorin;
-  double max_diagonal = -std::numeric_limits<double>::infinity();
-  for (Eigen::Index r = 0; r < n; ++r) max_diagonal = std::max(max_diagonal, A.coeff(r, r));
+  const double max_diagonal = rows.max_diagonal;
   // The top of a big mesh's spectrum is clustered: only a shift close above lambda_max
-  // separates it from the rest. A rough Lanczos estimate places the shift; a factorisation
-  // that fails says the shift is still below lambda_max, and it moves up (at worst to
-  // Gershgorin's bound).
-  const auto [theta, residual] = lanczos_estimate(A, 200);
-  for (double step = std::max(2 * residual, 1e-6 * span);; step *= 8) {
-    const double s = theta + step + margin;
+  // separates it from the rest. A Lanczos estimate places the shift, four times its
+  // extrapolated error above its Ritz value. A factorisation that fails says the shift is
+  // still below lambda_max (Lanczos can stall on an eigenvalue just under the top): the
+  // next shift is twice the residual above (some eigenvalue lies within it), then eightfold
+  // steps, at worst up to Gershgorin's bound.
+  const TopEstimate estimate = lanczos_estimate(A);
+  const double fallback = std::max(2 * estimate.residual, 1e-9 * span);
+  double step = std::clamp(4 * estimate.error, 1e-9 * span, fallback);
+  for (;;) {
+    const double s = estimate.theta + step + margin;
     if (s >= gershgorin) break;
     if (f.factor(s)) {
       up = s;
       break;
     }
+    step = f.factorizations == 1 ? std::max(fallback, 8 * step) : 8 * step;
   }
   if (!f.ready() && !f.factor(gershgorin)) {
     // Rounding trouble even at Gershgorin's shift: his bound alone, and the diagonal.
@@ -233,28 +292,37 @@ EigenInterval certified_largest_eigenvalue(const SparseMatrix& A, Eigen::VectorX
     const Rayleigh q = rayleigh(A, u, abs_row_sum, row_nonzeros);
     const double lo = std::max(max_diagonal, q.value - q.rounding);
     // The certificate: a factorisation just above the Rayleigh quotient.
-    const double width = 1e-10 * std::abs(q.value) + 1e-11 * span;
+    const double width = certificate_width(q.value, span);
     if (up - lo > width + 2 * margin && f.factor(lo + width + margin)) up = lo + width + margin;
     out.lo = lo;
     out.hi = up;
   }
   out.factorizations = f.factorizations;
   out.solves = f.solves;
+  out.lanczos_steps = estimate.steps;
   if (vector) *vector = u / u.norm();
   return out;
 }
 
-CertifiedSpectrum certified_spectrum(const SparseMatrix& A) {
+CertifiedSpectrum certified_spectrum(const SparseMatrix& A, std::optional<double> floor) {
   const Eigen::Index n = A.rows();
   if (n > 0 && n <= kDenseRows) {  // one dense solve gives both ends
     Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es{Eigen::MatrixXd(A), Eigen::EigenvaluesOnly};
     const double lo = es.eigenvalues()(0), hi = es.eigenvalues()(n - 1);
     return {{lo, lo}, {hi, hi}};
   }
-  return {certified_smallest_eigenvalue(A), certified_largest_eigenvalue(A)};
+  return {certified_smallest_eigenvalue(A, floor), certified_largest_eigenvalue(A)};
 }
 
-EigenInterval certified_smallest_eigenvalue(const SparseMatrix& A) {
+EigenInterval certified_smallest_eigenvalue(const SparseMatrix& A, std::optional<double> floor) {
+  if (floor && A.rows() > kDenseRows) {
+    // A known lower bound (e.g. a splitting of A into positive semidefinite parts) and the
+    // smallest diagonal entry (a Rayleigh quotient) may already pin lambda_min down.
+    const RowBounds rows = row_bounds(A);
+    const double lo = *floor - rows.margin(), hi = rows.min_diagonal;
+    const double span = rows.gershgorin.hi - rows.gershgorin.lo;
+    if (lo <= hi && hi - lo <= certificate_width(hi, span) + 2 * rows.margin()) return {lo, hi};
+  }
   const SparseMatrix negated = -A;
   EigenInterval r = certified_largest_eigenvalue(negated);
   std::swap(r.lo, r.hi);

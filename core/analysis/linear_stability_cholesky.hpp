@@ -8,6 +8,8 @@
 // the algorithm and its costs.
 #include <Eigen/Core>
 
+#include <optional>
+
 #include "core/analysis/linear_stability.hpp"
 
 namespace dampbound {
@@ -28,6 +30,7 @@ struct EigenInterval {
   double hi = 0;
   int factorizations = 0;  ///< numeric sparse Cholesky factorisations (one symbolic analysis)
   int solves = 0;          ///< solves with a factor (two triangular solves each)
+  int lanczos_steps = 0;   ///< matrix-vector Lanczos steps that placed the first shift
   /// false only when even Gershgorin's shift did not factor (rounding): then [lo, hi] is
   /// [largest diagonal entry, Gershgorin's bound], still an enclosure, but wide.
   bool certified = true;
@@ -42,14 +45,20 @@ EigenInterval certified_largest_eigenvalue(const SparseMatrix& A,
                                            Eigen::VectorXd* vector = nullptr);
 
 /// Smallest eigenvalue of symmetric A: the largest of -A, negated (lo certified by
-/// Cholesky of A - lo I, hi the Rayleigh quotient).
-EigenInterval certified_smallest_eigenvalue(const SparseMatrix& A);
+/// Cholesky of A - lo I, hi the Rayleigh quotient). `floor`: a lower bound on lambda_min the
+/// caller has proved (a splitting of A into a diagonal and positive semidefinite parts:
+/// `psd_floor` in linear_stability.hpp); when the smallest diagonal entry, a Rayleigh
+/// quotient, lies within the promised width of it, [floor - margin, that entry] is the
+/// answer and nothing is factorised (a flat mesh at rest: its out-of-plane rows).
+EigenInterval certified_smallest_eigenvalue(const SparseMatrix& A,
+                                            std::optional<double> floor = std::nullopt);
 
 /// Both ends at once (one dense solve up to 400 rows, else the two methods above).
 struct CertifiedSpectrum {
   EigenInterval smallest;
   EigenInterval largest;
 };
-CertifiedSpectrum certified_spectrum(const SparseMatrix& A);
+CertifiedSpectrum certified_spectrum(const SparseMatrix& A,
+                                     std::optional<double> floor = std::nullopt);
 
 }  // namespace dampbound

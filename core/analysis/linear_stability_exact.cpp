@@ -89,7 +89,7 @@ ExactInputs spectrum_and_rates(const Model& model, const std::vector<Vec3>& x,
   ExactInputs in;
   e.integrator = params.integrator;
   in.A = mass_weighted(model, tangent_stiffness(model, x));
-  const CertifiedSpectrum ends = certified_spectrum(in.A);
+  const CertifiedSpectrum ends = certified_spectrum(in.A, psd_floor(model, x));
   e.spectrum = {ends.smallest.lo, ends.largest.hi};
   e.lambda_max_lo = ends.largest.lo;
   in.R = unit_rates(model);

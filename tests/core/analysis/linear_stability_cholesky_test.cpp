@@ -1,7 +1,8 @@
 #include "core/analysis/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
 // Tests of core/linear_stability_cholesky: Gershgorin's bounds (SPEC 9's R_i on the paper
 // plane), certified intervals that enclose the dense eigenvalues (meshes at rest and deformed,
-// a clustered top, a matrix with negative eigenvalues), and their width.
+// a clustered top, a matrix with negative eigenvalues), and their width; a proved floor that
+// gives the smallest eigenvalue without factorising, and one that is too low to.
 #include "core/analysis/linear_stability_cholesky.hpp"
 
 #include <gtest/gtest.h>
@@ -9,6 +10,7 @@
 #include <Eigen/Dense>
 #include <cmath>
 
+#include "core/analysis/linear_stability.hpp"
 #include "core/scene.hpp"
 
 namespace dampbound {
@@ -105,6 +107,45 @@ TEST(CertifiedEigenvalue, PaperPlaneLambdaMax) {
   EXPECT_LE(r.lo, 7.8123249218733 + 1e-12);
   EXPECT_GE(r.hi, 7.8123249218733 - 1e-12);
   EXPECT_LT(r.hi - r.lo, 1e-9);
+  // The Lanczos estimate places the first shift above lambda_max: no factorisation fails, and
+  // the shift is close enough for a handful of solves (it took 55 with the residual alone).
+  EXPECT_GT(r.lanczos_steps, 0);
+  EXPECT_EQ(r.factorizations, 2);
+  EXPECT_LE(r.solves, 15);
+}
+
+TEST(CertifiedEigenvalue, AProvedFloorPinsTheSmallestWithoutFactorising) {
+  // A flat plane at rest: its out-of-plane rows hold only the anchors, so lambda_min is the
+  // anchor rate kappa_a/m, which psd_floor proves and the smallest diagonal entry attains.
+  Params p;
+  p.m = 0.002;
+  p.kappa = 0.05;
+  const Model m = compile_model(make_grid(GridSpec{12, 12, 0.57, true, true}), p);
+  const SparseMatrix A = mass_weighted(m, tangent_stiffness(m, m.rest));
+  ASSERT_GT(A.rows(), 400);  // past the dense path
+  const std::optional<double> floor = psd_floor(m, m.rest);
+  ASSERT_TRUE(floor.has_value());
+  const Eigen::VectorXd ev = dense_eigenvalues(A);
+  const GershgorinBounds g = gershgorin_bounds(A);
+  const EigenInterval r = certified_smallest_eigenvalue(A, floor);
+  expect_encloses(r, ev.minCoeff(), g.hi - g.lo);
+  EXPECT_EQ(r.factorizations, 0);
+  EXPECT_EQ(certified_spectrum(A, floor).smallest.factorizations, 0);
+  // Without the floor the same interval comes from factorisations.
+  const EigenInterval without = certified_smallest_eigenvalue(A);
+  expect_encloses(without, ev.minCoeff(), g.hi - g.lo);
+  EXPECT_GT(without.factorizations, 0);
+}
+
+TEST(CertifiedEigenvalue, AFloorFarBelowFallsBackToFactorising) {
+  // A floor that is true but not tight (half a unit below lambda_min) proves nothing useful:
+  // the factorisations give the interval as before.
+  const SparseMatrix A = plane_matrix(12, 0.0);
+  const Eigen::VectorXd ev = dense_eigenvalues(A);
+  const GershgorinBounds g = gershgorin_bounds(A);
+  const EigenInterval r = certified_smallest_eigenvalue(A, ev.minCoeff() - 0.5);
+  expect_encloses(r, ev.minCoeff(), g.hi - g.lo);
+  EXPECT_GT(r.factorizations, 0);
 }
 
 }  // namespace

@@ -95,6 +95,47 @@ TEST(TangentStiffness, IsMinusTheForceJacobian) {
   EXPECT_LT((SparseMatrix(K.transpose()) - K).norm(), 1e-14);
 }
 
+TEST(PsdFloor, IsTheAnchorRateWhenNoSpringIsCompressed) {
+  Params p;
+  p.m = 0.002;
+  p.kappa = 0.05;
+  const Model m = nonuniform_grid(6, 6, p);  // heavier, stiffer-anchored first rows
+  double expected = 1e300;
+  for (size_t i = 0; i < m.rest.size(); ++i)
+    if (!m.fixed[i]) expected = std::min(expected, m.anchor_kappa[i] / m.mass[i]);
+  // At rest (lengths equal to rest lengths up to rounding) and stretched by 10%.
+  std::vector<Vec3> stretched = m.rest;
+  for (Vec3& x : stretched) x *= 1.1;
+  for (const std::vector<Vec3>* x : std::vector<const std::vector<Vec3>*>{&m.rest, &stretched}) {
+    const std::optional<double> floor = psd_floor(m, *x);
+    ASSERT_TRUE(floor.has_value());
+    EXPECT_NEAR(*floor, expected, 1e-12 * expected);
+    EXPECT_LE(*floor, expected);
+    const SparseMatrix A = mass_weighted(m, tangent_stiffness(m, *x));
+    EXPECT_GE(dense_eigenvalues(A).minCoeff(), *floor - 1e-12 * expected);
+  }
+}
+
+TEST(PsdFloor, NoneWithACompressedSpringUnlessClamped) {
+  Params p;
+  p.m = 0.002;
+  p.kappa = 0.05;
+  const Model m = grid_model(6, 6, p);
+  std::vector<Vec3> squeezed = m.rest;
+  for (Vec3& x : squeezed) x *= 0.9;  // every spring 10% short
+  EXPECT_FALSE(psd_floor(m, squeezed).has_value());
+  // Clamped, the compressed springs keep only kappa d d^T >= 0: the floor holds again.
+  const std::optional<double> clamped = psd_floor(m, squeezed, true);
+  ASSERT_TRUE(clamped.has_value());
+  const SparseMatrix A = mass_weighted(m, tangent_stiffness(m, squeezed, true));
+  EXPECT_GE(dense_eigenvalues(A).minCoeff(), *clamped - 1e-12);
+  // No free node: nothing to bound.
+  ModelSpec all_fixed = make_grid(GridSpec{3, 3, 0.57, true, true});
+  for (auto& f : all_fixed.fixed) f = 1;
+  const Model fixed = compile_model(std::move(all_fixed), p);
+  EXPECT_FALSE(psd_floor(fixed, fixed.rest).has_value());
+}
+
 TEST(LinearStability, LanczosMatchesDenseOnGrids) {
   Params p;
   p.m = 0.002;
