@@ -7,6 +7,7 @@ if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
 PACKAGES=(
   cmake ninja-build g++ pkg-config git
   libeigen3-dev libspectra-dev libtomlplusplus-dev libcli11-dev libstb-dev libsuitesparse-dev
+  libopenblas0-serial            # CHOLMOD's BLAS: factorisations ~2x faster than the reference BLAS
   libimgui-dev libglfw3-dev libgl-dev libegl-dev libegl-mesa0 libgl1-mesa-dri
   libgtest-dev libbenchmark-dev
   pybind11-dev python3-dev python3-pytest   # the Python module and its tests (and numpy)

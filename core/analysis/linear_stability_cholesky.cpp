@@ -83,7 +83,7 @@ struct TopEstimate {
 /// geometrically, so with d the rise over the last window and q its ratio to the rise over
 /// the one before, lambda_max - theta ~ d q / (1 - q). It stops once that is below
 /// 1e-7 |theta|: a shift that close separates even a clustered top.
-constexpr int kLanczosSteps = 400, kLanczosCheck = 50;
+constexpr int kLanczosSteps = 1000, kLanczosCheck = 50;
 TopEstimate lanczos_estimate(const SparseMatrix& A) {
   const Eigen::Index n = A.rows();
   const int k = static_cast<int>(std::min<Eigen::Index>(kLanczosSteps, n));
