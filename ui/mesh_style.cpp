@@ -75,4 +75,9 @@ ImU32 node_color(NodeStatus status, bool unguaranteed) {
   return unguaranteed && shown ? unguaranteed_color() : status_color(status);
 }
 
+int mesh_samples(float spring_spacing_px, size_t springs, bool playing) {
+  if (!(spring_spacing_px < 5.0f)) return 1;
+  return playing && springs > kMultisampleSpringsWhilePlaying ? 1 : 4;
+}
+
 }  // namespace dampbound::ui

@@ -3,6 +3,8 @@
 // shared by the GL renderer, the legend and the tests. No GL.
 #include <imgui.h>
 
+#include <cstddef>
+
 #include "core/bounds.hpp"
 
 namespace dampbound::ui {
@@ -25,6 +27,13 @@ const char* unguaranteed_help();
 
 /// The node's colour: status_color, or unguaranteed_color as above.
 ImU32 node_color(NodeStatus status, bool unguaranteed);
+
+/// Samples per pixel of the mesh image. Springs closer than 5 px alias into moire, which 4x
+/// multisampling smooths, at four times the fill rate. A software rasteriser (llvmpipe) pays
+/// that on every frame while a big mesh plays: above kMultisampleSpringsWhilePlaying springs
+/// a playing mesh is drawn with 1 sample (motion hides the moire) and 4 again when paused.
+constexpr size_t kMultisampleSpringsWhilePlaying = 20000;
+int mesh_samples(float spring_spacing_px, size_t springs, bool playing);
 
 /// Colour of the springs and of the watched-node marker.
 ImU32 spring_color();

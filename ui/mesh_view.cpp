@@ -12,6 +12,7 @@
 #include "ui/gui_widgets.hpp"
 #include "ui/mesh_pick.hpp"
 #include "ui/mesh_style.hpp"
+#include "ui/mesh_style.hpp"
 
 namespace dampbound::ui {
 
@@ -263,9 +264,9 @@ void MeshView::draw(Tuner& tuner) {
   // shrink to the spacing.
   d.spring_alpha = std::clamp((spacing - 1.5f) / 4.0f, 0.15f, 1.0f);
   d.point_size = std::min(options.point_size, std::max(2.0f, 0.9f * spacing));
-  // Below 5 px, 4x multisampling: the image is redrawn only when something moved, and the
-  // grid's aliasing is what makes the moire.
-  d.samples = spacing < 5.0f ? 4 : 1;
+  // Below 5 px, 4x multisampling against the moire, except on a big mesh while it plays
+  // (ui/mesh_style.hpp).
+  d.samples = mesh_samples(spacing, s.model().springs.size(), tuner.playing());
   d.point_alpha = std::clamp((spacing - 1.5f) / 3.0f, 0.3f, 1.0f);
   d.springs = options.show_springs;
   d.anchors = options.show_anchors;

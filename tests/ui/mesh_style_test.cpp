@@ -7,6 +7,13 @@
 namespace dampbound::ui {
 namespace {
 
+TEST(MeshStyle, MultisamplingOnlyWhereItPays) {
+  EXPECT_EQ(mesh_samples(8.0f, 100, false), 1);  // lines far apart: no moire
+  EXPECT_EQ(mesh_samples(3.0f, 100, true), 4);   // small dense mesh: always smooth
+  EXPECT_EQ(mesh_samples(3.0f, kMultisampleSpringsWhilePlaying + 1, false), 4);  // paused
+  EXPECT_EQ(mesh_samples(3.0f, kMultisampleSpringsWhilePlaying + 1, true), 1);   // playing
+}
+
 TEST(MeshStyle, NotGuaranteedNodesGetTheirOwnColourUnlessThePaperRaisesItsAlarm) {
   EXPECT_NE(unguaranteed_color(), status_color(NodeStatus::within));
   for (NodeStatus s : {NodeStatus::within, NodeStatus::clamped, NodeStatus::violating,
