@@ -17,7 +17,9 @@ namespace dampbound {
 struct SpringPass {
   NodeThreads threads;
   std::vector<double> values;        ///< per-spring intermediate values (up to 7 doubles each)
-  std::vector<std::uint8_t> skip;    ///< per spring: 1 = no direction (zero or NaN length)
+  /// Per spring: bit 0 = no direction (zero or NaN length); safe_row_sums also sets bits 1
+  /// and 2 when its first / second node is fixed.
+  std::vector<std::uint8_t> skip;
   std::vector<int> counts;           ///< per-chunk counts
 };
 

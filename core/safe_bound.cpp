@@ -96,7 +96,12 @@ int safe_row_sums(const Model& model, const std::vector<Vec3>& x, std::vector<do
     int compressed = 0;
     for (size_t k = begin; k < end; ++k) {
       bool c = false;
-      p.skip[k] = !spring_block(model, x, k, &p.values[kStride * k], c);
+      const Spring& s = model.springs[k];
+      // Bit 0: no direction; bits 1 and 2: node i, node j fixed (what pass 2 would otherwise
+      // look up through the spring).
+      const bool skip = !spring_block(model, x, k, &p.values[kStride * k], c);
+      p.skip[k] = static_cast<std::uint8_t>((skip ? 1 : 0) | fixed[static_cast<size_t>(s.i)] << 1 |
+                                            fixed[static_cast<size_t>(s.j)] << 2);
       compressed += c;
     }
     p.counts[static_cast<size_t>(chunk)] = compressed;
@@ -109,9 +114,9 @@ int safe_row_sums(const Model& model, const std::vector<Vec3>& x, std::vector<do
       for (int e = model.incident_offset[i]; e < model.incident_offset[i + 1]; ++e) {
         const int k = model.incident[static_cast<size_t>(e)];
         const size_t spring = static_cast<size_t>(k >= 0 ? k : ~k);
-        if (p.skip[spring]) continue;
-        const Spring& s = model.springs[spring];
-        add_block(a, &p.values[kStride * spring], fixed[static_cast<size_t>(k >= 0 ? s.j : s.i)]);
+        const std::uint8_t flags = p.skip[spring];
+        if (flags & 1) continue;
+        add_block(a, &p.values[kStride * spring], (flags & (k >= 0 ? 4 : 2)) != 0);  // other end
       }
       row_sum[i] = row_sum_of(a, model.mass[i]);
     }
