@@ -193,15 +193,21 @@ struct RowBounds {
 };
 RowBounds row_bounds(const SparseMatrix& A) {
   RowBounds b;
-  b.gershgorin = gershgorin_bounds(A);
+  if (A.rows() == 0) return b;
+  b.gershgorin = {std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
   for (int k = 0; k < A.outerSize(); ++k) {  // symmetric: columns are rows
-    double sum = 0, diagonal = 0;
+    double sum = 0, diagonal = 0, off = 0;
     int count = 0;
     for (SparseMatrix::InnerIterator it(A, k); it; ++it) {
       sum += std::abs(it.value());
       ++count;
-      if (it.row() == k) diagonal += it.value();
+      if (it.row() == k)
+        diagonal += it.value();
+      else
+        off += std::abs(it.value());
     }
+    b.gershgorin.lo = std::min(b.gershgorin.lo, diagonal - off);
+    b.gershgorin.hi = std::max(b.gershgorin.hi, diagonal + off);
     b.abs_row_sum = std::max(b.abs_row_sum, sum);
     b.row_nonzeros = std::max(b.row_nonzeros, count);
     b.min_diagonal = std::min(b.min_diagonal, diagonal);
@@ -218,24 +224,7 @@ double certificate_width(double value, double span) {
 
 }  // namespace
 
-GershgorinBounds gershgorin_bounds(const SparseMatrix& A) {
-  const Eigen::Index n = A.rows();
-  if (n == 0) return {};
-  std::vector<double> diag(static_cast<size_t>(n), 0.0), off(static_cast<size_t>(n), 0.0);
-  for (int k = 0; k < A.outerSize(); ++k)
-    for (SparseMatrix::InnerIterator it(A, k); it; ++it) {
-      if (it.row() == it.col())
-        diag[static_cast<size_t>(it.row())] += it.value();
-      else
-        off[static_cast<size_t>(it.row())] += std::abs(it.value());
-    }
-  GershgorinBounds g{std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
-  for (size_t r = 0; r < diag.size(); ++r) {
-    g.lo = std::min(g.lo, diag[r] - off[r]);
-    g.hi = std::max(g.hi, diag[r] + off[r]);
-  }
-  return g;
-}
+GershgorinBounds gershgorin_bounds(const SparseMatrix& A) { return row_bounds(A).gershgorin; }
 
 EigenInterval certified_largest_eigenvalue(const SparseMatrix& A, Eigen::VectorXd* vector) {
   const Eigen::Index n = A.rows();

@@ -21,11 +21,16 @@ Eigen::VectorXd dense_eigenvalues(const SparseMatrix& A) {
   return es.eigenvalues();
 }
 
-SparseMatrix plane_matrix(int n, double deform) {
+/// An n x n plane at m = 0.002, kappa = 0.05 (anchors, diagonals).
+Model plane_model(int n) {
   Params p;
   p.m = 0.002;
   p.kappa = 0.05;
-  const Model m = compile_model(make_grid(GridSpec{n, n, 0.57, true, true}), p);
+  return compile_model(make_grid(GridSpec{n, n, 0.57, true, true}), p);
+}
+
+SparseMatrix plane_matrix(int n, double deform) {
+  const Model m = plane_model(n);
   std::vector<Vec3> x = m.rest;
   unsigned seed = 3;
   for (auto& q : x)
@@ -117,10 +122,7 @@ TEST(CertifiedEigenvalue, PaperPlaneLambdaMax) {
 TEST(CertifiedEigenvalue, AProvedFloorPinsTheSmallestWithoutFactorising) {
   // A flat plane at rest: its out-of-plane rows hold only the anchors, so lambda_min is the
   // anchor rate kappa_a/m, which psd_floor proves and the smallest diagonal entry attains.
-  Params p;
-  p.m = 0.002;
-  p.kappa = 0.05;
-  const Model m = compile_model(make_grid(GridSpec{12, 12, 0.57, true, true}), p);
+  const Model m = plane_model(12);
   const SparseMatrix A = mass_weighted(m, tangent_stiffness(m, m.rest));
   ASSERT_GT(A.rows(), 400);  // past the dense path
   const std::optional<double> floor = psd_floor(m, m.rest);
