@@ -9,18 +9,18 @@
 
 namespace dampbound {
 
-/// Threads and buffers of the two-pass spring loops (forces here, SPEC 9's row sums in
-/// safe_bound.hpp): pass 1 evaluates each spring once into `values`, pass 2 gathers each
+/// Threads and buffers of the two-pass spring loop (forces here, SPEC 9's row sums in
+/// safe_bound.hpp, both at once in step(): core/detail/spring_pass.hpp): pass 1 evaluates each spring once into `values`, pass 2 gathers each
 /// node's springs in index order (Model::incident), so every node's sum is added in the
 /// order of a serial loop over the springs and the result has the same bits on any number of
 /// threads. step() keeps one in its workspace.
 struct SpringPass {
   NodeThreads threads;
-  std::vector<double> values;        ///< per-spring intermediate values (up to 7 doubles each)
-  /// Per spring: bit 0 = no direction (zero or NaN length); safe_row_sums also sets bits 1
-  /// and 2 when its first / second node is fixed.
+  std::vector<double> values;        ///< per-spring intermediate values (up to 10 doubles each)
+  /// Per spring: bit 0 = no direction (zero or NaN length); bits 1 and 2: its first / second
+  /// node is fixed.
   std::vector<std::uint8_t> skip;
-  std::vector<int> counts;           ///< per-chunk counts
+  std::vector<int> counts;           ///< per-chunk counts (zero-length, compressed springs)
 };
 
 /// F_i = sum_j kappa_ij (l_ij - l0_ij) d_ij  -  kappa_a,i (x_i - X_i),  d_ij = (x_j - x_i)/l_ij

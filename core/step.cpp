@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "core/detail/spring_pass.hpp"
 #include "core/forces.hpp"
 #include "core/integrate.hpp"
 #include "core/safe_bound.hpp"
@@ -25,13 +26,15 @@ StepStats step(const Model& model, const Params& params, State& state, StepWorks
   const size_t n = model.rest.size();
   NodeThreads& threads = ws.pass.threads;
   StepStats st;
-  st.zero_length_springs = internal_forces(model, state.x, ws.force, &ws.pass);
+  // F_i (SPEC 1) and SPEC 9's R_i from the tangent stiffness at t: one pass over the springs.
+  const detail::SpringCounts springs =
+      detail::spring_pass(model, state.x, &ws.force, &ws.safe_row_sum, &ws.pass);
+  st.zero_length_springs = springs.zero_length;
+  st.compressed_springs = springs.compressed;
   ws.upper_bound.resize(n);
   ws.gamma_eff.resize(n);
   ws.status.resize(n);
   ws.safe_bound.resize(n);
-  // SPEC 9: R_i from the tangent stiffness at t, one pass over the springs.
-  st.compressed_springs = safe_row_sums(model, state.x, ws.safe_row_sum, &ws.pass);
 
   // Bounds and effective damping from the state at t (SPEC 3-4).
   std::vector<ChunkStats> chunk(static_cast<size_t>(threads.chunks(n)));

@@ -1,7 +1,7 @@
 #pragma once
 // The tangent stiffness block of one spring (SPEC 7), written once for every caller: the
 // sparse K of the exact analysis (linear_stability.cpp), the per-node safe bound of SPEC 9
-// (safe_bound.cpp) and its lane-wise mirror in the batched kernel (sweep_kernel.cpp), which
+// (detail/spring_pass.cpp) and its lane-wise mirror in the batched kernel (sweep_kernel.cpp), which
 // instantiates it with a SIMD lane vector so that both round the same way.
 
 namespace dampbound {

@@ -1,0 +1,118 @@
+// Tests of core/detail/spring_pass: the forces and SPEC 9's row sums computed in one pass are
+// the very bits of each computed alone, on one thread and on several, with fixed nodes,
+// compressed springs and a spring of zero length in the mesh; and the counts agree.
+#include "core/detail/spring_pass.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <string>
+
+#include "core/forces.hpp"
+#include "core/safe_bound.hpp"
+
+namespace dampbound::detail {
+namespace {
+
+/// A 12^3 lattice with diagonals (1728 nodes, ~10k springs), every fourth node of one face
+/// fixed, varied masses and anchors, shaken so springs stretch and compress; spring 0 is
+/// given zero length (its ends on top of each other).
+struct Mesh {
+  Model model;
+  std::vector<Vec3> x;
+};
+
+Mesh mesh() {
+  ModelSpec m;
+  const int k = 12;
+  for (int a = 0; a < k; ++a)
+    for (int b = 0; b < k; ++b)
+      for (int c = 0; c < k; ++c) {
+        const int i = add_node(m, Vec3(a, b, c));
+        m.mass_scale.back() = 1 + (i % 5) * 0.5;
+        m.anchor_scale.back() = i % 3 == 0 ? 1.5 : 0.0;
+        m.fixed.back() = a == 0 && i % 4 == 0;
+      }
+  auto at = [&](int a, int b, int c) { return (a * k + b) * k + c; };
+  for (int a = 0; a < k; ++a)
+    for (int b = 0; b < k; ++b)
+      for (int c = 0; c < k; ++c)
+        for (int e = 1; e < 8; ++e) {
+          const int a2 = a + (e & 1), b2 = b + ((e >> 1) & 1), c2 = c + ((e >> 2) & 1);
+          if (a2 < k && b2 < k && c2 < k) add_spring(m, at(a, b, c), at(a2, b2, c2), 1 + (e % 3));
+        }
+  Params p;
+  Mesh out{compile_model(std::move(m), p), {}};
+  out.x = out.model.rest;
+  unsigned seed = 7;
+  for (Vec3& xi : out.x)
+    for (int d = 0; d < 3; ++d) {
+      seed = seed * 1103515245u + 12345u;
+      xi[d] += 0.3 * (static_cast<double>((seed >> 8) & 0xffffu) / 65535.0 - 0.5);
+    }
+  const Spring& s0 = out.model.springs[0];
+  out.x[static_cast<size_t>(s0.j)] = out.x[static_cast<size_t>(s0.i)];
+  return out;
+}
+
+template <class T>
+bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
+}
+
+TEST(SpringPass, BothAtOnceAreTheBitsOfEachAloneOnAnyThreadCount) {
+  const Mesh m = mesh();
+  // The references: each output alone, on one thread (the serial scatter loops).
+  std::vector<Vec3> force;
+  std::vector<double> rows;
+  const int zero = internal_forces(m.model, m.x, force);
+  const int compressed = safe_row_sums(m.model, m.x, rows);
+  ASSERT_EQ(zero, 1);
+  ASSERT_GT(compressed, 0);
+  for (int threads : {1, 2, 3}) {
+    SCOPED_TRACE(std::to_string(threads) + " threads");
+    SpringPass pass;
+    pass.threads.set_threads(threads);
+    pass.threads.set_grain(500);  // split this small mesh
+    std::vector<Vec3> f;
+    std::vector<double> r;
+    const SpringCounts both = spring_pass(m.model, m.x, &f, &r, &pass);
+    EXPECT_EQ(both.zero_length, zero);
+    EXPECT_EQ(both.compressed, compressed);
+    EXPECT_TRUE(same_bits(f, force));
+    EXPECT_TRUE(same_bits(r, rows));
+    // Each alone through the same pass object (its buffers resized between layouts).
+    std::vector<Vec3> f_alone;
+    std::vector<double> r_alone;
+    EXPECT_EQ(spring_pass(m.model, m.x, &f_alone, nullptr, &pass).zero_length, zero);
+    EXPECT_EQ(spring_pass(m.model, m.x, nullptr, &r_alone, &pass).compressed, compressed);
+    EXPECT_TRUE(same_bits(f_alone, force));
+    EXPECT_TRUE(same_bits(r_alone, rows));
+  }
+}
+
+TEST(SpringPass, FixedNodesHaveNoRowsAndTheirColumnsDropOut) {
+  const Mesh m = mesh();
+  std::vector<double> rows;
+  spring_pass(m.model, m.x, nullptr, &rows, nullptr);
+  int fixed = 0;
+  for (size_t i = 0; i < rows.size(); ++i) {
+    if (m.model.fixed[i]) {
+      ++fixed;
+      EXPECT_EQ(rows[i], 0.0) << "node " << i;
+    } else {
+      EXPECT_GT(rows[i], 0.0) << "node " << i;
+    }
+  }
+  EXPECT_GT(fixed, 0);
+}
+
+TEST(SpringPass, NothingAskedNothingWritten) {
+  const Mesh m = mesh();
+  const SpringCounts c = spring_pass(m.model, m.x, nullptr, nullptr, nullptr);
+  EXPECT_EQ(c.zero_length, 1);
+  EXPECT_EQ(c.compressed, 0);  // counted only with the row sums
+}
+
+}  // namespace
+}  // namespace dampbound::detail
