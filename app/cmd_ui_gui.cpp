@@ -153,10 +153,11 @@ int run(GuiArgs& a) {
   std::signal(SIGINT, on_stop_signal);
   std::signal(SIGTERM, on_stop_signal);
   std::string export_message;
-  const bool map_tab = a.tab == "map";
+  // Scripted pictures of the Map tab: its passes all finish before the last frame draws (the
+  // screenshot, the export). Without one nothing waits, so --stats times only the frames.
+  const bool map_picture = a.tab == "map" && (!a.screenshot.empty() || !a.export_dir.empty());
   const ui::WindowRun run = host.run([&](ui::FrameInfo& info) {
-    // Scripted: the map's passes all finish before the last frame draws (the screenshot).
-    if (map_tab && info.index == a.frames - 1) app.map().wait();
+    if (map_picture && info.index == a.frames - 1) app.map().wait();
     app.frame(info);
     if (!a.export_dir.empty() && info.index == a.frames - 1)
       export_message = app.export_plots(a.export_dir, a.export_prefix);
