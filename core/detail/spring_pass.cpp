@@ -114,13 +114,12 @@ SpringCounts spring_pass(const Model& model, const std::vector<Vec3>& x,
         if (!fixed[i]) (*row_sum)[i] = row_sum_of(&acc[9 * i], model.mass[i]);
     return counts;
   }
-  // Threads. Pass 1: every spring once, its force (3 doubles) then its block (7). Pass 2: per
-  // node, the anchor term, then its springs in index order: the additions of the loop above in
-  // the same order, so the same bits.
+  // Threads. Pass 1: every spring once, its force (3 doubles) and its block (7, in a second
+  // array after the forces). Pass 2: per node, the anchor term, then its springs in index
+  // order: the additions of the loop above in the same order, so the same bits.
   SpringPass& p = *pass;
-  const size_t block_at = force ? 3 : 0;
-  const size_t stride = block_at + (row_sum ? 7 : 0);
-  p.values.resize(stride * ns);
+  const size_t blocks_at = force ? 3 * ns : 0;
+  p.values.resize(blocks_at + (row_sum ? 7 * ns : 0));
   p.skip.resize(ns);
   const size_t chunks = static_cast<size_t>(p.threads.chunks(ns));
   p.counts.assign(2 * chunks, 0);
@@ -138,9 +137,8 @@ SpringCounts spring_pass(const Model& model, const std::vector<Vec3>& x,
         ++zero;
         continue;
       }
-      double* v = &p.values[stride * k];
-      if (force) Eigen::Map<Vec3>{v} = spring_force(model, k, g);
-      if (row_sum) compressed += spring_block(model, k, g, v + block_at);
+      if (force) Eigen::Map<Vec3>{&p.values[3 * k]} = spring_force(model, k, g);
+      if (row_sum) compressed += spring_block(model, k, g, &p.values[blocks_at + 7 * k]);
     }
     p.counts[2 * static_cast<size_t>(chunk)] = zero;
     p.counts[2 * static_cast<size_t>(chunk) + 1] = compressed;
@@ -157,15 +155,14 @@ SpringCounts spring_pass(const Model& model, const std::vector<Vec3>& x,
         const size_t spring = static_cast<size_t>(k >= 0 ? k : ~k);
         const std::uint8_t flags = p.skip[spring];
         if (flags & 1) continue;
-        const double* v = &p.values[stride * spring];
         if (force) {
-          const Eigen::Map<const Vec3> f(v);
+          const Eigen::Map<const Vec3> f(&p.values[3 * spring]);
           if (k >= 0)
             sum += f;
           else
             sum -= f;
         }
-        if (rows) add_block(a, v + block_at, (flags & (k >= 0 ? 4 : 2)) != 0);  // other end
+        if (rows) add_block(a, &p.values[blocks_at + 7 * spring], (flags & (k >= 0 ? 4 : 2)) != 0);
       }
       if (force) (*force)[i] = sum;
       if (rows) (*row_sum)[i] = row_sum_of(a, model.mass[i]);
