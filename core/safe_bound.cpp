@@ -1,7 +1,5 @@
 #include "core/safe_bound.hpp"
 
-#include <algorithm>
-#include <cmath>
 #include <limits>
 
 #include "core/analysis/linear_stability.hpp"
