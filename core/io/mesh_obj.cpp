@@ -4,10 +4,12 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <optional>
 #include <sstream>
 #include <utility>
 
 #include "core/error.hpp"
+#include "core/io/detail/mesh_scan.hpp"
 #include "core/io/format.hpp"
 
 namespace dampbound {
@@ -26,12 +28,9 @@ std::string quoted(const std::string& token) {
 
 /// A finite number, or a failure naming the line.
 double read_number(const std::string& token, const std::string& path, int line) {
-  errno = 0;
-  char* end = nullptr;
-  const double x = std::strtod(token.c_str(), &end);
-  if (end == token.c_str() || *end != '\0' || errno == ERANGE || !std::isfinite(x))
-    fail(path, line, quoted(token) + " is not a finite number");
-  return x;
+  const std::optional<double> x = finite_number(token);
+  if (!x) fail(path, line, quoted(token) + " is not a finite number");
+  return *x;
 }
 
 /// The vertex index of a face corner "i", "i/t", "i//n" or "i/t/n" (1-based, or negative
@@ -41,7 +40,7 @@ int read_corner(const std::string& token, int count, const std::string& path, in
   errno = 0;
   char* end = nullptr;
   const long k = std::strtol(head.c_str(), &end, 10);
-  if (head.empty() || *end != '\0' || errno == ERANGE)
+  if (head.empty() || end != head.c_str() + head.size() || errno == ERANGE)  // a NUL: no end
     fail(path, line, "face corner " + quoted(token) + " has no vertex index");
   const long index = k > 0 ? k - 1 : count + k;
   if (k == 0 || index < 0 || index >= count)

@@ -8,9 +8,9 @@
 namespace dampbound {
 
 namespace {
-/// Quotes a CSV field when it holds a comma, a quote or a newline.
+/// Quotes a CSV field when it holds a comma, a quote or a line break (LF or CR, RFC 4180).
 std::string csv_field(const std::string& s) {
-  if (s.find_first_of(",\"\n") == std::string::npos) return s;
+  if (s.find_first_of(",\"\r\n") == std::string::npos) return s;
   std::string q = "\"";
   for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
   return q + "\"";

@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "core/error.hpp"
+#include "core/io/format.hpp"
 
 namespace dampbound {
 
@@ -67,8 +68,9 @@ long long MeshScan::integer(const char* what) {
   errno = 0;
   char* end = nullptr;
   const long long v = std::strtoll(t.c_str(), &end, 10);
-  if (t.empty() || *end != '\0' || errno == ERANGE)
-    fail(std::string(what) + ": '" + t.substr(0, 40) + "' is not an integer");
+  // The whole token: a NUL inside it would end strtoll's reading early.
+  if (t.empty() || end != t.c_str() + t.size() || errno == ERANGE)
+    fail(std::string(what) + ": '" + printable(t.substr(0, 40)) + "' is not an integer");
   return v;
 }
 
@@ -80,14 +82,20 @@ long long MeshScan::integer_in(const char* what, long long lo, long long hi) {
   return v;
 }
 
-double MeshScan::number(const char* what) {
-  const std::string t = word(what);
-  errno = 0;
+std::optional<double> finite_number(const std::string& t) {
+  if (t.empty() || t.find_first_of("xX") != std::string::npos) return std::nullopt;
   char* end = nullptr;
   const double v = std::strtod(t.c_str(), &end);
-  if (t.empty() || *end != '\0' || errno == ERANGE || !std::isfinite(v))
-    fail(std::string(what) + ": '" + t.substr(0, 40) + "' is not a finite number");
+  // The whole token: a NUL inside it would end strtod's reading early.
+  if (end != t.c_str() + t.size() || !std::isfinite(v)) return std::nullopt;
   return v;
+}
+
+double MeshScan::number(const char* what) {
+  const std::string t = word(what);
+  const std::optional<double> v = finite_number(t);
+  if (!v) fail(std::string(what) + ": '" + printable(t.substr(0, 40)) + "' is not a finite number");
+  return *v;
 }
 
 std::string MeshScan::rest_of_line() {

@@ -5,9 +5,15 @@
 // Reads a caller's buffer; never reads past its end, whatever the content.
 #include <cstddef>
 #include <cstring>
+#include <optional>
 #include <string>
 
 namespace dampbound {
+
+/// A mesh file's number: the whole token, decimal (no mesh format writes the hexadecimal
+/// floats strtod also reads), finite. Underflow is a number: 1e-310 is a subnormal double,
+/// 1e-400 rounds to 0. Shared by every mesh reader (MeshScan::number, the OBJ reader).
+std::optional<double> finite_number(const std::string& token);
 
 class MeshScan {
  public:

@@ -49,6 +49,12 @@ TEST(MeshObj, BadFilesNameTheLine) {
   EXPECT_EQ(obj_error("v 0 0 0\nv 1 x 0\n"), "m.obj:2: 'x' is not a finite number");
   EXPECT_EQ(obj_error("v 0 0\n"), "m.obj:1: a vertex needs 3 coordinates (v x y z)");
   EXPECT_EQ(obj_error("v 0 0 nan\n"), "m.obj:1: 'nan' is not a finite number");
+  // The same numbers as every mesh reader (finite_number): no hex, no NUL inside a token.
+  EXPECT_EQ(obj_error("v 0 0 0x1p3\n"), "m.obj:1: '0x1p3' is not a finite number");
+  EXPECT_EQ(obj_error(std::string("v 0 0 1\0" "5\n", 10)),
+            "m.obj:1: '1\\x005' is not a finite number");
+  EXPECT_EQ(obj_error(std::string("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\0" "9\n", 34)),
+            "m.obj:4: face corner '3\\x009' has no vertex index");
   EXPECT_EQ(obj_error("v 0 0 0\nv 1 0 0\nf 1 2\n"), "m.obj:3: a face needs at least 3 corners");
   EXPECT_EQ(obj_error("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n"),
             "m.obj:4: face corner '4' refers to a vertex that does not exist (3 so far)");

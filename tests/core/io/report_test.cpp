@@ -51,6 +51,9 @@ TEST(Report, TraceCsvWithARunLabel) {
   std::ostringstream plain;
   write_trace_csv(plain, {row(3)}, "say \"hi\"", false);
   EXPECT_EQ(plain.str().substr(0, 15), "\"say \"\"hi\"\"\",3,");  // quotes doubled
+  std::ostringstream cr;
+  write_trace_csv(cr, {row(3)}, "a\rb", false);
+  EXPECT_EQ(cr.str().substr(0, 8), "\"a\rb\",3,");  // a bare CR is a line break too
 }
 
 TEST(Report, VerdictsInWords) {

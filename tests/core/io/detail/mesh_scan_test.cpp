@@ -61,6 +61,12 @@ TEST(MeshScan, Numbers) {
   EXPECT_EQ(scan_number("inf"), "f:1: x: 'inf' is not a finite number");
   EXPECT_EQ(scan_number("-Infinity"), "f:1: x: '-Infinity' is not a finite number");
   EXPECT_EQ(scan_number("1e400"), "f:1: x: '1e400' is not a finite number");  // overflows
+  // Underflow is a number: a subnormal, and one that rounds to zero.
+  EXPECT_EQ(scan_number("1e-310"), std::to_string(1e-310));
+  EXPECT_EQ(scan_number("-1e-400"), std::to_string(-0.0));
+  // Hexadecimal floats are not a mesh format's numbers; a NUL inside a token is no end.
+  EXPECT_EQ(scan_number("0x1p3"), "f:1: x: '0x1p3' is not a finite number");
+  EXPECT_EQ(scan_number(std::string("1.5\0" "7", 5)), "f:1: x: '1.5\\x007' is not a finite number");
   // A long token is quoted to 40 characters.
   EXPECT_EQ(scan_number(std::string(50, 'z')),
             "f:1: x: '" + std::string(40, 'z') + "' is not a finite number");
@@ -78,6 +84,7 @@ TEST(MeshScan, Integers) {
   EXPECT_EQ(scan_integer("1.0"), "f:1: n: '1.0' is not an integer");
   EXPECT_EQ(scan_integer("0x10"), "f:1: n: '0x10' is not an integer");
   EXPECT_EQ(scan_integer("1e3"), "f:1: n: '1e3' is not an integer");
+  EXPECT_EQ(scan_integer(std::string("12\0" "3", 4)), "f:1: n: '12\\x003' is not an integer");
   const std::string text = "5 0 11";
   MeshScan s(text.data(), text.size(), "f");
   EXPECT_EQ(s.integer_in("count", 0, 10), 5);
