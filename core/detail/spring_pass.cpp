@@ -147,6 +147,7 @@ SpringCounts spring_pass(const Model& model, const std::vector<Vec3>& x,
     double a[9];
     for (size_t i = begin; i < end; ++i) {
       const bool rows = row_sum && !fixed[i];
+      if (!force && !rows) continue;  // a fixed node has no rows
       Vec3 sum = Vec3::Zero();
       if (force) sum = anchor_force(model, x, i);
       if (rows) start_rows(model, i, a);

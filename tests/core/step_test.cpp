@@ -146,37 +146,21 @@ TEST(Step, DeterministicTraces) {
 /// A perturbed 3D lattice big enough to split (9261 nodes, ~60k springs): varied scales, some
 /// fixed nodes, an external force, stretched and compressed springs.
 Model lattice(const Params& p) {
-  ModelSpec m;
-  const int k = 21;
-  for (int a = 0; a < k; ++a)
-    for (int b = 0; b < k; ++b)
-      for (int c = 0; c < k; ++c) {
-        const int i = add_node(m, Vec3(a, b, c) * 0.5);
-        m.mass_scale.back() = 1 + (i % 7) * 0.25;
-        m.gamma_scale.back() = 1 + (i % 5) * 0.5;
-        m.anchor_scale.back() = i % 3 == 0 ? 2.0 : 0.0;
-        m.fixed.back() = b == 0 && a % 4 == 0;
-        m.external_force.back() = Vec3(0, -1e-4 * (i % 2), 0);
-      }
-  auto at = [&](int a, int b, int c) { return (a * k + b) * k + c; };
-  for (int a = 0; a < k; ++a)
-    for (int b = 0; b < k; ++b)
-      for (int c = 0; c < k; ++c)
-        for (int e = 1; e < 8; ++e) {
-          const int a2 = a + (e & 1), b2 = b + ((e >> 1) & 1), c2 = c + ((e >> 2) & 1);
-          if (a2 < k && b2 < k && c2 < k) add_spring(m, at(a, b, c), at(a2, b2, c2), 1 + (e % 3));
-        }
-  return compile_model(std::move(m), p);
+  return compile_model(test::cube_lattice(21, 0.5,
+                                          [](ModelSpec& m, int i, int a, int b, int) {
+                                            m.mass_scale.back() = 1 + (i % 7) * 0.25;
+                                            m.gamma_scale.back() = 1 + (i % 5) * 0.5;
+                                            m.anchor_scale.back() = i % 3 == 0 ? 2.0 : 0.0;
+                                            m.fixed.back() = b == 0 && a % 4 == 0;
+                                            m.external_force.back() =
+                                                Vec3(0, -1e-4 * (i % 2), 0);
+                                          }),
+                       p);
 }
 
 State shaken(const Model& model) {
   State s = rest_state(model);
-  unsigned seed = 5;
-  for (size_t i = 0; i < s.x.size(); ++i)
-    for (int d = 0; d < 3; ++d) {
-      seed = seed * 1103515245u + 12345u;
-      s.x[i][d] += 0.2 * (static_cast<double>((seed >> 8) & 0xffffu) / 65535.0 - 0.5);
-    }
+  test::shake(s.x, 0.2, 5);
   return s;
 }
 

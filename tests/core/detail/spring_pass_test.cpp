@@ -10,6 +10,7 @@
 
 #include "core/forces.hpp"
 #include "core/safe_bound.hpp"
+#include "tests/core/test_util.hpp"
 
 namespace dampbound::detail {
 namespace {
@@ -23,33 +24,17 @@ struct Mesh {
 };
 
 Mesh mesh() {
-  ModelSpec m;
-  const int k = 12;
-  for (int a = 0; a < k; ++a)
-    for (int b = 0; b < k; ++b)
-      for (int c = 0; c < k; ++c) {
-        const int i = add_node(m, Vec3(a, b, c));
-        m.mass_scale.back() = 1 + (i % 5) * 0.5;
-        m.anchor_scale.back() = i % 3 == 0 ? 1.5 : 0.0;
-        m.fixed.back() = a == 0 && i % 4 == 0;
-      }
-  auto at = [&](int a, int b, int c) { return (a * k + b) * k + c; };
-  for (int a = 0; a < k; ++a)
-    for (int b = 0; b < k; ++b)
-      for (int c = 0; c < k; ++c)
-        for (int e = 1; e < 8; ++e) {
-          const int a2 = a + (e & 1), b2 = b + ((e >> 1) & 1), c2 = c + ((e >> 2) & 1);
-          if (a2 < k && b2 < k && c2 < k) add_spring(m, at(a, b, c), at(a2, b2, c2), 1 + (e % 3));
-        }
   Params p;
-  Mesh out{compile_model(std::move(m), p), {}};
+  Mesh out{compile_model(test::cube_lattice(12, 1.0,
+                                            [](ModelSpec& m, int i, int a, int, int) {
+                                              m.mass_scale.back() = 1 + (i % 5) * 0.5;
+                                              m.anchor_scale.back() = i % 3 == 0 ? 1.5 : 0.0;
+                                              m.fixed.back() = a == 0 && i % 4 == 0;
+                                            }),
+                         p),
+           {}};
   out.x = out.model.rest;
-  unsigned seed = 7;
-  for (Vec3& xi : out.x)
-    for (int d = 0; d < 3; ++d) {
-      seed = seed * 1103515245u + 12345u;
-      xi[d] += 0.3 * (static_cast<double>((seed >> 8) & 0xffffu) / 65535.0 - 0.5);
-    }
+  test::shake(out.x, 0.3, 7);
   const Spring& s0 = out.model.springs[0];
   out.x[static_cast<size_t>(s0.j)] = out.x[static_cast<size_t>(s0.i)];
   return out;
