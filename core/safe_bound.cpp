@@ -33,6 +33,7 @@ SafeBoundSummary safe_bound_summary(const Model& model, const std::vector<Vec3>&
       s.row_sum = R[i];
     }
     const double h = safe_dt(model.mass[i], model.gamma[i], R[i]);
+    s.gamma_over += !(model.gamma[i] < g);
     if (h < s.dt_safe) {
       s.dt_safe = h;
       s.dt_node = node;

@@ -41,6 +41,7 @@ struct SafeBoundSummary {
   double row_sum = 0;         ///< R of that node (1/s^2)
   double dt_safe = 0;         ///< min over free nodes of dt_safe_i at the user's gamma_i (s)
   int dt_node = -1;
+  int gamma_over = 0;         ///< free nodes with gamma_i >= gamma_safe_i (not guaranteed)
   /// Free nodes with gamma_lo_i > gamma_safe_i: critical damping cannot be guaranteed at this
   /// dt. `infeasible_dt` is the dt_safe_i at gamma_lo_i that would make each feasible.
   std::vector<int> infeasible;

@@ -120,6 +120,18 @@ TEST(SafeBound, PaperPlaneMatchesSpec9) {
   EXPECT_EQ(sum.free_nodes, 1296);
   EXPECT_NEAR(sum.gamma_safe, 0.039775, 1e-12);
   EXPECT_TRUE(sum.infeasible.empty());
+  EXPECT_EQ(sum.gamma_over, 0);
+  // Above the interior nodes' gamma_safe, below the edges': the interior is counted, node by
+  // node from R (gamma_i >= gamma_safe_i is "not guaranteed").
+  Params over = p;
+  over.gamma = 0.0399;
+  const Model mo = compile_model(s.model, over);
+  int expected_over = 0;
+  for (size_t i = 0; i < R.size(); ++i)
+    if (!mo.fixed[i]) expected_over += !(mo.gamma[i] < safe_gamma(mo.mass[i], p.dt, R[i]));
+  EXPECT_GT(expected_over, 1000);
+  EXPECT_LT(expected_over, 1296);
+  EXPECT_EQ(safe_bound_summary(mo, mo.rest, p.dt).gamma_over, expected_over);
   const LinearLimits exact = linear_limits(max_stiffness_eigenvalue(mg, mg.rest), p.m, p.dt);
   EXPECT_NEAR(exact.gamma_max, 0.039805, 5e-7);
   EXPECT_LT(sum.gamma_safe, exact.gamma_max);
