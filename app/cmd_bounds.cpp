@@ -174,7 +174,9 @@ int run_scene(const BoundsArgs& a) {
                 state.iteration);
   else
     std::printf("state        rest (x = X, v = 0): the linearisation point of the exact analysis\n");
-  const ExactStability exact = exact_stability(model, state.x, p);
+  ExactOptions options;
+  options.threads = 0;  // a big mesh's Lanczos products on every CPU (the same bits)
+  const ExactStability exact = exact_stability(model, state.x, p, options);
   std::printf("exact method %s\n", to_string(exact.method));
   print_safe_lines(model, state, p, exact);
   print_criteria(all_criteria(model, state, p, exact));

@@ -103,6 +103,7 @@ int run(const SuggestArgs& a) {
               rules.max_iterations);
   SuggestOptions options;
   options.verify = !a.no_verify;
+  options.threads = 0;  // a big mesh's Lanczos products on every CPU (the same bits)
   options.trials = a.trials;
   if (a.gamma_opt->count()) return print_step(suggest_step(scene, p, rules, options));
   return print_damping(suggest_damping(scene, p, rules, options));

@@ -4,8 +4,9 @@
 // every other integrator's limits from that spectrum. bench/exact_vs_scipy.py runs it beside
 // SciPy's eigsh on the same matrix (--matrix writes it).
 //
-//   exact_limits_bench plane N | block N [--matrix FILE]
+//   exact_limits_bench plane N | block N [--matrix FILE] [--threads T]
 //
+// --threads: the Lanczos products' threads (default 0: one per CPU; the same bits on any).
 // Prints one line of key=value pairs; times in seconds (wall clock).
 #include <chrono>
 #include <ctime>
@@ -50,13 +51,23 @@ void write_matrix(const SparseMatrix& A, const std::string& path) {
 
 int main(int argc, char** argv) {
   if (argc < 3 || (std::string(argv[1]) != "plane" && std::string(argv[1]) != "block")) {
-    std::fprintf(stderr, "usage: exact_limits_bench plane N | block N [--matrix FILE]\n");
+    std::fprintf(stderr,
+                 "usage: exact_limits_bench plane N | block N [--matrix FILE] [--threads T]\n");
     return 2;
   }
   const std::string kind = argv[1];
   const int n = std::atoi(argv[2]);
   std::string matrix_path;
-  if (argc == 5 && std::string(argv[3]) == "--matrix") matrix_path = argv[4];
+  int threads = 0;
+  for (int k = 3; k < argc; k += 2) {
+    const std::string flag = argv[k];
+    if (k + 1 >= argc || (flag != "--matrix" && flag != "--threads")) {
+      std::fprintf(stderr, "exact_limits_bench: unknown or incomplete option %s\n", argv[k]);
+      return 2;
+    }
+    if (flag == "--matrix") matrix_path = argv[k + 1];
+    else threads = std::atoi(argv[k + 1]);
+  }
   if (n < 2) {
     std::fprintf(stderr, "exact_limits_bench: N must be >= 2\n");
     return 2;
@@ -70,11 +81,11 @@ int main(int argc, char** argv) {
   const double t_assemble = since(t);
   t = Clock::now();
   double c = cpu_now();
-  const EigenInterval top = certified_largest_eigenvalue(A);
+  const EigenInterval top = certified_largest_eigenvalue(A, nullptr, threads);
   const double t_lambda = since(t), c_lambda = cpu_now() - c;
   t = Clock::now();
   c = cpu_now();
-  const ExactStability e = exact_stability(model, model.rest, p, {false});
+  const ExactStability e = exact_stability(model, model.rest, p, {false, threads});
   double worst = e.dt_max;  // keeps the other integrators' limits from being optimised away
   for (Integrator i : {Integrator::forward_euler, Integrator::verlet, Integrator::rk4,
                        Integrator::implicit_euler}) {
@@ -83,11 +94,11 @@ int main(int argc, char** argv) {
     worst = std::min({worst, uniform_dt_max(i, e.spectrum, c), r.hi});
   }
   const double t_all = since(t), c_all = cpu_now() - c;
-  std::printf("kind=%s n=%d nodes=%d springs=%d rows=%lld nnz=%lld assemble_s=%.3f "
+  std::printf("kind=%s n=%d threads=%d nodes=%d springs=%d rows=%lld nnz=%lld assemble_s=%.3f "
               "lambda_max_lo=%.12g lambda_max_hi=%.12g lambda_s=%.3f lambda_cpu_s=%.3f "
               "lanczos_steps=%d factorizations=%d solves=%d lambda_min=%.10g gamma_max=%.10g dt_max=%.10g "
               "all_limits_s=%.3f all_limits_cpu_s=%.3f check=%.3g\n",
-              kind.c_str(), n, model.node_count(), model.spring_count(),
+              kind.c_str(), n, threads, model.node_count(), model.spring_count(),
               static_cast<long long>(A.rows()), static_cast<long long>(A.nonZeros()), t_assemble,
               top.lo, top.hi, t_lambda, c_lambda, top.lanczos_steps, top.factorizations, top.solves,
               e.spectrum.lambda_min, e.gamma_hi, e.dt_max, t_all, c_all, worst);

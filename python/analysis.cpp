@@ -40,21 +40,31 @@ void bind_analysis(py::module_& m) {
       .def_readonly("gamma_hi", &ExactStability::gamma_hi, "(mass unit/s; may be inf)")
       .def_readonly("dt_max", &ExactStability::dt_max, "largest stable dt at the user's gamma (s)");
 
+  auto options = [](int threads) {
+    if (threads < 0) throw py::value_error("threads must be >= 0 (0: one per CPU)");
+    ExactOptions o;
+    o.threads = threads;
+    return o;
+  };
   m.def(
       "exact_limits",
-      [](const Session& s) { return exact_stability(s.model(), s.state().x, s.params()); },
-      py::arg("session"),
-      "SPEC 7: the exact limits of the session's model at its current state and parameters "
-      "(lambda_max by Lanczos, never a dense decomposition of a large mesh).");
-  m.def(
-      "exact_limits",
-      [](const SceneSpec& scene, const Params* params) {
-        const Params p = params ? *params : scene.params;
-        return exact_stability(compile_model(scene.model, p), scene.model.rest, p);
+      [options](const Session& s, int threads) {
+        return exact_stability(s.model(), s.state().x, s.params(), options(threads));
       },
-      py::arg("scene"), py::arg("params") = nullptr,
+      py::arg("session"), py::arg("threads") = 1,
+      "SPEC 7: the exact limits of the session's model at its current state and parameters "
+      "(lambda_max certified by sparse Cholesky, never a dense decomposition of a large mesh). "
+      "threads: for the Lanczos products (0: one per CPU); the same bits on any count.");
+  m.def(
+      "exact_limits",
+      [options](const SceneSpec& scene, const Params* params, int threads) {
+        const Params p = params ? *params : scene.params;
+        return exact_stability(compile_model(scene.model, p), scene.model.rest, p,
+                               options(threads));
+      },
+      py::arg("scene"), py::arg("params") = nullptr, py::arg("threads") = 1,
       "SPEC 7: the exact limits of the scene's model at rest with params (default: the "
-      "scene's).");
+      "scene's); threads as above.");
 
   m.def(
       "suggest",

@@ -129,8 +129,8 @@ double smallest_eigenvalue_above(const SparseMatrix& A, double floor) {
   return std::numeric_limits<double>::quiet_NaN();
 }
 
-double largest_eigenpair(const SparseMatrix& A, Eigen::VectorXd& vector) {
-  return certified_largest_eigenvalue(A, &vector).hi;
+double largest_eigenpair(const SparseMatrix& A, Eigen::VectorXd& vector, int threads) {
+  return certified_largest_eigenvalue(A, &vector, threads).hi;
 }
 double smallest_eigenvalue(const SparseMatrix& A) { return certified_smallest_eigenvalue(A).lo; }
 

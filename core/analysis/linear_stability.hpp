@@ -50,8 +50,8 @@ double smallest_eigenvalue(const SparseMatrix& A);
 /// Dense up to 300 rows, else the 12 smallest by Lanczos; NaN when none is found.
 double smallest_eigenvalue_above(const SparseMatrix& A, double floor);
 /// The largest eigenvalue (certified upper end) and its unit Ritz vector (for
-/// Hellmann-Feynman slopes).
-double largest_eigenpair(const SparseMatrix& A, Eigen::VectorXd& vector);
+/// Hellmann-Feynman slopes). `threads` as in certified_largest_eigenvalue.
+double largest_eigenpair(const SparseMatrix& A, Eigen::VectorXd& vector, int threads = 1);
 
 /// Largest eigenvalue of M^-1 K, K the tangent stiffness of springs and anchors at positions
 /// x (at rest only spring directions and anchors contribute), over the free nodes.

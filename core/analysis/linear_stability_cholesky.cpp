@@ -1,6 +1,7 @@
 #include "core/analysis/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
 #include "core/analysis/linear_stability_cholesky.hpp"
 #include "core/analysis/detail/serial_openmp.hpp"
+#include "core/analysis/detail/symmetric_product.hpp"
 #include "core/analysis/detail/tridiagonal.hpp"
 
 #include <Eigen/Dense>
@@ -89,8 +90,9 @@ struct TopEstimate {
 /// convergence), lambda_max - theta ~ d q / (1 - q). It stops once that is below
 /// 1e-7 |theta|: a shift that close separates even a clustered top.
 constexpr int kLanczosSteps = 1000, kLanczosCheck = 50;
-TopEstimate lanczos_estimate(const SparseMatrix& A) {
+TopEstimate lanczos_estimate(const SparseMatrix& A, int threads) {
   const Eigen::Index n = A.rows();
+  NodeThreads pool(threads);
   const int k = static_cast<int>(std::min<Eigen::Index>(kLanczosSteps, n));
   Eigen::VectorXd v = Eigen::VectorXd::LinSpaced(n, 0.3, 1.7).array().sin();
   v /= v.norm();
@@ -100,8 +102,7 @@ TopEstimate lanczos_estimate(const SparseMatrix& A) {
   TopEstimate e;
   double b = 0;
   for (int j = 0; j < k; ++j) {
-    w.noalias() = A * v;
-    w -= b * previous;
+    detail::symmetric_product(A, v, b, previous, w, pool);
     const double a = w.dot(v);
     w -= a * v;
     alpha.push_back(a);
@@ -230,7 +231,8 @@ double certificate_width(double value, double span) {
 
 GershgorinBounds gershgorin_bounds(const SparseMatrix& A) { return row_bounds(A).gershgorin; }
 
-EigenInterval certified_largest_eigenvalue(const SparseMatrix& A, Eigen::VectorXd* vector) {
+EigenInterval certified_largest_eigenvalue(const SparseMatrix& A, Eigen::VectorXd* vector,
+                                           int threads) {
   const Eigen::Index n = A.rows();
   if (n == 0) return {};
   if (n <= kDenseRows) {  // small: the dense eigenvalues are exact, and quicker
@@ -263,7 +265,7 @@ EigenInterval certified_largest_eigenvalue(const SparseMatrix& A, Eigen::VectorX
   // still below lambda_max (Lanczos can stall on an eigenvalue just under the top): the
   // next shift is twice the residual above (some eigenvalue lies within it), then eightfold
   // steps, at worst up to Gershgorin's bound.
-  const TopEstimate estimate = lanczos_estimate(A);
+  const TopEstimate estimate = lanczos_estimate(A, threads);
   const double fallback = std::max(2 * estimate.residual, 1e-9 * span);
   double step = std::clamp(4 * estimate.error, 1e-9 * span, fallback);
   for (;;) {
@@ -298,17 +300,20 @@ EigenInterval certified_largest_eigenvalue(const SparseMatrix& A, Eigen::VectorX
   return out;
 }
 
-CertifiedSpectrum certified_spectrum(const SparseMatrix& A, std::optional<double> floor) {
+CertifiedSpectrum certified_spectrum(const SparseMatrix& A, std::optional<double> floor,
+                                     int threads) {
   const Eigen::Index n = A.rows();
   if (n > 0 && n <= kDenseRows) {  // one dense solve gives both ends
     Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es{Eigen::MatrixXd(A), Eigen::EigenvaluesOnly};
     const double lo = es.eigenvalues()(0), hi = es.eigenvalues()(n - 1);
     return {{lo, lo}, {hi, hi}};
   }
-  return {certified_smallest_eigenvalue(A, floor), certified_largest_eigenvalue(A)};
+  return {certified_smallest_eigenvalue(A, floor, threads),
+          certified_largest_eigenvalue(A, nullptr, threads)};
 }
 
-EigenInterval certified_smallest_eigenvalue(const SparseMatrix& A, std::optional<double> floor) {
+EigenInterval certified_smallest_eigenvalue(const SparseMatrix& A, std::optional<double> floor,
+                                            int threads) {
   if (floor && A.rows() > kDenseRows) {
     // A known lower bound (e.g. a splitting of A into positive semidefinite parts) and the
     // smallest diagonal entry (a Rayleigh quotient) may already pin lambda_min down.
@@ -318,7 +323,7 @@ EigenInterval certified_smallest_eigenvalue(const SparseMatrix& A, std::optional
     if (lo <= hi && hi - lo <= certificate_width(hi, span) + 2 * rows.margin()) return {lo, hi};
   }
   const SparseMatrix negated = -A;
-  EigenInterval r = certified_largest_eigenvalue(negated);
+  EigenInterval r = certified_largest_eigenvalue(negated, nullptr, threads);
   std::swap(r.lo, r.hi);
   r.lo = -r.lo;
   r.hi = -r.hi;

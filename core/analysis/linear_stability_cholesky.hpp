@@ -40,9 +40,11 @@ struct EigenInterval {
 /// of (hi - margin) I - A, margin = 1e-12 * max row sum of |A| (an allowance for the
 /// factorisation's rounding); lo is the Rayleigh quotient of the Ritz vector (a lower bound
 /// for any vector). hi - lo <= ~1e-10 |lambda| + 1e-11 (Gershgorin width). Up to 400 rows
-/// the dense eigenvalue is returned (lo = hi). `vector`: the unit Ritz vector.
+/// the dense eigenvalue is returned (lo = hi). `vector`: the unit Ritz vector. `threads`:
+/// the Lanczos estimate's matrix-vector products run on this many threads (0: one per CPU;
+/// matrices under 32768 rows stay on one), with the same bits on any count.
 EigenInterval certified_largest_eigenvalue(const SparseMatrix& A,
-                                           Eigen::VectorXd* vector = nullptr);
+                                           Eigen::VectorXd* vector = nullptr, int threads = 1);
 
 /// Smallest eigenvalue of symmetric A: the largest of -A, negated (lo certified by
 /// Cholesky of A - lo I, hi the Rayleigh quotient). `floor`: a lower bound on lambda_min the
@@ -51,7 +53,8 @@ EigenInterval certified_largest_eigenvalue(const SparseMatrix& A,
 /// quotient, lies within the promised width of it, [floor - margin, that entry] is the
 /// answer and nothing is factorised (a flat mesh at rest: its out-of-plane rows).
 EigenInterval certified_smallest_eigenvalue(const SparseMatrix& A,
-                                            std::optional<double> floor = std::nullopt);
+                                            std::optional<double> floor = std::nullopt,
+                                            int threads = 1);
 
 /// Both ends at once (one dense solve up to 400 rows, else the two methods above).
 struct CertifiedSpectrum {
@@ -59,6 +62,7 @@ struct CertifiedSpectrum {
   EigenInterval largest;
 };
 CertifiedSpectrum certified_spectrum(const SparseMatrix& A,
-                                     std::optional<double> floor = std::nullopt);
+                                     std::optional<double> floor = std::nullopt,
+                                     int threads = 1);
 
 }  // namespace dampbound

@@ -20,11 +20,12 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 struct Index {
   double value, slope_gamma, slope_h;
 };
-Index symmetric_index(const SparseMatrix& A, const Eigen::VectorXd& R, double gamma, double h) {
+Index symmetric_index(const SparseMatrix& A, const Eigen::VectorXd& R, double gamma, double h,
+                      int threads) {
   SparseMatrix S = (h * h) * A;
   for (Eigen::Index i = 0; i < S.rows(); ++i) S.coeffRef(i, i) += 2 * h * gamma * R(i);
   Eigen::VectorXd u;
-  const double value = largest_eigenpair(S, u);
+  const double value = largest_eigenpair(S, u, threads);
   const double uRu = u.dot(R.cwiseProduct(u)), uAu = u.dot(A * u);
   return {value, 2 * h * uRu, 2 * h * uAu + 2 * gamma * uRu};
 }
@@ -85,11 +86,11 @@ struct ExactInputs {
 };
 
 ExactInputs spectrum_and_rates(const Model& model, const std::vector<Vec3>& x,
-                               const Params& params, ExactStability& e) {
+                               const Params& params, int threads, ExactStability& e) {
   ExactInputs in;
   e.integrator = params.integrator;
   in.A = mass_weighted(model, tangent_stiffness(model, x));
-  const CertifiedSpectrum ends = certified_spectrum(in.A, psd_floor(model, x));
+  const CertifiedSpectrum ends = certified_spectrum(in.A, psd_floor(model, x), threads);
   e.spectrum = {ends.smallest.lo, ends.largest.hi};
   e.lambda_max_lo = ends.largest.lo;
   in.R = unit_rates(model);
@@ -147,21 +148,22 @@ void per_mode(const ExactInputs& in, const Params& params, ExactStability& e) {
 
 /// The paper's step with non-uniform rates: the exact definiteness index (SPEC 7) and its
 /// roots in gamma and in dt.
-void symmetric_index_limits(const ExactInputs& in, const Params& params, ExactStability& e) {
+void symmetric_index_limits(const ExactInputs& in, const Params& params, int threads,
+                            ExactStability& e) {
   const double h = params.dt, gamma = params.gamma;
   const SparseMatrix& A = in.A;
   const Eigen::VectorXd& R = in.R;
   e.method = ExactMethod::symmetric_index;
-  e.index = symmetric_index(A, R, gamma, h).value;
+  e.index = symmetric_index(A, R, gamma, h, threads).value;
   e.stable = e.index < 4 && in.r_min > 0;
   e.gamma_lo = 0;
   // gamma: g(t) = index(t, h) - 4, convex and increasing in t; g(2/(h r_max)) >= 0.
-  if (symmetric_index(A, R, 0, h).value >= 4) {
+  if (symmetric_index(A, R, 0, h, threads).value >= 4) {
     e.gamma_hi = 0;
   } else {
     e.gamma_hi = newton_from_right(
         [&](double t) {
-          const Index i = symmetric_index(A, R, t, h);
+          const Index i = symmetric_index(A, R, t, h, threads);
           return std::make_pair(i.value - 4, i.slope_gamma);
         },
         2 / (h * in.r_max));
@@ -172,7 +174,7 @@ void symmetric_index_limits(const ExactInputs& in, const Params& params, ExactSt
   e.dt_max = std::isinf(cap) ? kInf
                              : newton_from_right(
                                    [&](double t) {
-                                     const Index i = symmetric_index(A, R, gamma, t);
+                                     const Index i = symmetric_index(A, R, gamma, t, threads);
                                      return std::make_pair(i.value - 4, i.slope_h);
                                    },
                                    cap);
@@ -198,7 +200,7 @@ void frozen_estimate(const ExactInputs& in, const Params& params, ExactStability
 ExactStability exact_stability(const Model& model, const std::vector<Vec3>& x,
                                const Params& params, const ExactOptions& options) {
   ExactStability e;
-  const ExactInputs in = spectrum_and_rates(model, x, params, e);
+  const ExactInputs in = spectrum_and_rates(model, x, params, options.threads, e);
   const double tiny = 1e-12 * std::max(1.0, std::abs(e.spectrum.lambda_max));
   if (e.integrator == Integrator::implicit_euler && e.spectrum.lambda_min >= -tiny) {
     unconditional(e);
@@ -207,7 +209,7 @@ ExactStability exact_stability(const Model& model, const std::vector<Vec3>& x,
   } else if (e.uniform_rate) {
     per_mode(in, params, e);
   } else if (e.integrator == Integrator::semi_implicit_euler) {
-    symmetric_index_limits(in, params, e);
+    symmetric_index_limits(in, params, options.threads, e);
     add_radius(model, in, params, options, e);
   } else {
     frozen_estimate(in, params, e);

@@ -49,6 +49,9 @@ struct ExactStability {
 /// `with_radius = false` skips it where only limits are wanted (spectral_radius = NaN).
 struct ExactOptions {
   bool with_radius = true;
+  /// Threads for the eigenvalue solver's Lanczos products (0: one per CPU). The results are
+  /// the same bits on any count; 1 suits callers that already keep the cores busy.
+  int threads = 1;
 };
 
 /// The analysis at positions x for the model (set_params(params) done) and params.dt,

@@ -72,7 +72,7 @@ DampingSuggestion suggest_damping(const SceneSpec& scene, const Params& params_i
   DampingSuggestion s;
   s.dt = params.dt;
   const Model model = compile_model(scene.model, params);
-  s.exact = exact_stability(model, model.rest, params, {false});
+  s.exact = exact_stability(model, model.rest, params, {false, options.threads});
 
   // Eq. 5 at every free node: gamma * gamma_scale_i >= 2 sqrt(m_i kappa_i) (SPEC 3).
   double eq5 = 0, unit_rate_max = 0;
@@ -118,7 +118,7 @@ DampingSuggestion suggest_damping(const SceneSpec& scene, const Params& params_i
     if (std::isfinite(s.gamma_min)) {
       const Params p = with_gamma(params, s.gamma_min);
       const Model m = compile_model(scene.model, p);
-      s.dt_max_at_gamma_min = exact_stability(m, m.rest, p, {false}).dt_max;
+      s.dt_max_at_gamma_min = exact_stability(m, m.rest, p, {false, options.threads}).dt_max;
     }
     s.gamma_best = kNaN;
     s.best_rho = kNaN;
@@ -184,7 +184,7 @@ StepSuggestion suggest_step(const SceneSpec& scene, const Params& params_in, con
   StepSuggestion s;
   s.gamma = params.gamma;
   const Model model = compile_model(scene.model, params);
-  s.exact = exact_stability(model, model.rest, params, {false});
+  s.exact = exact_stability(model, model.rest, params, {false, options.threads});
   s.dt_exact = s.exact.dt_max;
   s.dt_all = s.dt_exact;
   s.dt_all_by = std::string("exact limit (") + to_string(params.integrator) + ")";

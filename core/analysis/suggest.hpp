@@ -43,6 +43,7 @@ struct NodeClass {
 struct SuggestOptions {
   bool verify = true;        ///< run each suggestion through a Session
   int trials = 16;           ///< non-uniform rates: first-pass trial runs for the best gamma
+  int threads = 1;           ///< the exact analysis's threads (ExactOptions::threads)
 };
 
 /// For params.dt: the range of the user's gamma that eq. 5 (gamma_i >= 2 sqrt(m_i kappa_i) at

@@ -83,6 +83,16 @@ def test_exact_limits_and_suggest_agree_on_the_two_node_system(scenes_dir):
         assert result.outcome != "diverged"
 
 
+def test_exact_limits_take_a_thread_count_and_give_the_same_numbers(scenes_dir):
+    scene = dampbound.load_scene(str(scenes_dir / "paper-plane.toml"))
+    one = dampbound.exact_limits(scene)
+    every_cpu = dampbound.exact_limits(scene, threads=0)
+    assert (one.lambda_max, one.gamma_hi, one.dt_max) == (
+        every_cpu.lambda_max, every_cpu.gamma_hi, every_cpu.dt_max)
+    with pytest.raises(ValueError, match="threads"):
+        dampbound.exact_limits(scene, threads=-1)
+
+
 def test_settled_rule_runs_to_the_limit_and_reports_the_first_entry(scenes_dir):
     scene = dampbound.load_scene(str(scenes_dir / "two-node.toml"))
     rules = scene.rules
