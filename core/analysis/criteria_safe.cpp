@@ -74,7 +74,7 @@ std::vector<CriterionResult> safe_criteria(const Model& model, const State& stat
   c.formula = "critical damping guaranteed at node i when gamma_lo_i <= gamma_safe_i";
   c.unit = "nodes";
   c.value = static_cast<double>(s.infeasible.size());
-  c.verdict = verdict_of(s.infeasible.empty());
+  c.verdict = s.compressed_springs > 0 ? unknown : verdict_of(s.infeasible.empty());
   if (s.infeasible.empty()) {
     c.test = "gamma_lo_i <= gamma_safe_i at every free node";
   } else {
@@ -86,6 +86,7 @@ std::vector<CriterionResult> safe_criteria(const Model& model, const State& stat
              ", feasible at dt < " + format_digits(s.infeasible_dt.front(), 8) + "); all at dt < " +
              format_digits(dt_min, 8);
   }
+  c.test += caveat;
   out.push_back(c);
   return out;
 }
