@@ -37,6 +37,7 @@ FigureData figure_fig1(const SceneSpec& plane) {
   Params p = plane.params;
   p.m = 0.001, p.kappa = 0.001, p.dt = 0.05, p.policy = DampingPolicy::fixed;
   StopRules r = plane.rules;
+  r.rule = StopRule::first_entry;  // SPEC 8: what reproduces the paper stops as it did
   r.max_iterations = 1000;
   for (double gamma : {0.0005, 0.001, 0.002}) {
     p.gamma = gamma;
@@ -54,6 +55,7 @@ FigureData figure_fig2(const SceneSpec& plane) {
   Params p = plane.params;
   p.m = 0.005, p.kappa = 0.1, p.dt = 0.05, p.policy = DampingPolicy::upper;
   StopRules r = plane.rules;
+  r.rule = StopRule::first_entry;
   r.max_iterations = 10000;
   for (double factor : {1.0, 1.05}) {
     p.factor = factor;

@@ -52,6 +52,24 @@ TEST(Figures, Fig1IsThreeSessionRuns) {
   }
 }
 
+/// SPEC 8: fig1 and fig2 reproduce the paper, so they stop at the first entry even when the
+/// plane scene given asks for the settled rule; the runs are those of the default scene.
+TEST(Figures, PaperFiguresStopAtTheFirstEntryWhateverTheScenesRule) {
+  const SceneSpec plane = paper_plane_scene(6);
+  SceneSpec settled = plane;
+  settled.rules.rule = StopRule::settled;
+  for (auto figure : {&figure_fig1, &figure_fig2}) {
+    const FigureData a = figure(plane), b = figure(settled);
+    ASSERT_EQ(a.runs.size(), b.runs.size());
+    for (size_t k = 0; k < a.runs.size(); ++k) {
+      SCOPED_TRACE(a.name + " " + a.runs[k].label);
+      EXPECT_EQ(b.runs[k].rules.rule, StopRule::first_entry);
+      EXPECT_EQ(b.runs[k].result.iterations, a.runs[k].result.iterations);
+      EXPECT_EQ(b.runs[k].result.outcome, a.runs[k].result.outcome);
+    }
+  }
+}
+
 TEST(Figures, Fig2UsesTheUpperBoundPolicy) {
   const SceneSpec plane = paper_plane_scene(6);
   const FigureData f = figure_fig2(plane);
