@@ -8,7 +8,8 @@ against SciPy's eigsh (ARPACK Lanczos, which='LA') on the same matrix, in one ru
 For each mesh the C++ benchmark builds the matrix, times its own method, and writes the
 matrix; this script loads it and times eigsh, then prints both times, both values and the
 ratio. Needs python3-scipy (Debian). Times are wall-clock seconds on whatever else the machine
-is doing: run it on otherwise idle cores.
+is doing: run it on otherwise idle cores. The C++ side runs its Lanczos products on every CPU
+(the same bits as on one); its processor time, which the ratio uses, counts every thread.
 """
 import argparse
 import os
