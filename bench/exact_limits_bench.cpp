@@ -65,8 +65,18 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "exact_limits_bench: unknown or incomplete option %s\n", argv[k]);
       return 2;
     }
-    if (flag == "--matrix") matrix_path = argv[k + 1];
-    else threads = std::atoi(argv[k + 1]);
+    if (flag == "--matrix") {
+      matrix_path = argv[k + 1];
+      continue;
+    }
+    char* end = nullptr;
+    const long t = std::strtol(argv[k + 1], &end, 10);
+    if (end == argv[k + 1] || *end != '\0' || t < 0 || t > 1024) {
+      std::fprintf(stderr, "exact_limits_bench: --threads must be an integer in 0..1024, not '%s'\n",
+                   argv[k + 1]);
+      return 2;
+    }
+    threads = static_cast<int>(t);
   }
   if (n < 2) {
     std::fprintf(stderr, "exact_limits_bench: N must be >= 2\n");
@@ -89,9 +99,9 @@ int main(int argc, char** argv) {
   double worst = e.dt_max;  // keeps the other integrators' limits from being optimised away
   for (Integrator i : {Integrator::forward_euler, Integrator::verlet, Integrator::rk4,
                        Integrator::implicit_euler}) {
-    const double c = p.gamma / p.m;
+    const double rate = p.gamma / p.m;
     const RateInterval r = uniform_rate_interval(i, e.spectrum, p.dt);
-    worst = std::min({worst, uniform_dt_max(i, e.spectrum, c), r.hi});
+    worst = std::min({worst, uniform_dt_max(i, e.spectrum, rate), r.hi});
   }
   const double t_all = since(t), c_all = cpu_now() - c;
   std::printf("kind=%s n=%d threads=%d nodes=%d springs=%d rows=%lld nnz=%lld assemble_s=%.3f "
