@@ -21,7 +21,7 @@ namespace {
 
 struct BoundsArgs {
   std::string scene, v, force, integrator, system = "two-node";
-  double m = 0, kappa = 0, dt = 0, gamma = 0;
+  double m = 0, kappa = 0, dt = 0, gamma = 0, factor_budget = 0;
   int after = 0;
   CLI::Option *m_opt = nullptr, *kappa_opt = nullptr, *dt_opt = nullptr, *gamma_opt = nullptr,
               *integrator_opt = nullptr;
@@ -176,8 +176,12 @@ int run_scene(const BoundsArgs& a) {
     std::printf("state        rest (x = X, v = 0): the linearisation point of the exact analysis\n");
   ExactOptions options;
   options.threads = 0;  // a big mesh's Lanczos products on every CPU (the same bits)
+  options.max_factor_flops = a.factor_budget * 1e9;
   const ExactStability exact = exact_stability(model, state.x, p, options);
   std::printf("exact method %s\n", to_string(exact.method));
+  if (!exact.computed())
+    std::printf("             %s (--factor-budget); the safe bound (SPEC 9) below still holds\n",
+                exact.over_budget_reason().c_str());
   print_safe_lines(model, state, p, exact);
   print_criteria(all_criteria(model, state, p, exact));
   return 0;
@@ -215,6 +219,7 @@ std::function<int()> setup(CLI::App& root) {
                   "with a scene: analyse the state after this many steps of its perturbed run "
                   "(default 0: the rest state)")
       ->check(CLI::Range(0, 100000000));
+  add_factor_budget_option(cmd, a->factor_budget);
   return [a] { return run(*a); };
 }
 

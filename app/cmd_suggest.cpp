@@ -16,7 +16,7 @@ namespace {
 
 struct SuggestArgs {
   std::string scene, integrator;
-  double m = 0, kappa = 0, dt = 0, gamma = 0;
+  double m = 0, kappa = 0, dt = 0, gamma = 0, factor_budget = 0;
   int max_iter = 0, trials = 16;
   bool no_verify = false;
   CLI::Option *m_opt = nullptr, *kappa_opt = nullptr, *dt_opt = nullptr, *gamma_opt = nullptr,
@@ -105,6 +105,7 @@ int run(const SuggestArgs& a) {
   options.verify = !a.no_verify;
   options.threads = 0;  // a big mesh's Lanczos products on every CPU (the same bits)
   options.trials = a.trials;
+  options.max_factor_flops = a.factor_budget * 1e9;
   if (a.gamma_opt->count()) return print_step(suggest_step(scene, p, rules, options));
   return print_damping(suggest_damping(scene, p, rules, options));
 }
@@ -132,6 +133,7 @@ std::function<int()> setup(CLI::App& root) {
   cmd->add_option("--trials", a->trials, "trial runs for the best damping of a non-uniform model")
       ->check(CLI::Range(2, 1000));
   cmd->add_flag("--no-verify", a->no_verify, "do not run the suggestions");
+  add_factor_budget_option(cmd, a->factor_budget);
   return [a] { return run(*a); };
 }
 

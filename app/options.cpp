@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <filesystem>
 
+#include "core/analysis/linear_stability_exact.hpp"
 #include "core/error.hpp"
 #include "core/io/format.hpp"
 #include "core/io/scene_file.hpp"
@@ -93,6 +94,16 @@ CLI::Option* add_rule_option(CLI::App* cmd, std::string& rule, const std::string
                    "where it stays below from some iteration on (" +
                        what_default + ")")
       ->check(CLI::IsMember({"first-entry", "settled"}));
+}
+
+CLI::Option* add_factor_budget_option(CLI::App* cmd, double& gflop) {
+  gflop = kDefaultFactorBudget / 1e9;
+  return cmd
+      ->add_option("--factor-budget", gflop,
+                   "the most one sparse factorisation of the exact analysis may take, in GFlop "
+                   "(CHOLMOD's prediction, before any is done); over it the exact limits are "
+                   "reported as not computed (default 200: ~25 s per factorisation on 2 cores)")
+      ->check(finite_positive());
 }
 
 StopRule stop_rule_of(const std::string& text) {

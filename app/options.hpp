@@ -34,6 +34,10 @@ CLI::Option* add_rule_option(CLI::App* cmd, std::string& rule, const std::string
 /// The rule named by add_rule_option's text (already validated by CLI11).
 StopRule stop_rule_of(const std::string& text);
 
+/// Adds `--factor-budget GFLOP` (default kDefaultFactorBudget: 200) to `cmd`: the most one
+/// sparse factorisation of the exact analysis may cost before the analysis is skipped.
+CLI::Option* add_factor_budget_option(CLI::App* cmd, double& gflop);
+
 /// Parses "WxH" (e.g. 1200x700) given to `flag`; InputError naming the flag otherwise.
 void parse_size(const std::string& text, const char* flag, int& width, int& height);
 

@@ -1,6 +1,9 @@
 // The exact limits of SPEC 7 for a scene's model and suggest (core/analysis/suggest.hpp) in Python.
 #include <pybind11/stl.h>
 
+#include <cmath>
+#include <optional>
+
 #include "core/error.hpp"
 #include "core/analysis/linear_stability_exact.hpp"
 #include "core/session.hpp"
@@ -38,33 +41,47 @@ void bind_analysis(py::module_& m) {
           "gamma_lo", &ExactStability::gamma_lo,
           "the user's gamma is stable at dt for gamma_lo <= gamma < gamma_hi (mass unit/s)")
       .def_readonly("gamma_hi", &ExactStability::gamma_hi, "(mass unit/s; may be inf)")
-      .def_readonly("dt_max", &ExactStability::dt_max, "largest stable dt at the user's gamma (s)");
+      .def_readonly("dt_max", &ExactStability::dt_max, "largest stable dt at the user's gamma (s)")
+      .def_property_readonly("computed", &ExactStability::computed,
+                             "False when one factorisation would exceed factor_budget_gflop: "
+                             "then every number is NaN")
+      .def_property_readonly(
+          "reason",
+          [](const ExactStability& e) { return e.computed() ? std::string() : e.over_budget_reason(); },
+          "why nothing was computed ('' when computed)");
 
-  auto options = [](int threads) {
+  auto options = [](int threads, std::optional<double> budget_gflop) {
     if (threads < 0) throw py::value_error("threads must be >= 0 (0: one per CPU)");
+    if (budget_gflop && !(std::isfinite(*budget_gflop) && *budget_gflop > 0))
+      throw py::value_error("factor_budget_gflop must be a finite number > 0 (None: no limit)");
     ExactOptions o;
     o.threads = threads;
+    if (budget_gflop) o.max_factor_flops = *budget_gflop * 1e9;
     return o;
   };
   m.def(
       "exact_limits",
-      [options](const Session& s, int threads) {
-        return exact_stability(s.model(), s.state().x, s.params(), options(threads));
+      [options](const Session& s, int threads, std::optional<double> budget) {
+        return exact_stability(s.model(), s.state().x, s.params(), options(threads, budget));
       },
-      py::arg("session"), py::arg("threads") = 1,
+      py::arg("session"), py::arg("threads") = 1, py::arg("factor_budget_gflop") = py::none(),
       "SPEC 7: the exact limits of the session's model at its current state and parameters "
       "(lambda_max certified by sparse Cholesky, never a dense decomposition of a large mesh). "
-      "threads: for the Lanczos products (0: one per CPU); the same bits on any count.");
+      "threads: for the Lanczos products (0: one per CPU); the same bits on any count. "
+      "factor_budget_gflop: when one factorisation would take more (CHOLMOD's prediction), "
+      "nothing is factorised and the result has computed=False (None: no limit).");
   m.def(
       "exact_limits",
-      [options](const SceneSpec& scene, const Params* params, int threads) {
+      [options](const SceneSpec& scene, const Params* params, int threads,
+                std::optional<double> budget) {
         const Params p = params ? *params : scene.params;
         return exact_stability(compile_model(scene.model, p), scene.model.rest, p,
-                               options(threads));
+                               options(threads, budget));
       },
       py::arg("scene"), py::arg("params") = nullptr, py::arg("threads") = 1,
+      py::arg("factor_budget_gflop") = py::none(),
       "SPEC 7: the exact limits of the scene's model at rest with params (default: the "
-      "scene's); threads as above.");
+      "scene's); threads and factor_budget_gflop as above.");
 
   m.def(
       "suggest",

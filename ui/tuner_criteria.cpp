@@ -39,6 +39,7 @@ std::optional<ExactStability> analyse(const Model& model, const std::vector<Vec3
   try {
     ExactOptions o;
     o.with_radius = uniform_rate(model);  // Arnoldi on a non-uniform mesh can take seconds
+    o.max_factor_flops = kDefaultFactorBudget;  // a big 3-D mesh: "not computed", not hours
     return exact_stability(model, x, params, o);
   } catch (const std::exception&) {
     return std::nullopt;
@@ -170,8 +171,10 @@ void TunerSuggest::start(const SceneSpec& scene, const Params& params, const Sto
     s.params = params;
     s.springs = scene.model.spring_count();
     s.springs_cut = cut;
-    s.damping = suggest_damping(scene, params, rules);
-    s.step = suggest_step(scene, params, rules);
+    SuggestOptions options;
+    options.max_factor_flops = kDefaultFactorBudget;  // over it: the panel shows the error
+    s.damping = suggest_damping(scene, params, rules, options);
+    s.step = suggest_step(scene, params, rules, options);
     return s;
   });
 }

@@ -177,6 +177,18 @@ std::vector<CriterionResult> paper_criteria(const Model& model, const State& sta
 std::vector<CriterionResult> exact_criteria(const ExactStability& e, const Params& params) {
   std::vector<CriterionResult> out;
   const std::string integ = to_string(e.integrator);
+  if (!e.computed()) {  // over the factorisation budget: the rows, each with no verdict
+    for (const std::string& name :
+         {std::string("exact lambda_max of M^-1 K"), "exact spectral radius (" + integ + ")",
+          "exact gamma interval (" + integ + ")", "exact dt limit (" + integ + ")"}) {
+      CriterionResult c = criterion(name, "SPEC 7", "not computed");
+      c.value = std::numeric_limits<double>::quiet_NaN();
+      c.verdict = CriterionVerdict::not_applicable;
+      c.test = "not computed: " + e.over_budget_reason();
+      out.push_back(c);
+    }
+    return out;
+  }
   CriterionResult lm = criterion("exact lambda_max of M^-1 K",
                      "SPEC 7, 9 (tangent stiffness; Gershgorin, shift-and-invert, Cholesky)",
                      "largest eigenvalue of M^-1/2 K M^-1/2 at the state; lambda_min = " +

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 namespace dampbound {
@@ -27,51 +28,98 @@ SparseMatrix tangent_stiffness(const Model& model, const std::vector<Vec3>& x,
                                bool clamp_compression) {
   int nfree = 0;
   const std::vector<int> block = free_blocks(model, &nfree);
-  std::vector<Eigen::Triplet<double>> t;
-  t.reserve(model.springs.size() * 36 + model.rest.size() * 3);
-  // Adds the 3x3 block B at block (bi, bj) when both are free.
-  auto add = [&](int bi, int bj, const Eigen::Matrix3d& B, double sign) {
-    if (bi < 0 || bj < 0) return;
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c)
-        if (B(r, c) != 0) t.emplace_back(3 * bi + r, 3 * bj + c, sign * B(r, c));
-  };
-  for (size_t i = 0; i < model.rest.size(); ++i) {
-    const int b = block[i];
-    if (b >= 0 && model.anchor_kappa[i] > 0)
-      for (int r = 0; r < 3; ++r) t.emplace_back(3 * b + r, 3 * b + r, model.anchor_kappa[i]);
-  }
-  for (size_t k = 0; k < model.springs.size(); ++k) {
+  // Each spring's block B once (upper triangle); springs of no direction have none (SPEC 1).
+  const size_t ns = model.springs.size();
+  std::vector<double> spring_block(6 * ns);
+  std::vector<std::uint8_t> directed(ns, 0);
+  for (size_t k = 0; k < ns; ++k) {
     const Spring& s = model.springs[k];
     const Vec3 delta = x[static_cast<size_t>(s.j)] - x[static_cast<size_t>(s.i)];
     const double l = delta.norm();
-    if (!(l > 0)) continue;  // no direction: no force, no stiffness (SPEC 1)
+    if (!(l > 0)) continue;
     const Vec3 d = delta / l;
     const double ratio = s.rest_length / l;
     double tension = 1.0 - ratio;  // (1 - l0/l)
     if (clamp_compression) tension = std::max(0.0, tension);
-    double b[6];
-    spring_tangent_block(model.spring_kappa[k], tension, ratio, d.data(), b);
-    Eigen::Matrix3d B;
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) B(r, c) = b[sym3(r, c)];
-    const int bi = block[static_cast<size_t>(s.i)], bj = block[static_cast<size_t>(s.j)];
-    add(bi, bi, B, 1);
-    add(bj, bj, B, 1);
-    add(bi, bj, B, -1);
-    add(bj, bi, B, -1);
+    spring_tangent_block(model.spring_kappa[k], tension, ratio, d.data(), &spring_block[6 * k]);
+    directed[k] = 1;
   }
-  SparseMatrix K(3 * nfree, 3 * nfree);
-  K.setFromTriplets(t.begin(), t.end());
-  return K;
+  // K row by row, straight into compressed storage: node i's rows hold its anchor and its
+  // springs (Model::incident, in index order) on the diagonal block, and -B at each free
+  // neighbour's block. An entry exists when some term of it is not zero, and its terms are
+  // added in the order "anchors, then springs by index" (what setFromTriplets of that triplet
+  // list gives, bit for bit: tests/core/analysis/linear_stability_test.cpp keeps it as the
+  // reference). K is symmetric in pattern and values, so its rows are its columns. No
+  // triplet list: 248M of them (4 GB) for a 1M-node tetrahedral block.
+  struct Column {
+    int block;
+    double value[9];
+    bool present[9];
+  };
+  std::vector<Column> row_blocks;
+  std::vector<int> outer(static_cast<size_t>(3 * nfree) + 1, 0);
+  std::vector<int> inner;
+  std::vector<double> values;
+  // At most 3 entries per row for the node itself and for each incident spring (reserved
+  // once: growing 1.6 GB of arrays would copy them again).
+  inner.reserve(9 * (model.incident.size() + static_cast<size_t>(nfree)));
+  values.reserve(inner.capacity());
+  auto add = [](Column& c, int q, double v) {
+    if (v == 0) return;  // a zero term adds no entry (as the triplet list skipped it)
+    c.value[q] = c.present[q] ? c.value[q] + v : v;
+    c.present[q] = true;
+  };
+  size_t row = 0;
+  for (size_t i = 0; i < model.rest.size(); ++i) {
+    const int bi = block[i];
+    if (bi < 0) continue;
+    row_blocks.clear();
+    row_blocks.push_back(Column{bi, {}, {}});
+    if (model.anchor_kappa[i] > 0)
+      for (int r = 0; r < 3; ++r) add(row_blocks[0], 4 * r, model.anchor_kappa[i]);
+    for (int e = model.incident_offset[i]; e < model.incident_offset[i + 1]; ++e) {
+      const int k = model.incident[static_cast<size_t>(e)];
+      const size_t spring = static_cast<size_t>(k >= 0 ? k : ~k);
+      if (!directed[spring]) continue;
+      const double* b = &spring_block[6 * spring];
+      for (int q = 0; q < 9; ++q) add(row_blocks[0], q, b[sym3(q / 3, q % 3)]);
+      const Spring& s = model.springs[spring];
+      const int bj = block[static_cast<size_t>(k >= 0 ? s.j : s.i)];
+      if (bj < 0) continue;
+      auto it = std::find_if(row_blocks.begin() + 1, row_blocks.end(),
+                             [bj](const Column& c) { return c.block == bj; });
+      if (it == row_blocks.end()) {
+        row_blocks.push_back(Column{bj, {}, {}});
+        it = row_blocks.end() - 1;
+      }
+      for (int q = 0; q < 9; ++q) add(*it, q, -b[sym3(q / 3, q % 3)]);
+    }
+    std::sort(row_blocks.begin(), row_blocks.end(),
+              [](const Column& a, const Column& b) { return a.block < b.block; });
+    for (int r = 0; r < 3; ++r, ++row) {
+      for (const Column& c : row_blocks)
+        for (int col = 0; col < 3; ++col)
+          if (c.present[3 * r + col]) {
+            inner.push_back(3 * c.block + col);
+            values.push_back(c.value[3 * r + col]);
+          }
+      outer[row + 1] = static_cast<int>(inner.size());
+    }
+  }
+  return Eigen::Map<const SparseMatrix>(3 * nfree, 3 * nfree, static_cast<Eigen::Index>(inner.size()),
+                                        outer.data(), inner.data(), values.data());
 }
 
 SparseMatrix mass_weighted(const Model& model, const SparseMatrix& K) {
+  return mass_weighted(model, SparseMatrix(K));
+}
+
+SparseMatrix mass_weighted(const Model& model, SparseMatrix&& K) {
   std::vector<double> inv_sqrt_m;
   for (size_t i = 0; i < model.rest.size(); ++i)
     if (!model.fixed[i])
       for (int r = 0; r < 3; ++r) inv_sqrt_m.push_back(1.0 / std::sqrt(model.mass[i]));
-  SparseMatrix A = K;
+  SparseMatrix A = std::move(K);
   for (int k = 0; k < A.outerSize(); ++k)
     for (SparseMatrix::InnerIterator it(A, k); it; ++it)
       it.valueRef() *= inv_sqrt_m[static_cast<size_t>(it.row())] *
@@ -129,8 +177,9 @@ double smallest_eigenvalue_above(const SparseMatrix& A, double floor) {
   return std::numeric_limits<double>::quiet_NaN();
 }
 
-double largest_eigenpair(const SparseMatrix& A, Eigen::VectorXd& vector, int threads) {
-  return certified_largest_eigenvalue(A, &vector, threads).hi;
+double largest_eigenpair(const SparseMatrix& A, Eigen::VectorXd& vector, int threads,
+                         double max_factor_flops) {
+  return certified_largest_eigenvalue(A, &vector, threads, max_factor_flops).hi;
 }
 double smallest_eigenvalue(const SparseMatrix& A) { return certified_smallest_eigenvalue(A).lo; }
 

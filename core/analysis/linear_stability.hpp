@@ -5,6 +5,7 @@
 // interval and the largest stable dt. Per-integrator mode analysis is in
 // linear_stability_modes.hpp; docs/criteria.md has the derivations.
 #include <Eigen/SparseCore>
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -28,8 +29,10 @@ std::vector<int> free_blocks(const Model& model, int* free_count = nullptr);
 SparseMatrix tangent_stiffness(const Model& model, const std::vector<Vec3>& x,
                                bool clamp_compression = false);
 
-/// M^-1/2 K M^-1/2 over the free nodes: symmetric, with the eigenvalues of M^-1 K.
+/// M^-1/2 K M^-1/2 over the free nodes: symmetric, with the eigenvalues of M^-1 K. The
+/// second form scales K in place (no copy of a big matrix).
 SparseMatrix mass_weighted(const Model& model, const SparseMatrix& K);
+SparseMatrix mass_weighted(const Model& model, SparseMatrix&& K);
 
 /// A proved lower bound on lambda_min of M^-1 K at x (1/s^2), from the splitting
 /// K = diag(kappa_a,i I) + sum of the spring blocks B: B's eigenvalues are kappa (1 - l0/l)
@@ -50,8 +53,10 @@ double smallest_eigenvalue(const SparseMatrix& A);
 /// Dense up to 300 rows, else the 12 smallest by Lanczos; NaN when none is found.
 double smallest_eigenvalue_above(const SparseMatrix& A, double floor);
 /// The largest eigenvalue (certified upper end) and its unit Ritz vector (for
-/// Hellmann-Feynman slopes). `threads` as in certified_largest_eigenvalue.
-double largest_eigenpair(const SparseMatrix& A, Eigen::VectorXd& vector, int threads = 1);
+/// Hellmann-Feynman slopes). `threads` and `max_factor_flops` (infinite: no limit) as in
+/// certified_largest_eigenvalue.
+double largest_eigenpair(const SparseMatrix& A, Eigen::VectorXd& vector, int threads = 1,
+                         double max_factor_flops = std::numeric_limits<double>::infinity());
 
 /// Largest eigenvalue of M^-1 K, K the tangent stiffness of springs and anchors at positions
 /// x (at rest only spring directions and anchors contribute), over the free nodes.

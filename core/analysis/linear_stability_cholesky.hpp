@@ -23,6 +23,24 @@ struct GershgorinBounds {
 };
 GershgorinBounds gershgorin_bounds(const SparseMatrix& A);
 
+/// No limit on what one factorisation may cost (the default of every function below).
+inline constexpr double kNoFactorBudget = std::numeric_limits<double>::infinity();
+
+/// Thrown before any numeric factorisation when CHOLMOD's analysis of the matrix's pattern
+/// predicts that one factorisation would take more floating-point operations than the
+/// caller's budget (`max_factor_flops`): a 3-D mesh's factor fills in (the 46^3-node
+/// tetrahedral block: 0.9 TFlop and 2.2 GB per factorisation; docs/performance.md).
+class FactorisationOverBudget : public std::runtime_error {
+ public:
+  /// `amd_only`: the prediction is AMD's ordering's, from the quick check of a matrix of more
+  /// than 500 000 rows, and over kAmdSlack (32) times the budget.
+  FactorisationOverBudget(double flops, double bytes, double budget, bool amd_only = false);
+  double flops;   ///< CHOLMOD's prediction for one factorisation
+  double bytes;   ///< the factor's size (8 bytes per entry of L)
+  double budget;  ///< the caller's limit (flops)
+  bool amd_only;
+};
+
 /// A certified enclosure lo <= lambda <= hi of one extreme eigenvalue (units of the matrix),
 /// and what it cost.
 struct EigenInterval {
@@ -43,8 +61,11 @@ struct EigenInterval {
 /// the dense eigenvalue is returned (lo = hi). `vector`: the unit Ritz vector. `threads`:
 /// the Lanczos estimate's matrix-vector products run on this many threads (0: one per CPU;
 /// matrices under 32768 rows stay on one), with the same bits on any count.
+/// `max_factor_flops`: throws FactorisationOverBudget, after the pattern analysis and before
+/// anything else, when one factorisation would cost more.
 EigenInterval certified_largest_eigenvalue(const SparseMatrix& A,
-                                           Eigen::VectorXd* vector = nullptr, int threads = 1);
+                                           Eigen::VectorXd* vector = nullptr, int threads = 1,
+                                           double max_factor_flops = kNoFactorBudget);
 
 /// Smallest eigenvalue of symmetric A: the largest of -A, negated (lo certified by
 /// Cholesky of A - lo I, hi the Rayleigh quotient). `floor`: a lower bound on lambda_min the
@@ -54,7 +75,8 @@ EigenInterval certified_largest_eigenvalue(const SparseMatrix& A,
 /// answer and nothing is factorised (a flat mesh at rest: its out-of-plane rows).
 EigenInterval certified_smallest_eigenvalue(const SparseMatrix& A,
                                             std::optional<double> floor = std::nullopt,
-                                            int threads = 1);
+                                            int threads = 1,
+                                            double max_factor_flops = kNoFactorBudget);
 
 /// Both ends at once (one dense solve up to 400 rows, else the two methods above).
 struct CertifiedSpectrum {
@@ -63,6 +85,7 @@ struct CertifiedSpectrum {
 };
 CertifiedSpectrum certified_spectrum(const SparseMatrix& A,
                                      std::optional<double> floor = std::nullopt,
-                                     int threads = 1);
+                                     int threads = 1,
+                                     double max_factor_flops = kNoFactorBudget);
 
 }  // namespace dampbound

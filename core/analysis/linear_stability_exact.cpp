@@ -21,11 +21,11 @@ struct Index {
   double value, slope_gamma, slope_h;
 };
 Index symmetric_index(const SparseMatrix& A, const Eigen::VectorXd& R, double gamma, double h,
-                      int threads) {
+                      int threads, double budget) {
   SparseMatrix S = (h * h) * A;
   for (Eigen::Index i = 0; i < S.rows(); ++i) S.coeffRef(i, i) += 2 * h * gamma * R(i);
   Eigen::VectorXd u;
-  const double value = largest_eigenpair(S, u, threads);
+  const double value = largest_eigenpair(S, u, threads, budget);
   const double uRu = u.dot(R.cwiseProduct(u)), uAu = u.dot(A * u);
   return {value, 2 * h * uRu, 2 * h * uAu + 2 * gamma * uRu};
 }
@@ -60,6 +60,7 @@ const char* to_string(ExactMethod m) {
     case ExactMethod::symmetric_index: return "symmetric index lambda_max(dt^2 A + 2 dt C) < 4";
     case ExactMethod::unconditional: return "unconditional (A-stable)";
     case ExactMethod::frozen_estimate: return "Arnoldi rho; limits are frozen-rate estimates";
+    case ExactMethod::over_budget: return "not computed (factorisation over budget)";
   }
   return "?";
 }
@@ -86,11 +87,13 @@ struct ExactInputs {
 };
 
 ExactInputs spectrum_and_rates(const Model& model, const std::vector<Vec3>& x,
-                               const Params& params, int threads, ExactStability& e) {
+                               const Params& params, const ExactOptions& options,
+                               ExactStability& e) {
   ExactInputs in;
   e.integrator = params.integrator;
   in.A = mass_weighted(model, tangent_stiffness(model, x));
-  const CertifiedSpectrum ends = certified_spectrum(in.A, psd_floor(model, x), threads);
+  const CertifiedSpectrum ends = certified_spectrum(in.A, psd_floor(model, x), options.threads,
+                                                    options.max_factor_flops);
   e.spectrum = {ends.smallest.lo, ends.largest.hi};
   e.lambda_max_lo = ends.largest.lo;
   in.R = unit_rates(model);
@@ -148,22 +151,24 @@ void per_mode(const ExactInputs& in, const Params& params, ExactStability& e) {
 
 /// The paper's step with non-uniform rates: the exact definiteness index (SPEC 7) and its
 /// roots in gamma and in dt.
-void symmetric_index_limits(const ExactInputs& in, const Params& params, int threads,
-                            ExactStability& e) {
+void symmetric_index_limits(const ExactInputs& in, const Params& params,
+                            const ExactOptions& options, ExactStability& e) {
+  const int threads = options.threads;
+  const double budget = options.max_factor_flops;
   const double h = params.dt, gamma = params.gamma;
   const SparseMatrix& A = in.A;
   const Eigen::VectorXd& R = in.R;
   e.method = ExactMethod::symmetric_index;
-  e.index = symmetric_index(A, R, gamma, h, threads).value;
+  e.index = symmetric_index(A, R, gamma, h, threads, budget).value;
   e.stable = e.index < 4 && in.r_min > 0;
   e.gamma_lo = 0;
   // gamma: g(t) = index(t, h) - 4, convex and increasing in t; g(2/(h r_max)) >= 0.
-  if (symmetric_index(A, R, 0, h, threads).value >= 4) {
+  if (symmetric_index(A, R, 0, h, threads, budget).value >= 4) {
     e.gamma_hi = 0;
   } else {
     e.gamma_hi = newton_from_right(
         [&](double t) {
-          const Index i = symmetric_index(A, R, t, h, threads);
+          const Index i = symmetric_index(A, R, t, h, threads, budget);
           return std::make_pair(i.value - 4, i.slope_gamma);
         },
         2 / (h * in.r_max));
@@ -174,7 +179,7 @@ void symmetric_index_limits(const ExactInputs& in, const Params& params, int thr
   e.dt_max = std::isinf(cap) ? kInf
                              : newton_from_right(
                                    [&](double t) {
-                                     const Index i = symmetric_index(A, R, gamma, t, threads);
+                                     const Index i = symmetric_index(A, R, gamma, t, threads, budget);
                                      return std::make_pair(i.value - 4, i.slope_h);
                                    },
                                    cap);
@@ -195,12 +200,28 @@ void frozen_estimate(const ExactInputs& in, const Params& params, ExactStability
   }
 }
 
-}  // namespace
-
-ExactStability exact_stability(const Model& model, const std::vector<Vec3>& x,
-                               const Params& params, const ExactOptions& options) {
+/// Nothing computed: every number NaN, the prediction and the budget kept for the report.
+ExactStability over_budget(const Params& params, const FactorisationOverBudget& over) {
   ExactStability e;
-  const ExactInputs in = spectrum_and_rates(model, x, params, options.threads, e);
+  e.integrator = params.integrator;
+  e.method = ExactMethod::over_budget;
+  e.spectrum = {kNaN, kNaN};
+  e.decaying = e.spectrum;
+  e.lambda_max_lo = e.rate_min = e.rate_max = e.index = kNaN;
+  e.spectral_radius = e.gamma_lo = e.gamma_hi = e.dt_max = kNaN;
+  e.radius_converged = false;
+  e.stable = false;
+  e.factor_flops = over.flops;
+  e.factor_bytes = over.bytes;
+  e.factor_budget = over.budget;
+  e.not_computed_reason = over.what();
+  return e;
+}
+
+ExactStability exact_stability_within_budget(const Model& model, const std::vector<Vec3>& x,
+                                             const Params& params, const ExactOptions& options) {
+  ExactStability e;
+  const ExactInputs in = spectrum_and_rates(model, x, params, options, e);
   const double tiny = 1e-12 * std::max(1.0, std::abs(e.spectrum.lambda_max));
   if (e.integrator == Integrator::implicit_euler && e.spectrum.lambda_min >= -tiny) {
     unconditional(e);
@@ -209,7 +230,7 @@ ExactStability exact_stability(const Model& model, const std::vector<Vec3>& x,
   } else if (e.uniform_rate) {
     per_mode(in, params, e);
   } else if (e.integrator == Integrator::semi_implicit_euler) {
-    symmetric_index_limits(in, params, options.threads, e);
+    symmetric_index_limits(in, params, options, e);
     add_radius(model, in, params, options, e);
   } else {
     frozen_estimate(in, params, e);
@@ -220,6 +241,17 @@ ExactStability exact_stability(const Model& model, const std::vector<Vec3>& x,
                    : e.spectral_radius <= 1 + 1e-9;
   }
   return e;
+}
+
+}  // namespace
+
+ExactStability exact_stability(const Model& model, const std::vector<Vec3>& x,
+                               const Params& params, const ExactOptions& options) {
+  try {
+    return exact_stability_within_budget(model, x, params, options);
+  } catch (const FactorisationOverBudget& over) {
+    return over_budget(params, over);
+  }
 }
 
 double perturbation_growth(const Model& model, const Params& params_in, int steps,

@@ -2,6 +2,7 @@
 // The exact linear stability of one model, state and parameters, for any integrator
 // (SPEC 7): lambda range of M^-1 K, the spectral radius of the step, the interval of
 // the user's gamma that keeps the step stable at dt, and the largest stable dt at gamma.
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,8 @@ enum class ExactMethod {
   unconditional,      ///< implicit Euler: stable for every dt > 0 and gamma >= 0
   frozen_estimate,    ///< other explicit steps, non-uniform: limits from the worst uniform
                       ///< rate in [c_min, c_max] (an estimate); verdict from Arnoldi's rho
+  over_budget,        ///< not computed: one factorisation would exceed the budget
+                      ///< (ExactOptions::max_factor_flops); every number is NaN
 };
 
 const char* to_string(ExactMethod m);
@@ -43,6 +46,12 @@ struct ExactStability {
   double gamma_lo = 0;        ///< the user's gamma (gamma_i = gamma * gamma_scale_i) is stable
   double gamma_hi = 0;        ///< at params.dt for gamma_lo <= gamma < gamma_hi (hi may be inf)
   double dt_max = 0;          ///< the largest stable dt at the user's gamma (may be inf)
+  /// over_budget only: CHOLMOD's prediction for one factorisation and the budget it exceeds,
+  /// and one line saying so (FactorisationOverBudget's text).
+  double factor_flops = 0, factor_bytes = 0, factor_budget = 0;
+  std::string not_computed_reason;
+  bool computed() const { return method != ExactMethod::over_budget; }
+  const std::string& over_budget_reason() const { return not_computed_reason; }
 };
 
 /// Options: the spectral radius of a non-uniform mesh costs an Arnoldi run (up to seconds);
@@ -52,7 +61,17 @@ struct ExactOptions {
   /// Threads for the eigenvalue solver's Lanczos products (0: one per CPU). The results are
   /// the same bits on any count; 1 suits callers that already keep the cores busy.
   int threads = 1;
+  /// The most floating-point operations one sparse factorisation may take (CHOLMOD's
+  /// prediction, known after the pattern analysis and before any factorisation); above it
+  /// nothing is factorised and the result's method is over_budget. Infinite: no limit.
+  /// The command line and the tuner use kDefaultFactorBudget.
+  double max_factor_flops = std::numeric_limits<double>::infinity();
 };
+
+/// The command line's and the tuner's budget: 200 GFlop, about 25 s per factorisation on the
+/// 2-core machine of docs/performance.md. Every plane up to 1M nodes fits (1M: ~160 GFlop);
+/// tetrahedral blocks up to ~40k nodes (27k: 79 GFlop; 97k: 940 GFlop).
+inline constexpr double kDefaultFactorBudget = 2e11;
 
 /// The analysis at positions x for the model (set_params(params) done) and params.dt,
 /// params.integrator, with the user's gamma_i = model.gamma[i] held fixed (policy fixed).

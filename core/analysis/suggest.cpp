@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <stdexcept>
 #include <tuple>
 
 #include "core/safe_bound.hpp"
@@ -55,6 +56,20 @@ Params with_dt(Params p, double dt) {
   return p;
 }
 
+/// The exact analysis the suggestions start from; std::runtime_error when it was over the
+/// factorisation budget (without the exact limits there is nothing to suggest).
+ExactStability exact_limits(const Model& model, const Params& params,
+                            const SuggestOptions& options) {
+  ExactOptions o;
+  o.with_radius = false;
+  o.threads = options.threads;
+  o.max_factor_flops = options.max_factor_flops;
+  ExactStability e = exact_stability(model, model.rest, params, o);
+  if (!e.computed())
+    throw std::runtime_error("suggest needs the exact limits, and " + e.over_budget_reason());
+  return e;
+}
+
 }  // namespace
 
 VerifiedRun verify_run(const SceneSpec& scene, const Params& params, const StopRules& rules,
@@ -72,7 +87,7 @@ DampingSuggestion suggest_damping(const SceneSpec& scene, const Params& params_i
   DampingSuggestion s;
   s.dt = params.dt;
   const Model model = compile_model(scene.model, params);
-  s.exact = exact_stability(model, model.rest, params, {false, options.threads});
+  s.exact = exact_limits(model, params, options);
 
   // Eq. 5 at every free node: gamma * gamma_scale_i >= 2 sqrt(m_i kappa_i) (SPEC 3).
   double eq5 = 0, unit_rate_max = 0;
@@ -118,7 +133,7 @@ DampingSuggestion suggest_damping(const SceneSpec& scene, const Params& params_i
     if (std::isfinite(s.gamma_min)) {
       const Params p = with_gamma(params, s.gamma_min);
       const Model m = compile_model(scene.model, p);
-      s.dt_max_at_gamma_min = exact_stability(m, m.rest, p, {false, options.threads}).dt_max;
+      s.dt_max_at_gamma_min = exact_limits(m, p, options).dt_max;
     }
     s.gamma_best = kNaN;
     s.best_rho = kNaN;
@@ -184,7 +199,7 @@ StepSuggestion suggest_step(const SceneSpec& scene, const Params& params_in, con
   StepSuggestion s;
   s.gamma = params.gamma;
   const Model model = compile_model(scene.model, params);
-  s.exact = exact_stability(model, model.rest, params, {false, options.threads});
+  s.exact = exact_limits(model, params, options);
   s.dt_exact = s.exact.dt_max;
   s.dt_all = s.dt_exact;
   s.dt_all_by = std::string("exact limit (") + to_string(params.integrator) + ")";

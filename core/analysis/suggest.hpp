@@ -4,6 +4,7 @@
 // suggestion is verified by running it through a Session (the scene's perturbation and
 // protocol). A core function so that the CLI (`dampbound suggest`) and the GUI share it.
 // The algorithm is in docs/criteria.md, "suggest".
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -44,6 +45,8 @@ struct SuggestOptions {
   bool verify = true;        ///< run each suggestion through a Session
   int trials = 16;           ///< non-uniform rates: first-pass trial runs for the best gamma
   int threads = 1;           ///< the exact analysis's threads (ExactOptions::threads)
+  /// ExactOptions::max_factor_flops. Over it nothing can be suggested: std::runtime_error.
+  double max_factor_flops = std::numeric_limits<double>::infinity();
 };
 
 /// For params.dt: the range of the user's gamma that eq. 5 (gamma_i >= 2 sqrt(m_i kappa_i) at

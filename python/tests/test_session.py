@@ -93,6 +93,22 @@ def test_exact_limits_take_a_thread_count_and_give_the_same_numbers(scenes_dir):
         dampbound.exact_limits(scene, threads=-1)
 
 
+def test_exact_limits_over_a_factorisation_budget_compute_nothing(scenes_dir):
+    scene = dampbound.load_scene(str(scenes_dir / "paper-plane.toml"))
+    free = dampbound.exact_limits(scene)
+    assert free.computed and free.reason == ""
+    over = dampbound.exact_limits(scene, factor_budget_gflop=1e-9)
+    assert not over.computed
+    assert "over the budget of 1e-09 GFlop" in over.reason
+    assert math.isnan(over.dt_max) and math.isnan(over.lambda_max)
+    roomy = dampbound.exact_limits(scene, factor_budget_gflop=200.0)
+    assert (roomy.lambda_max, roomy.gamma_hi, roomy.dt_max) == (
+        free.lambda_max, free.gamma_hi, free.dt_max)
+    for bad in (0.0, -1.0, float("nan"), float("inf")):
+        with pytest.raises(ValueError, match="factor_budget_gflop"):
+            dampbound.exact_limits(scene, factor_budget_gflop=bad)
+
+
 def test_settled_rule_runs_to_the_limit_and_reports_the_first_entry(scenes_dir):
     scene = dampbound.load_scene(str(scenes_dir / "two-node.toml"))
     rules = scene.rules

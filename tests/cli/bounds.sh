@@ -49,6 +49,22 @@ expect_match "$OUT" 'paper upper bound +[0-9.e-]+ mass unit/s +(within|BEYOND) '
 expect_exit 0 "$DB" bounds stiff-region --integrator implicit-euler
 expect_match "$OUT" 'exact dt limit \(implicit-euler\) +inf s +within' "implicit Euler has no limit"
 
+# Over the factorisation budget: the exact rows say "not computed" (no verdict), the safe
+# bound (SPEC 9) still judges; the default budget (200 GFlop) changes nothing.
+expect_exit 0 "$DB" bounds paper-plane --factor-budget 1e-9
+expect_match "$OUT" '^exact method not computed \(factorisation over budget\)$' "says the exact analysis was skipped"
+expect_match "$OUT" 'one factorisation would take [0-9.e-]+ GFlop and [0-9.e-]+ GB, over the budget of 1e-09 GFlop \(--factor-budget\)' "says why"
+expect_match "$OUT" 'exact dt limit \(semi-implicit-euler\) +n/a +n/a +not computed' "no exact verdict"
+expect_match "$OUT" 'safe dt bound +[0-9.]+ s +within' "the safe bound still judges"
+if grep -q 'ratio' <<<"$OUT"; then bad "no ratio to an exact limit that was not computed"; else ok; fi
+expect_exit 0 "$DB" bounds paper-plane --factor-budget 200
+expect_match "$OUT" 'exact dt limit \(semi-implicit-euler\) +0\.50396164 s +within' "a budget above the cost changes nothing"
+for bad_budget in 0 -1 nan inf x; do
+  expect_exit 2 "$DB" bounds paper-plane --factor-budget "$bad_budget"
+  expect_one_line "$ERR" "--factor-budget $bad_budget"
+  expect_match "$ERR" -- '--factor-budget' "names --factor-budget ($bad_budget)"
+done
+
 # Bad input: one line, exit 2.
 expect_exit 2 "$DB" bounds --m 0.001 --kappa 0.001
 expect_one_line "$ERR" "missing --dt"

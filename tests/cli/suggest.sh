@@ -26,6 +26,15 @@ expect_exit 0 "$DB" suggest two-node --integrator verlet --no-verify
 expect_match "$OUT" 'gamma_max +inf' "Verlet: no upper limit"
 if printf '%s' "$OUT" | grep -q verification; then bad "--no-verify still ran"; else ok; fi
 
+# Over the factorisation budget there is nothing to suggest: one line, exit 3, no partial
+# suggestion on stdout.
+expect_exit 3 "$DB" suggest paper-plane --factor-budget 1e-9 --no-verify
+expect_one_line "$ERR" "suggest over the factorisation budget"
+expect_match "$ERR" 'suggest needs the exact limits, and one factorisation would take .* over the budget of 1e-09 GFlop' "says why"
+if grep -q 'gamma_max' <<<"$OUT"; then bad "a suggestion printed over budget"; else ok; fi
+expect_exit 2 "$DB" suggest paper-plane --factor-budget 0
+expect_match "$ERR" -- '--factor-budget' "names --factor-budget"
+
 expect_exit 2 "$DB" suggest paper-plane --dt 0.05 --gamma 0.002
 expect_one_line "$ERR" "--dt and --gamma exclude each other"
 expect_exit 2 "$DB" suggest

@@ -154,5 +154,29 @@ TEST(Criteria, ClassicCriteriaAgainstTheExactLimitOnThePaperPlane) {
   EXPECT_NEAR(find(all, "Kacic").value, 2 * std::sqrt(1.0 / 7), 1e-12);
 }
 
+TEST(Criteria, ExactRowsOverTheFactorisationBudgetGiveNoVerdict) {
+  Params p;
+  const Model m = compile_model(make_grid(GridSpec{14, 14, 0.57, true, true}), p);
+  const State rest = rest_state(m);
+  ExactOptions tight;
+  tight.max_factor_flops = 1;
+  const auto all = all_criteria(m, rest, p, exact_stability(m, rest.x, p, tight));
+  int exact_rows = 0;
+  for (const auto& c : all) {
+    if (c.name.rfind("exact", 0) == 0) {
+      ++exact_rows;
+      EXPECT_EQ(c.verdict, CriterionVerdict::not_applicable) << c.name;
+      EXPECT_TRUE(std::isnan(c.value)) << c.name;
+      EXPECT_EQ(c.test.rfind("not computed: one factorisation would take", 0), 0u) << c.test;
+    }
+    // The safe rows still judge, without a ratio to an exact limit that was not computed.
+    if (c.name.rfind("safe", 0) == 0) {
+      EXPECT_EQ(c.test.find("exact limit"), std::string::npos) << c.test;
+    }
+  }
+  EXPECT_EQ(exact_rows, 4);
+  EXPECT_NE(find(all, "safe").verdict, CriterionVerdict::not_applicable);
+}
+
 }  // namespace
 }  // namespace dampbound

@@ -9,6 +9,7 @@
 
 #include <Eigen/Dense>
 #include <cmath>
+#include <string>
 
 #include "core/analysis/linear_stability.hpp"
 #include "core/scene.hpp"
@@ -148,6 +149,32 @@ TEST(CertifiedEigenvalue, AFloorFarBelowFallsBackToFactorising) {
   const EigenInterval r = certified_smallest_eigenvalue(A, ev.minCoeff() - 0.5);
   expect_encloses(r, ev.minCoeff(), g.hi - g.lo);
   EXPECT_GT(r.factorizations, 0);
+}
+
+TEST(CertifiedEigenvalue, ABudgetStopsBeforeFactorising) {
+  const SparseMatrix A = plane_matrix(12, 0.2);  // 432 rows: the factorisation route
+  const EigenInterval free = certified_largest_eigenvalue(A);
+  double predicted = 0;
+  try {
+    certified_largest_eigenvalue(A, nullptr, 1, 1.0);
+    ADD_FAILURE() << "a budget of 1 flop did not stop the analysis";
+  } catch (const FactorisationOverBudget& over) {
+    predicted = over.flops;
+    EXPECT_GT(over.flops, 1.0);
+    EXPECT_GT(over.bytes, 8.0 * static_cast<double>(A.rows()));  // L holds the diagonal at least
+    EXPECT_EQ(over.budget, 1.0);
+    EXPECT_NE(std::string(over.what()).find("over the budget of"), std::string::npos) << over.what();
+  }
+  // Exactly the predicted cost is within budget, and the answer is the same bits.
+  const EigenInterval within = certified_largest_eigenvalue(A, nullptr, 1, predicted);
+  EXPECT_EQ(within.lo, free.lo);
+  EXPECT_EQ(within.hi, free.hi);
+  // The smallest end and both ends pass the budget on.
+  EXPECT_THROW(certified_smallest_eigenvalue(A, std::nullopt, 1, 1.0), FactorisationOverBudget);
+  EXPECT_THROW(certified_spectrum(A, std::nullopt, 1, 1.0), FactorisationOverBudget);
+  // Up to 400 rows nothing is factorised, so no budget applies.
+  const SparseMatrix small = plane_matrix(11, 0.0);  // 363 rows
+  EXPECT_NO_THROW(certified_largest_eigenvalue(small, nullptr, 1, 1.0));
 }
 
 }  // namespace

@@ -6,8 +6,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 
 #include "core/io/scene_file.hpp"
+#include "core/scene.hpp"
 #include "tests/core/test_util.hpp"
 
 namespace dampbound {
@@ -99,6 +101,36 @@ TEST(LinearStabilityExact, UnequalMassesTakeTheSymmetricIndex) {
   out.dt = 1.2 * e.dt_max;
   EXPECT_LT(perturbation_growth(m, in, 2000), 1.0);
   EXPECT_GT(perturbation_growth(m, out, 2000), 1.0);
+}
+
+TEST(LinearStabilityExact, OverTheFactorisationBudgetNothingIsComputed) {
+  Params p;
+  const Model model = compile_model(make_grid(GridSpec{14, 14, 0.57, true, true}), p);  // 588 rows
+  const ExactStability free = exact_stability(model, model.rest, p);
+  ASSERT_TRUE(free.computed());
+  ExactOptions tight;
+  tight.max_factor_flops = 1;
+  const ExactStability over = exact_stability(model, model.rest, p, tight);
+  EXPECT_FALSE(over.computed());
+  EXPECT_EQ(over.method, ExactMethod::over_budget);
+  EXPECT_STREQ(to_string(over.method), "not computed (factorisation over budget)");
+  EXPECT_FALSE(over.stable);
+  for (double v : {over.spectrum.lambda_max, over.spectrum.lambda_min, over.lambda_max_lo,
+                   over.gamma_lo, over.gamma_hi, over.dt_max, over.spectral_radius})
+    EXPECT_TRUE(std::isnan(v));
+  EXPECT_GT(over.factor_flops, 1.0);
+  EXPECT_EQ(over.factor_budget, 1.0);
+  EXPECT_NE(over.over_budget_reason().find("GFlop"), std::string::npos) << over.over_budget_reason();
+  // A budget above the prediction changes nothing.
+  ExactOptions roomy;
+  roomy.max_factor_flops = 2 * over.factor_flops;
+  const ExactStability within = exact_stability(model, model.rest, p, roomy);
+  EXPECT_EQ(within.method, free.method);
+  EXPECT_EQ(within.spectrum.lambda_max, free.spectrum.lambda_max);
+  EXPECT_EQ(within.spectrum.lambda_min, free.spectrum.lambda_min);
+  EXPECT_EQ(within.gamma_hi, free.gamma_hi);
+  EXPECT_EQ(within.dt_max, free.dt_max);
+  EXPECT_EQ(within.spectral_radius, free.spectral_radius);
 }
 
 }  // namespace
