@@ -188,10 +188,12 @@ int Monitor::internal_forces(
   return zero_length;
 }
 
-MonitorLimits Monitor::exact_limits(NodeVectors x, NodeScalars gamma, double dt) const {
+MonitorLimits Monitor::exact_limits(NodeVectors x, NodeScalars gamma, double dt,
+                                    double max_factor_flops) const {
   check_size(x.rows(), "x");
   check_size(gamma.size(), "gamma");
   require(std::isfinite(dt) && dt > 0, "dt must be finite and > 0");
+  require(max_factor_flops > 0, "max_factor_flops must be > 0");
   ModelSpec spec = model_;
   for (int i = 0; i < node_count(); ++i) {
     require(std::isfinite(gamma[i]) && gamma[i] >= 0,
@@ -203,6 +205,7 @@ MonitorLimits Monitor::exact_limits(NodeVectors x, NodeScalars gamma, double dt)
   const std::vector<Vec3> xs = positions(x);
   ExactOptions options;
   options.with_radius = false;
+  options.max_factor_flops = max_factor_flops;
   const ExactStability e = exact_stability(model, xs, params, options);
   // With params.gamma = 1, exact_stability's interval of the user's gamma is an interval of
   // the factor s that multiplies every gamma_i.
@@ -215,6 +218,11 @@ MonitorLimits Monitor::exact_limits(NodeVectors x, NodeScalars gamma, double dt)
   const LinearLimits uniform = linear_limits(e.spectrum.lambda_max, 1.0, dt);
   l.rate_max = uniform.gamma_max;
   l.dt_max_undamped = uniform.dt_max_undamped;
+  if (!e.computed()) {
+    l.computed = false;
+    l.reason = e.over_budget_reason();
+    l.rate_max = l.dt_max_undamped = e.spectrum.lambda_max;  // NaN, like the rest
+  }
   return l;
 }
 

@@ -8,6 +8,8 @@
 // paper's step (semi-implicit Euler, SPEC 2): v += a dt, then x += v dt.
 #include <Eigen/Core>
 #include <cstdint>
+#include <limits>
+#include <string>
 #include <vector>
 
 #include "core/bounds.hpp"
@@ -65,6 +67,10 @@ struct MonitorLimits {
   double dt_max = 0;      ///< the largest stable dt with these gamma_i (s; may be inf)
   double rate_max = 0;  ///< uniform damping rate limit: gamma_i/m_i < 2/dt - lambda_max dt/2 (1/s)
   double dt_max_undamped = 0;  ///< 2/sqrt(lambda_max) (s)
+  /// false when one sparse factorisation would have exceeded max_factor_flops: every number
+  /// above is then NaN and `reason` says what it would have cost.
+  bool computed = true;
+  std::string reason;
 };
 
 /// A user's mass-spring system, seen by dampbound: masses, springs and (optional) anchors.
@@ -125,7 +131,10 @@ class Monitor {
       Eigen::Ref<Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>> force) const;
 
   /// SPEC 7's exact limits at positions x (copied once), for damping gamma_i and step dt.
-  MonitorLimits exact_limits(NodeVectors x, NodeScalars gamma, double dt) const;
+  /// `max_factor_flops` (> 0; infinite: no limit): the most one sparse factorisation may
+  /// cost (ExactOptions::max_factor_flops); over it nothing is computed (`computed` false).
+  MonitorLimits exact_limits(NodeVectors x, NodeScalars gamma, double dt,
+                             double max_factor_flops = std::numeric_limits<double>::infinity()) const;
 
  private:
   void check_size(Eigen::Index n, const char* what) const;

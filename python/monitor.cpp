@@ -1,4 +1,9 @@
 // The monitor over the user's own NumPy arrays (core/monitor.hpp), read in place.
+#include <pybind11/stl.h>
+
+#include <cmath>
+#include <limits>
+#include <optional>
 #include <stdexcept>
 
 #include "python/arrays.hpp"
@@ -74,7 +79,10 @@ void bind_monitor(py::module_& m) {
       .def_readonly("dt_max", &MonitorLimits::dt_max, "largest stable dt with these gamma_i (s)")
       .def_readonly("rate_max", &MonitorLimits::rate_max,
                     "uniform gamma_i/m_i must stay below 2/dt - lambda_max dt/2 (1/s)")
-      .def_readonly("dt_max_undamped", &MonitorLimits::dt_max_undamped, "2/sqrt(lambda_max) (s)");
+      .def_readonly("dt_max_undamped", &MonitorLimits::dt_max_undamped, "2/sqrt(lambda_max) (s)")
+      .def_readonly("computed", &MonitorLimits::computed,
+                    "False when one factorisation would exceed factor_budget_gflop (numbers NaN)")
+      .def_readonly("reason", &MonitorLimits::reason, "why nothing was computed ('' when computed)");
 
   py::class_<Monitor>(m, "Monitor",
                       "The paper's bounds over your own mass-spring arrays. Topology is copied "
@@ -174,18 +182,24 @@ void bind_monitor(py::module_& m) {
           "(mass unit cm/s^2).")
       .def(
           "exact_limits",
-          [](const Monitor& mon, const py::handle& x, const py::handle& gamma, double dt) {
+          [](const Monitor& mon, const py::handle& x, const py::handle& gamma, double dt,
+             std::optional<double> budget_gflop) {
             py::array_t<double> kx, kg;
+            if (budget_gflop && !(std::isfinite(*budget_gflop) && *budget_gflop > 0))
+              throw py::value_error("factor_budget_gflop must be a finite number > 0 (None: no limit)");
             try {
               return mon.exact_limits(node_vectors_of(x, "x", kx),
-                                      node_scalars_of(gamma, "gamma", kg), dt);
+                                      node_scalars_of(gamma, "gamma", kg), dt,
+                                      budget_gflop ? *budget_gflop * 1e9
+                                                   : std::numeric_limits<double>::infinity());
             } catch (const std::invalid_argument& e) {
               throw py::value_error(e.what());
             }
           },
-          py::arg("x"), py::arg("gamma"), py::arg("dt"),
+          py::arg("x"), py::arg("gamma"), py::arg("dt"), py::arg("factor_budget_gflop") = py::none(),
           "SPEC 7: the exact linear stability of the paper's step at positions x (cm) with "
-          "damping gamma (N,) and step dt (s).");
+          "damping gamma (N,) and step dt (s). factor_budget_gflop: over it (CHOLMOD's "
+          "prediction for one factorisation) nothing is computed and computed is False.");
 }
 
 }  // namespace dampbound::python

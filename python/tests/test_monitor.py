@@ -111,6 +111,22 @@ def test_exact_limits_of_two_free_nodes():
     assert lim.stable
 
 
+def test_exact_limits_over_a_factorisation_budget_compute_nothing():
+    scene = dampbound.paper_plane_scene(12)  # 432 rows: the factorisation route
+    a = scene.arrays(scene.params)
+    mon = dampbound.Monitor(a["mass"], a["springs"], a["stiffness"], a["rest_length"],
+                            anchor_stiffness=a["anchor_stiffness"], rest=a["rest"])
+    gamma = np.full(len(a["mass"]), 0.002)
+    free = mon.exact_limits(a["rest"], gamma, 0.05)
+    assert free.computed and free.reason == "" and free.lambda_max > 0
+    over = mon.exact_limits(a["rest"], gamma, 0.05, factor_budget_gflop=1e-9)
+    assert not over.computed and "over the budget" in over.reason
+    assert math.isnan(over.lambda_max) and math.isnan(over.dt_max)
+    assert mon.exact_limits(a["rest"], gamma, 0.05, factor_budget_gflop=1e3).dt_max == free.dt_max
+    with pytest.raises(ValueError, match="factor_budget_gflop"):
+        mon.exact_limits(a["rest"], gamma, 0.05, factor_budget_gflop=0.0)
+
+
 def test_monitor_reproduces_a_sessions_bounds_bit_for_bit():
     # The same model through the monitor (state read from the session before a step) and
     # through the session's own step(): equal upper bounds and effective damping.

@@ -7,6 +7,8 @@
 
 #include <array>
 #include <cmath>
+#include <string>
+#include <vector>
 #include <stdexcept>
 
 #include "core/session.hpp"
@@ -142,6 +144,44 @@ TEST(Monitor, ExactLimitsOfTwoFreeNodesAreSpec7s) {
   EXPECT_TRUE(l.stable);
   // gamma_i scaled by s is stable below m (2/dt - lambda dt/2) / gamma_i.
   EXPECT_NEAR(l.scale_hi, 0.5 * (2 / dt - lambda * dt / 2) / 0.1, 1e-6);
+}
+
+TEST(Monitor, ExactLimitsOverAFactorisationBudgetComputeNothing) {
+  // A 12 x 12 grid with right and down springs: 432 rows, the factorisation route.
+  const int n = 12, nodes = n * n;
+  std::vector<double> mass(nodes, 0.001), x(3 * nodes), gamma(nodes, 0.002), k, l0;
+  std::vector<int> pairs;
+  for (int a = 0; a < n; ++a)
+    for (int b = 0; b < n; ++b) {
+      const int i = a * n + b;
+      x[3 * i] = 0.57 * a;
+      x[3 * i + 2] = 0.57 * b;
+      for (int j : {b + 1 < n ? i + 1 : -1, a + 1 < n ? i + n : -1})
+        if (j >= 0) pairs.push_back(i), pairs.push_back(j), k.push_back(0.001), l0.push_back(0.57);
+    }
+  const int springs = static_cast<int>(k.size());
+  const std::vector<double> anchors(nodes, 0.001);
+  Monitor mon(node_scalars(mass.data(), nodes), spring_pairs(pairs.data(), springs),
+              node_scalars(k.data(), springs), node_scalars(l0.data(), springs));
+  mon.set_anchors(node_scalars(anchors.data(), nodes), node_vectors(x.data(), nodes));
+  const MonitorLimits free = mon.exact_limits(node_vectors(x.data(), nodes), node_scalars(gamma.data(), nodes), 0.05);
+  EXPECT_TRUE(free.computed);
+  EXPECT_TRUE(free.reason.empty());
+  EXPECT_GT(free.lambda_max, 0);
+  const MonitorLimits over =
+      mon.exact_limits(node_vectors(x.data(), nodes), node_scalars(gamma.data(), nodes), 0.05, 1.0);
+  EXPECT_FALSE(over.computed);
+  EXPECT_NE(over.reason.find("over the budget"), std::string::npos) << over.reason;
+  for (double v : {over.lambda_max, over.scale_lo, over.scale_hi, over.dt_max, over.rate_max,
+                   over.dt_max_undamped})
+    EXPECT_TRUE(std::isnan(v));
+  EXPECT_FALSE(over.stable);
+  const MonitorLimits roomy =
+      mon.exact_limits(node_vectors(x.data(), nodes), node_scalars(gamma.data(), nodes), 0.05, 1e12);
+  EXPECT_EQ(roomy.lambda_max, free.lambda_max);
+  EXPECT_EQ(roomy.dt_max, free.dt_max);
+  EXPECT_THROW(mon.exact_limits(node_vectors(x.data(), nodes), node_scalars(gamma.data(), nodes), 0.05, 0.0),
+               std::invalid_argument);
 }
 
 TEST(Monitor, BadTopologyIsNamed) {
