@@ -219,8 +219,7 @@ MonitorLimits Monitor::exact_limits(NodeVectors x, NodeScalars gamma, double dt,
   l.rate_max = uniform.gamma_max;
   l.dt_max_undamped = uniform.dt_max_undamped;
   if (!e.computed()) {
-    l.computed = false;
-    l.reason = e.over_budget_reason();
+    l.not_computed = e.over_budget_reason();
     l.rate_max = l.dt_max_undamped = e.spectrum.lambda_max;  // NaN, like the rest
   }
   return l;

@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -67,10 +68,9 @@ struct MonitorLimits {
   double dt_max = 0;      ///< the largest stable dt with these gamma_i (s; may be inf)
   double rate_max = 0;  ///< uniform damping rate limit: gamma_i/m_i < 2/dt - lambda_max dt/2 (1/s)
   double dt_max_undamped = 0;  ///< 2/sqrt(lambda_max) (s)
-  /// false when one sparse factorisation would have exceeded max_factor_flops: every number
-  /// above is then NaN and `reason` says what it would have cost.
-  bool computed = true;
-  std::string reason;
+  /// Set when one sparse factorisation would have exceeded max_factor_flops: what it would
+  /// have cost (every number above is then NaN).
+  std::optional<std::string> not_computed;
 };
 
 /// A user's mass-spring system, seen by dampbound: masses, springs and (optional) anchors.
@@ -132,7 +132,7 @@ class Monitor {
 
   /// SPEC 7's exact limits at positions x (copied once), for damping gamma_i and step dt.
   /// `max_factor_flops` (> 0; infinite: no limit): the most one sparse factorisation may
-  /// cost (ExactOptions::max_factor_flops); over it nothing is computed (`computed` false).
+  /// cost (ExactOptions::max_factor_flops); over it nothing is computed (`not_computed`).
   MonitorLimits exact_limits(NodeVectors x, NodeScalars gamma, double dt,
                              double max_factor_flops = std::numeric_limits<double>::infinity()) const;
 

@@ -47,8 +47,10 @@ void bind_analysis(py::module_& m) {
                              "then every number is NaN")
       .def_property_readonly(
           "reason",
-          [](const ExactStability& e) { return e.computed() ? std::string() : e.over_budget_reason(); },
-          "why nothing was computed ('' when computed)");
+          [](const ExactStability& e) {
+            return e.computed() ? std::nullopt : std::optional<std::string>(e.over_budget_reason());
+          },
+          "why nothing was computed (None when computed)");
 
   auto options = [](int threads, std::optional<double> budget_gflop) {
     if (threads < 0) throw py::value_error("threads must be >= 0 (0: one per CPU)");

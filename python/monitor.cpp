@@ -80,9 +80,11 @@ void bind_monitor(py::module_& m) {
       .def_readonly("rate_max", &MonitorLimits::rate_max,
                     "uniform gamma_i/m_i must stay below 2/dt - lambda_max dt/2 (1/s)")
       .def_readonly("dt_max_undamped", &MonitorLimits::dt_max_undamped, "2/sqrt(lambda_max) (s)")
-      .def_readonly("computed", &MonitorLimits::computed,
-                    "False when one factorisation would exceed factor_budget_gflop (numbers NaN)")
-      .def_readonly("reason", &MonitorLimits::reason, "why nothing was computed ('' when computed)");
+      .def_property_readonly(
+          "computed", [](const MonitorLimits& l) { return !l.not_computed; },
+          "False when one factorisation would exceed factor_budget_gflop (numbers NaN)")
+      .def_readonly("reason", &MonitorLimits::not_computed,
+                    "why nothing was computed (None when computed)");
 
   py::class_<Monitor>(m, "Monitor",
                       "The paper's bounds over your own mass-spring arrays. Topology is copied "
@@ -199,7 +201,7 @@ void bind_monitor(py::module_& m) {
           py::arg("x"), py::arg("gamma"), py::arg("dt"), py::arg("factor_budget_gflop") = py::none(),
           "SPEC 7: the exact linear stability of the paper's step at positions x (cm) with "
           "damping gamma (N,) and step dt (s). factor_budget_gflop: over it (CHOLMOD's "
-          "prediction for one factorisation) nothing is computed and computed is False.");
+          "prediction for one factorisation) nothing is computed: computed is False, reason says why.");
 }
 
 }  // namespace dampbound::python
