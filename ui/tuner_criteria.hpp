@@ -21,7 +21,9 @@ namespace dampbound::ui {
 /// (as `bounds SCENE --after N` does) and follows the run: recomputed on a worker thread at
 /// most every follow_interval (0.2 s) or four analysis durations, whichever is longer, the
 /// last result staying on show meanwhile (no frame waits for it). The paper's criteria (eqs. 5, 6 and the
-/// sec. 5 check) and the classic ones are evaluated at the current state on every call. When
+/// sec. 5 check), the classic ones and SPEC 9's safe rows are evaluated at the current state
+/// on every call; above worker_nodes free nodes, while only the state moves, at most every
+/// follow_interval (each evaluation is a pass over the springs). When
 /// one analysis takes longer than 50 ms (a large mesh), a changed key is recomputed at most
 /// every four such durations. `state` is the caller's counter of state changes (Tuner's
 /// state_version()).
@@ -88,6 +90,12 @@ class TunerCriteria {
   bool exact_at_rest_ = true;
   int exact_runs_ = 0;
   double last_time_ = 0, last_seconds_ = 0;  ///< when the last analysis started, how long it took
+  std::uint64_t exact_version_ = 0;  ///< counts the results exact_ has held
+  // What results_ were evaluated for, and when.
+  bool rows_valid_ = false;
+  std::uint64_t rows_topology_ = 0, rows_exact_version_ = 0;
+  Params rows_key_;
+  double rows_time_ = 0;
 };
 
 /// What the Suggest button produced, and for which parameters.

@@ -55,6 +55,28 @@ TEST(TunerCriteria, LiveCriteriaWithACachedExactAnalysis) {
   EXPECT_EQ(t.criteria_state().exact_runs(), runs + 2);  // springs changed
 }
 
+TEST(TunerCriteria, ALargeMeshRefreshesItsRowsAtTheFollowInterval) {
+  Tuner t(plane(8));
+  TunerCriteria& c = t.criteria_state();
+  c.set_worker_nodes(0);  // this plane counts as large
+  c.set_slow_threshold(1e9);
+  c.set_follow_interval(1e9);
+  t.criteria();
+  c.wait();  // the analysis at rest arrives: the rows are evaluated again with it
+  EXPECT_EQ(find(t.criteria(), "paper upper bound")->verdict, CriterionVerdict::not_applicable);
+  t.step(3);
+  // Only the state moved, within the interval: the rows on show are the last ones.
+  EXPECT_EQ(find(t.criteria(), "paper upper bound")->verdict, CriterionVerdict::not_applicable);
+  Params p = t.params();
+  p.gamma = 0.0005;
+  ASSERT_TRUE(t.set_params(p));  // a parameter: at once
+  EXPECT_EQ(find(t.criteria(), "paper lower bound")->verdict, CriterionVerdict::beyond);
+  c.set_follow_interval(0);
+  t.step(1);
+  EXPECT_NE(find(t.criteria(), "paper upper bound")->verdict, CriterionVerdict::not_applicable);
+  c.wait();
+}
+
 TEST(TunerCriteria, ExactAnalysisCanFollowTheState) {
   Tuner t(plane(8));
   TunerCriteria& c = t.criteria_state();
