@@ -10,6 +10,7 @@
 #include <Eigen/Dense>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "core/analysis/linear_stability.hpp"
 #include "core/scene.hpp"
@@ -175,6 +176,34 @@ TEST(CertifiedEigenvalue, ABudgetStopsBeforeFactorising) {
   // Up to 400 rows nothing is factorised, so no budget applies.
   const SparseMatrix small = plane_matrix(11, 0.0);  // 363 rows
   EXPECT_NO_THROW(certified_largest_eigenvalue(small, nullptr, 1, 1.0));
+}
+
+TEST(CertifiedEigenvalue, AboveHalfAMillionRowsAmdChecksTheBudgetFirst) {
+  // A chain of 600 000 rows (tridiagonal: no fill in any ordering, so the analysis is quick).
+  const Eigen::Index n = 600000;
+  std::vector<Eigen::Triplet<double>> t;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    t.emplace_back(i, i, 2.0 + 1e-3 * static_cast<double>(i % 7));
+    if (i + 1 < n) t.emplace_back(i, i + 1, -1.0), t.emplace_back(i + 1, i, -1.0);
+  }
+  SparseMatrix A(n, n);
+  A.setFromTriplets(t.begin(), t.end());
+  double predicted = 0;
+  try {  // far over: AMD's prediction stops it, and says so
+    certified_largest_eigenvalue(A, nullptr, 1, 1.0);
+    ADD_FAILURE() << "a budget of 1 flop did not stop the analysis";
+  } catch (const FactorisationOverBudget& over) {
+    EXPECT_TRUE(over.amd_only);
+    EXPECT_NE(std::string(over.what()).find("in AMD's ordering"), std::string::npos) << over.what();
+    predicted = over.flops;
+  }
+  try {  // within 32 times: CHOLMOD's own choice of ordering decides
+    certified_largest_eigenvalue(A, nullptr, 1, predicted / 2);
+    ADD_FAILURE() << "half the predicted cost was accepted";
+  } catch (const FactorisationOverBudget& over) {
+    EXPECT_FALSE(over.amd_only);
+    EXPECT_EQ(std::string(over.what()).find("AMD"), std::string::npos) << over.what();
+  }
 }
 
 }  // namespace
