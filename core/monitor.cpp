@@ -3,6 +3,7 @@
 #include "core/monitor.hpp"
 
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -215,13 +216,14 @@ MonitorLimits Monitor::exact_limits(NodeVectors x, NodeScalars gamma, double dt,
   l.scale_lo = e.gamma_lo;
   l.scale_hi = e.gamma_hi;
   l.dt_max = e.dt_max;
+  if (!e.computed()) {  // over the budget: every number NaN (exact_stability's), and why
+    l.not_computed = e.over_budget_reason();
+    l.rate_max = l.dt_max_undamped = std::numeric_limits<double>::quiet_NaN();
+    return l;
+  }
   const LinearLimits uniform = linear_limits(e.spectrum.lambda_max, 1.0, dt);
   l.rate_max = uniform.gamma_max;
   l.dt_max_undamped = uniform.dt_max_undamped;
-  if (!e.computed()) {
-    l.not_computed = e.over_budget_reason();
-    l.rate_max = l.dt_max_undamped = e.spectrum.lambda_max;  // NaN, like the rest
-  }
   return l;
 }
 
