@@ -28,20 +28,21 @@ size_t bytes(const std::vector<T>& v) {
   return v.capacity() * sizeof(T);
 }
 
-/// Per node: the model's per-node arrays, the state and the workspace's per-node arrays.
+/// Per node: the model's per-node arrays, the state and the workspace's per-node arrays
+/// (with the spring pass's 9 row-sum accumulators).
 size_t node_bytes(const Model& m, const State& s, const StepWorkspace& ws) {
   return bytes(m.rest) + bytes(m.mass_scale) + bytes(m.gamma_scale) + bytes(m.anchor_scale) +
          bytes(m.external_force) + bytes(m.fixed) + bytes(m.mass) + bytes(m.gamma) +
          bytes(m.anchor_kappa) + bytes(m.node_kappa) + bytes(m.lower_bound) +
          bytes(m.incident_offset) + bytes(s.x) + bytes(s.v) + bytes(ws.force) +
          bytes(ws.upper_bound) + bytes(ws.gamma_eff) + bytes(ws.status) +
-         bytes(ws.safe_row_sum) + bytes(ws.safe_bound);
+         bytes(ws.safe_row_sum) + bytes(ws.safe_bound) + bytes(ws.pass.rows);
 }
 
-/// Per spring: the spring, its kappa, its two incidence entries and the step's buffers.
-size_t spring_bytes(const Model& m, const StepWorkspace& ws) {
-  return bytes(m.springs) + bytes(m.spring_kappa) + bytes(m.incident) + bytes(ws.pass.values) +
-         bytes(ws.pass.skip);
+/// Per spring: the spring, its kappa and its two incidence entries (the step keeps nothing
+/// per spring).
+size_t spring_bytes(const Model& m) {
+  return bytes(m.springs) + bytes(m.spring_kappa) + bytes(m.incident);
 }
 
 /// Wall seconds per step of `threads` threads, over at least 0.5 s.
@@ -78,7 +79,7 @@ void measure(const char* kind, ModelSpec spec, int threads) {
   const double one = seconds_per_step(model, p, s, 1, ws);
   const double many = seconds_per_step(model, p, s, threads, ws);
   const double nodes = model.node_count(), springs = model.spring_count();
-  const size_t nb = node_bytes(model, s, ws), sb = spring_bytes(model, ws);
+  const size_t nb = node_bytes(model, s, ws), sb = spring_bytes(model);
   std::printf("%-6s %8d nodes %8d springs  1 thread %7.1f ns/node-step  %d threads %7.1f "
               "ns/node-step  x%.2f  %5.0f B/node %4.0f B/spring  %7.1f MB\n",
               kind, model.node_count(), model.spring_count(), one * 1e9 / nodes, threads,

@@ -9,17 +9,14 @@
 
 namespace dampbound {
 
-/// Threads and buffers of the two-pass spring loop (forces here, SPEC 9's row sums in
-/// safe_bound.hpp, both at once in step(): core/detail/spring_pass.hpp): pass 1 evaluates each spring once into `values`, pass 2 gathers each
-/// node's springs in index order (Model::incident), so every node's sum is added in the
-/// order of a serial loop over the springs and the result has the same bits on any number of
-/// threads. step() keeps one in its workspace.
+/// Threads and buffers of the spring loop (forces here, SPEC 9's row sums in safe_bound.hpp,
+/// both at once in step(): core/detail/spring_pass.hpp). Each thread owns a contiguous range
+/// of nodes and adds the springs at its nodes in index order, so every node's sum is added in
+/// the order of a serial loop over the springs and the result has the same bits on any number
+/// of threads. step() keeps one in its workspace.
 struct SpringPass {
   NodeThreads threads;
-  std::vector<double> values;        ///< per-spring intermediate values (up to 10 doubles each)
-  /// Per spring: bit 0 = no direction (zero or NaN length); bits 1 and 2: its first / second
-  /// node is fixed.
-  std::vector<std::uint8_t> skip;
+  std::vector<double> rows;          ///< per-node row-sum accumulators (9 doubles each)
   std::vector<int> counts;           ///< per-chunk counts (zero-length, compressed springs)
 };
 

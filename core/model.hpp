@@ -56,7 +56,7 @@ class Model : public ModelSpec {
   std::vector<double> lower_bound;   ///< gamma_lo_i = 2 sqrt(m_i kappa_i) (eq. 5; mass unit / s)
   /// The springs at node i, in increasing index: incident[incident_offset[i] ..
   /// incident_offset[i + 1]), k where i is spring k's first node, ~k where it is its second.
-  /// What lets a per-node loop add its springs in the serial order (step() on threads).
+  /// What lets a per-node loop add its springs in the serial order (tangent_stiffness()).
   std::vector<int> incident_offset;
   std::vector<int> incident;
 

@@ -16,8 +16,9 @@ namespace dampbound {
 /// Reads the model's m_i, anchor and spring stiffnesses and fixed flags; x in cm. A spring of
 /// zero length has no direction and is skipped (SPEC 1). Each node's springs are added in
 /// index order (what the batched kernel mirrors bit for bit), so any thread count gives the
-/// same bits. O(springs + nodes); `pass` (optional) brings the threads and keeps 7 doubles per spring between calls
-/// (step() computes these and the forces in one pass: core/detail/spring_pass.hpp).
+/// same bits. O(springs + nodes); `pass` (optional) brings the threads and keeps 9 doubles per node
+/// between calls (step() computes these and the forces in one pass:
+/// core/detail/spring_pass.hpp).
 /// Returns the number of compressed springs (0 < l < l0): with one, K may be indefinite and
 /// the bound guarantees nothing (SPEC 9).
 int safe_row_sums(const Model& model, const std::vector<Vec3>& x, std::vector<double>& row_sum,

@@ -71,117 +71,77 @@ inline Vec3 anchor_force(const Model& model, const std::vector<Vec3>& x, size_t 
   return -model.anchor_kappa[i] * (x[i] - model.rest[i]);
 }
 
+/// The pass over the nodes [begin, end): their anchor terms, then every spring with an end
+/// among them, in index order, adding its terms to that end only (+f to i, -f to j; B to each
+/// free end). A node's sums are thus added in the same order whatever the range, so any split
+/// of the nodes gives the same bits; a spring with an end on each side is computed by both
+/// sides. Counts the springs whose first node is in the range.
+SpringCounts owned_pass(const Model& model, const std::vector<Vec3>& x, std::vector<Vec3>* force,
+                        std::vector<double>* row_sum, double* acc, size_t begin, size_t end) {
+  const std::vector<std::uint8_t>& fixed = model.fixed;
+  SpringCounts counts;
+  for (size_t i = begin; i < end; ++i) {
+    if (force) (*force)[i] = anchor_force(model, x, i);
+    if (row_sum) start_rows(model, i, &acc[9 * i]);
+  }
+  const bool all = begin == 0 && end == x.size();
+  const size_t ns = model.springs.size();
+  double b[7];
+  for (size_t k = 0; k < ns; ++k) {
+    const size_t i = static_cast<size_t>(model.springs[k].i);
+    const size_t j = static_cast<size_t>(model.springs[k].j);
+    const bool own_i = all || (i >= begin && i < end), own_j = all || (j >= begin && j < end);
+    if (!own_i && !own_j) continue;
+    const SpringGeometry g = geometry(model, x, k);
+    if (!(g.length > 0)) {  // also catches NaN
+      counts.zero_length += own_i;
+      continue;
+    }
+    if (force) {
+      const Vec3 f = spring_force(model, k, g);
+      if (own_i) (*force)[i] += f;
+      if (own_j) (*force)[j] -= f;
+    }
+    if (row_sum) {
+      const bool compressed = spring_block(model, k, g, b);
+      counts.compressed += own_i && compressed;
+      if (own_i && !fixed[i]) add_block(&acc[9 * i], b, fixed[j]);
+      if (own_j && !fixed[j]) add_block(&acc[9 * j], b, fixed[i]);
+    }
+  }
+  if (row_sum)
+    for (size_t i = begin; i < end; ++i)
+      if (!fixed[i]) (*row_sum)[i] = row_sum_of(&acc[9 * i], model.mass[i]);
+  return counts;
+}
+
 }  // namespace
 
 SpringCounts spring_pass(const Model& model, const std::vector<Vec3>& x,
                          std::vector<Vec3>* force, std::vector<double>* row_sum,
                          SpringPass* pass) {
-  const std::vector<std::uint8_t>& fixed = model.fixed;
   const size_t n = x.size(), ns = model.springs.size();
   if (force) force->resize(n);
   if (row_sum) row_sum->assign(n, 0.0);
-  SpringCounts counts;
-  if (!pass || pass->threads.chunks(ns) <= 1) {
-    // One thread: the anchor terms, then one loop over the springs adding each spring's terms
-    // to both of its nodes (+f to i, -f to j; B to each free end).
-    std::vector<double> acc(row_sum ? 9 * n : 0);
-    for (size_t i = 0; i < n; ++i) {
-      if (force) (*force)[i] = anchor_force(model, x, i);
-      if (row_sum) start_rows(model, i, &acc[9 * i]);
-    }
-    double b[7];
-    for (size_t k = 0; k < ns; ++k) {
-      const SpringGeometry g = geometry(model, x, k);
-      if (!(g.length > 0)) {  // also catches NaN
-        ++counts.zero_length;
-        continue;
-      }
-      const size_t i = static_cast<size_t>(model.springs[k].i);
-      const size_t j = static_cast<size_t>(model.springs[k].j);
-      if (force) {
-        const Vec3 f = spring_force(model, k, g);
-        (*force)[i] += f;
-        (*force)[j] -= f;
-      }
-      if (row_sum) {
-        counts.compressed += spring_block(model, k, g, b);
-        if (!fixed[i]) add_block(&acc[9 * i], b, fixed[j]);
-        if (!fixed[j]) add_block(&acc[9 * j], b, fixed[i]);
-      }
-    }
-    if (row_sum)
-      for (size_t i = 0; i < n; ++i)
-        if (!fixed[i]) (*row_sum)[i] = row_sum_of(&acc[9 * i], model.mass[i]);
-    return counts;
-  }
-  // Threads. Pass 1: every spring once, its force (3 doubles) and its block (7, in a second
-  // array after the forces). Pass 2: per node, the anchor term, then its springs in index
-  // order: the additions of the loop above in the same order, so the same bits.
+  std::vector<double> local;
+  std::vector<double>& acc = pass ? pass->rows : local;
+  acc.resize(row_sum ? 9 * n : 0);
+  if (!pass || pass->threads.chunks(ns) <= 1)
+    return owned_pass(model, x, force, row_sum, acc.data(), 0, n);
+  // Threads: the nodes split into as many contiguous ranges as the springs would be (a
+  // chunk's work is its springs), each range one owned_pass.
   SpringPass& p = *pass;
-  const size_t blocks_at = force ? 3 * ns : 0;
-  p.values.resize(blocks_at + (row_sum ? 7 * ns : 0));
-  p.skip.resize(ns);
-  const size_t chunks = static_cast<size_t>(p.threads.chunks(ns));
-  p.counts.assign(2 * chunks, 0);
-  p.threads.run(ns, [&](int chunk, size_t begin, size_t end) {
-    int zero = 0, compressed = 0;
-    for (size_t k = begin; k < end; ++k) {
-      const Spring& s = model.springs[k];
-      const SpringGeometry g = geometry(model, x, k);
-      const bool skip = !(g.length > 0);
-      // Bit 0: no direction; bits 1 and 2: node i, node j fixed (what pass 2 would otherwise
-      // look up through the spring).
-      p.skip[k] = static_cast<std::uint8_t>((skip ? 1 : 0) | fixed[static_cast<size_t>(s.i)] << 1 |
-                                            fixed[static_cast<size_t>(s.j)] << 2);
-      if (skip) {
-        ++zero;
-        continue;
-      }
-      if (force) Eigen::Map<Vec3>{&p.values[3 * k]} = spring_force(model, k, g);
-      if (row_sum) compressed += spring_block(model, k, g, &p.values[blocks_at + 7 * k]);
-    }
-    p.counts[2 * static_cast<size_t>(chunk)] = zero;
-    p.counts[2 * static_cast<size_t>(chunk) + 1] = compressed;
+  const size_t parts = static_cast<size_t>(p.threads.chunks(ns));
+  p.counts.assign(2 * parts, 0);
+  p.threads.run(ns, [&](int chunk, size_t, size_t) {
+    const size_t c = static_cast<size_t>(chunk);
+    const SpringCounts cs =
+        owned_pass(model, x, force, row_sum, acc.data(), n * c / parts, n * (c + 1) / parts);
+    p.counts[2 * c] = cs.zero_length;
+    p.counts[2 * c + 1] = cs.compressed;
   });
-  p.threads.run(n, [&](int, size_t begin, size_t end) {
-    double a[9];
-    for (size_t i = begin; i < end; ++i) {
-      const bool rows = row_sum && !fixed[i];
-      if (!force && !rows) continue;  // a fixed node has no rows
-      // The force as three scalars, not a Vec3: a vector kept in memory across the loop
-      // stalls on store forwarding (a third of this loop's time at 40k nodes).
-      double f0 = 0, f1 = 0, f2 = 0;
-      if (force) {
-        const Vec3 anchor = anchor_force(model, x, i);
-        f0 = anchor[0];
-        f1 = anchor[1];
-        f2 = anchor[2];
-      }
-      if (rows) start_rows(model, i, a);
-      for (int e = model.incident_offset[i]; e < model.incident_offset[i + 1]; ++e) {
-        const int k = model.incident[static_cast<size_t>(e)];
-        const size_t spring = static_cast<size_t>(k >= 0 ? k : ~k);
-        const std::uint8_t flags = p.skip[spring];
-        if (flags & 1) continue;
-        if (force) {
-          const double* f = &p.values[3 * spring];
-          if (k >= 0) {
-            f0 = f0 + f[0];
-            f1 = f1 + f[1];
-            f2 = f2 + f[2];
-          } else {
-            f0 = f0 - f[0];
-            f1 = f1 - f[1];
-            f2 = f2 - f[2];
-          }
-        }
-        if (rows) add_block(a, &p.values[blocks_at + 7 * spring], (flags & (k >= 0 ? 4 : 2)) != 0);
-      }
-      if (force) (*force)[i] = Vec3(f0, f1, f2);
-      if (rows) (*row_sum)[i] = row_sum_of(a, model.mass[i]);
-    }
-  });
-  for (size_t c = 0; c < chunks; ++c) {
+  SpringCounts counts;
+  for (size_t c = 0; c < parts; ++c) {
     counts.zero_length += p.counts[2 * c];
     counts.compressed += p.counts[2 * c + 1];
   }

@@ -3,8 +3,8 @@
 // SPEC 9's Gershgorin row sums (safe_bound.hpp) at the same positions, each spring's
 // direction and length found once. internal_forces() and safe_row_sums() are this pass with
 // one output; step() asks for both. Every node's sums are added in spring order (after its
-// anchor term), in one loop or, with threads, per node over Model::incident, so the bits are
-// the same whether the two are computed together or apart, on any number of threads.
+// anchor term), on threads too (each owns a range of nodes), so the bits are the same whether
+// the two are computed together or apart, on any number of threads.
 #include <vector>
 
 #include "core/forces.hpp"

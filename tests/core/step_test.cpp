@@ -8,6 +8,7 @@
 
 #include "core/session.hpp"
 #include "core/io/scene_file.hpp"
+#include "core/safe_bound.hpp"
 #include "tests/core/test_util.hpp"
 
 namespace dampbound {
@@ -192,6 +193,49 @@ TEST(Step, ForcesAreTheSerialScatterSumsBitForBit) {
     std::vector<Vec3> got;
     EXPECT_EQ(internal_forces(m, s.x, got, &pass), 0);
     EXPECT_TRUE(same_bits(got, want)) << threads << " threads";
+  }
+}
+
+TEST(Step, ThreadsOwningNodeRangesAddCrossingSpringsInTheSerialOrder) {
+  // Each thread owns a range of nodes and computes every spring with an end in it; springs
+  // listed far from their nodes, a spring from the last node back to the first (crossing
+  // every boundary), a doubled one and springs of zero length (to itself, between
+  // coincident nodes) must still land in each node's serial order and be counted once.
+  Params p;
+  ModelSpec spec = test::cube_lattice(21, 0.5, [](ModelSpec& m, int i, int a, int b, int) {
+    m.anchor_scale.back() = i % 3 == 0 ? 2.0 : 0.0;
+    m.fixed.back() = b == 0 && a % 4 == 0;
+  });
+  const int n = static_cast<int>(spec.rest.size());
+  add_spring(spec, n - 1, 0);
+  add_spring(spec, n - 1, 0, 2.0);
+  add_spring(spec, n / 2, n / 2);   // to itself: no direction
+  add_spring(spec, 5, n - 7, 0.5);  // first node low, second high
+  add_spring(spec, n - 3, 3);
+  const int twin = add_node(spec, spec.rest[static_cast<size_t>(n / 3)]);
+  add_spring(spec, n / 3, twin);  // coincident nodes: zero length
+  add_spring(spec, 7, n / 2 + 1);
+  const Model m = compile_model(spec, p);
+  State s = shaken(m);
+  s.x[static_cast<size_t>(twin)] = s.x[static_cast<size_t>(n / 3)];
+  std::vector<Vec3> want_f;
+  std::vector<double> want_r;
+  SpringPass one;
+  ASSERT_EQ(internal_forces(m, s.x, want_f, &one), 2);
+  const int compressed = safe_row_sums(m, s.x, want_r, &one);
+  EXPECT_GT(compressed, 0);
+  for (int threads : {2, 3, 4}) {
+    SCOPED_TRACE(std::to_string(threads) + " threads");
+    SpringPass pass;
+    pass.threads.set_threads(threads);
+    pass.threads.set_grain(1000);
+    ASSERT_EQ(pass.threads.chunks(m.springs.size()), threads);
+    std::vector<Vec3> f;
+    std::vector<double> r;
+    EXPECT_EQ(internal_forces(m, s.x, f, &pass), 2);
+    EXPECT_EQ(safe_row_sums(m, s.x, r, &pass), compressed);
+    EXPECT_TRUE(same_bits(f, want_f));
+    EXPECT_TRUE(same_bits(r, want_r));
   }
 }
 
