@@ -85,9 +85,20 @@ SpringCounts owned_pass(const Model& model, const std::vector<Vec3>& x, std::vec
     if (row_sum) start_rows(model, i, &acc[9 * i]);
   }
   const bool all = begin == 0 && end == x.size();
-  const size_t ns = model.springs.size();
+  // Only the springs from the first to the last listed at these nodes can reach them: on a
+  // mesh numbered along its rows or layers, about this range's share of the list.
+  size_t first = 0, last = model.springs.size();
+  if (!all) {
+    std::swap(first, last);
+    for (int e = model.incident_offset[begin]; e < model.incident_offset[end]; ++e) {
+      const int k = model.incident[static_cast<size_t>(e)];
+      const size_t spring = static_cast<size_t>(k >= 0 ? k : ~k);
+      first = std::min(first, spring);
+      last = std::max(last, spring + 1);
+    }
+  }
   double b[7];
-  for (size_t k = 0; k < ns; ++k) {
+  for (size_t k = first; k < last; ++k) {
     const size_t i = static_cast<size_t>(model.springs[k].i);
     const size_t j = static_cast<size_t>(model.springs[k].j);
     const bool own_i = all || (i >= begin && i < end), own_j = all || (j >= begin && j < end);
