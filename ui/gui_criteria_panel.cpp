@@ -52,7 +52,11 @@ void GuiApp::criteria_panel() {
                                 ? std::string("at rest")
                                 : "at iteration " + std::to_string(c.exact_iteration());
   ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
-  ImGui::TextWrapped("at iteration %d; exact analysis %s (%s)%s", t.session().state().iteration,
+  // On a large mesh the rows follow a playing run every 0.2 s: say when they are behind it.
+  const int now = t.session().state().iteration, rows_at = c.rows_iteration();
+  const std::string behind =
+      rows_at == now ? "" : " (the run is at " + std::to_string(now) + ")";
+  ImGui::TextWrapped("at iteration %d%s; exact analysis %s (%s)%s", rows_at, behind.c_str(),
                      where.c_str(), e != nullptr ? to_string(e->method) : "unavailable",
                      c.computing() ? "; computing a new one" : "");
   ImGui::PopStyleColor();

@@ -1,5 +1,7 @@
 #include "ui/mesh_style.hpp"
 
+#include <algorithm>
+
 namespace dampbound::ui {
 
 ImU32 status_color(NodeStatus status) {
@@ -73,6 +75,16 @@ ImU32 node_color(NodeStatus status, bool unguaranteed) {
   const bool shown = status == NodeStatus::within || status == NodeStatus::clamped ||
                      status == NodeStatus::violating;
   return unguaranteed && shown ? unguaranteed_color() : status_color(status);
+}
+
+float spring_alpha(float spring_spacing_px) {
+  return std::clamp((spring_spacing_px - 1.5f) / 4.0f, kFaintestSprings, 1.0f);
+}
+
+bool springs_drawn(bool shown, float spring_spacing_px, size_t springs, bool playing) {
+  if (!shown) return false;
+  const bool faintest = !(spring_alpha(spring_spacing_px) > kFaintestSprings);
+  return !(playing && springs > kMultisampleSpringsWhilePlaying && faintest);
 }
 
 int mesh_samples(float spring_spacing_px, size_t springs, bool playing) {

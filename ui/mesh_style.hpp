@@ -35,6 +35,19 @@ ImU32 node_color(NodeStatus status, bool unguaranteed);
 constexpr size_t kMultisampleSpringsWhilePlaying = 20000;
 int mesh_samples(float spring_spacing_px, size_t springs, bool playing);
 
+/// Opacity of the springs drawn `spring_spacing_px` apart (median projected length): 1 from
+/// 5.5 px on, fading below, down to kFaintestSprings (lines closer than ~5 px alias into
+/// moire; the fade keeps the nodes' colours readable through them).
+constexpr float kFaintestSprings = 0.15f;
+float spring_alpha(float spring_spacing_px);
+
+/// Whether the springs are drawn. A big mesh (over kMultisampleSpringsWhilePlaying springs)
+/// whose springs are at their faintest (spring_alpha) leaves them out while it plays: lines
+/// that close cannot be told apart, and a software rasteriser pays for each one (about 20 ms
+/// of a frame for the 119 201 springs of a 200 x 200 plane on llvmpipe, docs/performance.md).
+/// Paused, or zoomed in, they are drawn again.
+bool springs_drawn(bool shown, float spring_spacing_px, size_t springs, bool playing);
+
 /// Colour of the springs and of the watched-node marker.
 ImU32 spring_color();
 ImU32 watched_color();

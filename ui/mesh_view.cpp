@@ -262,13 +262,15 @@ void MeshView::draw(Tuner& tuner) {
   // Dense meshes: lines a few pixels apart alias into moire, and points wider than the spacing
   // overlap in a pattern of their own. Below ~5 px the lines and nodes fade and the points
   // shrink to the spacing.
-  d.spring_alpha = std::clamp((spacing - 1.5f) / 4.0f, 0.15f, 1.0f);
+  d.spring_alpha = spring_alpha(spacing);
   d.point_size = std::min(options.point_size, std::max(2.0f, 0.9f * spacing));
   // Below 5 px, 4x multisampling against the moire, except on a big mesh while it plays
   // (ui/mesh_style.hpp).
   d.samples = mesh_samples(spacing, s.model().springs.size(), tuner.playing());
   d.point_alpha = std::clamp((spacing - 1.5f) / 3.0f, 0.3f, 1.0f);
-  d.springs = options.show_springs;
+  d.springs = springs_drawn(options.show_springs, spacing, s.model().springs.size(),
+                            tuner.playing());
+  springs_left_out_ = options.show_springs && !d.springs;
   d.anchors = options.show_anchors;
   const ImGuiIO& io = ImGui::GetIO();
   const int fb_w = static_cast<int>(size.x * io.DisplayFramebufferScale.x);
@@ -299,8 +301,15 @@ void MeshView::draw(Tuner& tuner) {
   const char* hint = cut_tool ? "cut tool: drag a line across springs to remove them"
                               : "drag: orbit | click node: watch | drag node: move it | "
                                 "right/middle drag: pan | wheel: zoom";
-  for (const char* shorter : {cut_tool ? "drag a line: cut" : "drag: orbit | click: watch | right: pan | wheel: zoom",
-                              cut_tool ? "drag a line: cut" : "drag: orbit | click: watch"})
+  const char* shorter_hints[2] = {
+      cut_tool ? "drag a line: cut" : "drag: orbit | click: watch | right: pan | wheel: zoom",
+      cut_tool ? "drag a line: cut" : "drag: orbit | click: watch"};
+  if (springs_left_out_ && !cut_tool) {  // ui/mesh_style.hpp springs_drawn()
+    hint = "springs left out while playing: too dense to tell apart (pause or zoom in)";
+    shorter_hints[0] = "springs left out while playing (pause or zoom in)";
+    shorter_hints[1] = "springs left out while playing";
+  }
+  for (const char* shorter : shorter_hints)
     if (ImGui::CalcTextSize(hint).x > ImGui::GetContentRegionAvail().x) hint = shorter;
   ImGui::TextDisabled("%s", hint);
 }

@@ -57,6 +57,7 @@ class MeshView {
   MeshRenderer renderer_;
   OrbitCamera camera_;
   Viewport viewport_;
+  bool springs_left_out_ = false;  ///< the last image left the shown springs out (playing)
   bool fit_pending_ = true;
   const void* fitted_scene_ = nullptr;
   /// What the last rendered image showed: it is drawn again only when this changes.

@@ -147,6 +147,7 @@ const std::vector<CriterionResult>& TunerCriteria::evaluate(const Session& s,
   rows_key_ = p;
   rows_exact_version_ = exact_version_;
   rows_time_ = now;
+  rows_iteration_ = s.state().iteration;
   results_.clear();
   try {
     if (e != nullptr) {

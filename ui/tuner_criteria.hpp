@@ -63,6 +63,9 @@ class TunerCriteria {
   /// exact_iteration().
   bool exact_at_rest() const { return exact_at_rest_; }
   int exact_iteration() const { return exact_iteration_; }
+  /// The iteration of the state the rows on show were evaluated at: on a large mesh, while
+  /// only the state moves, up to a follow interval behind the run.
+  int rows_iteration() const { return rows_iteration_; }
   /// How many times the exact analysis ran (tests: the cache works).
   int exact_runs() const { return exact_runs_; }
 
@@ -96,6 +99,7 @@ class TunerCriteria {
   std::uint64_t rows_topology_ = 0, rows_exact_version_ = 0;
   Params rows_key_;
   double rows_time_ = 0;
+  int rows_iteration_ = 0;
 };
 
 /// What the Suggest button produced, and for which parameters.

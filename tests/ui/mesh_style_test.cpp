@@ -14,6 +14,20 @@ TEST(MeshStyle, MultisamplingOnlyWhereItPays) {
   EXPECT_EQ(mesh_samples(3.0f, kMultisampleSpringsWhilePlaying + 1, true), 1);   // playing
 }
 
+TEST(MeshStyle, SpringsFadeWithTheirSpacingAndABigMeshLeavesTheFaintestOutWhilePlaying) {
+  EXPECT_EQ(spring_alpha(6.0f), 1.0f);
+  EXPECT_GT(spring_alpha(3.0f), kFaintestSprings);
+  EXPECT_LT(spring_alpha(3.0f), 1.0f);
+  EXPECT_EQ(spring_alpha(2.0f), kFaintestSprings);
+  EXPECT_EQ(spring_alpha(0.5f), kFaintestSprings);
+  const size_t big = kMultisampleSpringsWhilePlaying + 1;
+  EXPECT_FALSE(springs_drawn(true, 2.0f, big, true));   // faintest, big, playing: left out
+  EXPECT_TRUE(springs_drawn(true, 2.0f, big, false));   // paused
+  EXPECT_TRUE(springs_drawn(true, 3.0f, big, true));    // zoomed in: apart enough to see
+  EXPECT_TRUE(springs_drawn(true, 2.0f, 100, true));    // a small mesh costs little
+  EXPECT_FALSE(springs_drawn(false, 8.0f, 100, false)); // the user hid them
+}
+
 TEST(MeshStyle, NotGuaranteedNodesGetTheirOwnColourUnlessThePaperRaisesItsAlarm) {
   EXPECT_NE(unguaranteed_color(), status_color(NodeStatus::within));
   for (NodeStatus s : {NodeStatus::within, NodeStatus::clamped, NodeStatus::violating,

@@ -64,9 +64,11 @@ TEST(TunerCriteria, ALargeMeshRefreshesItsRowsAtTheFollowInterval) {
   t.criteria();
   c.wait();  // the analysis at rest arrives: the rows are evaluated again with it
   EXPECT_EQ(find(t.criteria(), "paper upper bound")->verdict, CriterionVerdict::not_applicable);
+  EXPECT_EQ(c.rows_iteration(), 0);
   t.step(3);
-  // Only the state moved, within the interval: the rows on show are the last ones.
+  // Only the state moved, within the interval: the rows on show are the last ones, and say so.
   EXPECT_EQ(find(t.criteria(), "paper upper bound")->verdict, CriterionVerdict::not_applicable);
+  EXPECT_EQ(c.rows_iteration(), 0);
   Params p = t.params();
   p.gamma = 0.0005;
   ASSERT_TRUE(t.set_params(p));  // a parameter: at once
@@ -74,6 +76,7 @@ TEST(TunerCriteria, ALargeMeshRefreshesItsRowsAtTheFollowInterval) {
   c.set_follow_interval(0);
   t.step(1);
   EXPECT_NE(find(t.criteria(), "paper upper bound")->verdict, CriterionVerdict::not_applicable);
+  EXPECT_EQ(c.rows_iteration(), 4);
   c.wait();
 }
 
