@@ -1,5 +1,6 @@
 #include "ui/tuner_criteria.hpp"
 #include "core/analysis/criteria_safe.hpp"
+#include "ui/worker_priority.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -110,6 +111,7 @@ const ExactStability* TunerCriteria::exact(const Session& s, std::uint64_t topol
     job_ = std::async(std::launch::async,
                       [model = s.model(), x = at_state_ ? s.state().x : s.model().rest,
                        params = s.params(), iteration, at = at_state_] {
+                        lower_worker_priority();
                         const double t0 = seconds_now();
                         Finished f;
                         f.exact = analyse(model, x, params);
@@ -185,6 +187,7 @@ void TunerSuggest::start(const SceneSpec& scene, const Params& params, const Sto
   if (busy()) return;
   error_.clear();
   pending_ = std::async(std::launch::async, [scene, params, rules, cut] {
+    lower_worker_priority();
     Suggestion s;
     s.params = params;
     s.springs = scene.model.spring_count();

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "ui/worker_priority.hpp"
+
 namespace dampbound::ui {
 
 namespace {
@@ -158,6 +160,7 @@ void TunerMap::start(const SceneSpec& scene, const Params& centre, const StopRul
   job_ = std::make_shared<Job>();
   Job* job = job_.get();
   job->thread = std::thread([this, job, s = std::move(s), centre, rules, view] {
+    lower_worker_priority();
     try {
       std::shared_ptr<const MapBoundConstants> k;
       {
