@@ -56,9 +56,13 @@ void GuiApp::criteria_panel() {
   const int now = t.session().state().iteration, rows_at = c.rows_iteration();
   const std::string behind =
       rows_at == now ? "" : " (the run is at " + std::to_string(now) + ")";
-  ImGui::TextWrapped("at iteration %d%s; exact analysis %s (%s)%s", rows_at, behind.c_str(),
-                     where.c_str(), e != nullptr ? to_string(e->method) : "unavailable",
-                     c.computing() ? "; computing a new one" : "");
+  // Before the first result arrives there is no analysis to place at rest or at a state.
+  const std::string exact =
+      e != nullptr ? "exact analysis " + where + " (" + to_string(e->method) + ")" +
+                         (c.computing() ? "; computing a new one" : "")
+                   : c.computing() ? std::string("exact analysis: computing")
+                                   : std::string("exact analysis unavailable");
+  ImGui::TextWrapped("at iteration %d%s; %s", rows_at, behind.c_str(), exact.c_str());
   ImGui::PopStyleColor();
   const ImGuiTableFlags tf = ImGuiTableFlags_SizingStretchProp | ImGuiTableFlags_ScrollY |
                              ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerH;
