@@ -1,8 +1,9 @@
 #pragma once
 // The tuner's background work (the exact analysis, Suggest, the Map) runs at a lower priority
 // than the frames: on a machine whose cores the playing mesh and the rasteriser already fill,
-// a worker at the same priority takes its share of every frame (the first two seconds of a
-// 40k-node plane played at 120 to 140 ms per frame while its analysis ran, 70 ms after).
+// a worker at the same priority takes its share of every frame (with the exact analysis
+// following the state of a playing 40k-node plane: mean frame 72 to 73 ms at the frames'
+// priority, 64 to 70 ms at kWorkerNice; docs/performance.md).
 // Threads the worker starts (the Lanczos products' pool) inherit the priority.
 
 namespace dampbound::ui {
