@@ -84,12 +84,12 @@ float spring_alpha(float spring_spacing_px) {
 bool springs_drawn(bool shown, float spring_spacing_px, size_t springs, bool playing) {
   if (!shown) return false;
   const bool faintest = !(spring_alpha(spring_spacing_px) > kFaintestSprings);
-  return !(playing && springs > kMultisampleSpringsWhilePlaying && faintest);
+  return !(playing && springs > kBigMeshSprings && faintest);
 }
 
 int mesh_samples(float spring_spacing_px, size_t springs, bool playing) {
   if (!(spring_spacing_px < 5.0f)) return 1;
-  return playing && springs > kMultisampleSpringsWhilePlaying ? 1 : 4;
+  return playing && springs > kBigMeshSprings ? 1 : 4;
 }
 
 }  // namespace dampbound::ui

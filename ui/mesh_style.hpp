@@ -28,11 +28,13 @@ const char* unguaranteed_help();
 /// The node's colour: status_color, or unguaranteed_color as above.
 ImU32 node_color(NodeStatus status, bool unguaranteed);
 
+/// A mesh with more springs than this is big: while it plays, its image is made cheaper
+/// (mesh_samples, springs_drawn), what a software rasteriser (llvmpipe) pays on every frame.
+constexpr size_t kBigMeshSprings = 20000;
+
 /// Samples per pixel of the mesh image. Springs closer than 5 px alias into moire, which 4x
-/// multisampling smooths, at four times the fill rate. A software rasteriser (llvmpipe) pays
-/// that on every frame while a big mesh plays: above kMultisampleSpringsWhilePlaying springs
-/// a playing mesh is drawn with 1 sample (motion hides the moire) and 4 again when paused.
-constexpr size_t kMultisampleSpringsWhilePlaying = 20000;
+/// multisampling smooths, at four times the fill rate: a big mesh (kBigMeshSprings) is drawn
+/// with 1 sample while it plays (motion hides the moire) and 4 again when paused.
 int mesh_samples(float spring_spacing_px, size_t springs, bool playing);
 
 /// Opacity of the springs drawn `spring_spacing_px` apart (median projected length): 1 from
@@ -41,7 +43,7 @@ int mesh_samples(float spring_spacing_px, size_t springs, bool playing);
 constexpr float kFaintestSprings = 0.15f;
 float spring_alpha(float spring_spacing_px);
 
-/// Whether the springs are drawn. A big mesh (over kMultisampleSpringsWhilePlaying springs)
+/// Whether the springs are drawn. A big mesh (over kBigMeshSprings springs)
 /// whose springs are at their faintest (spring_alpha) leaves them out while it plays: lines
 /// that close cannot be told apart, and a software rasteriser pays for each one (about 20 ms
 /// of a frame for the 119 201 springs of a 200 x 200 plane on llvmpipe, docs/performance.md).

@@ -10,8 +10,8 @@ namespace {
 TEST(MeshStyle, MultisamplingOnlyWhereItPays) {
   EXPECT_EQ(mesh_samples(8.0f, 100, false), 1);  // lines far apart: no moire
   EXPECT_EQ(mesh_samples(3.0f, 100, true), 4);   // small dense mesh: always smooth
-  EXPECT_EQ(mesh_samples(3.0f, kMultisampleSpringsWhilePlaying + 1, false), 4);  // paused
-  EXPECT_EQ(mesh_samples(3.0f, kMultisampleSpringsWhilePlaying + 1, true), 1);   // playing
+  EXPECT_EQ(mesh_samples(3.0f, kBigMeshSprings + 1, false), 4);  // paused
+  EXPECT_EQ(mesh_samples(3.0f, kBigMeshSprings + 1, true), 1);   // playing
 }
 
 TEST(MeshStyle, SpringsFadeWithTheirSpacingAndABigMeshLeavesTheFaintestOutWhilePlaying) {
@@ -20,7 +20,7 @@ TEST(MeshStyle, SpringsFadeWithTheirSpacingAndABigMeshLeavesTheFaintestOutWhileP
   EXPECT_LT(spring_alpha(3.0f), 1.0f);
   EXPECT_EQ(spring_alpha(2.0f), kFaintestSprings);
   EXPECT_EQ(spring_alpha(0.5f), kFaintestSprings);
-  const size_t big = kMultisampleSpringsWhilePlaying + 1;
+  const size_t big = kBigMeshSprings + 1;
   EXPECT_FALSE(springs_drawn(true, 2.0f, big, true));   // faintest, big, playing: left out
   EXPECT_TRUE(springs_drawn(true, 2.0f, big, false));   // paused
   EXPECT_TRUE(springs_drawn(true, 3.0f, big, true));    // zoomed in: apart enough to see
