@@ -29,14 +29,16 @@ void add_spring(ModelSpec& spec, int i, int j, double kappa_scale) {
   spec.springs.push_back(s);
 }
 
-Model compile_model(ModelSpec spec, const Params& params) {
-  Model model;
-  static_cast<ModelSpec&>(model) = std::move(spec);
+namespace {
+
+/// Every per-node and per-spring value that depends on the params (SPEC 1 and 3), into the
+/// model's vectors, sized here.
+void apply_params(Model& model, const Params& params) {
   const size_t n = model.rest.size();
   model.mass.resize(n);
   model.gamma.resize(n);
   model.anchor_kappa.resize(n);
-  model.node_kappa.assign(n, 0.0);
+  model.node_kappa.resize(n);
   model.lower_bound.resize(n);
   model.spring_kappa.resize(model.springs.size());
   for (size_t i = 0; i < n; ++i) {
@@ -54,6 +56,19 @@ Model compile_model(ModelSpec spec, const Params& params) {
     ki = std::max(ki, kappa);
     kj = std::max(kj, kappa);
   }
+  // Paper eq. 5 with kappa_i = the largest stiffness incident to i (SPEC 3). A node with no
+  // spring and no anchor has kappa_i = 0 and so a lower bound of 0.
+  for (size_t i = 0; i < n; ++i)
+    model.lower_bound[i] = 2.0 * std::sqrt(model.mass[i] * model.node_kappa[i]);
+}
+
+}  // namespace
+
+Model compile_model(ModelSpec spec, const Params& params) {
+  Model model;
+  static_cast<ModelSpec&>(model) = std::move(spec);
+  apply_params(model, params);
+  const size_t n = model.rest.size();
   // Incidence lists by counting sort: springs are visited in index order, so each node's
   // list is sorted. A spring from a node to itself is listed once (it has no direction).
   model.incident_offset.assign(n + 1, 0);
@@ -69,11 +84,11 @@ Model compile_model(ModelSpec spec, const Params& params) {
     model.incident[static_cast<size_t>(fill[static_cast<size_t>(s.i)]++)] = k;
     if (s.j != s.i) model.incident[static_cast<size_t>(fill[static_cast<size_t>(s.j)]++)] = ~k;
   }
-  // Paper eq. 5 with kappa_i = the largest stiffness incident to i (SPEC 3). A node with no
-  // spring and no anchor has kappa_i = 0 and so a lower bound of 0.
-  for (size_t i = 0; i < n; ++i)
-    model.lower_bound[i] = 2.0 * std::sqrt(model.mass[i] * model.node_kappa[i]);
   return model;
+}
+
+void reparameterise(Model& model, const Params& params) {
+  apply_params(model, params);
 }
 
 ModelSpec without_springs(ModelSpec spec, const std::vector<int>& indices) {

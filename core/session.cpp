@@ -43,7 +43,7 @@ const RunResult& Session::run_to_end(const StepObserver& on_step) {
 void Session::set_params(const Params& params) {
   if (const auto why = validate(params)) throw InputError(*why);
   params_ = params;
-  model_ = compile_model(model_, params_);
+  reparameterise(model_, params_);
 }
 
 void Session::set_watched(int node) {

@@ -87,6 +87,29 @@ TEST(CompileModel, RecompilingAModelWithOtherParamsIsCompilingItsSpec) {
   EXPECT_NE(b.lower_bound, a.lower_bound);
 }
 
+TEST(Reparameterise, InPlaceGivesTheValuesOfCompilingTheSpecAndKeepsTheIncidence) {
+  Params q = some_params();
+  q.kappa = 0.5;
+  q.m = 0.3;
+  q.gamma = 0.07;
+  Model a = compile_model(three_in_a_row(), q);
+  const std::vector<int> offsets = a.incident_offset, incident = a.incident;
+  // Down to a smaller kappa: every node's kappa_i must fall with it, not keep the old maximum.
+  const Params p = some_params();
+  reparameterise(a, p);
+  const Model c = compile_model(three_in_a_row(), p);
+  EXPECT_EQ(a.mass, c.mass);
+  EXPECT_EQ(a.gamma, c.gamma);
+  EXPECT_EQ(a.anchor_kappa, c.anchor_kappa);
+  EXPECT_EQ(a.spring_kappa, c.spring_kappa);
+  EXPECT_EQ(a.node_kappa, c.node_kappa);
+  EXPECT_EQ(a.lower_bound, c.lower_bound);
+  EXPECT_DOUBLE_EQ(a.node_kappa[1], 0.6000000000000001);  // 0.2 * 3, not 0.5 * 3
+  EXPECT_EQ(a.incident_offset, offsets);
+  EXPECT_EQ(a.incident, incident);
+  EXPECT_EQ(a.incident, c.incident);
+}
+
 TEST(WithoutSprings, ACutRemovesItsSpringsAndTheBoundsFollowOnCompile) {
   const Params p = some_params();
   const ModelSpec s = three_in_a_row();
