@@ -96,7 +96,8 @@ void measure(const char* kind, ModelSpec spec, int threads, int repeats) {
   const double best1 = *std::min_element(one.begin(), one.end());
   const double bestT = *std::min_element(many.begin(), many.end());
   const double ns = 1e9 / model.node_count(), springs = model.spring_count();
-  const size_t nb = node_bytes(model, s, ws), sb = spring_bytes(model);
+  const double nb = static_cast<double>(node_bytes(model, s, ws));
+  const double sb = static_cast<double>(spring_bytes(model));
   std::printf("%-6s %8d nodes %8d springs  1 thread %6.1f (median %6.1f)  %d threads %6.1f "
               "(median %6.1f) ns/node-step  x%.2f (pairs x%.2f to x%.2f)  %4.0f B/node "
               "%3.0f B/spring %6.1f MB\n",
