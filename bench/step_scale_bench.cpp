@@ -19,6 +19,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <vector>
 
 #include "bench/bench_meshes.hpp"
 #include "core/step.hpp"
@@ -139,8 +140,10 @@ int main(int argc, char** argv) {
     return 2;
   }
   for (int n : {32, 100, 317, 1000})
-    if (mesh != "block" && long(n) * n <= max_nodes) measure("plane", bench::plane(n), threads, repeats);
+    if (mesh != "block" && long(n) * n <= max_nodes)
+      measure("plane", bench::plane(n), threads, repeats);
   for (int n : {10, 22, 46, 100})
-    if (mesh != "plane" && long(n) * n * n <= max_nodes) measure("block", bench::tet_block(n, n, n), threads, repeats);
+    if (mesh != "plane" && long(n) * n * n <= max_nodes)
+      measure("block", bench::tet_block(n, n, n), threads, repeats);
   return 0;
 }
