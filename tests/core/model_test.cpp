@@ -33,6 +33,16 @@ Params some_params() {
   return p;
 }
 
+/// Every value compile_model derives from the params, equal in `a` and `b`.
+void expect_same_parameter_values(const Model& a, const Model& b) {
+  EXPECT_EQ(a.mass, b.mass);
+  EXPECT_EQ(a.gamma, b.gamma);
+  EXPECT_EQ(a.anchor_kappa, b.anchor_kappa);
+  EXPECT_EQ(a.spring_kappa, b.spring_kappa);
+  EXPECT_EQ(a.node_kappa, b.node_kappa);
+  EXPECT_EQ(a.lower_bound, b.lower_bound);
+}
+
 TEST(ModelSpec, AddNodeAndSpringGiveUnitScalesAndTheRestDistance) {
   const ModelSpec s = three_in_a_row();
   ASSERT_EQ(s.node_count(), 3);
@@ -79,11 +89,7 @@ TEST(CompileModel, RecompilingAModelWithOtherParamsIsCompilingItsSpec) {
   q.kappa = 0.5;
   q.m = 0.3;
   const Model b = compile_model(a, q);
-  const Model c = compile_model(three_in_a_row(), q);
-  EXPECT_EQ(b.mass, c.mass);
-  EXPECT_EQ(b.spring_kappa, c.spring_kappa);
-  EXPECT_EQ(b.node_kappa, c.node_kappa);
-  EXPECT_EQ(b.lower_bound, c.lower_bound);
+  expect_same_parameter_values(b, compile_model(three_in_a_row(), q));
   EXPECT_NE(b.lower_bound, a.lower_bound);
 }
 
@@ -98,12 +104,7 @@ TEST(Reparameterise, InPlaceGivesTheValuesOfCompilingTheSpecAndKeepsTheIncidence
   const Params p = some_params();
   reparameterise(a, p);
   const Model c = compile_model(three_in_a_row(), p);
-  EXPECT_EQ(a.mass, c.mass);
-  EXPECT_EQ(a.gamma, c.gamma);
-  EXPECT_EQ(a.anchor_kappa, c.anchor_kappa);
-  EXPECT_EQ(a.spring_kappa, c.spring_kappa);
-  EXPECT_EQ(a.node_kappa, c.node_kappa);
-  EXPECT_EQ(a.lower_bound, c.lower_bound);
+  expect_same_parameter_values(a, c);
   EXPECT_DOUBLE_EQ(a.node_kappa[1], 0.6000000000000001);  // 0.2 * 3, not 0.5 * 3
   EXPECT_EQ(a.incident_offset, offsets);
   EXPECT_EQ(a.incident, incident);
