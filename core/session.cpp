@@ -1,5 +1,6 @@
 #include "core/session.hpp"
 
+#include <atomic>
 #include <stdexcept>
 #include <utility>
 
@@ -10,8 +11,7 @@ namespace dampbound {
 Session::Session(SceneSpec scene, const Params& params, const StopRules& rules)
     : scene_(std::move(scene)),
       params_(params),
-      rules_(rules),
-      model_(compile_model(scene_.model, params_)) {
+      rules_(rules) {
   watched_ = scene_.watched;
   reset();
 }
@@ -20,10 +20,10 @@ Session::Session(SceneSpec scene) : Session(scene, scene.params, scene.rules) {}
 
 const StepSample& Session::step_once() {
   for (const CutEvent& c : scene_.cuts)
-    if (c.iteration == state_.iteration) cut(springs_crossing(model_, state_.x, c.from, c.to));
+    if (c.iteration == state_.iteration) cut(springs_crossing(*model_, state_.x, c.from, c.to));
   StepSample sample;
-  static_cast<StepStats&>(sample) = step(model_, params_, state_, ws_);
-  sample.watched = sample_node(model_, state_, ws_, watched_);
+  static_cast<StepStats&>(sample) = step(*model_, params_, state_, ws_);
+  sample.watched = sample_node(*model_, state_, ws_, watched_);
   if (keep_trace_ || trace_.empty())
     trace_.push_back(sample);
   else
@@ -43,16 +43,23 @@ const RunResult& Session::run_to_end(const StepObserver& on_step) {
 void Session::set_params(const Params& params) {
   if (const auto why = validate(params)) throw InputError(*why);
   params_ = params;
-  reparameterise(model_, params_);
+  // Copy on write: a worker may be reading a shared_model() snapshot. The count is only ever
+  // raised on this thread; a holder that let go released its reads with its decrement, which
+  // the fence acquires before the model is written.
+  if (model_.use_count() > 1)
+    model_ = std::make_shared<Model>(*model_);
+  else
+    std::atomic_thread_fence(std::memory_order_acquire);
+  reparameterise(*model_, params_);
 }
 
 void Session::set_watched(int node) {
-  if (node < 0 || node >= model_.node_count()) throw std::out_of_range("watched node");
+  if (node < 0 || node >= model_->node_count()) throw std::out_of_range("watched node");
   watched_ = node;
 }
 
 void Session::reset() {
-  model_ = compile_model(scene_.model, params_);
+  model_ = std::make_shared<Model>(compile_model(scene_.model, params_));
   state_ = initial_state(scene_);
   trace_.clear();
   result_ = RunResult{};
@@ -67,13 +74,13 @@ void Session::perturb() {
 }
 
 void Session::displace(int node, const Vec3& offset) {
-  if (node < 0 || node >= model_.node_count()) throw std::out_of_range("node");
-  if (!model_.fixed[static_cast<size_t>(node)]) state_.x[static_cast<size_t>(node)] += offset;
+  if (node < 0 || node >= model_->node_count()) throw std::out_of_range("node");
+  if (!model_->fixed[static_cast<size_t>(node)]) state_.x[static_cast<size_t>(node)] += offset;
 }
 
 SceneSpec Session::current_scene() const {
   SceneSpec s = scene_;
-  s.model = model_;  // the topology as cut so far, without this run's parameters
+  s.model = *model_;  // the topology as cut so far, without this run's parameters
   s.cuts.clear();
   // step_once applies a cut due at iteration k before the step that leaves iteration k.
   for (const CutEvent& c : scene_.cuts)
@@ -82,9 +89,9 @@ SceneSpec Session::current_scene() const {
 }
 
 int Session::cut(const std::vector<int>& springs) {
-  const int before = model_.spring_count();
-  model_ = compile_model(without_springs(model_, springs), params_);
-  const int removed = before - model_.spring_count();
+  const int before = model_->spring_count();
+  model_ = std::make_shared<Model>(compile_model(without_springs(*model_, springs), params_));
+  const int removed = before - model_->spring_count();
   springs_cut_ += removed;
   return removed;
 }

@@ -1,6 +1,7 @@
 #pragma once
 // A running experiment: a scene's model, its state, the parameters, the trace and the verdict.
 // The GUI, `run`, `figure` and `check` all drive a Session, and a Session calls the one step().
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -47,7 +48,12 @@ class Session {
   /// or by hand), the scene's cuts not reached yet, everything else as loaded. What a
   /// suggestion or a fresh run for "this mesh" starts from.
   SceneSpec current_scene() const;
-  const Model& model() const { return model_; }
+  const Model& model() const { return *model_; }
+  /// The same model, shared and never changed again: what a worker thread reads while the run
+  /// goes on, without a copy. A later parameter change refills the model in place only when
+  /// no one else holds it and otherwise gives the session a copy, so a snapshot keeps the
+  /// values it was taken with; a cut or a reset gives the session a new model.
+  std::shared_ptr<const Model> shared_model() const { return model_; }
   const State& state() const { return state_; }
   const StepWorkspace& workspace() const { return ws_; }
   const Params& params() const { return params_; }
@@ -68,7 +74,7 @@ class Session {
   SceneSpec scene_;
   Params params_;
   StopRules rules_;
-  Model model_;
+  std::shared_ptr<Model> model_;  // never null after construction
   State state_;
   StepWorkspace ws_;
   int watched_ = 0;

@@ -6,6 +6,8 @@
 #include <chrono>
 #include <cmath>
 #include <exception>
+#include <utility>
+#include <vector>
 
 namespace dampbound::ui {
 
@@ -105,16 +107,19 @@ const ExactStability* TunerCriteria::exact(const Session& s, std::uint64_t topol
   key_ = s.params();
   ++exact_runs_;
   if (on_worker) {
-    // On a worker thread, from copies, so a frame never waits for it; the last result stays
-    // on show meanwhile (computing() says a new one is on its way).
+    // On a worker thread, so a frame never waits for it; the last result stays on show
+    // meanwhile (computing() says a new one is on its way). The worker shares the session's
+    // model (no copy: a parameter change copies it only while the worker still holds it) and
+    // copies only the positions it follows.
     const int iteration = at_state_ ? s.state().iteration : 0;
+    std::vector<Vec3> x = at_state_ ? s.state().x : std::vector<Vec3>{};
     job_ = std::async(std::launch::async,
-                      [model = s.model(), x = at_state_ ? s.state().x : s.model().rest,
-                       params = s.params(), iteration, at = at_state_] {
+                      [model = s.shared_model(), x = std::move(x), params = s.params(),
+                       iteration, at = at_state_] {
                         lower_worker_priority();
                         const double t0 = seconds_now();
                         Finished f;
-                        f.exact = analyse(model, x, params);
+                        f.exact = analyse(*model, at ? x : model->rest, params);
                         f.iteration = iteration;
                         f.at_state = at;
                         f.seconds = seconds_now() - t0;

@@ -1,4 +1,5 @@
-// Session: the trace it keeps, and a trial that stops when asked (the plain sweep's Ctrl-C).
+// Session: the trace it keeps, a trial that stops when asked (the plain sweep's Ctrl-C), and
+// the model it shares with a worker thread.
 #include "core/session.hpp"
 
 #include <gtest/gtest.h>
@@ -41,6 +42,48 @@ TEST(Session, APlainTrialStopsWhenCancelled) {
   const TrialResult r = run_reference(scene, scene.params.policy, rules, p, &cancel);
   EXPECT_EQ(r.outcome, Outcome::running);
   EXPECT_EQ(r.iterations, 0);
+}
+
+TEST(Session, ASharedModelKeepsItsValuesWhileTheSessionGoesOn) {
+  // The tuner's analysis worker reads shared_model() while the frames change the parameters
+  // and cut springs: the snapshot must keep what it was taken with, and the run must step
+  // exactly as a session that was never shared.
+  const SceneSpec scene = load_scene(test::source_path("scenes/paper-plane.toml"));
+  Session shared(scene), alone(scene);
+  for (int k = 0; k < 5; ++k) {
+    shared.step_once();
+    alone.step_once();
+  }
+  Params p = scene.params;
+  p.kappa *= 3;
+  p.m *= 0.5;
+
+  // Nobody holds the model: a parameter change refills it in place.
+  const Model* before = &alone.model();
+  alone.set_params(p);
+  EXPECT_EQ(&alone.model(), before);
+
+  const std::shared_ptr<const Model> snapshot = shared.shared_model();
+  EXPECT_EQ(snapshot.get(), &shared.model());  // shared, not copied
+  const std::vector<double> kappa_then = snapshot->spring_kappa, mass_then = snapshot->mass;
+  shared.set_params(p);
+  EXPECT_NE(&shared.model(), snapshot.get());  // held by the worker: the session copied it
+  EXPECT_EQ(snapshot->spring_kappa, kappa_then);
+  EXPECT_EQ(snapshot->mass, mass_then);
+  EXPECT_EQ(shared.model().spring_kappa, alone.model().spring_kappa);
+  EXPECT_EQ(shared.model().mass, alone.model().mass);
+  EXPECT_EQ(shared.model().lower_bound, alone.model().lower_bound);
+
+  const int springs_then = snapshot->spring_count();
+  ASSERT_EQ(shared.cut({0, 1, 2}), 3);
+  ASSERT_EQ(alone.cut({0, 1, 2}), 3);
+  EXPECT_EQ(snapshot->spring_count(), springs_then);
+  for (int k = 0; k < 20; ++k) {
+    shared.step_once();
+    alone.step_once();
+  }
+  EXPECT_EQ(shared.state().x, alone.state().x);
+  EXPECT_EQ(shared.state().v, alone.state().v);
 }
 
 }  // namespace
