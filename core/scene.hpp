@@ -60,6 +60,8 @@ struct GridSpec {
   bool anchors = true;
 };
 
+/// A scene: its mesh and everything a run of it needs. A new field must also be copied by
+/// scene_as_run() (core/session.cpp), which copies every field but the mesh by name.
 struct SceneSpec {
   std::string name;
   std::string description;

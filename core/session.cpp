@@ -9,17 +9,17 @@
 namespace dampbound {
 
 Session::Session(SceneSpec scene, const Params& params, const StopRules& rules)
-    : scene_(std::move(scene)),
+    : scene_(std::make_shared<const SceneSpec>(std::move(scene))),
       params_(params),
       rules_(rules) {
-  watched_ = scene_.watched;
+  watched_ = scene_->watched;
   reset();
 }
 
 Session::Session(SceneSpec scene) : Session(scene, scene.params, scene.rules) {}
 
 const StepSample& Session::step_once() {
-  for (const CutEvent& c : scene_.cuts)
+  for (const CutEvent& c : scene_->cuts)
     if (c.iteration == state_.iteration) cut(springs_crossing(*model_, state_.x, c.from, c.to));
   StepSample sample;
   static_cast<StepStats&>(sample) = step(*model_, params_, state_, ws_);
@@ -59,15 +59,15 @@ void Session::set_watched(int node) {
 }
 
 void Session::reset() {
-  model_ = std::make_shared<Model>(compile_model(scene_.model, params_));
-  state_ = initial_state(scene_);
+  model_ = std::make_shared<Model>(compile_model(scene_->model, params_));
+  state_ = initial_state(*scene_);
   trace_.clear();
   result_ = RunResult{};
   springs_cut_ = 0;
 }
 
 void Session::perturb() {
-  for (const Perturbation& p : scene_.perturbations) {
+  for (const Perturbation& p : scene_->perturbations) {
     state_.x[static_cast<size_t>(p.node)] += p.displacement;
     state_.v[static_cast<size_t>(p.node)] += p.velocity;
   }
@@ -78,14 +78,28 @@ void Session::displace(int node, const Vec3& offset) {
   if (!model_->fixed[static_cast<size_t>(node)]) state_.x[static_cast<size_t>(node)] += offset;
 }
 
-SceneSpec Session::current_scene() const {
-  SceneSpec s = scene_;
-  s.model = *model_;  // the topology as cut so far, without this run's parameters
-  s.cuts.clear();
+SceneSpec scene_as_run(const SceneSpec& scene, const ModelSpec& model, int iteration) {
+  SceneSpec s;
+  s.model = model;  // the topology as cut so far (a Model gives its spec, without parameters)
+  // Everything but the model and the cuts, as loaded, without copying the loaded mesh.
+  s.name = scene.name;
+  s.description = scene.description;
+  s.path = scene.path;
+  s.grid = scene.grid;
+  s.params = scene.params;
+  s.rules = scene.rules;
+  s.perturbations = scene.perturbations;
+  s.watched = scene.watched;
+  s.runs = scene.runs;
+  s.expectations = scene.expectations;
   // step_once applies a cut due at iteration k before the step that leaves iteration k.
-  for (const CutEvent& c : scene_.cuts)
-    if (c.iteration >= state_.iteration) s.cuts.push_back(c);
+  for (const CutEvent& c : scene.cuts)
+    if (c.iteration >= iteration) s.cuts.push_back(c);
   return s;
+}
+
+SceneSpec Session::current_scene() const {
+  return scene_as_run(*scene_, *model_, state_.iteration);
 }
 
 int Session::cut(const std::vector<int>& springs) {

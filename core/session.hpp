@@ -10,6 +10,10 @@
 
 namespace dampbound {
 
+/// `scene` as a run of it has it at `iteration`, with `model`'s springs (the cuts made so
+/// far): the scene's cuts not reached yet, everything else as loaded (Session::current_scene).
+SceneSpec scene_as_run(const SceneSpec& scene, const ModelSpec& model, int iteration);
+
 class Session {
  public:
   /// Starts from the scene's perturbed state with the given parameters and stop rules.
@@ -43,10 +47,14 @@ class Session {
   /// Removes springs now (a cut); bounds react at the next step. Returns how many.
   int cut(const std::vector<int>& springs);
 
-  const SceneSpec& scene() const { return scene_; }
+  const SceneSpec& scene() const { return *scene_; }
+  /// The scene as loaded, shared (it never changes in a session): what a worker thread takes
+  /// instead of a copy.
+  std::shared_ptr<const SceneSpec> shared_scene() const { return scene_; }
   /// The scene as this run has it now: its springs as cut so far (from the scene's own cuts
   /// or by hand), the scene's cuts not reached yet, everything else as loaded. What a
-  /// suggestion or a fresh run for "this mesh" starts from.
+  /// suggestion or a fresh run for "this mesh" starts from. Copies the mesh; a worker can
+  /// build it from shared_scene() and shared_model() with scene_as_run().
   SceneSpec current_scene() const;
   const Model& model() const { return *model_; }
   /// The same model, shared and never changed again: what a worker thread reads while the run
@@ -71,7 +79,7 @@ class Session {
   int springs_cut() const { return springs_cut_; }
 
  private:
-  SceneSpec scene_;
+  std::shared_ptr<const SceneSpec> scene_;
   Params params_;
   StopRules rules_;
   std::shared_ptr<Model> model_;  // never null after construction

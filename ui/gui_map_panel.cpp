@@ -60,7 +60,7 @@ void GuiApp::map_panel() {
   if (ImGui::Combo("##cells", &pick, "16 x 16\0" "24 x 24\0" "32 x 32\0" "48 x 48\0" "64 x 64\0"))
     v.finest = sizes[pick];
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("Cells per axis of the finest pass");
-  map_.follow(t.scene(), t.scene_version(), t.params(), t.session().rules(), v);
+  map_.follow(t.session().shared_scene(), t.scene_version(), t.params(), t.session().rules(), v);
   const auto r = map_.result();
   const std::string why = map_.unsupported();
   std::string line;

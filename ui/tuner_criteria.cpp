@@ -184,15 +184,27 @@ TunerSuggest::~TunerSuggest() {
 }
 
 void TunerSuggest::start(const Session& session) {
-  start(session.current_scene(), session.params(), session.rules(), session.springs_cut());
+  launch(session.shared_scene(), session.shared_model(), session.state().iteration,
+         session.params(), session.rules(), session.springs_cut());
 }
 
 void TunerSuggest::start(const SceneSpec& scene, const Params& params, const StopRules& rules,
                          int cut) {
+  launch(std::make_shared<const SceneSpec>(scene), nullptr, 0, params, rules, cut);
+}
+
+void TunerSuggest::launch(std::shared_ptr<const SceneSpec> shared,
+                          std::shared_ptr<const Model> model, int iteration, const Params& params,
+                          const StopRules& rules, int cut) {
   if (busy()) return;
   error_.clear();
-  pending_ = std::async(std::launch::async, [scene, params, rules, cut] {
+  pending_ = std::async(std::launch::async, [shared = std::move(shared), model = std::move(model),
+                                             iteration, params, rules, cut] {
     lower_worker_priority();
+    // With a model: the scene as the run has it (Session::current_scene), built here.
+    std::optional<SceneSpec> as_run;
+    if (model) as_run = scene_as_run(*shared, *model, iteration);
+    const SceneSpec& scene = as_run ? *as_run : *shared;
     Suggestion s;
     s.params = params;
     s.springs = scene.model.spring_count();

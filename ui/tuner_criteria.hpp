@@ -119,7 +119,8 @@ class TunerSuggest {
   /// lost to cuts, for the record); ignored while one is running.
   void start(const SceneSpec& scene, const Params& params, const StopRules& rules, int cut = 0);
   /// The same for the mesh the session has now (Session::current_scene(): the cuts made so
-  /// far count) with its parameters and rules.
+  /// far count) with its parameters and rules. The worker builds that scene from the
+  /// session's shared scene and model: no copy of the mesh on the frame.
   void start(const Session& session);
   /// True while a computation runs.
   bool busy() const { return pending_.valid(); }
@@ -133,6 +134,9 @@ class TunerSuggest {
   const std::string& error() const { return error_; }
 
  private:
+  void launch(std::shared_ptr<const SceneSpec> scene, std::shared_ptr<const Model> model,
+              int iteration, const Params& params, const StopRules& rules, int cut);
+
   std::future<Suggestion> pending_;
   std::optional<Suggestion> result_;
   std::string error_;

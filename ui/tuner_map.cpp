@@ -119,7 +119,8 @@ std::string TunerMap::unsupported() const {
   return unsupported_;
 }
 
-void TunerMap::follow(const SceneSpec& scene, std::uint64_t scene_key, const Params& params,
+void TunerMap::follow(std::shared_ptr<const SceneSpec> scene, std::uint64_t scene_key,
+                      const Params& params,
                       const StopRules& rules, const MapView& view) {
   reap(false);
   const bool restart =
@@ -134,21 +135,19 @@ void TunerMap::follow(const SceneSpec& scene, std::uint64_t scene_key, const Par
     bounds_.reset();
   }
   scene_key_ = scene_key;
-  start(scene, params, rules, view);
+  start(std::move(scene), params, rules, view);
 }
 
-void TunerMap::start(const SceneSpec& scene, const Params& centre, const StopRules& rules,
-                     const MapView& view) {
+void TunerMap::start(std::shared_ptr<const SceneSpec> scene, const Params& centre,
+                     const StopRules& rules, const MapView& view) {
   started_ = true;
   ++starts_;
   centre_ = centre;
   rules_ = rules;
   view_ = view;
-  SceneSpec s = scene;
-  s.params = centre;
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    unsupported_ = batch_kernel_unsupported(s).value_or("");
+    unsupported_ = batch_kernel_unsupported(*scene, centre).value_or("");
     if (!(get_param(centre, view.x) > 0) || !(get_param(centre, view.y) > 0))
       unsupported_ = std::string("the map's axes are logarithmic: ") + to_string(view.x) +
                      " and " + to_string(view.y) + " must be > 0";
@@ -159,9 +158,11 @@ void TunerMap::start(const SceneSpec& scene, const Params& centre, const StopRul
   }
   job_ = std::make_shared<Job>();
   Job* job = job_.get();
-  job->thread = std::thread([this, job, s = std::move(s), centre, rules, view] {
+  job->thread = std::thread([this, job, scene = std::move(scene), centre, rules, view] {
     lower_worker_priority();
     try {
+      SceneSpec s = *scene;  // here, not on the frame: it copies the mesh
+      s.params = centre;
       std::shared_ptr<const MapBoundConstants> k;
       {
         std::lock_guard<std::mutex> lock(mutex_);

@@ -47,8 +47,9 @@ class TunerMap {
   TunerMap& operator=(const TunerMap&) = delete;
 
   /// Call every frame the map is shown (cheap when nothing changed). `scene_key` changes when
-  /// the scene does.
-  void follow(const SceneSpec& scene, std::uint64_t scene_key, const Params& params,
+  /// the scene does. The scene is shared with the worker, which takes its own copy (a big
+  /// mesh's copy is no frame's work).
+  void follow(std::shared_ptr<const SceneSpec> scene, std::uint64_t scene_key, const Params& params,
               const StopRules& rules, const MapView& view);
   /// The latest finished pass (null before the first).
   std::shared_ptr<const MapResult> result() const;
@@ -72,7 +73,7 @@ class TunerMap {
     std::atomic<bool> done{false};
     std::thread thread;
   };
-  void start(const SceneSpec& scene, const Params& centre, const StopRules& rules,
+  void start(std::shared_ptr<const SceneSpec> scene, const Params& centre, const StopRules& rules,
              const MapView& view);
   /// Cancels the running job, if any (it ends after its current step and publishes nothing
   /// more), and keeps it to be joined by reap().

@@ -53,6 +53,8 @@ KernelIsa best_kernel_isa();
 /// Why the batched kernel cannot run a scene (nullopt when it can): cuts (topology changes
 /// mid-run) and integrators other than the paper's semi-implicit Euler and forward Euler.
 std::optional<std::string> batch_kernel_unsupported(const SceneSpec& scene);
+/// The same for the scene run with `params` instead of its own.
+std::optional<std::string> batch_kernel_unsupported(const SceneSpec& scene, const Params& params);
 
 class BatchKernel {
  public:

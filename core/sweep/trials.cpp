@@ -21,8 +21,12 @@ Params trial_params(const Params& base, DampingPolicy policy, const TrialParams&
 }
 
 std::optional<std::string> batch_kernel_unsupported(const SceneSpec& scene) {
+  return batch_kernel_unsupported(scene, scene.params);
+}
+
+std::optional<std::string> batch_kernel_unsupported(const SceneSpec& scene, const Params& params) {
   if (!scene.cuts.empty()) return "the scene cuts springs during the run";
-  const Integrator in = scene.params.integrator;
+  const Integrator in = params.integrator;
   if (in != Integrator::semi_implicit_euler && in != Integrator::forward_euler)
     return std::string("integrator ") + to_string(in);
   return std::nullopt;

@@ -8,6 +8,7 @@
 
 #include "core/sweep/kernel.hpp"
 #include "core/io/scene_file.hpp"
+#include "core/io/scene_write.hpp"
 #include "core/sweep/trials.hpp"
 #include "tests/core/test_util.hpp"
 
@@ -84,6 +85,30 @@ TEST(Session, ASharedModelKeepsItsValuesWhileTheSessionGoesOn) {
   }
   EXPECT_EQ(shared.state().x, alone.state().x);
   EXPECT_EQ(shared.state().v, alone.state().v);
+}
+
+TEST(Session, TheSceneAsRunKeepsEveryFieldButTheCutsPassed) {
+  // scene_as_run copies the scene field by field (to leave the loaded mesh alone): written
+  // back as TOML, the scene at iteration 0 with its own mesh is the scene, for every shipped
+  // scene; past a cut's iteration the cut is gone and the mesh is the one given.
+  for (const char* name : {"paper-plane", "paper-plane-cut", "paper-plane-policies",
+                           "paper-plane-safe", "paper-plane-stiff", "paper-plane-tuned",
+                           "quad-cloth", "stiff-region", "tissue-block", "tissue-cap",
+                           "two-node-damping", "two-node"}) {
+    SCOPED_TRACE(name);
+    const std::string path = test::source_path(std::string("scenes/") + name + ".toml");
+    const SceneSpec scene = load_scene(path);
+    EXPECT_EQ(scene_toml(scene_as_run(scene, scene.model, 0), path), scene_toml(scene, path));
+  }
+  const SceneSpec scene = load_scene(test::source_path("scenes/paper-plane-cut.toml"));
+  ASSERT_FALSE(scene.cuts.empty());
+  Session s(scene);
+  while (s.state().iteration <= scene.cuts.front().iteration) s.step_once();
+  const SceneSpec now = s.current_scene();
+  EXPECT_EQ(now.cuts.size(), scene.cuts.size() - 1);
+  EXPECT_LT(now.model.springs.size(), scene.model.springs.size());
+  EXPECT_TRUE(same_topology(now.model, s.model()));
+  EXPECT_EQ(now.name, scene.name);
 }
 
 }  // namespace

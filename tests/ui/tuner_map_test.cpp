@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
 
 #include "core/bounds.hpp"
 #include "core/io/scene_file.hpp"
@@ -21,12 +22,13 @@ SceneSpec small_plane() {
 }
 
 TEST(TunerMap, WorkerPassesCoarseToFineAndFollowsTheCentre) {
-  const SceneSpec scene = small_plane();
+  const auto shared = std::make_shared<const SceneSpec>(small_plane());
+  const SceneSpec& scene = *shared;
   TunerMap map;
   MapView view;
   view.finest = 16;
   Params p = scene.params;
-  map.follow(scene, 1, p, scene.rules, view);
+  map.follow(shared, 1, p, scene.rules, view);
   map.wait();
   ASSERT_EQ(map.unsupported(), "");
   auto r = map.result();
@@ -43,17 +45,17 @@ TEST(TunerMap, WorkerPassesCoarseToFineAndFollowsTheCentre) {
     EXPECT_EQ(again[k].iterations, r->cells[k].iterations);
   }
   EXPECT_EQ(map.starts(), 1);
-  map.follow(scene, 1, p, scene.rules, view);  // nothing changed
+  map.follow(shared, 1, p, scene.rules, view);  // nothing changed
   p.gamma *= 1.5;                                // within the middle half of the window
-  map.follow(scene, 1, p, scene.rules, view);
+  map.follow(shared, 1, p, scene.rules, view);
   EXPECT_EQ(map.starts(), 1);
   p.gamma *= 10;  // out of it: the window moves
-  map.follow(scene, 1, p, scene.rules, view);
+  map.follow(shared, 1, p, scene.rules, view);
   EXPECT_EQ(map.starts(), 2);
   p.m *= 1.01;  // off the axes: every cell changes
-  map.follow(scene, 1, p, scene.rules, view);
+  map.follow(shared, 1, p, scene.rules, view);
   EXPECT_EQ(map.starts(), 3);
-  map.follow(scene, 2, p, scene.rules, view);  // another scene
+  map.follow(shared, 2, p, scene.rules, view);  // another scene
   EXPECT_EQ(map.starts(), 4);
   map.stop();
 }
@@ -62,7 +64,7 @@ TEST(TunerMap, SceneTheKernelCannotRunSaysWhy) {
   SceneSpec scene = small_plane();
   scene.cuts.push_back({5, {0, 0}, {1, 1}});
   TunerMap map;
-  map.follow(scene, 1, scene.params, scene.rules, MapView{});
+  map.follow(std::make_shared<const SceneSpec>(scene), 1, scene.params, scene.rules, MapView{});
   EXPECT_NE(map.unsupported(), "");
   EXPECT_FALSE(map.result());
 }
