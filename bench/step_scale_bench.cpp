@@ -4,7 +4,11 @@
 // 10k, 100k and 1M nodes.
 //
 //   step_scale_bench [--max-nodes N] [--threads T] [--repeats R] [--mesh plane|block|all]
-//                    (defaults 1100000, 2, 5, all)
+//                    [--what step|monitor]   (defaults 1100000, 2, 5, all, step)
+//
+// --what monitor times, instead of a step, what a user's own simulator asks the Monitor for
+// each step (core/monitor.hpp: the internal forces, then check() with the positions under
+// policy safe) on the same meshes and states, in ns per node-call.
 //
 // Each mesh starts with every free node moved by a small pseudo-random vector (all springs
 // busy) and runs policy clamp (bounds of eq. 5 and eq. 6 and SPEC 9's row sums every step)
@@ -22,6 +26,7 @@
 #include <vector>
 
 #include "bench/bench_meshes.hpp"
+#include "core/monitor.hpp"
 #include "core/step.hpp"
 
 namespace {
@@ -51,22 +56,59 @@ size_t spring_bytes(const Model& m) {
   return bytes(m.springs) + bytes(m.spring_kappa) + bytes(m.incident);
 }
 
-/// Wall seconds per step of `threads` threads, over at least 0.3 s.
-double seconds_per_step(const Model& model, const Params& p, const State& start, int threads,
-                        StepWorkspace& ws) {
-  State s = start;
-  ws.pass.threads.set_threads(threads);
-  step(model, p, s, ws);  // sizes the workspace, starts the threads
-  int steps = 0;
+/// Wall seconds per call of `once`, over at least 0.3 s after one call (which sizes the
+/// buffers and starts the threads).
+template <class F>
+double seconds_per_call(F&& once) {
+  once();
+  int calls = 0;
   const auto t0 = Clock::now();
   double seconds = 0;
   while (seconds < 0.3) {
-    step(model, p, s, ws);
-    ++steps;
+    once();
+    ++calls;
     seconds = std::chrono::duration<double>(Clock::now() - t0).count();
   }
-  return seconds / steps;
+  return seconds / calls;
 }
+
+/// The model as a user's simulator holds it, in a Monitor, and a state to check.
+struct MonitorCase {
+  std::vector<double> mass, stiffness, rest_length, anchor, gamma, out;
+  std::vector<int> pairs;
+  std::vector<Vec3> rest, x, v;
+  Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> force;
+  std::vector<Monitor> monitor;  // one, made once the arrays are filled
+
+  MonitorCase(const Model& m, const State& s) : x(s.x), v(s.v) {
+    const auto n = static_cast<Eigen::Index>(m.node_count());
+    const auto ns = static_cast<Eigen::Index>(m.spring_count());
+    mass = m.mass;
+    anchor = m.anchor_kappa;
+    gamma = m.gamma;
+    rest = m.rest;
+    stiffness = m.spring_kappa;
+    for (const Spring& sp : m.springs) {
+      pairs.insert(pairs.end(), {sp.i, sp.j});
+      rest_length.push_back(sp.rest_length);
+    }
+    for (size_t i = 0; i < v.size(); ++i) v[i] = 100.0 * (x[i] - rest[i]);  // every node moving
+    out.resize(mass.size());
+    force.resize(n, 3);
+    monitor.emplace_back(node_scalars(mass.data(), n), spring_pairs(pairs.data(), ns),
+                         node_scalars(stiffness.data(), ns), node_scalars(rest_length.data(), ns));
+    monitor[0].set_anchors(node_scalars(anchor.data(), n), node_vectors(rest[0].data(), n));
+    monitor[0].set_fixed(m.fixed.data(), n);
+  }
+  void call(double dt) {
+    const auto n = static_cast<Eigen::Index>(mass.size());
+    const NodeVectors xs = node_vectors(x[0].data(), n);
+    monitor[0].internal_forces(xs, force);
+    auto g = node_scalars_out(out.data(), n);
+    monitor[0].check(xs, node_vectors(v[0].data(), n), node_vectors(force.data(), n),
+                     node_scalars(gamma.data(), n), dt, DampingPolicy::safe, 1.0, &g);
+  }
+};
 
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
@@ -74,7 +116,7 @@ double median(std::vector<double> v) {
   return v.size() % 2 ? v[h] : 0.5 * (v[h - 1] + v[h]);
 }
 
-void measure(const char* kind, ModelSpec spec, int threads, int repeats) {
+void measure(const char* kind, ModelSpec spec, int threads, int repeats, bool monitor) {
   Params p;
   p.policy = DampingPolicy::clamp;
   const Model model = compile_model(std::move(spec), p);
@@ -88,15 +130,36 @@ void measure(const char* kind, ModelSpec spec, int threads, int repeats) {
     }
   }
   StepWorkspace ws;
+  std::vector<MonitorCase> user;  // --what monitor
+  if (monitor) user.emplace_back(model, s);
+  auto seconds = [&](int t) {
+    if (monitor) {
+      user[0].monitor[0].set_threads(t);
+      return seconds_per_call([&] { user[0].call(p.dt); });
+    }
+    ws.pass.threads.set_threads(t);
+    State run = s;
+    return seconds_per_call([&] { step(model, p, run, ws); });
+  };
   std::vector<double> one, many, ratio;
   for (int r = 0; r < repeats; ++r) {
-    one.push_back(seconds_per_step(model, p, s, 1, ws));
-    many.push_back(seconds_per_step(model, p, s, threads, ws));
+    one.push_back(seconds(1));
+    many.push_back(seconds(threads));
     ratio.push_back(one.back() / many.back());
   }
   const double best1 = *std::min_element(one.begin(), one.end());
   const double bestT = *std::min_element(many.begin(), many.end());
   const double ns = 1e9 / model.node_count(), springs = model.spring_count();
+  if (monitor) {
+    std::printf("%-6s %8d nodes %8d springs  1 thread %6.1f (median %6.1f)  %d threads %6.1f "
+                "(median %6.1f) ns/node-call  x%.2f (pairs x%.2f to x%.2f)  monitor\n",
+                kind, model.node_count(), model.spring_count(), best1 * ns, median(one) * ns,
+                threads, bestT * ns, median(many) * ns, best1 / bestT,
+                *std::min_element(ratio.begin(), ratio.end()),
+                *std::max_element(ratio.begin(), ratio.end()));
+    std::fflush(stdout);
+    return;
+  }
   const double nb = static_cast<double>(node_bytes(model, s, ws));
   const double sb = static_cast<double>(spring_bytes(model));
   std::printf("%-6s %8d nodes %8d springs  1 thread %6.1f (median %6.1f)  %d threads %6.1f "
@@ -115,7 +178,7 @@ void measure(const char* kind, ModelSpec spec, int threads, int repeats) {
 int main(int argc, char** argv) {
   long max_nodes = 1100000;
   int threads = 2, repeats = 5;
-  std::string mesh = "all";
+  std::string mesh = "all", what = "step";
   for (int a = 1; a < argc; a += 2) {
     const std::string flag = argv[a];
     if (a + 1 == argc) {
@@ -126,6 +189,7 @@ int main(int argc, char** argv) {
     else if (flag == "--threads") threads = std::atoi(argv[a + 1]);
     else if (flag == "--repeats") repeats = std::atoi(argv[a + 1]);
     else if (flag == "--mesh") mesh = argv[a + 1];
+    else if (flag == "--what") what = argv[a + 1];
     else {
       std::fprintf(stderr, "step_scale_bench: unknown flag %s\n", argv[a]);
       return 2;
@@ -139,11 +203,16 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "step_scale_bench: --mesh must be plane, block or all\n");
     return 2;
   }
+  if (what != "step" && what != "monitor") {
+    std::fprintf(stderr, "step_scale_bench: --what must be step or monitor\n");
+    return 2;
+  }
+  const bool monitor = what == "monitor";
   for (int n : {32, 100, 317, 1000})
     if (mesh != "block" && long(n) * n <= max_nodes)
-      measure("plane", bench::plane(n), threads, repeats);
+      measure("plane", bench::plane(n), threads, repeats, monitor);
   for (int n : {10, 22, 46, 100})
     if (mesh != "plane" && long(n) * n * n <= max_nodes)
-      measure("block", bench::tet_block(n, n, n), threads, repeats);
+      measure("block", bench::tet_block(n, n, n), threads, repeats, monitor);
   return 0;
 }

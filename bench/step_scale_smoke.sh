@@ -10,7 +10,11 @@ echo "$out" | grep -Eq '^plane +1024 nodes +2945 springs +1 thread +[0-9.]+ \(me
   || { echo "plane line not in the documented format"; exit 1; }
 echo "$out" | grep -Eq '^block +1000 nodes +5859 springs' || { echo "no block line"; exit 1; }
 [ "$("$BENCH" --max-nodes 1100 --mesh plane --repeats 1 | wc -l)" -eq 1 ] || { echo "--mesh plane"; exit 1; }
-for bad in "--threads 0" "--repeats 0" "--mesh cube" "--bogus 1" "--threads"; do
+mon=$("$BENCH" --max-nodes 1100 --mesh plane --repeats 1 --what monitor)
+echo "$mon"
+echo "$mon" | grep -Eq '^plane +1024 nodes +2945 springs +1 thread +[0-9.]+ \(median +[0-9.]+\) +2 threads +[0-9.]+ \(median +[0-9.]+\) ns/node-call +x[0-9.]+ \(pairs x[0-9.]+ to x[0-9.]+\) +monitor$' \
+  || { echo "--what monitor: line not in the documented format"; exit 1; }
+for bad in "--threads 0" "--repeats 0" "--mesh cube" "--bogus 1" "--threads" "--what all"; do
   set +e
   err=$("$BENCH" $bad 2>&1 >/dev/null); rc=$?
   set -e

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <limits>
+#include <mutex>
 #include <stdexcept>
 #include <string>
 
@@ -89,6 +90,16 @@ void Monitor::set_fixed(const std::uint8_t* fixed, Eigen::Index n) {
   model_ = compile_model(std::move(spec), unit_params(1.0));
 }
 
+void Monitor::set_threads(int threads) {
+  std::lock_guard<std::mutex> lock(workers_.mutex);
+  workers_.pass.threads.set_threads(threads);
+}
+
+int Monitor::threads() const {
+  std::lock_guard<std::mutex> lock(workers_.mutex);
+  return workers_.pass.threads.threads();
+}
+
 void Monitor::lower_bounds(NodeScalarsOut out) const {
   check_size(out.size(), "lower bound output");
   for (int i = 0; i < node_count(); ++i) out[i] = model_.lower_bound[static_cast<size_t>(i)];
@@ -127,7 +138,8 @@ int Monitor::safe_bounds(NodeVectors x, double dt, NodeScalarsOut out) const {
   check_size(out.size(), "safe bound output");
   require(std::isfinite(dt) && dt > 0, "dt must be finite and > 0");
   std::vector<double> row_sum;
-  const int compressed = safe_row_sums(model_, positions(x), row_sum);
+  std::lock_guard<std::mutex> lock(workers_.mutex);
+  const int compressed = safe_row_sums(model_, positions(x), row_sum, &workers_.pass);
   for (int i = 0; i < node_count(); ++i) {
     const size_t k = static_cast<size_t>(i);
     out[i] = model_.fixed[k] ? HUGE_VAL : safe_gamma(model_.mass[k], dt, row_sum[k]);
@@ -146,8 +158,32 @@ MonitorReport Monitor::check_with(const std::vector<double>* safe, NodeVectors v
   if (gamma_eff) check_size(gamma_eff->size(), "gamma_eff");
   if (upper) check_size(upper->size(), "upper");
   require(std::isfinite(dt) && dt > 0, "dt must be finite and > 0");
+  // Contiguous ranges of nodes on threads, each with its own report; combined in range order,
+  // so the counts and the first indices are those of one loop.
+  std::lock_guard<std::mutex> lock(workers_.mutex);
+  NodeThreads& threads = workers_.pass.threads;
+  std::vector<MonitorReport> parts(static_cast<size_t>(threads.chunks(model_.rest.size())));
+  threads.run(model_.rest.size(), [&](int chunk, size_t begin, size_t end) {
+    check_range(safe, v, force, gamma, dt, policy, factor, gamma_eff, upper, status,
+                static_cast<int>(begin), static_cast<int>(end), parts[static_cast<size_t>(chunk)]);
+  });
   MonitorReport r;
-  for (int i = 0; i < node_count(); ++i) {
+  for (const MonitorReport& p : parts) {
+    if (r.first_violating < 0) r.first_violating = p.first_violating;
+    if (r.first_unstabilisable < 0) r.first_unstabilisable = p.first_unstabilisable;
+    r.violating += p.violating;
+    r.unstabilisable += p.unstabilisable;
+    r.clamped += p.clamped;
+    r.unguaranteed += p.unguaranteed;
+  }
+  return r;
+}
+
+void Monitor::check_range(const std::vector<double>* safe, NodeVectors v, NodeVectors force,
+                          NodeScalars gamma, double dt, DampingPolicy policy, double factor,
+                          NodeScalarsOut* gamma_eff, NodeScalarsOut* upper, NodeStatus* status,
+                          int begin, int end, MonitorReport& r) const {
+  for (int i = begin; i < end; ++i) {
     const size_t k = static_cast<size_t>(i);
     if (model_.fixed[k]) {
       if (gamma_eff) (*gamma_eff)[i] = gamma[i];
@@ -169,7 +205,6 @@ MonitorReport Monitor::check_with(const std::vector<double>* safe, NodeVectors v
     if (upper) (*upper)[i] = hi;
     if (status) status[i] = c.status;
   }
-  return r;
 }
 
 std::vector<Vec3> Monitor::positions(NodeVectors x) const {
@@ -184,7 +219,8 @@ int Monitor::internal_forces(
     Eigen::Ref<Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>> force) const {
   check_size(force.rows(), "force");
   std::vector<Vec3> f;
-  const int zero_length = dampbound::internal_forces(model_, positions(x), f);
+  std::lock_guard<std::mutex> lock(workers_.mutex);
+  const int zero_length = dampbound::internal_forces(model_, positions(x), f, &workers_.pass);
   for (int i = 0; i < node_count(); ++i) force.row(i) = f[static_cast<size_t>(i)].transpose();
   return zero_length;
 }

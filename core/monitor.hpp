@@ -9,12 +9,14 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <limits>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "core/bounds.hpp"
 #include "core/model.hpp"
+#include "core/forces.hpp"
 #include "core/params.hpp"
 
 namespace dampbound {
@@ -87,6 +89,14 @@ class Monitor {
   /// Marks nodes that never move (nonzero = fixed): they are not judged.
   void set_fixed(const std::uint8_t* fixed, Eigen::Index n);
 
+  /// Threads for every call's loops over the nodes and springs (1 by default, 0 = one per
+  /// hardware thread). The results are the same bits on any count: each node's springs are
+  /// added in index order, as step() does on threads. Loops under 2 x 16 384 items stay on
+  /// the calling thread. The threads are kept between calls; calls made from several threads
+  /// at once take turns on them. A copy of the monitor gets threads of its own.
+  void set_threads(int threads);
+  int threads() const;
+
   int node_count() const { return model_.node_count(); }
   /// The copy of the topology in core's terms (model.lower_bound is eq. 5 per node).
   const Model& model() const { return model_; }
@@ -142,8 +152,25 @@ class Monitor {
                            NodeScalars gamma, double dt, DampingPolicy policy, double factor,
                            NodeScalarsOut* gamma_eff, NodeScalarsOut* upper,
                            NodeStatus* status) const;
+  void check_range(const std::vector<double>* safe, NodeVectors v, NodeVectors force,
+                   NodeScalars gamma, double dt, DampingPolicy policy, double factor,
+                   NodeScalarsOut* gamma_eff, NodeScalarsOut* upper, NodeStatus* status,
+                   int begin, int end, MonitorReport& r) const;
   std::vector<Vec3> positions(NodeVectors x) const;
   Model model_ = compile_model(ModelSpec{}, Params{});  ///< compiled with unit m, kappa, gamma
+  /// The calls' threads and buffers, kept between calls and used under the lock; a copy
+  /// takes the thread count and starts threads of its own.
+  struct Workers {
+    Workers() = default;
+    Workers(const Workers& other) { pass.threads = other.pass.threads; }
+    Workers& operator=(const Workers& other) {
+      if (this != &other) pass.threads = other.pass.threads;
+      return *this;
+    }
+    std::mutex mutex;
+    SpringPass pass;
+  };
+  mutable Workers workers_;
 };
 
 }  // namespace dampbound

@@ -97,6 +97,14 @@ void bind_monitor(py::module_& m) {
            "kappa_ij (mass unit/s^2); rest_length (S,) l0_ij (cm); optional anchors: "
            "anchor_stiffness (N,) (0 = none) with rest (N, 3) positions X_i (cm); fixed (N,).")
       .def_property_readonly("node_count", &Monitor::node_count)
+      .def_property(
+          "threads", &Monitor::threads,
+          [](Monitor& mon, int threads) {
+            if (threads < 0) throw py::value_error("threads must be >= 0 (0: one per CPU)");
+            mon.set_threads(threads);
+          },
+          "threads for each call's loops over nodes and springs (1 by default, 0 = one per "
+          "CPU); the results are the same bits on any count")
       .def(
           "lower_bounds",
           [](const Monitor& mon) {

@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cmath>
+#include <random>
 #include <string>
 #include <vector>
 #include <stdexcept>
@@ -115,6 +116,86 @@ TEST(Monitor, MatchesStepBitForBitUnderSafe) {
   EXPECT_THROW(mon.check(node_vectors(zero.data(), n), node_vectors(zero.data(), n),
                          node_scalars(user.gamma.data(), n), p.dt, DampingPolicy::safe),
                std::invalid_argument);
+}
+
+TEST(Monitor, ThreadsGiveTheSameBitsAndTheSameFirstIndices) {
+  // A 52 900-node plane (157 781 springs: both loops split into 3 ranges on 3 threads) in a
+  // random state with some fixed nodes. Nodes below 45 % stand still (their upper bound is
+  // +inf), so the first range finds no violating node and the second and third do: the
+  // report must skip the first and take the second's.
+  SceneSpec scene = paper_plane_scene(230);
+  for (size_t i = 0; i < scene.model.fixed.size(); i += 97) scene.model.fixed[i] = 1;
+  const Session session(scene, scene.params, scene.rules);
+  const UserArrays user(session.model());
+  Monitor one = user.monitor();
+  std::vector<std::uint8_t> fixed(session.model().fixed.begin(), session.model().fixed.end());
+  const Eigen::Index n = one.node_count();
+  one.set_fixed(fixed.data(), n);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<double> x(3 * static_cast<size_t>(n)), v(x.size()), gamma(static_cast<size_t>(n));
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const size_t k = static_cast<size_t>(i);
+    for (int c = 0; c < 3; ++c) {
+      x[3 * k + static_cast<size_t>(c)] = session.model().rest[k][c] + 0.2 * u(rng);
+      v[3 * k + static_cast<size_t>(c)] = i < 45 * n / 100 ? 0.0 : 5 * u(rng);
+    }
+    gamma[k] = 3 * session.model().mass[k] / scene.params.dt;  // above eq. 6's m/dt + |F|/|v|
+  }
+  struct Out {
+    std::vector<double> force, safe, g, hi;
+    std::vector<NodeStatus> status;
+    MonitorReport report;
+    int zero_length = 0, compressed = 0;
+  };
+  auto evaluate = [&](const Monitor& mon) {
+    Out o;
+    Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> f(n, 3);
+    o.zero_length = mon.internal_forces(node_vectors(x.data(), n), f);
+    o.force.assign(f.data(), f.data() + 3 * n);
+    o.safe.resize(static_cast<size_t>(n));
+    o.compressed = mon.safe_bounds(node_vectors(x.data(), n), scene.params.dt,
+                                   node_scalars_out(o.safe.data(), n));
+    o.g.resize(static_cast<size_t>(n));
+    o.hi.resize(static_cast<size_t>(n));
+    o.status.resize(static_cast<size_t>(n));
+    auto g_out = node_scalars_out(o.g.data(), n);
+    auto hi_out = node_scalars_out(o.hi.data(), n);
+    o.report = mon.check(node_vectors(x.data(), n), node_vectors(v.data(), n),
+                         node_vectors(f.data(), n), node_scalars(gamma.data(), n),
+                         scene.params.dt, DampingPolicy::fixed, 1.0, &g_out, &hi_out,
+                         o.status.data());
+    return o;
+  };
+  const Out a = evaluate(one);
+  ASSERT_GT(a.report.violating, 0);
+  ASSERT_GT(a.compressed, 0);
+  int first = -1;
+  for (Eigen::Index i = 0; i < n && first < 0; ++i)
+    if (a.status[static_cast<size_t>(i)] == NodeStatus::violating) first = static_cast<int>(i);
+  EXPECT_EQ(a.report.first_violating, first);
+  EXPECT_GT(first, n / 3);
+  EXPECT_LT(first, 2 * n / 3);
+  for (int threads : {2, 3}) {
+    SCOPED_TRACE(threads);
+    Monitor many = one;
+    many.set_threads(threads);
+    EXPECT_EQ(many.threads(), threads);
+    const Out b = evaluate(many);
+    EXPECT_EQ(b.force, a.force);
+    EXPECT_EQ(b.safe, a.safe);
+    EXPECT_EQ(b.g, a.g);
+    EXPECT_EQ(b.hi, a.hi);
+    EXPECT_EQ(b.status, a.status);
+    EXPECT_EQ(b.zero_length, a.zero_length);
+    EXPECT_EQ(b.compressed, a.compressed);
+    EXPECT_EQ(b.report.violating, a.report.violating);
+    EXPECT_EQ(b.report.unstabilisable, a.report.unstabilisable);
+    EXPECT_EQ(b.report.clamped, a.report.clamped);
+    EXPECT_EQ(b.report.unguaranteed, a.report.unguaranteed);
+    EXPECT_EQ(b.report.first_violating, a.report.first_violating);
+    EXPECT_EQ(b.report.first_unstabilisable, a.report.first_unstabilisable);
+  }
 }
 
 TEST(Monitor, UpperBoundIsEq6AndInfiniteAtRest) {
