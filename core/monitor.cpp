@@ -109,9 +109,13 @@ void Monitor::upper_bounds(NodeVectors v, NodeVectors force, double dt, NodeScal
   check_size(v.rows(), "v");
   check_size(force.rows(), "force");
   check_size(out.size(), "upper bound output");
-  for (int i = 0; i < node_count(); ++i)
-    out[i] = upper_bound(v.row(i).transpose(), force.row(i).transpose(),
-                         model_.mass[static_cast<size_t>(i)], dt);
+  std::lock_guard<std::mutex> lock(workers_.mutex);
+  workers_.pass.threads.run(model_.rest.size(), [&](int, size_t begin, size_t end) {
+    for (size_t k = begin; k < end; ++k) {
+      const auto i = static_cast<Eigen::Index>(k);
+      out[i] = upper_bound(v.row(i).transpose(), force.row(i).transpose(), model_.mass[k], dt);
+    }
+  });
 }
 
 MonitorReport Monitor::check(NodeVectors v, NodeVectors force, NodeScalars gamma, double dt,

@@ -143,7 +143,7 @@ TEST(Monitor, ThreadsGiveTheSameBitsAndTheSameFirstIndices) {
     gamma[k] = 3 * session.model().mass[k] / scene.params.dt;  // above eq. 6's m/dt + |F|/|v|
   }
   struct Out {
-    std::vector<double> force, safe, g, hi;
+    std::vector<double> force, safe, g, hi, upper;
     std::vector<NodeStatus> status;
     MonitorReport report;
     int zero_length = 0, compressed = 0;
@@ -165,6 +165,9 @@ TEST(Monitor, ThreadsGiveTheSameBitsAndTheSameFirstIndices) {
                          node_vectors(f.data(), n), node_scalars(gamma.data(), n),
                          scene.params.dt, DampingPolicy::fixed, 1.0, &g_out, &hi_out,
                          o.status.data());
+    o.upper.resize(static_cast<size_t>(n));
+    mon.upper_bounds(node_vectors(v.data(), n), node_vectors(f.data(), n), scene.params.dt,
+                     node_scalars_out(o.upper.data(), n));
     return o;
   };
   const Out a = evaluate(one);
@@ -186,6 +189,7 @@ TEST(Monitor, ThreadsGiveTheSameBitsAndTheSameFirstIndices) {
     EXPECT_EQ(b.safe, a.safe);
     EXPECT_EQ(b.g, a.g);
     EXPECT_EQ(b.hi, a.hi);
+    EXPECT_EQ(b.upper, a.upper);
     EXPECT_EQ(b.status, a.status);
     EXPECT_EQ(b.zero_length, a.zero_length);
     EXPECT_EQ(b.compressed, a.compressed);
