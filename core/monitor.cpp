@@ -141,13 +141,15 @@ int Monitor::safe_bounds(NodeVectors x, double dt, NodeScalarsOut out) const {
   check_size(x.rows(), "x");
   check_size(out.size(), "safe bound output");
   require(std::isfinite(dt) && dt > 0, "dt must be finite and > 0");
-  std::vector<double> row_sum;
   std::lock_guard<std::mutex> lock(workers_.mutex);
-  const int compressed = safe_row_sums(model_, positions(x), row_sum, &workers_.pass);
-  for (int i = 0; i < node_count(); ++i) {
-    const size_t k = static_cast<size_t>(i);
-    out[i] = model_.fixed[k] ? HUGE_VAL : safe_gamma(model_.mass[k], dt, row_sum[k]);
-  }
+  std::vector<double>& row_sum = workers_.row_sum;
+  const int compressed =
+      safe_row_sums(model_, positions_on_threads(x), row_sum, &workers_.pass);
+  workers_.pass.threads.run(row_sum.size(), [&](int, size_t begin, size_t end) {
+    for (size_t k = begin; k < end; ++k)
+      out[static_cast<Eigen::Index>(k)] =
+          model_.fixed[k] ? HUGE_VAL : safe_gamma(model_.mass[k], dt, row_sum[k]);
+  });
   return compressed;
 }
 
@@ -218,14 +220,27 @@ std::vector<Vec3> Monitor::positions(NodeVectors x) const {
   return xs;
 }
 
+const std::vector<Vec3>& Monitor::positions_on_threads(NodeVectors x) const {
+  check_size(x.rows(), "x");
+  std::vector<Vec3>& xs = workers_.x;  // kept between calls: no fresh pages every step
+  xs.resize(static_cast<size_t>(node_count()));
+  workers_.pass.threads.run(xs.size(), [&](int, size_t begin, size_t end) {
+    for (size_t k = begin; k < end; ++k) xs[k] = x.row(static_cast<Eigen::Index>(k)).transpose();
+  });
+  return xs;
+}
+
 int Monitor::internal_forces(
     NodeVectors x,
     Eigen::Ref<Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>> force) const {
   check_size(force.rows(), "force");
-  std::vector<Vec3> f;
   std::lock_guard<std::mutex> lock(workers_.mutex);
-  const int zero_length = dampbound::internal_forces(model_, positions(x), f, &workers_.pass);
-  for (int i = 0; i < node_count(); ++i) force.row(i) = f[static_cast<size_t>(i)].transpose();
+  std::vector<Vec3>& f = workers_.force;
+  const int zero_length =
+      dampbound::internal_forces(model_, positions_on_threads(x), f, &workers_.pass);
+  workers_.pass.threads.run(f.size(), [&](int, size_t begin, size_t end) {
+    for (size_t k = begin; k < end; ++k) force.row(static_cast<Eigen::Index>(k)) = f[k].transpose();
+  });
   return zero_length;
 }
 

@@ -157,6 +157,8 @@ class Monitor {
                    NodeScalarsOut* gamma_eff, NodeScalarsOut* upper, NodeStatus* status,
                    int begin, int end, MonitorReport& r) const;
   std::vector<Vec3> positions(NodeVectors x) const;
+  /// positions() into workers_.x on the monitor's threads; the caller holds workers_.mutex.
+  const std::vector<Vec3>& positions_on_threads(NodeVectors x) const;
   Model model_ = compile_model(ModelSpec{}, Params{});  ///< compiled with unit m, kappa, gamma
   /// The calls' threads and buffers, kept between calls and used under the lock; a copy
   /// takes the thread count and starts threads of its own.
@@ -169,6 +171,8 @@ class Monitor {
     }
     std::mutex mutex;
     SpringPass pass;
+    std::vector<Vec3> x, force;   ///< the positions as core reads them, the forces
+    std::vector<double> row_sum;  ///< SPEC 9's R_i
   };
   mutable Workers workers_;
 };
