@@ -22,6 +22,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -78,7 +79,7 @@ struct MonitorCase {
   std::vector<int> pairs;
   std::vector<Vec3> rest, x, v;
   Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> force;
-  std::vector<Monitor> monitor;  // one, made once the arrays are filled
+  std::optional<Monitor> monitor;  // made once the arrays are filled
 
   MonitorCase(const Model& m, const State& s) : x(s.x), v(s.v) {
     const auto n = static_cast<Eigen::Index>(m.node_count());
@@ -95,17 +96,17 @@ struct MonitorCase {
     for (size_t i = 0; i < v.size(); ++i) v[i] = 100.0 * (x[i] - rest[i]);  // every node moving
     out.resize(mass.size());
     force.resize(n, 3);
-    monitor.emplace_back(node_scalars(mass.data(), n), spring_pairs(pairs.data(), ns),
-                         node_scalars(stiffness.data(), ns), node_scalars(rest_length.data(), ns));
-    monitor[0].set_anchors(node_scalars(anchor.data(), n), node_vectors(rest[0].data(), n));
-    monitor[0].set_fixed(m.fixed.data(), n);
+    monitor.emplace(node_scalars(mass.data(), n), spring_pairs(pairs.data(), ns),
+                     node_scalars(stiffness.data(), ns), node_scalars(rest_length.data(), ns));
+    monitor->set_anchors(node_scalars(anchor.data(), n), node_vectors(rest[0].data(), n));
+    monitor->set_fixed(m.fixed.data(), n);
   }
   void call(double dt) {
     const auto n = static_cast<Eigen::Index>(mass.size());
     const NodeVectors xs = node_vectors(x[0].data(), n);
-    monitor[0].internal_forces(xs, force);
+    monitor->internal_forces(xs, force);
     auto g = node_scalars_out(out.data(), n);
-    monitor[0].check(xs, node_vectors(v[0].data(), n), node_vectors(force.data(), n),
+    monitor->check(xs, node_vectors(v[0].data(), n), node_vectors(force.data(), n),
                      node_scalars(gamma.data(), n), dt, DampingPolicy::safe, 1.0, &g);
   }
 };
@@ -130,12 +131,12 @@ void measure(const char* kind, ModelSpec spec, int threads, int repeats, bool mo
     }
   }
   StepWorkspace ws;
-  std::vector<MonitorCase> user;  // --what monitor
-  if (monitor) user.emplace_back(model, s);
+  std::optional<MonitorCase> user;  // --what monitor
+  if (monitor) user.emplace(model, s);
   auto seconds = [&](int t) {
     if (monitor) {
-      user[0].monitor[0].set_threads(t);
-      return seconds_per_call([&] { user[0].call(p.dt); });
+      user->monitor->set_threads(t);
+      return seconds_per_call([&] { user->call(p.dt); });
     }
     ws.pass.threads.set_threads(t);
     State run = s;

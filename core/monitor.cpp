@@ -144,7 +144,7 @@ int Monitor::safe_bounds(NodeVectors x, double dt, NodeScalarsOut out) const {
   std::lock_guard<std::mutex> lock(workers_.mutex);
   std::vector<double>& row_sum = workers_.row_sum;
   const int compressed =
-      safe_row_sums(model_, positions_on_threads(x), row_sum, &workers_.pass);
+      safe_row_sums(model_, positions(x), row_sum, &workers_.pass);
   workers_.pass.threads.run(row_sum.size(), [&](int, size_t begin, size_t end) {
     for (size_t k = begin; k < end; ++k)
       out[static_cast<Eigen::Index>(k)] =
@@ -213,14 +213,7 @@ void Monitor::check_range(const std::vector<double>* safe, NodeVectors v, NodeVe
   }
 }
 
-std::vector<Vec3> Monitor::positions(NodeVectors x) const {
-  check_size(x.rows(), "x");
-  std::vector<Vec3> xs(static_cast<size_t>(node_count()));
-  for (int i = 0; i < node_count(); ++i) xs[static_cast<size_t>(i)] = x.row(i).transpose();
-  return xs;
-}
-
-const std::vector<Vec3>& Monitor::positions_on_threads(NodeVectors x) const {
+const std::vector<Vec3>& Monitor::positions(NodeVectors x) const {
   check_size(x.rows(), "x");
   std::vector<Vec3>& xs = workers_.x;  // kept between calls: no fresh pages every step
   xs.resize(static_cast<size_t>(node_count()));
@@ -237,7 +230,7 @@ int Monitor::internal_forces(
   std::lock_guard<std::mutex> lock(workers_.mutex);
   std::vector<Vec3>& f = workers_.force;
   const int zero_length =
-      dampbound::internal_forces(model_, positions_on_threads(x), f, &workers_.pass);
+      dampbound::internal_forces(model_, positions(x), f, &workers_.pass);
   workers_.pass.threads.run(f.size(), [&](int, size_t begin, size_t end) {
     for (size_t k = begin; k < end; ++k) force.row(static_cast<Eigen::Index>(k)) = f[k].transpose();
   });
@@ -258,7 +251,12 @@ MonitorLimits Monitor::exact_limits(NodeVectors x, NodeScalars gamma, double dt,
   }
   const Params params = unit_params(dt);
   const Model model = compile_model(std::move(spec), params);
-  const std::vector<Vec3> xs = positions(x);
+  std::vector<Vec3> xs;
+  {
+    // A copy of its own: the analysis runs for seconds without holding the other calls up.
+    std::lock_guard<std::mutex> lock(workers_.mutex);
+    xs = positions(x);
+  }
   ExactOptions options;
   options.with_radius = false;
   options.max_factor_flops = max_factor_flops;

@@ -156,9 +156,9 @@ class Monitor {
                    NodeScalars gamma, double dt, DampingPolicy policy, double factor,
                    NodeScalarsOut* gamma_eff, NodeScalarsOut* upper, NodeStatus* status,
                    int begin, int end, MonitorReport& r) const;
-  std::vector<Vec3> positions(NodeVectors x) const;
-  /// positions() into workers_.x on the monitor's threads; the caller holds workers_.mutex.
-  const std::vector<Vec3>& positions_on_threads(NodeVectors x) const;
+  /// The caller's x as core reads it, copied into workers_.x on the monitor's threads; the
+  /// caller holds workers_.mutex.
+  const std::vector<Vec3>& positions(NodeVectors x) const;
   Model model_ = compile_model(ModelSpec{}, Params{});  ///< compiled with unit m, kappa, gamma
   /// The calls' threads and buffers, kept between calls and used under the lock; a copy
   /// takes the thread count and starts threads of its own.
