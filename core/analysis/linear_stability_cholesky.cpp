@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <mutex>
 #include <string>
 
 namespace dampbound {
@@ -34,6 +35,23 @@ constexpr Eigen::Index kNestedDissectionRows = 20000;
 /// the analysis there.
 constexpr Eigen::Index kQuickCheckRows = 500000;
 constexpr double kAmdSlack = 32;
+
+/// The one turn in CHOLMOD, and in the libraries it calls, for the whole process: two analyses
+/// may run at once (the tuner's analysis and Suggest workers, a user's own threads), and
+/// - Debian's libopenblas0-serial (0.3.21, what scripts/install-deps.sh installs) shares its
+///   work buffers between threads without a lock: two threads in it at once corrupt each
+///   other's results, and a factorisation corrupted that way can succeed below lambda_max, a
+///   false certificate;
+/// - METIS, which CHOLMOD's analysis tries above 20 000 rows, draws from one random generator
+///   for the process: two analyses at once order the matrix differently, so the results'
+///   bits would depend on what else was running.
+/// So every pattern analysis, numeric factorisation and solve takes this turn (measured:
+/// docs/performance.md, "One thread in CHOLMOD at a time"); the Lanczos products, which call
+/// none of these libraries, do not.
+std::mutex& cholmod_turn() {
+  static std::mutex turn;
+  return turn;
+}
 
 /// Factorisations of sigma I - A for a changing shift sigma, by CHOLMOD's supernodal
 /// Cholesky (fill-reducing ordering chosen by CHOLMOD: AMD or nested dissection): the
@@ -75,6 +93,7 @@ class ShiftedCholesky {
   /// factorisation would take more than `budget` flops.
   void analyse(double budget) {
     if (analysed_) return;
+    const std::lock_guard<std::mutex> turn(cholmod_turn());
     const detail::SerialOpenMp serial;
     if (budget < kNoFactorBudget && n_ > kQuickCheckRows) {
       Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> amd;
@@ -93,6 +112,7 @@ class ShiftedCholesky {
   /// Factors sigma I - A; true when it is positive definite (every pivot > 0).
   bool factor(double sigma) {
     analyse(kNoFactorBudget);
+    const std::lock_guard<std::mutex> turn(cholmod_turn());
     const detail::SerialOpenMp serial;
     llt_.setShift(sigma);
     llt_.factorize(B_);
@@ -103,6 +123,7 @@ class ShiftedCholesky {
   bool ready() const { return ok_; }
   void solve(const double* in, double* out) {
     ++solves;
+    const std::lock_guard<std::mutex> turn(cholmod_turn());
     const detail::SerialOpenMp serial;
     Eigen::Map<Eigen::VectorXd>(out, n_) = llt_.solve(Eigen::Map<const Eigen::VectorXd>(in, n_));
   }

@@ -2,7 +2,8 @@
 // Tests of core/linear_stability_cholesky: Gershgorin's bounds (SPEC 9's R_i on the paper
 // plane), certified intervals that enclose the dense eigenvalues (meshes at rest and deformed,
 // a clustered top, a matrix with negative eigenvalues), and their width; a proved floor that
-// gives the smallest eigenvalue without factorising, and one that is too low to.
+// gives the smallest eigenvalue without factorising, and one that is too low to; calls from two
+// threads at once.
 #include "core/analysis/linear_stability_cholesky.hpp"
 
 #include <gtest/gtest.h>
@@ -10,8 +11,10 @@
 #include <Eigen/Dense>
 #include <cmath>
 #include <string>
+#include <thread>
 #include <vector>
 
+#include "bench/bench_meshes.hpp"
 #include "core/analysis/linear_stability.hpp"
 #include "core/scene.hpp"
 
@@ -204,6 +207,51 @@ TEST(CertifiedEigenvalue, AboveHalfAMillionRowsAmdChecksTheBudgetFirst) {
     EXPECT_FALSE(over.amd_only);
     EXPECT_EQ(std::string(over.what()).find("AMD"), std::string::npos) << over.what();
   }
+}
+
+/// Calls certified_largest_eigenvalue(A) from two threads at once, `rounds` times, and
+/// expects every interval and Ritz vector to be the bits of a lone call's.
+void expect_two_at_once_give_the_bits_of_one(const SparseMatrix& A, int rounds) {
+  Eigen::VectorXd alone;
+  const EigenInterval one = certified_largest_eigenvalue(A, &alone);
+  for (int round = 0; round < rounds; ++round) {
+    EigenInterval r[2];
+    Eigen::VectorXd v[2];
+    std::thread other([&] { r[1] = certified_largest_eigenvalue(A, &v[1]); });
+    r[0] = certified_largest_eigenvalue(A, &v[0]);
+    other.join();
+    for (int k = 0; k < 2; ++k) {
+      EXPECT_EQ(r[k].lo, one.lo) << "round " << round << ", thread " << k;
+      EXPECT_EQ(r[k].hi, one.hi) << "round " << round << ", thread " << k;
+      EXPECT_TRUE(v[k] == alone) << "round " << round << ", thread " << k;
+    }
+  }
+}
+
+SparseMatrix block_matrix(int n) {
+  const Model m = compile_model(bench::tet_block(n, n, n), Params{});
+  return mass_weighted(m, tangent_stiffness(m, m.rest));
+}
+
+TEST(CertifiedEigenvalue, CallsFromTwoThreadsAtOnceGiveTheBitsOfOne) {
+  // The tuner's analysis and Suggest workers, or a user's threads, may factorise at the same
+  // time. Debian's serial OpenBLAS shares its buffers between threads without a lock: without
+  // the turn in CHOLMOD (linear_stability_cholesky.cpp), 6 to 9 of 12 calls on this block made
+  // two at a time differed from the lone call; on the 20^3 block two of ten had a certified
+  // hi below lambda_max.
+  const SparseMatrix A = block_matrix(14);
+  ASSERT_GT(A.rows(), 5000);  // factorised, with separators big enough for OpenBLAS's buffers
+  ASSERT_LT(A.rows(), 20000);  // AMD's ordering alone (below kNestedDissectionRows)
+  expect_two_at_once_give_the_bits_of_one(A, 3);
+}
+
+TEST(CertifiedEigenvalue, AnalysesFromTwoThreadsAtOnceOrderTheMatrixAlike) {
+  // Above 20 000 rows CHOLMOD's analysis also tries METIS, which draws from one random
+  // generator for the process: with only the factorisations and solves taking turns, every
+  // call made two at a time on this block returned a different Ritz vector.
+  const SparseMatrix A = block_matrix(20);
+  ASSERT_GT(A.rows(), 20000);
+  expect_two_at_once_give_the_bits_of_one(A, 1);
 }
 
 }  // namespace
