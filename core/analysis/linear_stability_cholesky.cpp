@@ -1,5 +1,6 @@
 #include "core/analysis/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
 #include "core/analysis/linear_stability_cholesky.hpp"
+#include "core/analysis/detail/cholesky_rounding.hpp"
 #include "core/analysis/detail/serial_openmp.hpp"
 #include "core/analysis/detail/symmetric_product.hpp"
 #include "core/analysis/detail/tridiagonal.hpp"
@@ -52,6 +53,12 @@ std::mutex& cholmod_turn() {
   static std::mutex turn;
   return turn;
 }
+
+/// Eigen's wrapper of CHOLMOD's supernodal LL', with the factor in view (for its rounding).
+class SupernodalLLT : public Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> {
+ public:
+  const cholmod_factor& factor() const { return *m_cholmodFactor; }
+};
 
 /// Factorisations of sigma I - A for a changing shift sigma, by CHOLMOD's supernodal
 /// Cholesky (fill-reducing ordering chosen by CHOLMOD: AMD or nested dissection): the
@@ -118,7 +125,17 @@ class ShiftedCholesky {
     llt_.factorize(B_);
     ++factorizations;
     ok_ = llt_.info() == Eigen::Success;
+    sigma_ = sigma;
     return ok_;
+  }
+  /// After a successful factor(sigma): what it proves, lambda_max(A) < the result, allowing
+  /// for the factorisation's rounding (detail/cholesky_rounding.hpp), rounded up.
+  double proved_above() const {
+    double diagonal = 0;  // as CHOLMOD formed it: sigma + (-A_kk), the first entry of column k
+    for (Eigen::Index k = 0; k < n_; ++k)
+      diagonal = std::max(diagonal, std::abs(sigma_ + B_.valuePtr()[B_.outerIndexPtr()[k]]));
+    const double delta = detail::cholesky_rounding_bound(llt_.factor(), diagonal);
+    return std::nextafter(sigma_ + delta, std::numeric_limits<double>::infinity());
   }
   bool ready() const { return ok_; }
   void solve(const double* in, double* out) {
@@ -133,7 +150,8 @@ class ShiftedCholesky {
  private:
   Eigen::Index n_;
   SparseMatrix B_;
-  Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> llt_;
+  SupernodalLLT llt_;
+  double sigma_ = 0;
   bool analysed_ = false, ok_ = false;
 };
 
@@ -375,7 +393,7 @@ EigenInterval certified_largest_eigenvalue(const SparseMatrix& A, Eigen::VectorX
     const double s = estimate.theta + step + margin;
     if (s >= gershgorin) break;
     if (f.factor(s)) {
-      up = s;
+      up = std::min(up, f.proved_above());
       break;
     }
     step = f.factorizations == 1 ? std::max(fallback, 8 * step) : 8 * step;
@@ -392,7 +410,8 @@ EigenInterval certified_largest_eigenvalue(const SparseMatrix& A, Eigen::VectorX
     const double lo = std::max(max_diagonal, q.value - q.rounding);
     // The certificate: a factorisation just above the Rayleigh quotient.
     const double width = certificate_width(q.value, span);
-    if (up - lo > width + 2 * margin && f.factor(lo + width + margin)) up = lo + width + margin;
+    if (up - lo > width + 2 * margin && f.factor(lo + width + margin))
+      up = std::min(up, f.proved_above());
     out.lo = lo;
     out.hi = up;
   }

@@ -2,9 +2,10 @@
 // Extreme eigenvalues of a large symmetric sparse matrix in a certified interval, by sparse
 // Cholesky (SPEC 7, 9; CHOLMOD's supernodal factorisation): Gershgorin's bound caps the
 // shifts, shift-and-invert Lanczos just above lambda_max (one factorisation, a few solves),
-// then a factorisation of (hi I - A) as the certificate that no eigenvalue lies above hi. A factorisation succeeds
-// exactly when the matrix is positive definite, so a success proves lambda_max < hi; the
-// Rayleigh quotient of the Ritz vector proves lambda_max >= lo. docs/performance.md has
+// then a factorisation of (sigma I - A) as the certificate that no eigenvalue lies above hi.
+// A factorisation succeeds exactly when the matrix is positive definite, so a success proves
+// lambda_max < sigma up to its rounding, which a bound computed from the factor covers
+// (hi = sigma + that bound); the Rayleigh quotient of the Ritz vector proves lambda_max >= lo. docs/performance.md has
 // the algorithm and its costs.
 #include <Eigen/Core>
 
@@ -55,9 +56,10 @@ struct EigenInterval {
 };
 
 /// Largest eigenvalue of symmetric A. hi is certified by a successful Cholesky factorisation
-/// of (hi - margin) I - A, margin = 1e-12 * max row sum of |A| (an allowance for the
-/// factorisation's rounding); lo is the Rayleigh quotient of the Ritz vector (a lower bound
-/// for any vector). hi - lo <= ~1e-10 |lambda| + 1e-11 (Gershgorin width). Up to 400 rows
+/// of sigma I - A: hi = sigma + delta, delta a bound on that factorisation's rounding computed
+/// from its factor (detail/cholesky_rounding.hpp; 1e-12 to 1e-11 of |lambda| on the meshes
+/// measured), or Gershgorin's bound when that is lower; lo is the Rayleigh quotient of the
+/// Ritz vector less a bound on its rounding (a lower bound for any vector). hi - lo <= ~1e-10 |lambda| + 1e-11 (Gershgorin width). Up to 400 rows
 /// the dense eigenvalue is returned (lo = hi). `vector`: the unit Ritz vector. `threads`:
 /// the Lanczos estimate's matrix-vector products run on this many threads (0: one per CPU;
 /// matrices under 32768 rows stay on one), with the same bits on any count.
