@@ -3,7 +3,8 @@
 // plane, a tetrahedral block, one shifted to within 1e-9 of singular), the bound covers the
 // factorisation's actual error ||L L^T - P B~ P^T||_2 plus the diagonal's rounding, and equals
 // the formula evaluated on CHOLMOD's own sparse copy of L (so every stored entry of the
-// supernodal factor, and nothing above its diagonal blocks, is counted).
+// supernodal factor, and nothing above its diagonal blocks, is counted) and the bound of the
+// same factor converted to CHOLMOD's simplicial form.
 #include "core/analysis/detail/cholesky_rounding.hpp"
 
 #include <gtest/gtest.h>
@@ -63,8 +64,15 @@ void check(const SparseMatrix& A, double sigma) {
   }
   const double delta = cholesky_rounding_bound(L, diagonal);
 
-  // CHOLMOD's own sparse copy of L (a copy of the factor, converted).
   cholmod_common& c = llt.cholmod();
+  // The same factor converted to CHOLMOD's simplicial form gives the same bound.
+  cholmod_factor* simplicial = cholmod_copy_factor(&L, &c);
+  ASSERT_TRUE(cholmod_change_factor(CHOLMOD_REAL, true, false, true, true, simplicial, &c));
+  ASSERT_FALSE(simplicial->is_super);
+  EXPECT_NEAR(cholesky_rounding_bound(*simplicial, diagonal), delta, 1e-9 * delta);
+  cholmod_free_factor(&simplicial, &c);
+
+  // CHOLMOD's own sparse copy of L (a copy of the factor, converted).
   cholmod_factor* copy = cholmod_copy_factor(&L, &c);
   cholmod_sparse* S = cholmod_factor_to_sparse(copy, &c);
   const int* p = static_cast<const int*>(S->p);
