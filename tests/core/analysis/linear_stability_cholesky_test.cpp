@@ -17,6 +17,7 @@
 #include "bench/bench_meshes.hpp"
 #include "core/analysis/linear_stability.hpp"
 #include "core/scene.hpp"
+#include "tests/core/test_util.hpp"
 
 namespace dampbound {
 namespace {
@@ -37,12 +38,7 @@ Model plane_model(int n) {
 SparseMatrix plane_matrix(int n, double deform) {
   const Model m = plane_model(n);
   std::vector<Vec3> x = m.rest;
-  unsigned seed = 3;
-  for (auto& q : x)
-    for (int k = 0; k < 3; ++k) {
-      seed = seed * 1103515245u + 12345u;
-      q[k] += deform * (static_cast<double>((seed >> 8) & 0xffffu) / 65535.0 - 0.5);
-    }
+  test::shake(x, deform, 3);
   return mass_weighted(m, tangent_stiffness(m, x));
 }
 

@@ -17,6 +17,7 @@
 #include "core/detail/spring_block.hpp"
 #include "core/scene.hpp"
 #include "core/io/scene_file.hpp"
+#include "tests/core/test_util.hpp"
 
 namespace dampbound {
 namespace {
@@ -55,12 +56,7 @@ double dense_rho(Integrator in, const SparseMatrix& Kw, const Eigen::VectorXd& r
 
 std::vector<Vec3> deformed(const Model& m, double size) {
   std::vector<Vec3> x = m.rest;
-  unsigned seed = 7;
-  for (auto& p : x)
-    for (int k = 0; k < 3; ++k) {
-      seed = seed * 1103515245u + 12345u;
-      p[k] += size * (static_cast<double>((seed >> 8) & 0xffffu) / 65535.0 - 0.5);
-    }
+  test::shake(x, size, 7);
   return x;
 }
 
@@ -175,12 +171,7 @@ TEST(TangentStiffness, SameBitsAsTheTripletSum) {
   add_spring(spec, 3, 4, 1.0);
   Model model = compile_model(spec, p);
   std::vector<Vec3> x = model.rest;
-  unsigned seed = 11;
-  for (auto& q : x)
-    for (int k = 0; k < 3; ++k) {
-      seed = seed * 1103515245u + 12345u;
-      q[k] += 0.3 * (static_cast<double>((seed >> 8) & 0xffffu) / 65535.0 - 0.5);
-    }
+  test::shake(x, 0.3, 11);
   x[4] = x[3];  // the spring (3, 4) has zero length
   int compressed = 0;
   for (const Spring& s : model.springs)

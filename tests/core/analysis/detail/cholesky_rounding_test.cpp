@@ -19,6 +19,7 @@
 #include "bench/bench_meshes.hpp"
 #include "core/analysis/linear_stability.hpp"
 #include "core/scene.hpp"
+#include "tests/core/test_util.hpp"
 
 namespace dampbound::detail {
 namespace {
@@ -31,12 +32,7 @@ class VisibleLLT : public Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower
 SparseMatrix deformed_plane(int n) {
   const Model m = compile_model(make_grid(GridSpec{n, n, 0.57, true, true}), Params{});
   std::vector<Vec3> x = m.rest;
-  unsigned seed = 11;
-  for (auto& q : x)
-    for (int k = 0; k < 3; ++k) {
-      seed = seed * 1103515245u + 12345u;
-      q[k] += 0.2 * (static_cast<double>((seed >> 8) & 0xffffu) / 65535.0 - 0.5);
-    }
+  test::shake(x, 0.2, 11);
   return mass_weighted(m, tangent_stiffness(m, x));
 }
 
