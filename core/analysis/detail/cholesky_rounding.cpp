@@ -11,10 +11,11 @@
 namespace dampbound::detail {
 namespace {
 
-/// One dense block of L's columns, by columns: `columns` columns from `first`, rows[t] the row
-/// of its entry t in every column (the first `columns` rows are the block's own columns, its
-/// entries above them unused), `x` with leading dimension `height`. Adds each row's stored
-/// entries and |L| (|L|^T 1) over these columns; a column's sum needs only its own block.
+/// add_block: one dense block of L's columns (a supernode, or one simplicial column), stored
+/// by columns with leading dimension `height`; rows[t] is the row of entry t in every column,
+/// and the first `columns` rows are the block's own columns (entries above the diagonal
+/// unused). Adds each row's stored entries and |L| (|L|^T 1) over these columns: a column's
+/// sum of |L| needs only its own block.
 struct Sums {
   std::vector<double> row_sum;
   std::vector<long long> row_entries;
