@@ -15,6 +15,7 @@ PACKAGES=(
   clang libclang-rt-14-dev
   slurm-wlm munge                # scripts/ci/slurm.sh: a single-node Slurm on localhost
   python3-meshio python3-numpy   # tests read the ParaView (VTU) output back with meshio
+  locales                        # de_DE.UTF-8 below: numbers keep their point under a comma locale
 )
 missing=()
 for p in "${PACKAGES[@]}"; do
@@ -25,4 +26,9 @@ if [ ${#missing[@]} -gt 0 ]; then
   $SUDO apt-get update -qq
   $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
-echo "dependencies: all ${#PACKAGES[@]} packages installed"
+# A locale with a decimal comma, for the tests that a host's setlocale(LC_ALL, "") in Germany
+# leaves dampbound's files and mesh readers alone (tests/core/io/format_test.cpp, pytest).
+if ! locale -a 2>/dev/null | grep -qix 'de_DE\.utf-\?8'; then
+  $SUDO localedef -i de_DE -f UTF-8 de_DE.UTF-8
+fi
+echo "dependencies: all ${#PACKAGES[@]} packages installed, and the de_DE.UTF-8 locale"

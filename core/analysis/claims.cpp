@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <ostream>
 
+#include "core/io/format.hpp"
 #include "core/io/report.hpp"
 #include "core/session.hpp"
 
@@ -117,7 +118,7 @@ std::vector<Claim> sweep_claims(const std::vector<PredictionCheck>& checks,
     c.paper = p.claim;
     const double pct = 100.0 * static_cast<double>(p.held) / static_cast<double>(p.of);
     char buf[64];
-    std::snprintf(buf, sizeof buf, "%.1f%%", pct);
+    c_snprintf(buf, sizeof buf, "%.1f%%", pct);
     c.measured = "held in " + std::to_string(p.held) + " of " + std::to_string(p.of) +
                  " trials (" + buf + ") on " + grid;
     c.rule = p.claim.find("[settled rule]") == std::string::npos ? StopRule::first_entry

@@ -197,7 +197,7 @@ std::vector<CriterionResult> exact_criteria(const ExactStability& e, const Param
   lm.value = e.spectrum.lambda_max;
   lm.verdict = CriterionVerdict::not_applicable;
   char interval[80];  // 12 digits: the interval is ~1e-10 wide
-  std::snprintf(interval, sizeof interval, "[%.12g, %.12g]", e.lambda_max_lo, e.spectrum.lambda_max);
+  c_snprintf(interval, sizeof interval, "[%.12g, %.12g]", e.lambda_max_lo, e.spectrum.lambda_max);
   lm.test = "a quantity, not a test; certified in " + std::string(interval) + "; dt^2 lambda_max = " +
             format_digits(params.dt * params.dt * e.spectrum.lambda_max, 8);
   out.push_back(lm);

@@ -1,11 +1,43 @@
 #include "core/io/format.hpp"
 
+#include <clocale>
 #include <cmath>
+#include <cstdarg>
 #include <cstdio>
 #include <cstdlib>
+#include <locale.h>
 #include <sstream>
+#include <stdexcept>
+#include <stdlib.h>
 
 namespace dampbound {
+namespace {
+
+/// The "C" locale, made once (POSIX newlocale; a per-thread uselocale switches to it).
+locale_t c_locale() {
+  static const locale_t c = [] {
+    const locale_t l = newlocale(LC_ALL_MASK, "C", static_cast<locale_t>(nullptr));
+    if (l == static_cast<locale_t>(nullptr)) throw std::runtime_error("cannot make the C locale");
+    return l;
+  }();
+  return c;
+}
+
+}  // namespace
+
+CNumericScope::CNumericScope() : previous_(uselocale(c_locale())) {}
+CNumericScope::~CNumericScope() { uselocale(static_cast<locale_t>(previous_)); }
+
+int c_snprintf(char* buffer, std::size_t size, const char* format, ...) {
+  const CNumericScope c;
+  va_list args;
+  va_start(args, format);
+  const int n = std::vsnprintf(buffer, size, format, args);
+  va_end(args);
+  return n;
+}
+
+double c_strtod(const char* text, char** end) { return strtod_l(text, end, c_locale()); }
 
 std::string printable(std::string_view text) {
   std::string out;
@@ -29,8 +61,8 @@ std::string format_number(double x) {
   // The shortest of %.15g..%.17g that reads back as the same double.
   char buf[32];
   for (int digits = 15; digits <= 17; ++digits) {
-    std::snprintf(buf, sizeof buf, "%.*g", digits, x);
-    if (std::strtod(buf, nullptr) == x) break;
+    c_snprintf(buf, sizeof buf, "%.*g", digits, x);
+    if (c_strtod(buf, nullptr) == x) break;
   }
   return buf;
 }
@@ -39,7 +71,7 @@ std::string format_digits(double x, int significant, std::string_view not_a_numb
   if (std::isnan(x)) return std::string(not_a_number);
   if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
   char buf[40];
-  std::snprintf(buf, sizeof buf, "%.*g", significant, x);
+  c_snprintf(buf, sizeof buf, "%.*g", significant, x);
   return buf;
 }
 

@@ -1,6 +1,12 @@
 #pragma once
 // Numbers and text as dampbound prints them: exact round-trip decimals for files, a fixed
 // number of significant digits for people, JSON literals, and text made safe for one line.
+//
+// Every number dampbound writes or reads as text goes through the "C" locale, whatever the
+// program's: a host that called setlocale(LC_ALL, "") in a German or French locale (a Qt
+// program, a Python script calling locale.setlocale) would otherwise get "0,5" in its CSV and
+// JSON, and the mesh readers would take "0.57" for a bad number (docs/embedding.md).
+#include <cstddef>
 #include <string>
 #include <string_view>
 
@@ -21,5 +27,25 @@ std::string json_number(double x);
 
 /// JSON string literal with escapes.
 std::string json_string(const std::string& s);
+
+/// std::snprintf in the "C" locale (a '.' for the decimal point), for the calling thread only.
+int c_snprintf(char* buffer, std::size_t size, const char* format, ...)
+    __attribute__((format(printf, 3, 4)));
+
+/// std::strtod in the "C" locale: the same grammar (leading space, sign, hex, inf, nan).
+double c_strtod(const char* text, char** end);
+
+/// While it lives, the calling thread formats and reads numbers in the "C" locale (for
+/// std::fprintf and the like); other threads keep theirs.
+class CNumericScope {
+ public:
+  CNumericScope();
+  ~CNumericScope();
+  CNumericScope(const CNumericScope&) = delete;
+  CNumericScope& operator=(const CNumericScope&) = delete;
+
+ private:
+  void* previous_;
+};
 
 }  // namespace dampbound

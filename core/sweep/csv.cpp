@@ -49,7 +49,7 @@ std::string fnv1a_hex(const std::string& bytes) {
     h *= 1099511628211ull;
   }
   char buf[17];
-  std::snprintf(buf, sizeof buf, "%016" PRIx64, h);
+  c_snprintf(buf, sizeof buf, "%016" PRIx64, h);
   return buf;
 }
 
@@ -143,22 +143,22 @@ void write_sweep_rows(std::FILE* out, const SweepGrid& grid, const TrialClasses&
                      [&](const SweepRow& row, const SweepGrid::Index& ix, std::uint32_t c,
                          const TrialResult& r) {
     char head[64];
-    std::snprintf(head, sizeof head, "%" PRIu64 ",", row.trial);
+    c_snprintf(head, sizeof head, "%" PRIu64 ",", row.trial);
     line = head;
     line += mt[ix.m] + ',' + kt[ix.kappa] + ',' + format_number(row.gamma) + ',';
     line += zeta_mode ? gt[ix.gamma] : format_number(row.zeta);
     line += ',' + dtt[ix.dt] + ',' + policy + ',' + ft[ix.factor] + ',';
     char tail[200];
-    std::snprintf(tail, sizeof tail, "%" PRIu32 ",%d,%s,%d,", c,
+    c_snprintf(tail, sizeof tail, "%" PRIu32 ",%d,%s,%d,", c,
                   classes.representative[c] == row.trial ? 1 : 0,
                   to_string(r.outcome), r.iterations);
     line += tail;
     line += format_number(r.max_displacement);
-    std::snprintf(tail, sizeof tail, ",%lld,%lld,%lld,%lld", r.violations, r.unstabilisable,
+    c_snprintf(tail, sizeof tail, ",%lld,%lld,%lld,%lld", r.violations, r.unstabilisable,
                   r.clamped, r.zero_length_springs);
     line += tail;
     if (s.rules.rule == StopRule::settled) {
-      std::snprintf(tail, sizeof tail, ",%d,%d,%d", r.first_entry, r.left_at, r.settled_at);
+      c_snprintf(tail, sizeof tail, ",%d,%d,%d", r.first_entry, r.left_at, r.settled_at);
       line += tail;
     }
     line += '\n';
@@ -237,13 +237,13 @@ SweepTable read_sweep_csv(const std::string& path, bool keep_lines) {
     if (f[0].empty() || *end) fail("bad trial index '" + f[0] + "'");
     double* nums[] = {&r.m, &r.kappa, &r.gamma, &r.zeta, &r.dt};
     for (int k = 0; k < 5; ++k)
-      *nums[k] = std::strtod(f[static_cast<size_t>(k) + 1].c_str(), nullptr);
-    r.factor = std::strtod(f[7].c_str(), nullptr);
+      *nums[k] = c_strtod(f[static_cast<size_t>(k) + 1].c_str(), nullptr);
+    r.factor = c_strtod(f[7].c_str(), nullptr);
     const auto outcome = parse_outcome(f[10], t.header.rule);
     if (!outcome) fail("bad outcome '" + f[10] + "' for rule " + to_string(t.header.rule));
     r.outcome = *outcome;
     r.iterations = std::atoi(f[11].c_str());
-    r.max_displacement = std::strtod(f[12].c_str(), nullptr);
+    r.max_displacement = c_strtod(f[12].c_str(), nullptr);
     r.unstabilisable = std::atoll(f[14].c_str());
     if (t.header.rule == StopRule::settled) {
       r.first_entry = std::atoi(f[17].c_str());

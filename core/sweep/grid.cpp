@@ -8,6 +8,7 @@
 
 #include "core/bounds.hpp"
 #include "core/error.hpp"
+#include "core/io/format.hpp"
 
 namespace dampbound {
 
@@ -58,7 +59,7 @@ std::string Decimal::text() const {
 }
 
 double Decimal::value() const {
-  return std::strtod(text().c_str(), nullptr);
+  return c_strtod(text().c_str(), nullptr);
 }
 
 Decimal parse_decimal(const std::string& text, const std::string& flag) {

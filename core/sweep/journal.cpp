@@ -15,6 +15,7 @@
 #include <unordered_set>
 
 #include "core/error.hpp"
+#include "core/io/format.hpp"
 
 namespace dampbound {
 
@@ -58,7 +59,7 @@ bool band_implied(const TrialResult& r) {
 /// A journal line: the body, a space, its 8-hex-digit FNV-1a checksum and a newline.
 std::string with_checksum(const char* body, int n) {
   char sum[16];
-  std::snprintf(sum, sizeof sum, " %08" PRIx32 "\n", fnv1a32(body, static_cast<size_t>(n)));
+  c_snprintf(sum, sizeof sum, " %08" PRIx32 "\n", fnv1a32(body, static_cast<size_t>(n)));
   return std::string(body, static_cast<size_t>(n)) + sum;
 }
 
@@ -76,11 +77,11 @@ bool checksum_ok(const std::string& line) {
 std::string journal_line(const JournalEntry& e) {
   const TrialResult& r = e.result;
   char body[256];
-  int n = std::snprintf(body, sizeof body, "%" PRIu32 " %c %d %a %lld %lld %lld %lld", e.cls,
+  int n = c_snprintf(body, sizeof body, "%" PRIu32 " %c %d %a %lld %lld %lld %lld", e.cls,
                         outcome_code(r.outcome), r.iterations, r.max_displacement, r.violations,
                         r.unstabilisable, r.clamped, r.zero_length_springs);
   if (!band_implied(r))  // " b FIRST LEFT SETTLED": the settled rule's band fields
-    n += std::snprintf(body + n, sizeof body - static_cast<size_t>(n), " b %d %d %d",
+    n += c_snprintf(body + n, sizeof body - static_cast<size_t>(n), " b %d %d %d",
                        r.first_entry, r.left_at, r.settled_at);
   return with_checksum(body, n);
 }
@@ -101,7 +102,7 @@ std::optional<JournalEntry> parse_journal_line(const std::string& line) {
                           &r.settled_at) != 3)
     return std::nullopt;
   char* end = nullptr;
-  r.max_displacement = std::strtod(disp, &end);
+  r.max_displacement = c_strtod(disp, &end);
   // A line with a good checksum can still be forged or come from a broken build: what no
   // run can give is refused (counts are node-steps >= 0; only a diverged trial ends at a
   // non-finite displacement).
@@ -134,7 +135,7 @@ std::optional<JournalEntry> parse_journal_line(const std::string& line) {
 
 std::string journal_time_line(const JournalTime& t) {
   char body[128];
-  const int n = std::snprintf(body, sizeof body, "t %d %.3f %.3f %" PRIu64, t.run, t.wall_s,
+  const int n = c_snprintf(body, sizeof body, "t %d %.3f %.3f %" PRIu64, t.run, t.wall_s,
                               t.cpu_s, t.classes);
   return with_checksum(body, n);
 }
@@ -142,6 +143,7 @@ std::string journal_time_line(const JournalTime& t) {
 std::optional<JournalTime> parse_journal_time_line(const std::string& line) {
   if (line.rfind("t ", 0) != 0 || !checksum_ok(line)) return std::nullopt;
   JournalTime x;
+  const CNumericScope c;  // %lf reads "12.5" whatever the host's locale
   if (std::sscanf(line.c_str(), "t %d %lf %lf %" SCNu64, &x.run, &x.wall_s, &x.cpu_s, &x.classes) !=
           4 ||
       x.run < 1 || !(x.wall_s >= 0) || !(x.cpu_s >= 0))

@@ -229,7 +229,7 @@ StabilityMap build_stability_map(const SweepTable& table, double lambda_unit,
       const double r =
           gamma_policy ? critical_ratio(s, lambda_unit, dt) : 4 / (lambda_unit * dt * dt);
       char ratio_text[32];
-      std::snprintf(ratio_text, sizeof ratio_text, "%.4g", r);
+      c_snprintf(ratio_text, sizeof ratio_text, "%.4g", r);
       p.lines.push_back({gamma_policy
                              ? std::string("exact linear limit: kappa/m = ") + ratio_text
                              : std::string("dt = 2/sqrt(lambda_max): kappa/m = ") + ratio_text,

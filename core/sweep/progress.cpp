@@ -1,4 +1,5 @@
 #include "core/sweep/progress.hpp"
+#include "core/io/format.hpp"
 
 #include <algorithm>
 #include <cinttypes>
@@ -12,11 +13,11 @@ std::string format_duration(double s) {
   const long t = std::lround(s);
   char buf[32];
   if (t >= 3600)
-    std::snprintf(buf, sizeof buf, "%ldh%02ldm", t / 3600, (t / 60) % 60);
+    c_snprintf(buf, sizeof buf, "%ldh%02ldm", t / 3600, (t / 60) % 60);
   else if (t >= 60)
-    std::snprintf(buf, sizeof buf, "%ldm%02lds", t / 60, t % 60);
+    c_snprintf(buf, sizeof buf, "%ldm%02lds", t / 60, t % 60);
   else
-    std::snprintf(buf, sizeof buf, "%lds", t);
+    c_snprintf(buf, sizeof buf, "%lds", t);
   return buf;
 }
 
@@ -24,6 +25,7 @@ ProgressPrinter::ProgressPrinter(std::FILE* out, bool terminal, double interval_
     : out_(out), terminal_(terminal), interval_s_(interval_s) {}
 
 void ProgressPrinter::update(const SweepProgress& p) {
+  const CNumericScope c;  // "12.5%", whatever the host's locale
   constexpr double kWindow = 300;
   if (window_.empty() || p.elapsed_s - window_.back().t >= 1.0)
     window_.push_back({p.elapsed_s, p.classes_done, p.trials_done});
@@ -46,11 +48,11 @@ void ProgressPrinter::update(const SweepProgress& p) {
                           : 1.0;
   char rate[32];
   if (!std::isfinite(trial_rate))
-    std::snprintf(rate, sizeof rate, "?");
+    c_snprintf(rate, sizeof rate, "?");
   else if (trial_rate >= 1e4)
-    std::snprintf(rate, sizeof rate, "%.1fk", trial_rate / 1e3);
+    c_snprintf(rate, sizeof rate, "%.1fk", trial_rate / 1e3);
   else
-    std::snprintf(rate, sizeof rate, "%.0f", trial_rate);
+    c_snprintf(rate, sizeof rate, "%.0f", trial_rate);
   if (terminal_) {
     if (!p.final && p.elapsed_s - last_draw_ < 0.2) return;
     last_draw_ = p.elapsed_s;

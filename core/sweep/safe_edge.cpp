@@ -39,7 +39,7 @@ double node_safe(const SafeUnit& u, size_t i, double m, double kappa, double dt)
 
 std::string pct(std::uint64_t a, std::uint64_t b) {
   char buf[32];
-  std::snprintf(buf, sizeof buf, "%.1f%%", b ? 100.0 * static_cast<double>(a) / static_cast<double>(b) : 0.0);
+  c_snprintf(buf, sizeof buf, "%.1f%%", b ? 100.0 * static_cast<double>(a) / static_cast<double>(b) : 0.0);
   return buf;
 }
 
@@ -117,7 +117,7 @@ std::string confusion_markdown(const std::vector<PredictorScore>& scores) {
     const Confusion& c = p.c;
     const std::uint64_t all = c.true_pos + c.false_pos + c.false_neg + c.true_neg;
     char buf[256];
-    std::snprintf(buf, sizeof buf, " | %" PRIu64 " | %" PRIu64 " | %" PRIu64 " | %" PRIu64 " | %s |\n",
+    c_snprintf(buf, sizeof buf, " | %" PRIu64 " | %" PRIu64 " | %" PRIu64 " | %" PRIu64 " | %s |\n",
                   c.true_pos, c.false_pos, c.false_neg, c.true_neg,
                   pct(c.false_pos + c.false_neg, all).c_str());
     s += "| " + p.predictor + buf;
@@ -133,7 +133,7 @@ std::vector<std::string> safe_summary_lines(const std::vector<SweepRow>& rows,
   if (policy == DampingPolicy::fixed) {
     for (const PredictorScore& p : divergence_confusion(rows, unit, lambda_unit)) {
       const Confusion& c = p.c;
-      std::snprintf(buf, sizeof buf,
+      c_snprintf(buf, sizeof buf,
                     "divergence   %s: says diverges %" PRIu64 " (diverged %" PRIu64
                     "), says stable %" PRIu64 " (diverged %" PRIu64 ")",
                     p.predictor.c_str(), c.true_pos + c.false_pos, c.true_pos,
@@ -150,19 +150,19 @@ std::vector<std::string> safe_summary_lines(const std::vector<SweepRow>& rows,
       (g ? guaranteed_div : open_div) += d;
       if (g && d) surprises.push_back(&r);
     }
-    std::snprintf(buf, sizeof buf,
+    c_snprintf(buf, sizeof buf,
                   "safe policy  gamma_safe_i > 0 at every node (stability guaranteed at rest, "
                   "SPEC 9): %" PRIu64 " trials, %" PRIu64 " diverged",
                   guaranteed, guaranteed_div);
     lines.push_back(buf);
-    std::snprintf(buf, sizeof buf,
+    c_snprintf(buf, sizeof buf,
                   "safe policy  gamma_safe_i <= 0 at some node (no damping guarantees it at this "
                   "dt): %" PRIu64 " trials, %" PRIu64 " diverged",
                   open, open_div);
     lines.push_back(buf);
     for (size_t k = 0; k < surprises.size() && k < 5; ++k) {
       const SweepRow& r = *surprises[k];
-      std::snprintf(buf, sizeof buf,
+      c_snprintf(buf, sizeof buf,
                     "safe policy  diverged although guaranteed at rest: trial %" PRIu64
                     " m=%s kappa=%s dt=%s at iteration %d",
                     r.trial, format_number(r.m).c_str(), format_number(r.kappa).c_str(),
@@ -193,7 +193,7 @@ std::string safe_report_section(const std::vector<SweepRow>& fixed_rows,
     return text + "of " + std::to_string(rows.size()) + " trials";
   };
   char num[64];
-  std::snprintf(num, sizeof num, "%.6g", r_unit);
+  c_snprintf(num, sizeof num, "%.6g", r_unit);
   std::string s = "\n## What guarantees stability\n\n";
   s += "The paper's runtime check (sec. 5) compares the lower bound of eq. 5 with the upper "
        "bound of eq. 6 at every node and step. The safe bound of SPEC 9 (docs/criteria.md) "
@@ -203,7 +203,7 @@ std::string safe_report_section(const std::vector<SweepRow>& fixed_rows,
        "M^-1/2 K M^-1/2 over the node's rows (largest R_i on this mesh at rest: " +
        std::string(num) + " kappa/m";
   if (std::isfinite(lambda_unit)) {
-    std::snprintf(num, sizeof num, "%.6g", lambda_unit);
+    c_snprintf(num, sizeof num, "%.6g", lambda_unit);
     s += ", against lambda_max = " + std::string(num) + " kappa/m";
   }
   s += ").\n\nThe lower-bound sweep on a grid that spans the paper's whole kappa/m range "

@@ -16,7 +16,7 @@ namespace {
 
 std::string gigabytes(double bytes) {
   char buf[32];
-  std::snprintf(buf, sizeof buf, "%.2f GB", bytes / 1e9);
+  c_snprintf(buf, sizeof buf, "%.2f GB", bytes / 1e9);
   return buf;
 }
 

@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "core/analysis/linear_stability.hpp"
+#include "core/io/format.hpp"
 
 namespace dampbound {
 
@@ -124,7 +125,7 @@ std::vector<std::string> summary_lines(const std::vector<SweepRow>& rows,
     const Overturned o = count_overturned(rows);
     std::uint64_t left = 0;  // not settled after an entry: the map's "entered, then left"
     for (const SweepRow& r : rows) left += r.outcome == Outcome::not_settled && r.first_entry > 0;
-    std::snprintf(buf, sizeof buf,
+    c_snprintf(buf, sizeof buf,
                   "outcomes     %" PRIu64 " settled, %" PRIu64 " not settled (%" PRIu64
                   " of them entered the band, then left), %" PRIu64
                   " diverged (of %zu trials; settled rule)",
@@ -132,7 +133,7 @@ std::vector<std::string> summary_lines(const std::vector<SweepRow>& rows,
                   n[static_cast<size_t>(Outcome::not_settled)], left,
                   n[static_cast<size_t>(Outcome::diverged)], rows.size());
     lines.push_back(buf);
-    std::snprintf(buf, sizeof buf,
+    c_snprintf(buf, sizeof buf,
                   "overturned   %" PRIu64 " of %" PRIu64
                   " first-entry restores (%.2f%%) did not settle: %" PRIu64
                   " left the band and were not back in at the limit, %" PRIu64 " diverged later",
@@ -143,7 +144,7 @@ std::vector<std::string> summary_lines(const std::vector<SweepRow>& rows,
                   o.left, o.diverged);
     lines.push_back(buf);
   } else {
-    std::snprintf(buf, sizeof buf,
+    c_snprintf(buf, sizeof buf,
                   "outcomes     %" PRIu64 " restored, %" PRIu64 " not restored, %" PRIu64
                   " diverged (of %zu trials)",
                   n[static_cast<size_t>(Outcome::restored)],
@@ -152,7 +153,7 @@ std::vector<std::string> summary_lines(const std::vector<SweepRow>& rows,
     lines.push_back(buf);
   }
   for (const PredictionCheck& c : check_predictions(rows, policy, lambda_unit)) {
-    std::snprintf(buf, sizeof buf, "prediction   %s: held in %" PRIu64 " of %" PRIu64 " (%.1f%%)",
+    c_snprintf(buf, sizeof buf, "prediction   %s: held in %" PRIu64 " of %" PRIu64 " (%.1f%%)",
                   c.claim.c_str(), c.held, c.of,
                   100.0 * static_cast<double>(c.held) / static_cast<double>(c.of));
     lines.push_back(buf);

@@ -1,4 +1,5 @@
 """The module's scene and session: NumPy views, the protocol result, the bounds."""
+import locale
 import math
 
 import numpy as np
@@ -119,3 +120,18 @@ def test_settled_rule_runs_to_the_limit_and_reports_the_first_entry(scenes_dir):
     assert settled.outcome == "settled" and settled.iterations == 400
     assert settled.first_entry == first.iterations
     assert 0 < settled.settled_at <= 400
+
+
+def test_a_comma_locale_leaves_mesh_scenes_readable(scenes_dir):
+    # A script that calls locale.setlocale(LC_ALL, "") in Germany gives the C library a
+    # decimal comma; dampbound's mesh readers and writers keep the point.
+    before = locale.setlocale(locale.LC_NUMERIC)
+    try:
+        locale.setlocale(locale.LC_NUMERIC, "de_DE.UTF-8")  # scripts/install-deps.sh makes it
+        assert locale.localeconv()["decimal_point"] == ","
+        scene = dampbound.load_scene(str(scenes_dir / "tissue-cap.toml"))
+        assert scene.node_count == 433
+        result = dampbound.Session(scene).run()
+        assert result.iterations > 0
+    finally:
+        locale.setlocale(locale.LC_NUMERIC, before)

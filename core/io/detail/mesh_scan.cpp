@@ -85,7 +85,7 @@ long long MeshScan::integer_in(const char* what, long long lo, long long hi) {
 std::optional<double> finite_number(const std::string& t) {
   if (t.empty() || t.find_first_of("xX") != std::string::npos) return std::nullopt;
   char* end = nullptr;
-  const double v = std::strtod(t.c_str(), &end);
+  const double v = c_strtod(t.c_str(), &end);
   // The whole token: a NUL inside it would end strtod's reading early.
   if (end != t.c_str() + t.size() || !std::isfinite(v)) return std::nullopt;
   return v;
