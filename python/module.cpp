@@ -5,6 +5,7 @@
 #include <pybind11/stl.h>
 
 #include "core/error.hpp"
+#include "core/io/format.hpp"
 #include "core/session.hpp"
 #include "core/io/scene_file.hpp"
 #include "dampbound/version.hpp"
@@ -44,8 +45,9 @@ void bind_params(py::module_& m) {
           "'semi-implicit-euler' (the paper's, default), 'forward-euler', 'verlet', 'rk4', "
           "'implicit-euler'")
       .def("__repr__", [](const Params& p) {
-        return "Params(m=" + std::to_string(p.m) + ", kappa=" + std::to_string(p.kappa) +
-               ", gamma=" + std::to_string(p.gamma) + ", dt=" + std::to_string(p.dt) +
+        // format_number: the exact value in the "C" locale (%f showed 1e-9 as 0.000000).
+        return "Params(m=" + format_number(p.m) + ", kappa=" + format_number(p.kappa) +
+               ", gamma=" + format_number(p.gamma) + ", dt=" + format_number(p.dt) +
                ", policy='" + to_string(p.policy) + "')";
       });
 

@@ -133,5 +133,8 @@ def test_a_comma_locale_leaves_mesh_scenes_readable(scenes_dir):
         assert scene.node_count == 433
         result = dampbound.Session(scene).run()
         assert result.iterations > 0
+        p = dampbound.Params()
+        p.dt = 1e-9
+        assert repr(p).startswith("Params(m=0.001, kappa=0.001, gamma=0.002, dt=1e-09,")
     finally:
         locale.setlocale(locale.LC_NUMERIC, before)
