@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "core/error.hpp"
+#include "core/io/format.hpp"
 
 namespace dampbound {
 namespace {
@@ -146,7 +147,7 @@ std::optional<std::string> cell_problem(const std::vector<Vec3>& vertices, const
     const double v = tetra_signed_volume(vertices[size_t(k[0])], vertices[size_t(k[1])],
                                          vertices[size_t(k[2])], vertices[size_t(k[3])]);
     if ((v > 0 ? 1 : -1) != orientation)
-      return "inverted tetrahedron (signed volume " + std::to_string(v) + ")";
+      return "inverted tetrahedron (signed volume " + format_digits(v, 6) + ")";
   }
   return std::nullopt;
 }
