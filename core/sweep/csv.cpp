@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <map>
 
 #include "core/bounds.hpp"
@@ -234,21 +235,39 @@ SweepTable read_sweep_csv(const std::string& path, bool keep_lines) {
     SweepRow r;
     char* end = nullptr;
     r.trial = std::strtoull(f[0].c_str(), &end, 10);
-    if (f[0].empty() || *end) fail("bad trial index '" + f[0] + "'");
-    double* nums[] = {&r.m, &r.kappa, &r.gamma, &r.zeta, &r.dt};
-    for (int k = 0; k < 5; ++k)
-      *nums[k] = c_strtod(f[static_cast<size_t>(k) + 1].c_str(), nullptr);
-    r.factor = c_strtod(f[7].c_str(), nullptr);
+    if (f[0].empty() || *end) fail("bad trial index '" + printable(f[0]) + "'");
+    // Every number whole, or the line is refused (a field such as "abc" once read as 0).
+    auto number = [&](size_t k, const char* column) {
+      char* stop = nullptr;
+      const double v = c_strtod(f[k].c_str(), &stop);
+      if (f[k].empty() || *stop) fail("bad number '" + printable(f[k]) + "' in column " + column);
+      return v;
+    };
+    auto integer = [&](size_t k, const char* column, long long lo, long long hi) {
+      char* stop = nullptr;
+      errno = 0;
+      const long long v = std::strtoll(f[k].c_str(), &stop, 10);
+      if (f[k].empty() || *stop || errno == ERANGE || v < lo || v > hi)
+        fail("bad integer '" + printable(f[k]) + "' in column " + column);
+      return v;
+    };
+    const long long kInt = 2147483647;  // the int columns
+    r.m = number(1, "m");
+    r.kappa = number(2, "kappa");
+    r.gamma = number(3, "gamma");
+    r.zeta = number(4, "zeta");
+    r.dt = number(5, "dt");
+    r.factor = number(7, "factor");
     const auto outcome = parse_outcome(f[10], t.header.rule);
-    if (!outcome) fail("bad outcome '" + f[10] + "' for rule " + to_string(t.header.rule));
+    if (!outcome) fail("bad outcome '" + printable(f[10]) + "' for rule " + to_string(t.header.rule));
     r.outcome = *outcome;
-    r.iterations = std::atoi(f[11].c_str());
-    r.max_displacement = c_strtod(f[12].c_str(), nullptr);
-    r.unstabilisable = std::atoll(f[14].c_str());
+    r.iterations = static_cast<int>(integer(11, "iterations", 0, kInt));
+    r.max_displacement = number(12, "max_displacement");
+    r.unstabilisable = integer(14, "unstabilisable", 0, std::numeric_limits<long long>::max());
     if (t.header.rule == StopRule::settled) {
-      r.first_entry = std::atoi(f[17].c_str());
-      r.left_at = std::atoi(f[18].c_str());
-      r.settled_at = std::atoi(f[19].c_str());
+      r.first_entry = static_cast<int>(integer(17, "first_entry", -kInt, kInt));
+      r.left_at = static_cast<int>(integer(18, "left_at", -kInt, kInt));
+      r.settled_at = static_cast<int>(integer(19, "settled_at", -kInt, kInt));
     } else if (r.outcome == Outcome::restored) {
       r.first_entry = r.iterations;
     }

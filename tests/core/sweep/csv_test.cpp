@@ -107,6 +107,43 @@ TEST(SweepCsv, ShardsMergeIntoTheUnshardedFile) {
   EXPECT_THROW(merge_sweep_parts({p1}, merged), InputError);      // a part missing
 }
 
+TEST(SweepCsv, ANumberThatIsNotWholeIsRefusedNamingItsColumn) {
+  const std::string good = temp_path("numbers.csv");
+  write_small(good, StopRule::first_entry);
+  std::ifstream in(good, std::ios::binary);
+  const std::string text(std::istreambuf_iterator<char>(in), {});
+  // The first row (after the column line), with field k replaced.
+  const size_t row = text.find('\n', text.find("trial,m,")) + 1;
+  const size_t row_end = text.find('\n', row);
+  auto with_field = [&](int k, const std::string& value) {
+    std::string line = text.substr(row, row_end - row);
+    size_t a = 0;
+    for (int i = 0; i < k; ++i) a = line.find(',', a) + 1;
+    const size_t b = line.find(',', a);
+    line.replace(a, b - a, value);
+    return text.substr(0, row) + line + text.substr(row_end);
+  };
+  auto message = [&](const std::string& name, int k, const std::string& value) {
+    try {
+      read_sweep_csv(write_file(name, with_field(k, value)));
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("(read without an error)");
+  };
+  EXPECT_NO_THROW(read_sweep_csv(write_file("numbers-same.csv", with_field(1, "0.001"))));
+  EXPECT_NO_THROW(read_sweep_csv(write_file("numbers-inf.csv", with_field(12, "inf"))));
+  EXPECT_NE(message("m.csv", 1, "abc").find("m.csv:"), std::string::npos);
+  EXPECT_NE(message("m.csv", 1, "abc").find("bad number 'abc' in column m"), std::string::npos);
+  EXPECT_NE(message("dt.csv", 5, "0.05x").find("in column dt"), std::string::npos);
+  EXPECT_NE(message("empty.csv", 2, "").find("bad number '' in column kappa"), std::string::npos);
+  EXPECT_NE(message("it.csv", 11, "12.5").find("bad integer '12.5' in column iterations"),
+            std::string::npos);
+  EXPECT_NE(message("neg.csv", 14, "-3").find("in column unstabilisable"), std::string::npos);
+  EXPECT_NE(message("disp.csv", 12, "1.5.2").find("in column max_displacement"),
+            std::string::npos);
+}
+
 TEST(SweepCsv, ForgedOrBrokenFilesAreRefused) {
   const std::string good = temp_path("good.csv");
   write_small(good, StopRule::first_entry);
