@@ -1,160 +1,31 @@
 #include "core/analysis/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
 #include "core/analysis/linear_stability_cholesky.hpp"
-#include "core/analysis/detail/cholesky_rounding.hpp"
-#include "core/analysis/detail/serial_openmp.hpp"
+#include "core/analysis/detail/shifted_cholesky.hpp"
 #include "core/analysis/detail/symmetric_product.hpp"
 #include "core/analysis/detail/tridiagonal.hpp"
 
 #include <Eigen/Dense>
-#include <Eigen/CholmodSupport>
 #include <Spectra/SymEigsSolver.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
-#include <mutex>
 #include <string>
 
 namespace dampbound {
+using detail::kAmdSlack;
+using detail::ShiftedCholesky;
 namespace {
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
-/// The certificate's allowance for rounding in the factorisation, relative to max_r sum_s
-/// |A_rs|: a factorisation that succeeds on (hi - margin) I - A is taken to prove hi.
+/// Room above a shift, relative to max_r sum_s |A_rs|, so that a factorisation just above
+/// lambda_max does not fail by rounding; what a success proves allows for its rounding
+/// separately (ShiftedCholesky::proved_above).
 constexpr double kMargin = 1e-12;
 /// Up to this many rows the dense eigenvalues are cheaper than factorisations (a 10 x 10
 /// plane, 300 rows: a few ms) and exact to rounding: lo = hi.
 constexpr Eigen::Index kDenseRows = 400;
-/// Below this many rows the fill-reducing ordering is AMD alone (CHOLMOD's default also tries
-/// nested dissection, which pays on big meshes only).
-constexpr Eigen::Index kNestedDissectionRows = 20000;
-/// Above this many rows a budget is first checked against AMD's ordering alone: CHOLMOD's
-/// default analysis also tries METIS and nested dissection, 49 s for the 3M rows of a 1M-node
-/// tetrahedral block, AMD alone 8.5 s. AMD's prediction was 12x (46^3 block) and 17x (100^3)
-/// above the better ordering's, so only a prediction kAmdSlack times over the budget stops
-/// the analysis there.
-constexpr Eigen::Index kQuickCheckRows = 500000;
-constexpr double kAmdSlack = 32;
-
-/// The one turn in CHOLMOD, and in the libraries it calls, for the whole process: two analyses
-/// may run at once (the tuner's analysis and Suggest workers, a user's own threads), and
-/// - Debian's libopenblas0-serial (0.3.21, what scripts/install-deps.sh installs) shares its
-///   work buffers between threads without a lock: two threads in it at once corrupt each
-///   other's results, and a factorisation corrupted that way can succeed below lambda_max, a
-///   false certificate;
-/// - METIS, which CHOLMOD's analysis tries above 20 000 rows, draws from one random generator
-///   for the process: two analyses at once order the matrix differently, so the results'
-///   bits would depend on what else was running.
-/// So every pattern analysis, numeric factorisation and solve takes this turn (measured:
-/// docs/performance.md, "One thread in CHOLMOD at a time"); the Lanczos products, which call
-/// none of these libraries, do not.
-std::mutex& cholmod_turn() {
-  static std::mutex turn;
-  return turn;
-}
-
-/// Eigen's wrapper of CHOLMOD's supernodal LL', with the factor in view (for its rounding).
-class SupernodalLLT : public Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> {
- public:
-  const cholmod_factor& factor() const { return *m_cholmodFactor; }
-};
-
-/// Factorisations of sigma I - A for a changing shift sigma, by CHOLMOD's supernodal
-/// Cholesky (fill-reducing ordering chosen by CHOLMOD: AMD or nested dissection): the
-/// pattern is analysed once; each shift is one numeric factorisation of -A + sigma I.
-/// CHOLMOD's own OpenMP loops run serially (detail/serial_openmp.hpp: 3x faster on 2 cores).
-class ShiftedCholesky {
- public:
-  explicit ShiftedCholesky(const SparseMatrix& A) : n_(A.rows()) {
-    // The lower triangle of -A with every diagonal entry present (0 + (-A_kk), or 0 where A
-    // has none), column by column in compressed storage; A's columns hold sorted rows.
-    std::vector<int> outer(static_cast<size_t>(n_) + 1, 0);
-    std::vector<int> inner;
-    std::vector<double> values;
-    inner.reserve(static_cast<size_t>(A.nonZeros() / 2 + n_));
-    values.reserve(inner.capacity());
-    for (Eigen::Index k = 0; k < n_; ++k) {
-      inner.push_back(static_cast<int>(k));  // the diagonal, first in its column
-      values.push_back(0.0);
-      for (SparseMatrix::InnerIterator it(A, k); it; ++it) {
-        if (it.row() < k) continue;
-        if (it.row() == k) {
-          values.back() = 0.0 + -it.value();  // as the triplets (k, k, 0) and (k, k, -A_kk) summed
-        } else {
-          inner.push_back(static_cast<int>(it.row()));
-          values.push_back(-it.value());
-        }
-      }
-      outer[static_cast<size_t>(k) + 1] = static_cast<int>(inner.size());
-    }
-    B_ = Eigen::Map<const SparseMatrix>(n_, n_, static_cast<Eigen::Index>(inner.size()),
-                                        outer.data(), inner.data(), values.data());
-    llt_.cholmod().print = 0;                // a failed factorisation is an answer, not news
-    if (n_ < kNestedDissectionRows) {         // small: AMD alone; CHOLMOD's trial of nested
-      llt_.cholmod().nmethods = 1;            // dissection costs more than it saves there
-      llt_.cholmod().method[0].ordering = CHOLMOD_AMD;
-    }
-  }
-  /// The pattern analysis (once); throws FactorisationOverBudget when one numeric
-  /// factorisation would take more than `budget` flops.
-  void analyse(double budget) {
-    if (analysed_) return;
-    const std::lock_guard<std::mutex> turn(cholmod_turn());
-    const detail::SerialOpenMp serial;
-    if (budget < kNoFactorBudget && n_ > kQuickCheckRows) {
-      Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> amd;
-      amd.cholmod().print = 0;
-      amd.cholmod().nmethods = 1;
-      amd.cholmod().method[0].ordering = CHOLMOD_AMD;
-      amd.analyzePattern(B_);
-      if (amd.cholmod().fl > kAmdSlack * budget)
-        throw FactorisationOverBudget(amd.cholmod().fl, 8 * amd.cholmod().lnz, budget, true);
-    }
-    llt_.analyzePattern(B_);
-    analysed_ = true;
-    if (llt_.cholmod().fl > budget)
-      throw FactorisationOverBudget(llt_.cholmod().fl, 8 * llt_.cholmod().lnz, budget);
-  }
-  /// Factors sigma I - A; true when it is positive definite (every pivot > 0).
-  bool factor(double sigma) {
-    analyse(kNoFactorBudget);
-    const std::lock_guard<std::mutex> turn(cholmod_turn());
-    const detail::SerialOpenMp serial;
-    llt_.setShift(sigma);
-    llt_.factorize(B_);
-    ++factorizations;
-    ok_ = llt_.info() == Eigen::Success;
-    sigma_ = sigma;
-    return ok_;
-  }
-  /// After a successful factor(sigma): what it proves, lambda_max(A) < the result, allowing
-  /// for the factorisation's rounding (detail/cholesky_rounding.hpp), rounded up.
-  double proved_above() const {
-    double diagonal = 0;  // as CHOLMOD formed it: sigma + (-A_kk), the first entry of column k
-    for (Eigen::Index k = 0; k < n_; ++k)
-      diagonal = std::max(diagonal, std::abs(sigma_ + B_.valuePtr()[B_.outerIndexPtr()[k]]));
-    const double delta = detail::cholesky_rounding_bound(llt_.factor(), diagonal);
-    return std::nextafter(sigma_ + delta, std::numeric_limits<double>::infinity());
-  }
-  bool ready() const { return ok_; }
-  void solve(const double* in, double* out) {
-    ++solves;
-    const std::lock_guard<std::mutex> turn(cholmod_turn());
-    const detail::SerialOpenMp serial;
-    Eigen::Map<Eigen::VectorXd>(out, n_) = llt_.solve(Eigen::Map<const Eigen::VectorXd>(in, n_));
-  }
-  Eigen::Index size() const { return n_; }
-  int factorizations = 0, solves = 0;
-
- private:
-  Eigen::Index n_;
-  SparseMatrix B_;
-  SupernodalLLT llt_;
-  double sigma_ = 0;
-  bool analysed_ = false, ok_ = false;
-};
-
 /// A rough top Ritz value of A by plain Lanczos (matrix-vector products only, no
 /// reorthogonalisation) and an estimate of how far below lambda_max it still is: it only
 /// places the first shift near lambda_max; nothing certified depends on it.

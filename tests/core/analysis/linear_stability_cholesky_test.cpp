@@ -232,7 +232,7 @@ SparseMatrix block_matrix(int n) {
 TEST(CertifiedEigenvalue, CallsFromTwoThreadsAtOnceGiveTheBitsOfOne) {
   // The tuner's analysis and Suggest workers, or a user's threads, may factorise at the same
   // time. Debian's serial OpenBLAS shares its buffers between threads without a lock: without
-  // the turn in CHOLMOD (linear_stability_cholesky.cpp), 6 to 9 of 12 calls on this block made
+  // the turn in CHOLMOD (detail/shifted_cholesky.cpp), 6 to 9 of 12 calls on this block made
   // two at a time differed from the lone call; on the 20^3 block two of ten had a certified
   // hi below lambda_max.
   const SparseMatrix A = block_matrix(14);

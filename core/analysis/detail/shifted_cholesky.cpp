@@ -1,0 +1,114 @@
+#include "core/analysis/detail/shifted_cholesky.hpp"
+#include "core/analysis/detail/cholesky_rounding.hpp"
+#include "core/analysis/detail/serial_openmp.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <mutex>
+#include <vector>
+
+namespace dampbound::detail {
+namespace {
+
+/// Below this many rows the fill-reducing ordering is AMD alone (CHOLMOD's default also tries
+/// nested dissection, which pays on big meshes only).
+constexpr Eigen::Index kNestedDissectionRows = 20000;
+
+/// The one turn in CHOLMOD, and in the libraries it calls, for the whole process: two analyses
+/// may run at once (the tuner's analysis and Suggest workers, a user's own threads), and
+/// - Debian's libopenblas0-serial (0.3.21, what scripts/install-deps.sh installs) shares its
+///   work buffers between threads without a lock: two threads in it at once corrupt each
+///   other's results, and a factorisation corrupted that way can succeed below lambda_max, a
+///   false certificate;
+/// - METIS, which CHOLMOD's analysis tries above 20 000 rows, draws from one random generator
+///   for the process: two analyses at once order the matrix differently, so the results'
+///   bits would depend on what else was running.
+/// So every pattern analysis, numeric factorisation and solve takes this turn (measured:
+/// docs/performance.md, "One thread in CHOLMOD at a time"); the Lanczos products, which call
+/// none of these libraries, do not.
+std::mutex& cholmod_turn() {
+  static std::mutex turn;
+  return turn;
+}
+
+}  // namespace
+
+ShiftedCholesky::ShiftedCholesky(const SparseMatrix& A) : n_(A.rows()) {
+  // The lower triangle of -A with every diagonal entry present (0 + (-A_kk), or 0 where A
+  // has none), column by column in compressed storage; A's columns hold sorted rows.
+  std::vector<int> outer(static_cast<size_t>(n_) + 1, 0);
+  std::vector<int> inner;
+  std::vector<double> values;
+  inner.reserve(static_cast<size_t>(A.nonZeros() / 2 + n_));
+  values.reserve(inner.capacity());
+  for (Eigen::Index k = 0; k < n_; ++k) {
+    inner.push_back(static_cast<int>(k));  // the diagonal, first in its column
+    values.push_back(0.0);
+    for (SparseMatrix::InnerIterator it(A, k); it; ++it) {
+      if (it.row() < k) continue;
+      if (it.row() == k) {
+        values.back() = 0.0 + -it.value();  // as the triplets (k, k, 0) and (k, k, -A_kk) summed
+      } else {
+        inner.push_back(static_cast<int>(it.row()));
+        values.push_back(-it.value());
+      }
+    }
+    outer[static_cast<size_t>(k) + 1] = static_cast<int>(inner.size());
+  }
+  B_ = Eigen::Map<const SparseMatrix>(n_, n_, static_cast<Eigen::Index>(inner.size()),
+                                      outer.data(), inner.data(), values.data());
+  llt_.cholmod().print = 0;                // a failed factorisation is an answer, not news
+  if (n_ < kNestedDissectionRows) {         // small: AMD alone; CHOLMOD's trial of nested
+    llt_.cholmod().nmethods = 1;            // dissection costs more than it saves there
+    llt_.cholmod().method[0].ordering = CHOLMOD_AMD;
+  }
+}
+
+void ShiftedCholesky::analyse(double budget) {
+  if (analysed_) return;
+  const std::lock_guard<std::mutex> turn(cholmod_turn());
+  const SerialOpenMp serial;
+  if (budget < kNoFactorBudget && n_ > kQuickCheckRows) {
+    Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> amd;
+    amd.cholmod().print = 0;
+    amd.cholmod().nmethods = 1;
+    amd.cholmod().method[0].ordering = CHOLMOD_AMD;
+    amd.analyzePattern(B_);
+    if (amd.cholmod().fl > kAmdSlack * budget)
+      throw FactorisationOverBudget(amd.cholmod().fl, 8 * amd.cholmod().lnz, budget, true);
+  }
+  llt_.analyzePattern(B_);
+  analysed_ = true;
+  if (llt_.cholmod().fl > budget)
+    throw FactorisationOverBudget(llt_.cholmod().fl, 8 * llt_.cholmod().lnz, budget);
+}
+
+bool ShiftedCholesky::factor(double sigma) {
+  analyse(kNoFactorBudget);
+  const std::lock_guard<std::mutex> turn(cholmod_turn());
+  const SerialOpenMp serial;
+  llt_.setShift(sigma);
+  llt_.factorize(B_);
+  ++factorizations;
+  ok_ = llt_.info() == Eigen::Success;
+  sigma_ = sigma;
+  return ok_;
+}
+
+double ShiftedCholesky::proved_above() const {
+  double diagonal = 0;  // as CHOLMOD formed it: sigma + (-A_kk), the first entry of column k
+  for (Eigen::Index k = 0; k < n_; ++k)
+    diagonal = std::max(diagonal, std::abs(sigma_ + B_.valuePtr()[B_.outerIndexPtr()[k]]));
+  const double delta = cholesky_rounding_bound(llt_.factor(), diagonal);
+  return std::nextafter(sigma_ + delta, std::numeric_limits<double>::infinity());
+}
+
+void ShiftedCholesky::solve(const double* in, double* out) {
+  ++solves;
+  const std::lock_guard<std::mutex> turn(cholmod_turn());
+  const SerialOpenMp serial;
+  Eigen::Map<Eigen::VectorXd>(out, n_) = llt_.solve(Eigen::Map<const Eigen::VectorXd>(in, n_));
+}
+
+}  // namespace dampbound::detail

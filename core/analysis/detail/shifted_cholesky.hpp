@@ -1,0 +1,57 @@
+#pragma once
+// Factorisations of sigma I - A for a changing shift sigma (SPEC 7, 9), by CHOLMOD's
+// supernodal Cholesky, for certified_largest_eigenvalue (linear_stability_cholesky.cpp): the
+// pattern analysed once, each shift one numeric factorisation, solves with the factor, and
+// what a successful factorisation proves allowing for its rounding (cholesky_rounding.hpp).
+// Every call into CHOLMOD takes the one turn of the process (shifted_cholesky.cpp says why).
+#include "core/analysis/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
+
+#include <Eigen/CholmodSupport>
+
+#include "core/analysis/linear_stability_cholesky.hpp"
+
+namespace dampbound::detail {
+
+/// Above this many rows a budget is first checked against AMD's ordering alone: CHOLMOD's
+/// default analysis also tries METIS and nested dissection, 49 s for the 3M rows of a 1M-node
+/// tetrahedral block, AMD alone 8.5 s. AMD's prediction was 12x (46^3 block) and 17x (100^3)
+/// above the better ordering's, so only a prediction kAmdSlack times over the budget stops
+/// the analysis there.
+inline constexpr Eigen::Index kQuickCheckRows = 500000;
+inline constexpr double kAmdSlack = 32;
+
+/// Eigen's wrapper of CHOLMOD's supernodal LL', with the factor in view (for its rounding).
+class SupernodalLLT : public Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> {
+ public:
+  const cholmod_factor& factor() const { return *m_cholmodFactor; }
+};
+
+/// Factorisations of sigma I - A for a changing shift sigma, by CHOLMOD's supernodal
+/// Cholesky (fill-reducing ordering chosen by CHOLMOD: AMD or nested dissection): the
+/// pattern is analysed once; each shift is one numeric factorisation of -A + sigma I.
+/// CHOLMOD's own OpenMP loops run serially (detail/serial_openmp.hpp: 3x faster on 2 cores).
+class ShiftedCholesky {
+ public:
+  explicit ShiftedCholesky(const SparseMatrix& A);
+  /// The pattern analysis (once); throws FactorisationOverBudget when one numeric
+  /// factorisation would take more than `budget` flops.
+  void analyse(double budget);
+  /// Factors sigma I - A; true when it is positive definite (every pivot > 0).
+  bool factor(double sigma);
+  /// After a successful factor(sigma): what it proves, lambda_max(A) < the result, allowing
+  /// for the factorisation's rounding (detail/cholesky_rounding.hpp), rounded up.
+  double proved_above() const;
+  bool ready() const { return ok_; }
+  void solve(const double* in, double* out);
+  Eigen::Index size() const { return n_; }
+  int factorizations = 0, solves = 0;
+
+ private:
+  Eigen::Index n_;
+  SparseMatrix B_;
+  SupernodalLLT llt_;
+  double sigma_ = 0;
+  bool analysed_ = false, ok_ = false;
+};
+
+}  // namespace dampbound::detail
