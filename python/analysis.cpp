@@ -23,6 +23,23 @@ py::dict runs_dict(const std::vector<VerifiedRun>& runs) {
 }  // namespace
 
 void bind_analysis(py::module_& m) {
+  py::class_<ExactStability::Unfactored>(
+      m, "UnfactoredBounds",
+      "Over the factorisation budget: what plain Lanczos and Gershgorin prove without a "
+      "factorisation (docs/criteria.md).")
+      .def_readonly("lambda_max_lo", &ExactStability::Unfactored::lambda_max_lo,
+                    "lambda_max of M^-1 K is at least this (a Rayleigh quotient; 1/s^2)")
+      .def_readonly("lambda_max_hi", &ExactStability::Unfactored::lambda_max_hi,
+                    "and at most this (Gershgorin's bound; 1/s^2)")
+      .def_readonly("index_at_least", &ExactStability::Unfactored::index_at_least,
+                    "the paper's step: lambda_max(dt^2 A + 2 dt C) is at least this; >= 4 "
+                    "proves the step unstable (NaN for other integrators)")
+      .def_readonly("gamma_unstable_from", &ExactStability::Unfactored::gamma_unstable_from,
+                    "every gamma from this on is proved unstable at dt (inf: none is; NaN: not "
+                    "the paper's step)")
+      .def_readonly("dt_unstable_from", &ExactStability::Unfactored::dt_unstable_from,
+                    "every dt from this on is proved unstable at gamma (inf: none is)")
+      .def_readonly("lanczos_steps", &ExactStability::Unfactored::lanczos_steps);
   py::class_<ExactStability>(m, "ExactStability",
                              "SPEC 7's exact linear stability of a model at a state.")
       .def_property_readonly(
@@ -50,7 +67,15 @@ void bind_analysis(py::module_& m) {
           [](const ExactStability& e) {
             return e.computed() ? std::nullopt : std::optional<std::string>(e.over_budget_reason());
           },
-          "why nothing was computed (None when computed)");
+          "why nothing was computed (None when computed)")
+      .def_property_readonly(
+          "unfactored",
+          [](const ExactStability& e) {
+            return e.computed() ? std::nullopt
+                                : std::optional<ExactStability::Unfactored>(e.unfactored);
+          },
+          "over the budget: the bounds proved without a factorisation (UnfactoredBounds; None "
+          "when computed)");
 
   auto options = [](int threads, std::optional<double> budget_gflop) {
     if (threads < 0) throw py::value_error("threads must be >= 0 (0: one per CPU)");

@@ -6,6 +6,9 @@ tests and fuzz corpora use, reproducibly (no randomness, no third-party module).
   scripts/make-tissue-mesh.py --small D  # one small block in every format under D/ (the
                                          # fuzz seeds: D = tests/fuzz/corpus; block.tetgen
                                          # joins .node, .ele, .face with lines "@@")
+  scripts/make-tissue-mesh.py --block N D  # an N x N x N node block as TetGen files and a
+                                         # scene, D/block-N.toml (docs/performance.md: the
+                                         # 1M-node block is N = 100, about 1 GB of files)
 
 The block is a structured grid of cubes, each split into the six tetrahedra of Kuhn's
 (Freudenthal's) subdivision along its main diagonal, which conforms across cubes. Tetrahedra
@@ -167,6 +170,38 @@ def quad_cloth(n, h):
     return out
 
 
+BLOCK_SCENE = """# An %(n)d x %(n)d x %(n)d node tetrahedral block (%(nodes)d nodes), written by
+# scripts/make-tissue-mesh.py --block: the tissue block's cubes, 0.3 cm apart, Kuhn's six
+# tetrahedra each; masses and stiffnesses from the geometry as in tissue-block.toml.
+name = "block-%(n)d"
+description = "Tetrahedral block (TetGen), %(nodes)d nodes, base fixed, a 2x2 patch pulled 5 mm"
+
+[mesh]
+file = "block-%(n)d.node"
+anchors = false
+density = 0.001
+young = 100.0
+
+[[mesh_region]]
+tag = 2
+fixed = true
+
+[[mesh_region]]
+tag = 3
+displacement = [0.0, 0.5, 0.0]
+
+[params]
+m = 1.0
+kappa = 1.0
+gamma = 0.02
+dt = 0.0002
+policy = "fixed"
+
+[protocol]
+max_iterations = 100
+"""
+
+
 def write(path, data):
     os.makedirs(os.path.dirname(path) or ".", exist_ok=True)
     with open(path, "wb") as f:
@@ -190,8 +225,17 @@ def main():
         write(os.path.join(d, "vtk", "block.vtk"), vtk(*m))
         write(os.path.join(d, "obj", "cloth.obj"), quad_cloth(4, 0.5))
         return
+    if len(sys.argv) == 4 and sys.argv[1] == "--block" and sys.argv[2].isdigit():
+        n, d = int(sys.argv[2]), sys.argv[3]
+        if n < 3:
+            sys.exit("make-tissue-mesh.py: --block needs N >= 3")
+        node, ele, face = tetgen(*block(n, n, n, 0.3, 1))
+        for ext, text in (("node", node), ("ele", ele), ("face", face)):
+            write(os.path.join(d, "block-%d.%s" % (n, ext)), text)
+        write(os.path.join(d, "block-%d.toml" % n), BLOCK_SCENE % {"n": n, "nodes": n ** 3})
+        return
     if len(sys.argv) != 1:
-        sys.exit("usage: make-tissue-mesh.py [--small DIR]")
+        sys.exit("usage: make-tissue-mesh.py [--small DIR | --block N DIR]")
     # 27 x 11 x 21 nodes, 0.3 cm apart: an 7.8 x 3 x 6 cm block, 6237 nodes, 31200 tetrahedra.
     write(os.path.join(root, "scenes", "meshes", "tissue-block.msh"),
           msh41(*block(27, 11, 21, 0.3, 1)))

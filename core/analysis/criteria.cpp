@@ -174,21 +174,70 @@ std::vector<CriterionResult> paper_criteria(const Model& model, const State& sta
   return out;
 }
 
+namespace {
+
+/// The exact rows over the factorisation budget: nothing exact, but what plain Lanczos and
+/// Gershgorin prove without a factorisation (ExactStability::Unfactored): a bracket of
+/// lambda_max, and for the paper's step a proof of instability where its Rayleigh quotient
+/// reaches the index's 4. Where it does not, the row has no verdict (the safe bound's rows
+/// prove stability where they can).
+std::vector<CriterionResult> unfactored_criteria(const ExactStability& e, const Params& params) {
+  const ExactStability::Unfactored& b = e.unfactored;
+  const std::string integ = to_string(e.integrator);
+  const std::string why = "not computed: " + e.over_budget_reason();
+  const bool tried = !std::isnan(b.lambda_max_lo);
+  const std::string without = "; without a factorisation (Lanczos, " +
+                              std::to_string(b.lanczos_steps) + " steps): ";
+  std::vector<CriterionResult> out;
+  auto row = [&](const std::string& name, const std::string& formula) {
+    CriterionResult c = criterion(name, "SPEC 7", formula);
+    c.value = std::numeric_limits<double>::quiet_NaN();
+    c.verdict = CriterionVerdict::not_applicable;
+    c.test = why;
+    return c;
+  };
+  CriterionResult lm = row("exact lambda_max of M^-1 K", "not computed");
+  if (tried)
+    lm.test += without + "lambda_max in [" + format_digits(b.lambda_max_lo, 8) + ", " +
+               format_digits(b.lambda_max_hi, 8) + "] (a Rayleigh quotient, Gershgorin's bound)";
+  out.push_back(lm);
+  const bool index = tried && !std::isnan(b.index_at_least);
+  CriterionResult rho = row("exact spectral radius (" + integ + ")", "not computed");
+  if (index) {
+    const bool unstable = b.index_at_least >= 4;
+    rho.verdict = unstable ? CriterionVerdict::beyond : CriterionVerdict::not_applicable;
+    rho.test += without + "index lambda_max(dt^2 A + 2 dt C) >= " +
+                format_digits(b.index_at_least, 8) +
+                (unstable ? " >= 4: unstable (proved)" : " (< 4 proves nothing)");
+  }
+  out.push_back(rho);
+  CriterionResult gi = row("exact gamma interval (" + integ + ")", "not computed");
+  if (index) {
+    const bool unstable = params.gamma >= b.gamma_unstable_from;
+    gi.verdict = unstable ? CriterionVerdict::beyond : CriterionVerdict::not_applicable;
+    gi.test += without + "every gamma >= " + format_digits(b.gamma_unstable_from, 8) +
+               " is unstable at this dt; gamma = " + format_digits(params.gamma, 8) +
+               (unstable ? " is" : " is not proved either way");
+  }
+  out.push_back(gi);
+  CriterionResult dm = row("exact dt limit (" + integ + ")", "not computed");
+  if (index) {
+    const bool unstable = params.dt >= b.dt_unstable_from;
+    dm.verdict = unstable ? CriterionVerdict::beyond : CriterionVerdict::not_applicable;
+    dm.test += without + "every dt >= " + format_digits(b.dt_unstable_from, 8) +
+               " is unstable at this gamma; dt = " + format_digits(params.dt, 8) +
+               (unstable ? " is" : " is not proved either way");
+  }
+  out.push_back(dm);
+  return out;
+}
+
+}  // namespace
+
 std::vector<CriterionResult> exact_criteria(const ExactStability& e, const Params& params) {
   std::vector<CriterionResult> out;
   const std::string integ = to_string(e.integrator);
-  if (!e.computed()) {  // over the factorisation budget: the rows, each with no verdict
-    for (const std::string& name :
-         {std::string("exact lambda_max of M^-1 K"), "exact spectral radius (" + integ + ")",
-          "exact gamma interval (" + integ + ")", "exact dt limit (" + integ + ")"}) {
-      CriterionResult c = criterion(name, "SPEC 7", "not computed");
-      c.value = std::numeric_limits<double>::quiet_NaN();
-      c.verdict = CriterionVerdict::not_applicable;
-      c.test = "not computed: " + e.over_budget_reason();
-      out.push_back(c);
-    }
-    return out;
-  }
+  if (!e.computed()) return unfactored_criteria(e, params);
   CriterionResult lm = criterion("exact lambda_max of M^-1 K",
                      "SPEC 7, 9 (tangent stiffness; Gershgorin, shift-and-invert, Cholesky)",
                      "largest eigenvalue of M^-1/2 K M^-1/2 at the state; lambda_min = " +

@@ -26,66 +26,106 @@ constexpr double kMargin = 1e-12;
 /// Up to this many rows the dense eigenvalues are cheaper than factorisations (a 10 x 10
 /// plane, 300 rows: a few ms) and exact to rounding: lo = hi.
 constexpr Eigen::Index kDenseRows = 400;
-/// A rough top Ritz value of A by plain Lanczos (matrix-vector products only, no
-/// reorthogonalisation) and an estimate of how far below lambda_max it still is: it only
-/// places the first shift near lambda_max; nothing certified depends on it.
+/// Plain Lanczos (matrix-vector products only, no reorthogonalisation) on
+/// S = scale A + diag(d) (`d` empty: S = A, and `scale` must be 1), one step at a time. The
+/// operations do not depend on what the caller does with the vectors, so a second run
+/// replays the first one's bits: the Ritz vector of unfactored_largest_eigenvalue is formed
+/// that way, without storing the basis.
+class LanczosRecurrence {
+ public:
+  LanczosRecurrence(const SparseMatrix& A, int threads, double scale = 1,
+                    const Eigen::VectorXd* d = nullptr)
+      : A_(A), d_(d), scale_(scale), pool_(threads) {
+    const Eigen::Index n = A.rows();
+    // The start: smooth along the rows, its sign flipped at every other node (three rows). A
+    // mesh numbered along its rows or layers has neighbours at nearby indices, so the flips
+    // put weight on the stiff, oscillating modes where lambda_max lives: 450 steps instead of
+    // 750 on the 400 x 400 plane (docs/performance.md); no more on a tetrahedral block, or
+    // for -A.
+    v_ = Eigen::VectorXd::LinSpaced(n, 0.3, 1.7).array().sin();
+    for (Eigen::Index i = 3; i < n; i += 6) v_.segment(i, std::min<Eigen::Index>(3, n - i)) *= -1;
+    v_ /= v_.norm();
+    previous_ = Eigen::VectorXd::Zero(n);
+  }
+  /// v_j: the vector before step j.
+  const Eigen::VectorXd& vector() const { return v_; }
+  /// Step j: alpha_j and beta_j appended, v_{j+1} formed; false when beta_j = 0 (an
+  /// invariant subspace: the Ritz values are eigenvalues).
+  bool step() {
+    if (d_ == nullptr) {
+      detail::symmetric_product(A_, v_, b_, previous_, w_, pool_);
+    } else {
+      detail::symmetric_product(A_, v_, 0.0, previous_, w_, pool_);
+      w_ = scale_ * w_ + d_->cwiseProduct(v_) - b_ * previous_;
+    }
+    const double a = w_.dot(v_);
+    w_ -= a * v_;
+    alpha.push_back(a);
+    b_ = w_.norm();
+    beta.push_back(b_);
+    if (!(b_ > 0)) return false;
+    previous_.swap(v_);
+    v_ = w_ / b_;
+    return true;
+  }
+  std::vector<double> alpha, beta;  ///< T's diagonal and off-diagonal so far
+
+ private:
+  const SparseMatrix& A_;
+  const Eigen::VectorXd* d_;
+  double scale_;
+  NodeThreads pool_;
+  Eigen::VectorXd v_, previous_, w_;
+  double b_ = 0;
+};
+
+/// A rough top Ritz value of S by plain Lanczos and an estimate of how far below lambda_max it
+/// still is: it places the first shift near lambda_max; nothing certified depends on it.
 struct TopEstimate {
   double theta = 0;     ///< the top Ritz value (below lambda_max, up to rounding)
   double residual = 0;  ///< its Lanczos residual: some eigenvalue lies within it
   double error = 0;     ///< lambda_max - theta extrapolated from the last checkpoints
   int steps = 0;
+  std::vector<double> alpha, beta;  ///< T
 };
 
-/// Up to kLanczosSteps steps, checked every kLanczosCheck: the Ritz value converges
-/// geometrically, so with d the rise over the last window and q its ratio to the rise over
-/// the one before (kept in [0.5, 0.9]: a sudden drop in the rise is more often a pause than
-/// convergence), lambda_max - theta ~ d q / (1 - q). It stops once that is below
-/// 1e-7 |theta|: a shift that close separates even a clustered top.
+/// Up to `max_steps` steps, checked every `check`: the Ritz value converges geometrically,
+/// so with d the rise over the last window and q its ratio to the rise over the one before
+/// (kept in [0.5, 0.9]: a sudden drop in the rise is more often a pause than convergence),
+/// lambda_max - theta ~ d q / (1 - q). It stops once that is below `tolerance` |theta|: for
+/// the first shift 1e-7 in windows of 50 steps (a shift that close separates even a
+/// clustered top).
 constexpr int kLanczosSteps = 1000, kLanczosCheck = 50;
-TopEstimate lanczos_estimate(const SparseMatrix& A, int threads) {
-  const Eigen::Index n = A.rows();
-  NodeThreads pool(threads);
-  const int k = static_cast<int>(std::min<Eigen::Index>(kLanczosSteps, n));
-  // The start: smooth along the rows, its sign flipped at every other node (three rows). A
-  // mesh numbered along its rows or layers has neighbours at nearby indices, so the flips put
-  // weight on the stiff, oscillating modes where lambda_max lives: 450 steps instead of 750
-  // on the 400 x 400 plane (docs/performance.md); no more on a tetrahedral block, or for -A.
-  Eigen::VectorXd v = Eigen::VectorXd::LinSpaced(n, 0.3, 1.7).array().sin();
-  for (Eigen::Index i = 3; i < n; i += 6) v.segment(i, std::min<Eigen::Index>(3, n - i)) *= -1;
-  v /= v.norm();
-  Eigen::VectorXd previous = Eigen::VectorXd::Zero(n), w(n);
-  std::vector<double> alpha, beta;
-  std::vector<double> checkpoints;  // top Ritz value every kLanczosCheck steps
+TopEstimate lanczos_estimate(LanczosRecurrence& lanczos, Eigen::Index n,
+                             int max_steps = kLanczosSteps, int check = kLanczosCheck,
+                             double tolerance = 1e-7) {
+  const int k = static_cast<int>(std::min<Eigen::Index>(max_steps, n));
+  std::vector<double> checkpoints;  // top Ritz value every `check` steps
   TopEstimate e;
-  double b = 0;
   for (int j = 0; j < k; ++j) {
-    detail::symmetric_product(A, v, b, previous, w, pool);
-    const double a = w.dot(v);
-    w -= a * v;
-    alpha.push_back(a);
-    b = w.norm();
-    beta.push_back(b);
-    if (!(b > 0)) break;  // an invariant subspace: theta is an eigenvalue
-    previous.swap(v);
-    v = w / b;
-    if ((j + 1) % kLanczosCheck != 0) continue;
-    checkpoints.push_back(detail::largest_tridiagonal_eigenvalue(alpha.data(), beta.data(), j + 1));
+    if (!lanczos.step()) break;
+    if ((j + 1) % check != 0) continue;
+    checkpoints.push_back(detail::largest_tridiagonal_eigenvalue(lanczos.alpha.data(),
+                                                                 lanczos.beta.data(), j + 1));
     const size_t c = checkpoints.size();
     if (c < 3) continue;
     const double rise = checkpoints[c - 1] - checkpoints[c - 2];
     const double before = checkpoints[c - 2] - checkpoints[c - 3];
     const double q = before > 0 ? std::clamp(rise / before, 0.5, 0.9) : 0.9;
     e.error = std::max(rise, 0.0) * q / (1 - q);
-    if (e.error < 1e-7 * std::abs(checkpoints[c - 1])) break;
+    if (e.error < tolerance * std::abs(checkpoints[c - 1])) break;
   }
-  const int m = static_cast<int>(alpha.size());
-  e.theta = detail::largest_tridiagonal_eigenvalue(alpha.data(), beta.data(), m);
+  const int m = static_cast<int>(lanczos.alpha.size());
+  e.theta = detail::largest_tridiagonal_eigenvalue(lanczos.alpha.data(), lanczos.beta.data(), m);
   e.steps = m;
   // The Ritz pair's residual: beta_m times the last component of its eigenvector of T.
-  e.residual = std::abs(beta.back()) *
-               detail::last_eigenvector_component(alpha.data(), beta.data(), m, e.theta);
+  e.residual = std::abs(lanczos.beta.back()) *
+               detail::last_eigenvector_component(lanczos.alpha.data(), lanczos.beta.data(), m,
+                                                  e.theta);
   if (!std::isfinite(e.residual)) e.residual = std::abs(e.theta);  // no estimate: be wide
   if (checkpoints.size() < 3) e.error = e.residual;  // too few steps to extrapolate
+  e.alpha = lanczos.alpha;
+  e.beta = lanczos.beta;
   return e;
 }
 
@@ -139,14 +179,24 @@ struct Rayleigh {
 Rayleigh rayleigh(const SparseMatrix& A, const Eigen::VectorXd& u, double abs_row_sum,
                   int row_nonzeros) {
   const Eigen::VectorXd Au = A * u;
-  long double uAu = 0, uu = 0;
+  long double uAu = 0, uu = 0, abs_uAu = 0;
   for (Eigen::Index i = 0; i < u.size(); ++i) {
-    uAu += static_cast<long double>(u(i)) * Au(i);
+    const long double p = static_cast<long double>(u(i)) * Au(i);
+    uAu += p;
+    abs_uAu += std::abs(p);
     uu += static_cast<long double>(u(i)) * u(i);
   }
   const double q = static_cast<double>(uAu / uu);
   // |fl(Au) - Au| <= k eps |A||u| per row (k nonzeros), and || |A| || <= max row sum of |A|.
-  const double rounding = 2 * (row_nonzeros + 2) * kEps * abs_row_sum;
+  // The two long double sums of n products err by at most gamma_{n+1} of their absolute sums
+  // (unit roundoff 2^-64; Higham, Accuracy and Stability, 2nd ed., eq. 3.4), which moves the
+  // quotient by at most gamma_{n+1} (sum |u_i (Au)_i| + |u^T A u|) / u^T u; the division and
+  // the conversion to double round once more each.
+  const long double unit = std::numeric_limits<long double>::epsilon() / 2;
+  const long double terms = static_cast<long double>(u.size()) + 1;
+  const long double gamma = terms * unit / (1 - terms * unit);
+  const double sums = static_cast<double>(2 * gamma * (abs_uAu + std::abs(uAu)) / uu);
+  const double rounding = 2 * (row_nonzeros + 2) * kEps * abs_row_sum + sums + kEps * std::abs(q);
   return {q, (Au - q * u).norm() / std::sqrt(static_cast<double>(uu)), rounding};
 }
 
@@ -202,8 +252,8 @@ std::string over_budget_text(double flops, double bytes, double budget, bool amd
   if (amd_only)
     std::snprintf(text, sizeof text,
                   "one factorisation would take %.3g GFlop and %.3g GB in AMD's ordering "
-                  "(nested dissection saved 12x to 17x on the blocks measured), over %.0f times "
-                  "the budget of %.3g GFlop",
+                  "(a quick estimate; nested dissection saved 7.5x on a 1M-node block), over "
+                  "%.0f times the budget of %.3g GFlop",
                   flops / 1e9, bytes / 1e9, kAmdSlack, budget / 1e9);
   else
     std::snprintf(text, sizeof text,
@@ -257,7 +307,10 @@ EigenInterval certified_largest_eigenvalue(const SparseMatrix& A, Eigen::VectorX
   // still below lambda_max (Lanczos can stall on an eigenvalue just under the top): the
   // next shift is twice the residual above (some eigenvalue lies within it), then eightfold
   // steps, at worst up to Gershgorin's bound.
-  const TopEstimate estimate = lanczos_estimate(A, threads);
+  const TopEstimate estimate = [&] {
+    LanczosRecurrence lanczos(A, threads);
+    return lanczos_estimate(lanczos, n);
+  }();
   const double fallback = std::max(2 * estimate.residual, 1e-9 * span);
   double step = std::clamp(4 * estimate.error, 1e-9 * span, fallback);
   for (;;) {
@@ -289,6 +342,47 @@ EigenInterval certified_largest_eigenvalue(const SparseMatrix& A, Eigen::VectorX
   out.factorizations = f.factorizations;
   out.solves = f.solves;
   out.lanczos_steps = estimate.steps;
+  if (vector) *vector = u / u.norm();
+  return out;
+}
+
+EigenInterval unfactored_largest_eigenvalue(const SparseMatrix& A, Eigen::VectorXd* vector,
+                                            int threads, int max_steps, double scale,
+                                            const Eigen::VectorXd* d) {
+  const Eigen::Index n = A.rows();
+  EigenInterval out;
+  out.factorizations = 0;
+  if (n == 0 || max_steps < 1) {
+    out.lo = -std::numeric_limits<double>::infinity();
+    out.hi = std::numeric_limits<double>::infinity();
+    return out;
+  }
+  const RowBounds rows = row_bounds(A);
+  out.hi = rows.gershgorin.hi;
+  // Lanczos on S, its top Ritz value settled to 1e-6 in windows of kUnfactoredCheck steps or
+  // max_steps reached; then T's top eigenvector y and, replaying the same recurrence, the
+  // Ritz vector u = sum_j y_j v_j.
+  constexpr int kUnfactoredCheck = 10;
+  LanczosRecurrence lanczos(A, threads, scale, d);
+  const TopEstimate e = lanczos_estimate(lanczos, n, max_steps, kUnfactoredCheck, 1e-6);
+  const int m = e.steps;
+  std::vector<double> y = detail::tridiagonal_eigenvector(e.alpha.data(), e.beta.data(), m, e.theta);
+  Eigen::VectorXd u;
+  if (y.empty()) {  // inverse iteration broke down: the start vector itself
+    LanczosRecurrence replay(A, threads, scale, d);
+    u = replay.vector();
+  } else {
+    LanczosRecurrence replay(A, threads, scale, d);
+    u = y[0] * replay.vector();
+    for (int j = 1; j < m; ++j) {
+      replay.step();
+      u += y[static_cast<size_t>(j)] * replay.vector();
+    }
+  }
+  const Rayleigh q = rayleigh(A, u, rows.abs_row_sum, rows.row_nonzeros);
+  out.lo = q.value - q.rounding;
+  out.lanczos_steps = m;
+  out.certified = true;
   if (vector) *vector = u / u.norm();
   return out;
 }

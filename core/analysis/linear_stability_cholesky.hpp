@@ -33,8 +33,9 @@ inline constexpr double kNoFactorBudget = std::numeric_limits<double>::infinity(
 /// tetrahedral block: 0.9 TFlop and 2.2 GB per factorisation; docs/performance.md).
 class FactorisationOverBudget : public std::runtime_error {
  public:
-  /// `amd_only`: the prediction is AMD's ordering's, from the quick check of a matrix of more
-  /// than 500 000 rows, and over kAmdSlack (32) times the budget.
+  /// `amd_only`: the prediction is AMD's ordering's (of the nodes when the rows come in
+  /// threes), from the quick check of a matrix of more than 500 000 rows, and over kAmdSlack
+  /// (32) times the budget.
   FactorisationOverBudget(double flops, double bytes, double budget, bool amd_only = false);
   double flops;   ///< CHOLMOD's prediction for one factorisation
   double bytes;   ///< the factor's size (8 bytes per entry of L)
@@ -68,6 +69,19 @@ struct EigenInterval {
 EigenInterval certified_largest_eigenvalue(const SparseMatrix& A,
                                            Eigen::VectorXd* vector = nullptr, int threads = 1,
                                            double max_factor_flops = kNoFactorBudget);
+
+/// Without a factorisation (for a matrix over the budget): lambda_max(A) in [lo, hi], with
+/// hi Gershgorin's bound and lo the Rayleigh quotient on A of a Ritz vector, less its
+/// rounding. The vector is plain Lanczos's top Ritz vector of S = scale A + diag(d) (`d`
+/// null: S = A) after at most `max_steps` steps (fewer once its Ritz value settles to 1e-6),
+/// formed by running the recurrence twice instead of storing its basis: 2 max_steps
+/// matrix-vector products at most. Certified, but only as tight as Gershgorin's bound
+/// above; S lets a caller aim the vector at another matrix (SPEC 7's index dt^2 A + 2 dt C)
+/// and bound that matrix's top from the same vector. `vector`: the unit Ritz vector;
+/// `lanczos_steps`: the steps of one run. Any rows count (no dense shortcut).
+EigenInterval unfactored_largest_eigenvalue(const SparseMatrix& A, Eigen::VectorXd* vector,
+                                            int threads, int max_steps, double scale = 1,
+                                            const Eigen::VectorXd* d = nullptr);
 
 /// Smallest eigenvalue of symmetric A: the largest of -A, negated (lo certified by
 /// Cholesky of A - lo I, hi the Rayleigh quotient). `floor`: a lower bound on lambda_min the

@@ -86,19 +86,22 @@ struct ExactInputs {
   double r_min = 0, r_max = 0;
 };
 
-ExactInputs spectrum_and_rates(const Model& model, const std::vector<Vec3>& x,
-                               const Params& params, const ExactOptions& options,
-                               ExactStability& e) {
+ExactInputs assemble(const Model& model, const std::vector<Vec3>& x) {
   ExactInputs in;
-  e.integrator = params.integrator;
   in.A = mass_weighted(model, tangent_stiffness(model, x));
+  in.R = unit_rates(model);
+  in.r_min = in.R.size() ? in.R.minCoeff() : 0;
+  in.r_max = in.R.size() ? in.R.maxCoeff() : 0;
+  return in;
+}
+
+void spectrum_and_rates(const Model& model, const std::vector<Vec3>& x, const ExactInputs& in,
+                        const Params& params, const ExactOptions& options, ExactStability& e) {
+  e.integrator = params.integrator;
   const CertifiedSpectrum ends = certified_spectrum(in.A, psd_floor(model, x), options.threads,
                                                     options.max_factor_flops);
   e.spectrum = {ends.smallest.lo, ends.largest.hi};
   e.lambda_max_lo = ends.largest.lo;
-  in.R = unit_rates(model);
-  in.r_min = in.R.size() ? in.R.minCoeff() : 0;
-  in.r_max = in.R.size() ? in.R.maxCoeff() : 0;
   e.rate_min = params.gamma * in.r_min;
   e.rate_max = params.gamma * in.r_max;
   e.uniform_rate = in.r_max - in.r_min <= 1e-12 * in.r_max;
@@ -108,7 +111,6 @@ ExactInputs spectrum_and_rates(const Model& model, const std::vector<Vec3>& x,
     const double above = smallest_eigenvalue_above(in.A, 1e-9 * e.spectrum.lambda_max);
     e.decaying.lambda_min = std::isnan(above) ? e.spectrum.lambda_max : above;
   }
-  return in;
 }
 
 /// The spectral radius of the step's amplification operator, when asked for (else NaN).
@@ -200,8 +202,28 @@ void frozen_estimate(const ExactInputs& in, const Params& params, ExactStability
   }
 }
 
-/// Nothing computed: every number NaN, the prediction and the budget kept for the report.
-ExactStability over_budget(const Params& params, const FactorisationOverBudget& over) {
+/// The long double sum of n non-negative terms u_i^2 R_i over u^T u, less a bound on its
+/// rounding (gamma_{n+1} of itself, twice, and the conversion): a lower bound on the true
+/// quotient.
+double weighted_mean_below(const Eigen::VectorXd& u, const Eigen::VectorXd& R) {
+  long double uRu = 0, uu = 0;
+  for (Eigen::Index i = 0; i < u.size(); ++i) {
+    const long double s = static_cast<long double>(u(i)) * u(i);
+    uRu += s * R(i);
+    uu += s;
+  }
+  const long double unit = std::numeric_limits<long double>::epsilon() / 2;
+  const long double terms = static_cast<long double>(u.size()) + 2;
+  const long double gamma = terms * unit / (1 - terms * unit);
+  const double q = static_cast<double>(uRu / uu);
+  return std::max(0.0, q - static_cast<double>(3 * gamma) * q - std::numeric_limits<double>::epsilon() * q);
+}
+
+/// Over the budget: nothing factorised, every exact number NaN, the prediction and the budget
+/// kept for the report; and what plain Lanczos and Gershgorin prove without a factorisation
+/// (ExactStability::Unfactored).
+ExactStability over_budget(const ExactInputs& in, const Params& params,
+                           const ExactOptions& options, const FactorisationOverBudget& over) {
   ExactStability e;
   e.integrator = params.integrator;
   e.method = ExactMethod::over_budget;
@@ -215,13 +237,45 @@ ExactStability over_budget(const Params& params, const FactorisationOverBudget& 
   e.factor_bytes = over.bytes;
   e.factor_budget = over.budget;
   e.not_computed_reason = over.what();
+  if (options.unfactored_steps < 1 || in.A.rows() == 0) return e;
+  // The paper's step: the vector is aimed at the index matrix S = h^2 A + 2 h gamma diag(R)
+  // at the user's gamma and dt, whose top decides stability (SPEC 7); others: at A.
+  const double h = params.dt, gamma = params.gamma;
+  const bool paper_step = params.integrator == Integrator::semi_implicit_euler;
+  Eigen::VectorXd u;
+  const Eigen::VectorXd d = (2 * h * gamma) * in.R;
+  const EigenInterval top =
+      paper_step ? unfactored_largest_eigenvalue(in.A, &u, options.threads,
+                                                 options.unfactored_steps, h * h, &d)
+                 : unfactored_largest_eigenvalue(in.A, &u, options.threads,
+                                                 options.unfactored_steps);
+  ExactStability::Unfactored& b = e.unfactored;
+  b.lambda_max_lo = top.lo;
+  b.lambda_max_hi = top.hi;
+  b.lanczos_steps = top.lanczos_steps;
+  if (!paper_step) return e;
+  // index(gamma', h') >= u^T (h'^2 A + 2 h' gamma' diag(R)) u / u^T u
+  //                  >= h'^2 a + 2 h' gamma' rho  (a, rho: the quotients less their rounding),
+  // and index >= 4 is instability (SPEC 7), so each threshold below proves it.
+  constexpr double kUp = 1 + 4 * std::numeric_limits<double>::epsilon();
+  const double a = top.lo, rho = weighted_mean_below(u, in.R);
+  const double index = h * h * a + 2 * h * gamma * rho;
+  b.index_at_least = index - 4 * std::numeric_limits<double>::epsilon() * std::abs(index);
+  if (h * h * a >= 4 * kUp)
+    b.gamma_unstable_from = 0;
+  else
+    b.gamma_unstable_from = rho > 0 ? (4 - h * h * a) / (2 * h * rho) * kUp : kInf;
+  // dt: a t^2 + 2 c t >= 4 from its positive root on, when a > 0 (c >= 0).
+  const double c = gamma * rho;
+  b.dt_unstable_from = a > 0 ? 4 / (c + std::sqrt(c * c + 4 * a)) * kUp * kUp : kInf;
   return e;
 }
 
 ExactStability exact_stability_within_budget(const Model& model, const std::vector<Vec3>& x,
-                                             const Params& params, const ExactOptions& options) {
+                                             const ExactInputs& in, const Params& params,
+                                             const ExactOptions& options) {
   ExactStability e;
-  const ExactInputs in = spectrum_and_rates(model, x, params, options, e);
+  spectrum_and_rates(model, x, in, params, options, e);
   const double tiny = 1e-12 * std::max(1.0, std::abs(e.spectrum.lambda_max));
   if (e.integrator == Integrator::implicit_euler && e.spectrum.lambda_min >= -tiny) {
     unconditional(e);
@@ -247,10 +301,11 @@ ExactStability exact_stability_within_budget(const Model& model, const std::vect
 
 ExactStability exact_stability(const Model& model, const std::vector<Vec3>& x,
                                const Params& params, const ExactOptions& options) {
+  const ExactInputs in = assemble(model, x);
   try {
-    return exact_stability_within_budget(model, x, params, options);
+    return exact_stability_within_budget(model, x, in, params, options);
   } catch (const FactorisationOverBudget& over) {
-    return over_budget(params, over);
+    return over_budget(in, params, options, over);
   }
 }
 

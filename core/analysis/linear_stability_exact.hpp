@@ -50,6 +50,23 @@ struct ExactStability {
   /// and one line saying so (FactorisationOverBudget's text).
   double factor_flops = 0, factor_bytes = 0, factor_budget = 0;
   std::string not_computed_reason;
+  /// over_budget only: what plain Lanczos and Gershgorin prove without a factorisation
+  /// (docs/criteria.md, "Over the factorisation budget"); NaN where not tried
+  /// (ExactOptions::unfactored_steps = 0).
+  struct Unfactored {
+    /// lambda_max of M^-1 K lies in [lambda_max_lo, lambda_max_hi] (1/s^2): a Rayleigh
+    /// quotient less its rounding, Gershgorin's bound (SPEC 9's largest R_i).
+    double lambda_max_lo = std::numeric_limits<double>::quiet_NaN();
+    double lambda_max_hi = std::numeric_limits<double>::quiet_NaN();
+    /// The paper's step only: the index lambda_max(dt^2 A + 2 dt C) at the user's gamma and
+    /// dt is at least this (>= 4 proves the step unstable), and with the same vector every
+    /// gamma >= gamma_unstable_from (at dt) and every dt >= dt_unstable_from (at gamma) is
+    /// proved unstable; inf: that vector proves nothing there.
+    double index_at_least = std::numeric_limits<double>::quiet_NaN();
+    double gamma_unstable_from = std::numeric_limits<double>::quiet_NaN();
+    double dt_unstable_from = std::numeric_limits<double>::quiet_NaN();
+    int lanczos_steps = 0;  ///< of one of the two Lanczos runs (the second replays the first)
+  } unfactored;
   bool computed() const { return method != ExactMethod::over_budget; }
   const std::string& over_budget_reason() const { return not_computed_reason; }
 };
@@ -66,6 +83,10 @@ struct ExactOptions {
   /// nothing is factorised and the result's method is over_budget. Infinite: no limit.
   /// The command line and the tuner use kDefaultFactorBudget.
   double max_factor_flops = std::numeric_limits<double>::infinity();
+  /// Over the budget: the most Lanczos steps of the bounds proved without a factorisation
+  /// (ExactStability::unfactored; two runs of up to this many matrix-vector products, about
+  /// 5 s on a 1M-node tetrahedral mesh at 40, docs/performance.md). 0: none.
+  int unfactored_steps = 40;
 };
 
 /// The command line's and the tuner's budget: 200 GFlop, about 25 s per factorisation on the

@@ -102,6 +102,14 @@ def test_exact_limits_over_a_factorisation_budget_compute_nothing(scenes_dir):
     assert not over.computed
     assert "over the budget of 1e-09 GFlop" in over.reason
     assert math.isnan(over.dt_max) and math.isnan(over.lambda_max)
+    assert free.unfactored is None
+    # Without a factorisation, Lanczos and Gershgorin still bracket lambda_max, and the dt
+    # and gamma from which the step is proved unstable lie at or past the exact limits.
+    b = over.unfactored
+    assert b.lambda_max_lo <= free.lambda_max <= b.lambda_max_hi
+    assert free.dt_max <= b.dt_unstable_from < 1.001 * free.dt_max
+    assert free.gamma_hi <= b.gamma_unstable_from < 1.001 * free.gamma_hi
+    assert b.index_at_least < 4 and 0 < b.lanczos_steps <= 40
     roomy = dampbound.exact_limits(scene, factor_budget_gflop=200.0)
     assert (roomy.lambda_max, roomy.gamma_hi, roomy.dt_max) == (
         free.lambda_max, free.gamma_hi, free.dt_max)

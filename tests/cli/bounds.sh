@@ -57,6 +57,12 @@ expect_match "$OUT" 'one factorisation would take [0-9.e-]+ GFlop and [0-9.e-]+ 
 expect_match "$OUT" 'exact dt limit \(semi-implicit-euler\) +n/a +n/a +not computed' "no exact verdict"
 expect_match "$OUT" 'safe dt bound +[0-9.]+ s +within' "the safe bound still judges"
 if grep -q 'ratio' <<<"$OUT"; then bad "no ratio to an exact limit that was not computed"; else ok; fi
+expect_match "$OUT" 'exact lambda_max of M\^-1 K +n/a +n/a +not computed: .*; without a factorisation \(Lanczos, [0-9]+ steps\): lambda_max in \[7\.8[0-9]*, 9\]' "brackets lambda_max (7.8123249) without a factorisation"
+expect_match "$OUT" 'exact dt limit \(semi-implicit-euler\) +n/a +n/a +not computed: .*every dt >= 0\.50[0-9]+ is unstable at this gamma; dt = 0\.05 is not proved either way' "the dt from which the step is proved unstable"
+# Past the exact dt limit (0.50396164), the step is proved unstable without a factorisation.
+expect_exit 0 "$DB" bounds paper-plane --factor-budget 1e-9 --dt 0.51
+expect_match "$OUT" 'exact dt limit \(semi-implicit-euler\) +n/a +BEYOND +not computed: .*; dt = 0\.51 is$' "dt past the limit: proved unstable"
+expect_match "$OUT" 'exact spectral radius \(semi-implicit-euler\) +n/a +BEYOND +.*>= 4: unstable \(proved\)' "the index proves it"
 expect_exit 0 "$DB" bounds paper-plane --factor-budget 200
 expect_match "$OUT" 'exact dt limit \(semi-implicit-euler\) +0\.50396164 s +within' "a budget above the cost changes nothing"
 for bad_budget in 0 -1 nan inf x; do

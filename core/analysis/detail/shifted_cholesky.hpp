@@ -12,11 +12,12 @@
 
 namespace dampbound::detail {
 
-/// Above this many rows a budget is first checked against AMD's ordering alone: CHOLMOD's
-/// default analysis also tries METIS and nested dissection, 49 s for the 3M rows of a 1M-node
-/// tetrahedral block, AMD alone 8.5 s. AMD's prediction was 12x (46^3 block) and 17x (100^3)
-/// above the better ordering's, so only a prediction kAmdSlack times over the budget stops
-/// the analysis there.
+/// Above this many rows a budget is first checked against AMD's ordering alone (of the
+/// nodes, when the rows come in threes): CHOLMOD's default analysis also tries METIS and
+/// nested dissection, 49 s for the 3M rows of a 1M-node tetrahedral block, AMD on the rows
+/// 8.5 s, on the nodes about 1 s. AMD's prediction was 12x (46^3 block) and 17x (100^3) above the
+/// better ordering's on the rows, 7.5x on the nodes (100^3), so only a prediction kAmdSlack
+/// times over the budget stops the analysis there.
 inline constexpr Eigen::Index kQuickCheckRows = 500000;
 inline constexpr double kAmdSlack = 32;
 

@@ -56,6 +56,13 @@ double largest_tridiagonal_eigenvalue(const double* alpha, const double* beta, i
 
 double last_eigenvector_component(const double* alpha, const double* beta, int m, double theta) {
   if (m == 1) return 1;
+  const std::vector<double> z = tridiagonal_eigenvector(alpha, beta, m, theta);
+  return z.empty() ? std::numeric_limits<double>::quiet_NaN() : std::abs(z.back());
+}
+
+std::vector<double> tridiagonal_eigenvector(const double* alpha, const double* beta, int m,
+                                            double theta) {
+  if (m == 1) return {1.0};
   const double tiny = kEps * (norm_bound(alpha, beta, m) + std::abs(theta)) + 1e-300;
   std::vector<double> z(static_cast<size_t>(m), 1.0);
   std::vector<double> d(static_cast<size_t>(m)), dl(static_cast<size_t>(m - 1)),
@@ -97,7 +104,7 @@ double last_eigenvector_component(const double* alpha, const double* beta, int m
     // Normalise by the largest entry first (the solve can overflow a sum of squares).
     double big = 0;
     for (double v : z) big = std::max(big, std::abs(v));
-    if (!(big > 0) || !std::isfinite(big)) return std::numeric_limits<double>::quiet_NaN();
+    if (!(big > 0) || !std::isfinite(big)) return {};
     double norm = 0;
     for (double& v : z) {
       v /= big;
@@ -106,7 +113,7 @@ double last_eigenvector_component(const double* alpha, const double* beta, int m
     norm = std::sqrt(norm);
     for (double& v : z) v /= norm;
   }
-  return std::abs(z.back());
+  return z;
 }
 
 }  // namespace dampbound::detail

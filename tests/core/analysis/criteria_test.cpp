@@ -178,5 +178,30 @@ TEST(Criteria, ExactRowsOverTheFactorisationBudgetGiveNoVerdict) {
   EXPECT_NE(find(all, "safe").verdict, CriterionVerdict::not_applicable);
 }
 
+TEST(Criteria, OverTheBudgetAStepProvedUnstableWithoutAFactorisationIsBeyond) {
+  Params p;
+  const Model m = compile_model(make_grid(GridSpec{14, 14, 0.57, true, true}), p);
+  const State rest = rest_state(m);
+  ExactOptions tight;
+  tight.max_factor_flops = 1;
+  // Within the limits: the Lanczos bounds prove nothing, so no verdict, but say what they are.
+  const auto within = all_criteria(m, rest, p, exact_stability(m, rest.x, p, tight));
+  EXPECT_NE(find(within, "exact lambda_max").test.find("lambda_max in ["), std::string::npos)
+      << find(within, "exact lambda_max").test;
+  EXPECT_EQ(find(within, "exact dt limit").verdict, CriterionVerdict::not_applicable);
+  EXPECT_NE(find(within, "exact dt limit").test.find("is not proved either way"), std::string::npos);
+  // Past the exact dt limit (by 1 %): proved unstable, with no factorisation.
+  const ExactStability free = exact_stability(m, rest.x, p);
+  Params past = p;
+  past.dt = 1.01 * free.dt_max;
+  const auto beyond = all_criteria(m, rest, past, exact_stability(m, rest.x, past, tight));
+  for (const char* row : {"exact spectral radius", "exact dt limit"}) {
+    EXPECT_EQ(find(beyond, row).verdict, CriterionVerdict::beyond) << row;
+    EXPECT_EQ(find(beyond, row).test.rfind("not computed: one factorisation would take", 0), 0u);
+  }
+  EXPECT_NE(find(beyond, "exact spectral radius").test.find(">= 4: unstable (proved)"),
+            std::string::npos);
+}
+
 }  // namespace
 }  // namespace dampbound

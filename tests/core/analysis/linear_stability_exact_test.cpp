@@ -133,5 +133,66 @@ TEST(LinearStabilityExact, OverTheFactorisationBudgetNothingIsComputed) {
   EXPECT_EQ(within.spectral_radius, free.spectral_radius);
 }
 
+TEST(LinearStabilityExact, OverTheBudgetLanczosProvesInstabilityWithoutAFactorisation) {
+  // A plane whose masses vary 12x (as a tetrahedral mesh's lumped masses do), so gamma/m_i
+  // varies and the paper's step takes the symmetric index.
+  ModelSpec spec = make_grid(GridSpec{14, 14, 0.57, true, true});
+  for (size_t i = 0; i < spec.mass_scale.size(); ++i) spec.mass_scale[i] = 1 + 11.0 * static_cast<double>(i % 5) / 4;
+  Params p;
+  p.gamma = 0.02;
+  p.policy = DampingPolicy::fixed;
+  const Model model = compile_model(spec, p);
+  const ExactStability free = exact_stability(model, model.rest, p);
+  ASSERT_EQ(free.method, ExactMethod::symmetric_index);
+  ExactOptions tight;
+  tight.max_factor_flops = 1;
+  const ExactStability over = exact_stability(model, model.rest, p, tight);
+  ASSERT_FALSE(over.computed());
+  const ExactStability::Unfactored& b = over.unfactored;
+  EXPECT_GT(b.lanczos_steps, 0);
+  EXPECT_LE(b.lanczos_steps, tight.unfactored_steps);
+  // Every bound on the proved side of the exact (certified) numbers ...
+  EXPECT_LE(b.lambda_max_lo, free.lambda_max_lo);
+  EXPECT_GE(b.lambda_max_hi, free.spectrum.lambda_max);
+  EXPECT_LE(b.index_at_least, free.index);
+  EXPECT_GE(b.gamma_unstable_from, free.gamma_hi);
+  EXPECT_GE(b.dt_unstable_from, free.dt_max);
+  // ... and close to them: the vector is aimed at the index matrix at the scene's gamma, dt.
+  EXPECT_GT(b.index_at_least, free.index * (1 - 1e-5));
+  EXPECT_LT(b.gamma_unstable_from, free.gamma_hi * (1 + 1e-4));
+  EXPECT_LT(b.dt_unstable_from, free.dt_max * (1 + 1e-4));
+  // No steps: nothing tried.
+  tight.unfactored_steps = 0;
+  const ExactStability bare = exact_stability(model, model.rest, p, tight);
+  for (double v : {bare.unfactored.lambda_max_lo, bare.unfactored.index_at_least,
+                   bare.unfactored.gamma_unstable_from, bare.unfactored.dt_unstable_from})
+    EXPECT_TRUE(std::isnan(v));
+}
+
+TEST(LinearStabilityExact, OverTheBudgetUniformRatesGiveThePerModeLimitsFromBelow) {
+  // A plane with one mass (uniform gamma/m): the thresholds are SPEC 7's per-mode limits at
+  // lambda = the Rayleigh quotient, 2m/dt - m lo dt/2 and dt at the root.
+  Params p;
+  p.gamma = 0.001;
+  const Model model = compile_model(make_grid(GridSpec{14, 14, 0.57, true, true}), p);
+  const ExactStability free = exact_stability(model, model.rest, p);
+  ASSERT_EQ(free.method, ExactMethod::per_mode);
+  ExactOptions tight;
+  tight.max_factor_flops = 1;
+  const ExactStability over = exact_stability(model, model.rest, p, tight);
+  const ExactStability::Unfactored& b = over.unfactored;
+  EXPECT_GE(b.gamma_unstable_from, free.gamma_hi);
+  EXPECT_GE(b.dt_unstable_from, free.dt_max);
+  EXPECT_LT(b.gamma_unstable_from, free.gamma_hi * (1 + 1e-3));
+  EXPECT_LT(b.dt_unstable_from, free.dt_max * (1 + 1e-3));
+  const double lo = b.lambda_max_lo;
+  EXPECT_NEAR(b.gamma_unstable_from, 2 * p.m / p.dt - p.m * lo * p.dt / 2, 1e-12 * p.m / p.dt);
+  // Another integrator: the bracket of lambda_max only.
+  p.integrator = Integrator::rk4;
+  const ExactStability rk4 = exact_stability(model, model.rest, p, tight);
+  EXPECT_LE(rk4.unfactored.lambda_max_lo, free.spectrum.lambda_max);
+  EXPECT_TRUE(std::isnan(rk4.unfactored.dt_unstable_from));
+}
+
 }  // namespace
 }  // namespace dampbound
