@@ -260,6 +260,7 @@ MonitorLimits Monitor::exact_limits(NodeVectors x, NodeScalars gamma, double dt,
   ExactOptions options;
   options.with_radius = false;
   options.max_factor_flops = max_factor_flops;
+  options.unfactored_steps = 0;  // MonitorLimits carries the reason only
   const ExactStability e = exact_stability(model, xs, params, options);
   // With params.gamma = 1, exact_stability's interval of the user's gamma is an interval of
   // the factor s that multiplies every gamma_i.

@@ -64,6 +64,7 @@ ExactStability exact_limits(const Model& model, const Params& params,
   o.with_radius = false;
   o.threads = options.threads;
   o.max_factor_flops = options.max_factor_flops;
+  o.unfactored_steps = 0;  // over the budget only the reason is used
   ExactStability e = exact_stability(model, model.rest, params, o);
   if (!e.computed())
     throw std::runtime_error("suggest needs the exact limits, and " + e.over_budget_reason());
