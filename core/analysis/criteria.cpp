@@ -189,20 +189,20 @@ std::vector<CriterionResult> unfactored_criteria(const ExactStability& e, const 
   const std::string without = "; without a factorisation (Lanczos, " +
                               std::to_string(b.lanczos_steps) + " steps): ";
   std::vector<CriterionResult> out;
-  auto row = [&](const std::string& name, const std::string& formula) {
-    CriterionResult c = criterion(name, "SPEC 7", formula);
+  auto row = [&](const std::string& name) {
+    CriterionResult c = criterion(name, "SPEC 7", "not computed");
     c.value = std::numeric_limits<double>::quiet_NaN();
     c.verdict = CriterionVerdict::not_applicable;
     c.test = why;
     return c;
   };
-  CriterionResult lm = row("exact lambda_max of M^-1 K", "not computed");
+  CriterionResult lm = row("exact lambda_max of M^-1 K");
   if (tried)
     lm.test += without + "lambda_max in [" + format_digits(b.lambda_max_lo, 8) + ", " +
                format_digits(b.lambda_max_hi, 8) + "] (a Rayleigh quotient, Gershgorin's bound)";
   out.push_back(lm);
   const bool index = tried && !std::isnan(b.index_at_least);
-  CriterionResult rho = row("exact spectral radius (" + integ + ")", "not computed");
+  CriterionResult rho = row("exact spectral radius (" + integ + ")");
   if (index) {
     const bool unstable = b.index_at_least >= 4;
     rho.verdict = unstable ? CriterionVerdict::beyond : CriterionVerdict::not_applicable;
@@ -211,24 +211,23 @@ std::vector<CriterionResult> unfactored_criteria(const ExactStability& e, const 
                 (unstable ? " >= 4: unstable (proved)" : " (< 4 proves nothing)");
   }
   out.push_back(rho);
-  CriterionResult gi = row("exact gamma interval (" + integ + ")", "not computed");
-  if (index) {
-    const bool unstable = params.gamma >= b.gamma_unstable_from;
-    gi.verdict = unstable ? CriterionVerdict::beyond : CriterionVerdict::not_applicable;
-    gi.test += without + "every gamma >= " + format_digits(b.gamma_unstable_from, 8) +
-               " is unstable at this dt; gamma = " + format_digits(params.gamma, 8) +
-               (unstable ? " is" : " is not proved either way");
-  }
-  out.push_back(gi);
-  CriterionResult dm = row("exact dt limit (" + integ + ")", "not computed");
-  if (index) {
-    const bool unstable = params.dt >= b.dt_unstable_from;
-    dm.verdict = unstable ? CriterionVerdict::beyond : CriterionVerdict::not_applicable;
-    dm.test += without + "every dt >= " + format_digits(b.dt_unstable_from, 8) +
-               " is unstable at this gamma; dt = " + format_digits(params.dt, 8) +
-               (unstable ? " is" : " is not proved either way");
-  }
-  out.push_back(dm);
+  // The user's `what` against the value from which the vector proves instability (at the
+  // other parameter, `at`).
+  auto threshold = [&](const std::string& name, const std::string& what, double user,
+                       double from, const std::string& at) {
+    CriterionResult c = row(name);
+    if (!index) return c;
+    const bool unstable = user >= from;
+    c.verdict = unstable ? CriterionVerdict::beyond : CriterionVerdict::not_applicable;
+    c.test += without + "every " + what + " >= " + format_digits(from, 8) +
+              " is unstable at this " + at + "; " + what + " = " + format_digits(user, 8) +
+              (unstable ? " is" : " is not proved either way");
+    return c;
+  };
+  out.push_back(threshold("exact gamma interval (" + integ + ")", "gamma", params.gamma,
+                          b.gamma_unstable_from, "dt"));
+  out.push_back(threshold("exact dt limit (" + integ + ")", "dt", params.dt, b.dt_unstable_from,
+                          "gamma"));
   return out;
 }
 
