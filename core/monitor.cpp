@@ -260,7 +260,6 @@ MonitorLimits Monitor::exact_limits(NodeVectors x, NodeScalars gamma, double dt,
   ExactOptions options;
   options.with_radius = false;
   options.max_factor_flops = max_factor_flops;
-  options.unfactored_steps = 0;  // MonitorLimits carries the reason only
   const ExactStability e = exact_stability(model, xs, params, options);
   // With params.gamma = 1, exact_stability's interval of the user's gamma is an interval of
   // the factor s that multiplies every gamma_i.
@@ -273,6 +272,9 @@ MonitorLimits Monitor::exact_limits(NodeVectors x, NodeScalars gamma, double dt,
   if (!e.computed()) {  // over the budget: every number NaN (exact_stability's), and why
     l.not_computed = e.over_budget_reason();
     l.rate_max = l.dt_max_undamped = std::numeric_limits<double>::quiet_NaN();
+    l.lambda_max_at_least = e.unfactored.lambda_max_lo;
+    l.scale_unstable_from = e.unfactored.gamma_unstable_from;
+    l.dt_unstable_from = e.unfactored.dt_unstable_from;
     return l;
   }
   const LinearLimits uniform = linear_limits(e.spectrum.lambda_max, 1.0, dt);

@@ -73,6 +73,13 @@ struct MonitorLimits {
   /// Set when one sparse factorisation would have exceeded max_factor_flops: what it would
   /// have cost (every number above is then NaN).
   std::optional<std::string> not_computed;
+  /// Then, what plain Lanczos proves without a factorisation (ExactStability::Unfactored;
+  /// docs/criteria.md; NaN when computed): lambda_max is at least lambda_max_at_least, and the
+  /// step is unstable for s * gamma_i with every s >= scale_unstable_from (at dt) and for
+  /// every dt >= dt_unstable_from (with these gamma_i); inf: not proved for any.
+  double lambda_max_at_least = std::numeric_limits<double>::quiet_NaN();
+  double scale_unstable_from = std::numeric_limits<double>::quiet_NaN();
+  double dt_unstable_from = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// A user's mass-spring system, seen by dampbound: masses, springs and (optional) anchors.

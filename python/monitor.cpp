@@ -84,7 +84,14 @@ void bind_monitor(py::module_& m) {
           "computed", [](const MonitorLimits& l) { return !l.not_computed; },
           "False when one factorisation would exceed factor_budget_gflop (numbers NaN)")
       .def_readonly("reason", &MonitorLimits::not_computed,
-                    "why nothing was computed (None when computed)");
+                    "why nothing was computed (None when computed)")
+      .def_readonly("lambda_max_at_least", &MonitorLimits::lambda_max_at_least,
+                    "not computed: lambda_max is at least this (a Lanczos Rayleigh quotient; "
+                    "NaN when computed)")
+      .def_readonly("scale_unstable_from", &MonitorLimits::scale_unstable_from,
+                    "not computed: s * gamma_i is proved unstable at dt for every s >= this")
+      .def_readonly("dt_unstable_from", &MonitorLimits::dt_unstable_from,
+                    "not computed: every dt >= this is proved unstable with these gamma_i");
 
   py::class_<Monitor>(m, "Monitor",
                       "The paper's bounds over your own mass-spring arrays. Topology is copied "

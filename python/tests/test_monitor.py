@@ -111,7 +111,7 @@ def test_exact_limits_of_two_free_nodes():
     assert lim.stable
 
 
-def test_exact_limits_over_a_factorisation_budget_compute_nothing():
+def test_exact_limits_over_a_factorisation_budget_factorise_nothing():
     scene = dampbound.paper_plane_scene(12)  # 432 rows: the factorisation route
     a = scene.arrays(scene.params)
     mon = dampbound.Monitor(a["mass"], a["springs"], a["stiffness"], a["rest_length"],
@@ -122,6 +122,10 @@ def test_exact_limits_over_a_factorisation_budget_compute_nothing():
     over = mon.exact_limits(a["rest"], gamma, 0.05, factor_budget_gflop=1e-9)
     assert not over.computed and "over the budget" in over.reason
     assert math.isnan(over.lambda_max) and math.isnan(over.dt_max)
+    assert math.isnan(free.dt_unstable_from)
+    assert over.lambda_max_at_least <= free.lambda_max
+    assert free.scale_hi <= over.scale_unstable_from < 1.001 * free.scale_hi
+    assert free.dt_max <= over.dt_unstable_from < 1.001 * free.dt_max
     assert mon.exact_limits(a["rest"], gamma, 0.05, factor_budget_gflop=1e3).dt_max == free.dt_max
     with pytest.raises(ValueError, match="factor_budget_gflop"):
         mon.exact_limits(a["rest"], gamma, 0.05, factor_budget_gflop=0.0)

@@ -94,7 +94,7 @@ def test_exact_limits_take_a_thread_count_and_give_the_same_numbers(scenes_dir):
         dampbound.exact_limits(scene, threads=-1)
 
 
-def test_exact_limits_over_a_factorisation_budget_compute_nothing(scenes_dir):
+def test_exact_limits_over_a_factorisation_budget_factorise_nothing(scenes_dir):
     scene = dampbound.load_scene(str(scenes_dir / "paper-plane.toml"))
     free = dampbound.exact_limits(scene)
     assert free.computed and free.reason is None

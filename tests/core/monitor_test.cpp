@@ -231,7 +231,7 @@ TEST(Monitor, ExactLimitsOfTwoFreeNodesAreSpec7s) {
   EXPECT_NEAR(l.scale_hi, 0.5 * (2 / dt - lambda * dt / 2) / 0.1, 1e-6);
 }
 
-TEST(Monitor, ExactLimitsOverAFactorisationBudgetComputeNothing) {
+TEST(Monitor, ExactLimitsOverAFactorisationBudgetFactoriseNothing) {
   // A 12 x 12 grid with right and down springs: 432 rows, the factorisation route.
   const int n = 12, nodes = n * n;
   std::vector<double> mass(nodes, 0.001), x(3 * nodes), gamma(nodes, 0.002), k, l0;
@@ -260,6 +260,13 @@ TEST(Monitor, ExactLimitsOverAFactorisationBudgetComputeNothing) {
                    over.dt_max_undamped})
     EXPECT_TRUE(std::isnan(v));
   EXPECT_FALSE(over.stable);
+  EXPECT_TRUE(std::isnan(free.dt_unstable_from));
+  // What Lanczos proves without a factorisation lies on the unstable side of the exact limits.
+  EXPECT_LE(over.lambda_max_at_least, free.lambda_max);
+  EXPECT_GE(over.scale_unstable_from, free.scale_hi);
+  EXPECT_LT(over.scale_unstable_from, free.scale_hi * (1 + 1e-3));
+  EXPECT_GE(over.dt_unstable_from, free.dt_max);
+  EXPECT_LT(over.dt_unstable_from, free.dt_max * (1 + 1e-3));
   const MonitorLimits roomy =
       mon.exact_limits(node_vectors(x.data(), nodes), node_scalars(gamma.data(), nodes), 0.05, 1e12);
   EXPECT_EQ(roomy.lambda_max, free.lambda_max);
