@@ -217,6 +217,10 @@ std::vector<CriterionResult> unfactored_criteria(const ExactStability& e, const 
                        double from, const std::string& at) {
     CriterionResult c = row(name);
     if (!index) return c;
+    if (std::isinf(from)) {  // the vector proves nothing in this direction
+      c.test += without + "no " + what + " is proved unstable at this " + at;
+      return c;
+    }
     const bool unstable = user >= from;
     c.verdict = unstable ? CriterionVerdict::beyond : CriterionVerdict::not_applicable;
     c.test += without + "every " + what + " >= " + format_digits(from, 8) +

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/bounds.hpp"
@@ -199,6 +200,14 @@ TEST(Criteria, OverTheBudgetAStepProvedUnstableWithoutAFactorisationIsBeyond) {
   }
   EXPECT_NE(find(beyond, "exact spectral radius").test.find(">= 4: unstable (proved)"),
             std::string::npos);
+  // No damping anywhere (every gamma_scale 0): no gamma can be proved unstable.
+  ModelSpec undamped = make_grid(GridSpec{14, 14, 0.57, true, true});
+  std::fill(undamped.gamma_scale.begin(), undamped.gamma_scale.end(), 0.0);
+  const Model u = compile_model(undamped, p);
+  const auto none = all_criteria(u, rest_state(u), p, exact_stability(u, u.rest, p, tight));
+  EXPECT_NE(find(none, "exact gamma interval").test.find("no gamma is proved unstable at this dt"),
+            std::string::npos)
+      << find(none, "exact gamma interval").test;
 }
 
 }  // namespace
