@@ -1,7 +1,7 @@
 #include "core/analysis/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
 #include "core/analysis/linear_stability_cholesky.hpp"
+#include "core/analysis/detail/lanczos.hpp"
 #include "core/analysis/detail/shifted_cholesky.hpp"
-#include "core/analysis/detail/symmetric_product.hpp"
 #include "core/analysis/detail/tridiagonal.hpp"
 
 #include <Eigen/Dense>
@@ -15,6 +15,9 @@
 
 namespace dampbound {
 using detail::kAmdSlack;
+using detail::LanczosRecurrence;
+using detail::TopEstimate;
+using detail::lanczos_estimate;
 using detail::ShiftedCholesky;
 namespace {
 
@@ -26,109 +29,6 @@ constexpr double kMargin = 1e-12;
 /// Up to this many rows the dense eigenvalues are cheaper than factorisations (a 10 x 10
 /// plane, 300 rows: a few ms) and exact to rounding: lo = hi.
 constexpr Eigen::Index kDenseRows = 400;
-/// Plain Lanczos (matrix-vector products only, no reorthogonalisation) on
-/// S = scale A + diag(d) (`d` empty: S = A, and `scale` must be 1), one step at a time. The
-/// operations do not depend on what the caller does with the vectors, so a second run
-/// replays the first one's bits: the Ritz vector of unfactored_largest_eigenvalue is formed
-/// that way, without storing the basis.
-class LanczosRecurrence {
- public:
-  LanczosRecurrence(const SparseMatrix& A, int threads, double scale = 1,
-                    const Eigen::VectorXd* d = nullptr)
-      : A_(A), d_(d), scale_(scale), pool_(threads) {
-    const Eigen::Index n = A.rows();
-    // The start: smooth along the rows, its sign flipped at every other node (three rows). A
-    // mesh numbered along its rows or layers has neighbours at nearby indices, so the flips
-    // put weight on the stiff, oscillating modes where lambda_max lives: 450 steps instead of
-    // 750 on the 400 x 400 plane (docs/performance.md); no more on a tetrahedral block, or
-    // for -A.
-    v_ = Eigen::VectorXd::LinSpaced(n, 0.3, 1.7).array().sin();
-    for (Eigen::Index i = 3; i < n; i += 6) v_.segment(i, std::min<Eigen::Index>(3, n - i)) *= -1;
-    v_ /= v_.norm();
-    previous_ = Eigen::VectorXd::Zero(n);
-  }
-  /// v_j: the vector before step j.
-  const Eigen::VectorXd& vector() const { return v_; }
-  /// Step j: alpha_j and beta_j appended, v_{j+1} formed; false when beta_j = 0 (an
-  /// invariant subspace: the Ritz values are eigenvalues).
-  bool step() {
-    if (d_ == nullptr) {
-      detail::symmetric_product(A_, v_, b_, previous_, w_, pool_);
-    } else {
-      detail::symmetric_product(A_, v_, 0.0, previous_, w_, pool_);
-      w_ = scale_ * w_ + d_->cwiseProduct(v_) - b_ * previous_;
-    }
-    const double a = w_.dot(v_);
-    w_ -= a * v_;
-    alpha.push_back(a);
-    b_ = w_.norm();
-    beta.push_back(b_);
-    if (!(b_ > 0)) return false;
-    previous_.swap(v_);
-    v_ = w_ / b_;
-    return true;
-  }
-  std::vector<double> alpha, beta;  ///< T's diagonal and off-diagonal so far
-
- private:
-  const SparseMatrix& A_;
-  const Eigen::VectorXd* d_;
-  double scale_;
-  NodeThreads pool_;
-  Eigen::VectorXd v_, previous_, w_;
-  double b_ = 0;
-};
-
-/// A rough top Ritz value of S by plain Lanczos and an estimate of how far below lambda_max it
-/// still is: it places the first shift near lambda_max; nothing certified depends on it.
-struct TopEstimate {
-  double theta = 0;     ///< the top Ritz value (below lambda_max, up to rounding)
-  double residual = 0;  ///< its Lanczos residual: some eigenvalue lies within it
-  double error = 0;     ///< lambda_max - theta extrapolated from the last checkpoints
-  int steps = 0;
-  std::vector<double> alpha, beta;  ///< T
-};
-
-/// Up to `max_steps` steps, checked every `check`: the Ritz value converges geometrically,
-/// so with d the rise over the last window and q its ratio to the rise over the one before
-/// (kept in [0.5, 0.9]: a sudden drop in the rise is more often a pause than convergence),
-/// lambda_max - theta ~ d q / (1 - q). It stops once that is below `tolerance` |theta|: for
-/// the first shift 1e-7 in windows of 50 steps (a shift that close separates even a
-/// clustered top).
-constexpr int kLanczosSteps = 1000, kLanczosCheck = 50;
-TopEstimate lanczos_estimate(LanczosRecurrence& lanczos, Eigen::Index n,
-                             int max_steps = kLanczosSteps, int check = kLanczosCheck,
-                             double tolerance = 1e-7) {
-  const int k = static_cast<int>(std::min<Eigen::Index>(max_steps, n));
-  std::vector<double> checkpoints;  // top Ritz value every `check` steps
-  TopEstimate e;
-  for (int j = 0; j < k; ++j) {
-    if (!lanczos.step()) break;
-    if ((j + 1) % check != 0) continue;
-    checkpoints.push_back(detail::largest_tridiagonal_eigenvalue(lanczos.alpha.data(),
-                                                                 lanczos.beta.data(), j + 1));
-    const size_t c = checkpoints.size();
-    if (c < 3) continue;
-    const double rise = checkpoints[c - 1] - checkpoints[c - 2];
-    const double before = checkpoints[c - 2] - checkpoints[c - 3];
-    const double q = before > 0 ? std::clamp(rise / before, 0.5, 0.9) : 0.9;
-    e.error = std::max(rise, 0.0) * q / (1 - q);
-    if (e.error < tolerance * std::abs(checkpoints[c - 1])) break;
-  }
-  const int m = static_cast<int>(lanczos.alpha.size());
-  e.theta = detail::largest_tridiagonal_eigenvalue(lanczos.alpha.data(), lanczos.beta.data(), m);
-  e.steps = m;
-  // The Ritz pair's residual: beta_m times the last component of its eigenvector of T.
-  e.residual = std::abs(lanczos.beta.back()) *
-               detail::last_eigenvector_component(lanczos.alpha.data(), lanczos.beta.data(), m,
-                                                  e.theta);
-  if (!std::isfinite(e.residual)) e.residual = std::abs(e.theta);  // no estimate: be wide
-  if (checkpoints.size() < 3) e.error = e.residual;  // too few steps to extrapolate
-  e.alpha = lanczos.alpha;
-  e.beta = lanczos.beta;
-  return e;
-}
-
 /// (shift I - A)^-1 as an operator for Spectra: its largest eigenvalue 1/(shift - lambda)
 /// belongs to the eigenvalue lambda of A nearest below the shift.
 struct InverseOp {

@@ -1,0 +1,58 @@
+#pragma once
+// Plain Lanczos (matrix-vector products only, no reorthogonalisation) for the top of a
+// symmetric sparse matrix: the recurrence one step at a time, and the estimate that places
+// the first shift of certified_largest_eigenvalue (and gives unfactored_largest_eigenvalue
+// its tridiagonal T). Nothing certified rests on these numbers alone: a Cholesky
+// factorisation or a Rayleigh quotient proves whatever is claimed (linear_stability_cholesky).
+#include <vector>
+
+#include "core/analysis/linear_stability.hpp"
+#include "core/node_threads.hpp"
+
+namespace dampbound::detail {
+
+/// Lanczos on S = scale A + diag(d) (`d` null: S = A, and `scale` must be 1), one step at a
+/// time, on `threads` node threads (the same bits on any count: detail/symmetric_product.hpp).
+/// The operations do not depend on what the caller does with the vectors, so a second run
+/// replays the first one's bits: a Ritz vector is formed that way, without storing the basis.
+class LanczosRecurrence {
+ public:
+  LanczosRecurrence(const SparseMatrix& A, int threads, double scale = 1,
+                    const Eigen::VectorXd* d = nullptr);
+  /// v_j: the vector before step j.
+  const Eigen::VectorXd& vector() const { return v_; }
+  /// Step j: alpha_j and beta_j appended, v_{j+1} formed; false when beta_j = 0 (an
+  /// invariant subspace: the Ritz values are eigenvalues).
+  bool step();
+  std::vector<double> alpha, beta;  ///< T's diagonal and off-diagonal so far
+
+ private:
+  const SparseMatrix& A_;
+  const Eigen::VectorXd* d_;
+  double scale_;
+  NodeThreads pool_;
+  Eigen::VectorXd v_, previous_, w_;
+  double b_ = 0;
+};
+
+/// A rough top Ritz value of S and an estimate of how far below lambda_max it still is.
+struct TopEstimate {
+  double theta = 0;     ///< the top Ritz value (below lambda_max, up to rounding)
+  double residual = 0;  ///< its Lanczos residual: some eigenvalue lies within it
+  double error = 0;     ///< lambda_max - theta extrapolated from the last checkpoints
+  int steps = 0;
+  std::vector<double> alpha, beta;  ///< T
+};
+
+/// Up to `max_steps` steps (at most n), checked every `check`: the Ritz value converges
+/// geometrically, so with d the rise over the last window and q its ratio to the rise over
+/// the one before (kept in [0.5, 0.9]: a sudden drop in the rise is more often a pause than
+/// convergence), lambda_max - theta ~ d q / (1 - q). It stops once that is below `tolerance`
+/// |theta|: for the first shift 1e-7 in windows of 50 steps (a shift that close separates
+/// even a clustered top).
+inline constexpr int kLanczosSteps = 1000, kLanczosCheck = 50;
+TopEstimate lanczos_estimate(LanczosRecurrence& lanczos, Eigen::Index n,
+                             int max_steps = kLanczosSteps, int check = kLanczosCheck,
+                             double tolerance = 1e-7);
+
+}  // namespace dampbound::detail
