@@ -39,7 +39,10 @@ void bind_analysis(py::module_& m) {
                     "the paper's step)")
       .def_readonly("dt_unstable_from", &ExactStability::Unfactored::dt_unstable_from,
                     "every dt from this on is proved unstable at gamma (inf: none is)")
-      .def_readonly("lanczos_steps", &ExactStability::Unfactored::lanczos_steps);
+      .def_readonly("lanczos_steps", &ExactStability::Unfactored::lanczos_steps)
+      .def_readonly("unconditional", &ExactStability::Unfactored::unconditional,
+                    "implicit Euler with K proved positive semidefinite: stable for every dt "
+                    "and gamma (no factorisation needed)");
   py::class_<ExactStability>(m, "ExactStability",
                              "SPEC 7's exact linear stability of a model at a state.")
       .def_property_readonly(

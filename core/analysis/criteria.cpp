@@ -201,6 +201,26 @@ std::vector<CriterionResult> unfactored_criteria(const ExactStability& e, const 
     lm.test += without + "lambda_max in [" + format_digits(b.lambda_max_lo, 8) + ", " +
                format_digits(b.lambda_max_hi, 8) + "] (a Rayleigh quotient, Gershgorin's bound)";
   out.push_back(lm);
+  if (b.unconditional) {  // implicit Euler, K >= 0: every row but lambda_max is exact
+    CriterionResult rho = row("exact spectral radius (" + integ + ")");
+    rho.verdict = CriterionVerdict::within;
+    rho.test += "; stable for every dt and gamma: K is positive semidefinite (SPEC 9's floor, "
+                "no spring compressed), which needs no factorisation";
+    out.push_back(rho);
+    CriterionResult gi = row("exact gamma interval (" + integ + ")");
+    gi.value = std::numeric_limits<double>::infinity();
+    gi.unit = "mass unit/s";
+    gi.verdict = CriterionVerdict::within;
+    gi.test += "; gamma = " + format_digits(params.gamma, 8) + " in [0, inf)";
+    out.push_back(gi);
+    CriterionResult dm = row("exact dt limit (" + integ + ")");
+    dm.value = std::numeric_limits<double>::infinity();
+    dm.unit = "s";
+    dm.verdict = CriterionVerdict::within;
+    dm.test += "; dt = " + format_digits(params.dt, 8) + " <= dt_max = inf";
+    out.push_back(dm);
+    return out;
+  }
   const bool index = tried && !std::isnan(b.index_at_least);
   CriterionResult rho = row("exact spectral radius (" + integ + ")");
   if (index) {

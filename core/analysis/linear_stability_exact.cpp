@@ -222,8 +222,9 @@ double weighted_mean_below(const Eigen::VectorXd& u, const Eigen::VectorXd& R) {
 /// Over the budget: nothing factorised, every exact number NaN, the prediction and the budget
 /// kept for the report; and what plain Lanczos and Gershgorin prove without a factorisation
 /// (ExactStability::Unfactored).
-ExactStability over_budget(const ExactInputs& in, const Params& params,
-                           const ExactOptions& options, const FactorisationOverBudget& over) {
+ExactStability over_budget(const ExactInputs& in, std::optional<double> floor,
+                           const Params& params, const ExactOptions& options,
+                           const FactorisationOverBudget& over) {
   ExactStability e;
   e.integrator = params.integrator;
   e.method = ExactMethod::over_budget;
@@ -253,6 +254,14 @@ ExactStability over_budget(const ExactInputs& in, const Params& params,
   b.lambda_max_lo = top.lo;
   b.lambda_max_hi = top.hi;
   b.lanczos_steps = top.lanczos_steps;
+  // Implicit Euler needs no lambda_max: with K positive semidefinite (SPEC 9's floor proves
+  // lambda_min >= 0, to the same rounding allowance as the computed route) it is stable for
+  // every dt and gamma (unconditional()).
+  if (params.integrator == Integrator::implicit_euler && floor &&
+      *floor >= -1e-12 * std::max(1.0, std::abs(top.hi))) {
+    b.unconditional = true;
+    e.stable = true;
+  }
   if (!paper_step) return e;
   // index(gamma', h') >= u^T (h'^2 A + 2 h' gamma' diag(R)) u / u^T u
   //                  >= h'^2 a + 2 h' gamma' rho  (a, rho: the quotients less their rounding),
@@ -305,7 +314,7 @@ ExactStability exact_stability(const Model& model, const std::vector<Vec3>& x,
   try {
     return exact_stability_within_budget(model, x, in, params, options);
   } catch (const FactorisationOverBudget& over) {
-    return over_budget(in, params, options, over);
+    return over_budget(in, psd_floor(model, x), params, options, over);
   }
 }
 

@@ -66,6 +66,9 @@ struct ExactStability {
     double gamma_unstable_from = std::numeric_limits<double>::quiet_NaN();
     double dt_unstable_from = std::numeric_limits<double>::quiet_NaN();
     int lanczos_steps = 0;  ///< of one of the two Lanczos runs (the second replays the first)
+    /// Implicit Euler with K proved positive semidefinite (SPEC 9's floor, no spring
+    /// compressed): stable for every dt and gamma, which needs no lambda_max (then `stable`).
+    bool unconditional = false;
   } unfactored;
   bool computed() const { return method != ExactMethod::over_budget; }
   const std::string& over_budget_reason() const { return not_computed_reason; }

@@ -63,6 +63,9 @@ expect_match "$OUT" 'exact dt limit \(semi-implicit-euler\) +n/a +n/a +not compu
 expect_exit 0 "$DB" bounds paper-plane --factor-budget 1e-9 --dt 0.51
 expect_match "$OUT" 'exact dt limit \(semi-implicit-euler\) +n/a +BEYOND +not computed: .*; dt = 0\.51 is$' "dt past the limit: proved unstable"
 expect_match "$OUT" 'exact spectral radius \(semi-implicit-euler\) +n/a +BEYOND +.*>= 4: unstable \(proved\)' "the index proves it"
+# Implicit Euler at rest needs no lambda_max: unconditional, proved without a factorisation.
+expect_exit 0 "$DB" bounds paper-plane --factor-budget 1e-9 --integrator implicit-euler
+expect_match "$OUT" 'exact dt limit \(implicit-euler\) +inf s +within +not computed: .*dt_max = inf$' "implicit Euler unconditional over the budget"
 expect_exit 0 "$DB" bounds paper-plane --factor-budget 200
 expect_match "$OUT" 'exact dt limit \(semi-implicit-euler\) +0\.50396164 s +within' "a budget above the cost changes nothing"
 for bad_budget in 0 -1 nan inf x; do

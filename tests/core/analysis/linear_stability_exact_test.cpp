@@ -169,6 +169,31 @@ TEST(LinearStabilityExact, OverTheBudgetLanczosProvesInstabilityWithoutAFactoris
     EXPECT_TRUE(std::isnan(v));
 }
 
+TEST(LinearStabilityExact, OverTheBudgetImplicitEulerIsUnconditionalWhenNoSpringIsCompressed) {
+  Params p;
+  p.integrator = Integrator::implicit_euler;
+  const Model model = compile_model(make_grid(GridSpec{14, 14, 0.57, true, true}), p);
+  ExactOptions tight;
+  tight.max_factor_flops = 1;
+  // At rest every spring block is positive semidefinite: stable for every dt and gamma, as the
+  // computed route says, with no factorisation.
+  const ExactStability free = exact_stability(model, model.rest, p);
+  ASSERT_EQ(free.method, ExactMethod::unconditional);
+  const ExactStability over = exact_stability(model, model.rest, p, tight);
+  EXPECT_FALSE(over.computed());
+  EXPECT_TRUE(over.unfactored.unconditional);
+  EXPECT_TRUE(over.stable);
+  // Squeezed to 90 %, every spring is compressed: nothing proves K >= 0 without a factorisation.
+  std::vector<Vec3> squeezed = model.rest;
+  for (Vec3& x : squeezed) x *= 0.9;
+  const ExactStability tight_squeeze = exact_stability(model, squeezed, p, tight);
+  EXPECT_FALSE(tight_squeeze.unfactored.unconditional);
+  EXPECT_FALSE(tight_squeeze.stable);
+  // The paper's step is never unconditional.
+  p.integrator = Integrator::semi_implicit_euler;
+  EXPECT_FALSE(exact_stability(model, model.rest, p, tight).unfactored.unconditional);
+}
+
 TEST(LinearStabilityExact, OverTheBudgetUniformRatesGiveThePerModeLimitsFromBelow) {
   // A plane with one mass (uniform gamma/m): the thresholds are SPEC 7's per-mode limits at
   // lambda = the Rayleigh quotient, 2m/dt - m lo dt/2 and dt at the root.
