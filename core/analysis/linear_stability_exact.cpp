@@ -216,7 +216,8 @@ double weighted_mean_below(const Eigen::VectorXd& u, const Eigen::VectorXd& R) {
   const long double terms = static_cast<long double>(u.size()) + 2;
   const long double gamma = terms * unit / (1 - terms * unit);
   const double q = static_cast<double>(uRu / uu);
-  return std::max(0.0, q - static_cast<double>(3 * gamma) * q - std::numeric_limits<double>::epsilon() * q);
+  const double rounding = static_cast<double>(3 * gamma) + std::numeric_limits<double>::epsilon();
+  return std::max(0.0, q - rounding * q);
 }
 
 /// Over the budget: nothing factorised, every exact number NaN, the prediction and the budget
