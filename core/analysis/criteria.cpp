@@ -202,23 +202,24 @@ std::vector<CriterionResult> unfactored_criteria(const ExactStability& e, const 
                format_digits(b.lambda_max_hi, 8) + "] (a Rayleigh quotient, Gershgorin's bound)";
   out.push_back(lm);
   if (b.unconditional) {  // implicit Euler, K >= 0: every row but lambda_max is exact
-    CriterionResult rho = row("exact spectral radius (" + integ + ")");
-    rho.verdict = CriterionVerdict::within;
-    rho.test += "; stable for every dt and gamma: K is positive semidefinite (SPEC 9's floor, "
-                "no spring compressed), which needs no factorisation";
-    out.push_back(rho);
-    CriterionResult gi = row("exact gamma interval (" + integ + ")");
-    gi.value = std::numeric_limits<double>::infinity();
-    gi.unit = "mass unit/s";
-    gi.verdict = CriterionVerdict::within;
-    gi.test += "; gamma = " + format_digits(params.gamma, 8) + " in [0, inf)";
-    out.push_back(gi);
-    CriterionResult dm = row("exact dt limit (" + integ + ")");
-    dm.value = std::numeric_limits<double>::infinity();
-    dm.unit = "s";
-    dm.verdict = CriterionVerdict::within;
-    dm.test += "; dt = " + format_digits(params.dt, 8) + " <= dt_max = inf";
-    out.push_back(dm);
+    auto within = [&](const std::string& name, double value, const std::string& unit,
+                      const std::string& test) {
+      CriterionResult c = row(name);
+      c.value = value;
+      c.unit = unit;
+      c.verdict = CriterionVerdict::within;
+      c.test += test;
+      return c;
+    };
+    const double inf = std::numeric_limits<double>::infinity();
+    out.push_back(within("exact spectral radius (" + integ + ")",
+                         std::numeric_limits<double>::quiet_NaN(), "",
+                         "; stable for every dt and gamma: K is positive semidefinite (SPEC 9's "
+                         "floor, no spring compressed), which needs no factorisation"));
+    out.push_back(within("exact gamma interval (" + integ + ")", inf, "mass unit/s",
+                         "; gamma = " + format_digits(params.gamma, 8) + " in [0, inf)"));
+    out.push_back(within("exact dt limit (" + integ + ")", inf, "s",
+                         "; dt = " + format_digits(params.dt, 8) + " <= dt_max = inf"));
     return out;
   }
   const bool index = tried && !std::isnan(b.index_at_least);
