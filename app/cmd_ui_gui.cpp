@@ -31,6 +31,7 @@ struct GuiArgs {
   std::string tab;
   std::vector<std::string> pins;  ///< --pin KEY=VALUE[,KEY=VALUE...], repeatable
   std::string save_scene, export_dir, export_prefix = "dampbound";
+  double factor_budget = 0;  ///< GFlop (add_factor_budget_option sets the default)
   int expect_iterations = default_expect_tolerance().iterations;
   double expect_displacement = default_expect_tolerance().displacement_factor;
   ParamFlags flags;
@@ -58,6 +59,12 @@ std::string frame_time_json(const ui::WindowRun& run) {
          "},\"first_frame_ms\":" + json_number(run.frame_ms.empty() ? 0.0 : run.frame_ms[0]);
 }
 
+/// The method of the exact analysis on show at exit (a JSON string), or null when none is.
+std::string exact_method_json(ui::GuiApp& app) {
+  const ExactStability* e = app.tuner().criteria_state().shown();
+  return e ? json_string(to_string(e->method)) : "null";
+}
+
 void print_stats(const GuiArgs& a, ui::GuiApp& app, const ui::WindowRun& run,
                  const std::string& renderer, int width, int height) {
   const Session& s = app.tuner().session();
@@ -65,7 +72,7 @@ void print_stats(const GuiArgs& a, ui::GuiApp& app, const ui::WindowRun& run,
       "{\"frames\":%d,\"iterations\":%d,\"outcome\":\"%s\",\"outcome_iteration\":%d,"
       "\"steps_per_frame\":%d,\"mean_frame_ms\":%s,\"fps\":%s,\"steps_per_second\":%s,"
       "\"step_ms_per_frame\":%s,\"width\":%d,\"height\":%d,\"scene\":%s,\"gamma\":%s,"
-      "\"policy\":\"%s\",\"pins\":%zu,\"renderer\":%s,%s}\n",
+      "\"policy\":\"%s\",\"pins\":%zu,\"renderer\":%s,\"exact_method\":%s,%s}\n",
       run.frames, s.state().iteration, to_string(s.result().outcome), s.result().iterations,
       app.tuner().playback().steps_per_frame, json_number(run.mean_frame_ms).c_str(),
       json_number(run.mean_frame_ms > 0 ? 1000.0 / run.mean_frame_ms : 0.0).c_str(),
@@ -73,7 +80,7 @@ void print_stats(const GuiArgs& a, ui::GuiApp& app, const ui::WindowRun& run,
       json_number(run.frames > 0 ? app.tuner().step_seconds() * 1e3 / run.frames : 0.0).c_str(),
       width, height, json_string(s.scene().name).c_str(), json_number(s.params().gamma).c_str(),
       to_string(s.params().policy), app.tuner().pins().size(), json_string(renderer).c_str(),
-      frame_time_json(run).c_str());
+      exact_method_json(app).c_str(), frame_time_json(run).c_str());
   (void)a;
 }
 
@@ -123,6 +130,7 @@ int run(GuiArgs& a) {
   const ParamFlags flags = a.flags;
   o.overrides = [flags](Params& p, StopRules& r) { flags.apply(p, r); };
   o.steps_per_frame = a.steps_per_frame;
+  o.factor_budget = a.factor_budget * 1e9;
   o.play = a.play || a.frames > 0;
   o.demo = a.demo;
   o.scripted = a.frames > 0;
@@ -228,6 +236,7 @@ std::function<int()> setup(CLI::App& root) {
       ->capture_default_str();
   cmd->add_flag("--demo", a->demo,
                 "pin a run at a quarter of the lower bound and one at it before the first frame");
+  add_factor_budget_option(cmd, a->factor_budget);
   a->flags.add_to(cmd, true);
   return [a] { return run(*a); };
 }

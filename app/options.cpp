@@ -101,8 +101,9 @@ CLI::Option* add_factor_budget_option(CLI::App* cmd, double& gflop) {
   return cmd
       ->add_option("--factor-budget", gflop,
                    "the most one sparse factorisation of the exact analysis may take, in GFlop "
-                   "(CHOLMOD's prediction, before any is done); over it the exact limits are "
-                   "reported as not computed (default 200: ~25 s per factorisation on 2 cores)")
+                   "(CHOLMOD's prediction, before any is done); over it the exact rows report "
+                   "only what Lanczos proves without one (default 200: ~25 s per factorisation "
+                   "on 2 cores)")
       ->check(finite_positive());
 }
 

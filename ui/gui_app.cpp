@@ -85,6 +85,8 @@ GuiApp::GuiApp(GuiOptions options) : options_(std::move(options)) {
   tuner_->reset();
   link_settings(settings_, [](const auto& saved, auto& live) { live = saved; });
   tuner_->criteria_state().set_at_current_state(settings_.exact_at_state);
+  tuner_->criteria_state().set_factor_budget(options_.factor_budget);
+  suggest_.set_factor_budget(options_.factor_budget);
   if (options_.steps_per_frame > 0) tuner_->playback().steps_per_frame = options_.steps_per_frame;
   if (options_.demo) run_demo();
   if (options_.play) tuner_->set_playing(true);

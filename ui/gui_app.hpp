@@ -35,6 +35,8 @@ struct GuiOptions {
   /// Command-line parameter flags, applied over the scene's (or remembered) parameters.
   std::function<void(Params&, StopRules&)> overrides;
   int steps_per_frame = 0;  ///< > 0: overrides the remembered value
+  /// The most one factorisation of the exact analysis and of Suggest may cost (flops).
+  double factor_budget = kDefaultFactorBudget;
   bool play = false;        ///< start playing
   bool demo = false;        ///< pin two runs (below and at the lower bound) before frame 0
   bool scripted = false;    ///< ignore the mouse (--frames runs: no stray hover tooltips)

@@ -64,7 +64,7 @@ void GuiApp::scene_picker() {
   if (!scene_.error.empty()) wrapped_colored(gui_red(), scene_.error.c_str());
   if (!tuner_->scene().description.empty()) {
     ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
-    ImGui::TextWrapped("%s", tuner_->scene().description.c_str());
+    text_wrapped(tuner_->scene().description);
     ImGui::PopStyleColor();
   }
 }

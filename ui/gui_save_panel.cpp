@@ -20,11 +20,10 @@ void GuiApp::save_panel() {
   Tuner& t = *tuner_;
   int runs = 0;
   for (const Pin& p : t.pins()) runs += p.scene == t.scene().name;
-  ImGui::TextWrapped(
-      "Writes the scene with the current parameters as [params], each of its %d pinned runs "
-      "as a [[run]], and what each run measured as an [[expect]] entry: "
-      "`dampbound check FILE` replays them headless.",
-      runs);
+  text_wrapped("Writes the scene with the current parameters as [params], each of its " +
+               std::to_string(runs) +
+               " pinned runs as a [[run]], and what each run measured as an [[expect]] entry: "
+               "`dampbound check FILE` replays them headless.");
   section_header("Tolerances of the [[expect]] entries");
   const float w = std::min(ImGui::GetContentRegionAvail().x * 0.45f, 160.0f);
   ImGui::SetNextItemWidth(w);

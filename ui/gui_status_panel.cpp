@@ -23,10 +23,10 @@ void row(const char* label, const std::string& value, const ImVec4* color = null
   ImGui::TableNextColumn();
   if (color != nullptr) {
     ImGui::PushStyleColor(ImGuiCol_Text, *color);
-    ImGui::TextWrapped("%s", value.c_str());
+    text_wrapped(value);
     ImGui::PopStyleColor();
   } else {
-    ImGui::TextWrapped("%s", value.c_str());
+    text_wrapped(value);
   }
 }
 

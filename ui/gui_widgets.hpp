@@ -2,11 +2,14 @@
 // Small ImGui helpers shared by the tuner's panels.
 #include <imgui.h>
 
+#include <algorithm>
 #include <exception>
 #include <string>
+#include <string_view>
 
 #include "core/protocol.hpp"
 #include "ui/plot.hpp"
+#include "ui/text_wrap.hpp"
 
 namespace dampbound::ui {
 
@@ -51,10 +54,20 @@ inline void section_header(const char* label) {
   ImGui::Separator();
 }
 
+/// `text` wrapped to the space left on the line, broken at blanks only (ui/text_wrap.hpp:
+/// ImGui's TextWrapped would split a number after its '.'). One item, for IsItemHovered.
+inline void text_wrapped(std::string_view text) {
+  const float width = std::max(ImGui::GetContentRegionAvail().x, 1.0f);
+  const std::string lines = wrap_at_blanks(text, width, [](std::string_view s) {
+    return ImGui::CalcTextSize(s.data(), s.data() + s.size()).x;
+  });
+  ImGui::TextUnformatted(lines.data(), lines.data() + lines.size());
+}
+
 /// Wrapped text in `color`.
-inline void wrapped_colored(const ImVec4& color, const char* text) {
+inline void wrapped_colored(const ImVec4& color, std::string_view text) {
   ImGui::PushStyleColor(ImGuiCol_Text, color);
-  ImGui::TextWrapped("%s", text);
+  text_wrapped(text);
   ImGui::PopStyleColor();
 }
 

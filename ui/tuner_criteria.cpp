@@ -36,13 +36,13 @@ int free_node_count(const Model& model) {
 /// The analysis itself (SPEC 7), linearised at positions x; nullopt when x is not finite or
 /// the solver fails.
 std::optional<ExactStability> analyse(const Model& model, const std::vector<Vec3>& x,
-                                      const Params& params) {
+                                      const Params& params, double factor_budget) {
   for (const Vec3& p : x)
     if (!p.allFinite()) return std::nullopt;
   try {
     ExactOptions o;
     o.with_radius = uniform_rate(model);  // Arnoldi on a non-uniform mesh can take seconds
-    o.max_factor_flops = kDefaultFactorBudget;  // a big 3-D mesh: "not computed", not hours
+    o.max_factor_flops = factor_budget;  // a big 3-D mesh: what Lanczos proves, not hours
     return exact_stability(model, x, params, o);
   } catch (const std::exception&) {
     return std::nullopt;
@@ -62,6 +62,13 @@ TunerCriteria::~TunerCriteria() {
 void TunerCriteria::set_at_current_state(bool on) {
   if (on == at_state_) return;
   at_state_ = on;
+  have_key_ = false;  // recompute at the next call, unthrottled
+  last_seconds_ = 0;
+}
+
+void TunerCriteria::set_factor_budget(double flops) {
+  if (flops == factor_budget_) return;
+  factor_budget_ = flops;
   have_key_ = false;  // recompute at the next call, unthrottled
   last_seconds_ = 0;
 }
@@ -115,11 +122,11 @@ const ExactStability* TunerCriteria::exact(const Session& s, std::uint64_t topol
     std::vector<Vec3> x = at_state_ ? s.state().x : std::vector<Vec3>{};
     job_ = std::async(std::launch::async,
                       [model = s.shared_model(), x = std::move(x), params = s.params(),
-                       iteration, at = at_state_] {
+                       iteration, at = at_state_, budget = factor_budget_] {
                         lower_worker_priority();
                         const double t0 = seconds_now();
                         Finished f;
-                        f.exact = analyse(*model, at ? x : model->rest, params);
+                        f.exact = analyse(*model, at ? x : model->rest, params, budget);
                         f.iteration = iteration;
                         f.at_state = at;
                         f.seconds = seconds_now() - t0;
@@ -127,7 +134,7 @@ const ExactStability* TunerCriteria::exact(const Session& s, std::uint64_t topol
                       });
     return exact_ ? &*exact_ : nullptr;
   }
-  exact_ = analyse(s.model(), s.model().rest, s.params());
+  exact_ = analyse(s.model(), s.model().rest, s.params(), factor_budget_);
   ++exact_version_;
   exact_iteration_ = 0;
   exact_at_rest_ = true;
@@ -199,7 +206,8 @@ void TunerSuggest::launch(std::shared_ptr<const SceneSpec> shared,
   if (busy()) return;
   error_.clear();
   pending_ = std::async(std::launch::async, [shared = std::move(shared), model = std::move(model),
-                                             iteration, params, rules, cut] {
+                                             iteration, params, rules, cut,
+                                             budget = factor_budget_] {
     lower_worker_priority();
     // With a model: the scene as the run has it (Session::current_scene), built here.
     std::optional<SceneSpec> as_run;
@@ -210,7 +218,7 @@ void TunerSuggest::launch(std::shared_ptr<const SceneSpec> shared,
     s.springs = scene.model.spring_count();
     s.springs_cut = cut;
     SuggestOptions options;
-    options.max_factor_flops = kDefaultFactorBudget;  // over it: the panel shows the error
+    options.max_factor_flops = budget;  // over it: the panel shows the error
     s.damping = suggest_damping(scene, params, rules, options);
     s.step = suggest_step(scene, params, rules, options);
     return s;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/analysis/criteria.hpp"
+#include "core/analysis/linear_stability_exact.hpp"
 #include "core/session.hpp"
 #include "core/analysis/suggest.hpp"
 
@@ -52,6 +53,8 @@ class TunerCriteria {
   /// The analysis time above which a changed key is throttled (50 ms; tests that count
   /// analyses set it high, so that a slow build, e.g. under sanitizers, counts the same).
   void set_slow_threshold(double seconds) { slow_threshold_ = seconds; }
+  /// The exact analysis on show, without starting one (null: none yet, or it failed).
+  const ExactStability* shown() const { return exact_ ? &*exact_ : nullptr; }
   /// Waits for an analysis running on the worker thread and takes its result (tests).
   void wait();
   /// True while an analysis runs on the worker thread (the one on show is the last result).
@@ -59,6 +62,11 @@ class TunerCriteria {
   /// Meshes with more free nodes than this are analysed at rest on the worker thread too
   /// (default 5000; the analysis at the state always is).
   void set_worker_nodes(int nodes) { worker_nodes_ = nodes; }
+  /// The most one sparse factorisation of the exact analysis may cost (flops;
+  /// ExactOptions::max_factor_flops, default kDefaultFactorBudget). Over it the exact rows say
+  /// what Lanczos alone proves. A change is analysed anew at the next call.
+  void set_factor_budget(double flops);
+  double factor_budget() const { return factor_budget_; }
   /// Whether the analysis on show was linearised at rest, else at the state of iteration
   /// exact_iteration().
   bool exact_at_rest() const { return exact_at_rest_; }
@@ -89,6 +97,7 @@ class TunerCriteria {
   double follow_interval_ = 0.2;
   double slow_threshold_ = 0.05;
   int worker_nodes_ = 5000;
+  double factor_budget_ = kDefaultFactorBudget;
   int exact_iteration_ = 0;
   bool exact_at_rest_ = true;
   int exact_runs_ = 0;
@@ -132,6 +141,9 @@ class TunerSuggest {
   const std::optional<Suggestion>& result() const { return result_; }
   /// One line when the computation threw.
   const std::string& error() const { return error_; }
+  /// The factorisation budget of the next computation (SuggestOptions::max_factor_flops,
+  /// default kDefaultFactorBudget); over it the panel shows the error.
+  void set_factor_budget(double flops) { factor_budget_ = flops; }
 
  private:
   void launch(std::shared_ptr<const SceneSpec> scene, std::shared_ptr<const Model> model,
@@ -140,6 +152,7 @@ class TunerSuggest {
   std::future<Suggestion> pending_;
   std::optional<Suggestion> result_;
   std::string error_;
+  double factor_budget_ = kDefaultFactorBudget;
 };
 
 /// `current` with the fastest-settling gamma of the suggestion (policy unchanged).

@@ -174,6 +174,10 @@ std::vector<CriterionResult> paper_criteria(const Model& model, const State& sta
   return out;
 }
 
+std::string over_budget_test(const ExactStability& exact) {
+  return "not computed: " + exact.over_budget_reason();
+}
+
 namespace {
 
 /// The exact rows over the factorisation budget: nothing exact, but what plain Lanczos and
@@ -184,7 +188,7 @@ namespace {
 std::vector<CriterionResult> unfactored_criteria(const ExactStability& e, const Params& params) {
   const ExactStability::Unfactored& b = e.unfactored;
   const std::string integ = to_string(e.integrator);
-  const std::string why = "not computed: " + e.over_budget_reason();
+  const std::string why = over_budget_test(e);
   const bool tried = !std::isnan(b.lambda_max_lo);
   const std::string without = "; without a factorisation (Lanczos, " +
                               std::to_string(b.lanczos_steps) + " steps): ";

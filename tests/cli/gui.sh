@@ -115,6 +115,12 @@ expect_match "$OUT" '"scene":"paper-plane"' "corrupt settings fall back to paper
 expect_exit 0 "${XV[@]}" "$DB" gui paper-plane --tab criteria --frames 2 --stats \
   --config-dir "$WORK/c5"
 expect_match "$OUT" '"frames":2,' "--tab criteria"
+expect_match "$OUT" '"exact_method":"per-mode' "--tab criteria: the exact analysis on show"
+# --factor-budget reaches the tuner's analysis: over it nothing is factorised.
+expect_exit 0 "${XV[@]}" "$DB" gui paper-plane --tab criteria --frames 2 --stats \
+  --factor-budget 1e-9 --config-dir "$WORK/c5"
+expect_match "$OUT" '"exact_method":"not computed \(factorisation over budget\)"' \
+  "--factor-budget: the tuner's analysis over the budget"
 expect_exit 0 "${XV[@]}" "$DB" gui paper-plane --demo --frames 2 --stats --config-dir "$WORK/c2"
 expect_match "$OUT" '"pins":2,' "--demo pins two runs"
 expect_exit 0 "${XV[@]}" "$DB" gui paper-plane --kappa 1 --gamma 0 --frames 30 \
@@ -134,6 +140,8 @@ expect_exit 2 "$DB" gui --size 10x10 --frames 1 --config-dir "$WORK/c4"
 expect_match "$ERR" -- '--size' "bad --size"
 expect_exit 2 "$DB" gui --tab bogus --frames 1 --config-dir "$WORK/c4"
 expect_match "$ERR" -- '--tab' "bad --tab"
+expect_exit 2 "$DB" gui --factor-budget 0 --frames 1 --config-dir "$WORK/c4"
+expect_match "$ERR" -- '--factor-budget' "bad --factor-budget"
 expect_exit 2 "$DB" gui "$WORK/missing.toml" --frames 1 --config-dir "$WORK/c4"
 expect_one_line "$ERR" "missing scene"
 

@@ -156,6 +156,35 @@ TEST(TunerCriteria, LargeMeshesAreAnalysedAtRestOnTheWorker) {
   EXPECT_GT(t.exact()->gamma_hi, gamma_hi);  // a smaller dt allows more damping (SPEC 7)
 }
 
+TEST(TunerCriteria, TheFactorisationBudgetReachesTheAnalysis) {
+  // 14 x 14 nodes: 588 rows, above the dense route's 400, so the analysis factorises.
+  Tuner t(plane(14));
+  TunerCriteria& c = t.criteria_state();
+  EXPECT_EQ(c.factor_budget(), kDefaultFactorBudget);
+  const ExactStability* within = t.exact();
+  ASSERT_NE(within, nullptr);
+  EXPECT_EQ(within->method, ExactMethod::per_mode);
+  const int runs = c.exact_runs();
+  c.set_factor_budget(1.0);  // one flop: no factorisation fits
+  const ExactStability* over = t.exact();
+  ASSERT_NE(over, nullptr);
+  EXPECT_EQ(c.exact_runs(), runs + 1);  // a new budget is analysed anew
+  EXPECT_EQ(over->method, ExactMethod::over_budget);
+  EXPECT_EQ(over->factor_budget, 1.0);
+  EXPECT_TRUE(std::isnan(over->gamma_hi));
+  EXPECT_EQ(c.shown(), over);
+  c.set_factor_budget(1.0);  // the same budget: cached
+  t.exact();
+  EXPECT_EQ(c.exact_runs(), runs + 1);
+
+  TunerSuggest s;
+  s.set_factor_budget(1.0);
+  s.start(t.session());
+  s.wait();
+  EXPECT_FALSE(s.result().has_value());
+  EXPECT_NE(s.error().find("budget"), std::string::npos) << s.error();
+}
+
 TEST(TunerCriteria, ExactGammaMaxIsTheIntegratorsLimit) {
   Tuner t(plane(6));
   const auto g = t.exact_gamma_max();
