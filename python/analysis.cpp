@@ -38,7 +38,15 @@ void bind_analysis(py::module_& m) {
                     "every gamma from this on is proved unstable at dt (inf: none is; NaN: not "
                     "the paper's step)")
       .def_readonly("dt_unstable_from", &ExactStability::Unfactored::dt_unstable_from,
-                    "every dt from this on is proved unstable at gamma (inf: none is)")
+                    "every dt from this on is proved unstable at gamma (inf: none is; the "
+                    "paper's step, and forward Euler and Verlet at uniform gamma/m)")
+      .def_readonly("mode_unstable_from", &ExactStability::Unfactored::mode_unstable_from,
+                    "forward Euler and Verlet at uniform gamma/m: every mode with lambda from "
+                    "this on is unstable at gamma and dt, so lambda_max_lo >= it proves the "
+                    "step unstable (NaN otherwise)")
+      .def_readonly("gamma_unstable_below", &ExactStability::Unfactored::gamma_unstable_below,
+                    "forward Euler and Verlet at uniform gamma/m: every gamma up to this is "
+                    "proved unstable at dt (-inf: none is; NaN otherwise)")
       .def_readonly("lanczos_steps", &ExactStability::Unfactored::lanczos_steps)
       .def_readonly("unconditional", &ExactStability::Unfactored::unconditional,
                     "implicit Euler with K proved positive semidefinite: stable for every dt "

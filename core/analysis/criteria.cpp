@@ -227,6 +227,7 @@ std::vector<CriterionResult> unfactored_criteria(const ExactStability& e, const 
     return out;
   }
   const bool index = tried && !std::isnan(b.index_at_least);
+  const bool modes = tried && !std::isnan(b.mode_unstable_from);  // forward Euler, Verlet
   CriterionResult rho = row("exact spectral radius (" + integ + ")");
   if (index) {
     const bool unstable = b.index_at_least >= 4;
@@ -234,29 +235,38 @@ std::vector<CriterionResult> unfactored_criteria(const ExactStability& e, const 
     rho.test += without + "index lambda_max(dt^2 A + 2 dt C) >= " +
                 format_digits(b.index_at_least, 8) +
                 (unstable ? " >= 4: unstable (proved)" : " (< 4 proves nothing)");
+  } else if (modes) {
+    const bool unstable = b.lambda_max_lo >= b.mode_unstable_from;
+    rho.verdict = unstable ? CriterionVerdict::beyond : CriterionVerdict::not_applicable;
+    rho.test += without + "every mode with lambda >= " + format_digits(b.mode_unstable_from, 8) +
+                " is unstable at this gamma and dt; lambda_max >= " +
+                format_digits(b.lambda_max_lo, 8) +
+                (unstable ? ": unstable (proved)" : " proves nothing");
   }
   out.push_back(rho);
-  // The user's `what` against the value from which the vector proves instability (at the
-  // other parameter, `at`).
+  // The user's `what` against the value from which (or up to which, `below`) the vector
+  // proves instability (at the other parameter, `at`).
   auto threshold = [&](const std::string& name, const std::string& what, double user,
-                       double from, const std::string& at) {
+                       double from, const std::string& at, bool below) {
     CriterionResult c = row(name);
-    if (!index) return c;
+    if (!index && !modes) return c;
     if (std::isinf(from)) {  // the vector proves nothing in this direction
       c.test += without + "no " + what + " is proved unstable at this " + at;
       return c;
     }
-    const bool unstable = user >= from;
+    const bool unstable = below ? user <= from : user >= from;
     c.verdict = unstable ? CriterionVerdict::beyond : CriterionVerdict::not_applicable;
-    c.test += without + "every " + what + " >= " + format_digits(from, 8) +
+    c.test += without + "every " + what + (below ? " <= " : " >= ") + format_digits(from, 8) +
               " is unstable at this " + at + "; " + what + " = " + format_digits(user, 8) +
               (unstable ? " is" : " is not proved either way");
     return c;
   };
-  out.push_back(threshold("exact gamma interval (" + integ + ")", "gamma", params.gamma,
-                          b.gamma_unstable_from, "dt"));
+  out.push_back(modes ? threshold("exact gamma interval (" + integ + ")", "gamma", params.gamma,
+                                  b.gamma_unstable_below, "dt", true)
+                      : threshold("exact gamma interval (" + integ + ")", "gamma", params.gamma,
+                                  b.gamma_unstable_from, "dt", false));
   out.push_back(threshold("exact dt limit (" + integ + ")", "dt", params.dt, b.dt_unstable_from,
-                          "gamma"));
+                          "gamma", false));
   return out;
 }
 

@@ -263,6 +263,17 @@ ExactStability over_budget(const ExactInputs& in, std::optional<double> floor,
     b.unconditional = true;
     e.stable = true;
   }
+  const bool uniform = in.r_max - in.r_min <= 1e-12 * in.r_max;
+  if (!paper_step && uniform) {  // forward Euler, Verlet: closed forms per mode
+    const double r = in.r_max, c = gamma * r;
+    const ModeInstability m = mode_instability(params.integrator, top.lo, c, h);
+    if (!std::isnan(m.lambda_from)) {
+      b.mode_unstable_from = m.lambda_from;
+      b.dt_unstable_from = m.dt_from;
+      b.gamma_unstable_below =  // rounded down: the unstable side
+          r > 0 && std::isfinite(m.rate_below) ? std::nextafter(m.rate_below / r, -kInf) : -kInf;
+    }
+  }
   if (!paper_step) return e;
   // index(gamma', h') >= u^T (h'^2 A + 2 h' gamma' diag(R)) u / u^T u
   //                  >= h'^2 a + 2 h' gamma' rho  (a, rho: the quotients less their rounding),

@@ -147,6 +147,34 @@ double mode_spectral_radius(Integrator integrator, double lambda, double c, doub
   return std::sqrt(det);                                        // complex pair: |z|^2 = det
 }
 
+ModeInstability mode_instability(Integrator integrator, double lambda_0, double c, double h) {
+  ModeInstability m;
+  if (integrator != Integrator::forward_euler && integrator != Integrator::verlet) return m;
+  constexpr double kUp = 1 + 8 * std::numeric_limits<double>::epsilon();
+  // (1 + eps)^2 - 1 and (2 + eps)^2, rounded up (e1 - 1 is exact).
+  const double e1 = 1 + kMarginal, grow = (e1 - 1) * (e1 + 1) * kUp;
+  const double C = (e1 + 1) * (e1 + 1) * kUp;
+  if (integrator == Integrator::forward_euler) {
+    // d > (1 + eps)^2  <=>  h^2 lambda - c h - grow > 0.
+    m.lambda_from = (c * h + grow) / (h * h) * kUp;
+    m.dt_from = lambda_0 > 0 ? (c + std::sqrt(c * c + 4 * lambda_0 * grow)) / (2 * lambda_0) * kUp
+                             : kInf;
+    const double r = (h * h * lambda_0 - grow) / h;
+    m.rate_below = r > 0 ? r / kUp : -kInf;
+    return m;
+  }
+  // Verlet, with q = 1 - h^2 lambda/2 < -1: (1 + c h/2)(z^2 - |t| z + d) at z = 1 + eps is
+  // (1 + eps)^2 (1 + c h/2) + (1 - c h/2) - 2 (1 + eps)(h^2 lambda/2 - 1) < 0, that is
+  // A h^2 - B h - C > 0 with A = (1 + eps) lambda, B = c grow/2, C = (2 + eps)^2; from
+  // lambda_from on, q <= 1 - C/(2 (1 + eps)) < -1.
+  m.lambda_from = (C + c * grow / 2 * h) / (e1 * h * h) * kUp;
+  const double A = e1 * lambda_0, B = c * grow / 2;
+  m.dt_from = A > 0 ? (B + std::sqrt(B * B + 4 * A * C)) / (2 * A) * kUp : kInf;
+  const double r = (A * h * h - C) / (h * grow / 2);
+  m.rate_below = r > 0 ? r / kUp : -kInf;
+  return m;
+}
+
 double spectrum_spectral_radius(Integrator integrator, const StiffnessSpectrum& s, double c,
                                 double h) {
   double rho = 0;

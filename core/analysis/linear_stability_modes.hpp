@@ -4,6 +4,7 @@
 // damping held over the step as in integrate.cpp), as a per-mode 2x2 matrix (lambda, c) and
 // as a matrix-free 2n x 2n amplification operator over a whole mesh.
 #include <Eigen/Core>
+#include <limits>
 #include <vector>
 
 #include "core/analysis/linear_stability.hpp"
@@ -44,6 +45,23 @@ struct RateInterval {
 };
 RateInterval uniform_rate_interval(Integrator integrator, const StiffnessSpectrum& spectrum,
                                    double h);
+
+/// Forward Euler and velocity Verlet at uniform rate c >= 0 and step h > 0, in closed form:
+/// every mode with lambda >= `lambda_from` has spectral radius above 1 + 1e-12 (what
+/// uniform_dt_max counts as unstable), proved from the 2x2 step's trace t and determinant d:
+///   forward Euler   d = 1 - c h + h^2 lambda, and max |z| >= sqrt|d|;
+///   Verlet          t = 2 (1 - h^2 lambda/2) / (1 + c h/2), d = (1 - c h/2)/(1 + c h/2):
+///                   z^2 - |t| z + d < 0 at z = 1 + 1e-12 puts a root beyond it.
+/// For a mode lambda_0 (e.g. a lower bound of lambda_max) the same condition gives every step
+/// h >= `dt_from` (at c) and every rate c <= `rate_below` (at h; -inf: none) as unstable.
+/// Each is rounded toward the unstable side. NaN for the other integrators (no closed form
+/// here: the paper's step has SPEC 7's index instead).
+struct ModeInstability {
+  double lambda_from = std::numeric_limits<double>::quiet_NaN();
+  double dt_from = std::numeric_limits<double>::quiet_NaN();
+  double rate_below = std::numeric_limits<double>::quiet_NaN();
+};
+ModeInstability mode_instability(Integrator integrator, double lambda_0, double c, double h);
 
 /// Spectral radius of the 2n x 2n amplification operator of one step of `integrator` on
 /// y'' = -A y - C y', A = K_weighted (mass-weighted tangent stiffness over the free nodes),

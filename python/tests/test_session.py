@@ -110,6 +110,18 @@ def test_exact_limits_over_a_factorisation_budget_factorise_nothing(scenes_dir):
     assert free.dt_max <= b.dt_unstable_from < 1.001 * free.dt_max
     assert free.gamma_hi <= b.gamma_unstable_from < 1.001 * free.gamma_hi
     assert b.index_at_least < 4 and 0 < b.lanczos_steps <= 40 and not b.unconditional
+    assert math.isnan(b.mode_unstable_from) and math.isnan(b.gamma_unstable_below)
+    # Forward Euler (uniform gamma/m): its per-mode closed form, on the unstable side.
+    params = scene.params  # a copy: set it back
+    params.integrator = "forward-euler"
+    scene.params = params
+    fe_free = dampbound.exact_limits(scene)
+    fe = dampbound.exact_limits(scene, factor_budget_gflop=1e-9).unfactored
+    assert fe_free.dt_max <= fe.dt_unstable_from < 1.001 * fe_free.dt_max
+    assert 0.999 * fe_free.gamma_lo < fe.gamma_unstable_below <= fe_free.gamma_lo
+    assert fe.mode_unstable_from > fe.lambda_max_lo  # the scene's dt is not proved unstable
+    params.integrator = "semi-implicit-euler"
+    scene.params = params
     roomy = dampbound.exact_limits(scene, factor_budget_gflop=200.0)
     assert (roomy.lambda_max, roomy.gamma_hi, roomy.dt_max) == (
         free.lambda_max, free.gamma_hi, free.dt_max)

@@ -63,6 +63,12 @@ expect_match "$OUT" 'exact dt limit \(semi-implicit-euler\) +n/a +n/a +not compu
 expect_exit 0 "$DB" bounds paper-plane --factor-budget 1e-9 --dt 0.51
 expect_match "$OUT" 'exact dt limit \(semi-implicit-euler\) +n/a +BEYOND +not computed: .*; dt = 0\.51 is$' "dt past the limit: proved unstable"
 expect_match "$OUT" 'exact spectral radius \(semi-implicit-euler\) +n/a +BEYOND +.*>= 4: unstable \(proved\)' "the index proves it"
+# Verlet past its dt limit (0.71554977) and forward Euler at too little damping (its gamma_lo
+# is 0.00039061625): proved unstable by their per-mode closed forms.
+expect_exit 0 "$DB" bounds paper-plane --factor-budget 1e-9 --integrator verlet --dt 0.72
+expect_match "$OUT" 'exact dt limit \(verlet\) +n/a +BEYOND +not computed: .*every dt >= 0\.7155[0-9]+ is unstable at this gamma; dt = 0\.72 is$' "Verlet past its dt limit: proved unstable"
+expect_exit 0 "$DB" bounds paper-plane --factor-budget 1e-9 --integrator forward-euler --gamma 0.00038
+expect_match "$OUT" 'exact gamma interval \(forward-euler\) +n/a +BEYOND +not computed: .*every gamma <= 0\.00039[0-9]+ is unstable at this dt; gamma = 0\.00038 is$' "forward Euler under-damped: proved unstable"
 # Implicit Euler at rest needs no lambda_max: unconditional, proved without a factorisation.
 expect_exit 0 "$DB" bounds paper-plane --factor-budget 1e-9 --integrator implicit-euler
 expect_match "$OUT" 'exact dt limit \(implicit-euler\) +inf s +within +not computed: .*dt_max = inf$' "implicit Euler unconditional over the budget"

@@ -208,6 +208,29 @@ TEST(Criteria, OverTheBudgetAStepProvedUnstableWithoutAFactorisationIsBeyond) {
   EXPECT_NE(find(none, "exact gamma interval").test.find("no gamma is proved unstable at this dt"),
             std::string::npos)
       << find(none, "exact gamma interval").test;
+  // Forward Euler and Verlet (uniform gamma/m): the same from their per-mode closed forms.
+  // Forward Euler fails with too little damping: gamma 1 % under its exact gamma_lo.
+  for (Integrator i : {Integrator::forward_euler, Integrator::verlet}) {
+    Params q = p;
+    q.integrator = i;
+    const ExactStability computed = exact_stability(m, rest.x, q);
+    Params over = q;
+    over.dt = 1.01 * computed.dt_max;
+    const auto rows = all_criteria(m, rest, over, exact_stability(m, rest.x, over, tight));
+    for (const char* row : {"exact spectral radius", "exact dt limit"})
+      EXPECT_EQ(find(rows, row).verdict, CriterionVerdict::beyond) << to_string(i) << " " << row;
+    EXPECT_NE(find(rows, "exact spectral radius").test.find(": unstable (proved)"),
+              std::string::npos);
+    const auto within = all_criteria(m, rest, q, exact_stability(m, rest.x, q, tight));
+    for (const char* row : {"exact spectral radius", "exact gamma interval", "exact dt limit"})
+      EXPECT_EQ(find(within, row).verdict, CriterionVerdict::not_applicable) << row;
+    if (i != Integrator::forward_euler) continue;
+    Params weak = q;
+    weak.gamma = 0.99 * computed.gamma_lo;
+    const auto low = all_criteria(m, rest, weak, exact_stability(m, rest.x, weak, tight));
+    EXPECT_EQ(find(low, "exact gamma interval").verdict, CriterionVerdict::beyond);
+    EXPECT_NE(find(low, "exact gamma interval").test.find("every gamma <= "), std::string::npos);
+  }
 }
 
 }  // namespace

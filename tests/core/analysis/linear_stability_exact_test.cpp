@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "core/io/scene_file.hpp"
@@ -212,7 +213,26 @@ TEST(LinearStabilityExact, OverTheBudgetUniformRatesGiveThePerModeLimitsFromBelo
   EXPECT_LT(b.dt_unstable_from, free.dt_max * (1 + 1e-3));
   const double lo = b.lambda_max_lo;
   EXPECT_NEAR(b.gamma_unstable_from, 2 * p.m / p.dt - p.m * lo * p.dt / 2, 1e-12 * p.m / p.dt);
-  // Another integrator: the bracket of lambda_max only.
+  // Forward Euler and Verlet: mode_instability at lambda = the Rayleigh quotient, on the
+  // unstable side of the computed per-mode limits and close to them.
+  for (Integrator i : {Integrator::forward_euler, Integrator::verlet}) {
+    p.integrator = i;
+    const ExactStability exact = exact_stability(model, model.rest, p);
+    ASSERT_EQ(exact.method, ExactMethod::per_mode);
+    const ExactStability::Unfactored& u = exact_stability(model, model.rest, p, tight).unfactored;
+    SCOPED_TRACE(to_string(i));
+    EXPECT_GE(u.dt_unstable_from, exact.dt_max);
+    EXPECT_LT(u.dt_unstable_from, exact.dt_max * (1 + 1e-3));
+    EXPECT_GE(u.mode_unstable_from, exact.spectrum.lambda_max);  // the user's dt is stable
+    EXPECT_TRUE(std::isnan(u.index_at_least));
+    if (i == Integrator::forward_euler) {  // too little damping: gamma below gamma_lo
+      EXPECT_LE(u.gamma_unstable_below, exact.gamma_lo);
+      EXPECT_GT(u.gamma_unstable_below, exact.gamma_lo * (1 - 1e-3));
+    } else {
+      EXPECT_EQ(u.gamma_unstable_below, -std::numeric_limits<double>::infinity());  // at this dt no gamma is proved unstable
+    }
+  }
+  // RK4: the bracket of lambda_max only.
   p.integrator = Integrator::rk4;
   const ExactStability rk4 = exact_stability(model, model.rest, p, tight);
   EXPECT_LE(rk4.unfactored.lambda_max_lo, free.spectrum.lambda_max);

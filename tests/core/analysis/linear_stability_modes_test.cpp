@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
 
 #include "core/io/scene_file.hpp"
 #include "tests/core/test_util.hpp"
@@ -77,6 +78,53 @@ TEST(LinearStabilityModes, UniformLimits) {
   const RateInterval rk = uniform_rate_interval(Integrator::rk4, s, 0.5);
   ASSERT_FALSE(rk.empty());
   EXPECT_NEAR(spectrum_spectral_radius(Integrator::rk4, s, rk.hi, 0.5), 1.0, 1e-9);
+}
+
+TEST(LinearStabilityModes, ClosedFormInstabilityOfForwardEulerAndVerlet) {
+  // mode_instability's thresholds against the 2x2 step's own radius: past each one the mode
+  // is unstable (radius above 1 + 1e-12, what the limits count as unstable), and just before
+  // it the mode is stable, so each threshold is the boundary, on its unstable side.
+  const double unstable = 1 + 1e-12;
+  auto rho = [](Integrator i, double lambda, double c, double h) {
+    return mode_spectral_radius(i, lambda, c, h);
+  };
+  for (Integrator i : {Integrator::forward_euler, Integrator::verlet})
+    for (double c : {0.0, 0.02, 2.0})
+      for (double h : {0.01, 0.05, 0.3}) {
+        if (i == Integrator::forward_euler && c == 0) continue;  // unstable at every lambda > 0
+        const double lambda_0 = 7.8;
+        const ModeInstability m = mode_instability(i, lambda_0, c, h);
+        SCOPED_TRACE(std::string(to_string(i)) + " c=" + std::to_string(c) + " h=" +
+                     std::to_string(h));
+        ASSERT_TRUE(std::isfinite(m.lambda_from));
+        for (double f : {1 + 1e-9, 1.01, 2.0, 1e3}) EXPECT_GT(rho(i, m.lambda_from * f, c, h), unstable);
+        EXPECT_LE(rho(i, m.lambda_from * (1 - 1e-6), c, h), unstable);
+        // dt from which lambda_0 is unstable at c.
+        ASSERT_TRUE(std::isfinite(m.dt_from));
+        for (double f : {1 + 1e-9, 1.5, 10.0}) EXPECT_GT(rho(i, lambda_0, c, m.dt_from * f), unstable);
+        EXPECT_LE(rho(i, lambda_0, c, m.dt_from * (1 - 1e-6)), unstable);
+        // Rates up to rate_below are unstable at h (forward Euler: too little damping).
+        const bool past = h >= m.dt_from;
+        if (i == Integrator::forward_euler) {
+          EXPECT_EQ(std::isfinite(m.rate_below), h * h * lambda_0 > 1e-11);
+          if (std::isfinite(m.rate_below)) {
+            for (double f : {1 - 1e-9, 0.5, 0.0})
+              EXPECT_GT(rho(i, lambda_0, m.rate_below * f, h), unstable);
+            EXPECT_LE(rho(i, lambda_0, m.rate_below * (1 + 1e-6), h), unstable);
+          }
+        } else {  // Verlet: no damping helps once h^2 lambda_0 > 4
+          EXPECT_EQ(std::isfinite(m.rate_below), past);
+          if (past) {
+            EXPECT_GT(m.rate_below, 1e6);
+          }
+        }
+        EXPECT_EQ(c <= m.rate_below, past);  // the two thresholds agree at (c, h)
+      }
+  // Verlet's boundary is SPEC 7's dt < 2/sqrt(lambda) at no damping.
+  EXPECT_NEAR(mode_instability(Integrator::verlet, 4.0, 0.0, 0.1).dt_from, 1.0, 1e-9);
+  // No closed form here for the others.
+  for (Integrator i : {Integrator::semi_implicit_euler, Integrator::rk4, Integrator::implicit_euler})
+    EXPECT_TRUE(std::isnan(mode_instability(i, 7.8, 2.0, 0.05).lambda_from));
 }
 
 TEST(LinearStabilityModes, TwoNodeSystemEigenvalues) {
