@@ -250,6 +250,11 @@ std::vector<CriterionResult> unfactored_criteria(const ExactStability& e, const 
                        double from, const std::string& at, bool below) {
     CriterionResult c = row(name);
     if (!index && !modes) return c;
+    if (below && from == kInf) {  // gamma changes nothing (no damping rate anywhere)
+      c.verdict = CriterionVerdict::beyond;
+      c.test += without + "every " + what + " is unstable at this " + at;
+      return c;
+    }
     if (std::isinf(from)) {  // the vector proves nothing in this direction
       c.test += without + "no " + what + " is proved unstable at this " + at;
       return c;

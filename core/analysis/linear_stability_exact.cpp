@@ -270,8 +270,13 @@ ExactStability over_budget(const ExactInputs& in, std::optional<double> floor,
     if (!std::isnan(m.lambda_from)) {
       b.mode_unstable_from = m.lambda_from;
       b.dt_unstable_from = m.dt_from;
-      b.gamma_unstable_below =  // rounded down: the unstable side
-          r > 0 && std::isfinite(m.rate_below) ? std::nextafter(m.rate_below / r, -kInf) : -kInf;
+      // Rounded down: the unstable side. With no damping rate anywhere gamma changes nothing:
+      // every gamma is unstable (inf) or none is proved (-inf).
+      if (r > 0)
+        b.gamma_unstable_below =
+            std::isfinite(m.rate_below) ? std::nextafter(m.rate_below / r, -kInf) : -kInf;
+      else
+        b.gamma_unstable_below = m.rate_below >= 0 ? kInf : -kInf;
     }
   }
   if (!paper_step) return e;

@@ -68,8 +68,8 @@ struct ExactStability {
     /// Forward Euler and Verlet at uniform gamma/m (mode_instability): every mode with
     /// lambda >= mode_unstable_from is unstable at the user's gamma and dt, so
     /// lambda_max_lo >= it proves the step unstable; with lambda_max_lo every gamma <=
-    /// gamma_unstable_below (at dt; -inf: none) and every dt >= dt_unstable_from (at gamma)
-    /// is proved unstable. NaN otherwise.
+    /// gamma_unstable_below (at dt; -inf: none; inf: every gamma, when no node has damping)
+    /// and every dt >= dt_unstable_from (at gamma) is proved unstable. NaN otherwise.
     double mode_unstable_from = std::numeric_limits<double>::quiet_NaN();
     double gamma_unstable_below = std::numeric_limits<double>::quiet_NaN();
     int lanczos_steps = 0;  ///< of one of the two Lanczos runs (the second replays the first)

@@ -208,6 +208,15 @@ TEST(Criteria, OverTheBudgetAStepProvedUnstableWithoutAFactorisationIsBeyond) {
   EXPECT_NE(find(none, "exact gamma interval").test.find("no gamma is proved unstable at this dt"),
             std::string::npos)
       << find(none, "exact gamma interval").test;
+  // Forward Euler on that mesh is unstable whatever gamma: no rate damps it.
+  Params fe = p;
+  fe.integrator = Integrator::forward_euler;
+  const auto any = all_criteria(u, rest_state(u), fe, exact_stability(u, u.rest, fe, tight));
+  EXPECT_EQ(find(any, "exact gamma interval").verdict, CriterionVerdict::beyond);
+  EXPECT_NE(find(any, "exact gamma interval").test.find("every gamma is unstable at this dt"),
+            std::string::npos)
+      << find(any, "exact gamma interval").test;
+  EXPECT_EQ(find(any, "exact spectral radius").verdict, CriterionVerdict::beyond);
   // Forward Euler and Verlet (uniform gamma/m): the same from their per-mode closed forms.
   // Forward Euler fails with too little damping: gamma 1 % under its exact gamma_lo.
   for (Integrator i : {Integrator::forward_euler, Integrator::verlet}) {
