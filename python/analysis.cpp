@@ -41,7 +41,7 @@ void bind_analysis(py::module_& m) {
                     "every dt from this on is proved unstable at gamma (inf: none is; the "
                     "paper's step, and forward Euler and Verlet at uniform gamma/m)")
       .def_readonly("mode_unstable_from", &ExactStability::Unfactored::mode_unstable_from,
-                    "forward Euler and Verlet at uniform gamma/m: every mode with lambda from "
+                    "forward Euler, Verlet and RK4 at uniform gamma/m: every mode with lambda from "
                     "this on is unstable at gamma and dt, so lambda_max_lo >= it proves the "
                     "step unstable (NaN otherwise)")
       .def_readonly("gamma_unstable_below", &ExactStability::Unfactored::gamma_unstable_below,

@@ -266,12 +266,27 @@ std::vector<CriterionResult> unfactored_criteria(const ExactStability& e, const 
               (unstable ? " is" : " is not proved either way");
     return c;
   };
-  out.push_back(modes ? threshold("exact gamma interval (" + integ + ")", "gamma", params.gamma,
-                                  b.gamma_unstable_below, "dt", true)
-                      : threshold("exact gamma interval (" + integ + ")", "gamma", params.gamma,
-                                  b.gamma_unstable_from, "dt", false));
-  out.push_back(threshold("exact dt limit (" + integ + ")", "dt", params.dt, b.dt_unstable_from,
-                          "gamma", false));
+  // RK4: its certificate is for the user's gamma and dt; no threshold in either.
+  auto at_point = [&](const std::string& name) {
+    CriterionResult c = row(name);
+    c.verdict = rho.verdict;
+    c.test += without + (rho.verdict == CriterionVerdict::beyond
+                             ? "unstable at this gamma and dt (proved: the spectral radius row)"
+                             : "not proved either way at this gamma and dt");
+    return c;
+  };
+  const std::string gamma_row = "exact gamma interval (" + integ + ")",
+                    dt_row = "exact dt limit (" + integ + ")";
+  if (modes && std::isnan(b.dt_unstable_from)) {
+    out.push_back(at_point(gamma_row));
+    out.push_back(at_point(dt_row));
+    return out;
+  }
+  out.push_back(modes ? threshold(gamma_row, "gamma", params.gamma, b.gamma_unstable_below, "dt",
+                                  true)
+                      : threshold(gamma_row, "gamma", params.gamma, b.gamma_unstable_from, "dt",
+                                  false));
+  out.push_back(threshold(dt_row, "dt", params.dt, b.dt_unstable_from, "gamma", false));
   return out;
 }
 

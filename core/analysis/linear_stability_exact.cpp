@@ -264,7 +264,7 @@ ExactStability over_budget(const ExactInputs& in, std::optional<double> floor,
     e.stable = true;
   }
   const bool uniform = in.r_max - in.r_min <= 1e-12 * in.r_max;
-  if (!paper_step && uniform) {  // forward Euler, Verlet: closed forms per mode
+  if (!paper_step && uniform) {  // forward Euler, Verlet, RK4: per mode (mode_instability)
     const double r = in.r_max, c = gamma * r;
     const ModeInstability m = mode_instability(params.integrator, top.lo, c, h);
     if (!std::isnan(m.lambda_from)) {
@@ -272,7 +272,9 @@ ExactStability over_budget(const ExactInputs& in, std::optional<double> floor,
       b.dt_unstable_from = m.dt_from;
       // Rounded down: the unstable side. With no damping rate anywhere gamma changes nothing:
       // every gamma is unstable (inf) or none is proved (-inf).
-      if (r > 0)
+      if (std::isnan(m.rate_below))  // RK4: no threshold in gamma
+        b.gamma_unstable_below = kNaN;
+      else if (r > 0)
         b.gamma_unstable_below =
             std::isfinite(m.rate_below) ? std::nextafter(m.rate_below / r, -kInf) : -kInf;
       else

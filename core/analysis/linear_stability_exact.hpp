@@ -65,7 +65,8 @@ struct ExactStability {
     double index_at_least = std::numeric_limits<double>::quiet_NaN();
     double gamma_unstable_from = std::numeric_limits<double>::quiet_NaN();
     double dt_unstable_from = std::numeric_limits<double>::quiet_NaN();
-    /// Forward Euler and Verlet at uniform gamma/m (mode_instability): every mode with
+    /// Forward Euler, Verlet and RK4 at uniform gamma/m (mode_instability; RK4 has no
+    /// gamma or dt threshold, those stay NaN): every mode with
     /// lambda >= mode_unstable_from is unstable at the user's gamma and dt, so
     /// lambda_max_lo >= it proves the step unstable; with lambda_max_lo every gamma <=
     /// gamma_unstable_below (at dt; -inf: none; inf: every gamma, when no node has damping)

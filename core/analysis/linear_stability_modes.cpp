@@ -147,8 +147,76 @@ double mode_spectral_radius(Integrator integrator, double lambda, double c, doub
   return std::sqrt(det);                                        // complex pair: |z|^2 = det
 }
 
+namespace {
+
+/// RK4 (SPEC 7's classic step), underdamped modes: the step's eigenvalues are R(z), z = h mu,
+/// mu = -c/2 +- i w the roots of mu^2 + c mu + lambda, R(z) = sum_{k<=4} z^k/k!. With
+/// x = -c h/2 and Y = h^2 (lambda - c^2/4) = (Im z)^2, Taylor's expansion of R about x gives
+///   |R(x + i y)|^2 = P(Y) = (R(x) - R''(x) Y/2 + Y^2/24)^2 + Y (R'(x) - R'''(x) Y/6)^2,
+/// a quartic in Y. Q(s) = P(Y0 + s) - (1 + eps)^2 is positive for every s >= 0 when its
+/// constant term is and none of its other Taylor coefficients is negative: the certificate
+/// that every mode with Y >= Y0 has radius above 1 + eps. Evaluated in long double, each
+/// coefficient with a generous allowance (1e-14 of the sum of its terms' magnitudes).
+bool rk4_unstable_beyond(long double x, long double Y0, long double e1) {
+  // P's coefficients p_j, and m_j: the same formulas with every term's magnitude (x -> |x|,
+  // differences -> sums), which bound each p_j's rounding relative to u.
+  struct Quartic {
+    long double c[5];
+  };
+  auto quartic = [](long double x_, bool magnitude) {
+    const long double s = magnitude ? 1 : -1;
+    const long double R3 = 1 + x_, R2 = R3 + x_ * x_ / 2, R1 = R2 + x_ * x_ * x_ / 6,
+                      R0 = R1 + x_ * x_ * x_ * x_ / 24;
+    const long double a0 = R0, a1 = s * R2 / 2, a2 = 1.0L / 24, b0 = R1, b1 = s * R3 / 6;
+    return Quartic{{a0 * a0, 2 * a0 * a1 + b0 * b0, a1 * a1 + 2 * a0 * a2 + 2 * b0 * b1,
+                    2 * a1 * a2 + b1 * b1, a2 * a2}};
+  };
+  const Quartic p = quartic(x, false), m = quartic(std::abs(x), true);
+  static const long double binomial[5][5] = {
+      {1, 1, 1, 1, 1}, {0, 1, 2, 3, 4}, {0, 0, 1, 3, 6}, {0, 0, 0, 1, 4}, {0, 0, 0, 0, 1}};
+  for (int k = 0; k <= 4; ++k) {  // q_k = sum_j C(j, k) p_j Y0^(j - k)
+    long double q = k == 0 ? -e1 * e1 : 0, size = k == 0 ? e1 * e1 : 0;
+    long double power = 1;
+    for (int j = k; j <= 4; ++j) {
+      q += binomial[k][j] * p.c[j] * power;
+      size += binomial[k][j] * m.c[j] * power;
+      power *= Y0;
+    }
+    const long double allowance = 1e-14L * size;  // long double rounds at 5e-20
+    if (k == 0 ? !(q > allowance) : !(q >= allowance)) return false;
+  }
+  return true;
+}
+
+/// The smallest lambda (>= c^2/4) from which RK4 is certified unstable at rate c and step h:
+/// the certificate holds from some Y on (for large Y every coefficient is positive) and,
+/// once it holds, at every larger Y (a forward shift keeps the coefficients non-negative), so
+/// bisection finds where it starts; the end returned is one where it was checked.
+double rk4_lambda_from(double c, double h, double e1) {
+  const long double x = -static_cast<long double>(c) * h / 2;
+  if (rk4_unstable_beyond(x, 0, e1)) return c * c / 4 * (1 + 8 * std::numeric_limits<double>::epsilon());
+  long double lo = 0, hi = 16;
+  while (!rk4_unstable_beyond(x, hi, e1)) {
+    lo = hi;
+    hi *= 2;
+    if (hi > 1e12L) return kInf;
+  }
+  for (int k = 0; k < 200 && hi - lo > 1e-18L * hi; ++k) {
+    const long double mid = (lo + hi) / 2;
+    (rk4_unstable_beyond(x, mid, e1) ? hi : lo) = mid;
+  }
+  const long double lambda = static_cast<long double>(c) * c / 4 + hi / (static_cast<long double>(h) * h);
+  return static_cast<double>(lambda) * (1 + 8 * std::numeric_limits<double>::epsilon());
+}
+
+}  // namespace
+
 ModeInstability mode_instability(Integrator integrator, double lambda_0, double c, double h) {
   ModeInstability m;
+  if (integrator == Integrator::rk4) {
+    m.lambda_from = rk4_lambda_from(c, h, 1 + kMarginal);
+    return m;
+  }
   if (integrator != Integrator::forward_euler && integrator != Integrator::verlet) return m;
   constexpr double kUp = 1 + 8 * std::numeric_limits<double>::epsilon();
   // (1 + eps)^2 - 1 and (2 + eps)^2, rounded up (e1 - 1 is exact).

@@ -54,8 +54,9 @@ RateInterval uniform_rate_interval(Integrator integrator, const StiffnessSpectru
 ///                   z^2 - |t| z + d < 0 at z = 1 + 1e-12 puts a root beyond it.
 /// For a mode lambda_0 (e.g. a lower bound of lambda_max) the same condition gives every step
 /// h >= `dt_from` (at c) and every rate c <= `rate_below` (at h; -inf: none) as unstable.
-/// Each is rounded toward the unstable side. NaN for the other integrators (no closed form
-/// here: the paper's step has SPEC 7's index instead).
+/// RK4: `lambda_from` only (>= c^2/4), certified from the quartic |R(z)|^2 in (Im z)^2
+/// (docs/criteria.md); dt_from and rate_below NaN. Each is rounded toward the unstable side.
+/// NaN for semi-implicit (SPEC 7's index instead) and implicit Euler.
 struct ModeInstability {
   double lambda_from = std::numeric_limits<double>::quiet_NaN();
   double dt_from = std::numeric_limits<double>::quiet_NaN();

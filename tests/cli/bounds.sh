@@ -69,6 +69,8 @@ expect_exit 0 "$DB" bounds paper-plane --factor-budget 1e-9 --integrator verlet 
 expect_match "$OUT" 'exact dt limit \(verlet\) +n/a +BEYOND +not computed: .*every dt >= 0\.7155[0-9]+ is unstable at this gamma; dt = 0\.72 is$' "Verlet past its dt limit: proved unstable"
 expect_exit 0 "$DB" bounds paper-plane --factor-budget 1e-9 --integrator forward-euler --gamma 0.00038
 expect_match "$OUT" 'exact gamma interval \(forward-euler\) +n/a +BEYOND +not computed: .*every gamma <= 0\.00039[0-9]+ is unstable at this dt; gamma = 0\.00038 is$' "forward Euler under-damped: proved unstable"
+expect_exit 0 "$DB" bounds paper-plane --factor-budget 1e-9 --integrator rk4 --dt 0.99
+expect_match "$OUT" 'exact spectral radius \(rk4\) +n/a +BEYOND +not computed: .*every mode with lambda >= 7\.7[0-9]+ is unstable at this gamma and dt; lambda_max >= 7\.8[0-9]+: unstable \(proved\)$' "RK4 past its dt limit (0.98563207): proved unstable"
 # Implicit Euler at rest needs no lambda_max: unconditional, proved without a factorisation.
 expect_exit 0 "$DB" bounds paper-plane --factor-budget 1e-9 --integrator implicit-euler
 expect_match "$OUT" 'exact dt limit \(implicit-euler\) +inf s +within +not computed: .*dt_max = inf$' "implicit Euler unconditional over the budget"

@@ -232,11 +232,24 @@ TEST(LinearStabilityExact, OverTheBudgetUniformRatesGiveThePerModeLimitsFromBelo
       EXPECT_EQ(u.gamma_unstable_below, -std::numeric_limits<double>::infinity());  // at this dt no gamma is proved unstable
     }
   }
-  // RK4: the bracket of lambda_max only.
+  // RK4: a certified lambda from which every mode is unstable at the user's gamma and dt,
+  // no thresholds. At the scene's dt the step is not proved unstable; 1 % past the computed
+  // dt limit it is.
   p.integrator = Integrator::rk4;
+  const ExactStability rk4_free = exact_stability(model, model.rest, p);
   const ExactStability rk4 = exact_stability(model, model.rest, p, tight);
   EXPECT_LE(rk4.unfactored.lambda_max_lo, free.spectrum.lambda_max);
   EXPECT_TRUE(std::isnan(rk4.unfactored.dt_unstable_from));
+  EXPECT_TRUE(std::isnan(rk4.unfactored.gamma_unstable_below));
+  EXPECT_GT(rk4.unfactored.mode_unstable_from, rk4_free.spectrum.lambda_max);
+  p.dt = 1.01 * rk4_free.dt_max;
+  const ExactStability past = exact_stability(model, model.rest, p, tight);
+  EXPECT_GE(past.unfactored.lambda_max_lo, past.unfactored.mode_unstable_from);
+  // Rates that differ between nodes: no per-mode proof.
+  ModelSpec heavy = make_grid(GridSpec{14, 14, 0.57, true, true});
+  heavy.mass_scale[0] = 3;
+  const Model varied = compile_model(heavy, p);
+  EXPECT_TRUE(std::isnan(exact_stability(varied, varied.rest, p, tight).unfactored.mode_unstable_from));
 }
 
 }  // namespace

@@ -80,7 +80,7 @@ TEST(LinearStabilityModes, UniformLimits) {
   EXPECT_NEAR(spectrum_spectral_radius(Integrator::rk4, s, rk.hi, 0.5), 1.0, 1e-9);
 }
 
-TEST(LinearStabilityModes, ClosedFormInstabilityOfForwardEulerAndVerlet) {
+TEST(LinearStabilityModes, ModeInstabilityOfForwardEulerVerletAndRk4) {
   // mode_instability's thresholds against the 2x2 step's own radius: past each one the mode
   // is unstable (radius above 1 + 1e-12, what the limits count as unstable), and just before
   // it the mode is stable, so each threshold is the boundary, on its unstable side.
@@ -122,8 +122,31 @@ TEST(LinearStabilityModes, ClosedFormInstabilityOfForwardEulerAndVerlet) {
       }
   // Verlet's boundary is SPEC 7's dt < 2/sqrt(lambda) at no damping.
   EXPECT_NEAR(mode_instability(Integrator::verlet, 4.0, 0.0, 0.1).dt_from, 1.0, 1e-9);
+  // RK4: a certified lambda from which every mode is unstable (no dt or rate threshold).
+  // Undamped, its boundary is |z|^2 = 1 - Y^3/72 + Y^4/576 = 1 at Y = (h w)^2 = 8.
+  EXPECT_NEAR(mode_instability(Integrator::rk4, 7.8, 0.0, 0.5).lambda_from, 8 / 0.25, 1e-9);
+  for (double c : {0.0, 0.02, 2.0, 20.0})
+    for (double h : {0.01, 0.05, 0.3}) {
+      const ModeInstability m = mode_instability(Integrator::rk4, 7.8, c, h);
+      SCOPED_TRACE("rk4 c=" + std::to_string(c) + " h=" + std::to_string(h));
+      EXPECT_TRUE(std::isnan(m.dt_from) && std::isnan(m.rate_below));
+      ASSERT_TRUE(std::isfinite(m.lambda_from));
+      EXPECT_GE(m.lambda_from, c * c / 4);  // underdamped modes only
+      for (int k = 0; k <= 400; ++k) {  // 400 points up to 1e6 times the threshold
+        const double lambda = m.lambda_from * (1 + 1e-9) * std::pow(1e6, k / 400.0);
+        ASSERT_GT(rho(Integrator::rk4, lambda, c, h), unstable) << lambda;
+      }
+      // The boundary itself, unless every underdamped mode is unstable (heavy damping).
+      if (m.lambda_from > c * c / 4 * (1 + 1e-6)) {
+        EXPECT_LE(rho(Integrator::rk4, m.lambda_from * (1 - 1e-6), c, h), unstable);
+        const StiffnessSpectrum top{m.lambda_from, m.lambda_from};
+        EXPECT_NEAR(uniform_dt_max(Integrator::rk4, top, c), h, 1e-6 * h);  // the same boundary
+      } else {
+        EXPECT_GT(rho(Integrator::rk4, c * c / 4 * (1 + 1e-9), c, h), unstable);
+      }
+    }
   // No closed form here for the others.
-  for (Integrator i : {Integrator::semi_implicit_euler, Integrator::rk4, Integrator::implicit_euler})
+  for (Integrator i : {Integrator::semi_implicit_euler, Integrator::implicit_euler})
     EXPECT_TRUE(std::isnan(mode_instability(i, 7.8, 2.0, 0.05).lambda_from));
 }
 
