@@ -16,6 +16,7 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 CriterionResult criterion(std::string name, std::string source, std::string formula) {
   CriterionResult c;
@@ -237,33 +238,58 @@ std::vector<CriterionResult> unfactored_criteria(const ExactStability& e, const 
                 (unstable ? " >= 4: unstable (proved)" : " (< 4 proves nothing)");
   } else if (modes) {
     const bool unstable = b.lambda_max_lo >= b.mode_unstable_from;
-    rho.verdict = unstable ? CriterionVerdict::beyond : CriterionVerdict::not_applicable;
+    const bool stable_side = !std::isnan(b.stable_lambda_hi), stable = stable_side && e.stable;
+    rho.verdict = unstable ? CriterionVerdict::beyond
+                           : stable ? CriterionVerdict::within : CriterionVerdict::not_applicable;
     rho.test += without + "every mode with lambda >= " + format_digits(b.mode_unstable_from, 8) +
                 " is unstable at this gamma and dt; lambda_max >= " +
                 format_digits(b.lambda_max_lo, 8) +
                 (unstable ? ": unstable (proved)" : " proves nothing");
+    if (!unstable && stable_side)
+      rho.test += "; every mode lies in [0, " + format_digits(b.stable_lambda_hi, 8) +
+                  "] (no spring compressed: K >= 0; Gershgorin's bound)" +
+                  (stable ? " and each is stable at this gamma and dt: stable (proved)"
+                          : ", which proves no stability at this gamma and dt");
   }
   out.push_back(rho);
   // The user's `what` against the value from which (or up to which, `below`) the vector
-  // proves instability (at the other parameter, `at`).
+  // proves instability (at the other parameter, `at`), and against the range
+  // [stable_lo, stable_hi] proved stable (forward Euler and Verlet; none when NaN).
   auto threshold = [&](const std::string& name, const std::string& what, double user,
-                       double from, const std::string& at, bool below) {
+                       double from, const std::string& at, bool below,
+                       double stable_lo = kNaN, double stable_hi = kNaN) {
     CriterionResult c = row(name);
     if (!index && !modes) return c;
+    const bool has_stable = stable_lo <= stable_hi;  // false for NaN
+    bool unstable = false, told = true;  // told: the proof names a threshold
+    std::string proof;
     if (below && from == kInf) {  // gamma changes nothing (no damping rate anywhere)
-      c.verdict = CriterionVerdict::beyond;
-      c.test += without + "every " + what + " is unstable at this " + at;
-      return c;
+      unstable = true;
+      told = false;
+      proof = "every " + what + " is unstable at this " + at;
+    } else if (std::isinf(from)) {  // the vector proves nothing in this direction
+      told = false;
+      proof = "no " + what + " is proved unstable at this " + at;
+    } else {
+      unstable = below ? user <= from : user >= from;
+      proof = "every " + what + (below ? " <= " : " >= ") + format_digits(from, 8) +
+              " is unstable at this " + at;
     }
-    if (std::isinf(from)) {  // the vector proves nothing in this direction
-      c.test += without + "no " + what + " is proved unstable at this " + at;
-      return c;
+    const bool stable = !unstable && has_stable && stable_lo <= user && user <= stable_hi;
+    if (has_stable) {
+      const std::string range =
+          stable_lo <= 0 ? (std::isinf(stable_hi) ? ">= 0" : "<= " + format_digits(stable_hi, 8))
+          : std::isinf(stable_hi)
+              ? ">= " + format_digits(stable_lo, 8)
+              : "in [" + format_digits(stable_lo, 8) + ", " + format_digits(stable_hi, 8) + "]";
+      proof += ", every " + what + " " + range + " is stable";
     }
-    const bool unstable = below ? user <= from : user >= from;
-    c.verdict = unstable ? CriterionVerdict::beyond : CriterionVerdict::not_applicable;
-    c.test += without + "every " + what + (below ? " <= " : " >= ") + format_digits(from, 8) +
-              " is unstable at this " + at + "; " + what + " = " + format_digits(user, 8) +
-              (unstable ? " is" : " is not proved either way");
+    c.verdict = unstable ? CriterionVerdict::beyond
+                         : stable ? CriterionVerdict::within : CriterionVerdict::not_applicable;
+    c.test += without + proof;
+    if (told || has_stable)
+      c.test += "; " + what + " = " + format_digits(user, 8) +
+                (unstable ? " is" : stable ? " is stable" : " is not proved either way");
     return c;
   };
   // RK4: its certificate is for the user's gamma and dt; no threshold in either.
@@ -283,10 +309,11 @@ std::vector<CriterionResult> unfactored_criteria(const ExactStability& e, const 
     return out;
   }
   out.push_back(modes ? threshold(gamma_row, "gamma", params.gamma, b.gamma_unstable_below, "dt",
-                                  true)
+                                  true, b.gamma_stable_lo, b.gamma_stable_hi)
                       : threshold(gamma_row, "gamma", params.gamma, b.gamma_unstable_from, "dt",
                                   false));
-  out.push_back(threshold(dt_row, "dt", params.dt, b.dt_unstable_from, "gamma", false));
+  out.push_back(threshold(dt_row, "dt", params.dt, b.dt_unstable_from, "gamma", false,
+                          std::isnan(b.dt_stable_up_to) ? kNaN : 0.0, b.dt_stable_up_to));
   return out;
 }
 

@@ -264,6 +264,25 @@ ExactStability over_budget(const ExactInputs& in, std::optional<double> floor,
     e.stable = true;
   }
   const bool uniform = in.r_max - in.r_min <= 1e-12 * in.r_max;
+  if (!paper_step && uniform && floor && *floor >= 0) {  // K >= 0: every mode in [0, hi]
+    const double r = in.r_max, c = gamma * r, hi = top.hi * (1 + 1e-12);
+    const ModeStability m = mode_stability(params.integrator, hi, c, h);
+    if (!std::isnan(m.dt_up_to)) {
+      b.stable_lambda_hi = hi;
+      b.dt_stable_up_to = m.dt_up_to;
+      if (r > 0) {  // rounded inwards
+        auto inward = [](double v, double to) {
+          return std::isinf(v) || v == 0 ? v : std::nextafter(v, to);  // 0: exact
+        };
+        b.gamma_stable_lo = inward(m.rate_lo / r, kInf);
+        b.gamma_stable_hi = inward(m.rate_hi / r, -kInf);
+      } else {  // gamma changes nothing: every gamma or none
+        b.gamma_stable_lo = m.stable ? 0 : kInf;
+        b.gamma_stable_hi = m.stable ? kInf : 0;
+      }
+      e.stable = m.stable;
+    }
+  }
   if (!paper_step && uniform) {  // forward Euler, Verlet, RK4: per mode (mode_instability)
     const double r = in.r_max, c = gamma * r;
     const ModeInstability m = mode_instability(params.integrator, top.lo, c, h);

@@ -42,7 +42,8 @@ struct ExactStability {
   double spectral_radius = 0;  ///< rho of one step at the user's gamma and dt (NaN: not computed)
   bool radius_converged = true;
   double index = 0;           ///< symmetric_index only: lambda_max(dt^2 A + 2 dt C); stable < 4
-  bool stable = false;        ///< rho <= 1 (bounded; rho = 1 is marginal: no decay)
+  bool stable = false;        ///< rho <= 1 (bounded; rho = 1 is marginal: no decay); over
+                              ///< the budget only where proved without one (Unfactored)
   double gamma_lo = 0;        ///< the user's gamma (gamma_i = gamma * gamma_scale_i) is stable
   double gamma_hi = 0;        ///< at params.dt for gamma_lo <= gamma < gamma_hi (hi may be inf)
   double dt_max = 0;          ///< the largest stable dt at the user's gamma (may be inf)
@@ -73,6 +74,15 @@ struct ExactStability {
     /// and every dt >= dt_unstable_from (at gamma) is proved unstable. NaN otherwise.
     double mode_unstable_from = std::numeric_limits<double>::quiet_NaN();
     double gamma_unstable_below = std::numeric_limits<double>::quiet_NaN();
+    /// The stable side (mode_stability), forward Euler and Verlet at uniform gamma/m when
+    /// SPEC 9's floor proves K >= 0: every mode lies in [0, stable_lambda_hi] (Gershgorin's
+    /// bound, raised by 1e-12 of itself for its sums' rounding); every dt <= dt_stable_up_to
+    /// (at gamma) and every gamma in [gamma_stable_lo, gamma_stable_hi] (at dt; none when
+    /// lo > hi) is proved stable, and `stable` says whether the user's are. NaN otherwise.
+    double stable_lambda_hi = std::numeric_limits<double>::quiet_NaN();
+    double dt_stable_up_to = std::numeric_limits<double>::quiet_NaN();
+    double gamma_stable_lo = std::numeric_limits<double>::quiet_NaN();
+    double gamma_stable_hi = std::numeric_limits<double>::quiet_NaN();
     int lanczos_steps = 0;  ///< of one of the two Lanczos runs (the second replays the first)
     /// Implicit Euler with K proved positive semidefinite (SPEC 9's floor, no spring
     /// compressed): stable for every dt and gamma, which needs no lambda_max (then `stable`).

@@ -243,6 +243,24 @@ ModeInstability mode_instability(Integrator integrator, double lambda_0, double 
   return m;
 }
 
+ModeStability mode_stability(Integrator integrator, double lambda_hi, double c, double h) {
+  ModeStability m;
+  if (integrator != Integrator::forward_euler && integrator != Integrator::verlet) return m;
+  constexpr double kUp = 1 + 8 * std::numeric_limits<double>::epsilon();
+  if (integrator == Integrator::forward_euler) {
+    m.stable = c * h * kUp <= 2 && lambda_hi * h * kUp <= c;
+    m.dt_up_to = c > 0 ? std::min(c / lambda_hi, 2 / c) / kUp : 0;
+    m.rate_lo = h * lambda_hi * kUp;
+    m.rate_hi = 2 / h / kUp;
+    return m;
+  }
+  m.stable = lambda_hi * h * h * kUp <= 4;
+  m.dt_up_to = 2 / std::sqrt(lambda_hi) / kUp;
+  m.rate_lo = 0;
+  m.rate_hi = m.stable ? kInf : -kInf;
+  return m;
+}
+
 double spectrum_spectral_radius(Integrator integrator, const StiffnessSpectrum& s, double c,
                                 double h) {
   double rho = 0;

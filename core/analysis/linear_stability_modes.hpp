@@ -64,6 +64,22 @@ struct ModeInstability {
 };
 ModeInstability mode_instability(Integrator integrator, double lambda_0, double c, double h);
 
+/// The stable side, for forward Euler and Verlet at uniform rate c >= 0: when every mode lies
+/// in [0, lambda_hi] (K >= 0 proved, lambda_max <= lambda_hi), every radius is at most 1 iff
+///   forward Euler  c h <= 2 and lambda_hi <= c/h  (real roots lie in [1 - c h, 1], complex
+///                  ones have |z|^2 = d <= 1);
+///   Verlet         lambda_hi h^2 <= 4  (|q| <= 1: |t| <= 1 + d, and |d| <= 1).
+/// `stable` at (c, h); every step up to `dt_up_to` is stable at c; every rate in
+/// [rate_lo, rate_hi] is stable at h (none when rate_lo > rate_hi). Rounded toward the
+/// stable side's inside. `stable` false and every number NaN for the other integrators.
+struct ModeStability {
+  bool stable = false;
+  double dt_up_to = std::numeric_limits<double>::quiet_NaN();
+  double rate_lo = std::numeric_limits<double>::quiet_NaN();
+  double rate_hi = std::numeric_limits<double>::quiet_NaN();
+};
+ModeStability mode_stability(Integrator integrator, double lambda_hi, double c, double h);
+
 /// Spectral radius of the 2n x 2n amplification operator of one step of `integrator` on
 /// y'' = -A y - C y', A = K_weighted (mass-weighted tangent stiffness over the free nodes),
 /// C = diag(rate), rate = gamma_i/m_i per free dof (3 per free node). Matrix-free Arnoldi

@@ -120,6 +120,10 @@ def test_exact_limits_over_a_factorisation_budget_factorise_nothing(scenes_dir):
     assert fe_free.dt_max <= fe.dt_unstable_from < 1.001 * fe_free.dt_max
     assert 0.999 * fe_free.gamma_lo < fe.gamma_unstable_below <= fe_free.gamma_lo
     assert fe.mode_unstable_from > fe.lambda_max_lo  # the scene's dt is not proved unstable
+    # ... and K >= 0 at rest with Gershgorin's bound proves it stable.
+    assert fe.stable_lambda_hi >= fe_free.lambda_max
+    assert 0 < fe.dt_stable_up_to <= fe_free.dt_max
+    assert fe_free.gamma_lo <= fe.gamma_stable_lo <= params.gamma <= fe.gamma_stable_hi <= fe_free.gamma_hi
     params.integrator = "semi-implicit-euler"
     scene.params = params
     roomy = dampbound.exact_limits(scene, factor_budget_gflop=200.0)

@@ -66,9 +66,11 @@ expect_match "$OUT" 'exact spectral radius \(semi-implicit-euler\) +n/a +BEYOND 
 # Verlet past its dt limit (0.71554977) and forward Euler at too little damping (its gamma_lo
 # is 0.00039061625): proved unstable by their per-mode closed forms.
 expect_exit 0 "$DB" bounds paper-plane --factor-budget 1e-9 --integrator verlet --dt 0.72
-expect_match "$OUT" 'exact dt limit \(verlet\) +n/a +BEYOND +not computed: .*every dt >= 0\.7155[0-9]+ is unstable at this gamma; dt = 0\.72 is$' "Verlet past its dt limit: proved unstable"
+expect_match "$OUT" 'exact dt limit \(verlet\) +n/a +BEYOND +not computed: .*every dt >= 0\.7155[0-9]+ is unstable at this gamma, every dt <= 0\.66666667 is stable; dt = 0\.72 is$' "Verlet past its dt limit: proved unstable"
+expect_exit 0 "$DB" bounds paper-plane --factor-budget 1e-9 --integrator verlet --dt 0.6
+expect_match "$OUT" 'exact dt limit \(verlet\) +n/a +within +not computed: .*every dt <= 0\.66666667 is stable; dt = 0\.6 is stable$' "Verlet within Gershgorin's step: proved stable"
 expect_exit 0 "$DB" bounds paper-plane --factor-budget 1e-9 --integrator forward-euler --gamma 0.00038
-expect_match "$OUT" 'exact gamma interval \(forward-euler\) +n/a +BEYOND +not computed: .*every gamma <= 0\.00039[0-9]+ is unstable at this dt; gamma = 0\.00038 is$' "forward Euler under-damped: proved unstable"
+expect_match "$OUT" 'exact gamma interval \(forward-euler\) +n/a +BEYOND +not computed: .*every gamma <= 0\.00039[0-9]+ is unstable at this dt, every gamma in \[0\.00045, 0\.04\] is stable; gamma = 0\.00038 is$' "forward Euler under-damped: proved unstable"
 expect_exit 0 "$DB" bounds paper-plane --factor-budget 1e-9 --integrator rk4 --dt 0.99
 expect_match "$OUT" 'exact spectral radius \(rk4\) +n/a +BEYOND +not computed: .*every mode with lambda >= 7\.7[0-9]+ is unstable at this gamma and dt; lambda_max >= 7\.8[0-9]+: unstable \(proved\)$' "RK4 past its dt limit (0.98563207): proved unstable"
 # Implicit Euler at rest needs no lambda_max: unconditional, proved without a factorisation.

@@ -225,6 +225,19 @@ TEST(LinearStabilityExact, OverTheBudgetUniformRatesGiveThePerModeLimitsFromBelo
     EXPECT_LT(u.dt_unstable_from, exact.dt_max * (1 + 1e-3));
     EXPECT_GE(u.mode_unstable_from, exact.spectrum.lambda_max);  // the user's dt is stable
     EXPECT_TRUE(std::isnan(u.index_at_least));
+    // The stable side: inside the computed limits, and the scene's parameters proved stable.
+    EXPECT_LE(u.dt_stable_up_to, exact.dt_max);
+    EXPECT_GT(u.dt_stable_up_to, 0.5 * exact.dt_max);
+    EXPECT_GE(u.gamma_stable_lo, exact.gamma_lo);
+    EXPECT_LE(u.gamma_stable_hi, exact.gamma_hi);
+    EXPECT_GE(u.stable_lambda_hi, exact.spectrum.lambda_max);
+    EXPECT_TRUE(exact_stability(model, model.rest, p, tight).stable);
+    // Squeezed to 90 %, every spring is compressed: nothing proves K >= 0, nor stability.
+    std::vector<Vec3> squeezed = model.rest;
+    for (Vec3& x : squeezed) x *= 0.9;
+    const ExactStability sq = exact_stability(model, squeezed, p, tight);
+    EXPECT_TRUE(std::isnan(sq.unfactored.dt_stable_up_to));
+    EXPECT_FALSE(sq.stable);
     if (i == Integrator::forward_euler) {  // too little damping: gamma below gamma_lo
       EXPECT_LE(u.gamma_unstable_below, exact.gamma_lo);
       EXPECT_GT(u.gamma_unstable_below, exact.gamma_lo * (1 - 1e-3));

@@ -150,6 +150,45 @@ TEST(LinearStabilityModes, ModeInstabilityOfForwardEulerVerletAndRk4) {
     EXPECT_TRUE(std::isnan(mode_instability(i, 7.8, 2.0, 0.05).lambda_from));
 }
 
+TEST(LinearStabilityModes, ModeStabilityOfForwardEulerAndVerlet) {
+  // Every mode in [0, lambda_hi] against the 2x2 step's own radius: where mode_stability says
+  // stable, none is above 1 + 1e-12; just past each of its thresholds some mode is.
+  const double ok = 1 + 1e-12;
+  const double lambda_hi = 9;
+  auto worst = [&](Integrator i, double c, double h) {
+    double r = 0;
+    for (int k = 0; k <= 2000; ++k)  // 0, then log-spaced up to lambda_hi
+      r = std::max(r, mode_spectral_radius(i, k == 0 ? 0 : lambda_hi * std::pow(1e-6, 1 - k / 2000.0), c, h));
+    return r;
+  };
+  for (Integrator i : {Integrator::forward_euler, Integrator::verlet})
+    for (double c : {0.0, 0.5, 2.0, 5.0, 8.0})
+      for (double h : {0.01, 0.1, 0.2, 0.3, 0.5}) {
+        const ModeStability m = mode_stability(i, lambda_hi, c, h);
+        SCOPED_TRACE(std::string(to_string(i)) + " c=" + std::to_string(c) + " h=" +
+                     std::to_string(h));
+        EXPECT_EQ(m.stable, worst(i, c, h) <= ok);  // exact: the sampled modes include the worst
+        if (m.dt_up_to > 0) {
+          EXPECT_LE(worst(i, c, m.dt_up_to), ok);
+          EXPECT_GT(worst(i, c, m.dt_up_to * (1 + 1e-6)), ok);
+        }
+        if (m.rate_lo <= m.rate_hi) {
+          EXPECT_LE(worst(i, m.rate_lo, h), ok);
+          if (std::isfinite(m.rate_hi)) {
+            EXPECT_LE(worst(i, m.rate_hi, h), ok);
+            EXPECT_GT(worst(i, m.rate_hi * (1 + 1e-6), h), ok);
+          }
+          if (m.rate_lo > 0) {
+            EXPECT_GT(worst(i, m.rate_lo * (1 - 1e-6), h), ok);
+          }
+        } else {
+          EXPECT_GT(worst(i, 0.5 * (m.rate_lo + m.rate_hi), h), ok);
+        }
+      }
+  EXPECT_FALSE(mode_stability(Integrator::rk4, 9, 1, 0.1).stable);
+  EXPECT_TRUE(std::isnan(mode_stability(Integrator::rk4, 9, 1, 0.1).dt_up_to));
+}
+
 TEST(LinearStabilityModes, TwoNodeSystemEigenvalues) {
   // Node 1 of scenes/two-node.toml at rest: lambda = kappa/m = 1 along the spring, 0 across
   // it; gamma = 0.002 is critical: c = gamma/m = 2. With h = 0.05 the x mode's trace is
