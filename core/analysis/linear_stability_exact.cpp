@@ -220,6 +220,48 @@ double weighted_mean_below(const Eigen::VectorXd& u, const Eigen::VectorXd& R) {
   return std::max(0.0, q - rounding * q);
 }
 
+/// Over the budget, forward Euler, Verlet and RK4 at a uniform rate (`r` = gamma_i/(gamma
+/// m_i)): their modes decouple, so the closed forms of linear_stability_modes.hpp prove
+/// instability from the Rayleigh quotient `top.lo` (mode_instability) and, where SPEC 9's
+/// floor proves K >= 0, stability from Gershgorin's `top.hi` (mode_stability).
+void per_mode_proofs(double r, const EigenInterval& top, std::optional<double> floor,
+                     const Params& params, ExactStability& e) {
+  ExactStability::Unfactored& b = e.unfactored;
+  const double h = params.dt, c = params.gamma * r;
+  if (floor && *floor >= 0) {  // K >= 0: every mode in [0, hi]
+    const double hi = top.hi * (1 + 1e-12);  // room for the rounding of Gershgorin's sums
+    const ModeStability m = mode_stability(params.integrator, hi, c, h);
+    if (!std::isnan(m.dt_up_to)) {
+      b.stable_lambda_hi = hi;
+      b.dt_stable_up_to = m.dt_up_to;
+      if (r > 0) {  // rounded inwards
+        auto inward = [](double v, double to) {
+          return std::isinf(v) || v == 0 ? v : std::nextafter(v, to);  // 0: exact
+        };
+        b.gamma_stable_lo = inward(m.rate_lo / r, kInf);
+        b.gamma_stable_hi = inward(m.rate_hi / r, -kInf);
+      } else {  // gamma changes nothing: every gamma or none
+        b.gamma_stable_lo = m.stable ? 0 : kInf;
+        b.gamma_stable_hi = m.stable ? kInf : 0;
+      }
+      e.stable = m.stable;
+    }
+  }
+  const ModeInstability m = mode_instability(params.integrator, top.lo, c, h);
+  if (std::isnan(m.lambda_from)) return;
+  b.mode_unstable_from = m.lambda_from;
+  b.dt_unstable_from = m.dt_from;
+  // Rounded down: the unstable side. With no damping rate anywhere gamma changes nothing:
+  // every gamma is unstable (inf) or none is proved (-inf).
+  if (std::isnan(m.rate_below))  // RK4: no threshold in gamma
+    b.gamma_unstable_below = kNaN;
+  else if (r > 0)
+    b.gamma_unstable_below =
+        std::isfinite(m.rate_below) ? std::nextafter(m.rate_below / r, -kInf) : -kInf;
+  else
+    b.gamma_unstable_below = m.rate_below >= 0 ? kInf : -kInf;
+}
+
 /// Over the budget: nothing factorised, every exact number NaN, the prediction and the budget
 /// kept for the report; and what plain Lanczos and Gershgorin prove without a factorisation
 /// (ExactStability::Unfactored).
@@ -263,43 +305,8 @@ ExactStability over_budget(const ExactInputs& in, std::optional<double> floor,
     b.unconditional = true;
     e.stable = true;
   }
-  const bool uniform = in.r_max - in.r_min <= 1e-12 * in.r_max;
-  if (!paper_step && uniform && floor && *floor >= 0) {  // K >= 0: every mode in [0, hi]
-    const double r = in.r_max, c = gamma * r, hi = top.hi * (1 + 1e-12);
-    const ModeStability m = mode_stability(params.integrator, hi, c, h);
-    if (!std::isnan(m.dt_up_to)) {
-      b.stable_lambda_hi = hi;
-      b.dt_stable_up_to = m.dt_up_to;
-      if (r > 0) {  // rounded inwards
-        auto inward = [](double v, double to) {
-          return std::isinf(v) || v == 0 ? v : std::nextafter(v, to);  // 0: exact
-        };
-        b.gamma_stable_lo = inward(m.rate_lo / r, kInf);
-        b.gamma_stable_hi = inward(m.rate_hi / r, -kInf);
-      } else {  // gamma changes nothing: every gamma or none
-        b.gamma_stable_lo = m.stable ? 0 : kInf;
-        b.gamma_stable_hi = m.stable ? kInf : 0;
-      }
-      e.stable = m.stable;
-    }
-  }
-  if (!paper_step && uniform) {  // forward Euler, Verlet, RK4: per mode (mode_instability)
-    const double r = in.r_max, c = gamma * r;
-    const ModeInstability m = mode_instability(params.integrator, top.lo, c, h);
-    if (!std::isnan(m.lambda_from)) {
-      b.mode_unstable_from = m.lambda_from;
-      b.dt_unstable_from = m.dt_from;
-      // Rounded down: the unstable side. With no damping rate anywhere gamma changes nothing:
-      // every gamma is unstable (inf) or none is proved (-inf).
-      if (std::isnan(m.rate_below))  // RK4: no threshold in gamma
-        b.gamma_unstable_below = kNaN;
-      else if (r > 0)
-        b.gamma_unstable_below =
-            std::isfinite(m.rate_below) ? std::nextafter(m.rate_below / r, -kInf) : -kInf;
-      else
-        b.gamma_unstable_below = m.rate_below >= 0 ? kInf : -kInf;
-    }
-  }
+  if (!paper_step && in.r_max - in.r_min <= 1e-12 * in.r_max)
+    per_mode_proofs(in.r_max, top, floor, params, e);
   if (!paper_step) return e;
   // index(gamma', h') >= u^T (h'^2 A + 2 h' gamma' diag(R)) u / u^T u
   //                  >= h'^2 a + 2 h' gamma' rho  (a, rho: the quotients less their rounding),

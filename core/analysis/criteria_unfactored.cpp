@@ -1,0 +1,171 @@
+#include "core/analysis/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
+#include "core/analysis/criteria_unfactored.hpp"
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "core/io/format.hpp"
+
+namespace dampbound {
+namespace {
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+}  // namespace
+
+std::string over_budget_test(const ExactStability& exact) {
+  return "not computed: " + exact.over_budget_reason();
+}
+
+namespace {
+
+/// An exact row over the budget (`c`: its name and reason so far; `without`: the proofs'
+/// preamble): the user's `what` against the value from which (or up to which, `below`)
+/// instability is proved at the other parameter `at` (inf: none is; inf and `below`: every
+/// value is), and against the range [stable_lo, stable_hi] proved stable (none when NaN).
+CriterionResult threshold_row(CriterionResult c, const std::string& without,
+                              const std::string& what, double user, double from,
+                              const std::string& at, bool below, double stable_lo,
+                              double stable_hi) {
+  const bool has_stable = stable_lo <= stable_hi;  // false for NaN
+  bool unstable = false, told = true;  // told: the proof names a threshold
+  std::string proof;
+  if (below && from == kInf) {  // gamma changes nothing (no damping rate anywhere)
+    unstable = true;
+    told = false;
+    proof = "every " + what + " is unstable at this " + at;
+  } else if (std::isinf(from)) {  // nothing is proved in this direction
+    told = false;
+    proof = "no " + what + " is proved unstable at this " + at;
+  } else {
+    unstable = below ? user <= from : user >= from;
+    proof = "every " + what + (below ? " <= " : " >= ") + format_digits(from, 8) +
+            " is unstable at this " + at;
+  }
+  const bool stable = !unstable && has_stable && stable_lo <= user && user <= stable_hi;
+  if (has_stable) {
+    const std::string range =
+        stable_lo <= 0 ? (std::isinf(stable_hi) ? ">= 0" : "<= " + format_digits(stable_hi, 8))
+        : std::isinf(stable_hi)
+            ? ">= " + format_digits(stable_lo, 8)
+            : "in [" + format_digits(stable_lo, 8) + ", " + format_digits(stable_hi, 8) + "]";
+    proof += ", every " + what + " " + range + " is stable";
+  }
+  c.verdict = unstable ? CriterionVerdict::beyond
+                       : stable ? CriterionVerdict::within : CriterionVerdict::not_applicable;
+  c.test += without + proof;
+  if (told || has_stable)
+    c.test += "; " + what + " = " + format_digits(user, 8) +
+              (unstable ? " is" : stable ? " is stable" : " is not proved either way");
+  return c;
+}
+
+}  // namespace
+
+/// The exact rows over the factorisation budget: nothing exact, but what plain Lanczos and
+/// Gershgorin prove without a factorisation (ExactStability::Unfactored): a bracket of
+/// lambda_max; for the paper's step a proof of instability where its Rayleigh quotient
+/// reaches the index's 4; for forward Euler, Verlet and RK4 at uniform rates the per-mode
+/// proofs (either way). Where nothing is proved the row has no verdict (the safe bound's rows
+/// prove the paper's step stable where they can).
+std::vector<CriterionResult> unfactored_criteria(const ExactStability& e, const Params& params) {
+  const ExactStability::Unfactored& b = e.unfactored;
+  const std::string integ = to_string(e.integrator);
+  const std::string why = over_budget_test(e);
+  const bool tried = !std::isnan(b.lambda_max_lo);
+  const std::string without = "; without a factorisation (Lanczos, " +
+                              std::to_string(b.lanczos_steps) + " steps): ";
+  std::vector<CriterionResult> out;
+  auto row = [&](const std::string& name) {
+    CriterionResult c;
+    c.name = name;
+    c.source = "SPEC 7";
+    c.formula = "not computed";
+    c.value = std::numeric_limits<double>::quiet_NaN();
+    c.verdict = CriterionVerdict::not_applicable;
+    c.test = why;
+    return c;
+  };
+  CriterionResult lm = row("exact lambda_max of M^-1 K");
+  if (tried)
+    lm.test += without + "lambda_max in [" + format_digits(b.lambda_max_lo, 8) + ", " +
+               format_digits(b.lambda_max_hi, 8) + "] (a Rayleigh quotient, Gershgorin's bound)";
+  out.push_back(lm);
+  if (b.unconditional) {  // implicit Euler, K >= 0: every row but lambda_max is exact
+    auto within = [&](const std::string& name, double value, const std::string& unit,
+                      const std::string& test) {
+      CriterionResult c = row(name);
+      c.value = value;
+      c.unit = unit;
+      c.verdict = CriterionVerdict::within;
+      c.test += test;
+      return c;
+    };
+    const double inf = std::numeric_limits<double>::infinity();
+    out.push_back(within("exact spectral radius (" + integ + ")",
+                         std::numeric_limits<double>::quiet_NaN(), "",
+                         "; stable for every dt and gamma: K is positive semidefinite (SPEC 9's "
+                         "floor, no spring compressed), which needs no factorisation"));
+    out.push_back(within("exact gamma interval (" + integ + ")", inf, "mass unit/s",
+                         "; gamma = " + format_digits(params.gamma, 8) + " in [0, inf)"));
+    out.push_back(within("exact dt limit (" + integ + ")", inf, "s",
+                         "; dt = " + format_digits(params.dt, 8) + " <= dt_max = inf"));
+    return out;
+  }
+  const bool index = tried && !std::isnan(b.index_at_least);
+  const bool modes = tried && !std::isnan(b.mode_unstable_from);  // forward Euler, Verlet, RK4
+  CriterionResult rho = row("exact spectral radius (" + integ + ")");
+  if (index) {
+    const bool unstable = b.index_at_least >= 4;
+    rho.verdict = unstable ? CriterionVerdict::beyond : CriterionVerdict::not_applicable;
+    rho.test += without + "index lambda_max(dt^2 A + 2 dt C) >= " +
+                format_digits(b.index_at_least, 8) +
+                (unstable ? " >= 4: unstable (proved)" : " (< 4 proves nothing)");
+  } else if (modes) {
+    const bool unstable = b.lambda_max_lo >= b.mode_unstable_from;
+    const bool stable_side = !std::isnan(b.stable_lambda_hi), stable = stable_side && e.stable;
+    rho.verdict = unstable ? CriterionVerdict::beyond
+                           : stable ? CriterionVerdict::within : CriterionVerdict::not_applicable;
+    rho.test += without + "every mode with lambda >= " + format_digits(b.mode_unstable_from, 8) +
+                " is unstable at this gamma and dt; lambda_max >= " +
+                format_digits(b.lambda_max_lo, 8) +
+                (unstable ? ": unstable (proved)" : " proves nothing");
+    if (!unstable && stable_side)
+      rho.test += "; every mode lies in [0, " + format_digits(b.stable_lambda_hi, 8) +
+                  "] (no spring compressed: K >= 0; Gershgorin's bound)" +
+                  (stable ? " and each is stable at this gamma and dt: stable (proved)"
+                          : ", which proves no stability at this gamma and dt");
+  }
+  out.push_back(rho);
+  auto threshold = [&](const std::string& name, const std::string& what, double user,
+                       double from, const std::string& at, bool below,
+                       double stable_lo = kNaN, double stable_hi = kNaN) {
+    if (!index && !modes) return row(name);
+    return threshold_row(row(name), without, what, user, from, at, below, stable_lo, stable_hi);
+  };
+  // RK4: its certificate is for the user's gamma and dt; no threshold in either.
+  auto at_point = [&](const std::string& name) {
+    CriterionResult c = row(name);
+    c.verdict = rho.verdict;
+    c.test += without + (rho.verdict == CriterionVerdict::beyond
+                             ? "unstable at this gamma and dt (proved: the spectral radius row)"
+                             : "not proved either way at this gamma and dt");
+    return c;
+  };
+  const std::string gamma_row = "exact gamma interval (" + integ + ")",
+                    dt_row = "exact dt limit (" + integ + ")";
+  if (modes && std::isnan(b.dt_unstable_from)) {
+    out.push_back(at_point(gamma_row));
+    out.push_back(at_point(dt_row));
+    return out;
+  }
+  out.push_back(modes ? threshold(gamma_row, "gamma", params.gamma, b.gamma_unstable_below, "dt",
+                                  true, b.gamma_stable_lo, b.gamma_stable_hi)
+                      : threshold(gamma_row, "gamma", params.gamma, b.gamma_unstable_from, "dt",
+                                  false));
+  out.push_back(threshold(dt_row, "dt", params.dt, b.dt_unstable_from, "gamma", false,
+                          std::isnan(b.dt_stable_up_to) ? kNaN : 0.0, b.dt_stable_up_to));
+  return out;
+}
+
+}  // namespace dampbound
