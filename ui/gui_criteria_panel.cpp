@@ -67,16 +67,15 @@ void GuiApp::criteria_panel() {
       rows_at == now ? "" : " (the run is at " + std::to_string(now) + ")";
   // Before the first result arrives there is no analysis to place at rest or at a state.
   const bool over = e != nullptr && !e->computed();
+  const std::string over_budget = over ? over_budget_test(*e) : std::string();
   const std::string method =
-      over ? "not computed: " + e->over_budget_reason() +
-                 "; its rows say what Lanczos proves without a factorisation"
+      over ? over_budget + "; its rows say what Lanczos proves without a factorisation"
            : e != nullptr ? std::string(to_string(e->method)) : std::string();
   const std::string exact =
       e != nullptr ? "exact analysis " + where + " (" + method + ")" +
                          (c.computing() ? "; computing a new one" : "")
                    : c.computing() ? std::string("exact analysis: computing")
                                    : std::string("exact analysis unavailable");
-  const std::string over_budget = over ? over_budget_test(*e) : std::string();
   text_wrapped("at iteration " + std::to_string(rows_at) + behind + "; " + exact);
   ImGui::PopStyleColor();
   const ImGuiTableFlags tf = ImGuiTableFlags_SizingStretchProp | ImGuiTableFlags_ScrollY |
