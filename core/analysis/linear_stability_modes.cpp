@@ -17,6 +17,9 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 /// "Bounded" (stable) means rho <= 1 + kMarginal: an undamped symplectic step (rho = 1
 /// exactly) counts as stable, as in SPEC 7's dt < 2/sqrt(lambda_max) at gamma = 0.
 constexpr double kMarginal = 1e-12;
+/// The per-mode proofs' closed forms take a few roundings each: every threshold is moved
+/// by this factor toward the side it proves.
+constexpr double kRoundUp = 1 + 8 * std::numeric_limits<double>::epsilon();
 
 /// One step of an integrator on y'' = -A y - C y', written once for a scalar mode and for a
 /// whole mesh. `ops` gives A y, C w, (1 + h C/2)^-1 r and (I + h C + h^2 A)^-1 r.
@@ -194,7 +197,7 @@ bool rk4_unstable_beyond(long double x, long double Y0, long double e1) {
 /// bisection finds where it starts; the end returned is one where it was checked.
 double rk4_lambda_from(double c, double h, double e1) {
   const long double x = -static_cast<long double>(c) * h / 2;
-  if (rk4_unstable_beyond(x, 0, e1)) return c * c / 4 * (1 + 8 * std::numeric_limits<double>::epsilon());
+  if (rk4_unstable_beyond(x, 0, e1)) return c * c / 4 * kRoundUp;
   long double lo = 0, hi = 16;
   while (!rk4_unstable_beyond(x, hi, e1)) {
     lo = hi;
@@ -206,7 +209,7 @@ double rk4_lambda_from(double c, double h, double e1) {
     (rk4_unstable_beyond(x, mid, e1) ? hi : lo) = mid;
   }
   const long double lambda = static_cast<long double>(c) * c / 4 + hi / (static_cast<long double>(h) * h);
-  return static_cast<double>(lambda) * (1 + 8 * std::numeric_limits<double>::epsilon());
+  return static_cast<double>(lambda) * kRoundUp;
 }
 
 }  // namespace
@@ -218,44 +221,42 @@ ModeInstability mode_instability(Integrator integrator, double lambda_0, double 
     return m;
   }
   if (integrator != Integrator::forward_euler && integrator != Integrator::verlet) return m;
-  constexpr double kUp = 1 + 8 * std::numeric_limits<double>::epsilon();
   // (1 + eps)^2 - 1 and (2 + eps)^2, rounded up (e1 - 1 is exact).
-  const double e1 = 1 + kMarginal, grow = (e1 - 1) * (e1 + 1) * kUp;
-  const double C = (e1 + 1) * (e1 + 1) * kUp;
+  const double e1 = 1 + kMarginal, grow = (e1 - 1) * (e1 + 1) * kRoundUp;
+  const double C = (e1 + 1) * (e1 + 1) * kRoundUp;
   if (integrator == Integrator::forward_euler) {
     // d > (1 + eps)^2  <=>  h^2 lambda - c h - grow > 0.
-    m.lambda_from = (c * h + grow) / (h * h) * kUp;
-    m.dt_from = lambda_0 > 0 ? (c + std::sqrt(c * c + 4 * lambda_0 * grow)) / (2 * lambda_0) * kUp
+    m.lambda_from = (c * h + grow) / (h * h) * kRoundUp;
+    m.dt_from = lambda_0 > 0 ? (c + std::sqrt(c * c + 4 * lambda_0 * grow)) / (2 * lambda_0) * kRoundUp
                              : kInf;
     const double r = (h * h * lambda_0 - grow) / h;
-    m.rate_below = r > 0 ? r / kUp : -kInf;
+    m.rate_below = r > 0 ? r / kRoundUp : -kInf;
     return m;
   }
   // Verlet, with q = 1 - h^2 lambda/2 < -1: (1 + c h/2)(z^2 - |t| z + d) at z = 1 + eps is
   // (1 + eps)^2 (1 + c h/2) + (1 - c h/2) - 2 (1 + eps)(h^2 lambda/2 - 1) < 0, that is
   // A h^2 - B h - C > 0 with A = (1 + eps) lambda, B = c grow/2, C = (2 + eps)^2; from
   // lambda_from on, q <= 1 - C/(2 (1 + eps)) < -1.
-  m.lambda_from = (C + c * grow / 2 * h) / (e1 * h * h) * kUp;
+  m.lambda_from = (C + c * grow / 2 * h) / (e1 * h * h) * kRoundUp;
   const double A = e1 * lambda_0, B = c * grow / 2;
-  m.dt_from = A > 0 ? (B + std::sqrt(B * B + 4 * A * C)) / (2 * A) * kUp : kInf;
+  m.dt_from = A > 0 ? (B + std::sqrt(B * B + 4 * A * C)) / (2 * A) * kRoundUp : kInf;
   const double r = (A * h * h - C) / (h * grow / 2);
-  m.rate_below = r > 0 ? r / kUp : -kInf;
+  m.rate_below = r > 0 ? r / kRoundUp : -kInf;
   return m;
 }
 
 ModeStability mode_stability(Integrator integrator, double lambda_hi, double c, double h) {
   ModeStability m;
   if (integrator != Integrator::forward_euler && integrator != Integrator::verlet) return m;
-  constexpr double kUp = 1 + 8 * std::numeric_limits<double>::epsilon();
   if (integrator == Integrator::forward_euler) {
-    m.stable = c * h * kUp <= 2 && lambda_hi * h * kUp <= c;
-    m.dt_up_to = c > 0 ? std::min(c / lambda_hi, 2 / c) / kUp : 0;
-    m.rate_lo = h * lambda_hi * kUp;
-    m.rate_hi = 2 / h / kUp;
+    m.stable = c * h * kRoundUp <= 2 && lambda_hi * h * kRoundUp <= c;
+    m.dt_up_to = c > 0 ? std::min(c / lambda_hi, 2 / c) / kRoundUp : 0;
+    m.rate_lo = h * lambda_hi * kRoundUp;
+    m.rate_hi = 2 / h / kRoundUp;
     return m;
   }
-  m.stable = lambda_hi * h * h * kUp <= 4;
-  m.dt_up_to = 2 / std::sqrt(lambda_hi) / kUp;
+  m.stable = lambda_hi * h * h * kRoundUp <= 4;
+  m.dt_up_to = 2 / std::sqrt(lambda_hi) / kRoundUp;
   m.rate_lo = 0;
   m.rate_hi = m.stable ? kInf : -kInf;
   return m;
