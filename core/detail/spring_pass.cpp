@@ -51,12 +51,12 @@ inline void start_rows(const Model& model, size_t i, double* a) {
   a[0] = a[3] = a[5] = ka;  // element by element: copying a block in stalls store forwarding
 }
 
-/// After spring block b: K_ii += B (K_ij = -B), and A_rs = K_rs / sqrt(m_r m_s) adds |B| w
-/// to the row sums unless the other node is fixed.
-inline void add_block(double* a, const double* b, bool other_fixed) {
+/// After spring block b: K_ii += B (K_ij = -B), and A_rs = K_rs / sqrt(m_r m_s) adds the
+/// spring's row sums of |B| w, `off` (the same at both ends), unless the other node is fixed.
+inline void add_block(double* a, const double* b, const double* off, bool other_fixed) {
   for (int q = 0; q < 6; ++q) a[q] = a[q] + b[q];
   if (!other_fixed)
-    for (int r = 0; r < 3; ++r) a[6 + r] = a[6 + r] + row_abs(b, r) * b[6];
+    for (int r = 0; r < 3; ++r) a[6 + r] = a[6 + r] + off[r];
 }
 
 /// R_i = the largest of node i's three row sums: the diagonal block's |.| / m_i plus the rest.
@@ -116,8 +116,9 @@ SpringCounts owned_pass(const Model& model, const std::vector<Vec3>& x, std::vec
     if (row_sum) {
       const bool compressed = spring_block(model, k, g, b);
       counts.compressed += own_i && compressed;
-      if (own_i && !fixed[i]) add_block(&acc[9 * i], b, fixed[j]);
-      if (own_j && !fixed[j]) add_block(&acc[9 * j], b, fixed[i]);
+      const double off[3] = {row_abs(b, 0) * b[6], row_abs(b, 1) * b[6], row_abs(b, 2) * b[6]};
+      if (own_i && !fixed[i]) add_block(&acc[9 * i], b, off, fixed[j]);
+      if (own_j && !fixed[j]) add_block(&acc[9 * j], b, off, fixed[i]);
     }
   }
   if (row_sum)
