@@ -102,6 +102,7 @@ BENCHMARK(BM_BatchedKernel)
     ->Args({1, static_cast<int>(DampingPolicy::fixed)})
     ->Args({2, static_cast<int>(DampingPolicy::fixed)})
     ->Args({2, static_cast<int>(DampingPolicy::upper)})
+    ->Args({1, static_cast<int>(DampingPolicy::safe)})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 

@@ -82,13 +82,15 @@ void safe_pass(const std::vector<SpringData>& springs, const std::vector<NodeBlo
     if constexpr (!Uniform)
       w = 1.0 / simd::sqrt(node_params[static_cast<size_t>(s.i)].mass *
                            node_params[static_cast<size_t>(s.j)].mass);
+    // The off-diagonal row sums |B| w are the same at both ends: computed once per spring.
+    const vd off[3] = {row_abs(b, 0) * w, row_abs(b, 1) * w, row_abs(b, 2) * w};
     const int ends[2][2] = {{s.i, s.j}, {s.j, s.i}};
     for (const auto& e : ends) {
       if (fixed[static_cast<size_t>(e[0])]) continue;
       vd* a = safe[static_cast<size_t>(e[0])].a;
       for (int k = 0; k < 6; ++k) a[k] = ok ? a[k] + b[k] : a[k];
       if (!fixed[static_cast<size_t>(e[1])])
-        for (int r = 0; r < 3; ++r) a[6 + r] = ok ? a[6 + r] + row_abs(b, r) * w : a[6 + r];
+        for (int r = 0; r < 3; ++r) a[6 + r] = ok ? a[6 + r] + off[r] : a[6 + r];
     }
   }
 }
