@@ -9,6 +9,7 @@
 #include <limits>
 #include <string>
 
+#include "core/analysis/linear_stability_modes.hpp"
 #include "core/io/scene_file.hpp"
 #include "core/scene.hpp"
 #include "tests/core/test_util.hpp"
@@ -43,6 +44,54 @@ TEST(LinearStabilityExact, TwoNodeClosedForms) {
   EXPECT_EQ(e.gamma_lo, 0.0);
   EXPECT_NEAR(e.gamma_hi, 0.039975, 1e-12);
   EXPECT_NEAR(e.dt_max, 2 * std::sqrt(2.0) - 2, 1e-9);
+}
+
+TEST(LinearStabilityExact, TwoNodeOtherIntegratorsClosedForms) {
+  // The zero modes (lambda = 0: z = 1 and the real root R(-c dt)) set the limits at c = 2:
+  // forward Euler 1 - c dt >= -1 (dt <= 1; the x mode needs dt < c/lambda = 2), RK4 its real
+  // interval's end 2.7852936/c, Verlet 2/sqrt(lambda_max) whatever the damping. Their radii at
+  // tiny steps are 1 and 1 - c dt: computed as tr^2 - 4 det the difference's rounding put the
+  // radius above 1 + 1e-12 and every dt_max here near 7e-7 s.
+  struct Case {
+    Integrator integrator;
+    double dt_max;
+  };
+  for (const Case k : {Case{Integrator::forward_euler, 1.0}, Case{Integrator::verlet, 2.0},
+                       Case{Integrator::rk4, 2.785293563405282 / 2}}) {
+    TwoNode t;
+    t.params.integrator = k.integrator;
+    const ExactStability e = exact_stability(t.model, t.model.rest, t.params);
+    SCOPED_TRACE(to_string(k.integrator));
+    EXPECT_EQ(e.method, ExactMethod::per_mode);
+    EXPECT_TRUE(e.stable);
+    EXPECT_NEAR(e.dt_max, k.dt_max, 1e-9 * k.dt_max);
+    for (double h : {1e-9, 1e-7, 1e-5, 1e-3})
+      EXPECT_LE(mode_spectral_radius(k.integrator, 0, 2, h), 1 + 1e-12) << h;
+  }
+}
+
+TEST(LinearStabilityExact, EveryVerdictAgreesWithItsLimitsOnTheScenes) {
+  // Per mode (uniform gamma/m) the verdict, the dt limit and the gamma interval come from one
+  // spectrum: at the scene's dt and gamma they must agree, for every explicit integrator.
+  int checked = 0;
+  for (const char* name : {"two-node", "two-node-damping", "paper-plane", "paper-plane-safe",
+                           "paper-plane-stiff", "quad-cloth", "tissue-cap"}) {
+    const SceneSpec scene = load_scene(test::source_path(std::string("scenes/") + name + ".toml"));
+    for (Integrator i : {Integrator::semi_implicit_euler, Integrator::forward_euler,
+                         Integrator::verlet, Integrator::rk4}) {
+      Params p = scene.params;
+      p.integrator = i;
+      const Model model = compile_model(scene.model, p);
+      const ExactStability e = exact_stability(model, model.rest, p);
+      if (e.method != ExactMethod::per_mode) continue;
+      SCOPED_TRACE(std::string(name) + " " + to_string(i));
+      EXPECT_EQ(e.stable, p.dt <= e.dt_max) << "dt_max " << e.dt_max;
+      EXPECT_EQ(e.stable, e.gamma_lo <= p.gamma && p.gamma < e.gamma_hi)
+          << "[" << e.gamma_lo << ", " << e.gamma_hi << ")";
+      ++checked;
+    }
+  }
+  EXPECT_GE(checked, 20);
 }
 
 TEST(LinearStabilityExact, ImplicitEulerIsUnconditional) {
