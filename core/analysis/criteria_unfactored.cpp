@@ -66,8 +66,8 @@ CriterionResult threshold_row(CriterionResult c, const std::string& without,
 /// Gershgorin prove without a factorisation (ExactStability::Unfactored): a bracket of
 /// lambda_max; for the paper's step a proof of instability where its Rayleigh quotient
 /// reaches the index's 4; for forward Euler, Verlet and RK4 at uniform rates the per-mode
-/// proofs (either way). Where nothing is proved the row has no verdict (the safe bound's rows
-/// prove the paper's step stable where they can).
+/// proofs (either way; RK4's at the user's gamma and dt only). Where nothing is proved the
+/// row has no verdict (the safe bound's rows prove the paper's step stable where they can).
 std::vector<CriterionResult> unfactored_criteria(const ExactStability& e, const Params& params) {
   const ExactStability::Unfactored& b = e.unfactored;
   const std::string integ = to_string(e.integrator);
@@ -143,12 +143,14 @@ std::vector<CriterionResult> unfactored_criteria(const ExactStability& e, const 
     if (!index && !modes) return row(name);
     return threshold_row(row(name), without, what, user, from, at, below, stable_lo, stable_hi);
   };
-  // RK4: its certificate is for the user's gamma and dt; no threshold in either.
+  // RK4: its certificates are for the user's gamma and dt; no threshold in either.
   auto at_point = [&](const std::string& name) {
     CriterionResult c = row(name);
     c.verdict = rho.verdict;
     c.test += without + (rho.verdict == CriterionVerdict::beyond
                              ? "unstable at this gamma and dt (proved: the spectral radius row)"
+                         : rho.verdict == CriterionVerdict::within
+                             ? "stable at this gamma and dt (proved: the spectral radius row)"
                              : "not proved either way at this gamma and dt");
     return c;
   };

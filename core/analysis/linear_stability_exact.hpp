@@ -74,11 +74,13 @@ struct ExactStability {
     /// and every dt >= dt_unstable_from (at gamma) is proved unstable. NaN otherwise.
     double mode_unstable_from = std::numeric_limits<double>::quiet_NaN();
     double gamma_unstable_below = std::numeric_limits<double>::quiet_NaN();
-    /// The stable side (mode_stability), forward Euler and Verlet at uniform gamma/m when
-    /// SPEC 9's floor proves K >= 0: every mode lies in [0, stable_lambda_hi] (Gershgorin's
-    /// bound, raised by 1e-12 of itself for its sums' rounding); every dt <= dt_stable_up_to
-    /// (at gamma) and every gamma in [gamma_stable_lo, gamma_stable_hi] (at dt; none when
-    /// lo > hi) is proved stable, and `stable` says whether the user's are. NaN otherwise.
+    /// The stable side (mode_stability), forward Euler, Verlet and RK4 at uniform gamma/m
+    /// when SPEC 9's floor proves K >= 0: every mode lies in [0, stable_lambda_hi]
+    /// (Gershgorin's bound, raised by 1e-12 of itself for its sums' rounding); every dt <=
+    /// dt_stable_up_to (at gamma) and every gamma in [gamma_stable_lo, gamma_stable_hi] (at
+    /// dt; none when lo > hi) is proved stable, and `stable` says whether the user's are.
+    /// RK4 proves the user's gamma and dt only: its dt_stable_up_to stays NaN, and its gamma
+    /// range too unless no node has damping (then gamma changes nothing). NaN otherwise.
     double stable_lambda_hi = std::numeric_limits<double>::quiet_NaN();
     double dt_stable_up_to = std::numeric_limits<double>::quiet_NaN();
     double gamma_stable_lo = std::numeric_limits<double>::quiet_NaN();

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <vector>
 
 namespace dampbound {
 namespace {
@@ -161,37 +162,44 @@ namespace {
 /// mu = -c/2 +- i w the roots of mu^2 + c mu + lambda, R(z) = sum_{k<=4} z^k/k!. With
 /// x = -c h/2 and Y = h^2 (lambda - c^2/4) = (Im z)^2, Taylor's expansion of R about x gives
 ///   |R(x + i y)|^2 = P(Y) = (R(x) - R''(x) Y/2 + Y^2/24)^2 + Y (R'(x) - R'''(x) Y/6)^2,
-/// a quartic in Y. Q(s) = P(Y0 + s) - (1 + eps)^2 is positive for every s >= 0 when its
-/// constant term is and none of its other Taylor coefficients is negative: the certificate
-/// that every mode with Y >= Y0 has radius above 1 + eps. Evaluated in long double, each
-/// coefficient with a generous allowance (1e-14 of the sum of its terms' magnitudes).
+/// a quartic in Y. rk4_quartic gives its coefficients p_j at x, and with `magnitude` the
+/// same formulas with every term's magnitude (x -> |x|, differences -> sums), which bound
+/// each p_j's rounding. Both certificates below evaluate in long double, each sum with a
+/// generous allowance (1e-14 of the sum of its terms' magnitudes).
+struct Quartic {
+  long double c[5];
+};
+Quartic rk4_quartic(long double x, bool magnitude) {
+  const long double s = magnitude ? 1 : -1;
+  const long double R3 = 1 + x, R2 = R3 + x * x / 2, R1 = R2 + x * x * x / 6,
+                    R0 = R1 + x * x * x * x / 24;
+  const long double a0 = R0, a1 = s * R2 / 2, a2 = 1.0L / 24, b0 = R1, b1 = s * R3 / 6;
+  return Quartic{{a0 * a0, 2 * a0 * a1 + b0 * b0, a1 * a1 + 2 * a0 * a2 + 2 * b0 * b1,
+                  2 * a1 * a2 + b1 * b1, a2 * a2}};
+}
+
+/// C(j, k), j and k up to 4.
+constexpr long double kBinomial[5][5] = {
+    {1, 1, 1, 1, 1}, {0, 1, 2, 3, 4}, {0, 0, 1, 3, 6}, {0, 0, 0, 1, 4}, {0, 0, 0, 0, 1}};
+
+/// The allowance for a long double sum of terms whose magnitudes add to `size` (long double
+/// rounds at 5e-20; the rates and steps the quartic starts from are doubles).
+long double allowance(long double size) { return 1e-14L * size; }
+
+/// Q(s) = P(Y0 + s) - (1 + eps)^2 is positive for every s >= 0 when its constant term is and
+/// none of its other Taylor coefficients is negative: the certificate that every mode with
+/// Y >= Y0 has radius above 1 + eps.
 bool rk4_unstable_beyond(long double x, long double Y0, long double e1) {
-  // P's coefficients p_j, and m_j: the same formulas with every term's magnitude (x -> |x|,
-  // differences -> sums), which bound each p_j's rounding relative to u.
-  struct Quartic {
-    long double c[5];
-  };
-  auto quartic = [](long double x_, bool magnitude) {
-    const long double s = magnitude ? 1 : -1;
-    const long double R3 = 1 + x_, R2 = R3 + x_ * x_ / 2, R1 = R2 + x_ * x_ * x_ / 6,
-                      R0 = R1 + x_ * x_ * x_ * x_ / 24;
-    const long double a0 = R0, a1 = s * R2 / 2, a2 = 1.0L / 24, b0 = R1, b1 = s * R3 / 6;
-    return Quartic{{a0 * a0, 2 * a0 * a1 + b0 * b0, a1 * a1 + 2 * a0 * a2 + 2 * b0 * b1,
-                    2 * a1 * a2 + b1 * b1, a2 * a2}};
-  };
-  const Quartic p = quartic(x, false), m = quartic(std::abs(x), true);
-  static const long double binomial[5][5] = {
-      {1, 1, 1, 1, 1}, {0, 1, 2, 3, 4}, {0, 0, 1, 3, 6}, {0, 0, 0, 1, 4}, {0, 0, 0, 0, 1}};
+  const Quartic p = rk4_quartic(x, false), m = rk4_quartic(std::abs(x), true);
   for (int k = 0; k <= 4; ++k) {  // q_k = sum_j C(j, k) p_j Y0^(j - k)
     long double q = k == 0 ? -e1 * e1 : 0, size = k == 0 ? e1 * e1 : 0;
     long double power = 1;
     for (int j = k; j <= 4; ++j) {
-      q += binomial[k][j] * p.c[j] * power;
-      size += binomial[k][j] * m.c[j] * power;
+      q += kBinomial[k][j] * p.c[j] * power;
+      size += kBinomial[k][j] * m.c[j] * power;
       power *= Y0;
     }
-    const long double allowance = 1e-14L * size;  // long double rounds at 5e-20
-    if (k == 0 ? !(q > allowance) : !(q >= allowance)) return false;
+    if (k == 0 ? !(q > allowance(size)) : !(q >= allowance(size))) return false;
   }
   return true;
 }
@@ -215,6 +223,49 @@ double rk4_lambda_from(double c, double h, double e1) {
   }
   const long double lambda = static_cast<long double>(c) * c / 4 + hi / (static_cast<long double>(h) * h);
   return static_cast<double>(lambda) * kRoundUp;
+}
+
+/// RK4's stable side: every mode with lambda in [0, lambda_hi] has both step eigenvalues
+/// within 1 + eps at rate c and step h.
+/// - Real roots (lambda <= c^2/4) give z = h mu in [-c h, 0]. There R(x) - 1 = x g(x) with
+///   g(x) = 1 + x/2 + x^2/6 + x^3/24, increasing (g' = 1/2 + x/3 + x^2/8 has no real root)
+///   and positive at -2.785 (1.6e-4), so R(x) <= 1 on [-2.785, 0]; and R > 0 everywhere (at a
+///   critical point R = R' + x^4/24 = x^4/24, and x = 0 is none). So c h <= 2.785 covers them.
+/// - Complex roots (lambda > c^2/4): Q(Y) = P(Y) - (1 + eps)^2 <= 0 for every Y = h^2 (lambda
+///   - c^2/4) in [0, Y_max], P the quartic above at x = -c h/2. With t = Y/Y_max, Q's
+///   Bernstein coefficients are beta_i = sum_{k<=i} C(i,k)/C(4,k) q_k (q_k its coefficients
+///   in t), and Q <= max beta_i on [0, 1] (the Bernstein basis is non-negative and sums to
+///   1): every beta_i below minus its allowance proves it. Otherwise nothing is proved
+///   (false). One piece was enough: on 11 760 cases (c from 0 to 12, h from 0.02 to 1.2,
+///   lambda_hi 1 to 30) it proved every one whose sampled radii all stayed under 1 - 1e-9.
+bool rk4_stable(double lambda_hi, double c, double h, long double e1) {
+  const long double ch = static_cast<long double>(c) * h;
+  if (!(ch * (1 + 1e-15L) <= 2.785L)) return false;
+  const long double quarter = static_cast<long double>(c) * c / 4;
+  if (!(lambda_hi > quarter)) return true;  // no complex roots
+  const long double hh = static_cast<long double>(h) * h;
+  const long double y_max = hh * (lambda_hi - quarter) * (1 + 1e-15L);
+  const long double x = -ch / 2;
+  const Quartic p = rk4_quartic(x, false), m = rk4_quartic(std::abs(x), true);
+  // Q(Y_max t) = sum_k q_k t^k: q_k = Y_max^k p_k (q_0 less (1 + eps)^2), and its terms'
+  // magnitudes s_k.
+  long double q[5], size[5], scale = 1;
+  for (int k = 0; k <= 4; ++k) {
+    q[k] = p.c[k] * scale;
+    size[k] = m.c[k] * scale;
+    scale *= y_max;
+  }
+  q[0] -= e1 * e1;
+  size[0] += e1 * e1;
+  for (int i = 0; i <= 4; ++i) {
+    long double beta = 0, beta_size = 0;
+    for (int k = 0; k <= i; ++k) {
+      beta += kBinomial[k][i] / kBinomial[k][4] * q[k];
+      beta_size += kBinomial[k][i] / kBinomial[k][4] * size[k];
+    }
+    if (!(beta + allowance(beta_size) <= 0)) return false;
+  }
+  return true;
 }
 
 }  // namespace
@@ -252,7 +303,13 @@ ModeInstability mode_instability(Integrator integrator, double lambda_0, double 
 
 ModeStability mode_stability(Integrator integrator, double lambda_hi, double c, double h) {
   ModeStability m;
+  if (integrator == Integrator::rk4) {  // at (c, h) only: no threshold in either
+    m.proved = true;
+    m.stable = rk4_stable(lambda_hi, c, h, 1 + kMarginal);
+    return m;
+  }
   if (integrator != Integrator::forward_euler && integrator != Integrator::verlet) return m;
+  m.proved = true;
   if (integrator == Integrator::forward_euler) {
     m.stable = c * h * kRoundUp <= 2 && lambda_hi * h * kRoundUp <= c;
     m.dt_up_to = c > 0 ? std::min(c / lambda_hi, 2 / c) / kRoundUp : 0;

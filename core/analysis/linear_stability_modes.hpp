@@ -64,15 +64,24 @@ struct ModeInstability {
 };
 ModeInstability mode_instability(Integrator integrator, double lambda_0, double c, double h);
 
-/// The stable side, for forward Euler and Verlet at uniform rate c >= 0: when every mode lies
-/// in [0, lambda_hi] (K >= 0 proved, lambda_max <= lambda_hi), every radius is at most 1 iff
+/// The stable side, for forward Euler, Verlet and RK4 at uniform rate c >= 0: when every mode
+/// lies in [0, lambda_hi] (K >= 0 proved, lambda_max <= lambda_hi), every radius is at most 1
+/// iff
 ///   forward Euler  c h <= 2 and lambda_hi <= c/h  (real roots lie in [1 - c h, 1], complex
 ///                  ones have |z|^2 = d <= 1);
 ///   Verlet         lambda_hi h^2 <= 4  (|q| <= 1: |t| <= 1 + d, and |d| <= 1).
 /// `stable` at (c, h); every step up to `dt_up_to` is stable at c; every rate in
 /// [rate_lo, rate_hi] is stable at h (none when rate_lo > rate_hi). Rounded toward the
-/// stable side's inside. `stable` false and every number NaN for the other integrators.
+/// stable side's inside.
+/// RK4: `stable` only (at most 1 + 1e-12, as uniform_dt_max counts it), proved at (c, h)
+/// by c h <= 2.785 for the real roots and, for the complex ones, Bernstein bounds of the
+/// quartic |R(z)|^2 - (1 + 1e-12)^2 in (Im z)^2 on [0, h^2 (lambda_hi - c^2/4)]
+/// (docs/criteria.md); false where the proof does not close (near the boundary); no
+/// threshold in dt or c (NaN).
+/// `proved` says whether the integrator has this side: false, `stable` false and every
+/// number NaN for the semi-implicit step (SPEC 9's safe bound instead) and implicit Euler.
 struct ModeStability {
+  bool proved = false;
   bool stable = false;
   double dt_up_to = std::numeric_limits<double>::quiet_NaN();
   double rate_lo = std::numeric_limits<double>::quiet_NaN();

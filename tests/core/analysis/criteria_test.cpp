@@ -232,16 +232,23 @@ TEST(Criteria, OverTheBudgetAStepProvedUnstableWithoutAFactorisationIsBeyond) {
     }
     EXPECT_NE(find(rows, "exact spectral radius").test.find(": unstable (proved)"),
               std::string::npos);
-    // At the scene's dt: RK4 is not proved either way; forward Euler and Verlet are proved
-    // stable (K >= 0 at rest, every mode below Gershgorin's bound).
+    // At the scene's dt each is proved stable (K >= 0 at rest, every mode below
+    // Gershgorin's bound); RK4 at this gamma and dt only, its other rows say so.
     const auto within = all_criteria(m, rest, q, exact_stability(m, rest.x, q, tight));
     for (const char* row : {"exact spectral radius", "exact gamma interval", "exact dt limit"})
-      EXPECT_EQ(find(within, row).verdict, i == Integrator::rk4 ? CriterionVerdict::not_applicable
-                                                                : CriterionVerdict::within)
+      EXPECT_EQ(find(within, row).verdict, CriterionVerdict::within)
           << to_string(i) << " " << row << ": " << find(within, row).test;
-    if (i != Integrator::rk4) {
-      EXPECT_NE(find(within, "exact spectral radius").test.find("stable (proved)"),
-                std::string::npos);
+    EXPECT_NE(find(within, "exact spectral radius").test.find("stable (proved)"),
+              std::string::npos);
+    if (i == Integrator::rk4) {
+      EXPECT_NE(find(within, "exact dt limit").test.find("stable at this gamma and dt (proved"),
+                std::string::npos)
+          << find(within, "exact dt limit").test;
+      // Between the two certificates (Gershgorin's 9 against lambda_max 7.8123): neither.
+      Params between = q;
+      between.dt = 0.95 * computed.dt_max;
+      const auto open = all_criteria(m, rest, between, exact_stability(m, rest.x, between, tight));
+      EXPECT_EQ(find(open, "exact dt limit").verdict, CriterionVerdict::not_applicable);
     }
     if (i != Integrator::forward_euler) continue;
     Params weak = q;

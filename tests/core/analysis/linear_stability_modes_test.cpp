@@ -185,8 +185,75 @@ TEST(LinearStabilityModes, ModeStabilityOfForwardEulerAndVerlet) {
           EXPECT_GT(worst(i, 0.5 * (m.rate_lo + m.rate_hi), h), ok);
         }
       }
-  EXPECT_FALSE(mode_stability(Integrator::rk4, 9, 1, 0.1).stable);
-  EXPECT_TRUE(std::isnan(mode_stability(Integrator::rk4, 9, 1, 0.1).dt_up_to));
+  for (Integrator i : {Integrator::semi_implicit_euler, Integrator::implicit_euler}) {
+    EXPECT_FALSE(mode_stability(i, 9, 1, 0.1).proved);
+    EXPECT_FALSE(mode_stability(i, 9, 1, 0.1).stable);
+  }
+}
+
+TEST(LinearStabilityModes, ModeStabilityOfRk4) {
+  // RK4's stable side at (c, h), every mode in [0, lambda_hi], against the 2x2 step's own
+  // radius at modes from 0 to lambda_hi (log- and evenly spaced, and around c^2/4 where the
+  // roots turn complex): where it says stable none is above 1 + 1e-12, and where every sampled
+  // mode is below 1 - 1e-9 the proof closes. No threshold in dt or c.
+  const double ok = 1 + 1e-12;
+  auto worst = [&](double lambda_hi, double c, double h) {
+    double r = mode_spectral_radius(Integrator::rk4, 0, c, h);
+    for (int k = 0; k <= 2000; ++k) {
+      r = std::max(r, mode_spectral_radius(Integrator::rk4,
+                                           lambda_hi * std::pow(1e-6, 1 - k / 2000.0), c, h));
+      r = std::max(r, mode_spectral_radius(Integrator::rk4, lambda_hi * k / 2000.0, c, h));
+      const double q = c * c / 4 * (1 + (k - 1000) * 1e-4);
+      if (q > 0 && q <= lambda_hi) r = std::max(r, mode_spectral_radius(Integrator::rk4, q, c, h));
+    }
+    return r;
+  };
+  int proved = 0, refused = 0;
+  for (double c : {0.0, 0.5, 2.0, 5.0, 8.0, 11.0})
+    for (double h : {0.01, 0.1, 0.2, 0.3, 0.5, 0.9, 0.94, 1.0}) {
+      const ModeStability m = mode_stability(Integrator::rk4, 9, c, h);
+      SCOPED_TRACE("c=" + std::to_string(c) + " h=" + std::to_string(h));
+      EXPECT_TRUE(m.proved);
+      EXPECT_TRUE(std::isnan(m.dt_up_to) && std::isnan(m.rate_lo) && std::isnan(m.rate_hi));
+      const double w = worst(9, c, h);
+      if (m.stable) {
+        EXPECT_LE(w, ok);
+      }
+      if (w <= 1 - 1e-9) {
+        EXPECT_TRUE(m.stable) << "worst radius " << w;
+      }
+      (m.stable ? proved : refused) += 1;
+    }
+  EXPECT_GT(proved, 10);  // both answers occur
+  EXPECT_GT(refused, 10);
+  // Real roots only (c^2/4 >= lambda_hi): the proof is c h <= 2.785, RK4's real interval
+  // ends at -2.7852936.
+  EXPECT_TRUE(mode_stability(Integrator::rk4, 9, 10, 0.27849).stable);
+  EXPECT_FALSE(mode_stability(Integrator::rk4, 9, 10, 0.2786).stable);
+  EXPECT_GT(mode_spectral_radius(Integrator::rk4, 0, 10, 0.2786 * 1.0001), 1 + 1e-12);
+  // The stable side meets the unstable one: the largest lambda_hi proved stable at (c, h)
+  // lies just under mode_instability's lambda_from, two certificates from opposite sides.
+  for (double c : {0.0, 0.3, 1.0})
+    for (double h : {0.05, 0.3, 0.9}) {
+      SCOPED_TRACE("c=" + std::to_string(c) + " h=" + std::to_string(h));
+      const double from = mode_instability(Integrator::rk4, 1, c, h).lambda_from;
+      double lo = c * c / 4 + 1e-9, hi = 2 * from;
+      ASSERT_TRUE(mode_stability(Integrator::rk4, lo, c, h).stable);
+      ASSERT_FALSE(mode_stability(Integrator::rk4, hi, c, h).stable);
+      for (int k = 0; k < 60; ++k) {
+        const double mid = (lo + hi) / 2;
+        (mode_stability(Integrator::rk4, mid, c, h).stable ? lo : hi) = mid;
+      }
+      EXPECT_LE(lo, from);
+      EXPECT_GE(lo, from * (1 - 1e-6));
+    }
+  // And the computed dt limit of a spectrum [0, 9] (uniform_dt_max): proved stable just
+  // under it, not just over it.
+  for (double c : {0.0, 0.5, 2.0}) {
+    const double dt = uniform_dt_max(Integrator::rk4, StiffnessSpectrum{0, 9}, c);
+    EXPECT_TRUE(mode_stability(Integrator::rk4, 9, c, dt * (1 - 1e-6)).stable) << c;
+    EXPECT_FALSE(mode_stability(Integrator::rk4, 9, c, dt * (1 + 1e-6)).stable) << c;
+  }
 }
 
 TEST(LinearStabilityModes, TwoNodeSystemEigenvalues) {
