@@ -51,9 +51,8 @@ void bind_analysis(py::module_& m) {
                     "forward Euler, Verlet and RK4 at uniform gamma/m with K >= 0 proved: every "
                     "mode lies in [0, this] (Gershgorin's bound; NaN otherwise); `stable` says "
                     "whether the user's gamma and dt are proved stable")
-      .def_readonly(
-          "dt_stable_up_to", &ExactStability::Unfactored::dt_stable_up_to,
-          "and every dt up to this is proved stable at gamma (NaN otherwise, and for RK4)")
+      .def_readonly("dt_stable_up_to", &ExactStability::Unfactored::dt_stable_up_to,
+                    "and every dt up to this is proved stable at gamma (NaN otherwise)")
       .def_readonly("gamma_stable_lo", &ExactStability::Unfactored::gamma_stable_lo,
                     "and every gamma in [gamma_stable_lo, gamma_stable_hi] at dt (none when lo > "
                     "hi; NaN otherwise)")

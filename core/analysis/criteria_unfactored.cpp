@@ -22,7 +22,8 @@ namespace {
 /// An exact row over the budget (`c`: its name and reason so far; `without`: the proofs'
 /// preamble): the user's `what` against the value from which (or up to which, `below`)
 /// instability is proved at the other parameter `at` (inf: none is; inf and `below`: every
-/// value is), and against the range [stable_lo, stable_hi] proved stable (none when NaN).
+/// value is; NaN: no such threshold, RK4), and against the range [stable_lo, stable_hi]
+/// proved stable (none when NaN).
 CriterionResult threshold_row(CriterionResult c, const std::string& without,
                               const std::string& what, double user, double from,
                               const std::string& at, bool below, double stable_lo,
@@ -34,6 +35,8 @@ CriterionResult threshold_row(CriterionResult c, const std::string& without,
     unstable = true;
     told = false;
     proof = "every " + what + " is unstable at this " + at;
+  } else if (std::isnan(from)) {  // RK4: its instability proof holds at the user's point only
+    told = false;
   } else if (std::isinf(from)) {  // nothing is proved in this direction
     told = false;
     proof = "no " + what + " is proved unstable at this " + at;
@@ -49,7 +52,7 @@ CriterionResult threshold_row(CriterionResult c, const std::string& without,
         : std::isinf(stable_hi)
             ? ">= " + format_digits(stable_lo, 8)
             : "in [" + format_digits(stable_lo, 8) + ", " + format_digits(stable_hi, 8) + "]";
-    proof += ", every " + what + " " + range + " is stable";
+    proof += (proof.empty() ? "" : ", ") + ("every " + what + " " + range + " is stable");
   }
   c.verdict = unstable ? CriterionVerdict::beyond
                        : stable ? CriterionVerdict::within : CriterionVerdict::not_applicable;
@@ -143,7 +146,8 @@ std::vector<CriterionResult> unfactored_criteria(const ExactStability& e, const 
     if (!index && !modes) return row(name);
     return threshold_row(row(name), without, what, user, from, at, below, stable_lo, stable_hi);
   };
-  // RK4: its certificates are for the user's gamma and dt; no threshold in either.
+  // RK4: its certificates are for the user's gamma and dt (the dt row below may add every
+  // dt proved stable); no threshold in gamma.
   auto at_point = [&](const std::string& name) {
     CriterionResult c = row(name);
     c.verdict = rho.verdict;
@@ -156,9 +160,12 @@ std::vector<CriterionResult> unfactored_criteria(const ExactStability& e, const 
   };
   const std::string gamma_row = "exact gamma interval (" + integ + ")",
                     dt_row = "exact dt limit (" + integ + ")";
-  if (modes && std::isnan(b.dt_unstable_from)) {
+  if (modes && std::isnan(b.dt_unstable_from)) {  // RK4: the dt row may have a stable side
     out.push_back(at_point(gamma_row));
-    out.push_back(at_point(dt_row));
+    const bool up_to = rho.verdict != CriterionVerdict::beyond && b.dt_stable_up_to > 0;
+    out.push_back(
+        up_to ? threshold(dt_row, "dt", params.dt, kNaN, "gamma", false, 0.0, b.dt_stable_up_to)
+              : at_point(dt_row));
     return out;
   }
   out.push_back(modes ? threshold(gamma_row, "gamma", params.gamma, b.gamma_unstable_below, "dt",

@@ -223,8 +223,7 @@ double weighted_mean_below(const Eigen::VectorXd& u, const Eigen::VectorXd& R) {
 /// Over the budget, forward Euler, Verlet and RK4 at a uniform rate (`r` = gamma_i/(gamma
 /// m_i)): their modes decouple, so the closed forms of linear_stability_modes.hpp prove
 /// instability from the Rayleigh quotient `top.lo` (mode_instability) and, where SPEC 9's
-/// floor proves K >= 0, stability from Gershgorin's `top.hi` (mode_stability; RK4's at the
-/// user's gamma and dt only).
+/// floor proves K >= 0, stability from Gershgorin's `top.hi` (mode_stability).
 void per_mode_proofs(double r, const EigenInterval& top, std::optional<double> floor,
                      const Params& params, ExactStability& e) {
   ExactStability::Unfactored& b = e.unfactored;
@@ -232,7 +231,7 @@ void per_mode_proofs(double r, const EigenInterval& top, std::optional<double> f
   if (floor && *floor >= 0) {  // K >= 0: every mode in [0, hi]
     const double hi = top.hi * (1 + 1e-12);  // room for the rounding of Gershgorin's sums
     const ModeStability m = mode_stability(params.integrator, hi, c, h);
-    if (m.proved) {  // RK4: at the user's gamma and dt only, its thresholds stay NaN
+    if (m.proved) {  // RK4: no rate range, its rate_lo and rate_hi are NaN
       b.stable_lambda_hi = hi;
       b.dt_stable_up_to = m.dt_up_to;
       if (r > 0) {  // rounded inwards

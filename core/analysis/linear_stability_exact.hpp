@@ -79,8 +79,8 @@ struct ExactStability {
     /// (Gershgorin's bound, raised by 1e-12 of itself for its sums' rounding); every dt <=
     /// dt_stable_up_to (at gamma) and every gamma in [gamma_stable_lo, gamma_stable_hi] (at
     /// dt; none when lo > hi) is proved stable, and `stable` says whether the user's are.
-    /// RK4 proves the user's gamma and dt only: its dt_stable_up_to stays NaN, and its gamma
-    /// range too unless no node has damping (then gamma changes nothing). NaN otherwise.
+    /// RK4 has no gamma range (NaN) unless no node has damping (then gamma changes nothing).
+    /// NaN otherwise.
     double stable_lambda_hi = std::numeric_limits<double>::quiet_NaN();
     double dt_stable_up_to = std::numeric_limits<double>::quiet_NaN();
     double gamma_stable_lo = std::numeric_limits<double>::quiet_NaN();

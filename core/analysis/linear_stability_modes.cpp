@@ -229,8 +229,9 @@ double rk4_lambda_from(double c, double h, double e1) {
 /// within 1 + eps at rate c and step h.
 /// - Real roots (lambda <= c^2/4) give z = h mu in [-c h, 0]. There R(x) - 1 = x g(x) with
 ///   g(x) = 1 + x/2 + x^2/6 + x^3/24, increasing (g' = 1/2 + x/3 + x^2/8 has no real root)
-///   and positive at -2.785 (1.6e-4), so R(x) <= 1 on [-2.785, 0]; and R > 0 everywhere (at a
-///   critical point R = R' + x^4/24 = x^4/24, and x = 0 is none). So c h <= 2.785 covers them.
+///   and positive at -kRk4RealEnd = -2.78529 (1.9e-6, exactly in rationals), so R(x) <= 1 on
+///   [-2.78529, 0]; and R > 0 everywhere (at a critical point R = R' + x^4/24 = x^4/24, and
+///   x = 0 is none). So c h <= 2.78529 covers them (RK4's real interval ends at -2.7852936).
 /// - Complex roots (lambda > c^2/4): Q(Y) = P(Y) - (1 + eps)^2 <= 0 for every Y = h^2 (lambda
 ///   - c^2/4) in [0, Y_max], P the quartic above at x = -c h/2. With t = Y/Y_max, Q's
 ///   Bernstein coefficients are beta_i = sum_{k<=i} C(i,k)/C(4,k) q_k (q_k its coefficients
@@ -238,9 +239,10 @@ double rk4_lambda_from(double c, double h, double e1) {
 ///   1): every beta_i below minus its allowance proves it. Otherwise nothing is proved
 ///   (false). One piece was enough: on 11 760 cases (c from 0 to 12, h from 0.02 to 1.2,
 ///   lambda_hi 1 to 30) it proved every one whose sampled radii all stayed under 1 - 1e-9.
+constexpr long double kRk4RealEnd = 2.78529L;
 bool rk4_stable(double lambda_hi, double c, double h, long double e1) {
   const long double ch = static_cast<long double>(c) * h;
-  if (!(ch * (1 + 1e-15L) <= 2.785L)) return false;
+  if (!(ch * (1 + 1e-15L) <= kRk4RealEnd)) return false;
   const long double quarter = static_cast<long double>(c) * c / 4;
   if (!(lambda_hi > quarter)) return true;  // no complex roots
   const long double hh = static_cast<long double>(h) * h;
@@ -266,6 +268,137 @@ bool rk4_stable(double lambda_hi, double c, double h, long double e1) {
     if (!(beta + allowance(beta_size) <= 0)) return false;
   }
   return true;
+}
+
+/// P's coefficients as polynomials in x: c[j][i] multiplies x^i Y^j (degree 8 - 2j in x);
+/// with `magnitude` the same products of the terms' magnitudes (every coefficient >= 0).
+struct QuarticInX {
+  long double c[5][9] = {};
+};
+QuarticInX rk4_quartic_in_x(bool magnitude) {
+  using Poly = std::vector<long double>;
+  auto mul = [](const Poly& a, const Poly& b, long double k) {
+    Poly r(a.size() + b.size() - 1, 0);
+    for (size_t i = 0; i < a.size(); ++i)
+      for (size_t j = 0; j < b.size(); ++j) r[i + j] += k * a[i] * b[j];
+    return r;
+  };
+  auto add = [](Poly a, const Poly& b) {
+    if (b.size() > a.size()) a.resize(b.size(), 0);
+    for (size_t i = 0; i < b.size(); ++i) a[i] += b[i];
+    return a;
+  };
+  const long double s = magnitude ? 1 : -1;
+  // rk4_quartic's a0 = R, a1 = -R''/2, a2 = 1/24, b0 = R', b1 = -R'''/6, in powers of x.
+  const Poly a0 = {1, 1, 1.0L / 2, 1.0L / 6, 1.0L / 24}, b0 = {1, 1, 1.0L / 2, 1.0L / 6};
+  const Poly a1 = {s / 2, s / 2, s / 4}, a2 = {1.0L / 24}, b1 = {s / 6, s / 6};
+  const Poly p[5] = {mul(a0, a0, 1), add(mul(a0, a1, 2), mul(b0, b0, 1)),
+                     add(add(mul(a1, a1, 1), mul(a0, a2, 2)), mul(b0, b1, 2)),
+                     add(mul(a1, a2, 2), mul(b1, b1, 1)), mul(a2, a2, 1)};
+  QuarticInX q;
+  for (int j = 0; j <= 4; ++j)
+    for (size_t i = 0; i < p[j].size(); ++i) q.c[j][i] = p[j][i];
+  return q;
+}
+
+/// C(n, k) for n and k up to 8 (0 outside 0 <= k <= n).
+long double choose(int n, int k) {
+  if (k < 0 || k > n) return 0;
+  long double r = 1;
+  for (int i = 1; i <= k; ++i) r = r * (n - k + i) / i;
+  return r;
+}
+
+/// RK4's complex roots at rate c for every step h in [h0, h1] and every mode lambda in
+/// (c^2/4, c^2/4 + V]: with v = lambda - c^2/4, x = -c h/2 and Y = h^2 v, Q = P - (1 + eps)^2
+/// is a polynomial in (h, v) of degree 8 and 4. On the box (t, s) = ((h - h0)/(h1 - h0), v/V)
+/// every tensor Bernstein coefficient below minus its allowance proves Q <= 0 there.
+bool rk4_box_stable(const QuarticInX& p, const QuarticInX& m, long double c, long double h0,
+                    long double h1, long double V, long double e1) {
+  // Q = sum_{k, j} A[k][j] h^k v^j, k = i + 2j; S: the terms' magnitudes.
+  long double A[9][5] = {}, S[9][5] = {};
+  for (int j = 0; j <= 4; ++j) {
+    long double power = 1;  // (c/2)^i
+    for (int i = 0; i + 2 * j <= 8; ++i) {
+      A[i + 2 * j][j] += p.c[j][i] * (i % 2 ? -power : power);
+      S[i + 2 * j][j] += m.c[j][i] * power;
+      power *= c / 2;
+    }
+  }
+  // h = h0 + w t, v = V s: B[q][j] = sum_{k >= q} A[k][j] C(k, q) h0^(k - q) w^q V^j.
+  const long double w = h1 - h0;
+  long double B[9][5] = {}, T[9][5] = {};
+  long double wq = 1;
+  for (int q = 0; q <= 8; ++q, wq *= w) {
+    long double vj = 1;
+    for (int j = 0; j <= 4; ++j, vj *= V) {
+      long double b = 0, t = 0, power = 1;
+      for (int k = q; k <= 8; ++k, power *= h0) {
+        b += A[k][j] * choose(k, q) * power;
+        t += S[k][j] * choose(k, q) * power;
+      }
+      B[q][j] = b * wq * vj;
+      T[q][j] = t * wq * vj;
+    }
+  }
+  B[0][0] -= e1 * e1;
+  T[0][0] += e1 * e1;
+  for (int M = 0; M <= 8; ++M)
+    for (int N = 0; N <= 4; ++N) {
+      long double beta = 0, size = 0;
+      for (int q = 0; q <= M; ++q)
+        for (int j = 0; j <= N; ++j) {
+          const long double weight = choose(M, q) / choose(8, q) * choose(N, j) / choose(4, j);
+          beta += weight * B[q][j];
+          size += weight * T[q][j];
+        }
+      if (!(beta + allowance(size) <= 0)) return false;
+    }
+  return true;
+}
+
+/// Every step in (0, S] stable at rate c for every mode in [0, lambda_hi]: the real roots by
+/// c S <= 2.78529 (as rk4_stable), the complex ones by rk4_box_stable on [0, S], halved into
+/// pieces where a box does not close (at most 64 pieces).
+bool rk4_stable_up_to(double lambda_hi, double c, double S, long double e1) {
+  const long double cS = static_cast<long double>(c) * S;
+  if (!(cS * (1 + 1e-15L) <= kRk4RealEnd)) return false;
+  const long double quarter = static_cast<long double>(c) * c / 4;
+  if (!(lambda_hi > quarter)) return true;
+  const long double V = (lambda_hi - quarter) * (1 + 1e-15L);
+  static const QuarticInX p = rk4_quartic_in_x(false), m = rk4_quartic_in_x(true);
+  std::vector<std::pair<long double, long double>> todo{{0, static_cast<long double>(S)}};
+  for (int pieces = 0; !todo.empty(); ++pieces) {
+    if (pieces == 64) return false;
+    const std::pair<long double, long double> box = todo.back();
+    todo.pop_back();
+    if (rk4_box_stable(p, m, c, box.first, box.second, V, e1)) continue;
+    const long double mid = (box.first + box.second) / 2;
+    todo.push_back({box.first, mid});
+    todo.push_back({mid, box.second});
+  }
+  return true;
+}
+
+/// The largest S (by doubling, then bisection) that rk4_stable_up_to proves; 0 when none is.
+double rk4_dt_up_to(double lambda_hi, double c, long double e1) {
+  auto proved = [&](double S) { return rk4_stable_up_to(lambda_hi, c, S, e1); };
+  double lo = 0, hi = 0.5 / std::sqrt(std::max({lambda_hi, c * c, 1e-300}));
+  for (int k = 0; k < 60 && proved(hi); ++k) {
+    lo = hi;
+    hi *= 2;
+  }
+  if (lo == 0) {
+    for (int k = 0; k < 60 && !proved(hi); ++k) hi /= 2;
+    if (!proved(hi)) return 0;
+    lo = hi;
+    hi *= 2;
+  }
+  for (int k = 0; k < 50 && hi - lo > 1e-10 * hi; ++k) {
+    const double mid = (lo + hi) / 2;
+    (proved(mid) ? lo : hi) = mid;
+  }
+  return lo;
 }
 
 }  // namespace
@@ -303,9 +436,10 @@ ModeInstability mode_instability(Integrator integrator, double lambda_0, double 
 
 ModeStability mode_stability(Integrator integrator, double lambda_hi, double c, double h) {
   ModeStability m;
-  if (integrator == Integrator::rk4) {  // at (c, h) only: no threshold in either
+  if (integrator == Integrator::rk4) {  // no threshold in the rate
     m.proved = true;
     m.stable = rk4_stable(lambda_hi, c, h, 1 + kMarginal);
+    m.dt_up_to = rk4_dt_up_to(lambda_hi, c, 1 + kMarginal);
     return m;
   }
   if (integrator != Integrator::forward_euler && integrator != Integrator::verlet) return m;

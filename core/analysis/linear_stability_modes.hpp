@@ -73,11 +73,12 @@ ModeInstability mode_instability(Integrator integrator, double lambda_0, double 
 /// `stable` at (c, h); every step up to `dt_up_to` is stable at c; every rate in
 /// [rate_lo, rate_hi] is stable at h (none when rate_lo > rate_hi). Rounded toward the
 /// stable side's inside.
-/// RK4: `stable` only (at most 1 + 1e-12, as uniform_dt_max counts it), proved at (c, h)
-/// by c h <= 2.785 for the real roots and, for the complex ones, Bernstein bounds of the
-/// quartic |R(z)|^2 - (1 + 1e-12)^2 in (Im z)^2 on [0, h^2 (lambda_hi - c^2/4)]
-/// (docs/criteria.md); false where the proof does not close (near the boundary); no
-/// threshold in dt or c (NaN).
+/// RK4 (radius at most 1 + 1e-12, as uniform_dt_max counts it): `stable` at (c, h) by
+/// c h <= 2.78529 for the real roots and, for the complex ones, the Bernstein coefficients
+/// of |R(z)|^2 - (1 + 1e-12)^2 as a polynomial in (Im z)^2 on [0, h^2 (lambda_hi - c^2/4)];
+/// `dt_up_to` the largest step S found for which the same holds at every step in (0, S]
+/// (tensor Bernstein coefficients in (h, lambda) on pieces of [0, S]); false or 0 where the
+/// proofs do not close (near the boundary); no threshold in the rate (NaN). docs/criteria.md.
 /// `proved` says whether the integrator has this side: false, `stable` false and every
 /// number NaN for the semi-implicit step (SPEC 9's safe bound instead) and implicit Euler.
 struct ModeStability {

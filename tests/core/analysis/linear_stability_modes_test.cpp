@@ -214,7 +214,7 @@ TEST(LinearStabilityModes, ModeStabilityOfRk4) {
       const ModeStability m = mode_stability(Integrator::rk4, 9, c, h);
       SCOPED_TRACE("c=" + std::to_string(c) + " h=" + std::to_string(h));
       EXPECT_TRUE(m.proved);
-      EXPECT_TRUE(std::isnan(m.dt_up_to) && std::isnan(m.rate_lo) && std::isnan(m.rate_hi));
+      EXPECT_TRUE(std::isnan(m.rate_lo) && std::isnan(m.rate_hi));
       const double w = worst(9, c, h);
       if (m.stable) {
         EXPECT_LE(w, ok);
@@ -226,11 +226,12 @@ TEST(LinearStabilityModes, ModeStabilityOfRk4) {
     }
   EXPECT_GT(proved, 10);  // both answers occur
   EXPECT_GT(refused, 10);
-  // Real roots only (c^2/4 >= lambda_hi): the proof is c h <= 2.785, RK4's real interval
+  // Real roots only (c^2/4 >= lambda_hi): the proof is c h <= 2.78529, RK4's real interval
   // ends at -2.7852936.
-  EXPECT_TRUE(mode_stability(Integrator::rk4, 9, 10, 0.27849).stable);
-  EXPECT_FALSE(mode_stability(Integrator::rk4, 9, 10, 0.2786).stable);
-  EXPECT_GT(mode_spectral_radius(Integrator::rk4, 0, 10, 0.2786 * 1.0001), 1 + 1e-12);
+  EXPECT_TRUE(mode_stability(Integrator::rk4, 9, 10, 0.278528).stable);
+  EXPECT_FALSE(mode_stability(Integrator::rk4, 9, 10, 0.27853).stable);
+  EXPECT_GT(mode_spectral_radius(Integrator::rk4, 0, 10, 0.27853), 1 + 1e-12);
+  EXPECT_NEAR(mode_stability(Integrator::rk4, 9, 10, 0.1).dt_up_to, 0.278529, 1e-7);
   // The stable side meets the unstable one: the largest lambda_hi proved stable at (c, h)
   // lies just under mode_instability's lambda_from, two certificates from opposite sides.
   for (double c : {0.0, 0.3, 1.0})
@@ -240,7 +241,7 @@ TEST(LinearStabilityModes, ModeStabilityOfRk4) {
       double lo = c * c / 4 + 1e-9, hi = 2 * from;
       ASSERT_TRUE(mode_stability(Integrator::rk4, lo, c, h).stable);
       ASSERT_FALSE(mode_stability(Integrator::rk4, hi, c, h).stable);
-      for (int k = 0; k < 60; ++k) {
+      for (int k = 0; k < 30; ++k) {  // to 1e-9 of the range
         const double mid = (lo + hi) / 2;
         (mode_stability(Integrator::rk4, mid, c, h).stable ? lo : hi) = mid;
       }
@@ -248,11 +249,21 @@ TEST(LinearStabilityModes, ModeStabilityOfRk4) {
       EXPECT_GE(lo, from * (1 - 1e-6));
     }
   // And the computed dt limit of a spectrum [0, 9] (uniform_dt_max): proved stable just
-  // under it, not just over it.
-  for (double c : {0.0, 0.5, 2.0}) {
+  // under it, not just over it; every step up to `dt_up_to` proved, which comes within
+  // 2e-6 of it (the real roots' proof stops at 2.78529 of 2.7852936).
+  for (double c : {0.0, 0.1, 0.5, 1.0, 2.0, 4.0, 8.0}) {
+    SCOPED_TRACE("c=" + std::to_string(c));
     const double dt = uniform_dt_max(Integrator::rk4, StiffnessSpectrum{0, 9}, c);
-    EXPECT_TRUE(mode_stability(Integrator::rk4, 9, c, dt * (1 - 1e-6)).stable) << c;
-    EXPECT_FALSE(mode_stability(Integrator::rk4, 9, c, dt * (1 + 1e-6)).stable) << c;
+    if (c <= 2) {
+      EXPECT_TRUE(mode_stability(Integrator::rk4, 9, c, dt * (1 - 1e-6)).stable);
+      EXPECT_FALSE(mode_stability(Integrator::rk4, 9, c, dt * (1 + 1e-6)).stable);
+    }
+    const double up_to = mode_stability(Integrator::rk4, 9, c, 0.01).dt_up_to;
+    EXPECT_EQ(up_to, mode_stability(Integrator::rk4, 9, c, 0.5).dt_up_to);  // h plays no part
+    EXPECT_LE(up_to, dt);
+    EXPECT_GE(up_to, dt * (1 - 2e-6));
+    for (double f : {1e-3, 0.1, 0.5, 0.9, 0.99, 1.0}) EXPECT_LE(worst(9, c, f * up_to), ok) << f;
+    EXPECT_GT(worst(9, c, dt * (1 + 1e-6)), ok);
   }
 }
 
