@@ -146,8 +146,8 @@ std::vector<CriterionResult> unfactored_criteria(const ExactStability& e, const 
     if (!index && !modes) return row(name);
     return threshold_row(row(name), without, what, user, from, at, below, stable_lo, stable_hi);
   };
-  // RK4: its certificates are for the user's gamma and dt (the dt row below may add every
-  // dt proved stable); no threshold in gamma.
+  // RK4: its instability proof is for the user's gamma and dt; the rows below add the
+  // gammas and dts proved stable around them.
   auto at_point = [&](const std::string& name) {
     CriterionResult c = row(name);
     c.verdict = rho.verdict;
@@ -160,12 +160,15 @@ std::vector<CriterionResult> unfactored_criteria(const ExactStability& e, const 
   };
   const std::string gamma_row = "exact gamma interval (" + integ + ")",
                     dt_row = "exact dt limit (" + integ + ")";
-  if (modes && std::isnan(b.dt_unstable_from)) {  // RK4: the dt row may have a stable side
-    out.push_back(at_point(gamma_row));
-    const bool up_to = rho.verdict != CriterionVerdict::beyond && b.dt_stable_up_to > 0;
-    out.push_back(
-        up_to ? threshold(dt_row, "dt", params.dt, kNaN, "gamma", false, 0.0, b.dt_stable_up_to)
-              : at_point(dt_row));
+  if (modes && std::isnan(b.dt_unstable_from)) {  // RK4: thresholds on the stable side only
+    const bool open = rho.verdict != CriterionVerdict::beyond;
+    out.push_back(open && b.gamma_stable_lo <= b.gamma_stable_hi
+                      ? threshold(gamma_row, "gamma", params.gamma, kNaN, "dt", true,
+                                  b.gamma_stable_lo, b.gamma_stable_hi)
+                      : at_point(gamma_row));
+    out.push_back(open && b.dt_stable_up_to > 0 ? threshold(dt_row, "dt", params.dt, kNaN, "gamma",
+                                                            false, 0.0, b.dt_stable_up_to)
+                                                : at_point(dt_row));
     return out;
   }
   out.push_back(modes ? threshold(gamma_row, "gamma", params.gamma, b.gamma_unstable_below, "dt",

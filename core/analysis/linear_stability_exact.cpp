@@ -231,7 +231,7 @@ void per_mode_proofs(double r, const EigenInterval& top, std::optional<double> f
   if (floor && *floor >= 0) {  // K >= 0: every mode in [0, hi]
     const double hi = top.hi * (1 + 1e-12);  // room for the rounding of Gershgorin's sums
     const ModeStability m = mode_stability(params.integrator, hi, c, h);
-    if (m.proved) {  // RK4: no rate range, its rate_lo and rate_hi are NaN
+    if (m.proved) {
       b.stable_lambda_hi = hi;
       b.dt_stable_up_to = m.dt_up_to;
       if (r > 0) {  // rounded inwards

@@ -78,9 +78,8 @@ struct ExactStability {
     /// when SPEC 9's floor proves K >= 0: every mode lies in [0, stable_lambda_hi]
     /// (Gershgorin's bound, raised by 1e-12 of itself for its sums' rounding); every dt <=
     /// dt_stable_up_to (at gamma) and every gamma in [gamma_stable_lo, gamma_stable_hi] (at
-    /// dt; none when lo > hi) is proved stable, and `stable` says whether the user's are.
-    /// RK4 has no gamma range (NaN) unless no node has damping (then gamma changes nothing).
-    /// NaN otherwise.
+    /// dt; none when lo > hi) is proved stable, and `stable` says whether the user's are
+    /// (RK4's gamma range is the one around the user's gamma). NaN otherwise.
     double stable_lambda_hi = std::numeric_limits<double>::quiet_NaN();
     double dt_stable_up_to = std::numeric_limits<double>::quiet_NaN();
     double gamma_stable_lo = std::numeric_limits<double>::quiet_NaN();

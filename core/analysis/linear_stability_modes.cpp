@@ -9,6 +9,8 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 namespace dampbound {
@@ -309,31 +311,40 @@ long double choose(int n, int k) {
   return r;
 }
 
-/// RK4's complex roots at rate c for every step h in [h0, h1] and every mode lambda in
-/// (c^2/4, c^2/4 + V]: with v = lambda - c^2/4, x = -c h/2 and Y = h^2 v, Q = P - (1 + eps)^2
-/// is a polynomial in (h, v) of degree 8 and 4. On the box (t, s) = ((h - h0)/(h1 - h0), v/V)
-/// every tensor Bernstein coefficient below minus its allowance proves Q <= 0 there.
-bool rk4_box_stable(const QuarticInX& p, const QuarticInX& m, long double c, long double h0,
-                    long double h1, long double V, long double e1) {
-  // Q = sum_{k, j} A[k][j] h^k v^j, k = i + 2j; S: the terms' magnitudes.
+/// A box of RK4's complex roots: one parameter p in [p0, p1] (the step at a fixed rate, or
+/// the rate at a fixed step) and v = lambda - c^2/4 in [0, V], with x = -alpha p and
+/// Y = beta p^(2 e) v:
+///   the step h:  alpha = c/2, beta = 1,   e = 1  (Y = h^2 v);
+///   the rate c:  alpha = h/2, beta = h^2, e = 0.
+/// Q = P - (1 + eps)^2 is then a polynomial in (p, v) of degree at most 8 and 4.
+struct Rk4Box {
+  long double alpha, beta;
+  int e;
+  long double p0, p1, V;
+};
+
+/// On the box, (t, s) = ((p - p0)/(p1 - p0), v/V), every tensor Bernstein coefficient of Q
+/// below minus its allowance proves Q <= 0 there.
+bool rk4_box_stable(const QuarticInX& p, const QuarticInX& m, const Rk4Box& box, long double e1) {
+  // Q = sum_{k, j} A[k][j] p^k v^j, k = i + 2 e j; S: the terms' magnitudes.
   long double A[9][5] = {}, S[9][5] = {};
-  for (int j = 0; j <= 4; ++j) {
-    long double power = 1;  // (c/2)^i
-    for (int i = 0; i + 2 * j <= 8; ++i) {
-      A[i + 2 * j][j] += p.c[j][i] * (i % 2 ? -power : power);
-      S[i + 2 * j][j] += m.c[j][i] * power;
-      power *= c / 2;
+  long double beta_j = 1;
+  for (int j = 0; j <= 4; ++j, beta_j *= box.beta) {
+    long double power = 1;  // alpha^i
+    for (int i = 0; i + 2 * box.e * j <= 8 && i <= 8 - 2 * j; ++i, power *= box.alpha) {
+      A[i + 2 * box.e * j][j] += p.c[j][i] * (i % 2 ? -power : power) * beta_j;
+      S[i + 2 * box.e * j][j] += m.c[j][i] * power * beta_j;
     }
   }
-  // h = h0 + w t, v = V s: B[q][j] = sum_{k >= q} A[k][j] C(k, q) h0^(k - q) w^q V^j.
-  const long double w = h1 - h0;
+  // p = p0 + w t, v = V s: B[q][j] = sum_{k >= q} A[k][j] C(k, q) p0^(k - q) w^q V^j.
+  const long double w = box.p1 - box.p0;
   long double B[9][5] = {}, T[9][5] = {};
   long double wq = 1;
   for (int q = 0; q <= 8; ++q, wq *= w) {
     long double vj = 1;
-    for (int j = 0; j <= 4; ++j, vj *= V) {
+    for (int j = 0; j <= 4; ++j, vj *= box.V) {
       long double b = 0, t = 0, power = 1;
-      for (int k = q; k <= 8; ++k, power *= h0) {
+      for (int k = q; k <= 8; ++k, power *= box.p0) {
         b += A[k][j] * choose(k, q) * power;
         t += S[k][j] * choose(k, q) * power;
       }
@@ -357,27 +368,60 @@ bool rk4_box_stable(const QuarticInX& p, const QuarticInX& m, long double c, lon
   return true;
 }
 
-/// Every step in (0, S] stable at rate c for every mode in [0, lambda_hi]: the real roots by
-/// c S <= 2.78529 (as rk4_stable), the complex ones by rk4_box_stable on [0, S], halved into
-/// pieces where a box does not close (at most 64 pieces).
-bool rk4_stable_up_to(double lambda_hi, double c, double S, long double e1) {
-  const long double cS = static_cast<long double>(c) * S;
-  if (!(cS * (1 + 1e-15L) <= kRk4RealEnd)) return false;
-  const long double quarter = static_cast<long double>(c) * c / 4;
-  if (!(lambda_hi > quarter)) return true;
-  const long double V = (lambda_hi - quarter) * (1 + 1e-15L);
+/// Every p in [p0, p1] and every mode in [0, lambda_hi]: the real roots by c h <= 2.78529 at
+/// the box's largest c h (as rk4_stable), the complex ones by rk4_box_stable, halved in p
+/// where a box does not close (at most 64 pieces). A piece's V is lambda_hi less its
+/// smallest c^2/4 (for the rate, an over-cover: lambda up to lambda_hi + (c^2 - c0^2)/4).
+bool rk4_stable_over(double lambda_hi, Rk4Box box, long double e1) {
+  const bool step = box.e == 1;
+  const long double c_hi = step ? 2 * box.alpha : box.p1, h_hi = step ? box.p1 : 2 * box.alpha;
+  if (!(c_hi * h_hi * (1 + 1e-15L) <= kRk4RealEnd)) return false;
   static const QuarticInX p = rk4_quartic_in_x(false), m = rk4_quartic_in_x(true);
-  std::vector<std::pair<long double, long double>> todo{{0, static_cast<long double>(S)}};
+  std::vector<Rk4Box> todo{box};
   for (int pieces = 0; !todo.empty(); ++pieces) {
     if (pieces == 64) return false;
-    const std::pair<long double, long double> box = todo.back();
+    Rk4Box b = todo.back();
     todo.pop_back();
-    if (rk4_box_stable(p, m, c, box.first, box.second, V, e1)) continue;
-    const long double mid = (box.first + box.second) / 2;
-    todo.push_back({box.first, mid});
-    todo.push_back({mid, box.second});
+    const long double c_lo = step ? 2 * b.alpha : b.p0;
+    b.V = (lambda_hi - c_lo * c_lo / 4) * (1 + 1e-15L);
+    if (!(b.V > 0) || rk4_box_stable(p, m, b, e1)) continue;  // V <= 0: real roots only
+    const long double mid = (b.p0 + b.p1) / 2;
+    todo.push_back({b.alpha, b.beta, b.e, b.p0, mid, 0});
+    todo.push_back({b.alpha, b.beta, b.e, mid, b.p1, 0});
   }
   return true;
+}
+
+/// Every step in (0, S] at rate c.
+bool rk4_stable_up_to(double lambda_hi, double c, double S, long double e1) {
+  return rk4_stable_over(lambda_hi, {static_cast<long double>(c) / 2, 1, 1, 0, S, 0}, e1);
+}
+
+/// Every rate in [c0, c1] at step h.
+bool rk4_rates_stable(double lambda_hi, double h, double c0, double c1, long double e1) {
+  const long double hl = h;
+  return rk4_stable_over(lambda_hi, {hl / 2, hl * hl, 0, c0, c1, 0}, e1);
+}
+
+/// The rates proved stable at step h around c: [lo, c] and [c, hi], each side's end by
+/// bisection (to 1e-10) from c toward 0 and toward the real roots' cap 2.78529/h; none
+/// (lo > hi) when c itself is not proved.
+std::pair<double, double> rk4_rate_range(double lambda_hi, double c, double h, long double e1) {
+  if (!rk4_rates_stable(lambda_hi, h, c, c, e1)) return {kInf, -kInf};
+  auto bisect = [&](double good, double bad, auto proved) {
+    for (int k = 0; k < 60 && std::abs(bad - good) > 1e-10 * std::abs(bad); ++k) {
+      const double mid = (good + bad) / 2;
+      (proved(mid) ? good : bad) = mid;
+    }
+    return good;
+  };
+  auto up = [&](double C) { return rk4_rates_stable(lambda_hi, h, c, C, e1); };
+  auto down = [&](double C) { return rk4_rates_stable(lambda_hi, h, C, c, e1); };
+  const double cap =
+      static_cast<double>(kRk4RealEnd / (static_cast<long double>(h) * (1 + 1e-14L)));
+  const double hi = up(cap) ? cap : bisect(c, cap, up);
+  const double lo = c == 0 || down(0) ? 0 : bisect(c, 0, down);
+  return {lo, hi};
 }
 
 /// The largest S (by doubling, then bisection) that rk4_stable_up_to proves; 0 when none is.
@@ -436,10 +480,11 @@ ModeInstability mode_instability(Integrator integrator, double lambda_0, double 
 
 ModeStability mode_stability(Integrator integrator, double lambda_hi, double c, double h) {
   ModeStability m;
-  if (integrator == Integrator::rk4) {  // no threshold in the rate
+  if (integrator == Integrator::rk4) {
     m.proved = true;
     m.stable = rk4_stable(lambda_hi, c, h, 1 + kMarginal);
     m.dt_up_to = rk4_dt_up_to(lambda_hi, c, 1 + kMarginal);
+    std::tie(m.rate_lo, m.rate_hi) = rk4_rate_range(lambda_hi, c, h, 1 + kMarginal);
     return m;
   }
   if (integrator != Integrator::forward_euler && integrator != Integrator::verlet) return m;

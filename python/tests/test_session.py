@@ -124,15 +124,16 @@ def test_exact_limits_over_a_factorisation_budget_factorise_nothing(scenes_dir):
     assert fe.stable_lambda_hi >= fe_free.lambda_max
     assert 0 < fe.dt_stable_up_to <= fe_free.dt_max
     assert fe_free.gamma_lo <= fe.gamma_stable_lo <= params.gamma <= fe.gamma_stable_hi <= fe_free.gamma_hi
-    # RK4: proved stable at the scene's gamma and dt, and every dt up to a bound; no
-    # threshold in gamma.
+    # RK4: proved stable at the scene's gamma and dt, every dt up to a bound and every
+    # gamma in a range around the scene's.
     params.integrator = "rk4"
     scene.params = params
     rk4_free = dampbound.exact_limits(scene)
     rk4 = dampbound.exact_limits(scene, factor_budget_gflop=1e-9)
     assert rk4.stable and rk4.unfactored.stable_lambda_hi >= rk4_free.lambda_max
     assert params.dt < rk4.unfactored.dt_stable_up_to <= rk4_free.dt_max
-    assert math.isnan(rk4.unfactored.gamma_stable_lo)
+    assert rk4_free.gamma_lo <= rk4.unfactored.gamma_stable_lo <= params.gamma
+    assert params.gamma <= rk4.unfactored.gamma_stable_hi <= rk4_free.gamma_hi
     params.integrator = "semi-implicit-euler"
     scene.params = params
     roomy = dampbound.exact_limits(scene, factor_budget_gflop=200.0)

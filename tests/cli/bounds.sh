@@ -73,11 +73,11 @@ expect_exit 0 "$DB" bounds paper-plane --factor-budget 1e-9 --integrator forward
 expect_match "$OUT" 'exact gamma interval \(forward-euler\) +n/a +BEYOND +not computed: .*every gamma <= 0\.00039[0-9]+ is unstable at this dt, every gamma in \[0\.00045, 0\.04\] is stable; gamma = 0\.00038 is$' "forward Euler under-damped: proved unstable"
 expect_exit 0 "$DB" bounds paper-plane --factor-budget 1e-9 --integrator rk4 --dt 0.99
 expect_match "$OUT" 'exact spectral radius \(rk4\) +n/a +BEYOND +not computed: .*every mode with lambda >= 7\.7[0-9]+ is unstable at this gamma and dt; lambda_max >= 7\.8[0-9]+: unstable \(proved\)$' "RK4 past its dt limit (0.98563207): proved unstable"
-# RK4 at the scene's dt: every mode in [0, 9] (Gershgorin) is stable, and every dt up to
-# the limit of modes in [0, 9]; no threshold in gamma.
+# RK4 at the scene's dt: every mode in [0, 9] (Gershgorin) is stable, and every gamma and
+# every dt up to the limits of modes in [0, 9].
 expect_exit 0 "$DB" bounds paper-plane --factor-budget 1e-9 --integrator rk4
 expect_match "$OUT" 'exact spectral radius \(rk4\) +n/a +within +not computed: .*every mode lies in \[0, 9\] .*and each is stable at this gamma and dt: stable \(proved\)$' "RK4 within Gershgorin's bound: proved stable"
-expect_match "$OUT" 'exact gamma interval \(rk4\) +n/a +within +not computed: .*stable at this gamma and dt \(proved: the spectral radius row\)$' "RK4's gamma row repeats it"
+expect_match "$OUT" 'exact gamma interval \(rk4\) +n/a +within +not computed: .*every gamma <= 0\.0557[0-9]* is stable; gamma = 0\.002 is stable$' "RK4: every gamma up to the real roots' cap (0.0557058) proved stable"
 expect_match "$OUT" 'exact dt limit \(rk4\) +n/a +within +not computed: .*every dt <= 0\.9296[0-9]* is stable; dt = 0\.05 is stable$' "RK4: every dt up to Gershgorin's limit (0.92967) proved stable"
 # Implicit Euler at rest needs no lambda_max: unconditional, proved without a factorisation.
 expect_exit 0 "$DB" bounds paper-plane --factor-budget 1e-9 --integrator implicit-euler
