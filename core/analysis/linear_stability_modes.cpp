@@ -168,110 +168,6 @@ namespace {
 /// same formulas with every term's magnitude (x -> |x|, differences -> sums), which bound
 /// each p_j's rounding. Both certificates below evaluate in long double, each sum with a
 /// generous allowance (1e-14 of the sum of its terms' magnitudes).
-struct Quartic {
-  long double c[5];
-};
-Quartic rk4_quartic(long double x, bool magnitude) {
-  const long double s = magnitude ? 1 : -1;
-  const long double R3 = 1 + x, R2 = R3 + x * x / 2, R1 = R2 + x * x * x / 6,
-                    R0 = R1 + x * x * x * x / 24;
-  const long double a0 = R0, a1 = s * R2 / 2, a2 = 1.0L / 24, b0 = R1, b1 = s * R3 / 6;
-  return Quartic{{a0 * a0, 2 * a0 * a1 + b0 * b0, a1 * a1 + 2 * a0 * a2 + 2 * b0 * b1,
-                  2 * a1 * a2 + b1 * b1, a2 * a2}};
-}
-
-/// C(j, k), j and k up to 4.
-constexpr long double kBinomial[5][5] = {
-    {1, 1, 1, 1, 1}, {0, 1, 2, 3, 4}, {0, 0, 1, 3, 6}, {0, 0, 0, 1, 4}, {0, 0, 0, 0, 1}};
-
-/// The allowance for a long double sum of terms whose magnitudes add to `size` (long double
-/// rounds at 5e-20; the rates and steps the quartic starts from are doubles).
-long double allowance(long double size) { return 1e-14L * size; }
-
-/// Q(s) = P(Y0 + s) - (1 + eps)^2 is positive for every s >= 0 when its constant term is and
-/// none of its other Taylor coefficients is negative: the certificate that every mode with
-/// Y >= Y0 has radius above 1 + eps.
-bool rk4_unstable_beyond(long double x, long double Y0, long double e1) {
-  const Quartic p = rk4_quartic(x, false), m = rk4_quartic(std::abs(x), true);
-  for (int k = 0; k <= 4; ++k) {  // q_k = sum_j C(j, k) p_j Y0^(j - k)
-    long double q = k == 0 ? -e1 * e1 : 0, size = k == 0 ? e1 * e1 : 0;
-    long double power = 1;
-    for (int j = k; j <= 4; ++j) {
-      q += kBinomial[k][j] * p.c[j] * power;
-      size += kBinomial[k][j] * m.c[j] * power;
-      power *= Y0;
-    }
-    if (k == 0 ? !(q > allowance(size)) : !(q >= allowance(size))) return false;
-  }
-  return true;
-}
-
-/// The smallest lambda (>= c^2/4) from which RK4 is certified unstable at rate c and step h:
-/// the certificate holds from some Y on (for large Y every coefficient is positive) and,
-/// once it holds, at every larger Y (a forward shift keeps the coefficients non-negative), so
-/// bisection finds where it starts; the end returned is one where it was checked.
-double rk4_lambda_from(double c, double h, double e1) {
-  const long double x = -static_cast<long double>(c) * h / 2;
-  if (rk4_unstable_beyond(x, 0, e1)) return c * c / 4 * kRoundUp;
-  long double lo = 0, hi = 16;
-  while (!rk4_unstable_beyond(x, hi, e1)) {
-    lo = hi;
-    hi *= 2;
-    if (hi > 1e12L) return kInf;
-  }
-  for (int k = 0; k < 200 && hi - lo > 1e-18L * hi; ++k) {
-    const long double mid = (lo + hi) / 2;
-    (rk4_unstable_beyond(x, mid, e1) ? hi : lo) = mid;
-  }
-  const long double lambda = static_cast<long double>(c) * c / 4 + hi / (static_cast<long double>(h) * h);
-  return static_cast<double>(lambda) * kRoundUp;
-}
-
-/// RK4's stable side: every mode with lambda in [0, lambda_hi] has both step eigenvalues
-/// within 1 + eps at rate c and step h.
-/// - Real roots (lambda <= c^2/4) give z = h mu in [-c h, 0]. There R(x) - 1 = x g(x) with
-///   g(x) = 1 + x/2 + x^2/6 + x^3/24, increasing (g' = 1/2 + x/3 + x^2/8 has no real root)
-///   and positive at -kRk4RealEnd = -2.78529 (1.9e-6, exactly in rationals), so R(x) <= 1 on
-///   [-2.78529, 0]; and R > 0 everywhere (at a critical point R = R' + x^4/24 = x^4/24, and
-///   x = 0 is none). So c h <= 2.78529 covers them (RK4's real interval ends at -2.7852936).
-/// - Complex roots (lambda > c^2/4): Q(Y) = P(Y) - (1 + eps)^2 <= 0 for every Y = h^2 (lambda
-///   - c^2/4) in [0, Y_max], P the quartic above at x = -c h/2. With t = Y/Y_max, Q's
-///   Bernstein coefficients are beta_i = sum_{k<=i} C(i,k)/C(4,k) q_k (q_k its coefficients
-///   in t), and Q <= max beta_i on [0, 1] (the Bernstein basis is non-negative and sums to
-///   1): every beta_i below minus its allowance proves it. Otherwise nothing is proved
-///   (false). One piece was enough: on 11 760 cases (c from 0 to 12, h from 0.02 to 1.2,
-///   lambda_hi 1 to 30) it proved every one whose sampled radii all stayed under 1 - 1e-9.
-constexpr long double kRk4RealEnd = 2.78529L;
-bool rk4_stable(double lambda_hi, double c, double h, long double e1) {
-  const long double ch = static_cast<long double>(c) * h;
-  if (!(ch * (1 + 1e-15L) <= kRk4RealEnd)) return false;
-  const long double quarter = static_cast<long double>(c) * c / 4;
-  if (!(lambda_hi > quarter)) return true;  // no complex roots
-  const long double hh = static_cast<long double>(h) * h;
-  const long double y_max = hh * (lambda_hi - quarter) * (1 + 1e-15L);
-  const long double x = -ch / 2;
-  const Quartic p = rk4_quartic(x, false), m = rk4_quartic(std::abs(x), true);
-  // Q(Y_max t) = sum_k q_k t^k: q_k = Y_max^k p_k (q_0 less (1 + eps)^2), and its terms'
-  // magnitudes s_k.
-  long double q[5], size[5], scale = 1;
-  for (int k = 0; k <= 4; ++k) {
-    q[k] = p.c[k] * scale;
-    size[k] = m.c[k] * scale;
-    scale *= y_max;
-  }
-  q[0] -= e1 * e1;
-  size[0] += e1 * e1;
-  for (int i = 0; i <= 4; ++i) {
-    long double beta = 0, beta_size = 0;
-    for (int k = 0; k <= i; ++k) {
-      beta += kBinomial[k][i] / kBinomial[k][4] * q[k];
-      beta_size += kBinomial[k][i] / kBinomial[k][4] * size[k];
-    }
-    if (!(beta + allowance(beta_size) <= 0)) return false;
-  }
-  return true;
-}
-
 /// P's coefficients as polynomials in x: c[j][i] multiplies x^i Y^j (degree 8 - 2j in x);
 /// with `magnitude` the same products of the terms' magnitudes (every coefficient >= 0).
 struct QuarticInX {
@@ -303,6 +199,19 @@ QuarticInX rk4_quartic_in_x(bool magnitude) {
   return q;
 }
 
+/// P's coefficients p_j at x (with `magnitude`, the magnitudes' at |x|), from the table.
+struct Quartic {
+  long double c[5];
+};
+Quartic rk4_quartic(long double x, bool magnitude) {
+  static const QuarticInX p = rk4_quartic_in_x(false), m = rk4_quartic_in_x(true);
+  const QuarticInX& q = magnitude ? m : p;
+  Quartic r{};
+  for (int j = 0; j <= 4; ++j)
+    for (int i = 8; i >= 0; --i) r.c[j] = r.c[j] * x + q.c[j][i];  // Horner
+  return r;
+}
+
 /// C(n, k) for n and k up to 8 (0 outside 0 <= k <= n).
 long double choose(int n, int k) {
   if (k < 0 || k > n) return 0;
@@ -310,6 +219,62 @@ long double choose(int n, int k) {
   for (int i = 1; i <= k; ++i) r = r * (n - k + i) / i;
   return r;
 }
+
+/// The allowance for a long double sum of terms whose magnitudes add to `size` (long double
+/// rounds at 5e-20; the rates and steps the quartic starts from are doubles).
+long double allowance(long double size) { return 1e-14L * size; }
+
+/// Q(s) = P(Y0 + s) - (1 + eps)^2 is positive for every s >= 0 when its constant term is and
+/// none of its other Taylor coefficients is negative: the certificate that every mode with
+/// Y >= Y0 has radius above 1 + eps.
+bool rk4_unstable_beyond(long double x, long double Y0, long double e1) {
+  const Quartic p = rk4_quartic(x, false), m = rk4_quartic(std::abs(x), true);
+  for (int k = 0; k <= 4; ++k) {  // q_k = sum_j C(j, k) p_j Y0^(j - k)
+    long double q = k == 0 ? -e1 * e1 : 0, size = k == 0 ? e1 * e1 : 0;
+    long double power = 1;
+    for (int j = k; j <= 4; ++j) {
+      q += choose(j, k) * p.c[j] * power;
+      size += choose(j, k) * m.c[j] * power;
+      power *= Y0;
+    }
+    if (k == 0 ? !(q > allowance(size)) : !(q >= allowance(size))) return false;
+  }
+  return true;
+}
+
+/// The smallest lambda (>= c^2/4) from which RK4 is certified unstable at rate c and step h:
+/// the certificate holds from some Y on (for large Y every coefficient is positive) and,
+/// once it holds, at every larger Y (a forward shift keeps the coefficients non-negative), so
+/// bisection finds where it starts; the end returned is one where it was checked.
+double rk4_lambda_from(double c, double h, double e1) {
+  const long double x = -static_cast<long double>(c) * h / 2;
+  if (rk4_unstable_beyond(x, 0, e1)) return c * c / 4 * kRoundUp;
+  long double lo = 0, hi = 16;
+  while (!rk4_unstable_beyond(x, hi, e1)) {
+    lo = hi;
+    hi *= 2;
+    if (hi > 1e12L) return kInf;
+  }
+  for (int k = 0; k < 200 && hi - lo > 1e-18L * hi; ++k) {
+    const long double mid = (lo + hi) / 2;
+    (rk4_unstable_beyond(x, mid, e1) ? hi : lo) = mid;
+  }
+  const long double lambda = static_cast<long double>(c) * c / 4 + hi / (static_cast<long double>(h) * h);
+  return static_cast<double>(lambda) * kRoundUp;
+}
+
+/// RK4's stable side: every mode with lambda in [0, lambda_hi] has both step eigenvalues
+/// within 1 + eps.
+/// - Real roots (lambda <= c^2/4) give z = h mu in [-c h, 0]. There R(x) - 1 = x g(x) with
+///   g(x) = 1 + x/2 + x^2/6 + x^3/24, increasing (g' = 1/2 + x/3 + x^2/8 has no real root)
+///   and positive at -kRk4RealEnd = -2.78529 (1.9e-6, exactly in rationals), so R(x) <= 1 on
+///   [-2.78529, 0]; and R > 0 everywhere (at a critical point R = R' + x^4/24 = x^4/24, and
+///   x = 0 is none). So c h <= 2.78529 covers them (RK4's real interval ends at -2.7852936).
+/// - Complex roots (lambda > c^2/4): Q = P - (1 + eps)^2 <= 0 at x = -c h/2 for every
+///   Y = h^2 (lambda - c^2/4) up to h^2 (lambda_hi - c^2/4), by Bernstein coefficients
+///   (rk4_box_stable, below): over a box of steps or of rates, a single (c, h) being the box
+///   of one rate.
+constexpr long double kRk4RealEnd = 2.78529L;
 
 /// A box of RK4's complex roots: one parameter p in [p0, p1] (the step at a fixed rate, or
 /// the rate at a fixed step) and v = lambda - c^2/4 in [0, V], with x = -alpha p and
@@ -369,7 +334,7 @@ bool rk4_box_stable(const QuarticInX& p, const QuarticInX& m, const Rk4Box& box,
 }
 
 /// Every p in [p0, p1] and every mode in [0, lambda_hi]: the real roots by c h <= 2.78529 at
-/// the box's largest c h (as rk4_stable), the complex ones by rk4_box_stable, halved in p
+/// the box's largest c h (kRk4RealEnd), the complex ones by rk4_box_stable, halved in p
 /// where a box does not close (at most 64 pieces). A piece's V is lambda_hi less its
 /// smallest c^2/4 (for the rate, an over-cover: lambda up to lambda_hi + (c^2 - c0^2)/4).
 bool rk4_stable_over(double lambda_hi, Rk4Box box, long double e1) {
@@ -482,9 +447,9 @@ ModeStability mode_stability(Integrator integrator, double lambda_hi, double c, 
   ModeStability m;
   if (integrator == Integrator::rk4) {
     m.proved = true;
-    m.stable = rk4_stable(lambda_hi, c, h, 1 + kMarginal);
-    m.dt_up_to = rk4_dt_up_to(lambda_hi, c, 1 + kMarginal);
     std::tie(m.rate_lo, m.rate_hi) = rk4_rate_range(lambda_hi, c, h, 1 + kMarginal);
+    m.stable = m.rate_lo <= m.rate_hi;  // c's own proof, the box [c, c]
+    m.dt_up_to = rk4_dt_up_to(lambda_hi, c, 1 + kMarginal);
     return m;
   }
   if (integrator != Integrator::forward_euler && integrator != Integrator::verlet) return m;
