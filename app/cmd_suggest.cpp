@@ -8,6 +8,7 @@
 #include "app/commands.hpp"
 #include "app/options.hpp"
 #include "core/io/report.hpp"
+#include "core/analysis/criteria_safe.hpp"
 #include "core/analysis/suggest.hpp"
 #include "core/io/format.hpp"
 
@@ -41,15 +42,24 @@ int print_damping(const DampingSuggestion& s) {
   std::printf("  gamma_min  %-14s set by %s\n", format_digits(s.gamma_min, 8).c_str(), s.min_by.c_str());
   std::printf("  gamma_max  %-14s set by %s (exclusive)\n", format_digits(s.gamma_max, 8).c_str(),
               s.max_by.c_str());
-  std::printf("  safe (SPEC 9) gamma < %-10s guarantees stability at every node (at rest)\n",
-              format_digits(s.safe_max, 8).c_str());
+  const std::string scope = safe_bound_scope(s.exact.integrator);
+  if (scope.empty())
+    std::printf("  safe (SPEC 9) gamma < %-10s guarantees stability at every node (at rest)\n",
+                format_digits(s.safe_max, 8).c_str());
+  else
+    std::printf("  safe (SPEC 9) gamma < %-10s (%s)\n", format_digits(s.safe_max, 8).c_str(),
+                scope.c_str());
   std::printf("  per node class (m_i, kappa_i = max incident stiffness, gamma_scale_i):\n");
   for (const NodeClass& c : s.classes) {
     std::printf("    %5d nodes like %-5d m_i=%-10s kappa_i=%-10s scale=%-6s eq.5 %-12s gamma_i in [%s, %s)\n",
                 c.count, c.example, format_digits(c.mass, 8).c_str(), format_digits(c.kappa, 8).c_str(),
                 format_digits(c.gamma_scale, 8).c_str(), format_digits(c.lower_bound, 8).c_str(), format_digits(c.gamma_min, 8).c_str(),
                 format_digits(c.gamma_max, 8).c_str());
-    if (c.lower_bound < c.safe_max)
+    if (!scope.empty())
+      std::printf("          safe (SPEC 9): gamma_i < %s; at eq.5 dt < %s s (%s)\n",
+                  format_digits(c.safe_max, 8).c_str(), format_digits(c.dt_safe, 8).c_str(),
+                  scope.c_str());
+    else if (c.lower_bound < c.safe_max)
       std::printf("          safe (SPEC 9): gamma_i in [%s, %s); critical damping guaranteed "
                   "for dt < %s s\n",
                   format_digits(c.lower_bound, 8).c_str(), format_digits(c.safe_max, 8).c_str(), format_digits(c.dt_safe, 8).c_str());
@@ -78,8 +88,13 @@ int print_step(const StepSuggestion& s) {
   std::printf("largest stable dt at gamma = %s\n", format_digits(s.gamma, 8).c_str());
   std::printf("  exact limit   dt < %s s (%s)\n", format_digits(s.dt_exact, 8).c_str(), to_string(s.exact.method));
   std::printf("  all criteria  dt <= %s s, set by %s\n", format_digits(s.dt_all, 8).c_str(), s.dt_all_by.c_str());
-  std::printf("  safe (SPEC 9) dt < %s s guarantees stability at every node (node %d sets it)\n",
-              format_digits(s.dt_safe, 8).c_str(), s.dt_safe_node);
+  const std::string scope = safe_bound_scope(s.exact.integrator);
+  if (scope.empty())
+    std::printf("  safe (SPEC 9) dt < %s s guarantees stability at every node (node %d sets it)\n",
+                format_digits(s.dt_safe, 8).c_str(), s.dt_safe_node);
+  else
+    std::printf("  safe (SPEC 9) dt < %s s (node %d sets it; %s)\n", format_digits(s.dt_safe, 8).c_str(),
+                s.dt_safe_node, scope.c_str());
   print_runs(s.runs);
   return 0;
 }

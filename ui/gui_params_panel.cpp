@@ -171,7 +171,8 @@ void GuiApp::parameters_panel() {
         "Effective damping each step (paper sec. 5):\n"
         "fixed: gamma as given\nclamp: gamma clamped into [lower, upper]\n"
         "upper: factor x upper bound (eq. 6)\nlower: the lower bound (eq. 5)\n"
-        "safe: gamma clamped into [lower, safe bound] (SPEC 9): stability guaranteed");
+        "safe: gamma clamped into [lower, safe bound] (SPEC 9): stability of the\n"
+        "paper's semi-implicit step guaranteed (not derived for the other integrators)");
   ImGui::BeginDisabled(p.policy != DampingPolicy::upper);
   double fmin = 0.0, fmax = 2.0;
   changed |=

@@ -26,6 +26,12 @@ std::string ratio_text(double safe, double exact, const ExactStability* e) {
 
 }  // namespace
 
+std::string safe_bound_scope(Integrator integrator) {
+  if (integrator == Integrator::semi_implicit_euler) return "";
+  return std::string("derived for the paper's semi-implicit step, it guarantees nothing under ") +
+         to_string(integrator);
+}
+
 std::vector<CriterionResult> safe_criteria(const Model& model, const State& state,
                                            const Params& params, const ExactStability* exact) {
   const SafeBoundSummary s = safe_bound_summary(model, state.x, params.dt);
@@ -33,11 +39,17 @@ std::vector<CriterionResult> safe_criteria(const Model& model, const State& stat
   if (s.free_nodes == 0) return out;
   // With a compressed spring K may be indefinite: the motion itself can be unstable and no
   // damping bound helps (SPEC 9). Say so instead of a verdict.
-  const std::string caveat =
+  // SPEC 9 is derived for the paper's step (Q = 4I - 2dt C - dt^2 A). Under another
+  // integrator the same numbers promise nothing: forward Euler, for one, grows at any dt when
+  // a mode is undamped, and every gamma_i < gamma_safe_i allows that. Shown for reference.
+  const bool paper_step = params.integrator == Integrator::semi_implicit_euler;
+  const bool no_guarantee = s.compressed_springs > 0 || !paper_step;
+  std::string caveat =
       s.compressed_springs > 0
           ? "; " + std::to_string(s.compressed_springs) +
                 " compressed springs: K may not be positive semi-definite, no guarantee"
           : "";
+  if (!paper_step) caveat += "; " + safe_bound_scope(params.integrator);
   const CriterionVerdict unknown = CriterionVerdict::not_applicable;
 
   CriterionResult g;
@@ -48,7 +60,7 @@ std::vector<CriterionResult> safe_criteria(const Model& model, const State& stat
   g.value = s.gamma_safe;
   g.node = s.gamma_node;
   const int over = s.gamma_over;
-  g.verdict = s.compressed_springs > 0 ? unknown : verdict_of(over == 0);
+  g.verdict = no_guarantee ? unknown : verdict_of(over == 0);
   g.test = std::to_string(over) + " of " + std::to_string(s.free_nodes) +
            " nodes with gamma_i >= gamma_safe_i; smallest gamma_safe " + format_digits(s.gamma_safe, 8) +
            " at node " + std::to_string(s.gamma_node) + " (R = " + format_digits(s.row_sum, 8) + ")" +
@@ -62,7 +74,7 @@ std::vector<CriterionResult> safe_criteria(const Model& model, const State& stat
   d.unit = "s";
   d.value = s.dt_safe;
   d.node = s.dt_node;
-  d.verdict = s.compressed_springs > 0 ? unknown : verdict_of(params.dt < s.dt_safe);
+  d.verdict = no_guarantee ? unknown : verdict_of(params.dt < s.dt_safe);
   d.test = "dt = " + format_digits(params.dt, 8) + (params.dt < s.dt_safe ? " < " : " >= ") + "dt_safe = " +
            format_digits(s.dt_safe, 8) + " (node " + std::to_string(s.dt_node) + ")" +
            ratio_text(s.dt_safe, exact ? exact->dt_max : NAN, exact) + caveat;
@@ -74,7 +86,7 @@ std::vector<CriterionResult> safe_criteria(const Model& model, const State& stat
   c.formula = "critical damping guaranteed at node i when gamma_lo_i <= gamma_safe_i";
   c.unit = "nodes";
   c.value = static_cast<double>(s.infeasible.size());
-  c.verdict = s.compressed_springs > 0 ? unknown : verdict_of(s.infeasible.empty());
+  c.verdict = no_guarantee ? unknown : verdict_of(s.infeasible.empty());
   if (s.infeasible.empty()) {
     c.test = "gamma_lo_i <= gamma_safe_i at every free node";
   } else {

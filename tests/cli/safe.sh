@@ -57,4 +57,16 @@ expect_match "$OUT" 'safe \(SPEC 9\) gamma < 0\.039775' "suggest: safe gamma"
 expect_match "$OUT" 'safe \(SPEC 9\): gamma_i in \[0\.002, ' "suggest: per class"
 expect_exit 0 "$DB" suggest paper-plane --gamma 0 --no-verify
 expect_match "$OUT" 'safe \(SPEC 9\) dt < 0\.66666667 s' "suggest: safe dt"
+# SPEC 9 is derived for the paper's step. Undamped, the two-node system is within every safe
+# bound, and forward Euler grows at any dt: the rows give no verdict and say why, and suggest
+# promises nothing.
+expect_exit 0 "$DB" bounds two-node --gamma 0 --integrator forward-euler
+expect_match "$OUT" '^exact spectral radius \(forward-euler\) +[0-9.]+ +BEYOND' "forward Euler undamped grows"
+expect_match "$OUT" "^safe damping bound +[0-9.]+ mass unit/s +n/a .*derived for the paper's semi-implicit step, it guarantees nothing under forward-euler$" "safe row: no verdict under forward Euler"
+expect_match "$OUT" "^safe dt bound +[0-9.]+ s +n/a " "safe dt row: no verdict under forward Euler"
+expect_match "$OUT" '^critical damping +within the safe bound at every free node' "header: not called guaranteed"
+expect_exit 0 "$DB" bounds two-node --gamma 0
+expect_match "$OUT" '^safe damping bound +[0-9.]+ mass unit/s +within' "the paper's step: judged"
+expect_exit 0 "$DB" suggest paper-plane --gamma 0 --integrator verlet --no-verify
+expect_match "$OUT" "safe \(SPEC 9\) dt < 0\.66666667 s \(node [0-9]+ sets it; derived for the paper's semi-implicit step, it guarantees nothing under verlet\)" "suggest: safe dt not promised under Verlet"
 finish

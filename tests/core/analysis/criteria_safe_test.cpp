@@ -94,6 +94,40 @@ TEST(CriteriaSafe, CompressedSpringGivesNoVerdict) {
     EXPECT_EQ(r.test.substr(r.test.size() - caveat.size()), caveat) << r.name;
 }
 
+TEST(CriteriaSafe, OnlyThePaperStepGetsAVerdict) {
+  // Undamped, the two-node system is within every safe bound: SPEC 9 proves the paper's step
+  // stable, but forward Euler grows at any dt (|1 + i dt omega| > 1). The rows must not say
+  // "within" under an integrator SPEC 9 was not derived for.
+  TwoNode t;
+  Params p = t.params;
+  p.gamma = 0;
+  for (Integrator in : {Integrator::semi_implicit_euler, Integrator::forward_euler,
+                        Integrator::verlet, Integrator::rk4, Integrator::implicit_euler}) {
+    p.integrator = in;
+    t.set(p);
+    const auto rows = safe_criteria(t.model, t.state, t.params);
+    ASSERT_EQ(rows.size(), 3u);
+    const std::string scope = safe_bound_scope(in);
+    for (const CriterionResult& r : rows) {
+      if (in == Integrator::semi_implicit_euler) {
+        EXPECT_EQ(r.verdict, CriterionVerdict::within) << r.name;
+        EXPECT_TRUE(scope.empty());
+      } else {
+        EXPECT_EQ(r.verdict, CriterionVerdict::not_applicable) << to_string(in) << ' ' << r.name;
+        ASSERT_GE(r.test.size(), scope.size());
+        EXPECT_EQ(r.test.substr(r.test.size() - scope.size()), scope) << r.test;
+        EXPECT_NE(scope.find(to_string(in)), std::string::npos);
+      }
+    }
+    if (in == Integrator::forward_euler) {
+      EXPECT_FALSE(exact_stability(t.model, t.state.x, t.params).stable);
+    }
+    if (in == Integrator::semi_implicit_euler) {
+      EXPECT_TRUE(exact_stability(t.model, t.state.x, t.params).stable);
+    }
+  }
+}
+
 TEST(CriteriaSafe, NoFreeNodeNoRows) {
   TwoNode t;
   t.scene.model.fixed[1] = 1;
