@@ -216,6 +216,7 @@ std::vector<CriterionResult> exact_criteria(const ExactStability& e, const Param
   gi.verdict = verdict_of(inside);
   gi.test = "gamma = " + format_digits(params.gamma, 8) + (inside ? " in " : " not in ") + "[" +
             format_digits(e.gamma_lo, 8) + ", " + format_digits(e.gamma_hi, 8) + ")" +
+            (e.gamma_lo < e.gamma_hi ? "" : ": empty, no gamma is stable at this dt") +
             (e.method == ExactMethod::frozen_estimate ? " (frozen-rate estimate)" : "");
   out.push_back(gi);
 

@@ -58,6 +58,21 @@ TEST(Criteria, TwoNodeClosedForms) {
   for (const auto& cr : all) EXPECT_FALSE(cr.formula.empty() || cr.source.empty()) << cr.name;
 }
 
+TEST(Criteria, AnEmptyGammaIntervalSaysSo) {
+  Params p;  // m = kappa = 0.001
+  p.dt = 3;  // beyond every gamma under forward Euler (c dt <= 2 and c >= dt lambda clash)
+  p.integrator = Integrator::forward_euler;
+  const auto beyond = two_node_criteria(p);
+  const CriterionResult& empty = find(beyond, "exact gamma interval");
+  EXPECT_EQ(empty.verdict, CriterionVerdict::beyond);
+  EXPECT_NE(empty.test.find("): empty, no gamma is stable at this dt"), std::string::npos) << empty.test;
+  p.dt = 0.05;
+  p.integrator = Integrator::semi_implicit_euler;
+  const auto within = two_node_criteria(p);
+  const CriterionResult& some = find(within, "exact gamma interval");
+  EXPECT_EQ(some.test.find("empty"), std::string::npos) << some.test;
+}
+
 TEST(Criteria, VerdictsFlipAtTheirThresholds) {
   Params p;
   p.m = 0.001;
