@@ -275,6 +275,8 @@ MonitorLimits Monitor::exact_limits(NodeVectors x, NodeScalars gamma, double dt,
     l.lambda_max_at_least = e.unfactored.lambda_max_lo;
     l.scale_unstable_from = e.unfactored.gamma_unstable_from;
     l.dt_unstable_from = e.unfactored.dt_unstable_from;
+    l.scale_stable_up_to = e.unfactored.gamma_stable_hi;
+    l.dt_stable_up_to = e.unfactored.dt_stable_up_to;
     return l;
   }
   const LinearLimits uniform = linear_limits(e.spectrum.lambda_max, 1.0, dt);

@@ -76,10 +76,16 @@ struct MonitorLimits {
   /// Then, what plain Lanczos proves without a factorisation (ExactStability::Unfactored;
   /// docs/criteria.md; NaN when computed): lambda_max is at least lambda_max_at_least, and the
   /// step is unstable for s * gamma_i with every s >= scale_unstable_from (at dt) and for
-  /// every dt >= dt_unstable_from (with these gamma_i); inf: not proved for any.
+  /// every dt >= dt_unstable_from (with these gamma_i); inf: not proved for any. With no
+  /// spring compressed at x (K >= 0), Gershgorin on the index matrix (SPEC 9's safe bound)
+  /// proves the other side: stable for every s in [0, scale_stable_up_to] (at dt) and every
+  /// dt <= dt_stable_up_to (with these gamma_i), and `stable` where the given point is; NaN
+  /// when a spring is compressed or no s is proved.
   double lambda_max_at_least = std::numeric_limits<double>::quiet_NaN();
   double scale_unstable_from = std::numeric_limits<double>::quiet_NaN();
   double dt_unstable_from = std::numeric_limits<double>::quiet_NaN();
+  double scale_stable_up_to = std::numeric_limits<double>::quiet_NaN();
+  double dt_stable_up_to = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// A user's mass-spring system, seen by dampbound: masses, springs and (optional) anchors.

@@ -34,6 +34,10 @@ void bind_analysis(py::module_& m) {
       .def_readonly("index_at_least", &ExactStability::Unfactored::index_at_least,
                     "the paper's step: lambda_max(dt^2 A + 2 dt C) is at least this; >= 4 "
                     "proves the step unstable (NaN for other integrators)")
+      .def_readonly("index_at_most", &ExactStability::Unfactored::index_at_most,
+                    "the paper's step with no spring compressed: the index is at most this "
+                    "(Gershgorin on its rows, SPEC 9's safe bound); < 4 proves it stable (NaN "
+                    "otherwise)")
       .def_readonly("gamma_unstable_from", &ExactStability::Unfactored::gamma_unstable_from,
                     "every gamma from this on is proved unstable at dt (inf: none is; NaN: not "
                     "the paper's step)")
@@ -52,7 +56,8 @@ void bind_analysis(py::module_& m) {
                     "mode lies in [0, this] (Gershgorin's bound; NaN otherwise); `stable` says "
                     "whether the user's gamma and dt are proved stable")
       .def_readonly("dt_stable_up_to", &ExactStability::Unfactored::dt_stable_up_to,
-                    "and every dt up to this is proved stable at gamma (NaN otherwise)")
+                    "every dt up to this is proved stable at gamma (those integrators, and the "
+                    "paper's step by index_at_most; NaN otherwise)")
       .def_readonly("gamma_stable_lo", &ExactStability::Unfactored::gamma_stable_lo,
                     "and every gamma in [gamma_stable_lo, gamma_stable_hi] at dt (none when lo > "
                     "hi; NaN otherwise)")

@@ -91,7 +91,13 @@ void bind_monitor(py::module_& m) {
       .def_readonly("scale_unstable_from", &MonitorLimits::scale_unstable_from,
                     "not computed: s * gamma_i is proved unstable at dt for every s >= this")
       .def_readonly("dt_unstable_from", &MonitorLimits::dt_unstable_from,
-                    "not computed: every dt >= this is proved unstable with these gamma_i");
+                    "not computed: every dt >= this is proved unstable with these gamma_i")
+      .def_readonly("scale_stable_up_to", &MonitorLimits::scale_stable_up_to,
+                    "not computed, no spring compressed: s * gamma_i is proved stable at dt for "
+                    "every s in [0, this] (Gershgorin, SPEC 9; NaN otherwise)")
+      .def_readonly("dt_stable_up_to", &MonitorLimits::dt_stable_up_to,
+                    "not computed, no spring compressed: every dt <= this is proved stable "
+                    "with these gamma_i (NaN otherwise)");
 
   py::class_<Monitor>(m, "Monitor",
                       "The paper's bounds over your own mass-spring arrays. Topology is copied "

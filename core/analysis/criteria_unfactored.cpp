@@ -69,8 +69,9 @@ CriterionResult threshold_row(CriterionResult c, const std::string& without,
 /// Gershgorin prove without a factorisation (ExactStability::Unfactored): a bracket of
 /// lambda_max; for the paper's step a proof of instability where its Rayleigh quotient
 /// reaches the index's 4; for forward Euler, Verlet and RK4 at uniform rates the per-mode
-/// proofs (either way; RK4's at the user's gamma and dt only). Where nothing is proved the
-/// row has no verdict (the safe bound's rows prove the paper's step stable where they can).
+/// proofs (either way; RK4's at the user's gamma and dt only); for the paper's step with K >= 0
+/// Gershgorin on the index matrix (SPEC 9's safe bound) on the stable side. Where nothing is
+/// proved the row has no verdict.
 std::vector<CriterionResult> unfactored_criteria(const ExactStability& e, const Params& params) {
   const ExactStability::Unfactored& b = e.unfactored;
   const std::string integ = to_string(e.integrator);
@@ -120,10 +121,16 @@ std::vector<CriterionResult> unfactored_criteria(const ExactStability& e, const 
   CriterionResult rho = row("exact spectral radius (" + integ + ")");
   if (index) {
     const bool unstable = b.index_at_least >= 4;
-    rho.verdict = unstable ? CriterionVerdict::beyond : CriterionVerdict::not_applicable;
+    const bool stable = !unstable && b.index_at_most < 4;  // false for NaN
+    rho.verdict = unstable ? CriterionVerdict::beyond
+                           : stable ? CriterionVerdict::within : CriterionVerdict::not_applicable;
     rho.test += without + "index lambda_max(dt^2 A + 2 dt C) >= " +
                 format_digits(b.index_at_least, 8) +
                 (unstable ? " >= 4: unstable (proved)" : " (< 4 proves nothing)");
+    if (!unstable && !std::isnan(b.index_at_most))
+      rho.test += "; <= " + format_digits(b.index_at_most, 8) +
+                  " (no spring compressed: K >= 0; Gershgorin on its rows, SPEC 9's safe bound)" +
+                  (stable ? " < 4: stable (proved)" : ", which proves nothing");
   } else if (modes) {
     const bool unstable = b.lambda_max_lo >= b.mode_unstable_from;
     const bool stable_side = !std::isnan(b.stable_lambda_hi), stable = stable_side && e.stable;
@@ -174,7 +181,7 @@ std::vector<CriterionResult> unfactored_criteria(const ExactStability& e, const 
   out.push_back(modes ? threshold(gamma_row, "gamma", params.gamma, b.gamma_unstable_below, "dt",
                                   true, b.gamma_stable_lo, b.gamma_stable_hi)
                       : threshold(gamma_row, "gamma", params.gamma, b.gamma_unstable_from, "dt",
-                                  false));
+                                  false, b.gamma_stable_lo, b.gamma_stable_hi));
   out.push_back(threshold(dt_row, "dt", params.dt, b.dt_unstable_from, "gamma", false,
                           std::isnan(b.dt_stable_up_to) ? kNaN : 0.0, b.dt_stable_up_to));
   return out;

@@ -262,6 +262,38 @@ void per_mode_proofs(double r, const EigenInterval& top, std::optional<double> f
     b.gamma_unstable_below = m.rate_below >= 0 ? kInf : -kInf;
 }
 
+/// Over the budget, the paper's step with K >= 0 (SPEC 9's floor): Gershgorin on the index
+/// matrix S = h^2 A + 2 h gamma diag(R) puts its top below max_r (h^2 sum_s |A_rs| + 2 h gamma
+/// R_r), and an index below 4 is stability (SPEC 7, 9). Row by row that is SPEC 9's safe
+/// bound, so the exact rows prove what the safe rows judge: the user's point, every gamma in
+/// [0, min_r (4 - h^2 s_r) / (2 h R_r)) at dt and every dt below min_r 4 / (c_r + sqrt(c_r^2 +
+/// 4 s_r)) at gamma (c_r = gamma R_r), each rounded inwards.
+void paper_step_gershgorin(const ExactInputs& in, const Params& params, ExactStability& e) {
+  ExactStability::Unfactored& b = e.unfactored;
+  const double h = params.dt, gamma = params.gamma;
+  constexpr double kRoom = 1 + 1e-12;  // the rounding of the row sums, as per_mode_proofs
+  double top = 0, gamma_hi = kInf, dt_hi = kInf;
+  for (Eigen::Index r = 0; r < in.A.outerSize(); ++r) {  // symmetric: columns are rows
+    double sum = 0;
+    for (SparseMatrix::InnerIterator it(in.A, r); it; ++it) sum += std::abs(it.value());
+    const double s_r = sum * kRoom, R = in.R(r), c = gamma * R;
+    top = std::max(top, h * h * s_r + 2 * h * c);
+    if (R > 0)
+      gamma_hi = std::min(gamma_hi, (4 - h * h * s_r) / (2 * h * R));
+    else if (h * h * s_r >= 4)
+      gamma_hi = -kInf;  // an undamped row past the index already: no gamma helps
+    if (s_r > 0 || c > 0) dt_hi = std::min(dt_hi, 4 / (c + std::sqrt(c * c + 4 * s_r)));
+  }
+  constexpr double kIn = 1 - 1e-12;  // the arithmetic above, rounded inwards
+  b.index_at_most = top * kRoom;
+  if (gamma_hi > 0) {
+    b.gamma_stable_lo = 0;
+    b.gamma_stable_hi = std::isinf(gamma_hi) ? gamma_hi : gamma_hi * kIn;
+  }
+  b.dt_stable_up_to = std::isinf(dt_hi) ? dt_hi : dt_hi * kIn;
+  e.stable = b.index_at_most < 4;
+}
+
 /// Over the budget: nothing factorised, every exact number NaN, the prediction and the budget
 /// kept for the report; and what plain Lanczos and Gershgorin prove without a factorisation
 /// (ExactStability::Unfactored).
@@ -322,6 +354,7 @@ ExactStability over_budget(const ExactInputs& in, std::optional<double> floor,
   // dt: a t^2 + 2 c t >= 4 from its positive root on, when a > 0 (c >= 0).
   const double c = gamma * rho;
   b.dt_unstable_from = a > 0 ? 4 / (c + std::sqrt(c * c + 4 * a)) * kUp * kUp : kInf;
+  if (floor && *floor >= 0) paper_step_gershgorin(in, params, e);
   return e;
 }
 

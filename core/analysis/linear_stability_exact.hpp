@@ -64,6 +64,11 @@ struct ExactStability {
     /// gamma >= gamma_unstable_from (at dt) and every dt >= dt_unstable_from (at gamma) is
     /// proved unstable; inf: that vector proves nothing there.
     double index_at_least = std::numeric_limits<double>::quiet_NaN();
+    /// The paper's step with K >= 0 proved (SPEC 9's floor): the index is at most this
+    /// (Gershgorin on its rows, SPEC 9's safe bound); below 4 it proves the step stable
+    /// (`stable`), and dt_stable_up_to and gamma_stable_lo/hi below give the dts and gammas
+    /// that bound proves. NaN otherwise.
+    double index_at_most = std::numeric_limits<double>::quiet_NaN();
     double gamma_unstable_from = std::numeric_limits<double>::quiet_NaN();
     double dt_unstable_from = std::numeric_limits<double>::quiet_NaN();
     /// Forward Euler, Verlet and RK4 at uniform gamma/m (mode_instability; RK4 has no
@@ -74,12 +79,13 @@ struct ExactStability {
     /// and every dt >= dt_unstable_from (at gamma) is proved unstable. NaN otherwise.
     double mode_unstable_from = std::numeric_limits<double>::quiet_NaN();
     double gamma_unstable_below = std::numeric_limits<double>::quiet_NaN();
-    /// The stable side (mode_stability), forward Euler, Verlet and RK4 at uniform gamma/m
-    /// when SPEC 9's floor proves K >= 0: every mode lies in [0, stable_lambda_hi]
-    /// (Gershgorin's bound, raised by 1e-12 of itself for its sums' rounding); every dt <=
-    /// dt_stable_up_to (at gamma) and every gamma in [gamma_stable_lo, gamma_stable_hi] (at
-    /// dt; none when lo > hi) is proved stable, and `stable` says whether the user's are
-    /// (RK4's gamma range is the one around the user's gamma). NaN otherwise.
+    /// The stable side when SPEC 9's floor proves K >= 0. Forward Euler, Verlet and RK4 at
+    /// uniform gamma/m (mode_stability): every mode lies in [0, stable_lambda_hi]
+    /// (Gershgorin's bound, raised by 1e-12 of itself for its sums' rounding). Those and the
+    /// paper's step (index_at_most, any rates): every dt <= dt_stable_up_to (at gamma) and
+    /// every gamma in [gamma_stable_lo, gamma_stable_hi] (at dt; none when lo > hi) is proved
+    /// stable, and `stable` says whether the user's are (RK4's gamma range is the one around
+    /// the user's gamma). NaN otherwise.
     double stable_lambda_hi = std::numeric_limits<double>::quiet_NaN();
     double dt_stable_up_to = std::numeric_limits<double>::quiet_NaN();
     double gamma_stable_lo = std::numeric_limits<double>::quiet_NaN();

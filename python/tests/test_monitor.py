@@ -126,6 +126,11 @@ def test_exact_limits_over_a_factorisation_budget_factorise_nothing():
     assert over.lambda_max_at_least <= free.lambda_max
     assert free.scale_hi <= over.scale_unstable_from < 1.001 * free.scale_hi
     assert free.dt_max <= over.dt_unstable_from < 1.001 * free.dt_max
+    # The stable side, proved by Gershgorin on the index matrix (SPEC 9): no spring is
+    # compressed at rest.
+    assert over.stable and math.isnan(free.scale_stable_up_to)
+    assert 1 <= over.scale_stable_up_to <= free.scale_hi
+    assert 0.05 <= over.dt_stable_up_to <= free.dt_max
     assert mon.exact_limits(a["rest"], gamma, 0.05, factor_budget_gflop=1e3).dt_max == free.dt_max
     with pytest.raises(ValueError, match="factor_budget_gflop"):
         mon.exact_limits(a["rest"], gamma, 0.05, factor_budget_gflop=0.0)

@@ -110,6 +110,10 @@ def test_exact_limits_over_a_factorisation_budget_factorise_nothing(scenes_dir):
     assert free.dt_max <= b.dt_unstable_from < 1.001 * free.dt_max
     assert free.gamma_hi <= b.gamma_unstable_from < 1.001 * free.gamma_hi
     assert b.index_at_least < 4 and 0 < b.lanczos_steps <= 40 and not b.unconditional
+    # ... and Gershgorin on the index matrix (SPEC 9's safe bound) proves the stable side.
+    assert over.stable and b.index_at_least <= b.index_at_most < 4
+    assert b.gamma_stable_lo == 0 and scene.params.gamma <= b.gamma_stable_hi <= free.gamma_hi
+    assert scene.params.dt <= b.dt_stable_up_to <= free.dt_max
     assert math.isnan(b.mode_unstable_from) and math.isnan(b.gamma_unstable_below)
     # Forward Euler (uniform gamma/m): its per-mode closed form, on the unstable side.
     params = scene.params  # a copy: set it back

@@ -54,11 +54,15 @@ expect_match "$OUT" 'exact dt limit \(implicit-euler\) +inf s +within' "implicit
 expect_exit 0 "$DB" bounds paper-plane --factor-budget 1e-9
 expect_match "$OUT" '^exact method not computed \(factorisation over budget\)$' "says the exact analysis was skipped"
 expect_match "$OUT" 'one factorisation would take [0-9.e-]+ GFlop and [0-9.e-]+ GB, over the budget of 1e-09 GFlop \(--factor-budget\)' "says why"
-expect_match "$OUT" 'exact dt limit \(semi-implicit-euler\) +n/a +n/a +not computed' "no exact verdict"
+expect_match "$OUT" 'exact dt limit \(semi-implicit-euler\) +n/a +within +not computed' "no exact value, a verdict from the proofs"
 expect_match "$OUT" 'safe dt bound +[0-9.]+ s +within' "the safe bound still judges"
 if grep -q 'ratio' <<<"$OUT"; then bad "no ratio to an exact limit that was not computed"; else ok; fi
 expect_match "$OUT" 'exact lambda_max of M\^-1 K +n/a +n/a +not computed: .*; without a factorisation \(Lanczos, [0-9]+ steps\): lambda_max in \[7\.8[0-9]*, 9\]' "brackets lambda_max (7.8123249) without a factorisation"
-expect_match "$OUT" 'exact dt limit \(semi-implicit-euler\) +n/a +n/a +not computed: .*every dt >= 0\.50[0-9]+ is unstable at this gamma; dt = 0\.05 is not proved either way' "the dt from which the step is proved unstable"
+expect_match "$OUT" 'exact dt limit \(semi-implicit-euler\) +n/a +within +not computed: .*every dt >= 0\.50[0-9]+ is unstable at this gamma, every dt <= 0\.48050615 is stable; dt = 0\.05 is stable$' "the dts proved unstable (Lanczos) and stable (Gershgorin, SPEC 9's safe dt 0.48050615)"
+expect_match "$OUT" 'exact spectral radius \(semi-implicit-euler\) +n/a +within +not computed: .*<= 0\.2225 \(no spring compressed: K >= 0; Gershgorin on its rows, SPEC 9.s safe bound\) < 4: stable \(proved\)$' "the index bounded by Gershgorin: stable (proved)"
+# Between the two proofs (the safe bound 0.039775, the exact limit 0.039805): no verdict.
+expect_exit 0 "$DB" bounds paper-plane --factor-budget 1e-9 --gamma 0.03979
+expect_match "$OUT" 'exact gamma interval \(semi-implicit-euler\) +n/a +n/a +not computed: .*every gamma >= 0\.0398[0-9]+ is unstable at this dt, every gamma <= 0\.039775 is stable; gamma = 0\.03979 is not proved either way$' "gamma between the proofs: no verdict"
 # Past the exact dt limit (0.50396164), the step is proved unstable without a factorisation.
 expect_exit 0 "$DB" bounds paper-plane --factor-budget 1e-9 --dt 0.51
 expect_match "$OUT" 'exact dt limit \(semi-implicit-euler\) +n/a +BEYOND +not computed: .*; dt = 0\.51 is$' "dt past the limit: proved unstable"

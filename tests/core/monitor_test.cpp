@@ -259,7 +259,14 @@ TEST(Monitor, ExactLimitsOverAFactorisationBudgetFactoriseNothing) {
   for (double v : {over.lambda_max, over.scale_lo, over.scale_hi, over.dt_max, over.rate_max,
                    over.dt_max_undamped})
     EXPECT_TRUE(std::isnan(v));
-  EXPECT_FALSE(over.stable);
+  // Not computed, but proved stable: Gershgorin on the index matrix, SPEC 9's safe bound (no
+  // spring compressed), inside the exact limits.
+  EXPECT_TRUE(over.stable);
+  EXPECT_TRUE(std::isnan(free.dt_stable_up_to));
+  EXPECT_GE(over.scale_stable_up_to, 1.0);  // the given gamma_i, s = 1
+  EXPECT_LE(over.scale_stable_up_to, free.scale_hi);
+  EXPECT_GE(over.dt_stable_up_to, 0.05);
+  EXPECT_LE(over.dt_stable_up_to, free.dt_max);
   EXPECT_TRUE(std::isnan(free.dt_unstable_from));
   // What Lanczos proves without a factorisation lies on the unstable side of the exact limits.
   EXPECT_LE(over.lambda_max_at_least, free.lambda_max);

@@ -170,13 +170,19 @@ TEST(Criteria, ClassicCriteriaAgainstTheExactLimitOnThePaperPlane) {
   EXPECT_NEAR(find(all, "Kacic").value, 2 * std::sqrt(1.0 / 7), 1e-12);
 }
 
-TEST(Criteria, ExactRowsOverTheFactorisationBudgetGiveNoVerdict) {
+TEST(Criteria, ExactRowsOverTheFactorisationBudgetGiveNoVerdictBetweenTheProofs) {
   Params p;
   const Model m = compile_model(make_grid(GridSpec{14, 14, 0.57, true, true}), p);
   const State rest = rest_state(m);
   ExactOptions tight;
   tight.max_factor_flops = 1;
-  const auto all = all_criteria(m, rest, p, exact_stability(m, rest.x, p, tight));
+  // Between SPEC 9's safe bound (Gershgorin on the index matrix: 0.039775) and the gamma
+  // from which Lanczos proves instability (just above the exact 0.03980...): neither proof
+  // reaches it.
+  Params between = p;
+  between.gamma = 0.03979;
+  const Model mb = compile_model(make_grid(GridSpec{14, 14, 0.57, true, true}), between);
+  const auto all = all_criteria(mb, rest, between, exact_stability(mb, rest.x, between, tight));
   int exact_rows = 0;
   for (const auto& c : all) {
     if (c.name.rfind("exact", 0) == 0) {
@@ -191,11 +197,24 @@ TEST(Criteria, ExactRowsOverTheFactorisationBudgetGiveNoVerdict) {
     }
   }
   EXPECT_EQ(exact_rows, 4);
-  EXPECT_NE(find(all, "safe").verdict, CriterionVerdict::not_applicable);
-  // Within the limits the Lanczos bounds prove nothing, so no verdict, but they are said.
+  EXPECT_EQ(find(all, "safe damping").verdict, CriterionVerdict::beyond);
   EXPECT_NE(find(all, "exact lambda_max").test.find("lambda_max in ["), std::string::npos)
       << find(all, "exact lambda_max").test;
-  EXPECT_NE(find(all, "exact dt limit").test.find("is not proved either way"), std::string::npos);
+  EXPECT_NE(find(all, "exact gamma interval").test.find("every gamma <= 0.039775 is stable; gamma = "
+                                                        "0.03979 is not proved either way"),
+            std::string::npos)
+      << find(all, "exact gamma interval").test;
+  EXPECT_NE(find(all, "exact spectral radius").test.find(", which proves nothing"), std::string::npos)
+      << find(all, "exact spectral radius").test;
+
+  // At the default gamma (0.002) the same bound proves the step stable: each exact row says
+  // within, as the safe rows do, and names the dts and gammas it proves.
+  const auto at = all_criteria(m, rest, p, exact_stability(m, rest.x, p, tight));
+  for (const char* name : {"exact spectral radius", "exact gamma interval", "exact dt limit"})
+    EXPECT_EQ(find(at, name).verdict, CriterionVerdict::within) << find(at, name).test;
+  EXPECT_NE(find(at, "exact spectral radius").test.find(" < 4: stable (proved)"), std::string::npos);
+  EXPECT_NE(find(at, "exact dt limit").test.find("is stable; dt = 0.05 is stable"), std::string::npos)
+      << find(at, "exact dt limit").test;
 }
 
 TEST(Criteria, OverTheBudgetAStepProvedUnstableWithoutAFactorisationIsBeyond) {

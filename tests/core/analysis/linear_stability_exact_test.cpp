@@ -11,6 +11,7 @@
 
 #include "core/analysis/linear_stability_modes.hpp"
 #include "core/io/scene_file.hpp"
+#include "core/safe_bound.hpp"
 #include "core/scene.hpp"
 #include "tests/core/test_util.hpp"
 
@@ -164,7 +165,8 @@ TEST(LinearStabilityExact, OverTheFactorisationBudgetNothingIsComputed) {
   EXPECT_FALSE(over.computed());
   EXPECT_EQ(over.method, ExactMethod::over_budget);
   EXPECT_STREQ(to_string(over.method), "not computed (factorisation over budget)");
-  EXPECT_FALSE(over.stable);
+  // Not computed, but proved: Gershgorin on the index matrix (SPEC 9's safe bound) at rest.
+  EXPECT_TRUE(over.stable);
   for (double v : {over.spectrum.lambda_max, over.spectrum.lambda_min, over.lambda_max_lo,
                    over.gamma_lo, over.gamma_hi, over.dt_max, over.spectral_radius})
     EXPECT_TRUE(std::isnan(v));
@@ -216,6 +218,53 @@ TEST(LinearStabilityExact, OverTheBudgetLanczosProvesInstabilityWithoutAFactoris
   const ExactStability bare = exact_stability(model, model.rest, p, tight);
   for (double v : {bare.unfactored.lambda_max_lo, bare.unfactored.index_at_least,
                    bare.unfactored.gamma_unstable_from, bare.unfactored.dt_unstable_from})
+    EXPECT_TRUE(std::isnan(v));
+}
+
+TEST(LinearStabilityExact, OverTheBudgetGershgorinProvesThePaperStepStable) {
+  // The plane whose masses vary 12x: Gershgorin on the index matrix's rows is SPEC 9's safe
+  // bound, node by node, so the stable side over the budget is the safe bound's numbers, and
+  // lies inside the exact limits.
+  ModelSpec spec = make_grid(GridSpec{14, 14, 0.57, true, true});
+  for (size_t i = 0; i < spec.mass_scale.size(); ++i) spec.mass_scale[i] = 1 + 11.0 * static_cast<double>(i % 5) / 4;
+  Params p;
+  p.gamma = 0.02;
+  const Model model = compile_model(spec, p);
+  const ExactStability free = exact_stability(model, model.rest, p);
+  ASSERT_EQ(free.method, ExactMethod::symmetric_index);
+  ExactOptions tight;
+  tight.max_factor_flops = 1;
+  const ExactStability over = exact_stability(model, model.rest, p, tight);
+  const ExactStability::Unfactored& b = over.unfactored;
+  const SafeBoundSummary safe = safe_bound_summary(model, model.rest, p.dt);
+  ASSERT_EQ(safe.gamma_over, 0);  // every node within its safe bound at gamma 0.02
+  EXPECT_TRUE(over.stable);
+  EXPECT_LT(b.index_at_most, 4);
+  EXPECT_GE(b.index_at_most, free.index);
+  EXPECT_EQ(b.gamma_stable_lo, 0);
+  EXPECT_LE(b.gamma_stable_hi, free.gamma_hi);
+  EXPECT_NEAR(b.gamma_stable_hi, safe.gamma_safe, 1e-10 * safe.gamma_safe);
+  EXPECT_LE(b.gamma_stable_hi, safe.gamma_safe);
+  EXPECT_LE(b.dt_stable_up_to, free.dt_max);
+  EXPECT_NEAR(b.dt_stable_up_to, safe.dt_safe, 1e-10 * safe.dt_safe);
+  EXPECT_LE(b.dt_stable_up_to, safe.dt_safe);
+  EXPECT_TRUE(std::isnan(b.stable_lambda_hi));  // the per-mode field: other integrators'
+  // Past the safe bound but short of the exact limit: neither side is proved.
+  Params between = p;
+  between.gamma = 0.5 * (safe.gamma_safe + free.gamma_hi);
+  const Model mb = compile_model(spec, between);
+  const ExactStability open = exact_stability(mb, mb.rest, between, tight);
+  EXPECT_FALSE(open.stable);
+  EXPECT_GE(open.unfactored.index_at_most, 4);
+  EXPECT_LT(open.unfactored.index_at_least, 4);
+  EXPECT_NEAR(open.unfactored.gamma_stable_hi, b.gamma_stable_hi, 1e-15);  // gamma-free
+  // Squeezed to 90 %, every spring is compressed: nothing proves K >= 0, nor stability.
+  std::vector<Vec3> squeezed = model.rest;
+  for (Vec3& x : squeezed) x *= 0.9;
+  const ExactStability sq = exact_stability(model, squeezed, p, tight);
+  EXPECT_FALSE(sq.stable);
+  for (double v : {sq.unfactored.index_at_most, sq.unfactored.gamma_stable_hi,
+                   sq.unfactored.dt_stable_up_to})
     EXPECT_TRUE(std::isnan(v));
 }
 
