@@ -154,6 +154,7 @@ void GuiApp::load_layout_once() {
   // has another size, they follow it from the second frame on (layout_windows).
   layout_.set_remembered_size(static_cast<float>(settings_.window_width),
                               static_cast<float>(settings_.window_height));
+  layout_.set_remembered_panels(remembered_panels(text));
 }
 
 void GuiApp::save_layout_if_needed(bool force) {

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 namespace dampbound::ui {
 
@@ -64,6 +65,52 @@ std::vector<PanelRect> panels_after_resize(const std::vector<PanelRect>& drawn, 
   return out;
 }
 
+std::vector<PanelRect> remembered_panels(const std::string& imgui_ini) {
+  std::vector<PanelRect> out;
+  std::istringstream in(imgui_ini);
+  std::string line, name;
+  bool has_pos = false, has_size = false;
+  PanelRect r{"", 0, 0, 0, 0};
+  auto flush = [&] {
+    if (!name.empty() && has_pos && has_size) {  // a later section wins, as in ImGui's loader
+      r.name = name;
+      const auto same = std::find_if(out.begin(), out.end(),
+                                     [&](const PanelRect& o) { return o.name == name; });
+      if (same != out.end())
+        *same = r;
+      else
+        out.push_back(r);
+    }
+    name.clear();
+    has_pos = has_size = false;
+  };
+  auto pair = [](const std::string& text, float& a, float& b) {
+    float x = 0, y = 0;
+    char comma = 0;
+    std::istringstream v(text);
+    if (!(v >> x >> comma >> y) || comma != ',' || !std::isfinite(x) || !std::isfinite(y))
+      return false;
+    a = x;
+    b = y;
+    return true;
+  };
+  while (std::getline(in, line)) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.rfind("[", 0) == 0) {
+      flush();
+      const std::string head = "[Window][";
+      if (line.rfind(head, 0) == 0 && line.size() > head.size() && line.back() == ']')
+        name = line.substr(head.size(), line.size() - head.size() - 1);
+    } else if (!name.empty() && line.rfind("Pos=", 0) == 0) {
+      has_pos = pair(line.substr(4), r.x, r.y);
+    } else if (!name.empty() && line.rfind("Size=", 0) == 0) {
+      has_size = pair(line.substr(5), r.w, r.h) && r.w > 0 && r.h > 0;
+    }
+  }
+  flush();
+  return out;
+}
+
 void GuiLayout::set_remembered_size(float width, float height) {
   laid_w_ = width;
   laid_h_ = height;
@@ -103,6 +150,12 @@ bool GuiLayout::begin(const char* name, int flags) {
     ImGui::SetNextWindowSize(ImVec2(r->w, r->h), c);
   };
   place(find(default_, name), cond);
+  const auto remembered = std::find_if(remembered_.begin(), remembered_.end(),
+                                       [&](const PanelRect& r) { return r.name == name; });
+  if (remembered != remembered_.end()) {  // its first begin: where imgui.ini had it
+    if (!reset_ && !back) place(&*remembered, ImGuiCond_Always);
+    remembered_.erase(remembered);
+  }
   place(find(follow_, name), ImGuiCond_Always);
   // A window that overlaps no other needs no background fill: the frame is cleared to the
   // same colour. On a software rasteriser (llvmpipe) this saves a full-screen blended fill.

@@ -4,6 +4,7 @@
 // The geometry needs no ImGui context (tests/ui/gui_layout_test.cpp); begin() does.
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace dampbound::ui {
@@ -32,6 +33,11 @@ std::vector<PanelRect> default_layout(float width, float height);
 std::vector<PanelRect> panels_after_resize(const std::vector<PanelRect>& drawn, float from_w,
                                            float from_h, float to_w, float to_h);
 
+/// The panels an imgui.ini remembers: each [Window][name] section with its Pos=x,y and
+/// Size=w,h (pixels); sections without both, and lines that do not parse, are skipped, and a
+/// later section of the same name wins (as ImGui loads it).
+std::vector<PanelRect> remembered_panels(const std::string& imgui_ini);
+
 /// The layout state across frames. Remembered positions (imgui.ini) win over the default
 /// layout unless a reset was asked; on a resize every panel follows (panels_after_resize).
 class GuiLayout {
@@ -40,6 +46,10 @@ class GuiLayout {
   void update(float width, float height);
   /// The window size the remembered panels (imgui.ini) were laid out in.
   void set_remembered_size(float width, float height);
+  /// The remembered panels themselves (remembered_panels): each is placed there, by the
+  /// program, at its first begin(). ImGui hides a new window for one frame unless its size is
+  /// set that way, so without this the first frame of every start after the first was blank.
+  void set_remembered_panels(std::vector<PanelRect> panels) { remembered_ = std::move(panels); }
   /// ImGui::Begin of panel `name` at its place; records where it was drawn.
   bool begin(const char* name, int flags);
   /// Asks for the default layout at the next frame ("Reset layout").
@@ -55,6 +65,7 @@ class GuiLayout {
   std::vector<PanelRect> default_;   ///< the default layout of this frame's size
   std::vector<PanelRect> follow_;    ///< where panels go this frame after a resize
   std::vector<PanelRect> drawn_;     ///< where each panel was last drawn
+  std::vector<PanelRect> remembered_;  ///< imgui.ini's panels not yet begun
   std::vector<std::string> hidden_;  ///< panels not drawn in this layout (compact: Status)
   float laid_w_ = 0, laid_h_ = 0;    ///< the window size drawn_ was laid out in (pixels)
   bool reset_ = false;

@@ -60,8 +60,9 @@ std::vector<CriterionResult> paper_criteria(const Model& model, const State& sta
 std::vector<CriterionResult> exact_criteria(const ExactStability& exact, const Params& params);
 
 /// Where `exact` was not computed (over the factorisation budget), how each exact row's test
-/// begins: "not computed: " and why. The rest of the test (after "; ") is what Lanczos proves
-/// without a factorisation; the tuner states the reason once and shows each row's rest.
+/// begins: "not computed: " and why. The rest of the test (after "; ") is what Lanczos and
+/// Gershgorin prove without a factorisation; the tuner states the reason once and shows each
+/// row's rest.
 std::string over_budget_test(const ExactStability& exact);
 
 /// All of the above, in the order the `bounds` command prints them.

@@ -95,6 +95,15 @@ else
 fi
 [ -s "$CFG/settings.txt" ] && ok || bad "settings not saved in --config-dir"
 [ -s "$CFG/imgui.ini" ] && ok || bad "window layout not saved in --config-dir"
+# A later start with that layout: its first frame is drawn (ImGui hid the remembered panels
+# for one frame, and --frames 1 --screenshot wrote the bare background).
+expect_exit 0 "${XV[@]}" "$DB" gui paper-plane --frames 1 --size 1024x640 \
+  --screenshot "$WORK/second.png" --config-dir "$CFG"
+if command -v python3 >/dev/null 2>&1; then
+  check=$(png_check "$WORK/second.png")
+  distinct=$(printf '%s' "$check" | sed -E 's/distinct=([0-9]+).*/\1/')
+  [ "${distinct:-0}" -gt 100 ] && ok || bad "first frame of a later start looks blank: $check"
+fi
 
 # 2. Parameters persist: a run with --gamma, then one without a scene or flags.
 expect_exit 0 "${XV[@]}" "$DB" gui two-node --gamma 0.0007 --frames 2 --stats --config-dir "$CFG"

@@ -87,5 +87,26 @@ TEST(GuiLayout, NothingDrawnBeforeTheFirstFrame) {
   EXPECT_FALSE(layout.compact());
 }
 
+TEST(GuiLayout, RememberedPanelsComeFromImguiIni) {
+  const std::string ini =
+      "[Window][Debug##Default]\nPos=60,60\nSize=400,400\nCollapsed=0\n\n"
+      "[Window][Mesh view]\r\nPos=392,0\r\nSize=579,1232\r\n\n"
+      "[Window][No size]\nPos=1,2\n\n"
+      "[Window][Bad]\nPos=x,2\nSize=3,4\n\n"
+      "[Window][Zero]\nPos=1,2\nSize=0,4\n\n"
+      "[Table][0x1234,4]\nPos=1,2\nSize=3,4\n"
+      "[Window][Debug##Default]\nPos=7,8\nSize=9,10\n";
+  const std::vector<PanelRect> r = remembered_panels(ini);
+  ASSERT_EQ(r.size(), 2u);
+  EXPECT_EQ(r[0].name, "Debug##Default");
+  EXPECT_EQ(r[0].x, 7);  // the later section
+  EXPECT_EQ(r[1].name, "Mesh view");
+  EXPECT_EQ(r[1].x, 392);
+  EXPECT_EQ(r[1].y, 0);
+  EXPECT_EQ(r[1].w, 579);
+  EXPECT_EQ(r[1].h, 1232);
+  EXPECT_TRUE(remembered_panels("").empty());
+}
+
 }  // namespace
 }  // namespace dampbound::ui

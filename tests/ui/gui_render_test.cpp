@@ -171,6 +171,51 @@ TEST(GuiRender, WholeWindowHeadless) {
   fs::remove_all(config);
 }
 
+TEST(GuiRender, TheFirstFrameOfALaterStartIsNotBlank) {
+  // With a remembered layout (imgui.ini), ImGui hides a new window for its first frame unless
+  // its size is set by the program: `gui --frames 1 --screenshot` wrote a PNG of the empty
+  // background on every start after the first.
+  const fs::path config = fs::temp_directory_path() / "dampbound_gui_second_start";
+  fs::remove_all(config);
+  GuiOptions o = options(config);
+  o.demo = false;
+  o.play = false;
+  for (int start = 0; start < 2; ++start) {
+    EglHost host(headless());
+    GuiApp app(o);
+    const Image img = host.render_frames(
+        1280, 800,
+        [&](FrameInfo& info) {
+          app.frame(info);
+          app.save();  // in the frame: the EGL host's ImGui context ends with render_frames
+        },
+        1);
+    EXPECT_FALSE(is_blank(img)) << "start " << start;
+    const auto params = app.window_rect("Parameters");
+    ASSERT_TRUE(params) << "start " << start;
+    EXPECT_EQ(params->x, 0) << "start " << start;
+    if (start == 1) write_png_atomic(img, out_path("gui_second_start.png"));
+    app.release_gl();
+    EXPECT_TRUE(fs::exists(config / "imgui.ini"));
+  }
+  // A panel the user moved comes back where imgui.ini has it, from the first frame on.
+  {
+    std::ofstream ini(config / "imgui.ini", std::ios::app);
+    ini << "\n[Window][Parameters]\nPos=40,30\nSize=300,500\nCollapsed=0\n";
+  }
+  EglHost host(headless());
+  GuiApp app(o);
+  const Image img = host.render_frames(1280, 800, [&](FrameInfo& info) { app.frame(info); }, 1);
+  EXPECT_FALSE(is_blank(img));
+  const auto moved = app.window_rect("Parameters");
+  ASSERT_TRUE(moved);
+  EXPECT_EQ(moved->x, 40);
+  EXPECT_EQ(moved->y, 30);
+  EXPECT_EQ(moved->w, 300);
+  app.release_gl();
+  fs::remove_all(config);
+}
+
 TEST(GuiRender, DivergedRunShowsNoNaNAndStops) {
   EglHost host(headless());
   GuiOptions o = bare_options();
