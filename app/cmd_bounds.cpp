@@ -9,9 +9,9 @@
 
 #include "app/commands.hpp"
 #include "app/options.hpp"
-#include "core/bounds.hpp"
 #include "core/analysis/criteria.hpp"
 #include "core/analysis/criteria_safe.hpp"
+#include "core/bounds.hpp"
 #include "core/error.hpp"
 #include "core/io/format.hpp"
 #include "core/safe_bound.hpp"

@@ -7,10 +7,10 @@
 
 #include "app/commands.hpp"
 #include "app/options.hpp"
-#include "core/io/report.hpp"
 #include "core/analysis/criteria_safe.hpp"
 #include "core/analysis/suggest.hpp"
 #include "core/io/format.hpp"
+#include "core/io/report.hpp"
 
 namespace dampbound::app {
 namespace {
@@ -93,8 +93,8 @@ int print_step(const StepSuggestion& s) {
     std::printf("  safe (SPEC 9) dt < %s s guarantees stability at every node (node %d sets it)\n",
                 format_digits(s.dt_safe, 8).c_str(), s.dt_safe_node);
   else
-    std::printf("  safe (SPEC 9) dt < %s s (node %d sets it; %s)\n", format_digits(s.dt_safe, 8).c_str(),
-                s.dt_safe_node, scope.c_str());
+    std::printf("  safe (SPEC 9) dt < %s s (node %d sets it; %s)\n",
+                format_digits(s.dt_safe, 8).c_str(), s.dt_safe_node, scope.c_str());
   print_runs(s.runs);
   return 0;
 }

@@ -198,10 +198,11 @@ int run(const SweepArgs& a) {
        safe_summary_lines(rep.rows, policy, unit_safe_bound(rq.scene), lambda_unit))
     std::printf("%s\n", line.c_str());
   if (rq.scene.params.integrator != Integrator::semi_implicit_euler)
-    std::printf("note         the scene steps %s: SPEC 7's linear limit and SPEC 9's bound above "
-                "are derived for the paper's semi-implicit step; their lines count how often "
-                "they held here, they guarantee nothing\n",
-                to_string(rq.scene.params.integrator));
+    std::printf(
+        "note         the scene steps %s: SPEC 7's linear limit and SPEC 9's bound above "
+        "are derived for the paper's semi-implicit step; their lines count how often "
+        "they held here, they guarantee nothing\n",
+        to_string(rq.scene.params.integrator));
   if (!a.map.empty()) {
     SweepTable table;
     table.header = h;

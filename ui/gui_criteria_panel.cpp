@@ -69,8 +69,10 @@ void GuiApp::criteria_panel() {
   const bool over = e != nullptr && !e->computed();
   const std::string over_budget = over ? over_budget_test(*e) : std::string();
   const std::string method =
-      over ? over_budget + "; its rows say what Lanczos and Gershgorin prove without a factorisation"
-           : e != nullptr ? std::string(to_string(e->method)) : std::string();
+      over
+          ? over_budget + "; its rows say what Lanczos and Gershgorin prove without a factorisation"
+      : e != nullptr ? std::string(to_string(e->method))
+                     : std::string();
   const std::string exact =
       e != nullptr ? "exact analysis " + where + " (" + method + ")" +
                          (c.computing() ? "; computing a new one" : "")

@@ -74,8 +74,8 @@ std::vector<PanelRect> remembered_panels(const std::string& imgui_ini) {
   auto flush = [&] {
     if (!name.empty() && has_pos && has_size) {  // a later section wins, as in ImGui's loader
       r.name = name;
-      const auto same = std::find_if(out.begin(), out.end(),
-                                     [&](const PanelRect& o) { return o.name == name; });
+      const auto same =
+          std::find_if(out.begin(), out.end(), [&](const PanelRect& o) { return o.name == name; });
       if (same != out.end())
         *same = r;
       else

@@ -123,7 +123,8 @@ std::vector<CriterionResult> unfactored_criteria(const ExactStability& e, const 
     const bool unstable = b.index_at_least >= 4;
     const bool stable = !unstable && b.index_at_most < 4;  // false for NaN
     rho.verdict = unstable ? CriterionVerdict::beyond
-                           : stable ? CriterionVerdict::within : CriterionVerdict::not_applicable;
+                  : stable ? CriterionVerdict::within
+                           : CriterionVerdict::not_applicable;
     rho.test += without + "index lambda_max(dt^2 A + 2 dt C) >= " +
                 format_digits(b.index_at_least, 8) +
                 (unstable ? " >= 4: unstable (proved)" : " (< 4 proves nothing)");

@@ -205,7 +205,8 @@ TEST(GuiRender, TheFirstFrameOfALaterStartIsNotBlank) {
   }
   EglHost host(headless());
   GuiApp app(o);
-  const Image img = host.render_frames(1280, 800, [&](FrameInfo& info) { app.frame(info); }, 1);
+  const Image img = host.render_frames(
+      1280, 800, [&](FrameInfo& info) { app.frame(info); }, 1);
   EXPECT_FALSE(is_blank(img));
   const auto moved = app.window_rect("Parameters");
   ASSERT_TRUE(moved);

@@ -65,7 +65,8 @@ TEST(Criteria, AnEmptyGammaIntervalSaysSo) {
   const auto beyond = two_node_criteria(p);
   const CriterionResult& empty = find(beyond, "exact gamma interval");
   EXPECT_EQ(empty.verdict, CriterionVerdict::beyond);
-  EXPECT_NE(empty.test.find("): empty, no gamma is stable at this dt"), std::string::npos) << empty.test;
+  EXPECT_NE(empty.test.find("): empty, no gamma is stable at this dt"), std::string::npos)
+      << empty.test;
   p.dt = 0.05;
   p.integrator = Integrator::semi_implicit_euler;
   const auto within = two_node_criteria(p);
@@ -200,11 +201,13 @@ TEST(Criteria, ExactRowsOverTheFactorisationBudgetGiveNoVerdictBetweenTheProofs)
   EXPECT_EQ(find(all, "safe damping").verdict, CriterionVerdict::beyond);
   EXPECT_NE(find(all, "exact lambda_max").test.find("lambda_max in ["), std::string::npos)
       << find(all, "exact lambda_max").test;
-  EXPECT_NE(find(all, "exact gamma interval").test.find("every gamma <= 0.039775 is stable; gamma = "
-                                                        "0.03979 is not proved either way"),
+  EXPECT_NE(find(all, "exact gamma interval")
+                .test.find("every gamma <= 0.039775 is stable; gamma = "
+                           "0.03979 is not proved either way"),
             std::string::npos)
       << find(all, "exact gamma interval").test;
-  EXPECT_NE(find(all, "exact spectral radius").test.find(", which proves nothing"), std::string::npos)
+  EXPECT_NE(find(all, "exact spectral radius").test.find(", which proves nothing"),
+            std::string::npos)
       << find(all, "exact spectral radius").test;
 
   // At the default gamma (0.002) the same bound proves the step stable: each exact row says
@@ -212,8 +215,10 @@ TEST(Criteria, ExactRowsOverTheFactorisationBudgetGiveNoVerdictBetweenTheProofs)
   const auto at = all_criteria(m, rest, p, exact_stability(m, rest.x, p, tight));
   for (const char* name : {"exact spectral radius", "exact gamma interval", "exact dt limit"})
     EXPECT_EQ(find(at, name).verdict, CriterionVerdict::within) << find(at, name).test;
-  EXPECT_NE(find(at, "exact spectral radius").test.find(" < 4: stable (proved)"), std::string::npos);
-  EXPECT_NE(find(at, "exact dt limit").test.find("is stable; dt = 0.05 is stable"), std::string::npos)
+  EXPECT_NE(find(at, "exact spectral radius").test.find(" < 4: stable (proved)"),
+            std::string::npos);
+  EXPECT_NE(find(at, "exact dt limit").test.find("is stable; dt = 0.05 is stable"),
+            std::string::npos)
       << find(at, "exact dt limit").test;
 }
 

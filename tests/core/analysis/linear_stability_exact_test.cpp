@@ -226,7 +226,8 @@ TEST(LinearStabilityExact, OverTheBudgetGershgorinProvesThePaperStepStable) {
   // bound, node by node, so the stable side over the budget is the safe bound's numbers, and
   // lies inside the exact limits.
   ModelSpec spec = make_grid(GridSpec{14, 14, 0.57, true, true});
-  for (size_t i = 0; i < spec.mass_scale.size(); ++i) spec.mass_scale[i] = 1 + 11.0 * static_cast<double>(i % 5) / 4;
+  for (size_t i = 0; i < spec.mass_scale.size(); ++i)
+    spec.mass_scale[i] = 1 + 11.0 * static_cast<double>(i % 5) / 4;
   Params p;
   p.gamma = 0.02;
   const Model model = compile_model(spec, p);
@@ -263,8 +264,8 @@ TEST(LinearStabilityExact, OverTheBudgetGershgorinProvesThePaperStepStable) {
   for (Vec3& x : squeezed) x *= 0.9;
   const ExactStability sq = exact_stability(model, squeezed, p, tight);
   EXPECT_FALSE(sq.stable);
-  for (double v : {sq.unfactored.index_at_most, sq.unfactored.gamma_stable_hi,
-                   sq.unfactored.dt_stable_up_to})
+  for (double v :
+       {sq.unfactored.index_at_most, sq.unfactored.gamma_stable_hi, sq.unfactored.dt_stable_up_to})
     EXPECT_TRUE(std::isnan(v));
 }
 
