@@ -18,6 +18,33 @@
 namespace dampbound {
 namespace {
 
+/// A 14 x 14 plane whose masses vary 12x (as a tetrahedral mesh's lumped masses do), so
+/// gamma/m_i varies and the paper's step takes the symmetric index.
+ModelSpec plane_with_masses_12x_apart() {
+  ModelSpec spec = make_grid(GridSpec{14, 14, 0.57, true, true});
+  for (size_t i = 0; i < spec.mass_scale.size(); ++i)
+    spec.mass_scale[i] = 1 + 11.0 * static_cast<double>(i % 5) / 4;
+  return spec;
+}
+
+/// That plane at gamma 0.02 (policy fixed): its exact analysis, and one over a 1-flop budget.
+struct PlaneOverBudget {
+  Params p = [] {
+    Params q;
+    q.gamma = 0.02;
+    q.policy = DampingPolicy::fixed;
+    return q;
+  }();
+  Model model = compile_model(plane_with_masses_12x_apart(), p);
+  ExactStability free = exact_stability(model, model.rest, p);
+  ExactOptions tight = [] {
+    ExactOptions o;
+    o.max_factor_flops = 1;
+    return o;
+  }();
+  ExactStability over = exact_stability(model, model.rest, p, tight);
+};
+
 struct TwoNode {
   SceneSpec scene = load_scene(test::source_path("scenes/two-node.toml"));
   Params params = scene.params;  // m = kappa = 0.001, gamma = 0.002 (c = 2), dt = 0.05
@@ -188,17 +215,13 @@ TEST(LinearStabilityExact, OverTheFactorisationBudgetNothingIsComputed) {
 TEST(LinearStabilityExact, OverTheBudgetLanczosProvesInstabilityWithoutAFactorisation) {
   // A plane whose masses vary 12x (as a tetrahedral mesh's lumped masses do), so gamma/m_i
   // varies and the paper's step takes the symmetric index.
-  ModelSpec spec = make_grid(GridSpec{14, 14, 0.57, true, true});
-  for (size_t i = 0; i < spec.mass_scale.size(); ++i) spec.mass_scale[i] = 1 + 11.0 * static_cast<double>(i % 5) / 4;
-  Params p;
-  p.gamma = 0.02;
-  p.policy = DampingPolicy::fixed;
-  const Model model = compile_model(spec, p);
-  const ExactStability free = exact_stability(model, model.rest, p);
+  const PlaneOverBudget t;
+  const Params& p = t.p;
+  const Model& model = t.model;
+  const ExactStability& free = t.free;
+  ExactOptions tight = t.tight;
+  const ExactStability& over = t.over;
   ASSERT_EQ(free.method, ExactMethod::symmetric_index);
-  ExactOptions tight;
-  tight.max_factor_flops = 1;
-  const ExactStability over = exact_stability(model, model.rest, p, tight);
   ASSERT_FALSE(over.computed());
   const ExactStability::Unfactored& b = over.unfactored;
   EXPECT_GT(b.lanczos_steps, 0);
@@ -225,17 +248,13 @@ TEST(LinearStabilityExact, OverTheBudgetGershgorinProvesThePaperStepStable) {
   // The plane whose masses vary 12x: Gershgorin on the index matrix's rows is SPEC 9's safe
   // bound, node by node, so the stable side over the budget is the safe bound's numbers, and
   // lies inside the exact limits.
-  ModelSpec spec = make_grid(GridSpec{14, 14, 0.57, true, true});
-  for (size_t i = 0; i < spec.mass_scale.size(); ++i)
-    spec.mass_scale[i] = 1 + 11.0 * static_cast<double>(i % 5) / 4;
-  Params p;
-  p.gamma = 0.02;
-  const Model model = compile_model(spec, p);
-  const ExactStability free = exact_stability(model, model.rest, p);
+  const PlaneOverBudget t;
+  const Params& p = t.p;
+  const Model& model = t.model;
+  const ExactStability& free = t.free;
+  const ExactOptions& tight = t.tight;
+  const ExactStability& over = t.over;
   ASSERT_EQ(free.method, ExactMethod::symmetric_index);
-  ExactOptions tight;
-  tight.max_factor_flops = 1;
-  const ExactStability over = exact_stability(model, model.rest, p, tight);
   const ExactStability::Unfactored& b = over.unfactored;
   const SafeBoundSummary safe = safe_bound_summary(model, model.rest, p.dt);
   ASSERT_EQ(safe.gamma_over, 0);  // every node within its safe bound at gamma 0.02
@@ -253,7 +272,7 @@ TEST(LinearStabilityExact, OverTheBudgetGershgorinProvesThePaperStepStable) {
   // Past the safe bound but short of the exact limit: neither side is proved.
   Params between = p;
   between.gamma = 0.5 * (safe.gamma_safe + free.gamma_hi);
-  const Model mb = compile_model(spec, between);
+  const Model mb = compile_model(plane_with_masses_12x_apart(), between);
   const ExactStability open = exact_stability(mb, mb.rest, between, tight);
   EXPECT_FALSE(open.stable);
   EXPECT_GE(open.unfactored.index_at_most, 4);
