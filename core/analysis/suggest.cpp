@@ -67,7 +67,8 @@ ExactStability exact_limits(const Model& model, const Params& params,
   o.unfactored_steps = 0;  // over the budget only the reason is used
   ExactStability e = exact_stability(model, model.rest, params, o);
   if (!e.computed())
-    throw std::runtime_error("suggest needs the exact limits, and " + e.over_budget_reason());
+    throw std::runtime_error("suggest needs the exact limits, and " + e.over_budget_reason() +
+                             "; bounds proves the stable and unstable gammas and dts without one");
   return e;
 }
 

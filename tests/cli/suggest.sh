@@ -30,7 +30,7 @@ if printf '%s' "$OUT" | grep -q verification; then bad "--no-verify still ran"; 
 # suggestion on stdout.
 expect_exit 3 "$DB" suggest paper-plane --factor-budget 1e-9 --no-verify
 expect_one_line "$ERR" "suggest over the factorisation budget"
-expect_match "$ERR" 'suggest needs the exact limits, and one factorisation would take .* over the budget of 1e-09 GFlop' "says why"
+expect_match "$ERR" 'suggest needs the exact limits, and one factorisation would take .* over the budget of 1e-09 GFlop; bounds proves the stable and unstable gammas and dts without one$' "says why, and where to look"
 if grep -q 'gamma_max' <<<"$OUT"; then bad "a suggestion printed over budget"; else ok; fi
 expect_exit 2 "$DB" suggest paper-plane --factor-budget 0
 expect_match "$ERR" -- '--factor-budget' "names --factor-budget"
