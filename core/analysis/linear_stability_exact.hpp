@@ -85,7 +85,8 @@ struct ExactStability {
     /// paper's step (index_at_most, any rates): every dt <= dt_stable_up_to (at gamma) and
     /// every gamma in [gamma_stable_lo, gamma_stable_hi] (at dt; none when lo > hi) is proved
     /// stable, and `stable` says whether the user's are (RK4's gamma range is the one around
-    /// the user's gamma). NaN otherwise.
+    /// the user's gamma, or where that is not proved the nearest one found, which leaves the
+    /// user's gamma outside). NaN otherwise.
     double stable_lambda_hi = std::numeric_limits<double>::quiet_NaN();
     double dt_stable_up_to = std::numeric_limits<double>::quiet_NaN();
     double gamma_stable_lo = std::numeric_limits<double>::quiet_NaN();

@@ -194,7 +194,7 @@ ModeStability mode_stability(Integrator integrator, double lambda_hi, double c, 
   if (integrator == Integrator::rk4) {
     m.proved = true;
     std::tie(m.rate_lo, m.rate_hi) = detail::rk4_rate_range(lambda_hi, c, h, 1 + kMarginal);
-    m.stable = m.rate_lo <= m.rate_hi;  // c's own proof, the box [c, c]
+    m.stable = m.rate_lo <= c && c <= m.rate_hi;  // a range from another rate leaves c out
     m.dt_up_to = detail::rk4_dt_up_to(lambda_hi, c, 1 + kMarginal);
     return m;
   }

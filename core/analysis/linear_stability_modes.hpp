@@ -78,9 +78,10 @@ ModeInstability mode_instability(Integrator integrator, double lambda_0, double 
 /// of |R(z)|^2 - (1 + 1e-12)^2 as a polynomial in (Im z)^2 on [0, h^2 (lambda_hi - c^2/4)];
 /// `dt_up_to` the largest step S found for which the same holds at every step in (0, S]
 /// (tensor Bernstein coefficients in (h, lambda) on pieces of [0, S]); [rate_lo, rate_hi]
-/// the rates around c found the same way at h (in (c, lambda); none, rate_lo > rate_hi,
-/// when c itself is not proved); false, 0 or shorter where the proofs do not close (near
-/// the boundary). docs/criteria.md.
+/// the rates around c found the same way at h (in (c, lambda); where c itself is not proved,
+/// around the proved one of 31 sample rates nearest to it, which leaves c outside; none,
+/// rate_lo > rate_hi, when no sample is proved); false, 0 or shorter where the proofs do
+/// not close (near the boundary). docs/criteria.md.
 /// `proved` says whether the integrator has this side: false, `stable` false and every
 /// number NaN for the semi-implicit step (SPEC 9's safe bound instead) and implicit Euler.
 struct ModeStability {

@@ -235,7 +235,22 @@ bool rk4_rates_stable(double lambda_hi, double h, double c0, double c1, long dou
 /// bisection (to 1e-10) from c toward 0 and toward the real roots' cap 2.78529/h; none
 /// (lo > hi) when c itself is not proved.
 std::pair<double, double> rk4_rate_range(double lambda_hi, double c, double h, long double e1) {
-  if (!rk4_rates_stable(lambda_hi, h, c, c, e1)) return {kInf, -kInf};
+  const double cap =
+      static_cast<double>(kRk4RealEnd / (static_cast<long double>(h) * (1 + 1e-14L)));
+  // The range grows from c, or, where c itself is not proved, from the proved one of
+  // kRateSeeds - 1 rates evenly across (0, cap) nearest to it.
+  constexpr int kRateSeeds = 32;
+  double seed = c;
+  if (!rk4_rates_stable(lambda_hi, h, c, c, e1)) {
+    seed = std::numeric_limits<double>::quiet_NaN();
+    for (int k = 1; k < kRateSeeds; ++k) {
+      const double s = cap * k / kRateSeeds;
+      if ((std::isnan(seed) || std::abs(s - c) < std::abs(seed - c)) &&
+          rk4_rates_stable(lambda_hi, h, s, s, e1))
+        seed = s;
+    }
+    if (std::isnan(seed)) return {kInf, -kInf};
+  }
   auto bisect = [&](double good, double bad, auto proved) {
     for (int k = 0; k < 60 && std::abs(bad - good) > 1e-10 * std::abs(bad); ++k) {
       const double mid = (good + bad) / 2;
@@ -243,12 +258,10 @@ std::pair<double, double> rk4_rate_range(double lambda_hi, double c, double h, l
     }
     return good;
   };
-  auto up = [&](double C) { return rk4_rates_stable(lambda_hi, h, c, C, e1); };
-  auto down = [&](double C) { return rk4_rates_stable(lambda_hi, h, C, c, e1); };
-  const double cap =
-      static_cast<double>(kRk4RealEnd / (static_cast<long double>(h) * (1 + 1e-14L)));
-  const double hi = up(cap) ? cap : bisect(c, cap, up);
-  const double lo = c == 0 || down(0) ? 0 : bisect(c, 0, down);
+  auto up = [&](double C) { return rk4_rates_stable(lambda_hi, h, seed, C, e1); };
+  auto down = [&](double C) { return rk4_rates_stable(lambda_hi, h, C, seed, e1); };
+  const double hi = up(cap) ? cap : bisect(seed, cap, up);
+  const double lo = seed == 0 || down(0) ? 0 : bisect(seed, 0, down);
   return {lo, hi};
 }
 

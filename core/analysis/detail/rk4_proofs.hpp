@@ -16,8 +16,9 @@ constexpr double kRoundUp = 1 + 8 * std::numeric_limits<double>::epsilon();
 /// e1) at rate c and step h; inf when none up to h^2 (lambda - c^2/4) = 1e12 is.
 double rk4_lambda_from(double c, double h, double e1);
 
-/// The rates proved stable at step h, every mode in [0, lambda_hi]: [lo, hi] around c, or
-/// none (lo > hi) when c itself is not proved.
+/// The rates proved stable at step h, every mode in [0, lambda_hi]: [lo, hi] around c; where c
+/// itself is not proved, around the proved one of 31 rates evenly across (0, 2.78529/h)
+/// nearest to c (then c lies outside it); none (lo > hi) when none of those is proved.
 std::pair<double, double> rk4_rate_range(double lambda_hi, double c, double h, long double e1);
 
 /// The largest step S found such that every step in (0, S] is proved stable at rate c, every

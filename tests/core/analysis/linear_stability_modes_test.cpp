@@ -290,8 +290,21 @@ TEST(LinearStabilityModes, ModeStabilityOfRk4) {
     for (int k = 0; k <= 20; ++k)
       EXPECT_LE(worst(9, m.rate_lo + (m.rate_hi - m.rate_lo) * k / 20, h), ok) << k;
   }
-  // Where the user's rate is not proved stable, no range.
-  const ModeStability none = mode_stability(Integrator::rk4, 100, 0.5, 0.3);
+  // Where the user's rate is not proved stable, the range grows from the proved sample rate
+  // nearest to it, and leaves it out: at h = 0.96 the paper plane's rate 2 (gamma 0.002) is
+  // not proved with every mode in [0, 9]; lower rates are.
+  const ModeStability far = mode_stability(Integrator::rk4, 9, 2, 0.96);
+  EXPECT_TRUE(far.proved);
+  EXPECT_FALSE(far.stable);
+  ASSERT_LE(far.rate_lo, far.rate_hi);
+  EXPECT_TRUE(far.rate_hi < 2 || far.rate_lo > 2) << far.rate_lo << " " << far.rate_hi;
+  for (int k = 0; k <= 20; ++k) {
+    const double r = far.rate_lo + (far.rate_hi - far.rate_lo) * k / 20;
+    EXPECT_LE(worst(9, r, 0.96), ok) << k;
+    EXPECT_TRUE(mode_stability(Integrator::rk4, 9, r, 0.96).stable) << k;
+  }
+  // None: at h = 2 every mode up to 9 has |z| = 6 or a real root past it, outside RK4's region.
+  const ModeStability none = mode_stability(Integrator::rk4, 9, 0.5, 2);
   EXPECT_FALSE(none.stable);
   EXPECT_GT(none.rate_lo, none.rate_hi);
 }
