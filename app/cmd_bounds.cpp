@@ -182,7 +182,7 @@ int run_scene(const BoundsArgs& a) {
   std::printf("exact method %s\n", to_string(exact.method));
   if (!exact.computed())
     std::printf("             %s (--factor-budget)%s\n", exact.over_budget_reason().c_str(),
-                p.integrator == Integrator::semi_implicit_euler
+                safe_bound_scope(p.integrator).empty()
                     ? "; the safe bound (SPEC 9) below still holds"
                     : "");
   print_safe_lines(model, state, p, exact);

@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "core/analysis/linear_stability_cholesky.hpp"
+#include "core/safe_bound.hpp"
 #include "core/step.hpp"
 
 namespace dampbound {
@@ -262,29 +263,34 @@ void per_mode_proofs(double r, const EigenInterval& top, std::optional<double> f
     b.gamma_unstable_below = m.rate_below >= 0 ? kInf : -kInf;
 }
 
-/// Over the budget, the paper's step with K >= 0 (SPEC 9's floor): Gershgorin on the index
-/// matrix S = h^2 A + 2 h gamma diag(R) puts its top below max_r (h^2 sum_s |A_rs| + 2 h gamma
-/// R_r), and an index below 4 is stability (SPEC 7, 9). Row by row that is SPEC 9's safe
-/// bound, so the exact rows prove what the safe rows judge: the user's point, every gamma in
-/// [0, min_r (4 - h^2 s_r) / (2 h R_r)) at dt and every dt below min_r 4 / (c_r + sqrt(c_r^2 +
-/// 4 s_r)) at gamma (c_r = gamma R_r), each rounded inwards.
-void paper_step_gershgorin(const ExactInputs& in, const Params& params, ExactStability& e) {
+/// Over the budget, the paper's step with K >= 0 (SPEC 9's floor). SPEC 9's safe bound
+/// (core/safe_bound.hpp) is Gershgorin on the index matrix S = h^2 A + 2 h C, node by node:
+/// its top is at most max_i (h^2 R_i + 2 h c_i), and an index below 4 is stability (SPEC 7,
+/// 9). So the exact rows prove what the safe rows judge: the user's point, every gamma up to
+/// min_i gamma_safe_i / gamma_scale_i at dt and every dt up to min_i dt_safe_i at gamma, with
+/// R_i (safe_row_sums) raised and the limits lowered by 1e-12 of themselves for rounding.
+void paper_step_gershgorin(const Model& model, const std::vector<Vec3>& x, const Params& params,
+                           ExactStability& e) {
   ExactStability::Unfactored& b = e.unfactored;
-  const double h = params.dt, gamma = params.gamma;
-  constexpr double kRoom = 1 + 1e-12;  // the rounding of the row sums, as per_mode_proofs
+  const double h = params.dt;
+  constexpr double kRoom = 1 + 1e-12, kIn = 1 - 1e-12;
+  std::vector<double> R;
+  safe_row_sums(model, x, R);
   double top = 0, gamma_hi = kInf, dt_hi = kInf;
-  for (Eigen::Index r = 0; r < in.A.outerSize(); ++r) {  // symmetric: columns are rows
-    double sum = 0;
-    for (SparseMatrix::InnerIterator it(in.A, r); it; ++it) sum += std::abs(it.value());
-    const double s_r = sum * kRoom, R = in.R(r), c = gamma * R;
-    top = std::max(top, h * h * s_r + 2 * h * c);
-    if (R > 0)
-      gamma_hi = std::min(gamma_hi, (4 - h * h * s_r) / (2 * h * R));
-    else if (h * h * s_r >= 4)
-      gamma_hi = -kInf;  // an undamped row past the index already: no gamma helps
-    if (s_r > 0 || c > 0) dt_hi = std::min(dt_hi, 4 / (c + std::sqrt(c * c + 4 * s_r)));
+  for (size_t i = 0; i < R.size(); ++i) {
+    if (model.fixed[i]) continue;
+    const double r = R[i] * kRoom, m = model.mass[i], scale = model.gamma_scale[i];
+    const double gamma_i = params.gamma * scale, safe = safe_gamma(m, h, r);
+    top = std::max(top, h * h * r + 2 * h * gamma_i / m);
+    if (scale > 0)
+      gamma_hi = std::min(gamma_hi, safe / scale);
+    else if (safe <= 0)
+      gamma_hi = -kInf;  // an undamped node past the index already: no gamma helps
+    // safe_dt's root without its cancellation: (sqrt(c^2 + 4 R) - c) / R, SPEC 9's form that
+    // the reports print, loses 1e-11 of itself at c = 1000, R = 9, more than kIn allows.
+    const double c = gamma_i / m;
+    if (r > 0 || c > 0) dt_hi = std::min(dt_hi, 4 / (c + std::sqrt(c * c + 4 * r)));
   }
-  constexpr double kIn = 1 - 1e-12;  // the arithmetic above, rounded inwards
   b.index_at_most = top * kRoom;
   if (gamma_hi > 0) {
     b.gamma_stable_lo = 0;
@@ -297,9 +303,10 @@ void paper_step_gershgorin(const ExactInputs& in, const Params& params, ExactSta
 /// Over the budget: nothing factorised, every exact number NaN, the prediction and the budget
 /// kept for the report; and what plain Lanczos and Gershgorin prove without a factorisation
 /// (ExactStability::Unfactored).
-ExactStability over_budget(const ExactInputs& in, std::optional<double> floor,
+ExactStability over_budget(const Model& model, const std::vector<Vec3>& x, const ExactInputs& in,
                            const Params& params, const ExactOptions& options,
                            const FactorisationOverBudget& over) {
+  const std::optional<double> floor = psd_floor(model, x);
   ExactStability e;
   e.integrator = params.integrator;
   e.method = ExactMethod::over_budget;
@@ -354,7 +361,7 @@ ExactStability over_budget(const ExactInputs& in, std::optional<double> floor,
   // dt: a t^2 + 2 c t >= 4 from its positive root on, when a > 0 (c >= 0).
   const double c = gamma * rho;
   b.dt_unstable_from = a > 0 ? 4 / (c + std::sqrt(c * c + 4 * a)) * kUp * kUp : kInf;
-  if (floor && *floor >= 0) paper_step_gershgorin(in, params, e);
+  if (floor && *floor >= 0) paper_step_gershgorin(model, x, params, e);
   return e;
 }
 
@@ -392,7 +399,7 @@ ExactStability exact_stability(const Model& model, const std::vector<Vec3>& x,
   try {
     return exact_stability_within_budget(model, x, in, params, options);
   } catch (const FactorisationOverBudget& over) {
-    return over_budget(in, psd_floor(model, x), params, options, over);
+    return over_budget(model, x, in, params, options, over);
   }
 }
 
