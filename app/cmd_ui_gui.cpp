@@ -165,9 +165,10 @@ int run(GuiArgs& a) {
   // screenshot, the export). Without one nothing waits, so --stats times only the frames.
   const bool map_picture = a.tab == "map" && (!a.screenshot.empty() || !a.export_dir.empty());
   const ui::WindowRun run = host.run([&](ui::FrameInfo& info) {
-    if (map_picture && info.index == a.frames - 1) app.map().wait();
+    const bool last = info.index == a.frames - 1 && !info.layout_pass;
+    if (map_picture && last) app.map().wait();
     app.frame(info);
-    if (!a.export_dir.empty() && info.index == a.frames - 1)
+    if (!a.export_dir.empty() && last)
       export_message = app.export_plots(a.export_dir, a.export_prefix);
     if (g_stop != 0) info.close = true;
   });

@@ -48,8 +48,9 @@ FrameRenderer::~FrameRenderer() {
   ImGui::SetCurrentContext(previous_);
 }
 
-void FrameRenderer::frame(FrameInfo& info, const FrameFn& fn, float dt, int fb_w, int fb_h) {
-  ImGui::SetCurrentContext(ctx_);
+namespace {
+
+void begin_frame(const FrameInfo& info, float dt, int fb_w, int fb_h) {
   ImGuiIO& io = ImGui::GetIO();
   io.DisplaySize = ImVec2(static_cast<float>(info.width), static_cast<float>(info.height));
   if (info.width > 0 && info.height > 0) {
@@ -59,6 +60,23 @@ void FrameRenderer::frame(FrameInfo& info, const FrameFn& fn, float dt, int fb_w
   if (dt > 0.0f) io.DeltaTime = dt;
   ImGui_ImplOpenGL3_NewFrame();
   ImGui::NewFrame();
+}
+
+}  // namespace
+
+void FrameRenderer::layout_pass(FrameInfo& info, const FrameFn& fn, float dt, int fb_w,
+                                int fb_h) {
+  ImGui::SetCurrentContext(ctx_);
+  begin_frame(info, dt, fb_w, fb_h);
+  info.layout_pass = true;
+  if (fn) fn(info);
+  info.layout_pass = false;
+  ImGui::EndFrame();
+}
+
+void FrameRenderer::frame(FrameInfo& info, const FrameFn& fn, float dt, int fb_w, int fb_h) {
+  ImGui::SetCurrentContext(ctx_);
+  begin_frame(info, dt, fb_w, fb_h);
   if (fn) fn(info);
   ImGui::Render();
   glViewport(0, 0, fb_w, fb_h);

@@ -21,6 +21,10 @@ struct FrameInfo {
   int height = 0;
   double time_s = 0.0;  ///< seconds since the first frame (headless: index / 60)
   bool close = false;   ///< the frame function sets it to end the run after this frame
+  /// True on a pass that is built but never drawn (FrameRenderer::layout_pass): ImGui measures
+  /// tab bars, table columns and auto-fitted windows from one frame's contents and places
+  /// them the frame after. On it a frame function builds its windows and advances nothing.
+  bool layout_pass = false;
 };
 
 /// Builds one ImGui frame: called between ImGui::NewFrame() and ImGui::Render(), with the
@@ -59,6 +63,11 @@ class FrameRenderer {
   /// io.DeltaTime to dt when dt > 0, runs NewFrame, fn(info), Render, then clears the bound
   /// draw framebuffer and draws the ImGui draw data into it.
   void frame(FrameInfo& info, const FrameFn& fn, float dt, int fb_w, int fb_h);
+
+  /// A frame that is built and thrown away: NewFrame, fn(info) with info.layout_pass set,
+  /// EndFrame; nothing is drawn. A window's first frame() after it shows what ImGui laid out
+  /// from it instead of ImGui's first guess (no tab bars, text wrapped one letter per line).
+  void layout_pass(FrameInfo& info, const FrameFn& fn, float dt, int fb_w, int fb_h);
 
  private:
   ImGuiContext* ctx_ = nullptr;

@@ -115,7 +115,10 @@ WindowRun GlfwHost::run(const FrameFn& fn) {
     info.width = w;
     info.height = h;
     info.time_s = glfwGetTime() - t0;
-    impl_->renderer->frame(info, fn, impl_->platform_backend ? 0.0f : 1.0f / 60.0f, fb_w, fb_h);
+    const float dt = impl_->platform_backend ? 0.0f : 1.0f / 60.0f;
+    // The first frame is built twice: the window then opens on ImGui's settled layout.
+    if (result.frames == 0) impl_->renderer->layout_pass(info, fn, dt, fb_w, fb_h);
+    impl_->renderer->frame(info, fn, dt, fb_w, fb_h);
     if (result.frames == opt.screenshot_frame) {
       glReadBuffer(GL_BACK);
       result.screenshot = read_pixels(fb_w, fb_h);

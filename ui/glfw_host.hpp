@@ -45,7 +45,8 @@ class GlfwHost {
   GlfwHost& operator=(const GlfwHost&) = delete;
 
   /// Calls fn once per frame until the window is closed, fn sets info.close, or max_frames
-  /// frames were drawn.
+  /// frames were drawn. The first frame calls it twice: a layout pass (info.layout_pass, never
+  /// drawn), then the frame itself.
   WindowRun run(const FrameFn& fn);
 
   /// GL_RENDERER of the window's context.

@@ -216,10 +216,12 @@ FrameFn GuiApp::frame_fn() {
 void GuiApp::frame(FrameInfo& info) {
   nearest_font_texture();
   load_layout_once();
-  meter_.tick(now_s(), tuner_->total_steps(), tuner_->step_seconds());
-  settings_.window_width = info.width;
-  settings_.window_height = info.height;
-  tuner_->advance();
+  if (!info.layout_pass) {  // a layout pass only builds the windows
+    meter_.tick(now_s(), tuner_->total_steps(), tuner_->step_seconds());
+    settings_.window_width = info.width;
+    settings_.window_height = info.height;
+    tuner_->advance();
+  }
   layout_.update(static_cast<float>(info.width), static_cast<float>(info.height));
   const int fixed = ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse;
   if (layout_.begin("Parameters", 0)) parameters_panel();
@@ -287,7 +289,7 @@ void GuiApp::frame(FrameInfo& info) {
   }
   ImGui::End();
   layout_.end_frame();
-  save_layout_if_needed(false);
+  if (!info.layout_pass) save_layout_if_needed(false);
 }
 
 }  // namespace dampbound::ui

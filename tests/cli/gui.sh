@@ -97,8 +97,11 @@ fi
 [ -s "$CFG/imgui.ini" ] && ok || bad "window layout not saved in --config-dir"
 # A later start with that layout: its first frame is drawn (ImGui hid the remembered panels
 # for one frame, and --frames 1 --screenshot wrote the bare background).
-expect_exit 0 "${XV[@]}" "$DB" gui paper-plane --frames 1 --size 1024x640 \
-  --screenshot "$WORK/second.png" --config-dir "$CFG"
+# Its first frame is built twice (a layout pass, then the drawn frame); only the drawn one steps.
+expect_exit 0 "${XV[@]}" "$DB" gui paper-plane --frames 1 --size 1024x640 --steps-per-frame 3 \
+  --stats --screenshot "$WORK/second.png" --config-dir "$CFG"
+STATS=$(printf '%s\n' "$OUT" | grep '^{' | tail -1)
+expect_match "$STATS" '"frames":1,"iterations":3,' "one frame of 3 steps after the layout pass"
 if command -v python3 >/dev/null 2>&1; then
   check=$(png_check "$WORK/second.png")
   distinct=$(printf '%s' "$check" | sed -E 's/distinct=([0-9]+).*/\1/')

@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace dampbound::ui {
 namespace {
@@ -50,7 +51,7 @@ TEST(GlfwHost, RendersAWindowAndTakesAScreenshot) {
     ImGui::End();
   });
   EXPECT_EQ(run.frames, 4);
-  EXPECT_EQ(calls, 4);
+  EXPECT_EQ(calls, 5);  // the first frame's layout pass, then one call per frame
   ASSERT_TRUE(run.screenshot.has_value());
   EXPECT_GE(run.screenshot->width, 640);
   EXPECT_GE(run.screenshot->height, 400);
@@ -60,6 +61,61 @@ TEST(GlfwHost, RendersAWindowAndTakesAScreenshot) {
   std::filesystem::create_directories(dir);
   write_png_atomic(*run.screenshot, (dir / "glfw_window.png").string());
   std::printf("GLFW renderer: %s, %.2f ms/frame\n", host.gl_renderer().c_str(), run.mean_frame_ms);
+}
+
+// ImGui lays a tab bar out from the frame before: built once, its first frame shows no tab
+// and no tab's contents (a `gui --frames 1` screenshot had no tab bars, and the Status table
+// wrapped one letter per line). The layout pass is that frame, built and never drawn.
+TEST(GlfwHost, TheFirstFrameIsLaidOutBeforeItIsDrawn) {
+  if (!have_display()) GTEST_SKIP() << "no DISPLAY (run under xvfb-run -a)";
+  WindowOptions opt;
+  opt.width = 400;
+  opt.height = 300;
+  opt.vsync = false;
+  opt.visible = false;
+  opt.max_frames = 1;
+  opt.screenshot_frame = 0;
+  GlfwHost host(opt);
+  struct Call {
+    int index;
+    bool layout_pass, tab_bar, tab_open;
+    float tab_width;
+  };
+  std::vector<Call> calls;
+  const WindowRun run = host.run([&](FrameInfo& info) {
+    ImGui::SetNextWindowPos(ImVec2(0, 0));
+    ImGui::SetNextWindowSize(
+        ImVec2(static_cast<float>(info.width), static_cast<float>(info.height)));
+    ImGui::Begin("tabs");
+    Call c{info.index, info.layout_pass, false, false, 0.0f};
+    if (ImGui::BeginTabBar("bar")) {
+      c.tab_bar = true;
+      c.tab_open = ImGui::BeginTabItem("First tab");
+      c.tab_width = ImGui::GetItemRectSize().x;
+      if (c.tab_open) {
+        ImGui::TextUnformatted("contents");
+        ImGui::EndTabItem();
+      }
+      if (ImGui::BeginTabItem("Second tab")) ImGui::EndTabItem();
+      ImGui::EndTabBar();
+    }
+    ImGui::End();
+    calls.push_back(c);
+  });
+  EXPECT_EQ(run.frames, 1);
+  ASSERT_EQ(calls.size(), 2u);
+  EXPECT_EQ(calls[0].index, 0);
+  EXPECT_TRUE(calls[0].layout_pass);
+  EXPECT_EQ(calls[1].index, 0);
+  EXPECT_FALSE(calls[1].layout_pass);
+  // The drawn frame has its tab: open, as wide as its label.
+  EXPECT_TRUE(calls[1].tab_bar);
+  EXPECT_TRUE(calls[1].tab_open);
+  EXPECT_GT(calls[1].tab_width, ImGui::CalcTextSize("First tab").x);
+  std::printf("layout pass: tab open %d, width %.1f; drawn frame: tab open %d, width %.1f\n",
+              calls[0].tab_open, calls[0].tab_width, calls[1].tab_open, calls[1].tab_width);
+  ASSERT_TRUE(run.screenshot.has_value());
+  EXPECT_FALSE(is_blank(*run.screenshot));
 }
 
 TEST(GlfwHost, FrameFunctionCanCloseTheWindow) {
