@@ -64,8 +64,7 @@ void begin_frame(const FrameInfo& info, float dt, int fb_w, int fb_h) {
 
 }  // namespace
 
-void FrameRenderer::layout_pass(FrameInfo& info, const FrameFn& fn, float dt, int fb_w,
-                                int fb_h) {
+void FrameRenderer::layout_pass(FrameInfo& info, const FrameFn& fn, float dt, int fb_w, int fb_h) {
   ImGui::SetCurrentContext(ctx_);
   begin_frame(info, dt, fb_w, fb_h);
   info.layout_pass = true;
