@@ -141,6 +141,12 @@ void per_mode(const ExactInputs& in, const Params& params, ExactStability& e) {
   const double c = params.gamma * in.r_max;
   e.spectral_radius = spectrum_spectral_radius(e.integrator, e.decaying, c, h);
   e.stable = spectrum_spectral_radius(e.integrator, e.spectrum, c, h) <= 1 + 1e-12;
+  // The paper's step: SPEC 7's predicate as well (lambda_max h^2 + 2 c h < 4, c h < 2), as the
+  // symmetric index decides at non-uniform rates and as the printed gamma_hi and dt_max say.
+  // The radius alone counts |z| = 1 + 1e-12 as bounded: "stable" up to 1e-12 past the limits,
+  // where over the budget the same vector's index proves the step unstable.
+  if (e.integrator == Integrator::semi_implicit_euler)
+    e.stable = e.stable && e.spectrum.lambda_max * h * h + 2 * c * h < 4 && c * h < 2;
   const RateInterval ci = uniform_rate_interval(e.integrator, e.spectrum, h);
   if (in.r_max > 0) {
     e.gamma_lo = ci.lo / in.r_max;
