@@ -96,9 +96,10 @@ void print_safe_lines(const Model& model, const State& state, const Params& p,
                ? ", exact limit " + g5(ex) + ", ratio " + g5(safe / ex)
                : std::string();
   };
-  std::printf("\nsafe bound (SPEC 9)   gamma_safe = %s at node %d (R = %s 1/s^2)%s\n",
-              g5(s.gamma_safe).c_str(), s.gamma_node, g5(s.row_sum).c_str(),
-              ratio(s.gamma_safe, exact.gamma_hi).c_str());
+  std::printf("\nsafe bound (SPEC 9)   gamma_safe = %s%s at node %d (R = %s 1/s^2)%s\n",
+              g5(s.gamma_safe).c_str(),
+              s.gamma_scaled ? " (the user's gamma: gamma_i = gamma * gamma_scale_i)" : "",
+              s.gamma_node, g5(s.row_sum).c_str(), ratio(s.gamma_safe, exact.gamma_hi).c_str());
   std::printf("safe step (SPEC 9)    dt_safe = %s at gamma = %s, node %d%s\n",
               g5(s.dt_safe).c_str(), format_number(p.gamma).c_str(), s.dt_node,
               ratio(s.dt_safe, exact.dt_max).c_str());

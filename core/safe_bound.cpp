@@ -21,14 +21,18 @@ SafeBoundSummary safe_bound_summary(const Model& model, const std::vector<Vec3>&
   SafeBoundSummary s;
   std::vector<double> R;
   s.compressed_springs = safe_row_sums(model, x, R);
-  s.gamma_safe = s.dt_safe = std::numeric_limits<double>::infinity();
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  s.gamma_safe = s.dt_safe = kInf;
   for (size_t i = 0; i < R.size(); ++i) {
     if (model.fixed[i]) continue;
     ++s.free_nodes;
     const int node = static_cast<int>(i);
     const double g = safe_gamma(model.mass[i], dt, R[i]);
-    if (g < s.gamma_safe) {
-      s.gamma_safe = g;
+    const double scale = model.gamma_scale[i];
+    s.gamma_scaled = s.gamma_scaled || scale != 1;
+    const double user = scale > 0 ? g / scale : (g > 0 ? kInf : g);
+    if (user < s.gamma_safe) {
+      s.gamma_safe = user;
       s.gamma_node = node;
       s.row_sum = R[i];
     }

@@ -37,7 +37,12 @@ double safe_dt(double m, double gamma, double row_sum);
 /// The safe bound over a whole model at one state, for reports (`bounds`, `check`, the tuner).
 struct SafeBoundSummary {
   int free_nodes = 0;
-  double gamma_safe = 0;      ///< min over free nodes of gamma_safe_i (mass unit / s)
+  /// The user's gamma below which every free node holds, gamma_i = gamma * gamma_scale_i <
+  /// gamma_safe_i: min over free nodes of gamma_safe_i / gamma_scale_i (mass unit / s; a node
+  /// with scale 0 limits no gamma unless gamma_safe_i <= 0). With every scale 1 it is the
+  /// smallest gamma_safe_i.
+  double gamma_safe = 0;
+  bool gamma_scaled = false;  ///< some free node has gamma_scale_i != 1
   int gamma_node = -1;        ///< the node where it is reached
   double row_sum = 0;         ///< R of that node (1/s^2)
   double dt_safe = 0;         ///< min over free nodes of dt_safe_i at the user's gamma_i (s)

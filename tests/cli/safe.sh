@@ -10,6 +10,32 @@ expect_match "$OUT" '^safe damping bound +0\.039775 mass unit/s +within' "criter
 expect_match "$OUT" '^safe check: critical damping +0 nodes +within' "criteria row: check"
 expect_exit 0 "$DB" bounds paper-plane --m 0.001 --kappa 0.001 --dt 0.05 --gamma 0
 expect_match "$OUT" 'safe step \(SPEC 9\) +dt_safe = 0\.66667 at gamma = 0, node [0-9]+, exact limit 0\.71555, ratio 0\.93168' "dt_safe"
+# The middle square damped 3x (gamma_i = 3 gamma there): gamma_safe is the user's gamma, a
+# third of the square's gamma_safe_i, just under the exact limit (it was 3x above it).
+cat >"$WORK/damped-region.toml" <<'EOF2'
+name = "damped-region"
+[grid]
+nx = 36
+nz = 36
+spacing = 0.57
+diagonals = true
+anchors = true
+[[region]]
+min = [6.8, -1.0, 6.8]
+max = [13.7, 1.0, 13.7]
+gamma_scale = 3.0
+[params]
+m = 0.001
+kappa = 0.001
+gamma = 0.013
+dt = 0.05
+policy = "fixed"
+EOF2
+expect_exit 0 "$DB" bounds "$WORK/damped-region.toml"
+expect_match "$OUT" "safe bound \(SPEC 9\) +gamma_safe = 0\.013258 \(the user's gamma: gamma_i = gamma \* gamma_scale_i\) at node [0-9]+ \(R = 9 1/s\^2\), exact limit 0\.013269, ratio 0\.9992" "gamma_safe in the user's gamma"
+expect_match "$OUT" '^safe damping bound +0\.013258333 mass unit/s +within' "gamma = 0.013: every node within"
+expect_exit 0 "$DB" suggest "$WORK/damped-region.toml" --no-verify
+expect_match "$OUT" 'safe \(SPEC 9\) gamma < 0\.013258333 ' "suggest gives the same bound"
 # A step too long for critical damping: the nodes are named with the dt that would do.
 expect_exit 0 "$DB" bounds paper-plane --dt 0.6
 expect_match "$OUT" 'critical damping +NOT guaranteed at [0-9]+ of 1296 nodes .*node [0-9]+ \(dt < 0\.' "infeasible nodes named"

@@ -14,6 +14,7 @@
 #include <string>
 
 #include "core/analysis/linear_stability.hpp"
+#include "core/analysis/linear_stability_exact.hpp"
 #include "core/analysis/linear_stability_modes.hpp"
 #include "core/scene.hpp"
 #include "core/step.hpp"
@@ -145,6 +146,37 @@ TEST(SafeBound, PaperPlaneMatchesSpec9) {
   EXPECT_GT(at_big_dt.infeasible.size(), 1000u);
   EXPECT_NEAR(at_big_dt.infeasible_dt[0], safe_dt(0.001, 0.002, R[at_big_dt.infeasible[0]]), 0);
   EXPECT_LT(at_big_dt.infeasible_dt[0], 0.6);
+}
+
+// gamma_safe is the user's gamma: with the middle square damped 3x (gamma_i = 3 gamma there)
+// the bound is a third of the square's gamma_safe_i. It used to be the smallest gamma_safe_i
+// itself, 3x above the exact limit on that plane (bounds printed "ratio 2.9976").
+TEST(SafeBound, TheSummarysGammaSafeIsTheUsersGamma) {
+  SceneSpec s = shipped("paper-plane");
+  Params p = s.params;
+  p.m = p.kappa = 0.001;
+  p.dt = 0.05;
+  p.gamma = 0.002;
+  const Model plain = compile_model(s.model, p);
+  const SafeBoundSummary unscaled = safe_bound_summary(plain, plain.rest, p.dt);
+  EXPECT_FALSE(unscaled.gamma_scaled);
+  EXPECT_NEAR(unscaled.gamma_safe, 0.039775, 1e-12);
+  for (int a = 12; a <= 24; ++a)
+    for (int b = 12; b <= 24; ++b) s.model.gamma_scale[static_cast<size_t>(a * 36 + b)] = 3;
+  const Model m = compile_model(s.model, p);
+  const SafeBoundSummary sum = safe_bound_summary(m, m.rest, p.dt);
+  EXPECT_TRUE(sum.gamma_scaled);
+  EXPECT_NEAR(sum.gamma_safe, 0.039775 / 3, 1e-12);
+  EXPECT_EQ(m.gamma_scale[static_cast<size_t>(sum.gamma_node)], 3);
+  // Just below it every node holds and the paper's step is stable; the exact limit lies above.
+  Params below = p;
+  below.gamma = 0.999 * sum.gamma_safe;
+  const Model mb = compile_model(s.model, below);
+  EXPECT_EQ(safe_bound_summary(mb, mb.rest, p.dt).gamma_over, 0);
+  const ExactStability e = exact_stability(mb, mb.rest, below);
+  EXPECT_TRUE(e.stable);
+  EXPECT_GT(e.gamma_hi, sum.gamma_safe);
+  EXPECT_LT(e.gamma_hi, 0.039775 / 3 * 1.01);
 }
 
 /// The property of SPEC 9 on many random meshes: the safe policy's damping keeps the dense
