@@ -62,10 +62,11 @@ std::vector<CriterionResult> safe_criteria(const Model& model, const State& stat
   const int over = s.gamma_over;
   g.verdict = no_guarantee ? unknown : verdict_of(over == 0);
   g.test = std::to_string(over) + " of " + std::to_string(s.free_nodes) +
-           " nodes with gamma_i >= gamma_safe_i; smallest gamma_safe " + format_digits(s.gamma_safe, 8) +
+           " nodes with gamma_i >= gamma_safe_i; smallest gamma_safe " +
+           format_digits(s.gamma_safe, 8) +
            (s.gamma_scaled ? " (the user's gamma, gamma_i = gamma * gamma_scale_i)" : "") +
-           " at node " + std::to_string(s.gamma_node) + " (R = " + format_digits(s.row_sum, 8) + ")" +
-           ratio_text(s.gamma_safe, exact ? exact->gamma_hi : NAN, exact) + caveat;
+           " at node " + std::to_string(s.gamma_node) + " (R = " + format_digits(s.row_sum, 8) +
+           ")" + ratio_text(s.gamma_safe, exact ? exact->gamma_hi : NAN, exact) + caveat;
   out.push_back(g);
 
   CriterionResult d;
