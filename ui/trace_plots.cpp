@@ -60,7 +60,7 @@ PlotSpec displacement_plot(const std::vector<TraceView>& views, bool log_y, doub
 }
 
 PlotSpec envelope_plot(const std::vector<StepSample>& trace, std::optional<double> exact_gamma_max,
-                       const std::string& title) {
+                       const std::string& title, double gamma_scale) {
   PlotSpec p;
   p.title = title.empty() ? "Damping bounds of the watched node" : title;
   p.x.label = "iteration";
@@ -94,10 +94,12 @@ PlotSpec envelope_plot(const std::vector<StepSample>& trace, std::optional<doubl
   series("effective gamma", column(trace, [](const StepSample& s) { return s.watched.gamma_eff; }),
          IM_COL32(255, 127, 14, 255), false, 2.0f);
   p.bands.push_back(std::move(band));
-  if (exact_gamma_max && *exact_gamma_max > 0) {
+  // The exact limit is of the user's gamma; the node is damped at gamma_i = gamma * scale.
+  if (exact_gamma_max && *exact_gamma_max * gamma_scale > 0) {
     PlotRefLine h;
     h.label = "exact linear limit (SPEC 7)";
-    h.at = *exact_gamma_max;
+    if (gamma_scale != 1) h.label += " x gamma_scale " + format_digits(gamma_scale, 4);
+    h.at = *exact_gamma_max * gamma_scale;
     h.color = IM_COL32(148, 103, 189, 255);
     p.ref_lines.push_back(h);
   }

@@ -26,9 +26,11 @@ PlotSpec displacement_plot(const std::vector<TraceView>& views, bool log_y, doub
 /// The bound envelope of the watched node against iteration on a log axis: the lower bound
 /// (eq. 5), the upper bound (eq. 6), the user's gamma and the effective gamma, with the
 /// feasible band [lower, upper] shaded; `exact_gamma_max`, when given, as a line (SPEC 7).
+/// Every curve is the node's own gamma_i; the exact limit, of the user's gamma, is drawn
+/// times the node's `gamma_scale` (gamma_i = gamma * gamma_scale_i) and labelled so.
 PlotSpec envelope_plot(const std::vector<StepSample>& trace,
                        std::optional<double> exact_gamma_max = std::nullopt,
-                       const std::string& title = "");
+                       const std::string& title = "", double gamma_scale = 1);
 
 /// A paper figure: the displacement of every run (the paper's Fig. 1 and Fig. 2 show only the
 /// perturbed node), log axis when the figure asks for it.

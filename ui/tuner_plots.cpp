@@ -169,8 +169,12 @@ void envelope_headroom(PlotSpec& spec, double cap, double fraction) {
 
 PlotSpec tuner_envelope_plot(Tuner& tuner, const TunerPlotOptions& options) {
   const std::vector<StepSample>& current = tuner.reduced_trace();
+  const int watched = tuner.session().watched();
+  const std::vector<double>& scales = tuner.session().model().gamma_scale;
+  const double scale =
+      watched >= 0 && watched < static_cast<int>(scales.size()) ? scales[static_cast<size_t>(watched)] : 1.0;
   PlotSpec p = envelope_plot(current, tuner.exact_gamma_max(),
-                             "Damping bounds of node " + std::to_string(tuner.session().watched()));
+                             "Damping bounds of node " + std::to_string(watched), scale);
   p.x.min = 0;
   if (options.show_pins) {
     for (const Pin& pin : tuner.pins()) {
@@ -192,7 +196,7 @@ PlotSpec tuner_envelope_plot(Tuner& tuner, const TunerPlotOptions& options) {
   for (PlotSeries& s : p.series) drop_flat_runs(s);
   // The upper bound (eq. 6) grows without limit as |v| -> 0: cap the axis at 100 x the
   // largest damping that matters, and keep the top part free for the legend.
-  double ref = tuner.exact_gamma_max().value_or(0.0);
+  double ref = tuner.exact_gamma_max().value_or(0.0) * scale;
   for (const StepSample& st : current)
     for (double v : {st.watched.lower, st.watched.gamma, st.watched.gamma_eff})
       if (std::isfinite(v)) ref = std::max(ref, v);

@@ -75,6 +75,34 @@ TEST(TunerPlots, PinsAreOverlaidUntilHiddenOrRemoved) {
   EXPECT_TRUE(tuner_displacement_plot(t, o).y.log);
 }
 
+// The envelope's curves are the watched node's gamma_i; the exact limit is of the user's gamma,
+// so on a node damped 3x it is drawn 3x higher, labelled so (it sat 3x too low beside the
+// node's own safe bound, which the same limit approaches).
+TEST(TunerPlots, TheExactLimitIsDrawnInTheWatchedNodesGamma) {
+  SceneSpec scene = tiny();
+  scene.model.gamma_scale[14] = 3;
+  Tuner t(std::move(scene));
+  t.step(5);
+  const std::optional<double> exact = t.exact_gamma_max();
+  ASSERT_TRUE(exact && *exact > 0);
+  auto exact_line = [](const PlotSpec& p) -> const PlotRefLine* {
+    for (const PlotRefLine& l : p.ref_lines)
+      if (l.label.rfind("exact linear limit", 0) == 0) return &l;
+    return nullptr;
+  };
+  const PlotSpec scaled = tuner_envelope_plot(t, {});
+  const PlotRefLine* line = exact_line(scaled);
+  ASSERT_NE(line, nullptr);
+  EXPECT_DOUBLE_EQ(line->at, 3 * *exact);
+  EXPECT_EQ(line->label, "exact linear limit (SPEC 7) x gamma_scale 3");
+  t.watch(15);  // an unscaled node: the limit itself, the label as before
+  const PlotSpec unscaled = tuner_envelope_plot(t, {});
+  const PlotRefLine* plain = exact_line(unscaled);
+  ASSERT_NE(plain, nullptr);
+  EXPECT_DOUBLE_EQ(plain->at, *exact);
+  EXPECT_EQ(plain->label, "exact linear limit (SPEC 7)");
+}
+
 TEST(TunerPlots, VerdictMarkersShowEntryExitAndSettled) {
   RunResult r;
   EXPECT_TRUE(verdict_markers(r).empty());
