@@ -171,8 +171,9 @@ PlotSpec tuner_envelope_plot(Tuner& tuner, const TunerPlotOptions& options) {
   const std::vector<StepSample>& current = tuner.reduced_trace();
   const int watched = tuner.session().watched();
   const std::vector<double>& scales = tuner.session().model().gamma_scale;
-  const double scale =
-      watched >= 0 && watched < static_cast<int>(scales.size()) ? scales[static_cast<size_t>(watched)] : 1.0;
+  const double scale = watched >= 0 && watched < static_cast<int>(scales.size())
+                           ? scales[static_cast<size_t>(watched)]
+                           : 1.0;
   PlotSpec p = envelope_plot(current, tuner.exact_gamma_max(),
                              "Damping bounds of node " + std::to_string(watched), scale);
   p.x.min = 0;
