@@ -43,7 +43,10 @@ int print_damping(const DampingSuggestion& s) {
   std::printf("  gamma_max  %-14s set by %s (exclusive)\n", format_digits(s.gamma_max, 8).c_str(),
               s.max_by.c_str());
   const std::string scope = safe_bound_scope(s.exact.integrator);
-  if (scope.empty())
+  if (s.safe_max <= 0)  // some node has gamma_safe_i <= 0: SPEC 9 guarantees no gamma here
+    std::printf("  safe (SPEC 9) no gamma: gamma_safe_i <= 0 at some node at this dt (%s)\n",
+                format_digits(s.safe_max, 8).c_str());
+  else if (scope.empty())
     std::printf("  safe (SPEC 9) gamma < %-10s guarantees stability at every node (at rest)\n",
                 format_digits(s.safe_max, 8).c_str());
   else

@@ -30,7 +30,7 @@ SafeBoundSummary safe_bound_summary(const Model& model, const std::vector<Vec3>&
     const double g = safe_gamma(model.mass[i], dt, R[i]);
     const double scale = model.gamma_scale[i];
     s.gamma_scaled = s.gamma_scaled || scale != 1;
-    const double user = scale > 0 ? g / scale : (g > 0 ? kInf : g);
+    const double user = safe_user_gamma(g, scale);
     if (user < s.gamma_safe) {
       s.gamma_safe = user;
       s.gamma_node = node;

@@ -3,6 +3,7 @@
 // springs and anchor) and sufficient (Gershgorin's theorem on the semi-implicit step's exact
 // definiteness criterion, Q = 4 I - 2 dt C - dt^2 A positive definite; docs/criteria.md).
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "core/forces.hpp"
@@ -28,6 +29,14 @@ int safe_row_sums(const Model& model, const std::vector<Vec3>& x, std::vector<do
 /// guarantees stability at this dt.
 inline double safe_gamma(double m, double dt, double row_sum) {
   return 2.0 * m / dt - m * dt * row_sum / 2.0;
+}
+
+/// The user's gamma below which node i holds (gamma_i = gamma * scale < gamma_safe_i):
+/// gamma_safe_i / scale; a node with scale 0 is undamped whatever the gamma, so it limits no
+/// gamma (+inf) unless gamma_safe_i <= 0, where no gamma makes it hold (gamma_safe_i itself).
+inline double safe_user_gamma(double gamma_safe_i, double scale) {
+  if (scale > 0) return gamma_safe_i / scale;
+  return gamma_safe_i > 0 ? std::numeric_limits<double>::infinity() : gamma_safe_i;
 }
 
 /// SPEC 9: dt_safe = (sqrt(c^2 + 4 R) - c) / R with c = gamma/m (s); 2/c when R = 0

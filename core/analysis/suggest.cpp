@@ -105,7 +105,7 @@ DampingSuggestion suggest_damping(const SceneSpec& scene, const Params& params_i
     NodeClass& c = classes[{model.mass[i], model.node_kappa[i], sc}];
     const double safe = safe_gamma(model.mass[i], params.dt, R[i]);
     const double dt_safe = safe_dt(model.mass[i], lo, R[i]);
-    if (sc > 0) s.safe_max = std::min(s.safe_max, safe / sc);
+    s.safe_max = std::min(s.safe_max, safe_user_gamma(safe, sc));
     if (c.count == 0 || safe < c.safe_max) c.safe_max = safe;
     if (c.count == 0 || dt_safe < c.dt_safe) c.dt_safe = dt_safe;
     if (c.count++ == 0) {

@@ -57,6 +57,7 @@ struct DampingSuggestion {
   double gamma_min = 0;          ///< max(eq. 5 over nodes / gamma_scale_i, exact gamma_lo)
   double gamma_max = 0;          ///< the exact gamma_hi (exclusive)
   double safe_max = 0;           ///< SPEC 9: the user's gamma < safe_max guarantees stability
+                                 ///< (<= 0: none, some gamma_safe_i <= 0 at this dt)
   std::string min_by, max_by;    ///< the criterion that sets each end
   bool empty = true;             ///< gamma_min >= gamma_max: no damping satisfies all
   std::vector<CriterionResult> dt_only;  ///< Delingette, Provot, Kacic-Alesic at this dt

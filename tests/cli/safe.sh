@@ -36,6 +36,10 @@ expect_match "$OUT" "safe bound \(SPEC 9\) +gamma_safe = 0\.013258 \(the user's 
 expect_match "$OUT" '^safe damping bound +0\.013258333 mass unit/s +within' "gamma = 0.013: every node within"
 expect_exit 0 "$DB" suggest "$WORK/damped-region.toml" --no-verify
 expect_match "$OUT" 'safe \(SPEC 9\) gamma < 0\.013258333 ' "suggest gives the same bound"
+# At dt = 0.7 an interior node's gamma_safe_i is negative: suggest says no gamma is
+# guaranteed (it printed "gamma < -0.00029285714 guarantees stability at every node").
+expect_exit 1 "$DB" suggest paper-plane --dt 0.7 --no-verify  # 1: no damping range at this dt
+expect_match "$OUT" 'safe \(SPEC 9\) no gamma: gamma_safe_i <= 0 at some node at this dt \(-0\.00029285714\)' "suggest: no safe gamma"
 # A step too long for critical damping: the nodes are named with the dt that would do.
 expect_exit 0 "$DB" bounds paper-plane --dt 0.6
 expect_match "$OUT" 'critical damping +NOT guaranteed at [0-9]+ of 1296 nodes .*node [0-9]+ \(dt < 0\.' "infeasible nodes named"

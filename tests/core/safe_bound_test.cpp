@@ -177,6 +177,10 @@ TEST(SafeBound, TheSummarysGammaSafeIsTheUsersGamma) {
   EXPECT_TRUE(e.stable);
   EXPECT_GT(e.gamma_hi, sum.gamma_safe);
   EXPECT_LT(e.gamma_hi, 0.039775 / 3 * 1.01);
+  // An undamped node (scale 0) limits no gamma, unless no gamma can make it hold.
+  EXPECT_EQ(safe_user_gamma(0.04, 2), 0.02);
+  EXPECT_TRUE(std::isinf(safe_user_gamma(0.04, 0)));
+  EXPECT_EQ(safe_user_gamma(-0.001, 0), -0.001);
 }
 
 /// The property of SPEC 9 on many random meshes: the safe policy's damping keeps the dense
