@@ -279,6 +279,11 @@ MonitorLimits Monitor::exact_limits(NodeVectors x, NodeScalars gamma, double dt,
     l.dt_stable_up_to = e.unfactored.dt_stable_up_to;
     return l;
   }
+  l.indefinite = e.indefinite;
+  if (e.indefinite) {
+    l.rate_max = l.dt_max_undamped = 0;
+    return l;
+  }
   const LinearLimits uniform = linear_limits(e.spectrum.lambda_max, 1.0, dt);
   l.rate_max = uniform.gamma_max;
   l.dt_max_undamped = uniform.dt_max_undamped;

@@ -70,6 +70,10 @@ struct MonitorLimits {
   double dt_max = 0;      ///< the largest stable dt with these gamma_i (s; may be inf)
   double rate_max = 0;  ///< uniform damping rate limit: gamma_i/m_i < 2/dt - lambda_max dt/2 (1/s)
   double dt_max_undamped = 0;  ///< 2/sqrt(lambda_max) (s)
+  /// K is indefinite at x (a certified eigenvalue below 0; compressed springs can do it):
+  /// a mode grows whatever the damping and dt, so `stable` is false, scale_lo = scale_hi = 0
+  /// and dt_max = rate_max = dt_max_undamped = 0 (ExactStability::indefinite).
+  bool indefinite = false;
   /// Set when one sparse factorisation would have exceeded max_factor_flops: what it would
   /// have cost (every number above is then NaN).
   std::optional<std::string> not_computed;

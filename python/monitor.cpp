@@ -80,6 +80,9 @@ void bind_monitor(py::module_& m) {
       .def_readonly("rate_max", &MonitorLimits::rate_max,
                     "uniform gamma_i/m_i must stay below 2/dt - lambda_max dt/2 (1/s)")
       .def_readonly("dt_max_undamped", &MonitorLimits::dt_max_undamped, "2/sqrt(lambda_max) (s)")
+      .def_readonly("indefinite", &MonitorLimits::indefinite,
+                    "K is indefinite at x: a mode grows whatever gamma and dt (stable False, "
+                    "scale_hi, dt_max, rate_max, dt_max_undamped 0)")
       .def_property_readonly(
           "computed", [](const MonitorLimits& l) { return !l.not_computed; },
           "False when one factorisation would exceed factor_budget_gflop (numbers NaN)")

@@ -203,9 +203,14 @@ std::vector<CriterionResult> exact_criteria(const ExactStability& e, const Param
     rho.test = e.stable ? "stable for every dt and gamma" : "unstable";
   else
     rho.test = "rho = " + format_digits(e.spectral_radius, 8) + (e.stable ? " <= 1" : " > 1") +
-               (e.radius_converged ? "" : " (estimate: Arnoldi did not converge)") +
+               (e.radius_converged ? ""
+                : e.indefinite && e.method == ExactMethod::per_mode
+                    ? " (estimate: modes sampled over [lambda_min, lambda_max])"
+                    : " (estimate: Arnoldi did not converge)") +
                (e.stable && e.spectral_radius >= 1 - 1e-12 ? " (marginal: no decay)" : "") +
                (e.zero_modes ? " (zero modes, lambda = 0, excluded: z = 1 for any gamma, dt)" : "");
+  if (e.indefinite && e.integrator != Integrator::implicit_euler)
+    rho.test += "; K is indefinite at the state (lambda_min < 0): unstable whatever gamma and dt";
   out.push_back(rho);
 
   CriterionResult gi = criterion("exact gamma interval (" + integ + ")", "SPEC 7",
@@ -218,7 +223,6 @@ std::vector<CriterionResult> exact_criteria(const ExactStability& e, const Param
             format_digits(e.gamma_lo, 8) + ", " + format_digits(e.gamma_hi, 8) + ")" +
             (e.gamma_lo < e.gamma_hi ? "" : ": empty, no gamma is stable at this dt") +
             (e.method == ExactMethod::frozen_estimate ? " (frozen-rate estimate)" : "");
-  out.push_back(gi);
 
   CriterionResult dm = criterion("exact dt limit (" + integ + ")", "SPEC 7",
                      "the largest stable dt at this gamma");
@@ -227,6 +231,21 @@ std::vector<CriterionResult> exact_criteria(const ExactStability& e, const Param
   dm.verdict = verdict_of(params.dt <= e.dt_max);
   dm.test = "dt = " + format_digits(params.dt, 8) + (params.dt <= e.dt_max ? " <= " : " > ") + "dt_max = " +
             format_digits(e.dt_max, 8) + (e.method == ExactMethod::frozen_estimate ? " (frozen-rate estimate)" : "");
+  if (e.indefinite) {  // ExactStability::indefinite
+    const std::string why = "K is indefinite at the state (lambda_min = " +
+                            format_digits(e.spectrum.lambda_min, 8) + " < 0)";
+    if (e.integrator == Integrator::implicit_euler) {
+      gi.verdict = dm.verdict = CriterionVerdict::not_applicable;
+      gi.test = dm.test = "not computed: " + why +
+                          "; implicit Euler damps its growing modes only at a long enough step, "
+                          "and the spectral radius decides";
+    } else {
+      gi.test = "gamma = " + format_digits(params.gamma, 8) + " not in the empty interval: " +
+                why + ", and a mode grows whatever gamma and dt";
+      dm.test = "dt = " + format_digits(params.dt, 8) + ": no dt > 0 is stable; " + why;
+    }
+  }
+  out.push_back(gi);
   out.push_back(dm);
   return out;
 }

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <stdexcept>
 
 #include "core/analysis/linear_stability_cholesky.hpp"
 #include "core/safe_bound.hpp"
@@ -107,11 +108,30 @@ void spectrum_and_rates(const Model& model, const std::vector<Vec3>& x, const Ex
   e.rate_max = params.gamma * in.r_max;
   e.uniform_rate = in.r_max - in.r_min <= 1e-12 * in.r_max;
   e.decaying = e.spectrum;
-  if (std::abs(e.spectrum.lambda_min) <= 1e-9 * std::abs(e.spectrum.lambda_max)) {
+  const double zero = kZeroModeTolerance * std::abs(e.spectrum.lambda_max);
+  if (std::abs(e.spectrum.lambda_min) <= zero) {
     e.zero_modes = true;
-    const double above = smallest_eigenvalue_above(in.A, 1e-9 * e.spectrum.lambda_max);
+    const double above = smallest_eigenvalue_above(in.A, kZeroModeTolerance * e.spectrum.lambda_max);
     e.decaying.lambda_min = std::isnan(above) ? e.spectrum.lambda_max : above;
   }
+  e.indefinite = ends.smallest.hi < -zero;  // a Rayleigh quotient below 0: proved
+}
+
+/// K indefinite (ExactStability::indefinite): a mode with lambda < 0 has the characteristic
+/// polynomial of every explicit step below 0 at z = 1 (semi-implicit: lambda h^2), so a real
+/// root beyond 1 whatever gamma and dt: no gamma is stable, and no dt. Implicit Euler damps
+/// it where h mu > 2 (mu > 0 the mode's growth rate), which needs the eigenvalue nearest 0
+/// from below: its limits are not computed (NaN), and where its radius came from sampling
+/// [lambda_min, lambda_max] per mode, that radius is an estimate.
+void indefinite_limits(ExactStability& e) {
+  if (e.integrator == Integrator::implicit_euler) {
+    e.gamma_lo = e.gamma_hi = e.dt_max = kNaN;
+    if (e.method == ExactMethod::per_mode) e.radius_converged = false;
+    return;
+  }
+  e.gamma_lo = e.gamma_hi = 0;
+  e.dt_max = 0;
+  e.stable = false;
 }
 
 /// The spectral radius of the step's amplification operator, when asked for (else NaN).
@@ -171,6 +191,7 @@ void symmetric_index_limits(const ExactInputs& in, const Params& params,
   e.index = symmetric_index(A, R, gamma, h, threads, budget).value;
   e.stable = e.index < 4 && in.r_min > 0;
   e.gamma_lo = 0;
+  if (e.indefinite) return;  // the index decides only where K >= 0: indefinite_limits()
   // gamma: g(t) = index(t, h) - 4, convex and increasing in t; g(2/(h r_max)) >= 0.
   if (symmetric_index(A, R, 0, h, threads, budget).value >= 4) {
     e.gamma_hi = 0;
@@ -394,6 +415,7 @@ ExactStability exact_stability_within_budget(const Model& model, const std::vect
                       params.dt <= e.dt_max)
                    : e.spectral_radius <= 1 + 1e-9;
   }
+  if (e.indefinite) indefinite_limits(e);
   return e;
 }
 
@@ -409,26 +431,37 @@ ExactStability exact_stability(const Model& model, const std::vector<Vec3>& x,
   }
 }
 
-double perturbation_growth(const Model& model, const Params& params_in, int steps,
+double perturbation_growth(const Model& model, const Params& params, int steps,
                            double amplitude, unsigned seed) {
+  return perturbation_growth(model, model.rest, params, steps, amplitude, seed);
+}
+
+double perturbation_growth(const Model& model, const std::vector<Vec3>& about,
+                           const Params& params_in, int steps, double amplitude, unsigned seed) {
+  if (about.size() != model.rest.size())
+    throw std::invalid_argument("perturbation_growth: one position per node is needed");
   Params params = params_in;
   params.policy = DampingPolicy::fixed;
   State state = rest_state(model);
+  state.x = about;
   auto uniform = [&seed] {  // a linear congruential generator: the same numbers everywhere
     seed = seed * 1103515245u + 12345u;
     return static_cast<double>((seed >> 8) & 0xffffu) / 65535.0 - 0.5;
   };
-  double before = 0;
+  auto away = [&] {  // max_i |x_i - about_i|
+    double d = 0;
+    for (size_t i = 0; i < state.x.size(); ++i) d = std::max(d, (state.x[i] - about[i]).norm());
+    return d;
+  };
   for (size_t i = 0; i < state.x.size(); ++i) {
     if (model.fixed[i]) continue;
     const Vec3 d(uniform(), uniform(), uniform());
     state.x[i] += (2 * amplitude) * d;
-    before = std::max(before, (state.x[i] - model.rest[i]).norm());
   }
+  const double before = away();
   StepWorkspace ws;
-  double after = before;
-  for (int k = 0; k < steps; ++k) after = step(model, params, state, ws).max_displacement;
-  return before > 0 ? after / before : 0;
+  for (int k = 0; k < steps; ++k) step(model, params, state, ws);
+  return before > 0 ? away() / before : 0;
 }
 
 }  // namespace dampbound

@@ -39,6 +39,13 @@ struct ExactStability {
   /// dt. The spectral radius (the decay rate per step) is taken over it.
   StiffnessSpectrum decaying;
   bool zero_modes = false;
+  /// K is indefinite at the state: some vector's Rayleigh quotient is below
+  /// -kZeroModeTolerance lambda_max (compressed springs can do it; SPEC 9). That mode grows
+  /// under every explicit step whatever gamma and dt (its characteristic polynomial is
+  /// negative at z = 1), so their gamma interval is empty and dt_max 0. Implicit Euler damps
+  /// such a mode only at a long enough step; its limits are then NaN (not computed) and the
+  /// verdict is the spectral radius.
+  bool indefinite = false;
   double spectral_radius = 0;  ///< rho of one step at the user's gamma and dt (NaN: not computed)
   bool radius_converged = true;
   double index = 0;           ///< symmetric_index only: lambda_max(dt^2 A + 2 dt C); stable < 4
@@ -100,6 +107,10 @@ struct ExactStability {
   const std::string& over_budget_reason() const { return not_computed_reason; }
 };
 
+/// |lambda| at most this times lambda_max counts as a zero mode (z = 1: neither grows nor
+/// decays); a certified lambda_min below -kZeroModeTolerance lambda_max makes K indefinite.
+inline constexpr double kZeroModeTolerance = 1e-9;
+
 /// Options: the spectral radius of a non-uniform mesh costs an Arnoldi run (up to seconds);
 /// `with_radius = false` skips it where only limits are wanted (spectral_radius = NaN).
 struct ExactOptions {
@@ -142,5 +153,13 @@ SpectralRadius spectral_radius_at(const Model& model, const SparseMatrix& K_weig
 /// max_i |x_i - X_i| after / before. Decays (< 1) inside the exact limits, grows outside.
 double perturbation_growth(const Model& model, const Params& params, int steps,
                            double amplitude = 1e-6, unsigned seed = 12345);
+
+/// The same about an equilibrium `about` (positions where F_i + f_i = 0 at every free node,
+/// e.g. a mesh held deformed by its external forces): starts there, moved as above, with
+/// v = 0, and returns max_i |x_i - about_i| after / before. What exact_stability(model,
+/// about, params) predicts.
+double perturbation_growth(const Model& model, const std::vector<Vec3>& about,
+                           const Params& params, int steps, double amplitude = 1e-6,
+                           unsigned seed = 12345);
 
 }  // namespace dampbound

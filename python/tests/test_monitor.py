@@ -111,6 +111,22 @@ def test_exact_limits_of_two_free_nodes():
     assert lim.stable
 
 
+def test_exact_limits_of_a_compressed_column_say_no_damping_helps():
+    # Two springs pushed to 2/3 of their rest length between fixed ends: in equilibrium, but
+    # the sideways stiffness 2 kappa (1 - l0/l) = -kappa is negative (lambda_min = -1), and
+    # the column buckles whatever the damping and dt.
+    mon = dampbound.Monitor(np.full(3, 0.001), np.array([[0, 1], [1, 2]]), np.full(2, 0.001),
+                            np.full(2, 0.75), fixed=np.array([True, False, True]))
+    x = np.array([[0.0, 0, 0], [0.5, 0, 0], [1.0, 0, 0]])
+    lim = mon.exact_limits(x, np.full(3, 0.002), 0.05)
+    assert lim.indefinite and not lim.stable
+    assert lim.scale_hi == 0 and lim.dt_max == 0 and lim.rate_max == 0
+    assert lim.lambda_max == pytest.approx(2, rel=1e-12)
+    stretched = mon.exact_limits(np.array([[0.0, 0, 0], [1.0, 0, 0], [2.0, 0, 0]]),
+                                 np.full(3, 0.002), 0.05)
+    assert not stretched.indefinite and stretched.stable and stretched.dt_max > 0.05
+
+
 def test_exact_limits_over_a_factorisation_budget_factorise_nothing():
     scene = dampbound.paper_plane_scene(12)  # 432 rows: the factorisation route
     a = scene.arrays(scene.params)

@@ -98,6 +98,50 @@ for bad_budget in 0 -1 nan inf x; do
   expect_match "$ERR" -- '--factor-budget' "names --factor-budget ($bad_budget)"
 done
 
+# A column pushed to 2/3 of its springs' rest length between fixed ends: in equilibrium,
+# but K is indefinite there (sideways stiffness 2 kappa (1 - l0/l) < 0) and it buckles. The
+# exact rows said "within" (gamma in [0, 0.03995), dt_max 0.73205081) beside rho = 1.021 > 1.
+cat >"$WORK/column.toml" <<'EOF2'
+name = "column"
+watch = 1
+[[node]]
+x = [0.0, 0.0, 0.0]
+fixed = true
+[[node]]
+x = [0.5, 0.0, 0.0]
+[[node]]
+x = [1.0, 0.0, 0.0]
+fixed = true
+[[spring]]
+nodes = [0, 1]
+rest_length = 0.75
+[[spring]]
+nodes = [1, 2]
+rest_length = 0.75
+[params]
+m = 0.001
+kappa = 0.001
+gamma = 0.002
+dt = 0.05
+policy = "fixed"
+[[perturb]]
+node = 1
+displacement = [0.0, 0.001, 0.0]
+EOF2
+expect_exit 0 "$DB" bounds "$WORK/column.toml"
+expect_match "$OUT" 'lambda_min = -1 ' "column: lambda_min"
+expect_match "$OUT" 'exact spectral radius \(semi-implicit-euler\) +1\.0210824 +BEYOND .*K is indefinite' "column: unstable"
+expect_match "$OUT" 'exact gamma interval \(semi-implicit-euler\) +0 mass unit/s +BEYOND .*empty interval: K is indefinite' "column: no gamma"
+expect_match "$OUT" 'exact dt limit \(semi-implicit-euler\) +0 s +BEYOND +dt = 0\.05: no dt > 0 is stable' "column: no dt"
+expect_exit 0 "$DB" run "$WORK/column.toml" --json
+expect_match "$OUT" '"outcome":"diverged"' "column: the run buckles"
+for integ in forward-euler verlet rk4; do
+  expect_exit 0 "$DB" bounds "$WORK/column.toml" --integrator "$integ" --gamma 0.02
+  expect_match "$OUT" "exact dt limit \\($integ\\) +0 s +BEYOND" "column: no dt under $integ"
+done
+expect_exit 0 "$DB" bounds "$WORK/column.toml" --integrator implicit-euler
+expect_match "$OUT" 'exact dt limit \(implicit-euler\) +n/a s +n/a +not computed: K is indefinite' "column: implicit Euler's limits not computed"
+
 # Bad input: one line, exit 2.
 expect_exit 2 "$DB" bounds --m 0.001 --kappa 0.001
 expect_one_line "$ERR" "missing --dt"
