@@ -40,8 +40,20 @@ int print_damping(const DampingSuggestion& s) {
   std::printf("damping range at dt = %s s (the user's gamma; gamma_i = gamma * gamma_scale_i)\n",
               format_digits(s.dt, 8).c_str());
   std::printf("  gamma_min  %-14s set by %s\n", format_digits(s.gamma_min, 8).c_str(), s.min_by.c_str());
-  std::printf("  gamma_max  %-14s set by %s (exclusive)\n", format_digits(s.gamma_max, 8).c_str(),
-              s.max_by.c_str());
+  if (s.proved_only) {
+    std::printf("  gamma_max  %-14s set by %s\n", format_digits(s.gamma_max, 8).c_str(),
+                s.max_by.c_str());
+    std::printf("  exact limits not computed: %s\n", s.exact.over_budget_reason().c_str());
+    if (std::isfinite(s.gamma_unstable_from))
+      std::printf("  the exact upper limit lies in [%s, %s): every gamma from %s on is proved "
+                  "unstable\n",
+                  format_digits(s.gamma_max, 8).c_str(),
+                  format_digits(s.gamma_unstable_from, 8).c_str(),
+                  format_digits(s.gamma_unstable_from, 8).c_str());
+  } else {
+    std::printf("  gamma_max  %-14s set by %s (exclusive)\n", format_digits(s.gamma_max, 8).c_str(),
+                s.max_by.c_str());
+  }
   const std::string scope = safe_bound_scope(s.exact.integrator);
   if (s.safe_max <= 0)  // some node has gamma_safe_i <= 0: SPEC 9 guarantees no gamma here
     std::printf("  safe (SPEC 9) no gamma: gamma_safe_i <= 0 at some node at this dt (%s)\n",
@@ -54,10 +66,10 @@ int print_damping(const DampingSuggestion& s) {
                 scope.c_str());
   std::printf("  per node class (m_i, kappa_i = max incident stiffness, gamma_scale_i):\n");
   for (const NodeClass& c : s.classes) {
-    std::printf("    %5d nodes like %-5d m_i=%-10s kappa_i=%-10s scale=%-6s eq.5 %-12s gamma_i in [%s, %s)\n",
+    std::printf("    %5d nodes like %-5d m_i=%-10s kappa_i=%-10s scale=%-6s eq.5 %-12s gamma_i in [%s, %s%c\n",
                 c.count, c.example, format_digits(c.mass, 8).c_str(), format_digits(c.kappa, 8).c_str(),
                 format_digits(c.gamma_scale, 8).c_str(), format_digits(c.lower_bound, 8).c_str(), format_digits(c.gamma_min, 8).c_str(),
-                format_digits(c.gamma_max, 8).c_str());
+                format_digits(c.gamma_max, 8).c_str(), s.proved_only ? ']' : ')');
     if (!scope.empty())
       std::printf("          safe (SPEC 9): gamma_i < %s; at eq.5 dt < %s s (%s)\n",
                   format_digits(c.safe_max, 8).c_str(), format_digits(c.dt_safe, 8).c_str(),
@@ -75,21 +87,41 @@ int print_damping(const DampingSuggestion& s) {
   for (const CriterionResult& c : s.dt_only) std::printf(" %s %s;", c.name.c_str(), to_string(c.verdict));
   std::printf("\n");
   if (s.empty) {
-    std::printf("no damping satisfies every criterion at this dt (gamma_min >= gamma_max)\n");
-    std::printf("largest stable dt at gamma_min: %s s (try suggest --gamma %s)\n",
+    std::printf("no damping satisfies every criterion at this dt (gamma_min %s gamma_max)\n",
+                s.proved_only ? ">" : ">=");
+    std::printf("largest %s dt at gamma_min: %s s (try suggest --gamma %s)\n",
+                s.proved_only ? "proved stable" : "stable",
                 format_digits(s.dt_max_at_gamma_min, 8).c_str(), format_digits(s.gamma_min, 8).c_str());
     return 1;
   }
   if (!s.dt_accepted) std::printf("warning: a dt-only criterion rejects this dt whatever the damping\n");
   std::printf("fastest settling gamma  %s  (%s%s)\n", format_digits(s.gamma_best, 8).c_str(),
-              s.best_method.c_str(), std::isnan(s.best_rho) ? "" : ("; rho = " + format_digits(s.best_rho, 8)).c_str());
+              s.best_method.c_str(),
+              std::isnan(s.best_rho)
+                  ? ""
+                  : ((!s.proved_only ? "; rho = "
+                      : s.exact.integrator == Integrator::semi_implicit_euler ||
+                              s.exact.integrator == Integrator::forward_euler
+                          ? "; rho <= "  // the ends of the interval decide (quasi-convex)
+                          : "; rho about ") +  // 65 lambdas sampled
+                     format_digits(s.best_rho, 8))
+                        .c_str());
   print_runs(s.runs);
   return 0;
 }
 
 int print_step(const StepSuggestion& s) {
   std::printf("largest stable dt at gamma = %s\n", format_digits(s.gamma, 8).c_str());
-  std::printf("  exact limit   dt < %s s (%s)\n", format_digits(s.dt_exact, 8).c_str(), to_string(s.exact.method));
+  if (s.proved_only) {
+    std::printf("  proved stable dt <= %s s (without a factorisation)\n", format_digits(s.dt_exact, 8).c_str());
+    std::printf("  exact limit   not computed: %s\n", s.exact.over_budget_reason().c_str());
+    if (std::isfinite(s.dt_unstable_from))
+      std::printf("                it lies in [%s, %s): every dt from %s s on is proved unstable\n",
+                  format_digits(s.dt_exact, 8).c_str(), format_digits(s.dt_unstable_from, 8).c_str(),
+                  format_digits(s.dt_unstable_from, 8).c_str());
+  } else {
+    std::printf("  exact limit   dt < %s s (%s)\n", format_digits(s.dt_exact, 8).c_str(), to_string(s.exact.method));
+  }
   std::printf("  all criteria  dt <= %s s, set by %s\n", format_digits(s.dt_all, 8).c_str(), s.dt_all_by.c_str());
   const std::string scope = safe_bound_scope(s.exact.integrator);
   if (scope.empty())

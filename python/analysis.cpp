@@ -138,12 +138,13 @@ void bind_analysis(py::module_& m) {
 
   m.def(
       "suggest",
-      [](const SceneSpec& scene, const Params* params, const StopRules* rules,
-         const std::string& what, bool verify) {
+      [options](const SceneSpec& scene, const Params* params, const StopRules* rules,
+                const std::string& what, bool verify, std::optional<double> factor_budget_gflop) {
         const Params p = params ? *params : scene.params;
         const StopRules r = rules ? *rules : scene.rules;
         SuggestOptions o;
         o.verify = verify;
+        o.max_factor_flops = options(1, factor_budget_gflop).max_factor_flops;
         py::dict d;
         if (what == "gamma") {
           const DampingSuggestion s = suggest_damping(scene, p, r, o);
@@ -156,6 +157,8 @@ void bind_analysis(py::module_& m) {
           d["gamma_best"] = s.gamma_best;
           d["best_method"] = s.best_method;
           d["dt_max_at_gamma_min"] = s.dt_max_at_gamma_min;
+          d["proved_only"] = s.proved_only;
+          d["gamma_unstable_from"] = s.gamma_unstable_from;
           d["runs"] = runs_dict(s.runs);
         } else if (what == "dt") {
           const StepSuggestion s = suggest_step(scene, p, r, o);
@@ -163,6 +166,8 @@ void bind_analysis(py::module_& m) {
           d["dt_exact"] = s.dt_exact;
           d["dt_all"] = s.dt_all;
           d["dt_all_by"] = s.dt_all_by;
+          d["proved_only"] = s.proved_only;
+          d["dt_unstable_from"] = s.dt_unstable_from;
           d["runs"] = runs_dict(s.runs);
         } else {
           throw py::value_error("what must be 'gamma' or 'dt', got '" + what + "'");
@@ -171,11 +176,15 @@ void bind_analysis(py::module_& m) {
       },
       py::arg("scene"), py::arg("params") = nullptr, py::arg("rules") = nullptr,
       py::arg("what") = "gamma", py::arg("verify") = true,
+      py::arg("factor_budget_gflop") = py::none(),
       "Stable values for the scene (the CLI's `suggest`). what='gamma': at params.dt, the "
       "range of the user's gamma (mass unit/s) every applicable criterion accepts "
       "[gamma_min, gamma_max) and the fastest-settling gamma_best. what='dt': at params.gamma, "
       "the exact largest stable dt (s) and the largest dt every criterion accepts. verify=True "
-      "runs each suggestion through a Session: runs maps a label to (Params, RunResult).");
+      "runs each suggestion through a Session: runs maps a label to (Params, RunResult). "
+      "Over factor_budget_gflop (default: none) proved_only is True: the range [gamma_min, "
+      "gamma_max] and dt_exact are what is proved stable without a factorisation, the exact "
+      "limits below gamma_unstable_from / dt_unstable_from.");
 }
 
 }  // namespace dampbound::python

@@ -131,9 +131,12 @@ void GuiApp::suggest_panel() {
     ImGui::Text("largest dt stable at gamma %s: %s s", fmt(d.gamma_min).c_str(),
                 fmt(d.dt_max_at_gamma_min).c_str());
   } else {
-    text_wrapped("range [" + fmt(d.gamma_min) + ", " + fmt(d.gamma_max) + ")");
+    text_wrapped("range [" + fmt(d.gamma_min) + ", " + fmt(d.gamma_max) + (d.proved_only ? "]" : ")"));
     ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
     text_wrapped("from " + d.min_by + "; to " + d.max_by);
+    if (d.proved_only)
+      text_wrapped("exact limits not computed (over the factorisation budget); the exact upper "
+                   "limit lies in [" + fmt(d.gamma_max) + ", " + fmt(d.gamma_unstable_from) + ")");
     ImGui::PopStyleColor();
     ImGui::Text("fastest settling: gamma = %s", fmt(d.gamma_best).c_str());
     if (ImGui::IsItemHovered())
@@ -149,7 +152,12 @@ void GuiApp::suggest_panel() {
   for (const VerifiedRun& r : d.runs) run_line(r);
   const StepSuggestion& st = s.step;
   section_header(("Time step at gamma = " + fmt(st.gamma)).c_str());
-  text_wrapped("largest stable dt (exact): " + fmt(st.dt_exact) + " s");
+  if (st.proved_only)
+    text_wrapped("largest dt proved stable without a factorisation: " + fmt(st.dt_exact) +
+                 " s (the exact limit lies in [" + fmt(st.dt_exact) + ", " +
+                 fmt(st.dt_unstable_from) + "))");
+  else
+    text_wrapped("largest stable dt (exact): " + fmt(st.dt_exact) + " s");
   text_wrapped("every criterion accepts dt <= " + fmt(st.dt_all) + " s (" + st.dt_all_by + ")");
   if (ImGui::SmallButton("apply dt")) t.set_params(with_suggested_dt(t.params(), s));
   for (const VerifiedRun& r : st.runs) run_line(r);

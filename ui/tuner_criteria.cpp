@@ -218,7 +218,7 @@ void TunerSuggest::launch(std::shared_ptr<const SceneSpec> shared,
     s.springs = scene.model.spring_count();
     s.springs_cut = cut;
     SuggestOptions options;
-    options.max_factor_flops = budget;  // over it: the panel shows the error
+    options.max_factor_flops = budget;  // over it: what is proved without a factorisation
     s.damping = suggest_damping(scene, params, rules, options);
     s.step = suggest_step(scene, params, rules, options);
     return s;

@@ -142,7 +142,8 @@ class TunerSuggest {
   /// One line when the computation threw.
   const std::string& error() const { return error_; }
   /// The factorisation budget of the next computation (SuggestOptions::max_factor_flops,
-  /// default kDefaultFactorBudget); over it the panel shows the error.
+  /// default kDefaultFactorBudget); over it the suggestions are what is proved stable
+  /// without a factorisation (DampingSuggestion::proved_only).
   void set_factor_budget(double flops) { factor_budget_ = flops; }
 
  private:

@@ -340,6 +340,7 @@ ExactStability over_budget(const Model& model, const std::vector<Vec3>& x, const
   e.spectrum = {kNaN, kNaN};
   e.decaying = e.spectrum;
   e.lambda_max_lo = e.rate_min = e.rate_max = e.index = kNaN;
+  e.uniform_rate = in.r_max - in.r_min <= 1e-12 * in.r_max;  // as spectrum_and_rates()
   e.spectral_radius = e.gamma_lo = e.gamma_hi = e.dt_max = kNaN;
   e.radius_converged = false;
   e.stable = false;

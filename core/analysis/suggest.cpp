@@ -4,9 +4,11 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <optional>
 #include <stdexcept>
 #include <tuple>
 
+#include "core/io/format.hpp"
 #include "core/safe_bound.hpp"
 #include "core/session.hpp"
 
@@ -56,20 +58,29 @@ Params with_dt(Params p, double dt) {
   return p;
 }
 
-/// The exact analysis the suggestions start from; std::runtime_error when it was over the
-/// factorisation budget (without the exact limits there is nothing to suggest).
+/// The exact analysis the suggestions start from; over the factorisation budget, with what
+/// is proved without one (ExactStability::unfactored).
 ExactStability exact_limits(const Model& model, const Params& params,
                             const SuggestOptions& options) {
   ExactOptions o;
   o.with_radius = false;
   o.threads = options.threads;
   o.max_factor_flops = options.max_factor_flops;
-  o.unfactored_steps = 0;  // over the budget only the reason is used
-  ExactStability e = exact_stability(model, model.rest, params, o);
-  if (!e.computed())
-    throw std::runtime_error("suggest needs the exact limits, and " + e.over_budget_reason() +
-                             "; bounds proves the stable and unstable gammas and dts without one");
-  return e;
+  return exact_stability(model, model.rest, params, o);
+}
+
+/// Over the budget with nothing proved stable: nothing to suggest.
+[[noreturn]] void nothing_proved(const ExactStability& e, const char* what) {
+  throw std::runtime_error("suggest needs the exact limits or a " + std::string(what) +
+                           " proved stable without them, and " + e.over_budget_reason() +
+                           "; bounds shows what is proved");
+}
+
+/// The largest dt known stable at the analysed gamma: the exact limit, or over the budget
+/// the largest proved (NaN where none).
+double stable_dt(const ExactStability& e) {
+  if (e.computed()) return e.dt_max;
+  return e.unfactored.unconditional ? kInf : e.unfactored.dt_stable_up_to;
 }
 
 }  // namespace
@@ -116,13 +127,35 @@ DampingSuggestion suggest_damping(const SceneSpec& scene, const Params& params_i
       c.lower_bound = lo;
     }
   }
-  s.gamma_min = std::max(eq5, s.exact.gamma_lo);
-  s.min_by = eq5 >= s.exact.gamma_lo ? "paper eq. 5 (lower bound)"
-                                     : std::string("exact lower limit (") + to_string(params.integrator) + ")";
-  s.gamma_max = s.exact.gamma_hi;
+  double lo = s.exact.gamma_lo, upper = s.exact.gamma_hi;
+  std::string lo_by = std::string("exact lower limit (") + to_string(params.integrator) + ")";
   s.max_by = std::string("exact upper limit (") + to_string(params.integrator) + ")" +
              (s.exact.method == ExactMethod::frozen_estimate ? ", frozen-rate estimate" : "");
-  s.empty = !(s.gamma_min < s.gamma_max);
+  if (!s.exact.computed()) {  // what is proved stable without a factorisation
+    const ExactStability::Unfactored& u = s.exact.unfactored;
+    s.proved_only = true;
+    lo_by = "proved stable without a factorisation";
+    if (u.unconditional) {  // implicit Euler with K >= 0 proved: every gamma and dt
+      lo = 0;
+      upper = kInf;
+      s.max_by = "proved stable without a factorisation: implicit Euler with K >= 0 (SPEC 9's "
+                 "floor) is stable for every gamma and dt";
+    } else {
+      if (!(u.gamma_stable_lo <= u.gamma_stable_hi)) nothing_proved(s.exact, "damping range");
+      lo = u.gamma_stable_lo;
+      upper = u.gamma_stable_hi;
+      s.max_by = params.integrator == Integrator::semi_implicit_euler
+                     ? "proved stable without a factorisation: Gershgorin on SPEC 7's index "
+                       "matrix (SPEC 9), included"
+                     : "proved stable without a factorisation: every mode in [0, Gershgorin's "
+                       "bound], included";
+    }
+    s.gamma_unstable_from = u.gamma_unstable_from;
+  }
+  s.gamma_min = std::max(eq5, lo);
+  s.min_by = eq5 >= lo ? "paper eq. 5 (lower bound)" : lo_by;
+  s.gamma_max = upper;
+  s.empty = s.proved_only ? !(s.gamma_min <= s.gamma_max) : !(s.gamma_min < s.gamma_max);
   for (auto& [key, c] : classes) {
     c.gamma_min = s.gamma_min * c.gamma_scale;
     c.gamma_max = s.gamma_max * c.gamma_scale;
@@ -135,7 +168,7 @@ DampingSuggestion suggest_damping(const SceneSpec& scene, const Params& params_i
     if (std::isfinite(s.gamma_min)) {
       const Params p = with_gamma(params, s.gamma_min);
       const Model m = compile_model(scene.model, p);
-      s.dt_max_at_gamma_min = exact_limits(m, p, options).dt_max;
+      s.dt_max_at_gamma_min = stable_dt(exact_limits(m, p, options));
     }
     s.gamma_best = kNaN;
     s.best_rho = kNaN;
@@ -143,13 +176,27 @@ DampingSuggestion suggest_damping(const SceneSpec& scene, const Params& params_i
   }
   // The search interval: up to the exact limit, or where no limit exists, to four times the
   // critical damping of the stiffest mode (beyond it every mode is overdamped and slower).
+  // Over the budget the spectrum is known to lie in [SPEC 9's floor, Gershgorin's bound].
+  StiffnessSpectrum spectrum = s.exact.decaying;
+  if (s.proved_only) {
+    const std::optional<double> floor = psd_floor(model, model.rest);
+    spectrum = {floor ? std::max(*floor, 0.0) : 0.0, s.exact.unfactored.lambda_max_hi};
+  }
   double hi = s.gamma_max;
   if (!std::isfinite(hi)) {
-    const double crit = 2 * std::sqrt(std::max(s.exact.spectrum.lambda_max, 0.0));  // c, 1/s
+    const double crit = 2 * std::sqrt(std::max(spectrum.lambda_max, 0.0));  // c, 1/s
     hi = s.gamma_min + 4 * crit / std::max(unit_rate_max, 1e-300);
   }
   hi = s.gamma_min + (hi - s.gamma_min) * (1 - 1e-9);  // stay inside the open end
-  if (s.exact.uniform_rate) {
+  const bool uniform_rate = s.exact.uniform_rate;
+  if (s.proved_only && uniform_rate && !(spectrum.lambda_min > 0)) {
+    // The slowest mode decides the settling, and only lambda_min >= 0 is proved: at
+    // lambda = 0 the radius is 1 for every gamma.
+    s.gamma_best = kNaN;
+    s.best_rho = kNaN;
+    s.best_method = "not computed: over the budget only lambda_min >= 0 is proved (SPEC 9's "
+                    "floor), and the slowest mode decides";
+  } else if (uniform_rate) {
     // Exact: rho(gamma) is the max over the modes' 2x2 amplification matrices; the rate per
     // unit gamma is that of any free node (uniform_rate: all free nodes share it).
     double rate = 0;
@@ -159,11 +206,21 @@ DampingSuggestion suggest_damping(const SceneSpec& scene, const Params& params_i
         break;
       }
     auto rho_free = [&](double g) {
-      return spectrum_spectral_radius(params.integrator, s.exact.decaying, g * rate, params.dt);
+      return spectrum_spectral_radius(params.integrator, spectrum, g * rate, params.dt);
     };
     s.gamma_best = minimise(rho_free, s.gamma_min, hi);
     s.best_rho = rho_free(s.gamma_best);
-    s.best_method = "minimum spectral radius of the step over the range (per-mode, exact)";
+    s.best_method =
+        s.proved_only
+            ? "minimum over the range of the largest radius of any lambda in [" +
+                  format_digits(spectrum.lambda_min, 8) + ", " +
+                  format_digits(spectrum.lambda_max, 8) +
+                  "] (SPEC 9's floor, Gershgorin's bound: the spectrum lies inside" +
+                  (params.integrator == Integrator::semi_implicit_euler ||
+                           params.integrator == Integrator::forward_euler
+                       ? ", and the interval's ends decide, so rho is at most this)"
+                       : "; the largest radius of 65 lambdas sampled in it)")
+            : "minimum spectral radius of the step over the range (per-mode, exact)";
   } else {
     // Non-uniform rates: trial runs of the scene's protocol; fewest iterations to restore wins.
     const int n = std::max(2, options.trials);
@@ -185,7 +242,8 @@ DampingSuggestion suggest_damping(const SceneSpec& scene, const Params& params_i
                     " trial runs of the scene (rates gamma_i/m_i are not uniform)";
   }
   if (options.verify) {
-    s.runs.push_back(verify_run(scene, with_gamma(params, s.gamma_best), rules, "fastest-settling gamma"));
+    if (std::isfinite(s.gamma_best))
+      s.runs.push_back(verify_run(scene, with_gamma(params, s.gamma_best), rules, "fastest-settling gamma"));
     s.runs.push_back(verify_run(scene, with_gamma(params, s.gamma_min), rules, "lower end of the range"));
     if (std::isfinite(s.gamma_max))
       s.runs.push_back(verify_run(scene, with_gamma(params, s.gamma_min + 0.99 * (s.gamma_max - s.gamma_min)),
@@ -203,8 +261,15 @@ StepSuggestion suggest_step(const SceneSpec& scene, const Params& params_in, con
   const Model model = compile_model(scene.model, params);
   s.exact = exact_limits(model, params, options);
   s.dt_exact = s.exact.dt_max;
-  s.dt_all = s.dt_exact;
   s.dt_all_by = std::string("exact limit (") + to_string(params.integrator) + ")";
+  if (!s.exact.computed()) {  // the largest dt proved stable without a factorisation
+    s.proved_only = true;
+    s.dt_exact = stable_dt(s.exact);
+    s.dt_unstable_from = s.exact.unfactored.dt_unstable_from;
+    if (!(s.dt_exact > 0)) nothing_proved(s.exact, "time step");
+    s.dt_all_by = "proved stable without a factorisation";
+  }
+  s.dt_all = s.dt_exact;
   {  // SPEC 9 at rest: the smallest dt_safe_i at the user's gamma_i
     std::vector<double> R;
     safe_row_sums(model, model.rest, R);

@@ -45,7 +45,9 @@ struct SuggestOptions {
   bool verify = true;        ///< run each suggestion through a Session
   int trials = 16;           ///< non-uniform rates: first-pass trial runs for the best gamma
   int threads = 1;           ///< the exact analysis's threads (ExactOptions::threads)
-  /// ExactOptions::max_factor_flops. Over it nothing can be suggested: std::runtime_error.
+  /// ExactOptions::max_factor_flops. Over it the suggestions come from what is proved
+  /// without a factorisation (ExactStability::unfactored; `proved_only` below), and where
+  /// that proves no stable range: std::runtime_error.
   double max_factor_flops = std::numeric_limits<double>::infinity();
 };
 
@@ -69,6 +71,16 @@ struct DampingSuggestion {
   double dt_max_at_gamma_min = 0;  ///< when empty: the largest dt stable at gamma_min
   std::vector<VerifiedRun> runs;   ///< best, and the two ends (gamma_min, 0.99 gamma_max)
   ExactStability exact;
+  /// Over the factorisation budget (exact.computed() false): the range is what is proved
+  /// stable without a factorisation, gamma_max included (Gershgorin on SPEC 7's index matrix
+  /// for the paper's step, every mode in [0, Gershgorin's bound] for the others), and
+  /// dt_max_at_gamma_min the largest dt proved so. The exact upper limit lies in
+  /// [gamma_max, gamma_unstable_from) (the paper's step; NaN for the others). gamma_best,
+  /// where rates are uniform, minimises the largest radius over every lambda in
+  /// [SPEC 9's floor, Gershgorin's bound], which holds the spectrum, so best_rho is an upper
+  /// bound; NaN where the floor is 0 (the slowest mode is unknown).
+  bool proved_only = false;
+  double gamma_unstable_from = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// For params.gamma: the largest stable dt of params.integrator (exact), the largest dt that
@@ -82,6 +94,10 @@ struct StepSuggestion {
   std::string dt_all_by;         ///< the criterion that sets it
   std::vector<VerifiedRun> runs;  ///< at 0.99 dt_exact and at dt_all
   ExactStability exact;
+  /// Over the factorisation budget: dt_exact is the largest dt proved stable without a
+  /// factorisation (included), and the exact limit lies in [dt_exact, dt_unstable_from).
+  bool proved_only = false;
+  double dt_unstable_from = std::numeric_limits<double>::quiet_NaN();
 };
 
 DampingSuggestion suggest_damping(const SceneSpec& scene, const Params& params,

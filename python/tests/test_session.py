@@ -84,6 +84,20 @@ def test_exact_limits_and_suggest_agree_on_the_two_node_system(scenes_dir):
         assert result.outcome != "diverged"
 
 
+def test_suggest_over_a_factorisation_budget_suggests_what_is_proved(scenes_dir):
+    scene = dampbound.load_scene(str(scenes_dir / "paper-plane.toml"))
+    exact = dampbound.suggest(scene, verify=False)
+    over = dampbound.suggest(scene, verify=False, factor_budget_gflop=1e-9)
+    assert not exact["proved_only"] and over["proved_only"]
+    assert over["gamma_min"] == exact["gamma_min"]
+    assert over["gamma_max"] < exact["gamma_max"] <= over["gamma_unstable_from"]
+    t = dampbound.suggest(scene, what="dt", verify=False, factor_budget_gflop=1e-9)
+    e = dampbound.exact_limits(scene)
+    assert t["proved_only"] and t["dt_exact"] < e.dt_max <= t["dt_unstable_from"]
+    with pytest.raises(ValueError, match="factor_budget_gflop"):
+        dampbound.suggest(scene, verify=False, factor_budget_gflop=0)
+
+
 def test_exact_limits_take_a_thread_count_and_give_the_same_numbers(scenes_dir):
     scene = dampbound.load_scene(str(scenes_dir / "paper-plane.toml"))
     one = dampbound.exact_limits(scene)

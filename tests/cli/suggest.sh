@@ -26,12 +26,18 @@ expect_exit 0 "$DB" suggest two-node --integrator verlet --no-verify
 expect_match "$OUT" 'gamma_max +inf' "Verlet: no upper limit"
 if printf '%s' "$OUT" | grep -q verification; then bad "--no-verify still ran"; else ok; fi
 
-# Over the factorisation budget there is nothing to suggest: one line, exit 3, no partial
-# suggestion on stdout.
-expect_exit 3 "$DB" suggest paper-plane --factor-budget 1e-9 --no-verify
-expect_one_line "$ERR" "suggest over the factorisation budget"
-expect_match "$ERR" 'suggest needs the exact limits, and one factorisation would take .* over the budget of 1e-09 GFlop; bounds proves the stable and unstable gammas and dts without one$' "says why, and where to look"
-if grep -q 'gamma_max' <<<"$OUT"; then bad "a suggestion printed over budget"; else ok; fi
+# Over the factorisation budget: what is proved stable without one (SPEC 9's Gershgorin
+# proof on SPEC 7's index matrix), with the exact limit bracketed (it printed an error).
+expect_exit 0 "$DB" suggest paper-plane --factor-budget 1e-9 --no-verify
+expect_match "$OUT" 'gamma_max +0\.039775 +set by proved stable without a factorisation: Gershgorin on SPEC 7.s index matrix \(SPEC 9\), included' "over budget: the proved range"
+expect_match "$OUT" 'exact limits not computed: one factorisation would take .* over the budget of 1e-09 GFlop' "over budget: says why"
+expect_match "$OUT" 'the exact upper limit lies in \[0\.039775, 0\.039804694\)' "over budget: the bracket holds 0.039804692"
+expect_match "$OUT" 'fastest settling gamma +0\.002 .*rho <= 0\.96\)' "over budget: best gamma with a bound on rho"
+expect_exit 0 "$DB" suggest paper-plane --factor-budget 1e-9 --no-verify --gamma 0.002
+expect_match "$OUT" 'proved stable dt <= 0\.48050615 s' "over budget: the proved dt"
+expect_match "$OUT" 'it lies in \[0\.48050615, 0\.50396303\)' "over budget: the dt bracket holds 0.50396164"
+expect_exit 0 "$DB" suggest paper-plane --factor-budget 1e-9 --integrator implicit-euler --no-verify
+expect_match "$OUT" 'gamma_max +inf +set by proved stable without a factorisation: implicit Euler' "over budget: implicit Euler unconditional"
 expect_exit 2 "$DB" suggest paper-plane --factor-budget 0
 expect_match "$ERR" -- '--factor-budget' "names --factor-budget"
 

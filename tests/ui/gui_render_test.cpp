@@ -253,6 +253,23 @@ TEST(GuiRender, CriteriaAndSuggestTabs) {
   app.release_gl();
 }
 
+// Over the factorisation budget the Suggest tab shows what is proved stable without one.
+TEST(GuiRender, SuggestOverTheFactorisationBudget) {
+  EglHost host(headless());
+  GuiOptions o = bare_options();
+  o.factor_budget = 1;  // one flop: nothing is factorised
+  GuiApp app(o);
+  app.select_tab("Suggest");
+  app.start_suggest();
+  app.suggestions().wait();
+  ASSERT_TRUE(app.suggestions().result().has_value()) << app.suggestions().error();
+  EXPECT_TRUE(app.suggestions().result()->damping.proved_only);
+  const Image img = host.render_frames(1600, 1000, app.frame_fn(), 3);
+  EXPECT_FALSE(is_blank(img));
+  write_png_atomic(img, out_path("gui_suggest_over_budget.png"));
+  app.release_gl();
+}
+
 TEST(GuiRender, PanelsFollowTheWindowSize) {
   EglHost host(headless());
   GuiOptions o = bare_options();

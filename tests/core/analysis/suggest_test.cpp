@@ -2,11 +2,14 @@
 // largest stable dt, the empty case, and the non-uniform (per node class) case, each checked
 // against the exact analysis and by the verification runs.
 #include "core/analysis/suggest.hpp"
+#include "core/analysis/linear_stability_exact.hpp"
 #include "core/io/scene_file.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace dampbound {
 namespace {
@@ -125,6 +128,75 @@ TEST(Suggest, UnboundedRangeForVerlet) {
   EXPECT_TRUE(std::isinf(d.gamma_max));
   EXPECT_TRUE(std::isfinite(d.gamma_best));
   EXPECT_GE(d.gamma_best, d.gamma_min);
+}
+
+// Over the factorisation budget the suggestions come from what is proved without one: the
+// range ends where SPEC 9's Gershgorin proof does, inside the exact range, every gamma in it
+// exactly stable, and the exact limit inside the bracket it prints; the step likewise.
+TEST(Suggest, OverTheBudgetWhatIsProvedIsSuggested) {
+  const SceneSpec s = scene("paper-plane");
+  SuggestOptions exact;
+  exact.verify = false;
+  SuggestOptions over = exact;
+  over.max_factor_flops = 1;
+  const DampingSuggestion e = suggest_damping(s, s.params, s.rules, exact);
+  const DampingSuggestion d = suggest_damping(s, s.params, s.rules, over);
+  EXPECT_FALSE(e.proved_only);
+  ASSERT_TRUE(d.proved_only);
+  EXPECT_FALSE(d.exact.computed());
+  EXPECT_EQ(d.gamma_min, e.gamma_min);
+  EXPECT_LT(d.gamma_max, e.gamma_max);                       // 0.039775 < 0.039805
+  EXPECT_NEAR(d.gamma_max, d.safe_max, 1e-11 * d.safe_max);  // SPEC 9's bound, inward
+  EXPECT_GE(d.gamma_unstable_from, e.gamma_max);             // the bracket holds the limit
+  EXPECT_LT(d.gamma_unstable_from, 1.001 * e.gamma_max);
+  for (int k = 0; k <= 8; ++k) {
+    Params p = s.params;
+    p.gamma = d.gamma_min + (d.gamma_max - d.gamma_min) * k / 8;
+    const Model m = compile_model(s.model, p);
+    EXPECT_TRUE(exact_stability(m, m.rest, p).stable) << p.gamma;
+  }
+  // The best gamma minimises a bound over [SPEC 9's floor, Gershgorin's bound] = [1, 9] kappa/m,
+  // which holds the exact spectrum [1, 7.81]: its radius bound is no lower than the exact one.
+  ASSERT_TRUE(std::isfinite(d.gamma_best));
+  EXPECT_GE(d.gamma_best, d.gamma_min);
+  EXPECT_LE(d.gamma_best, d.gamma_max);
+  // (both lower ends bound lambda_min = 1 from below, the floor 1e-12 more tightly)
+  EXPECT_GE(d.best_rho, e.best_rho - 1e-9);
+  EXPECT_LT(d.best_rho, 1);
+
+  Params g = s.params;  // gamma = 0.002
+  const StepSuggestion te = suggest_step(s, g, s.rules, exact);
+  const StepSuggestion t = suggest_step(s, g, s.rules, over);
+  ASSERT_TRUE(t.proved_only);
+  EXPECT_LE(t.dt_exact, te.dt_exact);  // 0.4805 <= 0.50396
+  EXPECT_GE(t.dt_unstable_from, te.dt_exact);
+  EXPECT_LT(t.dt_unstable_from, 1.001 * te.dt_exact);
+  EXPECT_EQ(t.dt_all, te.dt_all);  // Delingette's 1/pi is the most cautious either way
+
+  // Implicit Euler with K >= 0 proved (SPEC 9's floor): every gamma and dt.
+  g.integrator = Integrator::implicit_euler;
+  const DampingSuggestion di = suggest_damping(s, g, s.rules, over);
+  EXPECT_TRUE(di.proved_only);
+  EXPECT_TRUE(std::isinf(di.gamma_max));
+  EXPECT_TRUE(std::isinf(suggest_step(s, g, s.rules, over).dt_exact));
+}
+
+// With every spring compressed at rest SPEC 9's floor proves nothing, so over the budget
+// nothing is proved stable and nothing suggested: an error that says so.
+TEST(Suggest, OverTheBudgetWithNothingProvedItSaysSo) {
+  SceneSpec s = scene("paper-plane");
+  for (Spring& sp : s.model.springs) sp.rest_length *= 1.05;
+  SuggestOptions over;
+  over.verify = false;
+  over.max_factor_flops = 1;
+  try {
+    suggest_damping(s, s.params, s.rules, over);
+    ADD_FAILURE() << "suggested without a proof";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("a damping range proved stable without them"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace
