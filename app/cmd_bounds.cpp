@@ -6,11 +6,14 @@
 #include <cstdio>
 #include <memory>
 #include <sstream>
+#include <stdexcept>
+#include <string>
 
 #include "app/commands.hpp"
 #include "app/options.hpp"
 #include "core/analysis/criteria.hpp"
 #include "core/analysis/criteria_safe.hpp"
+#include "core/analysis/equilibrium.hpp"
 #include "core/bounds.hpp"
 #include "core/error.hpp"
 #include "core/io/format.hpp"
@@ -24,6 +27,7 @@ struct BoundsArgs {
   std::string scene, v, force, integrator, system = "two-node";
   double m = 0, kappa = 0, dt = 0, gamma = 0, factor_budget = 0;
   int after = 0;
+  bool equilibrium = false;
   CLI::Option *m_opt = nullptr, *kappa_opt = nullptr, *dt_opt = nullptr, *gamma_opt = nullptr,
               *integrator_opt = nullptr;
 };
@@ -163,7 +167,26 @@ int run_scene(const BoundsArgs& a) {
   Session session(std::move(scene), p, StopRules{});
   for (int k = 0; k < a.after && session.running(); ++k) session.step_once();
   const Model& model = session.model();
-  const State state = a.after > 0 ? session.state() : rest_state(model);
+  State state = a.after > 0 ? session.state() : rest_state(model);
+  Equilibrium held;
+  if (a.equilibrium) {
+    EquilibriumOptions eo;
+    eo.max_factor_flops = a.factor_budget * 1e9;
+    try {
+      held = static_equilibrium(model, eo);
+    } catch (const FactorisationOverBudget& over) {
+      throw std::runtime_error(std::string("--equilibrium: Newton's method on the tangent "
+                                           "stiffness needs factorisations, and ") +
+                               over.what() + " (--factor-budget)");
+    }
+    if (!held.converged)
+      throw std::runtime_error(
+          "--equilibrium: no static equilibrium found in " + std::to_string(held.iterations) +
+          " Newton steps (net force " + format_digits(held.net.largest, 5) + " at node " +
+          std::to_string(held.net.node) + ", largest force term " +
+          format_digits(held.net.scale, 5) + ")");
+    state.x = held.x;
+  }
   std::printf("scene        %s (%d nodes, %d springs, %d anchors)\n", name.c_str(),
               model.node_count(), model.spring_count(), model.anchor_count());
   std::printf("parameters   m=%s kappa=%s gamma=%s dt=%s s integrator=%s (gamma_i = gamma * "
@@ -171,11 +194,24 @@ int run_scene(const BoundsArgs& a) {
               format_number(p.m).c_str(), format_number(p.kappa).c_str(),
               format_number(p.gamma).c_str(), format_number(p.dt).c_str(),
               to_string(p.integrator));
-  if (a.after > 0)
+  if (a.after > 0) {
     std::printf("state        after %d steps of the scene's perturbed run (policy fixed)\n",
                 state.iteration);
-  else
+  } else if (a.equilibrium) {
+    std::printf("state        static equilibrium under the scene's forces and rest lengths (v = "
+                "0; %d Newton steps, net force %s against a largest force term of %s): the "
+                "linearisation point of the exact analysis\n",
+                held.iterations, format_digits(held.net.largest, 3).c_str(),
+                format_digits(held.net.scale, 5).c_str());
+  } else {
     std::printf("state        rest (x = X, v = 0): the linearisation point of the exact analysis\n");
+    const NetForce n = net_force(model, state.x);
+    if (!n.balanced())  // external forces, or rest lengths other than the rest geometry's
+      std::printf("note         the rest state is not an equilibrium: a net force of %s at node "
+                  "%d (largest force term %s), so a run leaves it; --equilibrium analyses "
+                  "where a damped run settles\n",
+                  format_digits(n.largest, 5).c_str(), n.node, format_digits(n.scale, 5).c_str());
+  }
   ExactOptions options;
   options.threads = 0;  // a big mesh's Lanczos products on every CPU (the same bits)
   options.max_factor_flops = a.factor_budget * 1e9;
@@ -223,6 +259,10 @@ std::function<int()> setup(CLI::App& root) {
                   "with a scene: analyse the state after this many steps of its perturbed run "
                   "(default 0: the rest state)")
       ->check(CLI::Range(0, 100000000));
+  cmd->add_flag("--equilibrium", a->equilibrium,
+                "with a scene: analyse at its static equilibrium under its external forces and "
+                "rest lengths (Newton's method; where a damped run settles) instead of at rest")
+      ->excludes("--after");
   add_factor_budget_option(cmd, a->factor_budget);
   return [a] { return run(*a); };
 }

@@ -142,6 +142,41 @@ done
 expect_exit 0 "$DB" bounds "$WORK/column.toml" --integrator implicit-euler
 expect_match "$OUT" 'exact dt limit \(implicit-euler\) +n/a s +n/a +not computed: K is indefinite' "column: implicit Euler's limits not computed"
 
+# A chain of 11 springs between fixed ends, each free node pulled down: not in equilibrium
+# at rest (said), and --equilibrium analyses where a damped run settles (the sag's tension
+# gives it sideways stiffness: no zero modes there).
+{
+  echo 'name = "chain"'
+  echo 'watch = 6'
+  for i in $(seq 0 11); do
+    echo '[[node]]'
+    echo "x = [$(awk "BEGIN { print 0.5 * $i }"), 0.0, 0.0]"
+    if [[ $i == 0 || $i == 11 ]]; then echo 'fixed = true'; else echo 'force = [0.0, -0.0005, 0.0]'; fi
+  done
+  for i in $(seq 0 10); do
+    echo '[[spring]]'
+    echo "nodes = [$i, $((i + 1))]"
+  done
+  echo '[params]'
+  echo 'm = 0.001'
+  echo 'kappa = 0.001'
+  echo 'gamma = 0.002'
+  echo 'dt = 0.05'
+} >"$WORK/chain.toml"
+expect_exit 0 "$DB" bounds "$WORK/chain.toml"
+expect_match "$OUT" '^note +the rest state is not an equilibrium: a net force of 0\.0005 at node 1 .*--equilibrium' "chain: the rest state is not an equilibrium"
+expect_match "$OUT" 'zero modes, lambda = 0, excluded' "chain at rest: slack, zero modes"
+expect_exit 0 "$DB" bounds "$WORK/chain.toml" --equilibrium
+expect_match "$OUT" '^state +static equilibrium under the scene.s forces and rest lengths \(v = 0; [0-9]+ Newton steps, net force [0-9.e-]+ against a largest force term of 0\.0025217\)' "chain: at the equilibrium"
+expect_match "$OUT" 'exact lambda_max of M\^-1 K +3\.7151536 1/s\^2' "chain: lambda_max at the equilibrium (3.9189859 at rest)"
+if grep -q 'zero modes' <<<"$OUT" || grep -q '^note' <<<"$OUT"; then bad "chain at equilibrium: zero modes or a note"; else ok; fi
+expect_exit 0 "$DB" bounds paper-plane
+if grep -q '^note' <<<"$OUT"; then bad "the paper plane at rest is in equilibrium"; else ok; fi
+expect_exit 2 "$DB" bounds "$WORK/chain.toml" --equilibrium --after 3
+expect_one_line "$ERR" "--equilibrium with --after"
+expect_exit 3 "$DB" bounds "$WORK/chain.toml" --equilibrium --factor-budget 1e-12
+expect_one_line "$ERR" "--equilibrium over the budget"
+
 # Bad input: one line, exit 2.
 expect_exit 2 "$DB" bounds --m 0.001 --kappa 0.001
 expect_one_line "$ERR" "missing --dt"

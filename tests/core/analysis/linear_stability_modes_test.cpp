@@ -80,6 +80,19 @@ TEST(LinearStabilityModes, UniformLimits) {
   EXPECT_NEAR(spectrum_spectral_radius(Integrator::rk4, s, rk.hi, 0.5), 1.0, 1e-9);
 }
 
+// A mode with lambda < 0 (K indefinite, ExactStability::indefinite) grows under every
+// explicit step whatever the damping rate and the step: its characteristic polynomial is
+// below 0 at z = 1 (lambda h^2 for the paper's step).
+TEST(LinearStabilityModes, ANegativeModeGrowsUnderEveryExplicitStep) {
+  for (Integrator in : {Integrator::semi_implicit_euler, Integrator::forward_euler,
+                        Integrator::verlet, Integrator::rk4})
+    for (double lambda : {-1e-6, -0.01, -1.0, -100.0})
+      for (double c : {0.0, 0.1, 1.0, 10.0, 100.0})
+        for (double h : {1e-4, 1e-2, 0.1, 0.5, 1.0, 3.0})
+          EXPECT_GT(mode_spectral_radius(in, lambda, c, h), 1)
+              << to_string(in) << " lambda " << lambda << " c " << c << " h " << h;
+}
+
 TEST(LinearStabilityModes, ModeInstabilityOfForwardEulerVerletAndRk4) {
   // mode_instability's thresholds against the 2x2 step's own radius: past each one the mode
   // is unstable (radius above 1 + 1e-12, what the limits count as unstable), and just before
