@@ -8,6 +8,7 @@
 #include "app/commands.hpp"
 #include "app/options.hpp"
 #include "core/analysis/criteria_safe.hpp"
+#include "core/analysis/equilibrium.hpp"
 #include "core/analysis/suggest.hpp"
 #include "core/io/format.hpp"
 #include "core/io/report.hpp"
@@ -151,6 +152,15 @@ int run(const SuggestArgs& a) {
   std::printf("parameters   m=%s kappa=%s dt=%s s integrator=%s max_iterations=%d\n",
               format_digits(p.m, 8).c_str(), format_digits(p.kappa, 8).c_str(), format_digits(p.dt, 8).c_str(), to_string(p.integrator),
               rules.max_iterations);
+  {
+    const Model model = compile_model(scene.model, p);
+    const NetForce n = net_force(model, model.rest);
+    if (!n.balanced())  // external forces, or rest lengths other than the rest geometry's
+      std::printf("note         the rest state is not an equilibrium: a net force of %s at node "
+                  "%d (largest force term %s); these suggestions linearise at rest, which a "
+                  "run leaves; bounds --equilibrium analyses where a damped run settles\n",
+                  format_digits(n.largest, 5).c_str(), n.node, format_digits(n.scale, 5).c_str());
+  }
   SuggestOptions options;
   options.verify = !a.no_verify;
   options.threads = 0;  // a big mesh's Lanczos products on every CPU (the same bits)

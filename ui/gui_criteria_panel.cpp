@@ -80,6 +80,13 @@ void GuiApp::criteria_panel() {
                                    : std::string("exact analysis unavailable");
   text_wrapped("at iteration " + std::to_string(rows_at) + behind + "; " + exact);
   ImGui::PopStyleColor();
+  if (const NetForce* n = c.rest_net_force(); n != nullptr && !n->balanced())
+    wrapped_colored(gui_amber(),
+                    ("The rest state is not an equilibrium (net force " + fmt(n->largest) +
+                     " at node " + std::to_string(n->node) +
+                     "): a run leaves it. dampbound bounds --equilibrium analyses where a "
+                     "damped run settles.")
+                        .c_str());
   const ImGuiTableFlags tf = ImGuiTableFlags_SizingStretchProp | ImGuiTableFlags_ScrollY |
                              ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerH;
   if (!ImGui::BeginTable("criteria", 3, tf)) return;

@@ -85,6 +85,7 @@ void TunerCriteria::collect() {
   // A result of the other mode (switched while it ran) is dropped; the next call starts anew.
   if (f.at_state != at_state_) return;
   exact_ = std::move(f.exact);
+  rest_net_ = f.rest_net;
   ++exact_version_;
   exact_iteration_ = f.iteration;
   exact_at_rest_ = !f.at_state;
@@ -127,6 +128,7 @@ const ExactStability* TunerCriteria::exact(const Session& s, std::uint64_t topol
                         const double t0 = seconds_now();
                         Finished f;
                         f.exact = analyse(*model, at ? x : model->rest, params, budget);
+                        if (!at) f.rest_net = net_force(*model, model->rest);
                         f.iteration = iteration;
                         f.at_state = at;
                         f.seconds = seconds_now() - t0;
@@ -135,6 +137,7 @@ const ExactStability* TunerCriteria::exact(const Session& s, std::uint64_t topol
     return exact_ ? &*exact_ : nullptr;
   }
   exact_ = analyse(s.model(), s.model().rest, s.params(), factor_budget_);
+  rest_net_ = net_force(s.model(), s.model().rest);
   ++exact_version_;
   exact_iteration_ = 0;
   exact_at_rest_ = true;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/analysis/criteria.hpp"
+#include "core/analysis/equilibrium.hpp"
 #include "core/analysis/linear_stability_exact.hpp"
 #include "core/session.hpp"
 #include "core/analysis/suggest.hpp"
@@ -70,6 +71,11 @@ class TunerCriteria {
   /// Whether the analysis on show was linearised at rest, else at the state of iteration
   /// exact_iteration().
   bool exact_at_rest() const { return exact_at_rest_; }
+  /// With the analysis at rest: the net force there (not balanced: the rest state is no
+  /// equilibrium, and a run leaves it; `bounds --equilibrium` analyses where it settles).
+  const NetForce* rest_net_force() const {
+    return exact_at_rest_ && rest_net_ ? &*rest_net_ : nullptr;
+  }
   int exact_iteration() const { return exact_iteration_; }
   /// The iteration of the state the rows on show were evaluated at: on a large mesh, while
   /// only the state moves, up to a follow interval behind the run.
@@ -80,6 +86,7 @@ class TunerCriteria {
  private:
   struct Finished {
     std::optional<ExactStability> exact;
+    std::optional<NetForce> rest_net;  ///< at rest: the net force there
     int iteration = 0;
     bool at_state = false;  ///< linearised at the state (else at rest)
     double seconds = 0;
@@ -89,6 +96,7 @@ class TunerCriteria {
 
   std::vector<CriterionResult> results_;
   std::optional<ExactStability> exact_;
+  std::optional<NetForce> rest_net_;
   std::future<Finished> job_;  ///< the analysis at the current state, when one runs
   std::uint64_t topology_ = 0, state_ = 0;
   Params key_;

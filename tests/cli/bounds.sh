@@ -172,6 +172,10 @@ expect_match "$OUT" 'exact lambda_max of M\^-1 K +3\.7151536 1/s\^2' "chain: lam
 if grep -q 'zero modes' <<<"$OUT" || grep -q '^note' <<<"$OUT"; then bad "chain at equilibrium: zero modes or a note"; else ok; fi
 expect_exit 0 "$DB" bounds paper-plane
 if grep -q '^note' <<<"$OUT"; then bad "the paper plane at rest is in equilibrium"; else ok; fi
+expect_exit 0 "$DB" suggest "$WORK/chain.toml" --no-verify
+expect_match "$OUT" '^note +the rest state is not an equilibrium: a net force of 0\.0005 at node 1 .*bounds --equilibrium' "suggest says it too"
+expect_exit 0 "$DB" suggest paper-plane --no-verify
+if grep -q '^note' <<<"$OUT"; then bad "suggest: the paper plane at rest is in equilibrium"; else ok; fi
 expect_exit 2 "$DB" bounds "$WORK/chain.toml" --equilibrium --after 3
 expect_one_line "$ERR" "--equilibrium with --after"
 expect_exit 3 "$DB" bounds "$WORK/chain.toml" --equilibrium --factor-budget 1e-12

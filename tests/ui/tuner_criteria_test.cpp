@@ -194,6 +194,29 @@ TEST(TunerCriteria, TheFactorisationBudgetReachesTheAnalysis) {
   EXPECT_LT(s.result()->step.dt_exact, dt_max);
 }
 
+// A scene whose rest state is not an equilibrium (a slack chain pulled down): the panel's
+// note. The paper plane's rest state is one.
+TEST(TunerCriteria, SaysWhenTheRestStateIsNotAnEquilibrium) {
+  SceneSpec chain;
+  chain.name = "chain";
+  for (int i = 0; i < 12; ++i) {
+    add_node(chain.model, Vec3(0.5 * i, 0, 0));
+    if (i > 0) add_spring(chain.model, i - 1, i);
+    chain.model.external_force[static_cast<size_t>(i)] = Vec3(0, -0.0005, 0);
+  }
+  chain.model.fixed[0] = chain.model.fixed[11] = 1;
+  Tuner t(chain);
+  ASSERT_NE(t.exact(), nullptr);
+  const NetForce* n = t.criteria_state().rest_net_force();
+  ASSERT_NE(n, nullptr);
+  EXPECT_FALSE(n->balanced());
+  EXPECT_DOUBLE_EQ(n->largest, 0.0005);
+  Tuner flat(plane(6));
+  ASSERT_NE(flat.exact(), nullptr);
+  ASSERT_NE(flat.criteria_state().rest_net_force(), nullptr);
+  EXPECT_TRUE(flat.criteria_state().rest_net_force()->balanced());
+}
+
 TEST(TunerCriteria, ExactGammaMaxIsTheIntegratorsLimit) {
   Tuner t(plane(6));
   const auto g = t.exact_gamma_max();
