@@ -143,7 +143,7 @@ void read_geometry(const Reader& r, const toml::table& root, SceneSpec& s) {
 void read_regions(const Reader& r, const toml::table& root, SceneSpec& s) {
   for (const toml::table& t : r.tables(root, "region",
                                        {"min", "max", "mass_scale", "kappa_scale", "gamma_scale",
-                                       "anchor_scale", "fixed"})) {
+                                       "anchor_scale", "fixed", "force"})) {
     const Vec3 lo = r.vec3(r.required(t, "min", "[[region]]"), "min");
     const Vec3 hi = r.vec3(r.required(t, "max", "[[region]]"), "max");
     auto inside = [&](int i) {
@@ -161,6 +161,7 @@ void read_regions(const Reader& r, const toml::table& root, SceneSpec& s) {
       if (auto* n = t.get("anchor_scale"))
         s.model.anchor_scale[k] = r.non_negative(*n, "anchor_scale");
       if (auto* n = t.get("fixed")) s.model.fixed[k] = r.boolean(*n, "fixed");
+      if (auto* n = t.get("force")) s.model.external_force[k] = r.vec3(*n, "force");
     }
     if (count == 0) r.fail(t, "[[region]] contains no node");
     if (auto* n = t.get("kappa_scale")) {

@@ -68,6 +68,7 @@ min = [1.5, -1, -1]
 max = [3, 1, 3]
 mass_scale = 2
 kappa_scale = 10
+force = [0, -0.5, 0.25]
 )",
                                   "region.toml");
   Params p;
@@ -79,6 +80,8 @@ kappa_scale = 10
   EXPECT_EQ(m.node_kappa[2 * 3 + 1], 10.0);
   EXPECT_EQ(m.node_kappa[1 * 3 + 1], 1.0);  // only its springs into the region are... 1x
   EXPECT_DOUBLE_EQ(m.lower_bound[2 * 3 + 1], 2 * std::sqrt(2.0 * 10.0));
+  EXPECT_EQ(m.external_force[2 * 3 + 1], Vec3(0, -0.5, 0.25));  // a load on the nodes inside
+  EXPECT_EQ(m.external_force[1 * 3 + 1], Vec3::Zero());
 }
 
 }  // namespace
