@@ -449,9 +449,13 @@ double perturbation_growth(const Model& model, const std::vector<Vec3>& about,
     seed = seed * 1103515245u + 12345u;
     return static_cast<double>((seed >> 8) & 0xffffu) / 65535.0 - 0.5;
   };
-  auto away = [&] {  // max_i |x_i - about_i|
+  auto away = [&] {  // max_i |x_i - about_i|; inf once a run has overflowed (inf, NaN)
     double d = 0;
-    for (size_t i = 0; i < state.x.size(); ++i) d = std::max(d, (state.x[i] - about[i]).norm());
+    for (size_t i = 0; i < state.x.size(); ++i) {
+      const double a = (state.x[i] - about[i]).norm();
+      if (!std::isfinite(a)) return kInf;
+      d = std::max(d, a);
+    }
     return d;
   };
   for (size_t i = 0; i < state.x.size(); ++i) {

@@ -181,6 +181,22 @@ TEST(LinearStabilityExact, UnequalMassesTakeTheSymmetricIndex) {
   EXPECT_GT(perturbation_growth(m, out, 2000), 1.0);
 }
 
+// A run that grows until its positions overflow (inf, then NaN) has grown: its growth is inf,
+// not the 0 that max() over NaN distances gave (seen under clang + ASan, where this test's
+// chain reached NaN within 2000 steps past its dt limit).
+TEST(LinearStabilityExact, ARunThatOverflowsHasGrown) {
+  ModelSpec spec;
+  for (int k = 0; k < 3; ++k) add_node(spec, Vec3(k, 0, 0));
+  add_spring(spec, 0, 1);
+  add_spring(spec, 1, 2);
+  spec.fixed[0] = 1;
+  Params p;
+  p.dt = 10 * exact_stability(compile_model(spec, p), spec.rest, p).dt_max;
+  const Model m = compile_model(spec, p);
+  EXPECT_TRUE(std::isinf(perturbation_growth(m, p, 20000)));
+  EXPECT_TRUE(std::isinf(perturbation_growth(m, m.rest, p, 20000)));
+}
+
 TEST(LinearStabilityExact, OverTheFactorisationBudgetNothingIsComputed) {
   Params p;
   const Model model = compile_model(make_grid(GridSpec{14, 14, 0.57, true, true}), p);  // 588 rows
