@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 
 #include "core/analysis/detail/shifted_cholesky.hpp"
@@ -57,18 +58,44 @@ long double energy(const Model& model, const std::vector<Vec3>& x) {
 /// positive definite, else the first of 1e-6, 1e-5, ... of K's largest diagonal entry that
 /// makes K + sigma I so (CHOLMOD's Cholesky, one pattern analysis), so that d always goes
 /// downhill in energy.
-Eigen::VectorXd newton_step(const SparseMatrix& K, const Eigen::VectorXd& r, double budget) {
+/// `chol` keeps the pattern analysis from one step to the next (K's pattern is the mesh's).
+Eigen::VectorXd newton_step(std::optional<detail::ShiftedCholesky>& chol, const SparseMatrix& K,
+                            const Eigen::VectorXd& r, double budget) {
   Eigen::VectorXd d(r.size());
-  detail::ShiftedCholesky chol(-K);  // factors sigma I + K
-  chol.analyse(budget);
+  if (chol)
+    chol->assign(-K);
+  else
+    chol.emplace(-K);  // factors sigma I + K
+  chol->analyse(budget);
   const double diagonal = K.diagonal().cwiseAbs().maxCoeff();
   double sigma = 0;
-  for (int tries = 0; !chol.factor(sigma); ++tries) {
+  for (int tries = 0; !chol->factor(sigma); ++tries) {
     if (tries == 30) throw std::runtime_error("static equilibrium: K + sigma I never factored");
     sigma = sigma == 0 ? 1e-6 * diagonal : 10 * sigma;
   }
-  chol.solve(r.data(), d.data());
+  chol->solve(r.data(), d.data());
   return d;
+}
+
+/// Every 3 x 3 block K can hold at some state (a free node's own, and each spring's between
+/// two free nodes), as explicit zeros: K + this has one pattern at every state, where K alone
+/// drops the entries that are 0 at the state (a flat mesh at rest couples no out-of-plane
+/// row), so that the Newton steps share one pattern analysis.
+SparseMatrix block_pattern(const Model& model, const std::vector<int>& block, int free) {
+  std::vector<Eigen::Triplet<double>> t;
+  auto add = [&t](int a, int b) {
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) t.emplace_back(3 * a + r, 3 * b + c, 0.0);
+  };
+  for (size_t i = 0; i < block.size(); ++i)
+    if (block[i] >= 0) add(block[i], block[i]);
+  for (const Spring& s : model.springs) {
+    const int a = block[static_cast<size_t>(s.i)], b = block[static_cast<size_t>(s.j)];
+    if (a >= 0 && b >= 0) add(a, b), add(b, a);
+  }
+  SparseMatrix Z(3 * free, 3 * free);
+  Z.setFromTriplets(t.begin(), t.end());
+  return Z;
 }
 
 }  // namespace
@@ -86,11 +113,14 @@ Equilibrium static_equilibrium(const Model& model, const EquilibriumOptions& opt
   Equilibrium e;
   e.x = model.rest;
   Eigen::VectorXd r(3 * free), trial_r(3 * free);
+  std::optional<detail::ShiftedCholesky> chol;
+  SparseMatrix pattern;  // built at the first step
   e.net = residual(model, e.x, block, r);
   while (!(e.converged = e.net.balanced(options.tolerance)) &&
          e.iterations < options.max_iterations) {
-    const Eigen::VectorXd d =
-        newton_step(tangent_stiffness(model, e.x), r, options.max_factor_flops);
+    if (e.iterations == 0) pattern = block_pattern(model, block, free);
+    const SparseMatrix K = tangent_stiffness(model, e.x) + pattern;
+    const Eigen::VectorXd d = newton_step(chol, K, r, options.max_factor_flops);
     ++e.iterations;
     // Halve the step until the energy falls enough (Armijo: its slope along d is -r . d),
     // or, once rounding hides the energy's change, until the net force falls.

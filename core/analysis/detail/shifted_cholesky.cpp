@@ -105,15 +105,18 @@ Prediction amd_prediction(const SparseMatrix& B) {
 
 }  // namespace
 
-ShiftedCholesky::ShiftedCholesky(const SparseMatrix& A) : n_(A.rows()) {
-  // The lower triangle of -A with every diagonal entry present (0 + (-A_kk), or 0 where A
-  // has none), column by column in compressed storage; A's columns hold sorted rows.
-  std::vector<int> outer(static_cast<size_t>(n_) + 1, 0);
+namespace {
+
+/// The lower triangle of -A with every diagonal entry present (0 + (-A_kk), or 0 where A
+/// has none), column by column in compressed storage; A's columns hold sorted rows.
+SparseMatrix negated_lower(const SparseMatrix& A) {
+  const Eigen::Index n = A.rows();
+  std::vector<int> outer(static_cast<size_t>(n) + 1, 0);
   std::vector<int> inner;
   std::vector<double> values;
-  inner.reserve(static_cast<size_t>(A.nonZeros() / 2 + n_));
+  inner.reserve(static_cast<size_t>(A.nonZeros() / 2 + n));
   values.reserve(inner.capacity());
-  for (Eigen::Index k = 0; k < n_; ++k) {
+  for (Eigen::Index k = 0; k < n; ++k) {
     inner.push_back(static_cast<int>(k));  // the diagonal, first in its column
     values.push_back(0.0);
     for (SparseMatrix::InnerIterator it(A, k); it; ++it) {
@@ -127,8 +130,14 @@ ShiftedCholesky::ShiftedCholesky(const SparseMatrix& A) : n_(A.rows()) {
     }
     outer[static_cast<size_t>(k) + 1] = static_cast<int>(inner.size());
   }
-  B_ = Eigen::Map<const SparseMatrix>(n_, n_, static_cast<Eigen::Index>(inner.size()),
-                                      outer.data(), inner.data(), values.data());
+  return Eigen::Map<const SparseMatrix>(n, n, static_cast<Eigen::Index>(inner.size()),
+                                        outer.data(), inner.data(), values.data());
+}
+
+}  // namespace
+
+ShiftedCholesky::ShiftedCholesky(const SparseMatrix& A) : n_(A.rows()) {
+  B_ = negated_lower(A);
   llt_.cholmod().print = 0;                // a failed factorisation is an answer, not news
   if (n_ < kNestedDissectionRows) {         // small: AMD alone; CHOLMOD's trial of nested
     llt_.cholmod().nmethods = 1;            // dissection costs more than it saves there
@@ -149,6 +158,21 @@ void ShiftedCholesky::analyse(double budget) {
   analysed_ = true;
   if (llt_.cholmod().fl > budget)
     throw FactorisationOverBudget(llt_.cholmod().fl, 8 * llt_.cholmod().lnz, budget);
+}
+
+void ShiftedCholesky::assign(const SparseMatrix& A) {
+  SparseMatrix B = negated_lower(A);
+  const bool same = B.rows() == B_.rows() && B.nonZeros() == B_.nonZeros() &&
+                    std::equal(B.outerIndexPtr(), B.outerIndexPtr() + B.outerSize() + 1,
+                               B_.outerIndexPtr()) &&
+                    std::equal(B.innerIndexPtr(), B.innerIndexPtr() + B.nonZeros(),
+                               B_.innerIndexPtr());
+  B_ = std::move(B);
+  ok_ = false;
+  if (!same) {  // another pattern: analysed anew at the next factor()
+    n_ = B_.rows();
+    analysed_ = false;
+  }
 }
 
 bool ShiftedCholesky::factor(double sigma) {

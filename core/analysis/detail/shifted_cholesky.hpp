@@ -39,6 +39,9 @@ class ShiftedCholesky {
   void analyse(double budget);
   /// Factors sigma I - A; true when it is positive definite (every pivot > 0).
   bool factor(double sigma);
+  /// Takes the values of another A of the same pattern (a Newton step's next tangent
+  /// stiffness), keeping the pattern analysis; another pattern is analysed anew.
+  void assign(const SparseMatrix& A);
   /// After a successful factor(sigma): what it proves, lambda_max(A) < the result, allowing
   /// for the factorisation's rounding (detail/cholesky_rounding.hpp), rounded up.
   double proved_above() const;
