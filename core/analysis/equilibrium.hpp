@@ -46,7 +46,8 @@ struct Equilibrium {
 /// (linear_stability.hpp), sigma = 0 where K is positive definite and the smallest of 1e-6,
 /// 1e-5, ... of its largest diagonal entry that makes it so elsewhere (a slack chain at
 /// rest, an indefinite K), by CHOLMOD's Cholesky; the step is halved until the energy falls
-/// (Armijo) or, near the end, the net force does.
+/// (Armijo) or, near the end, the net force does. Where a load has several minima (a
+/// pre-stretched sheet that wrinkles) it finds one, and a run may settle at another.
 Equilibrium static_equilibrium(const Model& model, const EquilibriumOptions& options = {});
 
 }  // namespace dampbound
