@@ -3,11 +3,14 @@
 
 #include <cmath>
 #include <optional>
+#include <string>
+#include <vector>
 
-#include "core/error.hpp"
+#include "core/analysis/equilibrium.hpp"
 #include "core/analysis/linear_stability_exact.hpp"
-#include "core/session.hpp"
 #include "core/analysis/suggest.hpp"
+#include "core/error.hpp"
+#include "core/session.hpp"
 #include "python/arrays.hpp"
 
 namespace dampbound::python {
@@ -126,15 +129,50 @@ void bind_analysis(py::module_& m) {
   m.def(
       "exact_limits",
       [options](const SceneSpec& scene, const Params* params, int threads,
-                std::optional<double> budget) {
+                std::optional<double> budget, const py::object& x) {
         const Params p = params ? *params : scene.params;
-        return exact_stability(compile_model(scene.model, p), scene.model.rest, p,
-                               options(threads, budget));
+        std::vector<Vec3> at = scene.model.rest;
+        if (!x.is_none()) {
+          py::array_t<double> keep;
+          const NodeVectors v = node_vectors_of(x, "x", keep);
+          if (v.rows() != scene.model.node_count())
+            throw py::value_error("x must have one row per node (" +
+                                  std::to_string(scene.model.node_count()) + ")");
+          for (Eigen::Index i = 0; i < v.rows(); ++i) at[static_cast<size_t>(i)] = v.row(i);
+        }
+        return exact_stability(compile_model(scene.model, p), at, p, options(threads, budget));
       },
       py::arg("scene"), py::arg("params") = nullptr, py::arg("threads") = 1,
-      py::arg("factor_budget_gflop") = py::none(),
-      "SPEC 7: the exact limits of the scene's model at rest with params (default: the "
-      "scene's); threads and factor_budget_gflop as above.");
+      py::arg("factor_budget_gflop") = py::none(), py::arg("x") = py::none(),
+      "SPEC 7: the exact limits of the scene's model with params (default: the scene's), "
+      "linearised at rest or at the (N, 3) positions x (e.g. static_equilibrium's); threads "
+      "and factor_budget_gflop as above.");
+  m.def(
+      "static_equilibrium",
+      [options](const SceneSpec& scene, const Params* params, std::optional<double> budget) {
+        const Params p = params ? *params : scene.params;
+        EquilibriumOptions o;
+        o.max_factor_flops = options(1, budget).max_factor_flops;
+        const Equilibrium e = static_equilibrium(compile_model(scene.model, p), o);
+        py::array_t<double> x({static_cast<py::ssize_t>(e.x.size()), py::ssize_t{3}});
+        auto w = x.mutable_unchecked<2>();
+        for (size_t i = 0; i < e.x.size(); ++i)
+          for (int c = 0; c < 3; ++c) w(static_cast<py::ssize_t>(i), c) = e.x[i](c);
+        py::dict d;
+        d["x"] = x;
+        d["converged"] = e.converged;
+        d["iterations"] = e.iterations;
+        d["net_force"] = e.net.largest;
+        d["node"] = e.net.node;
+        d["force_scale"] = e.net.scale;
+        return d;
+      },
+      py::arg("scene"), py::arg("params") = nullptr, py::arg("factor_budget_gflop") = py::none(),
+      "The static equilibrium under the scene's external forces and rest lengths (the CLI's "
+      "bounds --equilibrium; Newton's method on the potential energy, where a damped run "
+      "settles): a dict with x (N, 3), converged, iterations, net_force (the largest "
+      "|F_i + f_i| at x), node (where) and force_scale (the largest force term). Over "
+      "factor_budget_gflop: RuntimeError.");
 
   m.def(
       "suggest",

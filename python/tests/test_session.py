@@ -98,6 +98,28 @@ def test_suggest_over_a_factorisation_budget_suggests_what_is_proved(scenes_dir)
         dampbound.suggest(scene, verify=False, factor_budget_gflop=0)
 
 
+def test_static_equilibrium_of_a_loaded_chain_and_the_limits_there(tmp_path):
+    # Eleven springs between fixed ends, every free node pulled down: slack at rest.
+    lines = ['name = "chain"']
+    for i in range(12):
+        lines += ["[[node]]", f"x = [{0.5 * i}, 0.0, 0.0]"]
+        lines += ["fixed = true"] if i in (0, 11) else ["force = [0.0, -0.0005, 0.0]"]
+    for i in range(11):
+        lines += ["[[spring]]", f"nodes = [{i}, {i + 1}]"]
+    (tmp_path / "chain.toml").write_text("\n".join(lines) + "\n")
+    scene = dampbound.load_scene(str(tmp_path / "chain.toml"))
+    eq = dampbound.static_equilibrium(scene)
+    assert eq["converged"] and eq["iterations"] > 1
+    assert eq["net_force"] <= 1e-10 * eq["force_scale"]
+    assert eq["x"].shape == (12, 3) and eq["x"][6, 1] < -0.1  # it sags
+    rest = dampbound.exact_limits(scene)
+    there = dampbound.exact_limits(scene, x=eq["x"])
+    assert there.lambda_max == pytest.approx(3.7151536, rel=1e-7)  # 3.9189859 at rest
+    assert rest.lambda_max == pytest.approx(3.9189859, rel=1e-7)
+    with pytest.raises(ValueError, match="one row per node"):
+        dampbound.exact_limits(scene, x=eq["x"][:5])
+
+
 def test_exact_limits_take_a_thread_count_and_give_the_same_numbers(scenes_dir):
     scene = dampbound.load_scene(str(scenes_dir / "paper-plane.toml"))
     one = dampbound.exact_limits(scene)
