@@ -207,10 +207,9 @@ int run_scene(const BoundsArgs& a) {
     std::printf("state        rest (x = X, v = 0): the linearisation point of the exact analysis\n");
     const NetForce n = net_force(model, state.x);
     if (!n.balanced())  // external forces, or rest lengths other than the rest geometry's
-      std::printf("note         the rest state is not an equilibrium: a net force of %s at node "
-                  "%d (largest force term %s), so a run leaves it; --equilibrium analyses "
-                  "where a damped run settles\n",
-                  format_digits(n.largest, 5).c_str(), n.node, format_digits(n.scale, 5).c_str());
+      std::printf("note         %s, so a run leaves it; --equilibrium analyses where a damped "
+                  "run settles\n",
+                  rest_not_in_equilibrium(n).c_str());
   }
   ExactOptions options;
   options.threads = 0;  // a big mesh's Lanczos products on every CPU (the same bits)

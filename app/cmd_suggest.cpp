@@ -156,10 +156,9 @@ int run(const SuggestArgs& a) {
     const Model model = compile_model(scene.model, p);
     const NetForce n = net_force(model, model.rest);
     if (!n.balanced())  // external forces, or rest lengths other than the rest geometry's
-      std::printf("note         the rest state is not an equilibrium: a net force of %s at node "
-                  "%d (largest force term %s); these suggestions linearise at rest, which a "
-                  "run leaves; bounds --equilibrium analyses where a damped run settles\n",
-                  format_digits(n.largest, 5).c_str(), n.node, format_digits(n.scale, 5).c_str());
+      std::printf("note         %s; these suggestions linearise at rest, which a run leaves; "
+                  "bounds --equilibrium analyses where a damped run settles\n",
+                  rest_not_in_equilibrium(n).c_str());
   }
   SuggestOptions options;
   options.verify = !a.no_verify;

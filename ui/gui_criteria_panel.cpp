@@ -82,9 +82,8 @@ void GuiApp::criteria_panel() {
   ImGui::PopStyleColor();
   if (const NetForce* n = c.rest_net_force(); n != nullptr && !n->balanced())
     wrapped_colored(gui_amber(),
-                    ("The rest state is not an equilibrium (net force " + fmt(n->largest) +
-                     " at node " + std::to_string(n->node) +
-                     "): a run leaves it. dampbound bounds --equilibrium analyses where a "
+                    (rest_not_in_equilibrium(*n) +
+                     "; a run leaves it, and dampbound bounds --equilibrium analyses where a "
                      "damped run settles.")
                         .c_str());
   const ImGuiTableFlags tf = ImGuiTableFlags_SizingStretchProp | ImGuiTableFlags_ScrollY |

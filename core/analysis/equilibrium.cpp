@@ -5,10 +5,12 @@
 #include <cmath>
 #include <optional>
 #include <stdexcept>
+#include <string>
 
 #include "core/analysis/detail/shifted_cholesky.hpp"
 #include "core/analysis/linear_stability.hpp"
 #include "core/forces.hpp"
+#include "core/io/format.hpp"
 
 namespace dampbound {
 namespace {
@@ -105,6 +107,12 @@ NetForce net_force(const Model& model, const std::vector<Vec3>& x) {
   const std::vector<int> block = free_blocks(model, &free);
   Eigen::VectorXd r(3 * free);
   return residual(model, x, block, r);
+}
+
+std::string rest_not_in_equilibrium(const NetForce& net) {
+  return "the rest state is not an equilibrium: a net force of " + format_digits(net.largest, 5) +
+         " at node " + std::to_string(net.node) + " (largest force term " +
+         format_digits(net.scale, 5) + ")";
 }
 
 Equilibrium static_equilibrium(const Model& model, const EquilibriumOptions& options) {

@@ -5,6 +5,7 @@
 // rest: a damped run leaves X and settles where this is, and the linear analysis (SPEC 7, 9)
 // of such a mesh belongs there, not at X.
 #include <limits>
+#include <string>
 #include <vector>
 
 #include "core/analysis/linear_stability_cholesky.hpp"  // FactorisationOverBudget
@@ -24,6 +25,10 @@ struct NetForce {
   bool balanced(double tolerance = 1e-10) const { return largest <= tolerance * scale; }
 };
 NetForce net_force(const Model& model, const std::vector<Vec3>& x);
+
+/// "the rest state is not an equilibrium: a net force of 0.0005 at node 1 (largest force term
+/// 0.0005)", for `net` at rest: the one wording of bounds', suggest's and the tuner's note.
+std::string rest_not_in_equilibrium(const NetForce& net);
 
 struct EquilibriumOptions {
   int max_iterations = 200;  ///< quadratic near a minimum: 5 to 10 on smooth loads

@@ -12,6 +12,7 @@
 
 #include "core/analysis/criteria.hpp"
 #include "core/analysis/linear_stability_exact.hpp"
+#include "core/analysis/perturbation_growth.hpp"
 #include "core/scene.hpp"
 #include "core/step.hpp"
 #include "core/io/scene_file.hpp"

@@ -13,6 +13,7 @@
 #include "core/analysis/criteria.hpp"
 #include "core/forces.hpp"
 #include "core/analysis/linear_stability_exact.hpp"
+#include "core/analysis/perturbation_growth.hpp"
 #include "core/analysis/linear_stability_modes.hpp"
 #include "core/detail/spring_block.hpp"
 #include "core/scene.hpp"

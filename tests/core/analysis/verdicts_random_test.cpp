@@ -33,6 +33,7 @@
 
 #include "core/analysis/equilibrium.hpp"
 #include "core/analysis/linear_stability_exact.hpp"
+#include "core/analysis/perturbation_growth.hpp"
 #include "core/forces.hpp"
 #include "core/model.hpp"
 #include "core/params.hpp"
