@@ -170,8 +170,10 @@ MonitorReport Monitor::check_with(const std::vector<double>* safe, NodeVectors v
   NodeThreads& threads = workers_.pass.threads;
   std::vector<MonitorReport> parts(static_cast<size_t>(threads.chunks(model_.rest.size())));
   threads.run(model_.rest.size(), [&](int chunk, size_t begin, size_t end) {
+    MonitorReport part;  // counted here, stored once: the parts share cache lines
     check_range(safe, v, force, gamma, dt, policy, factor, gamma_eff, upper, status,
-                static_cast<int>(begin), static_cast<int>(end), parts[static_cast<size_t>(chunk)]);
+                static_cast<int>(begin), static_cast<int>(end), part);
+    parts[static_cast<size_t>(chunk)] = part;
   });
   MonitorReport r;
   for (const MonitorReport& p : parts) {

@@ -39,7 +39,7 @@ StepStats step(const Model& model, const Params& params, State& state, StepWorks
   // Bounds and effective damping from the state at t (SPEC 3-4).
   std::vector<ChunkStats> chunk(static_cast<size_t>(threads.chunks(n)));
   threads.run(n, [&](int c, size_t begin, size_t end) {
-    ChunkStats& cs = chunk[static_cast<size_t>(c)];
+    ChunkStats cs;  // counted here, stored once: the chunks share cache lines
     for (size_t i = begin; i < end; ++i) {
       if (model.fixed[i]) {
         ws.upper_bound[i] = std::numeric_limits<double>::infinity();
@@ -61,6 +61,7 @@ StepStats step(const Model& model, const Params& params, State& state, StepWorks
       cs.unstabilisable += d.unstabilisable;
       cs.clamped += d.status == NodeStatus::clamped;
     }
+    chunk[static_cast<size_t>(c)] = cs;
   });
   for (const ChunkStats& cs : chunk) {
     st.unguaranteed += cs.unguaranteed;
@@ -75,7 +76,7 @@ StepStats step(const Model& model, const Params& params, State& state, StepWorks
 
   // Displacements after the step; a non-finite coordinate makes the step non-finite.
   threads.run(n, [&](int c, size_t begin, size_t end) {
-    ChunkStats& cs = chunk[static_cast<size_t>(c)];
+    ChunkStats cs;
     for (size_t i = begin; i < end; ++i) {
       const double d = (state.x[i] - model.rest[i]).norm();
       if (!std::isfinite(d)) {
@@ -85,6 +86,7 @@ StepStats step(const Model& model, const Params& params, State& state, StepWorks
         cs.max_displacement = d;
       }
     }
+    chunk[static_cast<size_t>(c)] = cs;
   });
   for (const ChunkStats& cs : chunk) {
     st.finite = st.finite && cs.finite;

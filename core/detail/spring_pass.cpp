@@ -71,19 +71,42 @@ inline Vec3 anchor_force(const Model& model, const std::vector<Vec3>& x, size_t 
   return -model.anchor_kappa[i] * (x[i] - model.rest[i]);
 }
 
+/// The last spring at node i (its incident springs are listed in increasing index), or -1.
+inline long last_spring(const Model& model, size_t i) {
+  const int e = model.incident_offset[i + 1];
+  if (e == model.incident_offset[i]) return -1;
+  const int k = model.incident[static_cast<size_t>(e - 1)];
+  return k >= 0 ? k : ~k;
+}
+
 /// The pass over the nodes [begin, end): their anchor terms, then every spring with an end
 /// among them, in index order, adding its terms to that end only (+f to i, -f to j; B to each
 /// free end). A node's sums are thus added in the same order whatever the range, so any split
 /// of the nodes gives the same bits; a spring with an end on each side is computed by both
 /// sides. Counts the springs whose first node is in the range.
+///
+/// A node's sums are started when the pass first reaches it (every node before it as well, in
+/// order) and its R_i is taken once its last spring is added, so on a mesh numbered along its
+/// rows or layers a node's accumulators live in cache for the few rows between the two instead
+/// of being written out, read back and written again.
 SpringCounts owned_pass(const Model& model, const std::vector<Vec3>& x, std::vector<Vec3>* force,
                         std::vector<double>* row_sum, double* acc, size_t begin, size_t end) {
   const std::vector<std::uint8_t>& fixed = model.fixed;
   SpringCounts counts;
-  for (size_t i = begin; i < end; ++i) {
-    if (force) (*force)[i] = anchor_force(model, x, i);
-    if (row_sum) start_rows(model, i, &acc[9 * i]);
-  }
+  size_t started = begin;   // the nodes [begin, started) have their sums started
+  size_t finished = begin;  // and [begin, finished) their R_i taken
+  const auto start_to = [&](size_t i) {  // start every node up to i
+    for (; started <= i; ++started) {
+      if (force) (*force)[started] = anchor_force(model, x, started);
+      if (row_sum) start_rows(model, started, &acc[9 * started]);
+    }
+  };
+  const auto finish_after = [&](long k) {  // R_i of the nodes, in order, whose springs end by k
+    if (!row_sum) return;
+    for (; finished < started && last_spring(model, finished) <= k; ++finished)
+      if (!fixed[finished])
+        (*row_sum)[finished] = row_sum_of(&acc[9 * finished], model.mass[finished]);
+  };
   const bool all = begin == 0 && end == x.size();
   // Only the springs from the first to the last listed at these nodes can reach them: on a
   // mesh numbered along its rows or layers, about this range's share of the list.
@@ -103,9 +126,12 @@ SpringCounts owned_pass(const Model& model, const std::vector<Vec3>& x, std::vec
     const size_t j = static_cast<size_t>(model.springs[k].j);
     const bool own_i = all || (i >= begin && i < end), own_j = all || (j >= begin && j < end);
     if (!own_i && !own_j) continue;
+    if (own_i) start_to(i);
+    if (own_j) start_to(j);
     const SpringGeometry g = geometry(model, x, k);
     if (!(g.length > 0)) {  // also catches NaN
       counts.zero_length += own_i;
+      finish_after(static_cast<long>(k));
       continue;
     }
     if (force) {
@@ -120,10 +146,10 @@ SpringCounts owned_pass(const Model& model, const std::vector<Vec3>& x, std::vec
       if (own_i && !fixed[i]) add_block(&acc[9 * i], b, off, fixed[j]);
       if (own_j && !fixed[j]) add_block(&acc[9 * j], b, off, fixed[i]);
     }
+    finish_after(static_cast<long>(k));
   }
-  if (row_sum)
-    for (size_t i = begin; i < end; ++i)
-      if (!fixed[i]) (*row_sum)[i] = row_sum_of(&acc[9 * i], model.mass[i]);
+  if (end > begin) start_to(end - 1);
+  finish_after(static_cast<long>(model.springs.size()));
   return counts;
 }
 
