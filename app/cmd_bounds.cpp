@@ -175,16 +175,10 @@ int run_scene(const BoundsArgs& a) {
     try {
       held = static_equilibrium(model, eo);
     } catch (const FactorisationOverBudget& over) {
-      throw std::runtime_error(std::string("--equilibrium: Newton's method on the tangent "
-                                           "stiffness needs factorisations, and ") +
-                               over.what() + " (--factor-budget)");
+      throw std::runtime_error("--equilibrium: " + equilibrium_over_budget(over) +
+                               " (--factor-budget)");
     }
-    if (!held.converged)
-      throw std::runtime_error(
-          "--equilibrium: no static equilibrium found in " + std::to_string(held.iterations) +
-          " Newton steps (net force " + format_digits(held.net.largest, 5) + " at node " +
-          std::to_string(held.net.node) + ", largest force term " +
-          format_digits(held.net.scale, 5) + ")");
+    if (!held.converged) throw std::runtime_error("--equilibrium: " + no_equilibrium(held));
     state.x = held.x;
   }
   std::printf("scene        %s (%d nodes, %d springs, %d anchors)\n", name.c_str(),
@@ -198,11 +192,10 @@ int run_scene(const BoundsArgs& a) {
     std::printf("state        after %d steps of the scene's perturbed run (policy fixed)\n",
                 state.iteration);
   } else if (a.equilibrium) {
-    std::printf("state        static equilibrium under the scene's forces and rest lengths (v = "
-                "0; %d Newton steps, net force %s against a largest force term of %s): the "
-                "linearisation point of the exact analysis\n",
-                held.iterations, format_digits(held.net.largest, 3).c_str(),
-                format_digits(held.net.scale, 5).c_str());
+    std::printf(
+        "state        static equilibrium under the scene's forces and rest lengths (v = "
+        "0; %s): the linearisation point of the exact analysis\n",
+        equilibrium_summary(held).c_str());
   } else {
     std::printf("state        rest (x = X, v = 0): the linearisation point of the exact analysis\n");
     const NetForce n = net_force(model, state.x);

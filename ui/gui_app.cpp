@@ -84,7 +84,10 @@ GuiApp::GuiApp(GuiOptions options) : options_(std::move(options)) {
   tuner_->set_max_iterations(r.max_iterations);
   tuner_->reset();
   link_settings(settings_, [](const auto& saved, auto& live) { live = saved; });
-  tuner_->criteria_state().set_at_current_state(settings_.exact_at_state);
+  tuner_->criteria_state().set_linearisation(settings_.exact_at_equilibrium
+                                                 ? Linearisation::equilibrium
+                                             : settings_.exact_at_state ? Linearisation::state
+                                                                        : Linearisation::rest);
   tuner_->criteria_state().set_factor_budget(options_.factor_budget);
   suggest_.set_factor_budget(options_.factor_budget);
   if (options_.steps_per_frame > 0) tuner_->playback().steps_per_frame = options_.steps_per_frame;
@@ -132,6 +135,7 @@ GuiSettings GuiApp::current_settings() {
   s.params = tuner_->params();
   s.max_iterations = tuner_->session().rules().max_iterations;
   s.exact_at_state = tuner_->criteria_state().at_current_state();
+  s.exact_at_equilibrium = tuner_->criteria_state().linearisation() == Linearisation::equilibrium;
   return s;
 }
 

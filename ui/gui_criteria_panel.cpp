@@ -49,16 +49,22 @@ void GuiApp::criteria_panel() {
   Tuner& t = *tuner_;
   const std::vector<CriterionResult>& rows = t.criteria();
   TunerCriteria& c = t.criteria_state();
-  bool at_state = c.at_current_state();
-  if (ImGui::Checkbox("linearise at the current state", &at_state))
-    c.set_at_current_state(at_state);
+  static const char* const kAt[] = {"rest", "the current state", "the static equilibrium"};
+  int at = static_cast<int>(c.linearisation());
+  ImGui::SetNextItemWidth(ImGui::CalcTextSize(kAt[2]).x + 2 * ImGui::GetFrameHeight());
+  if (ImGui::Combo("linearise at", &at, kAt, 3))
+    c.set_linearisation(static_cast<Linearisation>(at));
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip(
-        "The exact analysis (SPEC 7) linearises the forces at rest (off) or at the\n"
-        "current positions (on: it follows the run, refreshed every 0.2 s or so).");
+        "Where the exact analysis (SPEC 7) linearises the forces: at rest, at the current\n"
+        "positions (it follows the run, refreshed every 0.2 s or so), or at the static\n"
+        "equilibrium under the scene's loads and rest lengths, where a damped run settles\n"
+        "(Newton's method first, as dampbound bounds --equilibrium).");
   const ExactStability* e = t.exact();
-  const std::string where = c.exact_at_rest()
-                                ? std::string("at rest")
+  const Equilibrium* held = c.exact_equilibrium();
+  const std::string where = c.exact_at_rest() ? std::string("at rest")
+                            : held != nullptr
+                                ? "at the static equilibrium (" + equilibrium_summary(*held) + ")"
                                 : "at iteration " + std::to_string(c.exact_iteration());
   ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
   // On a large mesh the rows follow a playing run every 0.2 s: say when they are behind it.
@@ -83,9 +89,13 @@ void GuiApp::criteria_panel() {
   if (const NetForce* n = c.rest_net_force(); n != nullptr && !n->balanced())
     wrapped_colored(gui_amber(),
                     (rest_not_in_equilibrium(*n) +
-                     "; a run leaves it, and dampbound bounds --equilibrium analyses where a "
-                     "damped run settles.")
+                     "; a run leaves it: linearise at the static equilibrium to analyse where "
+                     "a damped run settles.")
                         .c_str());
+  if (c.linearisation() == Linearisation::equilibrium && !c.equilibrium_failure().empty())
+    wrapped_colored(
+        gui_amber(),
+        ("No analysis at the static equilibrium: " + c.equilibrium_failure() + ".").c_str());
   const ImGuiTableFlags tf = ImGuiTableFlags_SizingStretchProp | ImGuiTableFlags_ScrollY |
                              ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerH;
   if (!ImGui::BeginTable("criteria", 3, tf)) return;

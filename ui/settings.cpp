@@ -148,6 +148,7 @@ const std::vector<SettingRow>& gui_setting_rows() {
       {"log_y", &S::log_y, 0, 0, "false"},
       {"show_max", &S::show_max, 0, 0, "true"},
       {"exact_at_state", &S::exact_at_state, 0, 0, "false"},
+      {"exact_at_equilibrium", &S::exact_at_equilibrium, 0, 0, "false"},
       {"show_springs", &S::show_springs, 0, 0, "true"},
       {"show_anchors", &S::show_anchors, 0, 0, "false"},
       {"point_size", &S::point_size, 1, 40, "5"},

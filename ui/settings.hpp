@@ -28,6 +28,7 @@ struct GuiSettings {
   bool log_y;           ///< displacement plot on a log10 axis
   bool show_max;        ///< plot the max displacement over all nodes
   bool exact_at_state;  ///< exact analysis linearised at the current state
+  bool exact_at_equilibrium;  ///< exact analysis at the static equilibrium (wins over the state)
   bool show_springs;
   bool show_anchors;
   float point_size;        ///< node size in the mesh view (pixels)

@@ -59,9 +59,31 @@ TunerCriteria::~TunerCriteria() {
   wait();
 }
 
-void TunerCriteria::set_at_current_state(bool on) {
-  if (on == at_state_) return;
-  at_state_ = on;
+/// The static equilibrium's positions (empty where there is none: `f` says why) and Newton's
+/// result in f.equilibrium (without its positions).
+std::vector<Vec3> TunerCriteria::equilibrium_positions(const Model& model, double factor_budget,
+                                                       Finished& f) {
+  EquilibriumOptions o;
+  o.max_factor_flops = factor_budget;
+  try {
+    Equilibrium e = static_equilibrium(model, o);
+    f.equilibrium_failure = no_equilibrium(e);
+    std::vector<Vec3> x = std::move(e.x);
+    e.x.clear();
+    f.equilibrium = std::move(e);
+    if (!f.equilibrium_failure.empty()) x.clear();
+    return x;
+  } catch (const FactorisationOverBudget& over) {
+    f.equilibrium_failure = equilibrium_over_budget(over);
+  } catch (const std::exception& e) {
+    f.equilibrium_failure = e.what();
+  }
+  return {};
+}
+
+void TunerCriteria::set_linearisation(Linearisation at) {
+  if (at == at_) return;
+  at_ = at;
   have_key_ = false;  // recompute at the next call, unthrottled
   last_seconds_ = 0;
 }
@@ -82,30 +104,34 @@ void TunerCriteria::collect() {
   if (!job_.valid() || job_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return;
   Finished f = job_.get();
   last_seconds_ = f.seconds;
-  // A result of the other mode (switched while it ran) is dropped; the next call starts anew.
-  if (f.at_state != at_state_) return;
+  // A result of another mode (switched while it ran) is dropped; the next call starts anew.
+  if (f.at != at_) return;
   exact_ = std::move(f.exact);
   rest_net_ = f.rest_net;
+  equilibrium_ = std::move(f.equilibrium);
+  equilibrium_failure_ = std::move(f.equilibrium_failure);
   ++exact_version_;
   exact_iteration_ = f.iteration;
-  exact_at_rest_ = !f.at_state;
+  exact_shown_at_ = f.at;
 }
 
 const ExactStability* TunerCriteria::exact(const Session& s, std::uint64_t topology,
                                            std::uint64_t state) {
   collect();
-  // Small meshes are analysed in the frame (tens of ms at the paper's 1296 nodes, once per
-  // change); larger ones, and every analysis that follows the state, on the worker thread.
-  const bool on_worker = at_state_ || free_node_count(s.model()) > worker_nodes_;
-  if (!on_worker) wait();  // a result that followed the state is of no use at rest
+  // Small meshes are analysed at rest in the frame (tens of ms at the paper's 1296 nodes,
+  // once per change); larger ones, every analysis that follows the state and every one at
+  // the equilibrium (Newton's method first), on the worker thread.
+  const bool following = at_ == Linearisation::state;
+  const bool on_worker = at_ != Linearisation::rest || free_node_count(s.model()) > worker_nodes_;
+  if (!on_worker) wait();  // a result of another mode is of no use at rest
   const double now = seconds_now();
-  const bool moved = at_state_ && state != state_;
+  const bool moved = following && state != state_;
   const bool changed = !have_key_ || topology != topology_ || !same_key(key_, s.params()) || moved;
   // On a large mesh the analysis takes long: while a slider is dragged (or the run goes on,
   // when it follows the state), keep the last result and recompute at most every few
   // durations, so the window stays responsive.
   const double slow = last_seconds_ > slow_threshold_ ? 4 * last_seconds_ : 0.0;
-  const double interval = at_state_ ? std::max(follow_interval_, slow) : slow;
+  const double interval = following ? std::max(follow_interval_, slow) : slow;
   const bool throttled = have_key_ && (exact_ || job_.valid()) && now - last_time_ < interval;
   if (!changed || throttled || job_.valid()) return exact_ ? &*exact_ : nullptr;
   last_time_ = now;
@@ -119,28 +145,33 @@ const ExactStability* TunerCriteria::exact(const Session& s, std::uint64_t topol
     // meanwhile (computing() says a new one is on its way). The worker shares the session's
     // model (no copy: a parameter change copies it only while the worker still holds it) and
     // copies only the positions it follows.
-    const int iteration = at_state_ ? s.state().iteration : 0;
-    std::vector<Vec3> x = at_state_ ? s.state().x : std::vector<Vec3>{};
-    job_ = std::async(std::launch::async,
-                      [model = s.shared_model(), x = std::move(x), params = s.params(),
-                       iteration, at = at_state_, budget = factor_budget_] {
-                        lower_worker_priority();
-                        const double t0 = seconds_now();
-                        Finished f;
-                        f.exact = analyse(*model, at ? x : model->rest, params, budget);
-                        if (!at) f.rest_net = net_force(*model, model->rest);
-                        f.iteration = iteration;
-                        f.at_state = at;
-                        f.seconds = seconds_now() - t0;
-                        return f;
-                      });
+    const int iteration = following ? s.state().iteration : 0;
+    std::vector<Vec3> x = following ? s.state().x : std::vector<Vec3>{};
+    job_ = std::async(
+        std::launch::async, [model = s.shared_model(), x = std::move(x), params = s.params(),
+                             iteration, at = at_, budget = factor_budget_] {
+          lower_worker_priority();
+          const double t0 = seconds_now();
+          Finished f;
+          f.iteration = iteration;
+          f.at = at;
+          if (at == Linearisation::equilibrium) {
+            std::vector<Vec3> held = equilibrium_positions(*model, budget, f);
+            if (!held.empty()) f.exact = analyse(*model, held, params, budget);
+          } else {
+            f.exact = analyse(*model, at == Linearisation::state ? x : model->rest, params, budget);
+          }
+          if (at == Linearisation::rest) f.rest_net = net_force(*model, model->rest);
+          f.seconds = seconds_now() - t0;
+          return f;
+        });
     return exact_ ? &*exact_ : nullptr;
   }
   exact_ = analyse(s.model(), s.model().rest, s.params(), factor_budget_);
   rest_net_ = net_force(s.model(), s.model().rest);
   ++exact_version_;
   exact_iteration_ = 0;
-  exact_at_rest_ = true;
+  exact_shown_at_ = Linearisation::rest;
   last_seconds_ = seconds_now() - now;
   return exact_ ? &*exact_ : nullptr;
 }

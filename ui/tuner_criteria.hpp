@@ -17,18 +17,25 @@
 
 namespace dampbound::ui {
 
+/// Where the exact analysis linearises the forces (SPEC 7).
+enum class Linearisation {
+  rest,         ///< x = X (`dampbound bounds SCENE`)
+  state,        ///< the run's current positions (`bounds SCENE --after N`)
+  equilibrium,  ///< the static equilibrium under the scene's loads (`bounds --equilibrium`)
+};
+
 /// The criteria of a session. The exact linear analysis (SPEC 7) is linearised at the rest
 /// state by default (as `dampbound bounds SCENE` does) and cached until the parameters or the
-/// springs change (on a worker thread above 5000 free nodes, the last result on show meanwhile); with set_at_current_state(true) it is linearised at the current positions
-/// (as `bounds SCENE --after N` does) and follows the run: recomputed on a worker thread at
-/// most every follow_interval (0.2 s) or four analysis durations, whichever is longer, the
-/// last result staying on show meanwhile (no frame waits for it). The paper's criteria (eqs. 5, 6 and the
-/// sec. 5 check), the classic ones and SPEC 9's safe rows are evaluated at the current state
-/// on every call; above worker_nodes free nodes, while only the state moves, at most every
-/// follow_interval (each evaluation is a pass over the springs). When
-/// one analysis takes longer than 50 ms (a large mesh), a changed key is recomputed at most
-/// every four such durations. `state` is the caller's counter of state changes (Tuner's
-/// state_version()).
+/// springs change (on a worker thread above 5000 free nodes, the last result on show
+/// meanwhile). At the static equilibrium it is cached the same way, always on the worker
+/// thread (Newton's method first). At the current positions it follows the run: recomputed on a
+/// worker thread at most every follow_interval (0.2 s) or four analysis durations, whichever is
+/// longer, the last result staying on show meanwhile (no frame waits for it). The paper's criteria
+/// (eqs. 5, 6 and the sec. 5 check), the classic ones and SPEC 9's safe rows are evaluated at the
+/// current state on every call; above worker_nodes free nodes, while only the state moves, at most
+/// every follow_interval (each evaluation is a pass over the springs). When one analysis takes
+/// longer than 50 ms (a large mesh), a changed key is recomputed at most every four such durations.
+/// `state` is the caller's counter of state changes (Tuner's state_version()).
 class TunerCriteria {
  public:
   TunerCriteria() = default;
@@ -46,9 +53,14 @@ class TunerCriteria {
   /// drawn on the envelope plot.
   std::optional<double> exact_gamma_max(const Session& session, std::uint64_t topology,
                                         std::uint64_t state = 0);
-  /// Linearise at the current positions (true) or at rest (false, the default).
-  void set_at_current_state(bool on);
-  bool at_current_state() const { return at_state_; }
+  /// Where to linearise (rest by default). A change is analysed anew at the next call.
+  void set_linearisation(Linearisation at);
+  Linearisation linearisation() const { return at_; }
+  /// Linearise at the current positions (true) or at rest (false).
+  void set_at_current_state(bool on) {
+    set_linearisation(on ? Linearisation::state : Linearisation::rest);
+  }
+  bool at_current_state() const { return at_ == Linearisation::state; }
   /// Shortest time between two analyses that follow the state (seconds).
   void set_follow_interval(double seconds) { follow_interval_ = seconds; }
   /// The analysis time above which a changed key is throttled (50 ms; tests that count
@@ -68,13 +80,20 @@ class TunerCriteria {
   /// what Lanczos alone proves. A change is analysed anew at the next call.
   void set_factor_budget(double flops);
   double factor_budget() const { return factor_budget_; }
-  /// Whether the analysis on show was linearised at rest, else at the state of iteration
-  /// exact_iteration().
-  bool exact_at_rest() const { return exact_at_rest_; }
+  /// Whether the analysis on show was linearised at rest, else at the static equilibrium
+  /// (exact_equilibrium()) or at the state of iteration exact_iteration().
+  bool exact_at_rest() const { return exact_shown_at_ == Linearisation::rest; }
+  /// With the analysis at the static equilibrium: how Newton's method reached it.
+  const Equilibrium* exact_equilibrium() const {
+    return exact_shown_at_ == Linearisation::equilibrium && equilibrium_ ? &*equilibrium_ : nullptr;
+  }
+  /// Why the last analysis asked for at the static equilibrium has none ("" when it has):
+  /// Newton's method did not converge or needs a factorisation over the budget.
+  const std::string& equilibrium_failure() const { return equilibrium_failure_; }
   /// With the analysis at rest: the net force there (not balanced: the rest state is no
   /// equilibrium, and a run leaves it; `bounds --equilibrium` analyses where it settles).
   const NetForce* rest_net_force() const {
-    return exact_at_rest_ && rest_net_ ? &*rest_net_ : nullptr;
+    return exact_at_rest() && rest_net_ ? &*rest_net_ : nullptr;
   }
   int exact_iteration() const { return exact_iteration_; }
   /// The iteration of the state the rows on show were evaluated at: on a large mesh, while
@@ -87,27 +106,35 @@ class TunerCriteria {
   struct Finished {
     std::optional<ExactStability> exact;
     std::optional<NetForce> rest_net;  ///< at rest: the net force there
+    std::optional<Equilibrium> equilibrium;  ///< at the equilibrium: Newton's result (no x)
+    std::string equilibrium_failure;         ///< at the equilibrium: why there is none
     int iteration = 0;
-    bool at_state = false;  ///< linearised at the state (else at rest)
+    Linearisation at = Linearisation::rest;
     double seconds = 0;
   };
   /// Takes the worker's result when it is ready.
   void collect();
+  /// The static equilibrium's positions (empty where there is none: f.equilibrium_failure
+  /// says why), Newton's result (without its positions) in f.equilibrium.
+  static std::vector<Vec3> equilibrium_positions(const Model& model, double factor_budget,
+                                                 Finished& f);
 
   std::vector<CriterionResult> results_;
   std::optional<ExactStability> exact_;
   std::optional<NetForce> rest_net_;
+  std::optional<Equilibrium> equilibrium_;
+  std::string equilibrium_failure_;
   std::future<Finished> job_;  ///< the analysis at the current state, when one runs
   std::uint64_t topology_ = 0, state_ = 0;
   Params key_;
   bool have_key_ = false;
-  bool at_state_ = false;
+  Linearisation at_ = Linearisation::rest;
   double follow_interval_ = 0.2;
   double slow_threshold_ = 0.05;
   int worker_nodes_ = 5000;
   double factor_budget_ = kDefaultFactorBudget;
   int exact_iteration_ = 0;
-  bool exact_at_rest_ = true;
+  Linearisation exact_shown_at_ = Linearisation::rest;
   int exact_runs_ = 0;
   double last_time_ = 0, last_seconds_ = 0;  ///< when the last analysis started, how long it took
   std::uint64_t exact_version_ = 0;  ///< counts the results exact_ has held

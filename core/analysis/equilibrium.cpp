@@ -115,6 +115,24 @@ std::string rest_not_in_equilibrium(const NetForce& net) {
          format_digits(net.scale, 5) + ")";
 }
 
+std::string no_equilibrium(const Equilibrium& e) {
+  if (e.converged) return "";
+  return "no static equilibrium found in " + std::to_string(e.iterations) +
+         " Newton steps (net force " + format_digits(e.net.largest, 5) + " at node " +
+         std::to_string(e.net.node) + ", largest force term " + format_digits(e.net.scale, 5) + ")";
+}
+
+std::string equilibrium_summary(const Equilibrium& e) {
+  return std::to_string(e.iterations) + " Newton steps, net force " +
+         format_digits(e.net.largest, 3) + " against a largest force term of " +
+         format_digits(e.net.scale, 5);
+}
+
+std::string equilibrium_over_budget(const FactorisationOverBudget& over) {
+  return std::string("Newton's method on the tangent stiffness needs factorisations, and ") +
+         over.what();
+}
+
 Equilibrium static_equilibrium(const Model& model, const EquilibriumOptions& options) {
   int free = 0;
   const std::vector<int> block = free_blocks(model, &free);

@@ -55,4 +55,16 @@ struct Equilibrium {
 /// pre-stretched sheet that wrinkles) it finds one, and a run may settle at another.
 Equilibrium static_equilibrium(const Model& model, const EquilibriumOptions& options = {});
 
+/// Why `e` is not an equilibrium to analyse at, "" when it is (converged): "no static
+/// equilibrium found in 200 Newton steps (net force ... at node ..., largest force term ...)".
+/// The one wording of `bounds --equilibrium` and the tuner.
+std::string no_equilibrium(const Equilibrium& e);
+
+/// "6 Newton steps, net force 2.4e-15 against a largest force term of 0.0005": how `e` was
+/// reached (bounds' state line, the tuner's).
+std::string equilibrium_summary(const Equilibrium& e);
+
+/// Why Newton's method could not run: a factorisation over the budget (`over`'s words).
+std::string equilibrium_over_budget(const FactorisationOverBudget& over);
+
 }  // namespace dampbound

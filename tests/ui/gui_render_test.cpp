@@ -14,15 +14,16 @@
 #include <string>
 
 #include "core/analysis/expect.hpp"
+#include "core/io/scene_file.hpp"
 #include "core/scene.hpp"
+#include "tests/test_scenes.hpp"
 #include "ui/egl_host.hpp"
 #include "ui/gui_app.hpp"
 #include "ui/gui_export.hpp"
 #include "ui/image.hpp"
-#include "ui/settings.hpp"
 #include "ui/mesh_style.hpp"
+#include "ui/settings.hpp"
 #include "ui/tuner_plots.hpp"
-#include "core/io/scene_file.hpp"
 
 namespace dampbound::ui {
 namespace {
@@ -250,6 +251,30 @@ TEST(GuiRender, CriteriaAndSuggestTabs) {
   img = host.render_frames(1600, 1000, app.frame_fn(), 3);
   EXPECT_FALSE(app.tuner().criteria().empty());
   write_png_atomic(img, out_path("gui_criteria.png"));
+  app.release_gl();
+}
+
+// A loaded chain analysed at its static equilibrium: the Criteria tab says where (Newton's
+// steps and the net force left), and no rest-state note, which belongs to the analysis at rest.
+TEST(GuiRender, CriteriaAtTheStaticEquilibrium) {
+  EglHost host(headless());
+  GuiOptions o = bare_options();
+  SceneSpec chain;
+  chain.name = "loaded chain";
+  chain.model = test::loaded_chain();
+  o.scene = chain;
+  GuiApp app(o);
+  app.select_tab("Criteria");
+  TunerCriteria& c = app.tuner().criteria_state();
+  c.set_linearisation(Linearisation::equilibrium);
+  host.render_frames(1600, 1000, app.frame_fn(), 1);  // starts the analysis on the worker
+  c.wait();
+  app.select_tab("Criteria");  // each render starts the window afresh
+  const Image img = host.render_frames(1600, 1000, app.frame_fn(), 3);
+  EXPECT_FALSE(is_blank(img));
+  ASSERT_NE(c.exact_equilibrium(), nullptr) << c.equilibrium_failure();
+  EXPECT_EQ(c.rest_net_force(), nullptr);
+  write_png_atomic(img, out_path("gui_criteria_equilibrium.png"));
   app.release_gl();
 }
 

@@ -45,6 +45,7 @@ GuiSettings unusual() {
   s.log_y = true;
   s.show_max = false;
   s.exact_at_state = true;
+  s.exact_at_equilibrium = true;
   s.show_springs = false;
   s.show_anchors = true;
   s.point_size = 9.5f;
@@ -75,6 +76,7 @@ TEST(Settings, RoundTripIsExact) {
   EXPECT_TRUE(back->log_y);
   EXPECT_FALSE(back->show_max);
   EXPECT_TRUE(back->exact_at_state);
+  EXPECT_TRUE(back->exact_at_equilibrium);
   EXPECT_FALSE(back->show_springs);
   EXPECT_TRUE(back->show_anchors);
   EXPECT_EQ(back->point_size, 9.5f);
@@ -102,6 +104,7 @@ const char* const kGoldenUnusual =
     "log_y = true\n"
     "show_max = false\n"
     "exact_at_state = true\n"
+    "exact_at_equilibrium = true\n"
     "show_springs = false\n"
     "show_anchors = true\n"
     "point_size = 9.5\n"
@@ -118,6 +121,7 @@ const char* const kGoldenDefaults =
     "log_y = false\n"
     "show_max = true\n"
     "exact_at_state = false\n"
+    "exact_at_equilibrium = false\n"
     "show_springs = true\n"
     "show_anchors = false\n"
     "point_size = 5\n"

@@ -11,21 +11,10 @@
 #include "core/analysis/linear_stability_cholesky.hpp"
 #include "core/analysis/linear_stability_exact.hpp"
 #include "core/step.hpp"
+#include "tests/test_scenes.hpp"
 
 namespace dampbound {
 namespace {
-
-/// Twelve nodes 0.5 cm apart between fixed ends, each free node pulled down by `load`.
-ModelSpec chain(double load) {
-  ModelSpec s;
-  for (int i = 0; i < 12; ++i) {
-    add_node(s, Vec3(0.5 * i, 0, 0));
-    if (i > 0) add_spring(s, i - 1, i);
-  }
-  s.fixed[0] = s.fixed[11] = 1;
-  for (int i = 1; i < 11; ++i) s.external_force[static_cast<size_t>(i)] = Vec3(0, -load, 0);
-  return s;
-}
 
 /// Where a run of the paper's step from rest ends after `steps` steps, damped critically for
 /// the slowest mode at `x` (gamma = 2 m sqrt(lambda_min), uniform masses): the fastest decay.
@@ -49,7 +38,7 @@ double largest_gap(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
 
 TEST(Equilibrium, ASlackChainPulledDownSettlesWhereADampedRunDoes) {
   Params p;  // m = kappa = 0.001
-  const Model m = compile_model(chain(0.0005), p);
+  const Model m = compile_model(test::loaded_chain(0.0005), p);
   const NetForce at_rest = net_force(m, m.rest);
   EXPECT_DOUBLE_EQ(at_rest.largest, 0.0005);  // the load itself: no spring is stretched
   EXPECT_FALSE(at_rest.balanced());
@@ -60,11 +49,11 @@ TEST(Equilibrium, ASlackChainPulledDownSettlesWhereADampedRunDoes) {
   EXPECT_LT(e.x[6].y(), -0.1);  // it sags
   EXPECT_EQ(e.x[0], m.rest[0]);  // fixed ends stay
   EXPECT_EQ(e.x[11], m.rest[11]);
-  EXPECT_LT(largest_gap(e.x, settled(chain(0.0005), p, e.x, 20000)), 1e-9);
+  EXPECT_LT(largest_gap(e.x, settled(test::loaded_chain(0.0005), p, e.x, 20000)), 1e-9);
 }
 
 TEST(Equilibrium, AMeshAlreadyInEquilibriumStaysAtRest) {
-  ModelSpec s = chain(0);
+  ModelSpec s = test::loaded_chain(0);
   const Model m = compile_model(s, Params{});
   const Equilibrium e = static_equilibrium(m);
   EXPECT_TRUE(e.converged);
