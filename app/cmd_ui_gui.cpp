@@ -28,7 +28,7 @@ struct GuiArgs {
   std::string scene, screenshot, size, config_dir;
   int frames = 0, steps_per_frame = 0;
   bool stats = false, play = false, demo = false;
-  std::string tab;
+  std::string tab, linearise;
   std::vector<std::string> pins;  ///< --pin KEY=VALUE[,KEY=VALUE...], repeatable
   std::string save_scene, export_dir, export_prefix = "dampbound";
   double factor_budget = 0;  ///< GFlop (add_factor_budget_option sets the default)
@@ -65,14 +65,21 @@ std::string exact_method_json(ui::GuiApp& app) {
   return e ? json_string(to_string(e->method)) : "null";
 }
 
+/// Where that analysis was linearised ("rest", "state", "equilibrium"), or null.
+std::string exact_at_json(ui::GuiApp& app) {
+  const ui::TunerCriteria& c = app.tuner().criteria_state();
+  return c.shown() ? json_string(ui::to_string(c.exact_linearised_at())) : "null";
+}
+
 void print_stats(const GuiArgs& a, ui::GuiApp& app, const ui::WindowRun& run,
                  const std::string& renderer, int width, int height) {
+  app.tuner().criteria_state().wait();  // an analysis still on the worker thread: its result
   const Session& s = app.tuner().session();
   std::printf(
       "{\"frames\":%d,\"iterations\":%d,\"outcome\":\"%s\",\"outcome_iteration\":%d,"
       "\"steps_per_frame\":%d,\"mean_frame_ms\":%s,\"fps\":%s,\"steps_per_second\":%s,"
       "\"step_ms_per_frame\":%s,\"width\":%d,\"height\":%d,\"scene\":%s,\"gamma\":%s,"
-      "\"policy\":\"%s\",\"pins\":%zu,\"renderer\":%s,\"exact_method\":%s,%s}\n",
+      "\"policy\":\"%s\",\"pins\":%zu,\"renderer\":%s,\"exact_method\":%s,\"exact_at\":%s,%s}\n",
       run.frames, s.state().iteration, to_string(s.result().outcome), s.result().iterations,
       app.tuner().playback().steps_per_frame, json_number(run.mean_frame_ms).c_str(),
       json_number(run.mean_frame_ms > 0 ? 1000.0 / run.mean_frame_ms : 0.0).c_str(),
@@ -80,7 +87,7 @@ void print_stats(const GuiArgs& a, ui::GuiApp& app, const ui::WindowRun& run,
       json_number(run.frames > 0 ? app.tuner().step_seconds() * 1e3 / run.frames : 0.0).c_str(),
       width, height, json_string(s.scene().name).c_str(), json_number(s.params().gamma).c_str(),
       to_string(s.params().policy), app.tuner().pins().size(), json_string(renderer).c_str(),
-      exact_method_json(app).c_str(), frame_time_json(run).c_str());
+      exact_method_json(app).c_str(), exact_at_json(app).c_str(), frame_time_json(run).c_str());
   (void)a;
 }
 
@@ -131,6 +138,10 @@ int run(GuiArgs& a) {
   o.overrides = [flags](Params& p, StopRules& r) { flags.apply(p, r); };
   o.steps_per_frame = a.steps_per_frame;
   o.factor_budget = a.factor_budget * 1e9;
+  if (!a.linearise.empty())
+    o.linearise = a.linearise == "equilibrium" ? ui::Linearisation::equilibrium
+                  : a.linearise == "state"     ? ui::Linearisation::state
+                                               : ui::Linearisation::rest;
   o.play = a.play || a.frames > 0;
   o.demo = a.demo;
   o.scripted = a.frames > 0;
@@ -214,6 +225,10 @@ std::function<int()> setup(CLI::App& root) {
   cmd->add_option("--tab", a->tab,
                   "open this tab first: status, criteria, pins, suggest, save, mesh or map")
       ->check(CLI::IsMember({"status", "criteria", "pins", "suggest", "save", "mesh", "map"}));
+  cmd->add_option("--linearise", a->linearise,
+                  "linearise the exact analysis at rest, the current state or the static "
+                  "equilibrium (the Criteria tab's choice; remembered)")
+      ->check(CLI::IsMember({"rest", "state", "equilibrium"}));
   cmd->add_option("--pin", a->pins,
                   "before the first frame, run KEY=VALUE[,KEY=VALUE...] (m, kappa, gamma, dt, "
                   "policy, factor, integrator, max_iterations, name) to its verdict and pin it; "

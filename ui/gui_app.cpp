@@ -88,6 +88,7 @@ GuiApp::GuiApp(GuiOptions options) : options_(std::move(options)) {
                                                  ? Linearisation::equilibrium
                                              : settings_.exact_at_state ? Linearisation::state
                                                                         : Linearisation::rest);
+  if (options_.linearise) tuner_->criteria_state().set_linearisation(*options_.linearise);
   tuner_->criteria_state().set_factor_budget(options_.factor_budget);
   suggest_.set_factor_budget(options_.factor_budget);
   if (options_.steps_per_frame > 0) tuner_->playback().steps_per_frame = options_.steps_per_frame;

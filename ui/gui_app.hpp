@@ -37,6 +37,8 @@ struct GuiOptions {
   int steps_per_frame = 0;  ///< > 0: overrides the remembered value
   /// The most one factorisation of the exact analysis and of Suggest may cost (flops).
   double factor_budget = kDefaultFactorBudget;
+  /// Where the exact analysis linearises; unset: the remembered choice (rest at first).
+  std::optional<Linearisation> linearise;
   bool play = false;        ///< start playing
   bool demo = false;        ///< pin two runs (below and at the lower bound) before frame 0
   bool scripted = false;    ///< ignore the mouse (--frames runs: no stray hover tooltips)

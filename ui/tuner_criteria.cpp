@@ -55,6 +55,18 @@ double seconds_now() {
 }
 }  // namespace
 
+const char* to_string(Linearisation at) {
+  switch (at) {
+    case Linearisation::rest:
+      return "rest";
+    case Linearisation::state:
+      return "state";
+    case Linearisation::equilibrium:
+      return "equilibrium";
+  }
+  return "?";
+}
+
 TunerCriteria::~TunerCriteria() {
   wait();
 }

@@ -23,6 +23,8 @@ enum class Linearisation {
   state,        ///< the run's current positions (`bounds SCENE --after N`)
   equilibrium,  ///< the static equilibrium under the scene's loads (`bounds --equilibrium`)
 };
+/// "rest", "state" or "equilibrium" (`gui --linearise`, the --stats line).
+const char* to_string(Linearisation at);
 
 /// The criteria of a session. The exact linear analysis (SPEC 7) is linearised at the rest
 /// state by default (as `dampbound bounds SCENE` does) and cached until the parameters or the
@@ -80,6 +82,8 @@ class TunerCriteria {
   /// what Lanczos alone proves. A change is analysed anew at the next call.
   void set_factor_budget(double flops);
   double factor_budget() const { return factor_budget_; }
+  /// Where the analysis on show was linearised.
+  Linearisation exact_linearised_at() const { return exact_shown_at_; }
   /// Whether the analysis on show was linearised at rest, else at the static equilibrium
   /// (exact_equilibrium()) or at the state of iteration exact_iteration().
   bool exact_at_rest() const { return exact_shown_at_ == Linearisation::rest; }

@@ -133,6 +133,23 @@ expect_exit 0 "${XV[@]}" "$DB" gui paper-plane --tab criteria --frames 2 --stats
   --factor-budget 1e-9 --config-dir "$WORK/c5"
 expect_match "$OUT" '"exact_method":"not computed \(factorisation over budget\)"' \
   "--factor-budget: the tuner's analysis over the budget"
+# --linearise equilibrium: a loaded string is analysed where it sags to (remembered).
+printf '%s\n' 'name = "sag"' '[[node]]' 'x = [0.0, 0.0, 0.0]' 'fixed = true' '[[node]]' \
+  'x = [0.5, 0.0, 0.0]' 'force = [0.0, -0.0005, 0.0]' '[[node]]' 'x = [1.0, 0.0, 0.0]' \
+  'fixed = true' '[[spring]]' 'nodes = [0, 1]' '[[spring]]' 'nodes = [1, 2]' >"$WORK/sag.toml"
+expect_exit 0 "${XV[@]}" "$DB" gui "$WORK/sag.toml" --linearise equilibrium --tab criteria \
+  --frames 2 --stats --config-dir "$WORK/c6"
+expect_match "$OUT" '"exact_at":"equilibrium"' "--linearise equilibrium"
+expect_match "$(cat "$WORK/c6/settings.txt")" '^exact_at_equilibrium = true' "--linearise remembered"
+expect_exit 0 "${XV[@]}" "$DB" gui "$WORK/sag.toml" --tab criteria --frames 2 --stats \
+  --config-dir "$WORK/c6"
+expect_match "$OUT" '"exact_at":"equilibrium"' "the remembered choice"
+expect_exit 0 "${XV[@]}" "$DB" gui "$WORK/sag.toml" --linearise rest --frames 2 --stats \
+  --config-dir "$WORK/c6"
+expect_match "$OUT" '"exact_at":"rest"' "--linearise rest"
+expect_exit 2 "$DB" gui --linearise somewhere --frames 1 --config-dir "$WORK/c6"
+expect_one_line "$ERR" "bad --linearise"
+expect_match "$ERR" -- '--linearise' "bad --linearise names the flag"
 expect_exit 0 "${XV[@]}" "$DB" gui paper-plane --demo --frames 2 --stats --config-dir "$WORK/c2"
 expect_match "$OUT" '"pins":2,' "--demo pins two runs"
 expect_exit 0 "${XV[@]}" "$DB" gui paper-plane --kappa 1 --gamma 0 --frames 30 \
