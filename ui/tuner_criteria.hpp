@@ -89,7 +89,8 @@ class TunerCriteria {
   bool exact_at_rest() const { return exact_shown_at_ == Linearisation::rest; }
   /// With the analysis at the static equilibrium: how Newton's method reached it.
   const Equilibrium* exact_equilibrium() const {
-    return exact_shown_at_ == Linearisation::equilibrium && equilibrium_ ? &*equilibrium_ : nullptr;
+    const bool shown = exact_shown_at_ == Linearisation::equilibrium;
+    return shown && equilibrium_ && equilibrium_->converged ? &*equilibrium_ : nullptr;
   }
   /// Why the last analysis asked for at the static equilibrium has none ("" when it has):
   /// Newton's method did not converge or needs a factorisation over the budget.

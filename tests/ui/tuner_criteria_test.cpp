@@ -279,6 +279,26 @@ TEST(TunerCriteria, SaysWhyThereIsNoAnalysisAtTheEquilibrium) {
   ASSERT_NE(t.exact(), nullptr);
   EXPECT_TRUE(c.equilibrium_failure().empty());
   ASSERT_NE(c.exact_equilibrium(), nullptr);
+  // A loaded node with no spring: the energy falls without end, Newton's method stops after
+  // its 200 steps, and there is nothing to analyse.
+  SceneSpec loose;
+  loose.name = "loose";
+  add_node(loose.model, Vec3(0, 0, 0));
+  add_node(loose.model, Vec3(0.5, 0, 0));
+  add_node(loose.model, Vec3(2, 0, 0));
+  add_spring(loose.model, 0, 1);
+  loose.model.fixed[0] = 1;
+  loose.model.external_force[2] = Vec3(0, -0.0005, 0);
+  Tuner u(loose);
+  TunerCriteria& d = u.criteria_state();
+  d.set_linearisation(Linearisation::equilibrium);
+  u.exact();
+  d.wait();
+  EXPECT_EQ(u.exact(), nullptr);
+  EXPECT_EQ(d.exact_equilibrium(), nullptr);
+  EXPECT_NE(d.equilibrium_failure().find("no static equilibrium found in 200 Newton steps"),
+            std::string::npos)
+      << d.equilibrium_failure();
 }
 
 TEST(TunerCriteria, ExactGammaMaxIsTheIntegratorsLimit) {
