@@ -138,10 +138,7 @@ int run(GuiArgs& a) {
   o.overrides = [flags](Params& p, StopRules& r) { flags.apply(p, r); };
   o.steps_per_frame = a.steps_per_frame;
   o.factor_budget = a.factor_budget * 1e9;
-  if (!a.linearise.empty())
-    o.linearise = a.linearise == "equilibrium" ? ui::Linearisation::equilibrium
-                  : a.linearise == "state"     ? ui::Linearisation::state
-                                               : ui::Linearisation::rest;
+  if (!a.linearise.empty()) o.linearise = ui::parse_linearisation(a.linearise);
   o.play = a.play || a.frames > 0;
   o.demo = a.demo;
   o.scripted = a.frames > 0;

@@ -67,6 +67,12 @@ const char* to_string(Linearisation at) {
   return "?";
 }
 
+std::optional<Linearisation> parse_linearisation(const std::string& text) {
+  for (Linearisation at : {Linearisation::rest, Linearisation::state, Linearisation::equilibrium})
+    if (text == to_string(at)) return at;
+  return std::nullopt;
+}
+
 TunerCriteria::~TunerCriteria() {
   wait();
 }

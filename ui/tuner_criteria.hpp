@@ -25,6 +25,8 @@ enum class Linearisation {
 };
 /// "rest", "state" or "equilibrium" (`gui --linearise`, the --stats line).
 const char* to_string(Linearisation at);
+/// The inverse of to_string; nullopt for any other text.
+std::optional<Linearisation> parse_linearisation(const std::string& text);
 
 /// The criteria of a session. The exact linear analysis (SPEC 7) is linearised at the rest
 /// state by default (as `dampbound bounds SCENE` does) and cached until the parameters or the

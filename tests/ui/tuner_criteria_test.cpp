@@ -260,6 +260,13 @@ TEST(TunerCriteria, AnalysesAtTheStaticEquilibrium) {
   EXPECT_EQ(c.exact_equilibrium(), nullptr);
 }
 
+TEST(TunerCriteria, LinearisationNamesRoundTrip) {
+  for (Linearisation at : {Linearisation::rest, Linearisation::state, Linearisation::equilibrium})
+    EXPECT_EQ(parse_linearisation(to_string(at)), at);
+  EXPECT_FALSE(parse_linearisation("Rest").has_value());
+  EXPECT_FALSE(parse_linearisation("").has_value());
+}
+
 // Newton's method needs factorisations: over the budget there is no equilibrium to analyse
 // at, and the criteria say why instead of showing the rest state's analysis as if it were.
 TEST(TunerCriteria, SaysWhyThereIsNoAnalysisAtTheEquilibrium) {
