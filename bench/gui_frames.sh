@@ -7,6 +7,10 @@
 # and the range of their means (a shared machine's load moves single runs a lot).
 #
 #   bash bench/gui_frames.sh [SCENE] [FRAMES] [RUNS]   (defaults bench/scenes/plane-200.toml, 300, 1)
+#
+# GUI_ARGS adds flags to every run, e.g. the analysis at the static equilibrium of a loaded
+# plane, computed on the worker while the frames play:
+#   GUI_ARGS="--linearise equilibrium" bash bench/gui_frames.sh bench/scenes/plane-200-loaded.toml 200 4
 set -euo pipefail
 cd "$(dirname "$0")/.."
 DB=${DAMPBOUND:-build/app/dampbound}
@@ -21,7 +25,7 @@ trap 'rm -rf "$CONFIG" "$LINES"' EXIT
 for ((r = 1; r <= RUNS; r++)); do
   rm -rf "${CONFIG:?}"/*
   line=$(xvfb-run -a -s "-screen 0 1600x1000x24" "$DB" gui "$SCENE" --frames "$FRAMES" --play \
-    --steps-per-frame 10 --tab criteria --stats --config-dir "$CONFIG" | tail -n 1)
+    --steps-per-frame 10 --tab criteria --stats --config-dir "$CONFIG" ${GUI_ARGS:-} | tail -n 1)
   echo "$line"
   echo "$line" >>"$LINES"
   python3 - "$line" <<'PY'
