@@ -9,10 +9,21 @@
 // bench/exact_limits_bench; docs/performance.md). The numeric work is in the BLAS, which this
 // does not touch.
 //
-// The guard sets OpenMP's max-active-levels to 0 for the calling thread (in libgomp since
-// GCC 11 a per-thread setting: other threads, a user's own OpenMP included, are not affected)
-// and puts the previous value back. It looks the runtime up in the process (no link to it):
-// without an OpenMP runtime loaded it does nothing.
+// The guard does two things while it lives:
+// - it sets OpenMP's max-active-levels to 0 for the calling thread (in libgomp since GCC 11 a
+//   per-thread setting: other threads, a user's own OpenMP included, are not affected) and
+//   puts the previous value back;
+// - outside any OpenMP region (omp_get_level() == 0), the parallel regions this thread enters
+//   run as plain calls. Even a team of one ends in libgomp with a barrier whose last thread
+//   makes a futex system call, and CHOLMOD enters a region several times per supernode:
+//   about 190 000 system calls per factorisation of the 200 x 200 plane's matrix, a third of
+//   its time. dampbound defines libgomp's entry point GOMP_parallel (the one CHOLMOD calls)
+//   for that: in a guarded thread at level 0 it calls the region's body once, which then sees
+//   what a team of one shows it (omp_get_num_threads() 1, omp_get_thread_num() 0); every
+//   other call goes on to libgomp's own GOMP_parallel unchanged.
+//
+// It looks the runtime up in the process (no link to it): without an OpenMP runtime loaded it
+// does nothing.
 namespace dampbound::detail {
 
 class SerialOpenMp {
@@ -26,6 +37,8 @@ class SerialOpenMp {
   static bool active();
   /// The calling thread's max-active-levels (-1 without a runtime): for tests.
   static int max_active_levels();
+  /// How many parallel regions the calling thread has run as plain calls: for tests.
+  static long inline_regions();
 
  private:
   int previous_ = -1;
