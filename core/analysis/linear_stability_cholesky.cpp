@@ -47,6 +47,52 @@ struct InverseOp {
 /// bits in a fifth of the solves.
 constexpr int kLanczosRestarts = 20;
 
+/// Solves before the short Lanczos below hands over to Spectra's restarted one.
+constexpr int kShortSteps = 8;
+/// The short Lanczos stops when the top Ritz pair (theta, u) of (shift I - A)^-1 has a
+/// residual below kShortTolerance theta. By Davis and Kahan, u then lies within an angle
+/// of sine kShortTolerance mu_1 / (mu_1 - mu_2) of the top eigenvector (mu the eigenvalues of
+/// the inverse, mu_1 = 1 / (shift - lambda_max)), so its Rayleigh quotient in A falls short of
+/// lambda_max by at most that sine squared times A's spread: below the certificate's width
+/// (1e-10 relative) while the shift lies within 100 times the distance from lambda_max to the
+/// next eigenvalue below it.
+constexpr double kShortTolerance = 1e-7;
+
+/// Lanczos on (shift I - A)^-1 with full reorthogonalisation (twice), from `start`, testing the
+/// top Ritz pair after every solve: the fewest solves that reach `tol`, where Spectra's
+/// restarted Lanczos builds its whole Krylov space of 8 first. False (u untouched) when
+/// kShortSteps solves do not reach it.
+bool short_inverse_lanczos(ShiftedCholesky& f, const Eigen::VectorXd& start, Eigen::VectorXd& u,
+                           double tol) {
+  const Eigen::Index n = f.size();
+  const int k = static_cast<int>(std::min<Eigen::Index>(kShortSteps, n));
+  Eigen::MatrixXd V(n, k);
+  V.col(0) = start / start.norm();
+  Eigen::VectorXd w(n);
+  Eigen::MatrixXd T = Eigen::MatrixXd::Zero(k, k);
+  for (int j = 0; j < k; ++j) {
+    f.solve(V.col(j).data(), w.data());
+    const auto basis = V.leftCols(j + 1);
+    Eigen::VectorXd h = basis.transpose() * w;
+    w -= basis * h;
+    const Eigen::VectorXd h2 = basis.transpose() * w;
+    w -= basis * h2;
+    T(j, j) = h(j) + h2(j);
+    const double b = w.norm();
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(T.topLeftCorner(j + 1, j + 1));
+    const double theta = es.eigenvalues()(j);
+    const Eigen::VectorXd y = es.eigenvectors().col(j);
+    if (b * std::abs(y(j)) < tol * std::abs(theta) || !(b > 0)) {
+      u = basis * y;
+      return true;
+    }
+    if (j + 1 == k) break;
+    T(j, j + 1) = T(j + 1, j) = b;
+    V.col(j + 1) = w / b;
+  }
+  return false;
+}
+
 /// The top Ritz vector of (shift I - A)^-1 from `u` (empty: Spectra's start), to relative
 /// tolerance `tol`; inverse iteration when Lanczos does not converge in its budget.
 void inverse_lanczos(ShiftedCholesky& f, Eigen::VectorXd& u, double tol) {
@@ -229,7 +275,8 @@ EigenInterval certified_largest_eigenvalue(const SparseMatrix& A, Eigen::VectorX
     out.hi = g.hi;
     u = Eigen::VectorXd::Unit(n, 0);
   } else {
-    inverse_lanczos(f, u, 1e-10);
+    if (!short_inverse_lanczos(f, detail::lanczos_start(n), u, kShortTolerance))
+      inverse_lanczos(f, u, 1e-10);
     const Rayleigh q = rayleigh(A, u, abs_row_sum, row_nonzeros);
     const double lo = std::max(max_diagonal, q.value - q.rounding);
     // The certificate: a factorisation just above the Rayleigh quotient.

@@ -7,18 +7,17 @@
 
 namespace dampbound::detail {
 
+Eigen::VectorXd lanczos_start(Eigen::Index n) {
+  Eigen::VectorXd v = Eigen::VectorXd::LinSpaced(n, 0.3, 1.7).array().sin();
+  for (Eigen::Index i = 3; i < n; i += 6) v.segment(i, std::min<Eigen::Index>(3, n - i)) *= -1;
+  return v / v.norm();
+}
+
 LanczosRecurrence::LanczosRecurrence(const SparseMatrix& A, int threads, double scale,
                                      const Eigen::VectorXd* d)
     : A_(A), d_(d), scale_(scale), pool_(threads) {
-  const Eigen::Index n = A.rows();
-  // The start: smooth along the rows, its sign flipped at every other node (three rows). A
-  // mesh numbered along its rows or layers has neighbours at nearby indices, so the flips put
-  // weight on the stiff, oscillating modes where lambda_max lives: 450 steps instead of 750
-  // on the 400 x 400 plane (docs/performance.md); no more on a tetrahedral block, or for -A.
-  v_ = Eigen::VectorXd::LinSpaced(n, 0.3, 1.7).array().sin();
-  for (Eigen::Index i = 3; i < n; i += 6) v_.segment(i, std::min<Eigen::Index>(3, n - i)) *= -1;
-  v_ /= v_.norm();
-  previous_ = Eigen::VectorXd::Zero(n);
+  v_ = lanczos_start(A.rows());
+  previous_ = Eigen::VectorXd::Zero(A.rows());
 }
 
 bool LanczosRecurrence::step() {

@@ -11,6 +11,13 @@
 
 namespace dampbound::detail {
 
+/// The start of every Lanczos run here (unit norm): smooth along the rows, its sign flipped at
+/// every other node (three rows). A mesh numbered along its rows or layers has neighbours at
+/// nearby indices, so the flips put weight on the stiff, oscillating modes where lambda_max
+/// lives: 450 steps instead of 750 on the 400 x 400 plane (docs/performance.md); no more on a
+/// tetrahedral block, or for -A.
+Eigen::VectorXd lanczos_start(Eigen::Index n);
+
 /// Lanczos on S = scale A + diag(d) (`d` null: S = A, and `scale` must be 1), one step at a
 /// time, on `threads` node threads (the same bits on any count: detail/symmetric_product.hpp).
 /// The operations do not depend on what the caller does with the vectors, so a second run

@@ -118,6 +118,23 @@ TEST(CertifiedEigenvalue, PaperPlaneLambdaMax) {
   EXPECT_GT(r.lanczos_steps, 0);
   EXPECT_EQ(r.factorizations, 2);
   EXPECT_LE(r.solves, 15);
+  // The short inverse Lanczos reaches its tolerance before Spectra's 8 + 1 solves.
+  EXPECT_LT(r.solves, 8);
+}
+
+TEST(CertifiedEigenvalue, ATopClusterTheShortLanczosCannotSplitGoesOnToSpectra) {
+  // Twenty eigenvalues 5e-9 apart at the top of a spread of 2.5: the first shift (within about
+  // 1e-6 of the top) cannot pull them apart in 8 solves, so the short inverse Lanczos hands
+  // over to Spectra's restarted one; the interval must hold all the same.
+  const int n = 600;
+  std::vector<Eigen::Triplet<double>> t;
+  for (int i = 0; i < n; ++i)
+    t.emplace_back(i, i, i < n - 20 ? 2.0 * i / n : 2.5 - 5e-9 * (n - 1 - i));
+  SparseMatrix A(n, n);
+  A.setFromTriplets(t.begin(), t.end());
+  const EigenInterval top = certified_largest_eigenvalue(A);
+  expect_encloses(top, 2.5, 2.5);
+  EXPECT_GT(top.solves, 8);
 }
 
 TEST(CertifiedEigenvalue, AProvedFloorPinsTheSmallestWithoutFactorising) {
