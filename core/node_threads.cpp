@@ -1,6 +1,8 @@
 #include "core/node_threads.hpp"
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <mutex>
 #include <thread>
@@ -16,11 +18,12 @@ struct NodeThreads::Pool {
   const std::function<void(int, std::size_t, std::size_t)>* job = nullptr;
   std::size_t n = 0;
   int chunks = 0;
-  int pending = 0;
-  unsigned long generation = 0;
+  std::atomic<int> pending{0};
+  std::atomic<unsigned long> generation{0};
   bool stopping = false;
+  const std::chrono::microseconds spin;
 
-  explicit Pool(int threads) {
+  Pool(int threads, int spin_us) : spin(spin_us) {
     for (int t = 1; t < threads; ++t) workers.emplace_back([this, t] { work(t); });
   }
 
@@ -33,6 +36,15 @@ struct NodeThreads::Pool {
     for (std::thread& w : workers) w.join();
   }
 
+  /// Polls `ready` for up to `spin` (none by default); the caller then takes the lock and
+  /// waits as before, so polling only saves the sleep and the wake-up.
+  template <class Ready>
+  void poll(Ready ready) const {
+    if (spin.count() == 0) return;
+    const auto until = std::chrono::steady_clock::now() + spin;
+    while (!ready() && std::chrono::steady_clock::now() < until) std::this_thread::yield();
+  }
+
   static std::size_t begin_of(std::size_t n, int chunks, int c) {
     return n * static_cast<std::size_t>(c) / static_cast<std::size_t>(chunks);
   }
@@ -40,6 +52,7 @@ struct NodeThreads::Pool {
   void work(int t) {
     unsigned long seen = 0;
     for (;;) {
+      poll([&] { return generation.load(std::memory_order_acquire) != seen; });
       std::unique_lock<std::mutex> lock(mutex);
       wake.wait(lock, [&] { return stopping || generation != seen; });
       if (stopping) return;
@@ -67,6 +80,7 @@ struct NodeThreads::Pool {
     }
     wake.notify_all();
     fn(0, 0, begin_of(count, parts, 1));
+    poll([&] { return pending.load(std::memory_order_acquire) == 0; });
     std::unique_lock<std::mutex> lock(mutex);
     done.wait(lock, [&] { return pending == 0; });
     job = nullptr;
@@ -76,12 +90,13 @@ struct NodeThreads::Pool {
 NodeThreads::NodeThreads() = default;
 NodeThreads::NodeThreads(int threads) { set_threads(threads); }
 NodeThreads::NodeThreads(const NodeThreads& other)
-    : threads_(other.threads_), grain_(other.grain_) {}
+    : threads_(other.threads_), grain_(other.grain_), spin_us_(other.spin_us_) {}
 
 NodeThreads& NodeThreads::operator=(const NodeThreads& other) {
   if (this != &other) {
     set_threads(other.threads_);
     grain_ = other.grain_;
+    if (spin_us_ != other.spin_us_) set_spin_microseconds(other.spin_us_);
   }
   return *this;
 }
@@ -93,6 +108,11 @@ void NodeThreads::set_threads(int threads) {
   if (threads == threads_) return;
   pool_.reset();
   threads_ = threads;
+}
+
+void NodeThreads::set_spin_microseconds(int us) {
+  spin_us_ = us < 0 ? 0 : us;
+  pool_.reset();  // the next loop starts threads that poll for as long
 }
 
 int NodeThreads::chunks(std::size_t n) const {
@@ -107,7 +127,7 @@ void NodeThreads::run(std::size_t n,
     fn(0, 0, n);
     return;
   }
-  if (!pool_) pool_ = std::make_unique<Pool>(threads_);
+  if (!pool_) pool_ = std::make_unique<Pool>(threads_, spin_us_);
   pool_->run(n, parts, fn);
 }
 

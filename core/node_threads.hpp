@@ -28,6 +28,12 @@ class NodeThreads {
   int threads() const { return threads_; }
   /// The fewest items a chunk gets (kMinItemsPerThread unless set; tests split small loops).
   void set_grain(std::size_t items) { grain_ = items < 1 ? 1 : items; }
+  /// How long a thread polls before it sleeps: the workers for the next loop after their
+  /// chunk, the caller for the workers after its own (0, the default: they sleep at once).
+  /// For back-to-back loops with little work between them, such as Lanczos's products, where
+  /// waking a sleeping thread costs a good part of a loop (docs/performance.md).
+  void set_spin_microseconds(int us);
+  int spin_microseconds() const { return spin_us_; }
 
   /// How many chunks run(n, ...) splits n items into: between 1 and threads().
   int chunks(std::size_t n) const;
@@ -40,6 +46,7 @@ class NodeThreads {
   struct Pool;
   int threads_ = 1;
   std::size_t grain_ = kMinItemsPerThread;
+  int spin_us_ = 0;
   std::unique_ptr<Pool> pool_;
 };
 

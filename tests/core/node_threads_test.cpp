@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <chrono>
 #include <thread>
 #include <vector>
 
@@ -59,6 +60,33 @@ TEST(NodeThreads, LargeLoopsRunOnOtherThreadsTooAndManyTimes) {
     ASSERT_EQ(others.load(), 2);
     ASSERT_EQ(total.load(), n);
   }
+}
+
+// Polling threads (Lanczos's products) run every loop once: loops back to back, loops that
+// need fewer threads than the pool has, and loops after a pause longer than the polling, when
+// the threads have gone to sleep.
+TEST(NodeThreads, PollingThreadsRunEveryLoopOnce) {
+  NodeThreads pool(3);
+  pool.set_spin_microseconds(200);
+  const size_t big = 3 * NodeThreads::kMinItemsPerThread,
+               small = 2 * NodeThreads::kMinItemsPerThread;
+  for (int round = 0; round < 300; ++round) {
+    const size_t n = round % 3 == 2 ? small : big;
+    std::atomic<size_t> total{0};
+    std::atomic<int> calls{0};
+    pool.run(n, [&](int, size_t b, size_t e) {
+      total += e - b;
+      ++calls;
+    });
+    ASSERT_EQ(total.load(), n);
+    ASSERT_EQ(calls.load(), pool.chunks(n));
+    if (round % 50 == 49) std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  NodeThreads copy = pool;
+  EXPECT_EQ(copy.spin_microseconds(), 200);
+  NodeThreads assigned;
+  assigned = pool;
+  EXPECT_EQ(assigned.spin_microseconds(), 200);
 }
 
 TEST(NodeThreads, CopiesKeepTheCountAndZeroMeansTheHardware) {

@@ -16,6 +16,9 @@ Eigen::VectorXd lanczos_start(Eigen::Index n) {
 LanczosRecurrence::LanczosRecurrence(const SparseMatrix& A, int threads, double scale,
                                      const Eigen::VectorXd* d)
     : A_(A), d_(d), scale_(scale), pool_(threads) {
+  // One product follows another after a few vector passes (about 0.1 ms at 40k nodes): the
+  // workers poll for it rather than sleep (docs/performance.md, "Lanczos's products").
+  pool_.set_spin_microseconds(kLanczosSpinMicroseconds);
   v_ = lanczos_start(A.rows());
   previous_ = Eigen::VectorXd::Zero(A.rows());
 }

@@ -58,6 +58,8 @@ struct TopEstimate {
 /// |theta|: for the first shift 1e-7 in windows of 50 steps (a shift that close separates
 /// even a clustered top).
 inline constexpr int kLanczosSteps = 1000, kLanczosCheck = 50;
+/// How long the product's threads poll for the next product before they sleep.
+inline constexpr int kLanczosSpinMicroseconds = 200;
 TopEstimate lanczos_estimate(LanczosRecurrence& lanczos, Eigen::Index n,
                              int max_steps = kLanczosSteps, int check = kLanczosCheck,
                              double tolerance = 1e-7);
