@@ -60,10 +60,15 @@ namespace {
 
 using Parallel = void (*)(void (*)(void*), void*, unsigned, unsigned);
 
-/// libgomp's own GOMP_parallel: the next definition after this one.
+/// libgomp's own GOMP_parallel: asked of libgomp itself (wherever it comes in the search
+/// order), else the next definition after this one.
 Parallel gomp_parallel() {
   static const Parallel real = [] {
-    void* p = dlvsym(RTLD_NEXT, "GOMP_parallel", "GOMP_4.0");
+    void* p = nullptr;
+    // (The reference NOLOAD takes is kept, so the function stays for the process's life.)
+    if (void* gomp = dlopen("libgomp.so.1", RTLD_LAZY | RTLD_NOLOAD))
+      p = dlvsym(gomp, "GOMP_parallel", "GOMP_4.0");
+    if (p == nullptr) p = dlvsym(RTLD_NEXT, "GOMP_parallel", "GOMP_4.0");
     if (p == nullptr) p = dlsym(RTLD_NEXT, "GOMP_parallel");
     return reinterpret_cast<Parallel>(p);
   }();
