@@ -1,17 +1,19 @@
-#include "core/analysis/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
 #include "core/analysis/linear_stability_cholesky.hpp"
-#include "core/analysis/detail/lanczos.hpp"
-#include "core/analysis/detail/shifted_cholesky.hpp"
-#include "core/analysis/detail/tridiagonal.hpp"
 
-#include <Eigen/Dense>
 #include <Spectra/SymEigsSolver.h>
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <memory>
 #include <string>
+
+#include "core/analysis/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
+#include "core/analysis/detail/lanczos.hpp"
+#include "core/analysis/detail/shifted_cholesky.hpp"
+#include "core/analysis/detail/tridiagonal.hpp"
 
 namespace dampbound {
 using detail::kAmdSlack;
@@ -218,8 +220,15 @@ FactorisationOverBudget::FactorisationOverBudget(double flops_, double bytes_, d
       budget(budget_),
       amd_only(amd_only_) {}
 
-EigenInterval certified_largest_eigenvalue(const SparseMatrix& A, Eigen::VectorXd* vector,
-                                           int threads, double max_factor_flops) {
+namespace {
+
+/// certified_largest_eigenvalue with its factorisations in `held`: made for A when empty, else
+/// given A's values (ShiftedCholesky::assign), which keeps the pattern analysis when A has the
+/// pattern analysed before. certified_spectrum holds one for both ends: -A has A's pattern, and
+/// the analysis (the fill-reducing ordering) depends on the pattern alone, so the bottom end
+/// factors in the same order, to the same bits, without a second analysis.
+EigenInterval largest(const SparseMatrix& A, std::unique_ptr<ShiftedCholesky>& held,
+                      Eigen::VectorXd* vector, int threads, double max_factor_flops) {
   const Eigen::Index n = A.rows();
   if (n == 0) return {};
   if (n <= kDenseRows) {  // small: the dense eigenvalues are exact, and quicker
@@ -239,7 +248,12 @@ EigenInterval certified_largest_eigenvalue(const SparseMatrix& A, Eigen::VectorX
   }
   const double span = g.hi - g.lo, margin = rows.margin();
   EigenInterval out;
-  ShiftedCholesky f(A);
+  if (held)
+    held->assign(A);
+  else
+    held = std::make_unique<ShiftedCholesky>(A);
+  ShiftedCholesky& f = *held;
+  const int factorizations_before = f.factorizations, solves_before = f.solves;
   f.analyse(max_factor_flops);  // before the Lanczos estimate: an answer over budget is quick
   Eigen::VectorXd u;
   // Gershgorin: lambda_max <= g.hi, so (g.hi + a little) I - A is positive definite; the
@@ -286,11 +300,39 @@ EigenInterval certified_largest_eigenvalue(const SparseMatrix& A, Eigen::VectorX
     out.lo = lo;
     out.hi = up;
   }
-  out.factorizations = f.factorizations;
-  out.solves = f.solves;
+  out.factorizations = f.factorizations - factorizations_before;
+  out.solves = f.solves - solves_before;
   out.lanczos_steps = estimate.steps;
   if (vector) *vector = u / u.norm();
   return out;
+}
+
+/// certified_smallest_eigenvalue with its factorisations in `held` (largest() says how).
+EigenInterval smallest(const SparseMatrix& A, std::optional<double> floor,
+                       std::unique_ptr<ShiftedCholesky>& held, int threads,
+                       double max_factor_flops) {
+  if (floor && A.rows() > kDenseRows) {
+    // A known lower bound (e.g. a splitting of A into positive semidefinite parts) and the
+    // smallest diagonal entry (a Rayleigh quotient) may already pin lambda_min down.
+    const RowBounds rows = row_bounds(A);
+    const double lo = *floor - rows.margin(), hi = rows.min_diagonal;
+    const double span = rows.gershgorin.hi - rows.gershgorin.lo;
+    if (lo <= hi && hi - lo <= certificate_width(hi, span) + 2 * rows.margin()) return {lo, hi};
+  }
+  const SparseMatrix negated = -A;
+  EigenInterval r = largest(negated, held, nullptr, threads, max_factor_flops);
+  std::swap(r.lo, r.hi);
+  r.lo = -r.lo;
+  r.hi = -r.hi;
+  return r;
+}
+
+}  // namespace
+
+EigenInterval certified_largest_eigenvalue(const SparseMatrix& A, Eigen::VectorXd* vector,
+                                           int threads, double max_factor_flops) {
+  std::unique_ptr<ShiftedCholesky> factors;
+  return largest(A, factors, vector, threads, max_factor_flops);
 }
 
 EigenInterval unfactored_largest_eigenvalue(const SparseMatrix& A, Eigen::VectorXd* vector,
@@ -337,27 +379,17 @@ CertifiedSpectrum certified_spectrum(const SparseMatrix& A, std::optional<double
     const double lo = es.eigenvalues()(0), hi = es.eigenvalues()(n - 1);
     return {{lo, lo}, {hi, hi}};
   }
-  // The top first: over a budget it stops before the bottom copies -A.
-  const EigenInterval largest = certified_largest_eigenvalue(A, nullptr, threads, max_factor_flops);
-  return {certified_smallest_eigenvalue(A, floor, threads, max_factor_flops), largest};
+  // The top first: over a budget it stops before the bottom copies -A. One pattern analysis
+  // serves both ends.
+  std::unique_ptr<ShiftedCholesky> factors;
+  const EigenInterval top = largest(A, factors, nullptr, threads, max_factor_flops);
+  return {smallest(A, floor, factors, threads, max_factor_flops), top};
 }
 
 EigenInterval certified_smallest_eigenvalue(const SparseMatrix& A, std::optional<double> floor,
                                             int threads, double max_factor_flops) {
-  if (floor && A.rows() > kDenseRows) {
-    // A known lower bound (e.g. a splitting of A into positive semidefinite parts) and the
-    // smallest diagonal entry (a Rayleigh quotient) may already pin lambda_min down.
-    const RowBounds rows = row_bounds(A);
-    const double lo = *floor - rows.margin(), hi = rows.min_diagonal;
-    const double span = rows.gershgorin.hi - rows.gershgorin.lo;
-    if (lo <= hi && hi - lo <= certificate_width(hi, span) + 2 * rows.margin()) return {lo, hi};
-  }
-  const SparseMatrix negated = -A;
-  EigenInterval r = certified_largest_eigenvalue(negated, nullptr, threads, max_factor_flops);
-  std::swap(r.lo, r.hi);
-  r.lo = -r.lo;
-  r.hi = -r.hi;
-  return r;
+  std::unique_ptr<ShiftedCholesky> factors;
+  return smallest(A, floor, factors, threads, max_factor_flops);
 }
 
 }  // namespace dampbound

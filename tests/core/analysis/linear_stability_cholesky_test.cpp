@@ -104,6 +104,25 @@ TEST(CertifiedEigenvalue, ClusteredTopAndNegativeEigenvalues) {
   EXPECT_LT(bottom.lo, -1.99);
 }
 
+// certified_spectrum analyses the pattern once for both ends (-A has A's pattern): the same
+// bits as the two ends computed apart, each with an analysis of its own.
+TEST(CertifiedEigenvalue, BothEndsFromOneAnalysisGiveTheBitsOfSeparateCalls) {
+  for (double deform : {0.0, 0.2}) {
+    const SparseMatrix A = plane_matrix(14, deform);
+    const CertifiedSpectrum both = certified_spectrum(A);
+    const EigenInterval top = certified_largest_eigenvalue(A);
+    const EigenInterval bottom = certified_smallest_eigenvalue(A);
+    EXPECT_GT(both.smallest.factorizations, 0);  // no floor given: the bottom factors too
+    EXPECT_EQ(both.largest.lo, top.lo);
+    EXPECT_EQ(both.largest.hi, top.hi);
+    EXPECT_EQ(both.largest.factorizations, top.factorizations);
+    EXPECT_EQ(both.smallest.lo, bottom.lo);
+    EXPECT_EQ(both.smallest.hi, bottom.hi);
+    EXPECT_EQ(both.smallest.factorizations, bottom.factorizations);
+    EXPECT_EQ(both.smallest.solves, bottom.solves);
+  }
+}
+
 TEST(CertifiedEigenvalue, PaperPlaneLambdaMax) {
   // The paper plane (SPEC 5) at kappa = m: lambda_max = 7.8123249218733 (docs/criteria.md).
   const SceneSpec s = paper_plane_scene();
