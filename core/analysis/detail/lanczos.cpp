@@ -19,25 +19,21 @@ LanczosRecurrence::LanczosRecurrence(const SparseMatrix& A, int threads, double 
   // One product follows another after a few vector passes (about 0.1 ms at 40k nodes): the
   // workers poll for it rather than sleep (docs/performance.md, "Lanczos's products").
   pool_.set_spin_microseconds(kLanczosSpinMicroseconds);
+  // The passes run over blocks of rows (detail/symmetric_product.hpp): the pool's grain in
+  // blocks, the rows per thread as for any other loop.
+  pool_.set_grain(NodeThreads::kMinItemsPerThread / kSumBlockRows);
   v_ = lanczos_start(A.rows());
   previous_ = Eigen::VectorXd::Zero(A.rows());
 }
 
 bool LanczosRecurrence::step() {
-  if (d_ == nullptr) {
-    symmetric_product(A_, v_, b_, previous_, w_, pool_);
-  } else {
-    symmetric_product(A_, v_, 0.0, previous_, w_, pool_);
-    w_ = scale_ * w_ + d_->cwiseProduct(v_) - b_ * previous_;
-  }
-  const double a = w_.dot(v_);
-  w_ -= a * v_;
+  const double a = product_and_dot({A_, scale_, d_}, v_, b_, previous_, w_, partial_, pool_);
   alpha.push_back(a);
-  b_ = w_.norm();
+  b_ = std::sqrt(subtract_and_square(w_, a, v_, partial_, pool_));
   beta.push_back(b_);
   if (!(b_ > 0)) return false;
   previous_.swap(v_);
-  v_ = w_ / b_;
+  divide(w_, b_, v_, pool_);
   return true;
 }
 

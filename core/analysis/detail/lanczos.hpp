@@ -40,6 +40,7 @@ class LanczosRecurrence {
   NodeThreads pool_;
   Eigen::VectorXd v_, previous_, w_;
   double b_ = 0;
+  std::vector<double> partial_;  ///< the blocks' partial sums of alpha and beta^2
 };
 
 /// A rough top Ritz value of S and an estimate of how far below lambda_max it still is.

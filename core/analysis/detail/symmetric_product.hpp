@@ -1,17 +1,47 @@
 #pragma once
-// The Lanczos step's matrix-vector product on node threads: w = A v - b p for a symmetric
-// sparse A, with the bits of Eigen's serial `w = A * v; w -= b * p` on any thread count.
+// The passes of one Lanczos step on node threads, for a symmetric sparse A: the product
+// w = A v - b p with the bits of Eigen's serial `w = A * v; w -= b * p`, then w -= a v and
+// v' = w / beta, with the step's two sums (alpha = w . v, beta^2 = w . w) formed alongside.
+// Every sum is split into blocks of rows fixed by the matrix alone, so it has the same bits on
+// any thread count.
+#include <cstddef>
+#include <vector>
+
 #include "core/analysis/linear_stability.hpp"
 #include "core/node_threads.hpp"
 
 namespace dampbound::detail {
 
-/// w = A v - b p. A must be exactly symmetric (A_rs and A_sr the same bits, as every
-/// assembled stiffness and its shifts are): row r is summed over column r's entries in index
-/// order, from 0, which is the order in which Eigen's column-major product adds A_rs v_s into
-/// w_r. Rows are split into `threads`' contiguous chunks (its grain decides how many); w is
-/// resized to A's rows.
-void symmetric_product(const SparseMatrix& A, const Eigen::VectorXd& v, double b,
-                       const Eigen::VectorXd& p, Eigen::VectorXd& w, NodeThreads& threads);
+/// Rows per block of the step's sums: within a block the products are added in row order into
+/// four accumulators (row index mod 4), combined as (s0 + s1) + (s2 + s3); the blocks' partial
+/// sums are then added in block order. The passes run the blocks in `threads`' chunks, so its
+/// grain counts blocks.
+inline constexpr std::size_t kSumBlockRows = 4096;
+
+/// The operator of a Lanczos step: S = scale A + diag(d), or A itself when d is null (and
+/// scale is 1). A must be exactly symmetric (A_rs and A_sr the same bits, as every assembled
+/// stiffness and its shifts are): row r of A v is summed over column r's entries in index
+/// order, from 0, which is the order in which Eigen's column-major product adds A_rs v_s
+/// into w_r.
+struct SymmetricOperator {
+  const SparseMatrix& A;
+  double scale = 1;
+  const Eigen::VectorXd* d = nullptr;
+};
+
+/// w = S v - b p, row by row (with d: (scale (A v)_r + d_r v_r) - b p_r); returns w . v.
+/// `partial` holds the blocks' sums (resized here); w is resized to A's rows.
+double product_and_dot(const SymmetricOperator& S, const Eigen::VectorXd& v, double b,
+                       const Eigen::VectorXd& p, Eigen::VectorXd& w, std::vector<double>& partial,
+                       NodeThreads& threads, std::size_t block_rows = kSumBlockRows);
+
+/// w -= a v; returns w . w (after the subtraction).
+double subtract_and_square(Eigen::VectorXd& w, double a, const Eigen::VectorXd& v,
+                           std::vector<double>& partial, NodeThreads& threads,
+                           std::size_t block_rows = kSumBlockRows);
+
+/// out = w / b, element by element (out resized to w's size).
+void divide(const Eigen::VectorXd& w, double b, Eigen::VectorXd& out, NodeThreads& threads,
+            std::size_t block_rows = kSumBlockRows);
 
 }  // namespace dampbound::detail
