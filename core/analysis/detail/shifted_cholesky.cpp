@@ -1,12 +1,14 @@
 #include "core/analysis/detail/shifted_cholesky.hpp"
-#include "core/analysis/detail/cholesky_rounding.hpp"
-#include "core/analysis/detail/serial_openmp.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <mutex>
 #include <vector>
+
+#include "core/analysis/detail/cholesky_rounding.hpp"
+#include "core/analysis/detail/serial_openmp.hpp"
+#include "core/analysis/detail/supernodal_solve.hpp"
 
 namespace dampbound::detail {
 namespace {
@@ -199,7 +201,7 @@ void ShiftedCholesky::solve(const double* in, double* out) {
   ++solves;
   const std::lock_guard<std::mutex> turn(cholmod_turn());
   const SerialOpenMp serial;
-  Eigen::Map<Eigen::VectorXd>(out, n_) = llt_.solve(Eigen::Map<const Eigen::VectorXd>(in, n_));
+  supernodal_solve(llt_.factor(), in, out, solve_work_);
 }
 
 }  // namespace dampbound::detail

@@ -4,10 +4,10 @@
 // pattern analysed once, each shift one numeric factorisation, solves with the factor, and
 // what a successful factorisation proves allowing for its rounding (cholesky_rounding.hpp).
 // Every call into CHOLMOD takes the one turn of the process (shifted_cholesky.cpp says why).
-#include "core/analysis/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
-
 #include <Eigen/CholmodSupport>
+#include <vector>
 
+#include "core/analysis/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
 #include "core/analysis/linear_stability_cholesky.hpp"
 
 namespace dampbound::detail {
@@ -46,6 +46,7 @@ class ShiftedCholesky {
   /// for the factorisation's rounding (detail/cholesky_rounding.hpp), rounded up.
   double proved_above() const;
   bool ready() const { return ok_; }
+  /// out = (sigma I - A)^-1 in after a successful factor(sigma) (detail/supernodal_solve.hpp).
   void solve(const double* in, double* out);
   Eigen::Index size() const { return n_; }
   int factorizations = 0, solves = 0;
@@ -54,6 +55,7 @@ class ShiftedCholesky {
   Eigen::Index n_;
   SparseMatrix B_;
   SupernodalLLT llt_;
+  std::vector<double> solve_work_;
   double sigma_ = 0;
   bool analysed_ = false, ok_ = false;
 };

@@ -5,8 +5,6 @@
 // the formula evaluated on CHOLMOD's own sparse copy of L (so every stored entry of the
 // supernodal factor, and nothing above its diagonal blocks, is counted) and the bound of the
 // same factor converted to CHOLMOD's simplicial form.
-#include "core/analysis/detail/cholesky_rounding.hpp"
-
 #include <gtest/gtest.h>
 
 #include <Eigen/CholmodSupport>
@@ -16,10 +14,10 @@
 #include <limits>
 #include <vector>
 
-#include "bench/bench_meshes.hpp"
+#include "core/analysis/detail/cholesky_rounding.hpp"
 #include "core/analysis/linear_stability.hpp"
 #include "core/scene.hpp"
-#include "tests/core/test_util.hpp"
+#include "tests/core/analysis/detail/factor_matrices.hpp"
 
 namespace dampbound::detail {
 namespace {
@@ -29,17 +27,8 @@ class VisibleLLT : public Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower
   cholmod_factor* factor() { return m_cholmodFactor; }
 };
 
-SparseMatrix deformed_plane(int n) {
-  const Model m = compile_model(make_grid(GridSpec{n, n, 0.57, true, true}), Params{});
-  std::vector<Vec3> x = m.rest;
-  test::shake(x, 0.2, 11);
-  return mass_weighted(m, tangent_stiffness(m, x));
-}
-
-SparseMatrix block(int n) {
-  const Model m = compile_model(bench::tet_block(n, n, n), Params{});
-  return mass_weighted(m, tangent_stiffness(m, m.rest));
-}
+using test::block;
+using test::deformed_plane;
 
 /// Factors sigma I - A as the exact analysis does and checks the bound against the error.
 void check(const SparseMatrix& A, double sigma) {
