@@ -1,3 +1,6 @@
+// clang-format off
+#include "core/analysis/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
+// clang-format on
 #include "core/analysis/linear_stability_cholesky.hpp"
 
 #include <Spectra/SymEigsSolver.h>
@@ -10,7 +13,6 @@
 #include <memory>
 #include <string>
 
-#include "core/analysis/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
 #include "core/analysis/detail/lanczos.hpp"
 #include "core/analysis/detail/shifted_cholesky.hpp"
 #include "core/analysis/detail/tridiagonal.hpp"

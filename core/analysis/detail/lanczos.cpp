@@ -1,3 +1,6 @@
+// clang-format off
+#include "core/analysis/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
+// clang-format on
 #include "core/analysis/detail/lanczos.hpp"
 #include "core/analysis/detail/symmetric_product.hpp"
 #include "core/analysis/detail/tridiagonal.hpp"

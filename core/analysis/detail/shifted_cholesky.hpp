@@ -4,10 +4,11 @@
 // pattern analysed once, each shift one numeric factorisation, solves with the factor, and
 // what a successful factorisation proves allowing for its rounding (cholesky_rounding.hpp).
 // Every call into CHOLMOD takes the one turn of the process (shifted_cholesky.cpp says why).
+#include "core/analysis/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
+
 #include <Eigen/CholmodSupport>
 #include <vector>
 
-#include "core/analysis/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
 #include "core/analysis/linear_stability_cholesky.hpp"
 
 namespace dampbound::detail {
