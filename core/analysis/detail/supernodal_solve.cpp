@@ -34,6 +34,24 @@ inline double dot(const double* a, const double* b, int n) {
   return (s0 + s1) + (s2 + s3);
 }
 
+/// Supernode s of L: its first column, columns, stored rows (its columns', then `below` rows
+/// below them) and values (column-major, leading dimension `height`).
+struct Supernode {
+  int k1, columns, height, below;
+  const int* below_rows;
+  const double* values;
+  Supernode(const cholmod_factor_struct& L, size_t s) {
+    const int* super = static_cast<const int*>(L.super);
+    const int* pi = static_cast<const int*>(L.pi);
+    k1 = super[s];
+    columns = super[s + 1] - k1;
+    height = pi[s + 1] - pi[s];
+    below = height - columns;
+    below_rows = static_cast<const int*>(L.s) + pi[s] + columns;
+    values = static_cast<const double*>(L.x) + static_cast<const int*>(L.px)[s];
+  }
+};
+
 }  // namespace
 
 void supernodal_solve(const cholmod_factor_struct& L, const double* b, double* x,
@@ -43,11 +61,6 @@ void supernodal_solve(const cholmod_factor_struct& L, const double* b, double* x
     throw std::invalid_argument("supernodal_solve: not a successful real supernodal LL' factor");
   const size_t n = L.n;
   const int* perm = static_cast<const int*>(L.Perm);
-  const int* super = static_cast<const int*>(L.super);
-  const int* pi = static_cast<const int*>(L.pi);
-  const int* px = static_cast<const int*>(L.px);
-  const int* rows = static_cast<const int*>(L.s);
-  const double* values = static_cast<const double*>(L.x);
   work.resize(n + L.maxesize);
   double* y = work.data();  // the permuted right-hand side, then the solution
   double* e = y + n;        // one supernode's rows below its columns
@@ -55,11 +68,11 @@ void supernodal_solve(const cholmod_factor_struct& L, const double* b, double* x
   // L y' = y: supernode by supernode, its columns (a dense lower triangle), then what they
   // take from the rows below, gathered in e and subtracted once per row.
   for (size_t s = 0; s < L.nsuper; ++s) {
-    const int k1 = super[s], columns = super[s + 1] - k1, height = pi[s + 1] - pi[s];
-    const int below = height - columns;
-    const int* r = rows + pi[s] + columns;
-    const double* Ls = values + px[s];
-    double* ys = y + k1;
+    const Supernode sn(L, s);
+    const int columns = sn.columns, height = sn.height, below = sn.below;
+    const int* r = sn.below_rows;
+    const double* Ls = sn.values;
+    double* ys = y + sn.k1;
     if (columns >= kBlasColumns) {
       const int one = 1;
       const double plus = 1, zero = 0;
@@ -83,11 +96,11 @@ void supernodal_solve(const cholmod_factor_struct& L, const double* b, double* x
   // L^T x = y': backwards, each supernode's columns first take the rows below (gathered in
   // e), then its triangle from its last column to its first.
   for (size_t s = L.nsuper; s-- > 0;) {
-    const int k1 = super[s], columns = super[s + 1] - k1, height = pi[s + 1] - pi[s];
-    const int below = height - columns;
-    const int* r = rows + pi[s] + columns;
-    const double* Ls = values + px[s];
-    double* ys = y + k1;
+    const Supernode sn(L, s);
+    const int columns = sn.columns, height = sn.height, below = sn.below;
+    const int* r = sn.below_rows;
+    const double* Ls = sn.values;
+    double* ys = y + sn.k1;
     for (int t = 0; t < below; ++t) e[t] = y[r[t]];
     if (columns >= kBlasColumns) {
       const int one = 1;
