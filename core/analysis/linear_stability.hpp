@@ -25,14 +25,15 @@ std::vector<int> free_blocks(const Model& model, int* free_count = nullptr);
 /// per anchor K_ii += kappa_a,i I. At rest (l = l0) B = kappa d d^T. A spring of zero length
 /// is skipped, as in internal_forces (SPEC 1). `clamp_compression` replaces (1 - l0/l) by
 /// max(0, 1 - l0/l) so that K stays positive semi-definite (what implicit Euler solves with;
-/// exact at rest and under tension).
+/// exact at rest and under tension). `threads` (0: one per CPU) assemble it in node ranges,
+/// the same bits on any count.
 SparseMatrix tangent_stiffness(const Model& model, const std::vector<Vec3>& x,
-                               bool clamp_compression = false);
+                               bool clamp_compression = false, int threads = 1);
 
 /// M^-1/2 K M^-1/2 over the free nodes: symmetric, with the eigenvalues of M^-1 K. The
-/// second form scales K in place (no copy of a big matrix).
-SparseMatrix mass_weighted(const Model& model, const SparseMatrix& K);
-SparseMatrix mass_weighted(const Model& model, SparseMatrix&& K);
+/// second form scales K in place (no copy of a big matrix). `threads` as above.
+SparseMatrix mass_weighted(const Model& model, const SparseMatrix& K, int threads = 1);
+SparseMatrix mass_weighted(const Model& model, SparseMatrix&& K, int threads = 1);
 
 /// A proved lower bound on lambda_min of M^-1 K at x (1/s^2), from the splitting
 /// K = diag(kappa_a,i I) + sum of the spring blocks B: B's eigenvalues are kappa (1 - l0/l)

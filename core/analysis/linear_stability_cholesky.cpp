@@ -7,11 +7,15 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdio>
+#include <exception>
+#include <future>
 #include <limits>
 #include <memory>
 #include <string>
+#include <thread>
 
 #include "core/analysis/detail/lanczos.hpp"
 #include "core/analysis/detail/shifted_cholesky.hpp"
@@ -250,36 +254,80 @@ EigenInterval largest(const SparseMatrix& A, std::unique_ptr<ShiftedCholesky>& h
   }
   const double span = g.hi - g.lo, margin = rows.margin();
   EigenInterval out;
-  if (held)
-    held->assign(A);
-  else
-    held = std::make_unique<ShiftedCholesky>(A);
+  const int factorizations_before = held ? held->factorizations : 0;
+  const int solves_before = held ? held->solves : 0;
+  // The factorisations' matrix and its pattern analysis, beside the Lanczos estimate (below).
+  const auto prepare = [&] {
+    if (held)
+      held->assign(A);
+    else
+      held = std::make_unique<ShiftedCholesky>(A);
+    held->analyse(max_factor_flops);
+  };
+  const int cores =
+      threads > 0 ? threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  // The top of a big mesh's spectrum is clustered: only a shift close above lambda_max
+  // separates it from the rest. A Lanczos estimate places the shift (below). On two or more
+  // threads one of them prepares the factorisations meanwhile (the two share nothing:
+  // ShiftedCholesky holds its own copy of the matrix), and the estimate takes it back when
+  // that is done; over the budget the estimate stops there, so the answer is as quick as
+  // before. Lanczos gives the same bits on any thread count.
+  const TopEstimate estimate = [&] {
+    if (cores < 2) {
+      prepare();
+      LanczosRecurrence lanczos(A, cores);
+      return lanczos_estimate(lanczos, n);
+    }
+    std::atomic<bool> prepared{false};
+    std::exception_ptr failure;
+    std::thread beside([&] {
+      try {
+        prepare();
+      } catch (...) {
+        failure = std::current_exception();
+      }
+      prepared.store(true, std::memory_order_release);
+    });
+    LanczosRecurrence lanczos(A, cores - 1);
+    bool all_threads = false;
+    TopEstimate e;
+    try {
+      e = lanczos_estimate(lanczos, n, detail::kLanczosSteps, detail::kLanczosCheck, 1e-7, [&] {
+        if (all_threads || !prepared.load(std::memory_order_acquire)) return true;
+        all_threads = true;
+        lanczos.set_threads(cores);
+        return failure == nullptr;  // over the budget: stop
+      });
+    } catch (...) {
+      beside.join();
+      throw;
+    }
+    beside.join();
+    if (failure) std::rethrow_exception(failure);
+    return e;
+  }();
   ShiftedCholesky& f = *held;
-  const int factorizations_before = f.factorizations, solves_before = f.solves;
-  f.analyse(max_factor_flops);  // before the Lanczos estimate: an answer over budget is quick
   Eigen::VectorXd u;
   // Gershgorin: lambda_max <= g.hi, so (g.hi + a little) I - A is positive definite; the
   // largest diagonal entry (a Rayleigh quotient) is below lambda_max.
   const double gershgorin = g.hi + 1e-6 * span + margin;
   double up = gershgorin;
   const double max_diagonal = rows.max_diagonal;
-  // The top of a big mesh's spectrum is clustered: only a shift close above lambda_max
-  // separates it from the rest. A Lanczos estimate places the shift, four times its
-  // extrapolated error above its Ritz value. A factorisation that fails says the shift is
-  // still below lambda_max (Lanczos can stall on an eigenvalue just under the top): the
-  // next shift is twice the residual above (some eigenvalue lies within it), then eightfold
-  // steps, at worst up to Gershgorin's bound.
-  const TopEstimate estimate = [&] {
-    LanczosRecurrence lanczos(A, threads);
-    return lanczos_estimate(lanczos, n);
-  }();
+  // The first shift lies four times the estimate's extrapolated error above its Ritz value.
+  // A factorisation that fails says the shift is still below lambda_max (Lanczos can stall
+  // on an eigenvalue just under the top): the next shift is twice the residual above (some
+  // eigenvalue lies within it), then eightfold steps, at worst up to Gershgorin's bound.
   const double fallback = std::max(2 * estimate.residual, 1e-9 * span);
   double step = std::clamp(4 * estimate.error, 1e-9 * span, fallback);
+  // What the first factorisation proves: its rounding bound, a pass over the factor, taken
+  // beside the solves below on two or more threads (both only read the factor).
+  std::future<double> first_proved;
   for (;;) {
     const double s = estimate.theta + step + margin;
     if (s >= gershgorin) break;
     if (f.factor(s)) {
-      up = std::min(up, f.proved_above());
+      first_proved = std::async(cores < 2 ? std::launch::deferred : std::launch::async,
+                                [&f] { return f.proved_above(); });
       break;
     }
     step = f.factorizations == 1 ? std::max(fallback, 8 * step) : 8 * step;
@@ -295,6 +343,7 @@ EigenInterval largest(const SparseMatrix& A, std::unique_ptr<ShiftedCholesky>& h
       inverse_lanczos(f, u, 1e-10);
     const Rayleigh q = rayleigh(A, u, abs_row_sum, row_nonzeros);
     const double lo = std::max(max_diagonal, q.value - q.rounding);
+    if (first_proved.valid()) up = std::min(up, first_proved.get());
     // The certificate: a factorisation just above the Rayleigh quotient.
     const double width = certificate_width(q.value, span);
     if (up - lo > width + 2 * margin && f.factor(lo + width + margin))

@@ -64,8 +64,10 @@ struct EigenInterval {
 /// the dense eigenvalue is returned (lo = hi). `vector`: the unit Ritz vector. `threads`:
 /// the Lanczos estimate's matrix-vector products run on this many threads (0: one per CPU;
 /// matrices under 32768 rows stay on one), with the same bits on any count.
-/// `max_factor_flops`: throws FactorisationOverBudget, after the pattern analysis and before
-/// anything else, when one factorisation would cost more.
+/// On two or more threads one of them prepares the factorisations (the pattern analysis) while
+/// the others start the estimate, with the same bits. `max_factor_flops`: throws
+/// FactorisationOverBudget when one factorisation would cost more, as soon as the pattern
+/// analysis says so (the estimate stops there) and before any factorisation.
 EigenInterval certified_largest_eigenvalue(const SparseMatrix& A,
                                            Eigen::VectorXd* vector = nullptr, int threads = 1,
                                            double max_factor_flops = kNoFactorBudget);

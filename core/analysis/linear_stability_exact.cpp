@@ -86,9 +86,9 @@ struct ExactInputs {
   double r_min = 0, r_max = 0;
 };
 
-ExactInputs assemble(const Model& model, const std::vector<Vec3>& x) {
+ExactInputs assemble(const Model& model, const std::vector<Vec3>& x, int threads) {
   ExactInputs in;
-  in.A = mass_weighted(model, tangent_stiffness(model, x));
+  in.A = mass_weighted(model, tangent_stiffness(model, x, false, threads), threads);
   in.R = unit_rates(model);
   in.r_min = in.R.size() ? in.R.minCoeff() : 0;
   in.r_max = in.R.size() ? in.R.maxCoeff() : 0;
@@ -422,7 +422,7 @@ ExactStability exact_stability_within_budget(const Model& model, const std::vect
 
 ExactStability exact_stability(const Model& model, const std::vector<Vec3>& x,
                                const Params& params, const ExactOptions& options) {
-  const ExactInputs in = assemble(model, x);
+  const ExactInputs in = assemble(model, x, options.threads);
   try {
     return exact_stability_within_budget(model, x, in, params, options);
   } catch (const FactorisationOverBudget& over) {

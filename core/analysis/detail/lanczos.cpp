@@ -40,13 +40,14 @@ bool LanczosRecurrence::step() {
   return true;
 }
 
-TopEstimate lanczos_estimate(LanczosRecurrence& lanczos, Eigen::Index n, int max_steps,
-                             int check, double tolerance) {
+TopEstimate lanczos_estimate(LanczosRecurrence& lanczos, Eigen::Index n, int max_steps, int check,
+                             double tolerance, const std::function<bool()>& after_step) {
   const int k = static_cast<int>(std::min<Eigen::Index>(max_steps, n));
   std::vector<double> checkpoints;  // top Ritz value every `check` steps
   TopEstimate e;
   for (int j = 0; j < k; ++j) {
     if (!lanczos.step()) break;
+    if (after_step && !after_step()) break;
     if ((j + 1) % check != 0) continue;
     checkpoints.push_back(
         largest_tridiagonal_eigenvalue(lanczos.alpha.data(), lanczos.beta.data(), j + 1));

@@ -4,6 +4,7 @@
 // the first shift of certified_largest_eigenvalue (and gives unfactored_largest_eigenvalue
 // its tridiagonal T). Nothing certified rests on these numbers alone: a Cholesky
 // factorisation or a Rayleigh quotient proves whatever is claimed (linear_stability_cholesky).
+#include <functional>
 #include <vector>
 
 #include "core/analysis/linear_stability.hpp"
@@ -31,6 +32,8 @@ class LanczosRecurrence {
   /// Step j: alpha_j and beta_j appended, v_{j+1} formed; false when beta_j = 0 (an
   /// invariant subspace: the Ritz values are eigenvalues).
   bool step();
+  /// The threads of the next steps (the same bits on any count).
+  void set_threads(int threads) { pool_.set_threads(threads); }
   std::vector<double> alpha, beta;  ///< T's diagonal and off-diagonal so far
 
  private:
@@ -57,12 +60,13 @@ struct TopEstimate {
 /// the one before (kept in [0.5, 0.9]: a sudden drop in the rise is more often a pause than
 /// convergence), lambda_max - theta ~ d q / (1 - q). It stops once that is below `tolerance`
 /// |theta|: for the first shift 1e-7 in windows of 50 steps (a shift that close separates
-/// even a clustered top).
+/// even a clustered top). `after_step`, when given, is called after every step; false stops
+/// the estimate there.
 inline constexpr int kLanczosSteps = 1000, kLanczosCheck = 50;
 /// How long the product's threads poll for the next product before they sleep.
 inline constexpr int kLanczosSpinMicroseconds = 200;
 TopEstimate lanczos_estimate(LanczosRecurrence& lanczos, Eigen::Index n,
                              int max_steps = kLanczosSteps, int check = kLanczosCheck,
-                             double tolerance = 1e-7);
+                             double tolerance = 1e-7, const std::function<bool()>& after_step = {});
 
 }  // namespace dampbound::detail

@@ -4,18 +4,19 @@
 // a clustered top, a matrix with negative eigenvalues), and their width; a proved floor that
 // gives the smallest eigenvalue without factorising, and one that is too low to; calls from two
 // threads at once.
-#include "core/analysis/linear_stability_cholesky.hpp"
-
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
 #include <cmath>
+#include <cstring>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "bench/bench_meshes.hpp"
 #include "core/analysis/linear_stability.hpp"
+#include "core/analysis/linear_stability_cholesky.hpp"
 #include "core/scene.hpp"
 #include "tests/core/test_util.hpp"
 
@@ -211,6 +212,48 @@ TEST(CertifiedEigenvalue, ABudgetStopsBeforeFactorising) {
   // Up to 400 rows nothing is factorised, so no budget applies.
   const SparseMatrix small = plane_matrix(11, 0.0);  // 363 rows
   EXPECT_NO_THROW(certified_largest_eigenvalue(small, nullptr, 1, 1.0));
+}
+
+/// On two or more threads one of them prepares the factorisations (the matrix and its pattern
+/// analysis) while the others run the Lanczos estimate, and the first factorisation's rounding
+/// bound is taken beside the solves: the same bits as on one thread, for both ends of a
+/// deformed plane and of a tetrahedral block, and the same answer over a budget.
+TEST(CertifiedEigenvalue, WorkBesideTheEstimateGivesTheBitsOfOneThread) {
+  const Params p;
+  const Model block = compile_model(bench::tet_block(9, 9, 9), p);
+  std::vector<Vec3> x = block.rest;
+  test::shake(x, 0.01, 17);
+  for (const SparseMatrix& A :
+       {plane_matrix(30, 0.2), mass_weighted(block, tangent_stiffness(block, x))}) {
+    const CertifiedSpectrum one = certified_spectrum(A, std::nullopt, 1);
+    EXPECT_GE(one.largest.factorizations, 2);
+    EXPECT_GE(one.smallest.factorizations, 2);
+    for (int threads : {2, 3}) {
+      SCOPED_TRACE(testing::Message() << A.rows() << " rows, " << threads << " threads");
+      const CertifiedSpectrum many = certified_spectrum(A, std::nullopt, threads);
+      for (auto [a, b] :
+           {std::pair{one.largest, many.largest}, std::pair{one.smallest, many.smallest}}) {
+        EXPECT_EQ(std::memcmp(&a.lo, &b.lo, sizeof(double)), 0) << a.lo << " vs " << b.lo;
+        EXPECT_EQ(std::memcmp(&a.hi, &b.hi, sizeof(double)), 0) << a.hi << " vs " << b.hi;
+        EXPECT_EQ(a.lanczos_steps, b.lanczos_steps);
+        EXPECT_EQ(a.factorizations, b.factorizations);
+        EXPECT_EQ(a.solves, b.solves);
+      }
+      double flops_one = 0, flops_many = 0;
+      try {
+        certified_largest_eigenvalue(A, nullptr, 1, 1.0);
+      } catch (const FactorisationOverBudget& over) {
+        flops_one = over.flops;
+      }
+      try {
+        certified_largest_eigenvalue(A, nullptr, threads, 1.0);
+      } catch (const FactorisationOverBudget& over) {
+        flops_many = over.flops;
+      }
+      EXPECT_GT(flops_one, 1.0);
+      EXPECT_EQ(flops_many, flops_one);
+    }
+  }
 }
 
 TEST(UnfactoredEigenvalue, BracketsTheTopWithoutFactorising) {

@@ -185,6 +185,28 @@ TEST(TangentStiffness, SameBitsAsTheTripletSum) {
                    tangent_stiffness_by_triplets(model, model.rest, false));
 }
 
+TEST(TangentStiffness, SameBitsOnAnyThreadCount) {
+  // Threads take the springs and the nodes in ranges of at least 16384: a 230 x 230 grid
+  // (52 900 nodes) splits into three. Deformed, with fixed nodes and nodes without anchors.
+  Params p;
+  p.kappa = 0.003;
+  ModelSpec spec = make_grid(GridSpec{230, 230, 0.57, true, true});
+  for (size_t i = 0; i < spec.fixed.size(); i += 997) spec.fixed[i] = 1;
+  for (size_t i = 0; i < spec.anchor_scale.size(); i += 5) spec.anchor_scale[i] = 0;
+  const Model model = compile_model(spec, p);
+  std::vector<Vec3> x = model.rest;
+  test::shake(x, 0.2, 5);
+  for (bool clamp : {false, true}) {
+    const SparseMatrix one = tangent_stiffness(model, x, clamp, 1);
+    for (int threads : {2, 3}) {
+      SCOPED_TRACE(testing::Message() << threads << " threads, clamp " << clamp);
+      const SparseMatrix many = tangent_stiffness(model, x, clamp, threads);
+      expect_same_bits(many, one);
+      expect_same_bits(mass_weighted(model, many, threads), mass_weighted(model, one, 1));
+    }
+  }
+}
+
 TEST(PsdFloor, IsTheAnchorRateWhenNoSpringIsCompressed) {
   Params p;
   p.m = 0.002;
