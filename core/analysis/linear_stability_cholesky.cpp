@@ -330,7 +330,7 @@ EigenInterval largest(const SparseMatrix& A, std::unique_ptr<ShiftedCholesky>& h
                                 [&f] { return f.proved_above(); });
       break;
     }
-    step = f.factorizations == 1 ? std::max(fallback, 8 * step) : 8 * step;
+    step = f.factorizations - factorizations_before == 1 ? std::max(fallback, 8 * step) : 8 * step;
   }
   if (!f.ready() && !f.factor(gershgorin)) {
     // Rounding trouble even at Gershgorin's shift: his bound alone, and the diagonal.
