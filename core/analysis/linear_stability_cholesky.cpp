@@ -11,9 +11,11 @@
 #include <cmath>
 #include <cstdio>
 #include <exception>
+#include <functional>
 #include <future>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 #include <thread>
 
@@ -37,6 +39,12 @@ constexpr double kMargin = 1e-12;
 /// Up to this many rows the dense eigenvalues are cheaper than factorisations (a 10 x 10
 /// plane, 300 rows: a few ms) and exact to rounding: lo = hi.
 constexpr Eigen::Index kDenseRows = 400;
+/// The threads a `threads` argument asks for: 0 is one per CPU.
+int resolved_threads(int threads) {
+  return threads > 0 ? threads
+                     : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+}
+
 /// (shift I - A)^-1 as an operator for Spectra: its largest eigenvalue 1/(shift - lambda)
 /// belongs to the eigenvalue lambda of A nearest below the shift.
 struct InverseOp {
@@ -233,8 +241,14 @@ namespace {
 /// pattern analysed before. certified_spectrum holds one for both ends: -A has A's pattern, and
 /// the analysis (the fill-reducing ordering) depends on the pattern alone, so the bottom end
 /// factors in the same order, to the same bits, without a second analysis.
+///
+/// `given`: the Lanczos estimate of A, already made (certified_spectrum makes the bottom end's
+/// beside the top end's factorisations). `after_estimate`: called once the estimate is done
+/// and the rest, one core's CHOLMOD work, begins.
 EigenInterval largest(const SparseMatrix& A, std::unique_ptr<ShiftedCholesky>& held,
-                      Eigen::VectorXd* vector, int threads, double max_factor_flops) {
+                      Eigen::VectorXd* vector, int threads, double max_factor_flops,
+                      const TopEstimate* given = nullptr,
+                      const std::function<void()>& after_estimate = {}) {
   const Eigen::Index n = A.rows();
   if (n == 0) return {};
   if (n <= kDenseRows) {  // small: the dense eigenvalues are exact, and quicker
@@ -264,8 +278,7 @@ EigenInterval largest(const SparseMatrix& A, std::unique_ptr<ShiftedCholesky>& h
       held = std::make_unique<ShiftedCholesky>(A);
     held->analyse(max_factor_flops);
   };
-  const int cores =
-      threads > 0 ? threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const int cores = resolved_threads(threads);
   // The top of a big mesh's spectrum is clustered: only a shift close above lambda_max
   // separates it from the rest. A Lanczos estimate places the shift (below). On two or more
   // threads one of them prepares the factorisations meanwhile (the two share nothing:
@@ -273,6 +286,10 @@ EigenInterval largest(const SparseMatrix& A, std::unique_ptr<ShiftedCholesky>& h
   // that is done; over the budget the estimate stops there, so the answer is as quick as
   // before. Lanczos gives the same bits on any thread count.
   const TopEstimate estimate = [&] {
+    if (given) {
+      prepare();
+      return *given;
+    }
     if (cores < 2) {
       prepare();
       LanczosRecurrence lanczos(A, cores);
@@ -306,6 +323,7 @@ EigenInterval largest(const SparseMatrix& A, std::unique_ptr<ShiftedCholesky>& h
     if (failure) std::rethrow_exception(failure);
     return e;
   }();
+  if (after_estimate) after_estimate();
   ShiftedCholesky& f = *held;
   Eigen::VectorXd u;
   // Gershgorin: lambda_max <= g.hi, so (g.hi + a little) I - A is positive definite; the
@@ -358,24 +376,36 @@ EigenInterval largest(const SparseMatrix& A, std::unique_ptr<ShiftedCholesky>& h
   return out;
 }
 
-/// certified_smallest_eigenvalue with its factorisations in `held` (largest() says how).
-EigenInterval smallest(const SparseMatrix& A, std::optional<double> floor,
-                       std::unique_ptr<ShiftedCholesky>& held, int threads,
-                       double max_factor_flops) {
-  if (floor && A.rows() > kDenseRows) {
-    // A known lower bound (e.g. a splitting of A into positive semidefinite parts) and the
-    // smallest diagonal entry (a Rayleigh quotient) may already pin lambda_min down.
-    const RowBounds rows = row_bounds(A);
-    const double lo = *floor - rows.margin(), hi = rows.min_diagonal;
-    const double span = rows.gershgorin.hi - rows.gershgorin.lo;
-    if (lo <= hi && hi - lo <= certificate_width(hi, span) + 2 * rows.margin()) return {lo, hi};
-  }
-  const SparseMatrix negated = -A;
-  EigenInterval r = largest(negated, held, nullptr, threads, max_factor_flops);
+/// A known lower bound of lambda_min (e.g. a splitting of A into positive semidefinite parts)
+/// and the smallest diagonal entry (a Rayleigh quotient) may already pin lambda_min down: the
+/// interval they give when they lie within the certificate's width.
+std::optional<EigenInterval> pinned_by_floor(const SparseMatrix& A, std::optional<double> floor) {
+  if (!floor || A.rows() <= kDenseRows) return std::nullopt;
+  const RowBounds rows = row_bounds(A);
+  const double lo = *floor - rows.margin(), hi = rows.min_diagonal;
+  const double span = rows.gershgorin.hi - rows.gershgorin.lo;
+  if (lo <= hi && hi - lo <= certificate_width(hi, span) + 2 * rows.margin())
+    return EigenInterval{lo, hi};
+  return std::nullopt;
+}
+
+/// lambda_min of A from lambda_max of `negated` = -A (largest() says how, `given` included).
+EigenInterval smallest_of_negated(const SparseMatrix& negated,
+                                  std::unique_ptr<ShiftedCholesky>& held, int threads,
+                                  double max_factor_flops, const TopEstimate* given = nullptr) {
+  EigenInterval r = largest(negated, held, nullptr, threads, max_factor_flops, given);
   std::swap(r.lo, r.hi);
   r.lo = -r.lo;
   r.hi = -r.hi;
   return r;
+}
+
+/// certified_smallest_eigenvalue with its factorisations in `held` (largest() says how).
+EigenInterval smallest(const SparseMatrix& A, std::optional<double> floor,
+                       std::unique_ptr<ShiftedCholesky>& held, int threads,
+                       double max_factor_flops) {
+  if (const std::optional<EigenInterval> pinned = pinned_by_floor(A, floor)) return *pinned;
+  return smallest_of_negated(-A, held, threads, max_factor_flops);
 }
 
 }  // namespace
@@ -433,8 +463,54 @@ CertifiedSpectrum certified_spectrum(const SparseMatrix& A, std::optional<double
   // The top first: over a budget it stops before the bottom copies -A. One pattern analysis
   // serves both ends.
   std::unique_ptr<ShiftedCholesky> factors;
-  const EigenInterval top = largest(A, factors, nullptr, threads, max_factor_flops);
-  return {smallest(A, floor, factors, threads, max_factor_flops), top};
+  const int cores = resolved_threads(threads);
+  if (cores < 2 || pinned_by_floor(A, floor)) {
+    const EigenInterval top = largest(A, factors, nullptr, threads, max_factor_flops);
+    return {smallest(A, floor, factors, threads, max_factor_flops), top};
+  }
+  // On two or more threads the bottom end's Lanczos estimate (of -A) runs beside the top end's
+  // factorisations and solves, which keep one core: it starts once the top's own estimate is
+  // done, on the other threads, and takes them all once the top is done. Lanczos gives the
+  // same bits on any thread count, so both ends are the bits of one thread.
+  SparseMatrix negated;
+  std::optional<TopEstimate> bottom;
+  std::exception_ptr failure;
+  std::atomic<bool> top_done{false}, stop{false};
+  std::thread beside;
+  const auto start_bottom = [&] {
+    beside = std::thread([&] {
+      try {
+        negated = -A;
+        LanczosRecurrence lanczos(negated, cores - 1);
+        bool all_threads = false;
+        bottom =
+            lanczos_estimate(lanczos, n, detail::kLanczosSteps, detail::kLanczosCheck, 1e-7, [&] {
+              if (stop.load(std::memory_order_relaxed)) return false;
+              if (!all_threads && top_done.load(std::memory_order_acquire)) {
+                all_threads = true;
+                lanczos.set_threads(cores);
+              }
+              return true;
+            });
+      } catch (...) {
+        failure = std::current_exception();
+      }
+    });
+  };
+  EigenInterval top;
+  try {
+    top = largest(A, factors, nullptr, threads, max_factor_flops, nullptr, start_bottom);
+  } catch (...) {
+    stop.store(true, std::memory_order_relaxed);
+    if (beside.joinable()) beside.join();
+    throw;
+  }
+  top_done.store(true, std::memory_order_release);
+  if (!beside.joinable())  // the top needed no estimate (the zero matrix)
+    return {smallest(A, floor, factors, threads, max_factor_flops), top};
+  beside.join();
+  if (failure) std::rethrow_exception(failure);
+  return {smallest_of_negated(negated, factors, threads, max_factor_flops, &*bottom), top};
 }
 
 EigenInterval certified_smallest_eigenvalue(const SparseMatrix& A, std::optional<double> floor,

@@ -220,9 +220,10 @@ TEST(CertifiedEigenvalue, ABudgetStopsBeforeFactorising) {
 }
 
 /// On two or more threads one of them prepares the factorisations (the matrix and its pattern
-/// analysis) while the others run the Lanczos estimate, and the first factorisation's rounding
-/// bound is taken beside the solves: the same bits as on one thread, for both ends of a
-/// deformed plane and of a tetrahedral block, and the same answer over a budget.
+/// analysis) while the others run the Lanczos estimate, the first factorisation's rounding
+/// bound is taken beside the solves, and the bottom end's estimate runs beside the top end's
+/// factorisations: the same bits as on one thread, for both ends of a deformed plane and of a
+/// tetrahedral block, and the same answer over a budget.
 TEST(CertifiedEigenvalue, WorkBesideTheEstimateGivesTheBitsOfOneThread) {
   const Params p;
   const Model block = compile_model(bench::tet_block(9, 9, 9), p);
@@ -257,6 +258,7 @@ TEST(CertifiedEigenvalue, WorkBesideTheEstimateGivesTheBitsOfOneThread) {
       }
       EXPECT_GT(flops_one, 1.0);
       EXPECT_EQ(flops_many, flops_one);
+      EXPECT_THROW(certified_spectrum(A, std::nullopt, threads, 1.0), FactorisationOverBudget);
     }
   }
 }
