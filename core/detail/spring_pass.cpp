@@ -104,8 +104,8 @@ SpringCounts owned_pass(const Model& model, const std::vector<Vec3>& x, std::vec
   const auto finish_after = [&](long k) {  // R_i of the nodes, in order, whose springs end by k
     if (!row_sum) return;
     for (; finished < started && last_spring(model, finished) <= k; ++finished)
-      if (!fixed[finished])
-        (*row_sum)[finished] = row_sum_of(&acc[9 * finished], model.mass[finished]);
+      (*row_sum)[finished] =
+          fixed[finished] ? 0.0 : row_sum_of(&acc[9 * finished], model.mass[finished]);
   };
   const bool all = begin == 0 && end == x.size();
   // Only the springs from the first to the last listed at these nodes can reach them: on a
@@ -160,7 +160,7 @@ SpringCounts spring_pass(const Model& model, const std::vector<Vec3>& x,
                          SpringPass* pass) {
   const size_t n = x.size(), ns = model.springs.size();
   if (force) force->resize(n);
-  if (row_sum) row_sum->assign(n, 0.0);
+  if (row_sum) row_sum->resize(n);  // every node's R_i written by its range (0 when fixed)
   std::vector<double> local;
   std::vector<double>& acc = pass ? pass->rows : local;
   acc.resize(row_sum ? 9 * n : 0);

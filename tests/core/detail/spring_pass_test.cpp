@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <limits>
 #include <string>
 
 #include "core/forces.hpp"
@@ -78,8 +79,10 @@ TEST(SpringPass, BothAtOnceAreTheBitsOfEachAloneOnAnyThreadCount) {
 
 TEST(SpringPass, FixedNodesHaveNoRowsAndTheirColumnsDropOut) {
   const Mesh m = mesh();
-  std::vector<double> rows;
+  // A vector left over from elsewhere: the pass writes every node's R_i, 0 at fixed nodes.
+  std::vector<double> rows(m.x.size() + 5, std::numeric_limits<double>::quiet_NaN());
   spring_pass(m.model, m.x, nullptr, &rows, nullptr);
+  ASSERT_EQ(rows.size(), m.x.size());
   int fixed = 0;
   for (size_t i = 0; i < rows.size(); ++i) {
     if (m.model.fixed[i]) {
