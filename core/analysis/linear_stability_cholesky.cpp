@@ -45,6 +45,58 @@ int resolved_threads(int threads) {
                      : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
 }
 
+/// Work on a thread of its own beside the caller's: done() once it has returned or thrown;
+/// finish() joins it and throws what it threw. The destructor joins it too (when something
+/// else threw first).
+class Beside {
+ public:
+  explicit Beside(std::function<void()> work)
+      : thread_([this, work = std::move(work)] {
+          try {
+            work();
+          } catch (...) {
+            error_ = std::current_exception();
+          }
+          done_.store(true, std::memory_order_release);
+        }) {}
+  Beside(const Beside&) = delete;
+  Beside& operator=(const Beside&) = delete;
+  ~Beside() {
+    if (thread_.joinable()) thread_.join();
+  }
+  bool done() const { return done_.load(std::memory_order_acquire); }
+  /// After done(): whether it threw.
+  bool failed() const { return error_ != nullptr; }
+  void finish() {
+    thread_.join();
+    if (error_) std::rethrow_exception(error_);
+  }
+
+ private:
+  std::atomic<bool> done_{false};
+  std::exception_ptr error_;
+  std::thread thread_;  // last: it starts once the members above exist
+};
+
+/// The Lanczos estimate of S while a thread is busy beside it: on cores - 1 threads, then on
+/// all of them once `beside_done()` says so (Lanczos gives the same bits on any count);
+/// stopped at the next step when `stop()` says so.
+TopEstimate estimate_beside(const SparseMatrix& S, int cores,
+                            const std::function<bool()>& beside_done,
+                            const std::function<bool()>& stop) {
+  LanczosRecurrence lanczos(S, cores - 1);
+  bool all_threads = false;
+  return lanczos_estimate(lanczos, S.rows(), detail::kLanczosSteps, detail::kLanczosCheck, 1e-7,
+                          [&] {
+                            if (stop()) return false;
+                            if (!all_threads && beside_done()) {
+                              all_threads = true;
+                              lanczos.set_threads(cores);
+                            }
+                            return true;
+                          });
+}
+
 /// (shift I - A)^-1 as an operator for Spectra: its largest eigenvalue 1/(shift - lambda)
 /// belongs to the eigenvalue lambda of A nearest below the shift.
 struct InverseOp {
@@ -295,32 +347,11 @@ EigenInterval largest(const SparseMatrix& A, std::unique_ptr<ShiftedCholesky>& h
       LanczosRecurrence lanczos(A, cores);
       return lanczos_estimate(lanczos, n);
     }
-    std::atomic<bool> prepared{false};
-    std::exception_ptr failure;
-    std::thread beside([&] {
-      try {
-        prepare();
-      } catch (...) {
-        failure = std::current_exception();
-      }
-      prepared.store(true, std::memory_order_release);
-    });
-    LanczosRecurrence lanczos(A, cores - 1);
-    bool all_threads = false;
-    TopEstimate e;
-    try {
-      e = lanczos_estimate(lanczos, n, detail::kLanczosSteps, detail::kLanczosCheck, 1e-7, [&] {
-        if (all_threads || !prepared.load(std::memory_order_acquire)) return true;
-        all_threads = true;
-        lanczos.set_threads(cores);
-        return failure == nullptr;  // over the budget: stop
-      });
-    } catch (...) {
-      beside.join();
-      throw;
-    }
-    beside.join();
-    if (failure) std::rethrow_exception(failure);
+    Beside preparing(prepare);
+    const TopEstimate e = estimate_beside(
+        A, cores, [&] { return preparing.done(); },
+        [&] { return preparing.done() && preparing.failed(); });  // over the budget: stop
+    preparing.finish();
     return e;
   }();
   if (after_estimate) after_estimate();
@@ -473,44 +504,29 @@ CertifiedSpectrum certified_spectrum(const SparseMatrix& A, std::optional<double
   // done, on the other threads, and takes them all once the top is done. Lanczos gives the
   // same bits on any thread count, so both ends are the bits of one thread.
   SparseMatrix negated;
-  std::optional<TopEstimate> bottom;
-  std::exception_ptr failure;
+  TopEstimate bottom;
   std::atomic<bool> top_done{false}, stop{false};
-  std::thread beside;
+  std::unique_ptr<Beside> estimating;  // after what it uses: destroyed (joined) first
   const auto start_bottom = [&] {
-    beside = std::thread([&] {
-      try {
-        negated = -A;
-        LanczosRecurrence lanczos(negated, cores - 1);
-        bool all_threads = false;
-        bottom =
-            lanczos_estimate(lanczos, n, detail::kLanczosSteps, detail::kLanczosCheck, 1e-7, [&] {
-              if (stop.load(std::memory_order_relaxed)) return false;
-              if (!all_threads && top_done.load(std::memory_order_acquire)) {
-                all_threads = true;
-                lanczos.set_threads(cores);
-              }
-              return true;
-            });
-      } catch (...) {
-        failure = std::current_exception();
-      }
+    estimating = std::make_unique<Beside>([&] {
+      negated = -A;
+      bottom = estimate_beside(
+          negated, cores, [&] { return top_done.load(std::memory_order_acquire); },
+          [&] { return stop.load(std::memory_order_relaxed); });
     });
   };
   EigenInterval top;
   try {
     top = largest(A, factors, nullptr, threads, max_factor_flops, nullptr, start_bottom);
   } catch (...) {
-    stop.store(true, std::memory_order_relaxed);
-    if (beside.joinable()) beside.join();
+    stop.store(true, std::memory_order_relaxed);  // and the destructor joins it
     throw;
   }
   top_done.store(true, std::memory_order_release);
-  if (!beside.joinable())  // the top needed no estimate (the zero matrix)
+  if (!estimating)  // the top needed no estimate (the zero matrix)
     return {smallest(A, floor, factors, threads, max_factor_flops), top};
-  beside.join();
-  if (failure) std::rethrow_exception(failure);
-  return {smallest_of_negated(negated, factors, threads, max_factor_flops, &*bottom), top};
+  estimating->finish();
+  return {smallest_of_negated(negated, factors, threads, max_factor_flops, &bottom), top};
 }
 
 EigenInterval certified_smallest_eigenvalue(const SparseMatrix& A, std::optional<double> floor,
