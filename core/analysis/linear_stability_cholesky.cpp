@@ -3,32 +3,36 @@
 // clang-format on
 #include "core/analysis/linear_stability_cholesky.hpp"
 
-#include <Spectra/SymEigsSolver.h>
-
 #include <Eigen/Dense>
 #include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstdio>
-#include <exception>
 #include <functional>
 #include <future>
 #include <limits>
 #include <memory>
 #include <optional>
 #include <string>
-#include <thread>
 
+#include "core/analysis/detail/beside.hpp"
+#include "core/analysis/detail/inverse_lanczos.hpp"
 #include "core/analysis/detail/lanczos.hpp"
 #include "core/analysis/detail/shifted_cholesky.hpp"
 #include "core/analysis/detail/tridiagonal.hpp"
 
 namespace dampbound {
+using detail::Beside;
+using detail::estimate_beside;
+using detail::inverse_lanczos;
 using detail::kAmdSlack;
-using detail::LanczosRecurrence;
-using detail::TopEstimate;
+using detail::kShortTolerance;
 using detail::lanczos_estimate;
+using detail::LanczosRecurrence;
+using detail::resolved_threads;
 using detail::ShiftedCholesky;
+using detail::short_inverse_lanczos;
+using detail::TopEstimate;
 namespace {
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
@@ -39,152 +43,6 @@ constexpr double kMargin = 1e-12;
 /// Up to this many rows the dense eigenvalues are cheaper than factorisations (a 10 x 10
 /// plane, 300 rows: a few ms) and exact to rounding: lo = hi.
 constexpr Eigen::Index kDenseRows = 400;
-/// The threads a `threads` argument asks for: 0 is one per CPU.
-int resolved_threads(int threads) {
-  return threads > 0 ? threads
-                     : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-}
-
-/// Work on a thread of its own beside the caller's: done() once it has returned or thrown;
-/// finish() joins it and throws what it threw. The destructor joins it too (when something
-/// else threw first).
-class Beside {
- public:
-  explicit Beside(std::function<void()> work)
-      : thread_([this, work = std::move(work)] {
-          try {
-            work();
-          } catch (...) {
-            error_ = std::current_exception();
-          }
-          done_.store(true, std::memory_order_release);
-        }) {}
-  Beside(const Beside&) = delete;
-  Beside& operator=(const Beside&) = delete;
-  ~Beside() {
-    if (thread_.joinable()) thread_.join();
-  }
-  bool done() const { return done_.load(std::memory_order_acquire); }
-  /// After done(): whether it threw.
-  bool failed() const { return error_ != nullptr; }
-  void finish() {
-    thread_.join();
-    if (error_) std::rethrow_exception(error_);
-  }
-
- private:
-  std::atomic<bool> done_{false};
-  std::exception_ptr error_;
-  std::thread thread_;  // last: it starts once the members above exist
-};
-
-/// The Lanczos estimate of S while a thread is busy beside it: on cores - 1 threads, then on
-/// all of them once `beside_done()` says so (Lanczos gives the same bits on any count);
-/// stopped at the next step when `stop()` says so.
-TopEstimate estimate_beside(const SparseMatrix& S, int cores,
-                            const std::function<bool()>& beside_done,
-                            const std::function<bool()>& stop) {
-  LanczosRecurrence lanczos(S, cores - 1);
-  bool all_threads = false;
-  return lanczos_estimate(lanczos, S.rows(), detail::kLanczosSteps, detail::kLanczosCheck, 1e-7,
-                          [&] {
-                            if (stop()) return false;
-                            if (!all_threads && beside_done()) {
-                              all_threads = true;
-                              lanczos.set_threads(cores);
-                            }
-                            return true;
-                          });
-}
-
-/// (shift I - A)^-1 as an operator for Spectra: its largest eigenvalue 1/(shift - lambda)
-/// belongs to the eigenvalue lambda of A nearest below the shift.
-struct InverseOp {
-  using Scalar = double;
-  ShiftedCholesky* factor;
-  Eigen::Index rows() const { return factor->size(); }
-  Eigen::Index cols() const { return factor->size(); }
-  void perform_op(const double* in, double* out) const { factor->solve(in, out); }
-};
-
-/// Spectra's restarts before inverse iteration takes over. Where shift-and-invert Lanczos
-/// converges it has taken 1 restart (9 solves) on the shipped scenes, at rest and after 20
-/// steps, and 13 at most; where it does not (a cluster at the end of the spectrum, e.g. the
-/// anchors' lambda = 1 of a perturbed plane), it went on for 200 restarts (809 solves, 15 s
-/// on a 40k-node plane) before the same inverse iteration: stopping at 20 gives the same
-/// bits in a fifth of the solves.
-constexpr int kLanczosRestarts = 20;
-
-/// Solves before the short Lanczos below hands over to Spectra's restarted one.
-constexpr int kShortSteps = 8;
-/// The short Lanczos stops when the top Ritz pair (theta, u) of (shift I - A)^-1 has a
-/// residual below kShortTolerance theta. By Davis and Kahan, u then lies within an angle
-/// of sine kShortTolerance mu_1 / (mu_1 - mu_2) of the top eigenvector (mu the eigenvalues of
-/// the inverse, mu_1 = 1 / (shift - lambda_max)), so its Rayleigh quotient in A falls short of
-/// lambda_max by at most that sine squared times A's spread: below the certificate's width
-/// (1e-10 relative) while the shift lies within 100 times the distance from lambda_max to the
-/// next eigenvalue below it.
-constexpr double kShortTolerance = 1e-7;
-
-/// Lanczos on (shift I - A)^-1 with full reorthogonalisation (twice), from `start`, testing the
-/// top Ritz pair after every solve: the fewest solves that reach `tol`, where Spectra's
-/// restarted Lanczos builds its whole Krylov space of 8 first. False (u untouched) when
-/// kShortSteps solves do not reach it.
-bool short_inverse_lanczos(ShiftedCholesky& f, const Eigen::VectorXd& start, Eigen::VectorXd& u,
-                           double tol) {
-  const Eigen::Index n = f.size();
-  const int k = static_cast<int>(std::min<Eigen::Index>(kShortSteps, n));
-  Eigen::MatrixXd V(n, k);
-  V.col(0) = start / start.norm();
-  Eigen::VectorXd w(n);
-  Eigen::MatrixXd T = Eigen::MatrixXd::Zero(k, k);
-  for (int j = 0; j < k; ++j) {
-    f.solve(V.col(j).data(), w.data());
-    const auto basis = V.leftCols(j + 1);
-    Eigen::VectorXd h = basis.transpose() * w;
-    w -= basis * h;
-    const Eigen::VectorXd h2 = basis.transpose() * w;
-    w -= basis * h2;
-    T(j, j) = h(j) + h2(j);
-    const double b = w.norm();
-    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(T.topLeftCorner(j + 1, j + 1));
-    const double theta = es.eigenvalues()(j);
-    const Eigen::VectorXd y = es.eigenvectors().col(j);
-    if (b * std::abs(y(j)) < tol * std::abs(theta) || !(b > 0)) {
-      u = basis * y;
-      return true;
-    }
-    if (j + 1 == k) break;
-    T(j, j + 1) = T(j + 1, j) = b;
-    V.col(j + 1) = w / b;
-  }
-  return false;
-}
-
-/// The top Ritz vector of (shift I - A)^-1 from `u` (empty: Spectra's start), to relative
-/// tolerance `tol`; inverse iteration when Lanczos does not converge in its budget.
-void inverse_lanczos(ShiftedCholesky& f, Eigen::VectorXd& u, double tol) {
-  const Eigen::Index n = f.size();
-  InverseOp op{&f};
-  Spectra::SymEigsSolver<InverseOp> eigs(op, 1, std::min<Eigen::Index>(n, 8));
-  if (u.size() == n)
-    eigs.init(u.data());
-  else
-    eigs.init();
-  eigs.compute(Spectra::SortRule::LargestAlge, kLanczosRestarts, tol);
-  if (eigs.info() == Spectra::CompInfo::Successful && eigs.eigenvectors().cols() > 0) {
-    u = eigs.eigenvectors().col(0);
-    return;
-  }
-  if (u.size() != n) u = Eigen::VectorXd::LinSpaced(n, 0.3, 1.7).array().sin();
-  Eigen::VectorXd next(n);
-  for (int k = 0; k < 100; ++k) {
-    u /= u.norm();
-    f.solve(u.data(), next.data());
-    u.swap(next);
-  }
-  u /= u.norm();
-}
 
 /// u^T A u / u^T u, summed in long double, and a bound on its rounding error.
 struct Rayleigh {
