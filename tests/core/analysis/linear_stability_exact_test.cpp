@@ -1,16 +1,21 @@
 // The exact linear stability (core/analysis/linear_stability_exact.hpp): on the two-node
 // system every number has a closed form; a chain with unequal masses takes the symmetric
 // index; the simulation check agrees with the limits.
+// clang-format off
+#include "core/analysis/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
+// clang-format on
 #include "core/analysis/linear_stability_exact.hpp"
-#include "core/analysis/perturbation_growth.hpp"
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Dense>
 #include <cmath>
 #include <limits>
 #include <string>
 
+#include "core/analysis/linear_stability.hpp"
 #include "core/analysis/linear_stability_modes.hpp"
+#include "core/analysis/perturbation_growth.hpp"
 #include "core/io/scene_file.hpp"
 #include "core/safe_bound.hpp"
 #include "core/scene.hpp"
@@ -180,6 +185,37 @@ TEST(LinearStabilityExact, UnequalMassesTakeTheSymmetricIndex) {
   out.dt = 1.2 * e.dt_max;
   EXPECT_LT(perturbation_growth(m, in, 2000), 1.0);
   EXPECT_GT(perturbation_growth(m, out, 2000), 1.0);
+}
+
+TEST(LinearStabilityExact, WhetherNoDampingIsUnstableComesFromTheSpectrumAsFromTheIndex) {
+  // The paper's step without damping is stable where dt^2 lambda_max < 4: the gamma search
+  // reads that from A's certified lambda_max (no factorisation of its own) when the product
+  // lies clear of 4, and computes lambda_max(dt^2 A) as before only near 4. Just past and just
+  // inside the undamped limit, against the dense eigenvalues of A: past it no gamma is
+  // stable, inside it some are.
+  Params p;
+  p.gamma = 0.02;
+  p.policy = DampingPolicy::fixed;
+  const Model model = compile_model(plane_with_masses_12x_apart(), p);  // 588 rows: factored
+  const Eigen::MatrixXd dense =
+      Eigen::MatrixXd(mass_weighted(model, tangent_stiffness(model, model.rest)));
+  const double lambda_max =
+      Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(dense).eigenvalues().maxCoeff();
+  const double edge = 2 / std::sqrt(lambda_max);
+  for (const double factor : {1 + 1e-3, 1 + 1e-6, 1 - 1e-6, 1 - 1e-3}) {
+    Params q = p;
+    q.dt = edge * factor;
+    const ExactStability e = exact_stability(model, model.rest, q);
+    ASSERT_EQ(e.method, ExactMethod::symmetric_index);
+    EXPECT_LE(e.lambda_max_lo, lambda_max * (1 + 1e-12));
+    EXPECT_GE(e.spectrum.lambda_max, lambda_max * (1 - 1e-12));
+    if (factor > 1) {
+      EXPECT_EQ(e.gamma_hi, 0.0) << factor;
+      EXPECT_FALSE(e.stable) << factor;
+    } else {
+      EXPECT_GT(e.gamma_hi, 0.0) << factor;
+    }
+  }
 }
 
 TEST(LinearStabilityExact, OverTheFactorisationBudgetNothingIsComputed) {
