@@ -1,4 +1,6 @@
+// clang-format off
 #include "core/analysis/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
+// clang-format on
 #include "core/analysis/linear_stability_exact.hpp"
 
 #include <algorithm>
@@ -6,10 +8,12 @@
 #include <functional>
 #include <limits>
 
+#include "core/analysis/detail/newton.hpp"
 #include "core/analysis/linear_stability_cholesky.hpp"
 #include "core/safe_bound.hpp"
 
 namespace dampbound {
+using detail::newton_from_right;
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -28,21 +32,6 @@ Index symmetric_index(const SparseMatrix& A, const Eigen::VectorXd& R, double ga
   const double value = largest_eigenpair(S, u, threads, budget);
   const double uRu = u.dot(R.cwiseProduct(u)), uAu = u.dot(A * u);
   return {value, 2 * h * uRu, 2 * h * uAu + 2 * gamma * uRu};
-}
-
-/// The root of a convex increasing g on (0, t_cap] with g(t_cap) >= 0, by Newton from the
-/// right: every iterate stays right of the root, so the result is on the stable side within
-/// rounding. Returns 0 when g(0+) >= 0 already (checked by the caller).
-double newton_from_right(const std::function<std::pair<double, double>(double)>& g, double t) {
-  for (int k = 0; k < 100; ++k) {
-    const auto [value, slope] = g(t);
-    if (!(slope > 0)) break;
-    const double next = t - value / slope;
-    if (!(next > 0)) return 0;
-    if (std::abs(next - t) <= 1e-13 * t) return next;
-    t = next;
-  }
-  return t;
 }
 
 /// Per free dof, gamma_scale_i / m_i: the damping rate c_i per unit of the user's gamma.

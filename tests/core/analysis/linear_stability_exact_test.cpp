@@ -218,6 +218,35 @@ TEST(LinearStabilityExact, WhetherNoDampingIsUnstableComesFromTheSpectrumAsFromT
   }
 }
 
+TEST(LinearStabilityExact, NewtonsLimitsAreTheIndexRootsToNineDigits) {
+  // gamma_hi and dt_max of the plane whose masses vary 12x, against the dense index
+  // lambda_max(dt^2 A + 2 dt gamma diag(R)): below 4 just inside each limit (1e-9 relative),
+  // above it just outside. Newton stops when its next step would be below 1e-13 of the root
+  // (the certified lambda_max lies up to 1e-10 above, which moves the roots that much).
+  Params p;
+  p.gamma = 0.02;
+  p.policy = DampingPolicy::fixed;
+  const Model model = compile_model(plane_with_masses_12x_apart(), p);
+  const ExactStability e = exact_stability(model, model.rest, p);
+  ASSERT_EQ(e.method, ExactMethod::symmetric_index);
+  const Eigen::MatrixXd A =
+      Eigen::MatrixXd(mass_weighted(model, tangent_stiffness(model, model.rest)));
+  const Eigen::VectorXd R = damping_rates(model, model.gamma_scale);
+  const auto index = [&](double gamma, double h) {
+    Eigen::MatrixXd S = h * h * A;
+    S.diagonal() += 2 * h * gamma * R;
+    return Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(S, Eigen::EigenvaluesOnly)
+        .eigenvalues()
+        .maxCoeff();
+  };
+  ASSERT_GT(e.gamma_hi, p.gamma);
+  ASSERT_GT(e.dt_max, p.dt);
+  EXPECT_LT(index(e.gamma_hi * (1 - 1e-9), p.dt), 4);
+  EXPECT_GT(index(e.gamma_hi * (1 + 1e-9), p.dt), 4);
+  EXPECT_LT(index(p.gamma, e.dt_max * (1 - 1e-9)), 4);
+  EXPECT_GT(index(p.gamma, e.dt_max * (1 + 1e-9)), 4);
+}
+
 TEST(LinearStabilityExact, OverTheFactorisationBudgetNothingIsComputed) {
   Params p;
   const Model model = compile_model(make_grid(GridSpec{14, 14, 0.57, true, true}), p);  // 588 rows
