@@ -14,6 +14,7 @@
 
 namespace dampbound {
 using detail::newton_from_right;
+using detail::newton_step;
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -190,10 +191,14 @@ void symmetric_index_limits(const ExactInputs& in, const Params& params,
   const SparseMatrix& A = in.A;
   const Eigen::VectorXd& R = in.R;
   e.method = ExactMethod::symmetric_index;
-  e.index = symmetric_index(A, R, gamma, h, threads, budget).value;
+  const Index at_scene = symmetric_index(A, R, gamma, h, threads, budget);
+  e.index = at_scene.value;
   e.stable = e.index < 4 && in.r_min > 0;
   e.gamma_lo = 0;
   if (e.indefinite) return;  // the index decides only where K >= 0: indefinite_limits()
+  // Each search starts from a point right of its root: the cap, or nearer, the Newton step
+  // from the scene's own gamma and dt, whose index and slopes are already computed.
+  const auto start = [](double cap, double step) { return step > 0 ? std::min(cap, step) : cap; };
   // gamma: g(t) = index(t, h) - 4, convex and increasing in t; g(2/(h r_max)) >= 0.
   if (undamped_index_reaches_4(A, R, h, e, threads, budget)) {
     e.gamma_hi = 0;
@@ -203,7 +208,8 @@ void symmetric_index_limits(const ExactInputs& in, const Params& params,
           const Index i = symmetric_index(A, R, t, h, threads, budget);
           return std::make_pair(i.value - 4, i.slope_gamma);
         },
-        2 / (h * in.r_max));
+        start(2 / (h * in.r_max), newton_step(gamma, at_scene.value - 4, at_scene.slope_gamma)),
+        std::make_pair(gamma, at_scene.slope_gamma));
   }
   // dt: g(t) = index(gamma, t) - 4, convex and increasing in t when K >= 0.
   double cap = spec7_dt_max_undamped(e.spectrum.lambda_max);
@@ -214,7 +220,8 @@ void symmetric_index_limits(const ExactInputs& in, const Params& params,
                                      const Index i = symmetric_index(A, R, gamma, t, threads, budget);
                                      return std::make_pair(i.value - 4, i.slope_h);
                                    },
-                                   cap);
+                                   start(cap, newton_step(h, at_scene.value - 4, at_scene.slope_h)),
+                                   std::make_pair(h, at_scene.slope_h));
 }
 
 /// Forward Euler, Verlet, RK4 (and implicit Euler at an indefinite K) with non-uniform

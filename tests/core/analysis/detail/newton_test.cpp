@@ -40,6 +40,22 @@ TEST(NewtonFromRight, TheRootToRoundingWithOneEvaluationFewer) {
   }
 }
 
+TEST(NewtonFromRight, AnEarlierSlopeLetsTheFirstStepStop) {
+  // From 1e-8 right of the root the first step leaves an error of about 3.5e-17: with the
+  // slope of an earlier evaluation (at 1.5) the curvature is known and that step is the last.
+  const double root = std::sqrt(2.0), start = root + 1e-8;
+  Square with, without;
+  const double a = newton_from_right(std::ref(with), start, std::make_pair(1.5, 3.0));
+  const double b = newton_from_right(std::ref(without), start);
+  EXPECT_EQ(with.calls, 1);
+  EXPECT_EQ(without.calls, 2);
+  EXPECT_NEAR(a, root, 4e-16);
+  EXPECT_NEAR(b, root, 4e-16);
+  // The step from the scene's own point, computed by the caller, lands right of the root.
+  EXPECT_GT(newton_step(1.0, -1.0, 2.0), root);
+  EXPECT_TRUE(std::isnan(newton_step(1.0, -1.0, 0.0)));
+}
+
 TEST(NewtonFromRight, FromTheLeftTheFirstStepLandsRight) {
   Square g;
   const double r = newton_from_right(std::ref(g), 1.0);  // g(1) = -1
