@@ -8,6 +8,7 @@
 #include <functional>
 #include <limits>
 
+#include "core/analysis/detail/beside.hpp"
 #include "core/analysis/detail/newton.hpp"
 #include "core/analysis/linear_stability_cholesky.hpp"
 #include "core/safe_bound.hpp"
@@ -224,6 +225,26 @@ void symmetric_index_limits(const ExactInputs& in, const Params& params,
                                    std::make_pair(h, at_scene.slope_h));
 }
 
+/// The symmetric index's limits and the spectral radius. The radius (Arnoldi on the
+/// amplification operator: Eigen's and dampbound's own code, no CHOLMOD, no BLAS) needs none of
+/// the index's results, and the index's certified eigenvalues spend most of their time in
+/// factorisations on one core: on two or more threads the radius runs beside them, on a copy of
+/// what it reads. Each is computed as it would be alone, so the bits are the same.
+void index_limits_and_radius(const Model& model, const ExactInputs& in, const Params& params,
+                             const ExactOptions& options, ExactStability& e) {
+  if (!options.with_radius || detail::resolved_threads(options.threads) < 2) {
+    symmetric_index_limits(in, params, options, e);
+    add_radius(model, in, params, options, e);
+    return;
+  }
+  ExactStability radius = e;
+  detail::Beside beside([&] { add_radius(model, in, params, options, radius); });
+  symmetric_index_limits(in, params, options, e);
+  beside.finish();
+  e.spectral_radius = radius.spectral_radius;
+  e.radius_converged = radius.radius_converged;
+}
+
 /// Forward Euler, Verlet, RK4 (and implicit Euler at an indefinite K) with non-uniform
 /// rates: the limits from the worst uniform rate over [c_min, c_max] ("frozen
 /// coefficients", an estimate); the verdict from the amplification operator when measured.
@@ -415,8 +436,7 @@ ExactStability exact_stability_within_budget(const Model& model, const std::vect
   } else if (e.uniform_rate) {
     per_mode(in, params, e);
   } else if (e.integrator == Integrator::semi_implicit_euler) {
-    symmetric_index_limits(in, params, options, e);
-    add_radius(model, in, params, options, e);
+    index_limits_and_radius(model, in, params, options, e);
   } else {
     frozen_estimate(in, params, e);
     add_radius(model, in, params, options, e);

@@ -247,6 +247,28 @@ TEST(LinearStabilityExact, NewtonsLimitsAreTheIndexRootsToNineDigits) {
   EXPECT_GT(index(p.gamma, e.dt_max * (1 + 1e-9)), 4);
 }
 
+TEST(LinearStabilityExact, TheRadiusBesideTheIndexGivesTheBitsOfOneThread) {
+  // On two or more threads the spectral radius runs beside the symmetric index's
+  // factorisations: every number as on one thread.
+  Params p;
+  p.gamma = 0.02;
+  p.policy = DampingPolicy::fixed;
+  const Model model = compile_model(plane_with_masses_12x_apart(), p);
+  ExactOptions one, two;
+  one.threads = 1;
+  two.threads = 2;
+  const ExactStability a = exact_stability(model, model.rest, p, one);
+  const ExactStability b = exact_stability(model, model.rest, p, two);
+  ASSERT_EQ(a.method, ExactMethod::symmetric_index);
+  ASSERT_FALSE(std::isnan(a.spectral_radius));
+  EXPECT_EQ(a.spectral_radius, b.spectral_radius);
+  EXPECT_EQ(a.radius_converged, b.radius_converged);
+  EXPECT_EQ(a.index, b.index);
+  EXPECT_EQ(a.gamma_hi, b.gamma_hi);
+  EXPECT_EQ(a.dt_max, b.dt_max);
+  EXPECT_EQ(a.stable, b.stable);
+}
+
 TEST(LinearStabilityExact, OverTheFactorisationBudgetNothingIsComputed) {
   Params p;
   const Model model = compile_model(make_grid(GridSpec{14, 14, 0.57, true, true}), p);  // 588 rows
