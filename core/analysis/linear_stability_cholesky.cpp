@@ -342,9 +342,11 @@ EigenInterval unfactored_largest_eigenvalue(const SparseMatrix& A, Eigen::Vector
 }
 
 CertifiedSpectrum certified_spectrum(const SparseMatrix& A, std::optional<double> floor,
-                                     int threads, double max_factor_flops) {
+                                     int threads, double max_factor_flops,
+                                     const std::function<void()>& within_budget) {
   const Eigen::Index n = A.rows();
   if (n > 0 && n <= kDenseRows) {  // one dense solve gives both ends
+    if (within_budget) within_budget();
     Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es{Eigen::MatrixXd(A), Eigen::EigenvaluesOnly};
     const double lo = es.eigenvalues()(0), hi = es.eigenvalues()(n - 1);
     return {{lo, lo}, {hi, hi}};
@@ -354,7 +356,8 @@ CertifiedSpectrum certified_spectrum(const SparseMatrix& A, std::optional<double
   std::unique_ptr<ShiftedCholesky> factors;
   const int cores = resolved_threads(threads);
   if (cores < 2 || pinned_by_floor(A, floor)) {
-    const EigenInterval top = largest(A, factors, nullptr, threads, max_factor_flops);
+    const EigenInterval top =
+        largest(A, factors, nullptr, threads, max_factor_flops, nullptr, within_budget);
     return {smallest(A, floor, factors, threads, max_factor_flops), top};
   }
   // On two or more threads the bottom end's Lanczos estimate (of -A) runs beside the top end's
@@ -366,6 +369,7 @@ CertifiedSpectrum certified_spectrum(const SparseMatrix& A, std::optional<double
   std::atomic<bool> top_done{false}, stop{false};
   std::unique_ptr<Beside> estimating;  // after what it uses: destroyed (joined) first
   const auto start_bottom = [&] {
+    if (within_budget) within_budget();
     estimating = std::make_unique<Beside>([&] {
       negated = -A;
       bottom = estimate_beside(

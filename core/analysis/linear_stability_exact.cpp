@@ -7,6 +7,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <memory>
 
 #include "core/analysis/detail/beside.hpp"
 #include "core/analysis/detail/newton.hpp"
@@ -77,6 +78,11 @@ struct ExactInputs {
   double r_min = 0, r_max = 0;
 };
 
+/// Whether every damping rate is the same (to 1e-12): then every mode is a scalar recurrence.
+bool uniform_rates(const ExactInputs& in) {
+  return in.r_max - in.r_min <= 1e-12 * in.r_max;
+}
+
 ExactInputs assemble(const Model& model, const std::vector<Vec3>& x, int threads) {
   ExactInputs in;
   in.A = mass_weighted(model, tangent_stiffness(model, x, false, threads), threads);
@@ -87,15 +93,16 @@ ExactInputs assemble(const Model& model, const std::vector<Vec3>& x, int threads
 }
 
 void spectrum_and_rates(const Model& model, const std::vector<Vec3>& x, const ExactInputs& in,
-                        const Params& params, const ExactOptions& options, ExactStability& e) {
+                        const Params& params, const ExactOptions& options, ExactStability& e,
+                        const std::function<void()>& within_budget) {
   e.integrator = params.integrator;
   const CertifiedSpectrum ends = certified_spectrum(in.A, psd_floor(model, x), options.threads,
-                                                    options.max_factor_flops);
+                                                    options.max_factor_flops, within_budget);
   e.spectrum = {ends.smallest.lo, ends.largest.hi};
   e.lambda_max_lo = ends.largest.lo;
   e.rate_min = params.gamma * in.r_min;
   e.rate_max = params.gamma * in.r_max;
-  e.uniform_rate = in.r_max - in.r_min <= 1e-12 * in.r_max;
+  e.uniform_rate = uniform_rates(in);
   e.decaying = e.spectrum;
   const double zero = kZeroModeTolerance * std::abs(e.spectrum.lambda_max);
   if (std::abs(e.spectrum.lambda_min) <= zero) {
@@ -132,6 +139,46 @@ void add_radius(const Model& model, const ExactInputs& in, const Params& params,
   e.spectral_radius = s.rho;
   e.radius_converged = s.converged;
 }
+
+/// The spectral radius at non-uniform rates (Spectra's Arnoldi on the amplification operator:
+/// Eigen's and dampbound's own code, neither CHOLMOD nor a BLAS) needs nothing the certified
+/// eigenvalues give, and these spend most of their time in factorisations on one core. On two
+/// or more threads, where the radius is asked for, start() runs it on a thread of its own
+/// beside them; its bits are those of one thread, on a copy of what it reads. add_to() takes
+/// its result, or computes it there when it was not started. Should the caller throw once it
+/// has started (nothing does after the budget is cleared), the destructor joins it first.
+class RadiusBeside {
+ public:
+  RadiusBeside(const Model& model, const ExactInputs& in, const Params& params,
+               const ExactOptions& options)
+      : model_(model), in_(in), params_(params), options_(options) {}
+  void start() {
+    if (thread_ || !options_.with_radius || uniform_rates(in_) ||
+        detail::resolved_threads(options_.threads) < 2)
+      return;
+    thread_ = std::make_unique<detail::Beside>([this] {
+      ExactStability r;
+      r.integrator = params_.integrator;
+      r.uniform_rate = false;
+      add_radius(model_, in_, params_, options_, r);
+      radius_ = {r.spectral_radius, r.radius_converged};
+    });
+  }
+  void add_to(ExactStability& e) {
+    if (!thread_) return add_radius(model_, in_, params_, options_, e);
+    thread_->finish();
+    e.spectral_radius = radius_.rho;
+    e.radius_converged = radius_.converged;
+  }
+
+ private:
+  const Model& model_;
+  const ExactInputs& in_;
+  const Params& params_;
+  const ExactOptions& options_;
+  SpectralRadius radius_;
+  std::unique_ptr<detail::Beside> thread_;  // last: joined before the members above go
+};
 
 /// Backward Euler on M y'' = -K y - Gamma y' with K, Gamma >= 0 dissipates the energy
 /// y'^T M y' + y^T K y every step, for every h: no limit on dt or gamma.
@@ -223,26 +270,6 @@ void symmetric_index_limits(const ExactInputs& in, const Params& params,
                                    },
                                    start(cap, newton_step(h, at_scene.value - 4, at_scene.slope_h)),
                                    std::make_pair(h, at_scene.slope_h));
-}
-
-/// The symmetric index's limits and the spectral radius. The radius (Arnoldi on the
-/// amplification operator: Eigen's and dampbound's own code, no CHOLMOD, no BLAS) needs none of
-/// the index's results, and the index's certified eigenvalues spend most of their time in
-/// factorisations on one core: on two or more threads the radius runs beside them, on a copy of
-/// what it reads. Each is computed as it would be alone, so the bits are the same.
-void index_limits_and_radius(const Model& model, const ExactInputs& in, const Params& params,
-                             const ExactOptions& options, ExactStability& e) {
-  if (!options.with_radius || detail::resolved_threads(options.threads) < 2) {
-    symmetric_index_limits(in, params, options, e);
-    add_radius(model, in, params, options, e);
-    return;
-  }
-  ExactStability radius = e;
-  detail::Beside beside([&] { add_radius(model, in, params, options, radius); });
-  symmetric_index_limits(in, params, options, e);
-  beside.finish();
-  e.spectral_radius = radius.spectral_radius;
-  e.radius_converged = radius.radius_converged;
 }
 
 /// Forward Euler, Verlet, RK4 (and implicit Euler at an indefinite K) with non-uniform
@@ -370,7 +397,7 @@ ExactStability over_budget(const Model& model, const std::vector<Vec3>& x, const
   e.spectrum = {kNaN, kNaN};
   e.decaying = e.spectrum;
   e.lambda_max_lo = e.rate_min = e.rate_max = e.index = kNaN;
-  e.uniform_rate = in.r_max - in.r_min <= 1e-12 * in.r_max;  // as spectrum_and_rates()
+  e.uniform_rate = uniform_rates(in);
   e.spectral_radius = e.gamma_lo = e.gamma_hi = e.dt_max = kNaN;
   e.radius_converged = false;
   e.stable = false;
@@ -427,7 +454,14 @@ ExactStability exact_stability_within_budget(const Model& model, const std::vect
                                              const ExactInputs& in, const Params& params,
                                              const ExactOptions& options) {
   ExactStability e;
-  spectrum_and_rates(model, x, in, params, options, e);
+  // The radius beside the factorisations: the symmetric index's (semi-implicit Euler), else,
+  // for forward Euler, Verlet and RK4, the spectrum's, once their analysis clears the budget.
+  // Implicit Euler needs it only at an indefinite K, which the spectrum says.
+  RadiusBeside radius(model, in, params, options);
+  const bool frozen = params.integrator != Integrator::semi_implicit_euler &&
+                      params.integrator != Integrator::implicit_euler;
+  spectrum_and_rates(model, x, in, params, options, e,
+                     frozen ? std::function<void()>([&] { radius.start(); }) : nullptr);
   const double tiny = 1e-12 * std::max(1.0, std::abs(e.spectrum.lambda_max));
   if (e.integrator == Integrator::implicit_euler && e.spectrum.lambda_min >= -tiny) {
     unconditional(e);
@@ -436,10 +470,12 @@ ExactStability exact_stability_within_budget(const Model& model, const std::vect
   } else if (e.uniform_rate) {
     per_mode(in, params, e);
   } else if (e.integrator == Integrator::semi_implicit_euler) {
-    index_limits_and_radius(model, in, params, options, e);
+    radius.start();
+    symmetric_index_limits(in, params, options, e);
+    radius.add_to(e);
   } else {
     frozen_estimate(in, params, e);
-    add_radius(model, in, params, options, e);
+    radius.add_to(e);
     e.stable = std::isnan(e.spectral_radius)
                    ? (params.gamma >= e.gamma_lo && params.gamma < e.gamma_hi &&
                       params.dt <= e.dt_max)
