@@ -97,14 +97,14 @@ EigenInterval certified_smallest_eigenvalue(const SparseMatrix& A,
                                             double max_factor_flops = kNoFactorBudget);
 
 /// Both ends at once (one dense solve up to 400 rows, else the two methods above).
-/// `within_budget`, when given, is called on the calling thread once the pattern analysis has
-/// cleared the budget, before the first factorisation (or before the dense solve): work wanted
-/// only when the ends are computed can start beside the factorisations then. Not called for
-/// the zero matrix, which needs neither.
 struct CertifiedSpectrum {
   EigenInterval smallest;
   EigenInterval largest;
 };
+/// `within_budget`, when given, is called on the calling thread once the pattern analysis has
+/// cleared the budget, before the first factorisation (or before the dense solve): work wanted
+/// only when the ends are computed can start beside the factorisations then. Not called for
+/// the zero matrix, which needs neither.
 CertifiedSpectrum certified_spectrum(const SparseMatrix& A,
                                      std::optional<double> floor = std::nullopt, int threads = 1,
                                      double max_factor_flops = kNoFactorBudget,
