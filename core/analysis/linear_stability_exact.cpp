@@ -10,13 +10,16 @@
 #include <memory>
 
 #include "core/analysis/detail/beside.hpp"
+#include "core/analysis/detail/exact_over_budget.hpp"
 #include "core/analysis/detail/newton.hpp"
 #include "core/analysis/linear_stability_cholesky.hpp"
-#include "core/safe_bound.hpp"
 
 namespace dampbound {
+using detail::ExactInputs;
 using detail::newton_from_right;
 using detail::newton_step;
+using detail::over_budget;
+using detail::uniform_rates;
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -68,20 +71,6 @@ SpectralRadius spectral_radius_at(const Model& model, const SparseMatrix& K_weig
 }
 
 namespace {
-
-/// The inputs every method shares: A = M^-1/2 K M^-1/2 at x, its certified ends (lambda_max
-/// never low, lambda_min never high), the damping rates r_i = gamma_i / (gamma m_i) and the
-/// spectrum of the decaying modes (zero modes set aside).
-struct ExactInputs {
-  SparseMatrix A;
-  Eigen::VectorXd R;
-  double r_min = 0, r_max = 0;
-};
-
-/// Whether every damping rate is the same (to 1e-12): then every mode is a scalar recurrence.
-bool uniform_rates(const ExactInputs& in) {
-  return in.r_max - in.r_min <= 1e-12 * in.r_max;
-}
 
 ExactInputs assemble(const Model& model, const std::vector<Vec3>& x, int threads) {
   ExactInputs in;
@@ -285,169 +274,6 @@ void frozen_estimate(const ExactInputs& in, const Params& params, ExactStability
     const double c = e.rate_min + (e.rate_max - e.rate_min) * k / 16;
     e.dt_max = std::min(e.dt_max, uniform_dt_max(e.integrator, e.spectrum, c));
   }
-}
-
-/// The long double sum of n non-negative terms u_i^2 R_i over u^T u, less a bound on its
-/// rounding (gamma_{n+1} of itself, twice, and the conversion): a lower bound on the true
-/// quotient.
-double weighted_mean_below(const Eigen::VectorXd& u, const Eigen::VectorXd& R) {
-  long double uRu = 0, uu = 0;
-  for (Eigen::Index i = 0; i < u.size(); ++i) {
-    const long double s = static_cast<long double>(u(i)) * u(i);
-    uRu += s * R(i);
-    uu += s;
-  }
-  const long double unit = std::numeric_limits<long double>::epsilon() / 2;
-  const long double terms = static_cast<long double>(u.size()) + 2;
-  const long double gamma = terms * unit / (1 - terms * unit);
-  const double q = static_cast<double>(uRu / uu);
-  const double rounding = static_cast<double>(3 * gamma) + std::numeric_limits<double>::epsilon();
-  return std::max(0.0, q - rounding * q);
-}
-
-/// Over the budget, forward Euler, Verlet and RK4 at a uniform rate (`r` = gamma_i/(gamma
-/// m_i)): their modes decouple, so the closed forms of linear_stability_modes.hpp prove
-/// instability from the Rayleigh quotient `top.lo` (mode_instability) and, where SPEC 9's
-/// floor proves K >= 0, stability from Gershgorin's `top.hi` (mode_stability).
-void per_mode_proofs(double r, const EigenInterval& top, std::optional<double> floor,
-                     const Params& params, ExactStability& e) {
-  ExactStability::Unfactored& b = e.unfactored;
-  const double h = params.dt, c = params.gamma * r;
-  if (floor && *floor >= 0) {  // K >= 0: every mode in [0, hi]
-    const double hi = top.hi * (1 + 1e-12);  // room for the rounding of Gershgorin's sums
-    const ModeStability m = mode_stability(params.integrator, hi, c, h);
-    if (m.proved) {
-      b.stable_lambda_hi = hi;
-      b.dt_stable_up_to = m.dt_up_to;
-      if (r > 0) {  // rounded inwards
-        auto inward = [](double v, double to) {
-          return std::isinf(v) || v == 0 ? v : std::nextafter(v, to);  // 0: exact
-        };
-        b.gamma_stable_lo = inward(m.rate_lo / r, kInf);
-        b.gamma_stable_hi = inward(m.rate_hi / r, -kInf);
-      } else {  // gamma changes nothing: every gamma or none
-        b.gamma_stable_lo = m.stable ? 0 : kInf;
-        b.gamma_stable_hi = m.stable ? kInf : 0;
-      }
-      e.stable = m.stable;
-    }
-  }
-  const ModeInstability m = mode_instability(params.integrator, top.lo, c, h);
-  if (std::isnan(m.lambda_from)) return;
-  b.mode_unstable_from = m.lambda_from;
-  b.dt_unstable_from = m.dt_from;
-  // Rounded down: the unstable side. With no damping rate anywhere gamma changes nothing:
-  // every gamma is unstable (inf) or none is proved (-inf).
-  if (std::isnan(m.rate_below))  // RK4: no threshold in gamma
-    b.gamma_unstable_below = kNaN;
-  else if (r > 0)
-    b.gamma_unstable_below =
-        std::isfinite(m.rate_below) ? std::nextafter(m.rate_below / r, -kInf) : -kInf;
-  else
-    b.gamma_unstable_below = m.rate_below >= 0 ? kInf : -kInf;
-}
-
-/// Over the budget, the paper's step with K >= 0 (SPEC 9's floor). SPEC 9's safe bound
-/// (core/safe_bound.hpp) is Gershgorin on the index matrix S = h^2 A + 2 h C, node by node:
-/// its top is at most max_i (h^2 R_i + 2 h c_i), and an index below 4 is stability (SPEC 7,
-/// 9). So the exact rows prove what the safe rows judge: the user's point, every gamma up to
-/// min_i gamma_safe_i / gamma_scale_i at dt and every dt up to min_i dt_safe_i at gamma, with
-/// R_i (safe_row_sums) raised and the limits lowered by 1e-12 of themselves for rounding.
-void paper_step_gershgorin(const Model& model, const std::vector<Vec3>& x, const Params& params,
-                           ExactStability& e) {
-  ExactStability::Unfactored& b = e.unfactored;
-  const double h = params.dt;
-  constexpr double kRoom = 1 + 1e-12, kIn = 1 - 1e-12;
-  std::vector<double> R;
-  safe_row_sums(model, x, R);
-  double top = 0, gamma_hi = kInf, dt_hi = kInf;
-  for (size_t i = 0; i < R.size(); ++i) {
-    if (model.fixed[i]) continue;
-    const double r = R[i] * kRoom, m = model.mass[i], scale = model.gamma_scale[i];
-    const double gamma_i = params.gamma * scale, safe = safe_gamma(m, h, r);
-    top = std::max(top, h * h * r + 2 * h * gamma_i / m);
-    if (scale > 0)
-      gamma_hi = std::min(gamma_hi, safe / scale);
-    else if (safe <= 0)
-      gamma_hi = -kInf;  // an undamped node past the index already: no gamma helps
-    // safe_dt's root without its cancellation: (sqrt(c^2 + 4 R) - c) / R, SPEC 9's form that
-    // the reports print, loses 1e-11 of itself at c = 1000, R = 9, more than kIn allows.
-    const double c = gamma_i / m;
-    if (r > 0 || c > 0) dt_hi = std::min(dt_hi, 4 / (c + std::sqrt(c * c + 4 * r)));
-  }
-  b.index_at_most = top * kRoom;
-  if (gamma_hi > 0) {
-    b.gamma_stable_lo = 0;
-    b.gamma_stable_hi = std::isinf(gamma_hi) ? gamma_hi : gamma_hi * kIn;
-  }
-  b.dt_stable_up_to = std::isinf(dt_hi) ? dt_hi : dt_hi * kIn;
-  e.stable = b.index_at_most < 4;
-}
-
-/// Over the budget: nothing factorised, every exact number NaN, the prediction and the budget
-/// kept for the report; and what plain Lanczos and Gershgorin prove without a factorisation
-/// (ExactStability::Unfactored).
-ExactStability over_budget(const Model& model, const std::vector<Vec3>& x, const ExactInputs& in,
-                           const Params& params, const ExactOptions& options,
-                           const FactorisationOverBudget& over) {
-  const std::optional<double> floor = psd_floor(model, x);
-  ExactStability e;
-  e.integrator = params.integrator;
-  e.method = ExactMethod::over_budget;
-  e.spectrum = {kNaN, kNaN};
-  e.decaying = e.spectrum;
-  e.lambda_max_lo = e.rate_min = e.rate_max = e.index = kNaN;
-  e.uniform_rate = uniform_rates(in);
-  e.spectral_radius = e.gamma_lo = e.gamma_hi = e.dt_max = kNaN;
-  e.radius_converged = false;
-  e.stable = false;
-  e.factor_flops = over.flops;
-  e.factor_bytes = over.bytes;
-  e.factor_budget = over.budget;
-  e.not_computed_reason = over.what();
-  if (options.unfactored_steps < 1 || in.A.rows() == 0) return e;
-  // The paper's step: the vector is aimed at the index matrix S = h^2 A + 2 h gamma diag(R)
-  // at the user's gamma and dt, whose top decides stability (SPEC 7); others: at A.
-  const double h = params.dt, gamma = params.gamma;
-  const bool paper_step = params.integrator == Integrator::semi_implicit_euler;
-  Eigen::VectorXd u;
-  const Eigen::VectorXd d = (2 * h * gamma) * in.R;
-  const EigenInterval top =
-      paper_step ? unfactored_largest_eigenvalue(in.A, &u, options.threads,
-                                                 options.unfactored_steps, h * h, &d)
-                 : unfactored_largest_eigenvalue(in.A, &u, options.threads,
-                                                 options.unfactored_steps);
-  ExactStability::Unfactored& b = e.unfactored;
-  b.lambda_max_lo = top.lo;
-  b.lambda_max_hi = top.hi;
-  b.lanczos_steps = top.lanczos_steps;
-  // Implicit Euler needs no lambda_max: with K positive semidefinite (SPEC 9's floor proves
-  // lambda_min >= 0, to the same rounding allowance as the computed route) it is stable for
-  // every dt and gamma (unconditional()).
-  if (params.integrator == Integrator::implicit_euler && floor &&
-      *floor >= -1e-12 * std::max(1.0, std::abs(top.hi))) {
-    b.unconditional = true;
-    e.stable = true;
-  }
-  if (!paper_step && in.r_max - in.r_min <= 1e-12 * in.r_max)
-    per_mode_proofs(in.r_max, top, floor, params, e);
-  if (!paper_step) return e;
-  // index(gamma', h') >= u^T (h'^2 A + 2 h' gamma' diag(R)) u / u^T u
-  //                  >= h'^2 a + 2 h' gamma' rho  (a, rho: the quotients less their rounding),
-  // and index >= 4 is instability (SPEC 7), so each threshold below proves it.
-  constexpr double kUp = 1 + 4 * std::numeric_limits<double>::epsilon();
-  const double a = top.lo, rho = weighted_mean_below(u, in.R);
-  const double index = h * h * a + 2 * h * gamma * rho;
-  b.index_at_least = index - 4 * std::numeric_limits<double>::epsilon() * std::abs(index);
-  if (h * h * a >= 4 * kUp)
-    b.gamma_unstable_from = 0;
-  else
-    b.gamma_unstable_from = rho > 0 ? (4 - h * h * a) / (2 * h * rho) * kUp : kInf;
-  // dt: a t^2 + 2 c t >= 4 from its positive root on, when a > 0 (c >= 0).
-  const double c = gamma * rho;
-  b.dt_unstable_from = a > 0 ? 4 / (c + std::sqrt(c * c + 4 * a)) * kUp * kUp : kInf;
-  if (floor && *floor >= 0) paper_step_gershgorin(model, x, params, e);
-  return e;
 }
 
 ExactStability exact_stability_within_budget(const Model& model, const std::vector<Vec3>& x,
