@@ -202,7 +202,7 @@ EigenInterval largest(const SparseMatrix& A, std::unique_ptr<ShiftedCholesky>& h
     }
     if (cores < 2) {
       prepare();
-      LanczosRecurrence lanczos(A, cores);
+      LanczosRecurrence<float> lanczos(A, cores);
       return lanczos_estimate(lanczos, n);
     }
     Beside preparing(prepare);
@@ -224,8 +224,10 @@ EigenInterval largest(const SparseMatrix& A, std::unique_ptr<ShiftedCholesky>& h
   // A factorisation that fails says the shift is still below lambda_max (Lanczos can stall
   // on an eigenvalue just under the top): the next shift is twice the residual above (some
   // eigenvalue lies within it), then eightfold steps, at worst up to Gershgorin's bound.
-  const double fallback = std::max(2 * estimate.residual, 1e-9 * span);
-  double step = std::clamp(4 * estimate.error, 1e-9 * span, fallback);
+  // Both allow for the estimate's matrix (A in float) lying up to its matrix_error from A.
+  const double wide = std::max(2 * estimate.residual, 1e-9 * span);
+  const double fallback = wide + estimate.matrix_error;
+  double step = std::clamp(4 * estimate.error, 1e-9 * span, wide) + estimate.matrix_error;
   // What the first factorisation proves: its rounding bound, a pass over the factor, taken
   // beside the solves below on two or more threads (both only read the factor).
   std::future<double> first_proved;
@@ -323,13 +325,13 @@ EigenInterval unfactored_largest_eigenvalue(const SparseMatrix& A, Eigen::Vector
   // Ritz vector u = sum_j y_j v_j.
   constexpr int kUnfactoredCheck = 10;
   const TopEstimate e = [&] {
-    LanczosRecurrence lanczos(A, threads, scale, d);
+    LanczosRecurrence<double> lanczos(A, threads, scale, d);
     return lanczos_estimate(lanczos, n, max_steps, kUnfactoredCheck, 1e-6);
   }();
   const int m = e.steps;
   std::vector<double> y = detail::tridiagonal_eigenvector(e.alpha.data(), e.beta.data(), m, e.theta);
   if (y.empty()) y = {1.0};  // inverse iteration broke down: the start vector itself
-  LanczosRecurrence replay(A, threads, scale, d);
+  LanczosRecurrence<double> replay(A, threads, scale, d);
   Eigen::VectorXd u = y[0] * replay.vector();
   // The first run took these steps without meeting an invariant subspace, and the replay
   // makes the same operations.

@@ -35,7 +35,7 @@ void Beside::finish() {
 TopEstimate estimate_beside(const SparseMatrix& S, int cores,
                             const std::function<bool()>& beside_done,
                             const std::function<bool()>& stop) {
-  LanczosRecurrence lanczos(S, cores - 1);
+  LanczosRecurrence<float> lanczos(S, cores - 1);
   bool all_threads = false;
   return lanczos_estimate(lanczos, S.rows(), kLanczosSteps, kLanczosCheck, 1e-7, [&] {
     if (stop()) return false;

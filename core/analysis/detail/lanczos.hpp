@@ -23,17 +23,28 @@ Eigen::VectorXd lanczos_start(Eigen::Index n);
 /// time, on `threads` node threads (the same bits on any count: detail/symmetric_product.hpp).
 /// The operations do not depend on what the caller does with the vectors, so a second run
 /// replays the first one's bits: a Ritz vector is formed that way, without storing the basis.
+///
+/// Scalar float: the recurrence of A's values rounded to float (`scale` 1 and `d` null only),
+/// with float vectors and alpha, beta summed in double: about half the bytes per step, for the
+/// estimate that only places a shift (docs/performance.md, "The estimate in single
+/// precision"). Its top Ritz value is one of A + E, |E| <= 2^-24 |A| entry by entry, so within
+/// matrix_error() = 2^-24 max_r sum_s |A_rs| of one of A's (Weyl), up to the float recurrence's
+/// own rounding, of the same order.
+template <class Scalar>
 class LanczosRecurrence {
  public:
+  using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
   LanczosRecurrence(const SparseMatrix& A, int threads, double scale = 1,
                     const Eigen::VectorXd* d = nullptr);
   /// v_j: the vector before step j.
-  const Eigen::VectorXd& vector() const { return v_; }
+  const Vector& vector() const { return v_; }
   /// Step j: alpha_j and beta_j appended, v_{j+1} formed; false when beta_j = 0 (an
   /// invariant subspace: the Ritz values are eigenvalues).
   bool step();
   /// The threads of the next steps (the same bits on any count).
   void set_threads(int threads) { pool_.set_threads(threads); }
+  /// How far the matrix of the recurrence may lie from S in the 2-norm: 0 in double.
+  double matrix_error() const { return matrix_error_; }
   std::vector<double> alpha, beta;  ///< T's diagonal and off-diagonal so far
 
  private:
@@ -41,7 +52,9 @@ class LanczosRecurrence {
   const Eigen::VectorXd* d_;
   double scale_;
   NodeThreads pool_;
-  Eigen::VectorXd v_, previous_, w_;
+  std::vector<float> single_;  ///< float: A's values rounded
+  double matrix_error_ = 0;
+  Vector v_, previous_, w_;
   double b_ = 0;
   std::vector<double> partial_;  ///< the blocks' partial sums of alpha and beta^2
 };
@@ -52,6 +65,9 @@ struct TopEstimate {
   double residual = 0;  ///< its Lanczos residual: some eigenvalue lies within it
   double error = 0;     ///< lambda_max - theta extrapolated from the last checkpoints
   int steps = 0;
+  /// How far the recurrence's matrix may lie from S (LanczosRecurrence::matrix_error): theta
+  /// is a Ritz value of that matrix, and `residual` and `error` are measured against it.
+  double matrix_error = 0;
   std::vector<double> alpha, beta;  ///< T
 };
 
@@ -65,7 +81,8 @@ struct TopEstimate {
 inline constexpr int kLanczosSteps = 1000, kLanczosCheck = 50;
 /// How long the product's threads poll for the next product before they sleep.
 inline constexpr int kLanczosSpinMicroseconds = 200;
-TopEstimate lanczos_estimate(LanczosRecurrence& lanczos, Eigen::Index n,
+template <class Scalar>
+TopEstimate lanczos_estimate(LanczosRecurrence<Scalar>& lanczos, Eigen::Index n,
                              int max_steps = kLanczosSteps, int check = kLanczosCheck,
                              double tolerance = 1e-7, const std::function<bool()>& after_step = {});
 

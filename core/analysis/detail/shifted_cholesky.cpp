@@ -149,17 +149,34 @@ ShiftedCholesky::ShiftedCholesky(const SparseMatrix& A) : n_(A.rows()) {
 
 void ShiftedCholesky::analyse(double budget) {
   if (analysed_) return;
-  const std::lock_guard<std::mutex> turn(cholmod_turn());
-  const SerialOpenMp serial;
-  if (budget < kNoFactorBudget && n_ > kQuickCheckRows) {
-    const Prediction amd = amd_prediction(B_);
-    if (amd.flops > kAmdSlack * budget)
-      throw FactorisationOverBudget(amd.flops, 8 * amd.entries, budget, true);
+  {
+    const std::lock_guard<std::mutex> turn(cholmod_turn());
+    const SerialOpenMp serial;
+    if (budget < kNoFactorBudget && n_ > kQuickCheckRows) {
+      const Prediction amd = amd_prediction(B_);
+      if (amd.flops > kAmdSlack * budget)
+        throw FactorisationOverBudget(amd.flops, 8 * amd.entries, budget, true);
+    }
+    llt_.analyzePattern(B_);
+    analysed_ = true;
+    if (llt_.cholmod().fl > budget)
+      throw FactorisationOverBudget(llt_.cholmod().fl, 8 * llt_.cholmod().lnz, budget);
   }
-  llt_.analyzePattern(B_);
-  analysed_ = true;
-  if (llt_.cholmod().fl > budget)
-    throw FactorisationOverBudget(llt_.cholmod().fl, 8 * llt_.cholmod().lnz, budget);
+  allocate_values();
+}
+
+void ShiftedCholesky::allocate_values() {
+  // Outside the turn: this calls only CHOLMOD's allocator, on this object's own common.
+  cholmod_factor& L = llt_.factor();
+  if (L.xtype != CHOLMOD_PATTERN || !L.is_super) return;
+  // What cholmod_super_numeric would do first; it keeps values it finds allocated. Without
+  // the memory the factor stays symbolic and the factorisation tries (and reports) again.
+  cholmod_change_factor(CHOLMOD_REAL, 1, 1, 1, 1, &L, &llt_.cholmod());
+  if (L.xtype != CHOLMOD_REAL || L.x == nullptr) return;
+  volatile char* x = static_cast<char*>(L.x);  // a write per page maps it
+  const size_t bytes = L.xsize * sizeof(double);
+  constexpr size_t kPage = 4096;
+  for (size_t k = 0; k < bytes; k += kPage) x[k] = 0;
 }
 
 void ShiftedCholesky::assign(const SparseMatrix& A) {

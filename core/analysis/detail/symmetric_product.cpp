@@ -33,41 +33,67 @@ double blocked_sum(Eigen::Index rows, size_t block_rows, std::vector<double>& pa
 
 }  // namespace
 
-double product_and_dot(const SymmetricOperator& S, const Eigen::VectorXd& v, double b,
-                       const Eigen::VectorXd& p, Eigen::VectorXd& w, std::vector<double>& partial,
-                       NodeThreads& threads, size_t block_rows) {
-  const SparseMatrix& A = S.A;
+namespace {
+
+/// w_r = row_value(r, sum over column r of A of value[k] v[inner[k]], summed in Value in
+/// index order); returns the blocked sum of w_r v_r in double.
+template <class Value, class Vector, class RowValue>
+double product_pass(const SparseMatrix& A, const Value* value, const Vector& v, Vector& w,
+                    std::vector<double>& partial, NodeThreads& threads, size_t block_rows,
+                    const RowValue& row_value) {
   w.resize(A.rows());
   const int* outer = A.outerIndexPtr();
   const int* inner = A.innerIndexPtr();
-  const double* value = A.valuePtr();
   const int* count = A.innerNonZeroPtr();  // null when compressed (assembled matrices are)
-  const double* d = S.d ? S.d->data() : nullptr;
-  const double scale = S.scale;
   return blocked_sum(A.rows(), block_rows, partial, threads, [&](size_t r) {
     const int first = outer[r];
     const int last = count ? first + count[r] : outer[r + 1];
-    double sum = 0;
+    Value sum = 0;
     for (int k = first; k < last; ++k) sum += value[k] * v[inner[k]];
     const Eigen::Index i = static_cast<Eigen::Index>(r);
-    const double x = d ? (scale * sum + d[r] * v[i]) - b * p[i] : sum - b * p[i];
+    const Value x = row_value(i, sum);
     w[i] = x;
-    return x * v[i];
+    return static_cast<double>(x) * v[i];
   });
 }
 
-double subtract_and_square(Eigen::VectorXd& w, double a, const Eigen::VectorXd& v,
-                           std::vector<double>& partial, NodeThreads& threads, size_t block_rows) {
+}  // namespace
+
+double product_and_dot(const SymmetricOperator& S, const Eigen::VectorXd& v, double b,
+                       const Eigen::VectorXd& p, Eigen::VectorXd& w, std::vector<double>& partial,
+                       NodeThreads& threads, size_t block_rows) {
+  const double* d = S.d ? S.d->data() : nullptr;
+  const double scale = S.scale;
+  return product_pass(S.A, S.A.valuePtr(), v, w, partial, threads, block_rows,
+                      [&](Eigen::Index i, double sum) {
+                        return d ? (scale * sum + d[i] * v[i]) - b * p[i] : sum - b * p[i];
+                      });
+}
+
+double product_and_dot(const SingleOperator& S, const Eigen::VectorXf& v, float b,
+                       const Eigen::VectorXf& p, Eigen::VectorXf& w, std::vector<double>& partial,
+                       NodeThreads& threads, size_t block_rows) {
+  return product_pass(S.A, S.values, v, w, partial, threads, block_rows,
+                      [&](Eigen::Index i, float sum) { return sum - b * p[i]; });
+}
+
+namespace {
+
+template <class Vector>
+double subtract_and_square_any(Vector& w, typename Vector::Scalar a, const Vector& v,
+                               std::vector<double>& partial, NodeThreads& threads,
+                               size_t block_rows) {
   return blocked_sum(w.size(), block_rows, partial, threads, [&](size_t r) {
     const Eigen::Index i = static_cast<Eigen::Index>(r);
-    const double x = w[i] - a * v[i];
+    const typename Vector::Scalar x = w[i] - a * v[i];
     w[i] = x;
-    return x * x;
+    return static_cast<double>(x) * x;
   });
 }
 
-void divide(const Eigen::VectorXd& w, double b, Eigen::VectorXd& out, NodeThreads& threads,
-            size_t block_rows) {
+template <class Vector>
+void divide_any(const Vector& w, typename Vector::Scalar b, Vector& out, NodeThreads& threads,
+                size_t block_rows) {
   out.resize(w.size());
   const size_t n = static_cast<size_t>(w.size());
   threads.run(block_count(w.size(), block_rows), [&](int, size_t first_block, size_t end_block) {
@@ -75,6 +101,28 @@ void divide(const Eigen::VectorXd& w, double b, Eigen::VectorXd& out, NodeThread
     for (size_t r = first_block * block_rows; r < end; ++r)
       out[static_cast<Eigen::Index>(r)] = w[static_cast<Eigen::Index>(r)] / b;
   });
+}
+
+}  // namespace
+
+double subtract_and_square(Eigen::VectorXd& w, double a, const Eigen::VectorXd& v,
+                           std::vector<double>& partial, NodeThreads& threads, size_t block_rows) {
+  return subtract_and_square_any(w, a, v, partial, threads, block_rows);
+}
+
+double subtract_and_square(Eigen::VectorXf& w, float a, const Eigen::VectorXf& v,
+                           std::vector<double>& partial, NodeThreads& threads, size_t block_rows) {
+  return subtract_and_square_any(w, a, v, partial, threads, block_rows);
+}
+
+void divide(const Eigen::VectorXd& w, double b, Eigen::VectorXd& out, NodeThreads& threads,
+            size_t block_rows) {
+  divide_any(w, b, out, threads, block_rows);
+}
+
+void divide(const Eigen::VectorXf& w, float b, Eigen::VectorXf& out, NodeThreads& threads,
+            size_t block_rows) {
+  divide_any(w, b, out, threads, block_rows);
 }
 
 }  // namespace dampbound::detail

@@ -3,7 +3,9 @@
 // w = A v - b p with the bits of Eigen's serial `w = A * v; w -= b * p`, then w -= a v and
 // v' = w / beta, with the step's two sums (alpha = w . v, beta^2 = w . w) formed alongside.
 // Every sum is split into blocks of rows fixed by the matrix alone, so it has the same bits on
-// any thread count.
+// any thread count. The same passes in single precision (A's values rounded to float, float
+// vectors, the sums in double) serve the estimate that only places a shift: a Lanczos step
+// there is memory-bound, and moves about half the bytes.
 #include <cstddef>
 #include <vector>
 
@@ -42,6 +44,24 @@ double subtract_and_square(Eigen::VectorXd& w, double a, const Eigen::VectorXd& 
 
 /// out = w / b, element by element (out resized to w's size).
 void divide(const Eigen::VectorXd& w, double b, Eigen::VectorXd& out, NodeThreads& threads,
+            std::size_t block_rows = kSumBlockRows);
+
+/// A in single precision: A's pattern (not copied) and `values`, A's values rounded to float in
+/// A's order. Row r of A v is summed in float over column r's entries in index order.
+struct SingleOperator {
+  const SparseMatrix& A;
+  const float* values;
+};
+
+/// The passes above in single precision: each row's value is rounded to float, each sum is
+/// of the rows' float values multiplied in double, in the blocked order above.
+double product_and_dot(const SingleOperator& S, const Eigen::VectorXf& v, float b,
+                       const Eigen::VectorXf& p, Eigen::VectorXf& w, std::vector<double>& partial,
+                       NodeThreads& threads, std::size_t block_rows = kSumBlockRows);
+double subtract_and_square(Eigen::VectorXf& w, float a, const Eigen::VectorXf& v,
+                           std::vector<double>& partial, NodeThreads& threads,
+                           std::size_t block_rows = kSumBlockRows);
+void divide(const Eigen::VectorXf& w, float b, Eigen::VectorXf& out, NodeThreads& threads,
             std::size_t block_rows = kSumBlockRows);
 
 }  // namespace dampbound::detail
