@@ -36,9 +36,11 @@ LanczosRecurrence<Scalar>::LanczosRecurrence(const SparseMatrix& A, int threads,
     const Eigen::Index nonzeros = A.outerIndexPtr()[A.outerSize()];
     single_.resize(static_cast<size_t>(nonzeros));
     const double* value = A.valuePtr();
-    // |fl(a) - a| <= 2^-24 |a| for a in float's normal range; a value outside it (or one
-    // that is not finite) makes the bound infinite, which widens the first shift to Gershgorin's.
+    // |fl(a) - a| <= 2^-24 |a| + 2^-150 (the second term below float's normal range); a
+    // value beyond its largest (or not finite) makes the bound infinite, which widens the
+    // first shift to Gershgorin's.
     double worst_row = 0;
+    int worst_count = 0;
     bool in_range = true;
     for (Eigen::Index c = 0; c < A.outerSize(); ++c) {
       const int first = A.outerIndexPtr()[c];
@@ -47,15 +49,16 @@ LanczosRecurrence<Scalar>::LanczosRecurrence(const SparseMatrix& A, int threads,
       double row = 0;
       for (int k = first; k < last; ++k) {
         const double a = std::abs(value[k]);
-        in_range = in_range && a <= std::numeric_limits<float>::max() &&
-                   (a == 0 || a >= std::numeric_limits<float>::min());
+        in_range = in_range && a <= std::numeric_limits<float>::max();  // false for NaN
         single_[static_cast<size_t>(k)] = static_cast<float>(value[k]);
         row += a;
       }
       worst_row = std::max(worst_row, row);
+      worst_count = std::max(worst_count, last - first);
     }
-    matrix_error_ = in_range ? std::ldexp(worst_row, -24) * (1 + 1e-6)
-                             : std::numeric_limits<double>::infinity();
+    matrix_error_ = in_range
+                        ? (std::ldexp(worst_row, -24) + std::ldexp(worst_count, -150)) * (1 + 1e-6)
+                        : std::numeric_limits<double>::infinity();
     v_ = start.cast<float>();
   } else {
     v_ = start;

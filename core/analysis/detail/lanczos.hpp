@@ -27,9 +27,10 @@ Eigen::VectorXd lanczos_start(Eigen::Index n);
 /// Scalar float: the recurrence of A's values rounded to float (`scale` 1 and `d` null only),
 /// with float vectors and alpha, beta summed in double: about half the bytes per step, for the
 /// estimate that only places a shift (docs/performance.md, "The estimate in single
-/// precision"). Its top Ritz value is one of A + E, |E| <= 2^-24 |A| entry by entry, so within
-/// matrix_error() = 2^-24 max_r sum_s |A_rs| of one of A's (Weyl), up to the float recurrence's
-/// own rounding, of the same order.
+/// precision"). Its top Ritz value is one of A + E, |E| <= 2^-24 |A| + 2^-150 entry by entry
+/// (the second term below float's normal range), so within matrix_error() = 2^-24 max_r
+/// sum_s |A_rs| + 2^-150 (entries per row) of one of A's (Weyl), up to the float recurrence's
+/// own rounding, of the same order; infinite where an entry lies beyond float's range.
 template <class Scalar>
 class LanczosRecurrence {
  public:

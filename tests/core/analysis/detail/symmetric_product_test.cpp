@@ -214,7 +214,8 @@ TEST(SymmetricProduct, SinglePrecisionPassesGiveTheirDocumentedBits) {
 /// The estimate that places the first shift, in single precision: the same bits on 1 and 2
 /// threads, its top Ritz value within its matrix error (2^-24 of A's largest absolute row sum)
 /// of the double recurrence's after the same 200 steps (in practice 100 times closer). A matrix
-/// with an entry beyond float's range gets an infinite matrix error.
+/// with an entry beyond float's range gets an infinite matrix error, one below its normal range a
+/// finite one.
 TEST(SymmetricProduct, SinglePrecisionEstimateLiesWithinItsMatrixErrorOfTheDoubleOne) {
   Params p;
   p.m = p.kappa = 0.001;
@@ -243,6 +244,13 @@ TEST(SymmetricProduct, SinglePrecisionEstimateLiesWithinItsMatrixErrorOfTheDoubl
   huge.coeffRef(7, 7) = 1e39;
   LanczosRecurrence<float> beyond(huge, 1);
   EXPECT_TRUE(std::isinf(beyond.matrix_error()));
+  // Below float's normal range the rounding is absolute (at most 2^-150 an entry), and the
+  // bound stays finite: a deformed mesh has such entries where a spring is nearly aligned
+  // with an axis.
+  SparseMatrix tiny = A;
+  tiny.coeffRef(7, 7) += 1e-44;
+  LanczosRecurrence<float> below(tiny, 1);
+  EXPECT_NEAR(below.matrix_error(), f1.matrix_error, 1e-6 * f1.matrix_error);
   EXPECT_THROW(LanczosRecurrence<float>(A, 1, 2.0), std::invalid_argument);
 }
 
