@@ -9,7 +9,6 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
-#include <future>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -214,6 +213,7 @@ EigenInterval largest(const SparseMatrix& A, std::unique_ptr<ShiftedCholesky>& h
   }();
   if (after_estimate) after_estimate();
   ShiftedCholesky& f = *held;
+  f.set_solve_threads(cores);
   Eigen::VectorXd u;
   // Gershgorin: lambda_max <= g.hi, so (g.hi + a little) I - A is positive definite; the
   // largest diagonal entry (a Rayleigh quotient) is below lambda_max.
@@ -228,15 +228,14 @@ EigenInterval largest(const SparseMatrix& A, std::unique_ptr<ShiftedCholesky>& h
   const double wide = std::max(2 * estimate.residual, 1e-9 * span);
   const double fallback = wide + estimate.matrix_error;
   double step = std::clamp(4 * estimate.error, 1e-9 * span, wide) + estimate.matrix_error;
-  // What the first factorisation proves: its rounding bound, a pass over the factor, taken
-  // beside the solves below on two or more threads (both only read the factor).
-  std::future<double> first_proved;
+  // The shift of the first factorisation that succeeds. What it proves (its rounding bound, a
+  // pass over the factor) lies above the shift, so it is taken only where it can matter.
+  std::optional<double> first_shift;
   for (;;) {
     const double s = estimate.theta + step + margin;
     if (s >= gershgorin) break;
     if (f.factor(s)) {
-      first_proved = std::async(cores < 2 ? std::launch::deferred : std::launch::async,
-                                [&f] { return f.proved_above(); });
+      first_shift = s;
       break;
     }
     step = f.factorizations - factorizations_before == 1 ? std::max(fallback, 8 * step) : 8 * step;
@@ -252,11 +251,24 @@ EigenInterval largest(const SparseMatrix& A, std::unique_ptr<ShiftedCholesky>& h
       inverse_lanczos(f, u, 1e-10);
     const Rayleigh q = rayleigh(A, u, abs_row_sum, row_nonzeros);
     const double lo = std::max(max_diagonal, q.value - q.rounding);
-    if (first_proved.valid()) up = std::min(up, first_proved.get());
-    // The certificate: a factorisation just above the Rayleigh quotient.
-    const double width = certificate_width(q.value, span);
-    if (up - lo > width + 2 * margin && f.factor(lo + width + margin))
+    // The certificate: a factorisation just above the Rayleigh quotient, tried where the
+    // interval is wider than its width, which min(up, first factorisation's bound) decides.
+    // That bound exceeds the first shift: where the shift alone says "wider", the bound is
+    // needed only if the certificate fails or proves more than the shift, and then the first
+    // shift is factored again (the same bits) to take it.
+    const double width = certificate_width(q.value, span), room = width + 2 * margin;
+    const auto take_first = [&] {
+      if (!f.ready() || f.shift() != *first_shift) f.factor(*first_shift);
       up = std::min(up, f.proved_above());
+      first_shift.reset();
+    };
+    if (first_shift && std::min(up, *first_shift) - lo <= room) take_first();
+    if (up - lo > room && (!first_shift || std::min(up, *first_shift) - lo > room)) {
+      const bool certified = f.factor(lo + width + margin);
+      const double proved = certified ? f.proved_above() : up;
+      if (first_shift && (!certified || proved > *first_shift)) take_first();
+      up = std::min(up, proved);
+    }
     out.lo = lo;
     out.hi = up;
   }

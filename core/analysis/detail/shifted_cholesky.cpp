@@ -139,6 +139,7 @@ SparseMatrix negated_lower(const SparseMatrix& A) {
 }  // namespace
 
 ShiftedCholesky::ShiftedCholesky(const SparseMatrix& A) : n_(A.rows()) {
+  solve_threads_.set_grain(1);  // the two bins of a split solve, one a thread
   B_ = negated_lower(A);
   llt_.cholmod().print = 0;                // a failed factorisation is an answer, not news
   if (n_ < kNestedDissectionRows) {         // small: AMD alone; CHOLMOD's trial of nested
@@ -191,6 +192,8 @@ void ShiftedCholesky::assign(const SparseMatrix& A) {
   if (!same) {  // another pattern: analysed anew at the next factor()
     n_ = B_.rows();
     analysed_ = false;
+    split_ = {};
+    split_ready_ = false;
   }
 }
 
@@ -199,7 +202,20 @@ bool ShiftedCholesky::factor(double sigma) {
   const std::lock_guard<std::mutex> turn(cholmod_turn());
   const SerialOpenMp serial;
   llt_.setShift(sigma);
-  llt_.factorize(B_);
+  // The split of the solves (from the factor's pattern, which a numeric factorisation of a
+  // factor whose values are allocated reads but does not write: allocate_values) on the
+  // solves' second thread while the first factorisation runs.
+  const cholmod_factor& L = llt_.factor();
+  if (!L.is_super || L.xtype == CHOLMOD_PATTERN) split_ready_ = true;  // serial solves
+  solve_threads_.run(split_ready_ ? 1 : 2, [&](int, size_t first, size_t end) {
+    for (size_t k = first; k < end; ++k) {
+      if (k == 0)
+        llt_.factorize(B_);
+      else
+        split_ = split_supernodes(llt_.factor());
+    }
+  });
+  split_ready_ = true;
   ++factorizations;
   ok_ = llt_.info() == Eigen::Success;
   sigma_ = sigma;
@@ -218,7 +234,10 @@ void ShiftedCholesky::solve(const double* in, double* out) {
   ++solves;
   const std::lock_guard<std::mutex> turn(cholmod_turn());
   const SerialOpenMp serial;
-  supernodal_solve(llt_.factor(), in, out, solve_work_);
+  if (split_.empty())
+    supernodal_solve(llt_.factor(), in, out, solve_work_);
+  else
+    supernodal_solve_split(llt_.factor(), split_, in, out, solve_work_, solve_threads_);
 }
 
 }  // namespace dampbound::detail

@@ -4,11 +4,11 @@
 // pattern analysed once, each shift one numeric factorisation, solves with the factor, and
 // what a successful factorisation proves allowing for its rounding (cholesky_rounding.hpp).
 // Every call into CHOLMOD takes the one turn of the process (shifted_cholesky.cpp says why).
-#include "core/analysis/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
-
 #include <Eigen/CholmodSupport>
 #include <vector>
 
+#include "core/analysis/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
+#include "core/analysis/detail/supernodal_solve.hpp"
 #include "core/analysis/linear_stability_cholesky.hpp"
 
 namespace dampbound::detail {
@@ -51,9 +51,14 @@ class ShiftedCholesky {
   /// for the factorisation's rounding (detail/cholesky_rounding.hpp), rounded up.
   double proved_above() const;
   bool ready() const { return ok_; }
-  /// out = (sigma I - A)^-1 in after a successful factor(sigma) (detail/supernodal_solve.hpp).
+  /// out = (sigma I - A)^-1 in after a successful factor(sigma) (detail/supernodal_solve.hpp):
+  /// on a big factor the elimination tree's two halves at once, on `solve_threads` (the same
+  /// bits on one thread or two).
   void solve(const double* in, double* out);
+  void set_solve_threads(int threads) { solve_threads_.set_threads(threads); }
   Eigen::Index size() const { return n_; }
+  /// The shift of the last factor() call.
+  double shift() const { return sigma_; }
   int factorizations = 0, solves = 0;
 
  private:
@@ -62,6 +67,9 @@ class ShiftedCholesky {
   void allocate_values();
   SupernodalLLT llt_;
   std::vector<double> solve_work_;
+  SolveSplit split_;  ///< from the pattern, made beside the first factorisation; empty: serial
+  bool split_ready_ = false;
+  NodeThreads solve_threads_;
   double sigma_ = 0;
   bool analysed_ = false, ok_ = false;
 };
