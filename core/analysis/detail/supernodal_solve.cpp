@@ -278,9 +278,8 @@ void supernodal_solve_split(const cholmod_factor_struct& L, const SolveSplit& sp
   for (size_t i = 0; i < n; ++i) y[i] = b[perm[i]];
   for (double* g : gathered) std::fill(g, g + m, 0.0);
   const int* top_index = split.top_index.data();
-  // Forward: the bins at once, by plain loops (one thread at most in BLAS); each writes its own
-  // subtrees' rows and gathers its terms for the top's rows; then those, bin 0's first, and the
-  // top's supernodes.
+  // Forward: the bins at once (BLAS in bin 0 only); each writes its own subtrees' rows and
+  // gathers its terms for the top's rows; then those, bin 0's first, and the top's supernodes.
   threads.run(2, [&](int, size_t first_bin, size_t end_bin) {
     for (size_t bin = first_bin; bin < end_bin; ++bin) {
       double* eb = e[bin];
@@ -288,7 +287,7 @@ void supernodal_solve_split(const cholmod_factor_struct& L, const SolveSplit& sp
       for (const auto& [from, to] : split.bins[bin])
         for (int s = from; s <= to; ++s) {
           const Supernode sn(L, static_cast<size_t>(s));
-          forward_block(sn, y + sn.k1, eb, false);
+          forward_block(sn, y + sn.k1, eb, bin == 0 && sn.columns >= kBlasColumns);
           for (int t = 0; t < sn.below; ++t) {
             const int r = sn.below_rows[t];
             const int q = top_index[r];
@@ -325,7 +324,7 @@ void supernodal_solve_split(const cholmod_factor_struct& L, const SolveSplit& sp
         for (int s = it->second; s >= it->first; --s) {
           const Supernode sn(L, static_cast<size_t>(s));
           for (int t = 0; t < sn.below; ++t) eb[t] = y[sn.below_rows[t]];
-          backward_block(sn, y + sn.k1, eb, false);
+          backward_block(sn, y + sn.k1, eb, bin == 0 && sn.columns >= kBlasColumns);
         }
     }
   });

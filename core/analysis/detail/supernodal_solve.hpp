@@ -45,11 +45,11 @@ inline constexpr std::size_t kSplitEntries = std::size_t{1} << 20;
 /// Subtrees taken apart from the root down at most this many times.
 inline constexpr int kSplitRounds = 64;
 /// A split is kept when the top plus the heavier bin is under this share of the work, and
-/// the bins' supernodes of 32 columns or more (BLAS in a serial solve, the loops in a bin)
-/// hold at most kSplitWideShare of it. Five solves on 2 threads against serial: planes of
-/// 40k and 160k nodes (39 and 47 % wide) 1.4 to 1.5x faster; tetrahedral blocks of 8k and 27k
-/// nodes and the tissue block (62 to 70 % wide) 1.0 to 1.3x, and 1.3 to 1.5x slower when the
-/// second core is busy, so they stay serial.
+/// the bins' supernodes of 32 columns or more (BLAS in a serial solve, the loops in bin 1)
+/// hold at most kSplitWideShare of it (measured with the loops in both bins). Five solves on 2
+/// threads against serial: planes of 40k and 160k nodes (39 and 47 % wide) 1.4 to 1.5x faster;
+/// tetrahedral blocks of 8k and 27k nodes and the tissue block (62 to 70 % wide) 1.0 to 1.3x,
+/// and 1.3 to 1.5x slower when the second core is busy, so they stay serial.
 inline constexpr double kSplitWorthIt = 0.8;
 inline constexpr double kSplitWideShare = 0.55;
 
@@ -59,9 +59,10 @@ inline constexpr double kSplitWideShare = 0.55;
 SolveSplit split_supernodes(const cholmod_factor_struct& L,
                             std::size_t min_entries = kSplitEntries);
 
-/// As supernodal_solve, the two bins on `threads` (the same bits on one thread or two): the
-/// bins' supernodes by the plain loops whatever their width, as BLAS may be entered from one
-/// thread only (shifted_cholesky.cpp), the top's as supernodal_solve does. `split` non-empty.
+/// As supernodal_solve, the two bins on `threads` (the same bits on one thread or two). BLAS
+/// may be entered from one thread only (shifted_cholesky.cpp): bin 0, which runs on the
+/// calling thread, and the top take it for their wide supernodes as supernodal_solve does;
+/// bin 1, on the other thread, runs the plain loops whatever their width. `split` non-empty.
 void supernodal_solve_split(const cholmod_factor_struct& L, const SolveSplit& split,
                             const double* b, double* x, std::vector<double>& work,
                             NodeThreads& threads);
