@@ -233,8 +233,8 @@ SolveSplit split_supernodes(const cholmod_factor_struct& L, std::size_t min_entr
     }
   }
   if (best >= kSplitWorthIt * total) return {};  // no split worth a thread
-  // The bins' supernodes run the loops, not BLAS: where wide ones hold much of their work (a
-  // 3-D mesh's separators), the loops cost more than the second thread gains.
+  // Bin 1's supernodes run the loops, not BLAS: where the bins' wide ones hold much of the work
+  // (a 3-D mesh's separators), the loops cost more than the second thread gains.
   double wide = 0;
   {
     std::vector<char> in_top(ns, 0);
