@@ -7,7 +7,8 @@
 # Compared per command: exit status, stdout, stderr and every file written (run JSON
 # and --trace CSV of every shipped scene under both rules, the paper plane under every
 # policy and integrator, figure fig1/fig2 PNG + CSV, a small sweep CSV + map PNG, merge
-# of its shards, bounds and suggest text, check --junit). PNGs are compared as bytes:
+# of its shards, bounds and suggest text, check --junit, bounds of a bench scene at its
+# static equilibrium). PNGs are compared as bytes:
 # stb encodes deterministically, so equal bytes mean equal pixels. The only edit made
 # before comparing: JUnit's wall-clock time="..." attributes, a sweep's speed line and the
 # folder where each binary found the default scene are dropped. Compare builds of the same
@@ -64,6 +65,8 @@ commands() {
   echo "merge {out}/part1.csv {out}/part2.csv -o {out}/merged.csv"
   echo "map {out}/sweep.csv -o {out}/map.png"
   echo "check $root/scenes --junit {out}/check.xml"
+  # At a static equilibrium, where a certificate fails in the anchors' cluster (8 s each).
+  echo "bounds $root/bench/scenes/plane-200-loaded.toml --equilibrium"
 }
 
 run_all() {  # binary out_dir

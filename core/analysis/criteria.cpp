@@ -1,13 +1,17 @@
-#include "core/analysis/criteria_safe.hpp"
-#include "core/analysis/criteria_unfactored.hpp"
+// clang-format off
 #include "core/analysis/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
+// clang-format on
 #include "core/analysis/criteria.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <string>
 #include <utility>
 
+#include "core/analysis/criteria_safe.hpp"
+#include "core/analysis/criteria_unfactored.hpp"
 #include "core/bounds.hpp"
 #include "core/forces.hpp"
 #include "core/io/format.hpp"
@@ -27,6 +31,27 @@ CriterionResult criterion(std::string name, std::string source, std::string form
 }
 
 CriterionVerdict verdict_of(bool ok) { return ok ? CriterionVerdict::within : CriterionVerdict::beyond; }
+
+/// Per mode, a number taken over the spectrum's certified outer ends and the same over its
+/// inner ends (ExactStability::Inner): whether the printed digits tell them apart, so that the
+/// row must say its spectrum is only bracketed.
+bool bracketed(double outer, double inner) {
+  return !std::isnan(outer) && !std::isnan(inner) &&
+         format_digits(outer, 8) != format_digits(inner, 8);
+}
+
+/// A test where an end of the spectrum is only bracketed: proved where it holds over the outer
+/// ends, undecided (n/a) where it holds only over the inner ones, failed where over neither.
+CriterionVerdict bracketed_verdict(bool outer_ok, bool inner_ok) {
+  return outer_ok   ? CriterionVerdict::within
+         : inner_ok ? CriterionVerdict::not_applicable
+                    : CriterionVerdict::beyond;
+}
+
+/// "[a, b]" of two numbers in either order, 8 digits each.
+std::string span(double a, double b) {
+  return "[" + format_digits(std::min(a, b), 8) + ", " + format_digits(std::max(a, b), 8) + "]";
+}
 
 }  // namespace
 
@@ -179,10 +204,13 @@ std::vector<CriterionResult> exact_criteria(const ExactStability& e, const Param
   std::vector<CriterionResult> out;
   const std::string integ = to_string(e.integrator);
   if (!e.computed()) return unfactored_criteria(e, params);
-  CriterionResult lm = criterion("exact lambda_max of M^-1 K",
-                     "SPEC 7, 9 (tangent stiffness; Gershgorin, shift-and-invert, Cholesky)",
-                     "largest eigenvalue of M^-1/2 K M^-1/2 at the state; lambda_min = " +
-                         format_digits(e.spectrum.lambda_min, 8));
+  CriterionResult lm =
+      criterion("exact lambda_max of M^-1 K",
+                "SPEC 7, 9 (tangent stiffness; Gershgorin, shift-and-invert, Cholesky)",
+                "largest eigenvalue of M^-1/2 K M^-1/2 at the state; lambda_min " +
+                    (bracketed(e.spectrum.lambda_min, e.lambda_min_hi)
+                         ? "certified in " + span(e.spectrum.lambda_min, e.lambda_min_hi)
+                         : "= " + format_digits(e.spectrum.lambda_min, 8)));
   lm.unit = "1/s^2";
   lm.value = e.spectrum.lambda_max;
   lm.verdict = CriterionVerdict::not_applicable;
@@ -211,6 +239,14 @@ std::vector<CriterionResult> exact_criteria(const ExactStability& e, const Param
                (e.zero_modes ? " (zero modes, lambda = 0, excluded: z = 1 for any gamma, dt)" : "");
   if (e.indefinite && e.integrator != Integrator::implicit_euler)
     rho.test += "; K is indefinite at the state (lambda_min < 0): unstable whatever gamma and dt";
+  const ExactStability::Inner& in = e.inner;
+  const char* only_bracketed = " (an end of the spectrum is only bracketed: ";
+  if (bracketed(e.spectral_radius, in.spectral_radius)) {
+    rho.verdict = bracketed_verdict(e.stable, in.stable);
+    rho.test += std::string(only_bracketed) + "rho in " +
+                span(in.spectral_radius, e.spectral_radius) +
+                (rho.verdict == CriterionVerdict::not_applicable ? ", undecided)" : ")");
+  }
   out.push_back(rho);
 
   CriterionResult gi = criterion("exact gamma interval (" + integ + ")", "SPEC 7",
@@ -231,6 +267,19 @@ std::vector<CriterionResult> exact_criteria(const ExactStability& e, const Param
   dm.verdict = verdict_of(params.dt <= e.dt_max);
   dm.test = "dt = " + format_digits(params.dt, 8) + (params.dt <= e.dt_max ? " <= " : " > ") + "dt_max = " +
             format_digits(e.dt_max, 8) + (e.method == ExactMethod::frozen_estimate ? " (frozen-rate estimate)" : "");
+  if (!e.indefinite && bracketed(e.gamma_hi, in.gamma_hi)) {
+    const bool inner_inside = params.gamma >= in.gamma_lo && params.gamma < in.gamma_hi;
+    gi.verdict = bracketed_verdict(inside, inner_inside);
+    gi.test += std::string(only_bracketed) +
+               "the stable interval holds this one and lies within [" +
+               format_digits(in.gamma_lo, 8) + ", " + format_digits(in.gamma_hi, 8) + ")" +
+               (gi.verdict == CriterionVerdict::not_applicable ? ", undecided)" : ")");
+  }
+  if (!e.indefinite && bracketed(e.dt_max, in.dt_max)) {
+    dm.verdict = bracketed_verdict(params.dt <= e.dt_max, params.dt <= in.dt_max);
+    dm.test += std::string(only_bracketed) + "dt_max in " + span(e.dt_max, in.dt_max) +
+               (dm.verdict == CriterionVerdict::not_applicable ? ", undecided)" : ")");
+  }
   if (e.indefinite) {  // ExactStability::indefinite
     const std::string why = "K is indefinite at the state (lambda_min = " +
                             format_digits(e.spectrum.lambda_min, 8) + " < 0)";

@@ -89,6 +89,7 @@ void spectrum_and_rates(const Model& model, const std::vector<Vec3>& x, const Ex
                                                     options.max_factor_flops, within_budget);
   e.spectrum = {ends.smallest.lo, ends.largest.hi};
   e.lambda_max_lo = ends.largest.lo;
+  e.lambda_min_hi = ends.smallest.hi;
   e.rate_min = params.gamma * in.r_min;
   e.rate_max = params.gamma * in.r_max;
   e.uniform_rate = uniform_rates(in);
@@ -117,6 +118,9 @@ void indefinite_limits(ExactStability& e) {
   e.gamma_lo = e.gamma_hi = 0;
   e.dt_max = 0;
   e.stable = false;
+  // Proved (a Rayleigh quotient below 0), so the inner ends' numbers are these too.
+  e.inner.gamma_lo = e.inner.gamma_hi = e.inner.dt_max = 0;
+  e.inner.stable = false;
 }
 
 /// The spectral radius of the step's amplification operator, when asked for (else NaN).
@@ -179,28 +183,51 @@ void unconditional(ExactStability& e) {
   e.stable = true;
 }
 
-/// Uniform rates: every mode is a scalar recurrence; the limits are exact per mode.
-void per_mode(const ExactInputs& in, const Params& params, ExactStability& e) {
+/// Uniform rates c = gamma r_max: every mode is a scalar recurrence, and the numbers are exact
+/// per mode over `spectrum` (`decaying`: without its zero modes).
+ExactStability::Inner per_mode_over(Integrator integrator, const StiffnessSpectrum& spectrum,
+                                    const StiffnessSpectrum& decaying, double r_max,
+                                    const Params& params) {
   const double h = params.dt;
-  e.method = ExactMethod::per_mode;
-  const double c = params.gamma * in.r_max;
-  e.spectral_radius = spectrum_spectral_radius(e.integrator, e.decaying, c, h);
-  e.stable = spectrum_spectral_radius(e.integrator, e.spectrum, c, h) <= 1 + 1e-12;
+  const double c = params.gamma * r_max;
+  ExactStability::Inner n;
+  n.spectral_radius = spectrum_spectral_radius(integrator, decaying, c, h);
+  n.stable = spectrum_spectral_radius(integrator, spectrum, c, h) <= 1 + 1e-12;
   // The paper's step: SPEC 7's predicate as well (lambda_max h^2 + 2 c h < 4, c h < 2), as the
   // symmetric index decides at non-uniform rates and as the printed gamma_hi and dt_max say.
   // The radius alone counts |z| = 1 + 1e-12 as bounded: "stable" up to 1e-12 past the limits,
   // where over the budget the same vector's index proves the step unstable.
-  if (e.integrator == Integrator::semi_implicit_euler)
-    e.stable = e.stable && e.spectrum.lambda_max * h * h + 2 * c * h < 4 && c * h < 2;
-  const RateInterval ci = uniform_rate_interval(e.integrator, e.spectrum, h);
-  if (in.r_max > 0) {
-    e.gamma_lo = ci.lo / in.r_max;
-    e.gamma_hi = ci.hi / in.r_max;
+  if (integrator == Integrator::semi_implicit_euler)
+    n.stable = n.stable && spectrum.lambda_max * h * h + 2 * c * h < 4 && c * h < 2;
+  const RateInterval ci = uniform_rate_interval(integrator, spectrum, h);
+  if (r_max > 0) {
+    n.gamma_lo = ci.lo / r_max;
+    n.gamma_hi = ci.hi / r_max;
   } else {  // no node is damped: gamma has no effect
-    e.gamma_lo = 0;
-    e.gamma_hi = ci.lo == 0 && !ci.empty() ? kInf : 0;
+    n.gamma_lo = 0;
+    n.gamma_hi = ci.lo == 0 && !ci.empty() ? kInf : 0;
   }
-  e.dt_max = uniform_dt_max(e.integrator, e.spectrum, c);
+  n.dt_max = uniform_dt_max(integrator, spectrum, c);
+  return n;
+}
+
+/// The numbers over the certified outer ends, and over the inner ones (ExactStability::Inner).
+void per_mode(const ExactInputs& in, const Params& params, ExactStability& e) {
+  e.method = ExactMethod::per_mode;
+  const ExactStability::Inner outer =
+      per_mode_over(e.integrator, e.spectrum, e.decaying, in.r_max, params);
+  e.spectral_radius = outer.spectral_radius;
+  e.stable = outer.stable;
+  e.gamma_lo = outer.gamma_lo;
+  e.gamma_hi = outer.gamma_hi;
+  e.dt_max = outer.dt_max;
+  // A single eigenvalue (lambda_min = lambda_max) has inner ends that may cross: keep them in
+  // order, each still within its own end's interval.
+  const double top = e.lambda_max_lo;
+  const StiffnessSpectrum inner{std::min(e.lambda_min_hi, top), top};
+  const StiffnessSpectrum inner_decaying{
+      e.zero_modes ? std::min(e.decaying.lambda_min, top) : inner.lambda_min, top};
+  e.inner = per_mode_over(e.integrator, inner, inner_decaying, in.r_max, params);
 }
 
 /// Whether the certified index without damping, lambda_max(h^2 A), reaches 4. That is h^2

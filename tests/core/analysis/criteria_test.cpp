@@ -74,6 +74,63 @@ TEST(Criteria, AnEmptyGammaIntervalSaysSo) {
   EXPECT_EQ(some.test.find("empty"), std::string::npos) << some.test;
 }
 
+TEST(Criteria, AnOnlyBracketedSpectrumShowsItsRangeAndDecidesOnlyWhatItProves) {
+  // Where a certificate fails, an end of the spectrum is only bracketed (ExactStability::
+  // Inner): here lambda_max of the two-node system (1) is taken as certified in [1, 1.3].
+  // At c = 2 the step is stable for dt < 2 sqrt 2 - 2 = 0.8284 at lambda 1, and for
+  // dt < (sqrt 9.2 - 2)/1.3 = 0.7947309 at 1.3: a dt between is undecided, not BEYOND.
+  struct Case {
+    double dt;
+    CriterionVerdict verdict;
+  };
+  for (const Case k :
+       {Case{0.5, CriterionVerdict::within}, Case{0.81, CriterionVerdict::not_applicable},
+        Case{0.9, CriterionVerdict::beyond}}) {
+    Params p;  // m = kappa = 0.001
+    p.gamma = 0.002;
+    p.dt = k.dt;
+    SCOPED_TRACE(k.dt);
+    const Model m = two_node_system(p);
+    ExactStability e = exact_stability(m, rest_state(m).x, p);
+    ASSERT_EQ(e.method, ExactMethod::per_mode);
+    const auto narrow = exact_criteria(e, p);
+    for (const auto& row : narrow)
+      EXPECT_EQ(row.test.find("bracketed"), std::string::npos) << row.test;
+    // The true numbers become the inner ends' and the outer ones are taken at lambda 1.3.
+    e.inner = {e.spectral_radius, e.gamma_lo, e.gamma_hi, e.dt_max, e.stable};
+    e.lambda_max_lo = e.spectrum.lambda_max;
+    e.spectrum.lambda_max = e.decaying.lambda_max = 1.3 * e.lambda_max_lo;
+    const double c = p.gamma / p.m;
+    e.spectral_radius = spectrum_spectral_radius(e.integrator, e.decaying, c, p.dt);
+    e.dt_max = uniform_dt_max(e.integrator, e.spectrum, c);
+    e.gamma_hi = uniform_rate_interval(e.integrator, e.spectrum, p.dt).hi * p.m;
+    e.stable = p.dt <= e.dt_max;
+    ASSERT_NEAR(e.dt_max, (std::sqrt(9.2) - 2) / 1.3, 1e-12);
+    const auto wide = exact_criteria(e, p);
+    for (const char* prefix : {"exact spectral radius", "exact gamma interval", "exact dt limit"}) {
+      const CriterionResult& row = find(wide, prefix);
+      // At dt = 0.5 (c dt = 1) a mode's roots are 0 and 1 - lambda dt^2: the radius is the
+      // decaying bottom's, lambda = 1, whichever top, and its row shows no bracket.
+      if (k.dt == 0.5 && row.name.rfind("exact spectral radius", 0) == 0) {
+        EXPECT_EQ(row.test,
+                  "rho = 0.75 <= 1 (zero modes, lambda = 0, excluded: z = 1 for any gamma, dt)");
+        continue;
+      }
+      EXPECT_EQ(row.verdict, k.verdict) << row.test;
+      EXPECT_NE(row.test.find("an end of the spectrum is only bracketed"), std::string::npos)
+          << row.test;
+      EXPECT_EQ(row.test.find("undecided") != std::string::npos,
+                k.verdict == CriterionVerdict::not_applicable)
+          << row.test;
+    }
+    EXPECT_NE(find(wide, "exact dt limit").test.find("dt_max in [0.79473091, 0.82842712]"),
+              std::string::npos)
+        << find(wide, "exact dt limit").test;
+    // gamma_hi = m (4 - lambda dt^2)/(2 dt): 0.0020637 at lambda 1 and 0.0019426 at 1.3 (dt 0.81).
+    EXPECT_NE(find(wide, "exact gamma interval").test.find("lies within [0, "), std::string::npos);
+  }
+}
+
 TEST(Criteria, VerdictsFlipAtTheirThresholds) {
   Params p;
   p.m = 0.001;
