@@ -77,23 +77,20 @@ double product_and_dot(const SingleOperator& S, const Eigen::VectorXf& v, float 
                       [&](Eigen::Index i, float sum) { return sum - b * p[i]; });
 }
 
-namespace {
-
-template <class Vector>
-double subtract_and_square_any(Vector& w, typename Vector::Scalar a, const Vector& v,
-                               std::vector<double>& partial, NodeThreads& threads,
-                               size_t block_rows) {
+template <typename Scalar>
+double subtract_and_square(Vector<Scalar>& w, Scalar a, const Vector<Scalar>& v,
+                           std::vector<double>& partial, NodeThreads& threads, size_t block_rows) {
   return blocked_sum(w.size(), block_rows, partial, threads, [&](size_t r) {
     const Eigen::Index i = static_cast<Eigen::Index>(r);
-    const typename Vector::Scalar x = w[i] - a * v[i];
+    const Scalar x = w[i] - a * v[i];
     w[i] = x;
     return static_cast<double>(x) * x;
   });
 }
 
-template <class Vector>
-void divide_any(const Vector& w, typename Vector::Scalar b, Vector& out, NodeThreads& threads,
-                size_t block_rows) {
+template <typename Scalar>
+void divide(const Vector<Scalar>& w, Scalar b, Vector<Scalar>& out, NodeThreads& threads,
+            size_t block_rows) {
   out.resize(w.size());
   const size_t n = static_cast<size_t>(w.size());
   threads.run(block_count(w.size(), block_rows), [&](int, size_t first_block, size_t end_block) {
@@ -103,26 +100,11 @@ void divide_any(const Vector& w, typename Vector::Scalar b, Vector& out, NodeThr
   });
 }
 
-}  // namespace
-
-double subtract_and_square(Eigen::VectorXd& w, double a, const Eigen::VectorXd& v,
-                           std::vector<double>& partial, NodeThreads& threads, size_t block_rows) {
-  return subtract_and_square_any(w, a, v, partial, threads, block_rows);
-}
-
-double subtract_and_square(Eigen::VectorXf& w, float a, const Eigen::VectorXf& v,
-                           std::vector<double>& partial, NodeThreads& threads, size_t block_rows) {
-  return subtract_and_square_any(w, a, v, partial, threads, block_rows);
-}
-
-void divide(const Eigen::VectorXd& w, double b, Eigen::VectorXd& out, NodeThreads& threads,
-            size_t block_rows) {
-  divide_any(w, b, out, threads, block_rows);
-}
-
-void divide(const Eigen::VectorXf& w, float b, Eigen::VectorXf& out, NodeThreads& threads,
-            size_t block_rows) {
-  divide_any(w, b, out, threads, block_rows);
-}
+template double subtract_and_square<double>(Vector<double>&, double, const Vector<double>&,
+                                            std::vector<double>&, NodeThreads&, size_t);
+template double subtract_and_square<float>(Vector<float>&, float, const Vector<float>&,
+                                           std::vector<double>&, NodeThreads&, size_t);
+template void divide<double>(const Vector<double>&, double, Vector<double>&, NodeThreads&, size_t);
+template void divide<float>(const Vector<float>&, float, Vector<float>&, NodeThreads&, size_t);
 
 }  // namespace dampbound::detail

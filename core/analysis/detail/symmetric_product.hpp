@@ -37,13 +37,19 @@ double product_and_dot(const SymmetricOperator& S, const Eigen::VectorXd& v, dou
                        const Eigen::VectorXd& p, Eigen::VectorXd& w, std::vector<double>& partial,
                        NodeThreads& threads, std::size_t block_rows = kSumBlockRows);
 
-/// w -= a v; returns w . w (after the subtraction).
-double subtract_and_square(Eigen::VectorXd& w, double a, const Eigen::VectorXd& v,
+/// A vector of either precision (Scalar: double or float, instantiated in the .cpp).
+template <typename Scalar>
+using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
+
+/// w -= a v; returns w . w (after the subtraction), each square and the sum in double.
+template <typename Scalar>
+double subtract_and_square(Vector<Scalar>& w, Scalar a, const Vector<Scalar>& v,
                            std::vector<double>& partial, NodeThreads& threads,
                            std::size_t block_rows = kSumBlockRows);
 
 /// out = w / b, element by element (out resized to w's size).
-void divide(const Eigen::VectorXd& w, double b, Eigen::VectorXd& out, NodeThreads& threads,
+template <typename Scalar>
+void divide(const Vector<Scalar>& w, Scalar b, Vector<Scalar>& out, NodeThreads& threads,
             std::size_t block_rows = kSumBlockRows);
 
 /// A in single precision: A's pattern (not copied) and `values`, A's values rounded to float in
@@ -53,15 +59,11 @@ struct SingleOperator {
   const float* values;
 };
 
-/// The passes above in single precision: each row's value is rounded to float, each sum is
-/// of the rows' float values multiplied in double, in the blocked order above.
+/// The product above in single precision: each row's value is rounded to float, and the sum
+/// is of the rows' float values multiplied in double, in the blocked order above
+/// (subtract_and_square and divide take float vectors as they are).
 double product_and_dot(const SingleOperator& S, const Eigen::VectorXf& v, float b,
                        const Eigen::VectorXf& p, Eigen::VectorXf& w, std::vector<double>& partial,
                        NodeThreads& threads, std::size_t block_rows = kSumBlockRows);
-double subtract_and_square(Eigen::VectorXf& w, float a, const Eigen::VectorXf& v,
-                           std::vector<double>& partial, NodeThreads& threads,
-                           std::size_t block_rows = kSumBlockRows);
-void divide(const Eigen::VectorXf& w, float b, Eigen::VectorXf& out, NodeThreads& threads,
-            std::size_t block_rows = kSumBlockRows);
 
 }  // namespace dampbound::detail
