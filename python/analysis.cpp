@@ -28,18 +28,21 @@ py::dict runs_dict(const std::vector<VerifiedRun>& runs) {
 void bind_analysis(py::module_& m) {
   py::class_<ExactStability::Unfactored>(
       m, "UnfactoredBounds",
-      "Over the factorisation budget: what plain Lanczos and Gershgorin prove without a "
+      "Over the factorisation budget: what plain Lanczos, Gershgorin and the node-block splitting "
+      "prove without a "
       "factorisation (docs/criteria.md).")
       .def_readonly("lambda_max_lo", &ExactStability::Unfactored::lambda_max_lo,
                     "lambda_max of M^-1 K is at least this (a Rayleigh quotient; 1/s^2)")
       .def_readonly("lambda_max_hi", &ExactStability::Unfactored::lambda_max_hi,
-                    "and at most this (Gershgorin's bound; 1/s^2)")
+                    "and at most this (the lower of Gershgorin's bound and the node-block "
+                    "splitting's; 1/s^2)")
       .def_readonly("index_at_least", &ExactStability::Unfactored::index_at_least,
                     "the paper's step: lambda_max(dt^2 A + 2 dt C) is at least this; >= 4 "
                     "proves the step unstable (NaN for other integrators)")
       .def_readonly("index_at_most", &ExactStability::Unfactored::index_at_most,
                     "the paper's step with no spring compressed: the index is at most this "
-                    "(Gershgorin on its rows, SPEC 9's safe bound); < 4 proves it stable (NaN "
+                    "(the lower of Gershgorin on its rows, SPEC 9's safe bound, and the node-block "
+                    "splitting); < 4 proves it stable (NaN "
                     "otherwise)")
       .def_readonly("gamma_unstable_from", &ExactStability::Unfactored::gamma_unstable_from,
                     "every gamma from this on is proved unstable at dt (inf: none is; NaN: not "
@@ -56,7 +59,7 @@ void bind_analysis(py::module_& m) {
                     "proved unstable at dt (-inf: none is; NaN otherwise)")
       .def_readonly("stable_lambda_hi", &ExactStability::Unfactored::stable_lambda_hi,
                     "forward Euler, Verlet and RK4 at uniform gamma/m with K >= 0 proved: every "
-                    "mode lies in [0, this] (Gershgorin's bound; NaN otherwise); `stable` says "
+                    "mode lies in [0, this] (lambda_max_hi; NaN otherwise); `stable` says "
                     "whether the user's gamma and dt are proved stable")
       .def_readonly("dt_stable_up_to", &ExactStability::Unfactored::dt_stable_up_to,
                     "every dt up to this is proved stable at gamma (those integrators, and the "

@@ -65,13 +65,14 @@ CriterionResult threshold_row(CriterionResult c, const std::string& without,
 
 }  // namespace
 
-/// The exact rows over the factorisation budget: nothing exact, but what plain Lanczos and
-/// Gershgorin prove without a factorisation (ExactStability::Unfactored): a bracket of
-/// lambda_max; for the paper's step a proof of instability where its Rayleigh quotient
-/// reaches the index's 4; for forward Euler, Verlet and RK4 at uniform rates the per-mode
-/// proofs (either way; RK4's at the user's gamma and dt only); for the paper's step with K >= 0
-/// Gershgorin on the index matrix (SPEC 9's safe bound) on the stable side. Where nothing is
-/// proved the row has no verdict.
+/// The exact rows over the factorisation budget: nothing exact, but what plain Lanczos,
+/// Gershgorin and the node-block splitting prove without a factorisation
+/// (ExactStability::Unfactored): a bracket of lambda_max; for the paper's step a proof of
+/// instability where its Rayleigh quotient reaches the index's 4; for forward Euler, Verlet
+/// and RK4 at uniform rates the per-mode proofs (either way; RK4's at the user's gamma and dt
+/// only); for the paper's step with K >= 0 the lower of Gershgorin on the index matrix (SPEC
+/// 9's safe bound) and the splitting on the stable side. Where nothing is proved the row has
+/// no verdict.
 std::vector<CriterionResult> unfactored_criteria(const ExactStability& e, const Params& params) {
   const ExactStability::Unfactored& b = e.unfactored;
   const std::string integ = to_string(e.integrator);
@@ -92,8 +93,13 @@ std::vector<CriterionResult> unfactored_criteria(const ExactStability& e, const 
   };
   CriterionResult lm = row("exact lambda_max of M^-1 K");
   if (tried)
-    lm.test += without + "lambda_max in [" + format_digits(b.lambda_max_lo, 8) + ", " +
-               format_digits(b.lambda_max_hi, 8) + "] (a Rayleigh quotient, Gershgorin's bound)";
+    lm.test +=
+        without + "lambda_max in [" + format_digits(b.lambda_max_lo, 8) + ", " +
+        format_digits(b.lambda_max_hi, 8) + "] (a Rayleigh quotient, " +
+        (b.lambda_max_hi < b.gershgorin
+             ? "the node-block splitting's bound; Gershgorin's: " + format_digits(b.gershgorin, 8)
+             : std::string("Gershgorin's bound")) +
+        ")";
   out.push_back(lm);
   if (b.unconditional) {  // implicit Euler, K >= 0: every row but lambda_max is exact
     auto within = [&](const std::string& name, double value, const std::string& unit,
@@ -129,9 +135,14 @@ std::vector<CriterionResult> unfactored_criteria(const ExactStability& e, const 
                 format_digits(b.index_at_least, 8) +
                 (unstable ? " >= 4: unstable (proved)" : " (< 4 proves nothing)");
     if (!unstable && !std::isnan(b.index_at_most))
-      rho.test += "; <= " + format_digits(b.index_at_most, 8) +
-                  " (no spring compressed: K >= 0; Gershgorin on its rows, SPEC 9's safe bound)" +
-                  (stable ? " < 4: stable (proved)" : ", which proves nothing");
+      rho.test +=
+          "; <= " + format_digits(b.index_at_most, 8) +
+          (b.index_at_most < b.index_gershgorin
+               ? " (no spring compressed: K >= 0; the node-block splitting; Gershgorin on "
+                 "its rows, SPEC 9's safe bound: " +
+                     format_digits(b.index_gershgorin, 8) + ")"
+               : " (no spring compressed: K >= 0; Gershgorin on its rows, SPEC 9's safe bound)") +
+          (stable ? " < 4: stable (proved)" : ", which proves nothing");
   } else if (modes) {
     const bool unstable = b.lambda_max_lo >= b.mode_unstable_from;
     const bool stable_side = !std::isnan(b.stable_lambda_hi), stable = stable_side && e.stable;
@@ -143,7 +154,9 @@ std::vector<CriterionResult> unfactored_criteria(const ExactStability& e, const 
                 (unstable ? ": unstable (proved)" : " proves nothing");
     if (!unstable && stable_side)
       rho.test += "; every mode lies in [0, " + format_digits(b.stable_lambda_hi, 8) +
-                  "] (no spring compressed: K >= 0; Gershgorin's bound)" +
+                  "] (no spring compressed: K >= 0; " +
+                  (b.lambda_max_hi < b.gershgorin ? "the node-block splitting's bound)"
+                                                  : "Gershgorin's bound)") +
                   (stable ? " and each is stable at this gamma and dt: stable (proved)"
                           : ", which proves no stability at this gamma and dt");
   }

@@ -189,6 +189,42 @@ std::optional<double> psd_floor(const Model& model, const std::vector<Vec3>& x,
   return floor - 4 * worst / m_min;
 }
 
+void splitting_ceilings(const Model& model, const std::vector<Vec3>& x,
+                        std::vector<double>& ceiling) {
+  const size_t n = model.rest.size();
+  std::vector<Eigen::Matrix3d> D(n, Eigen::Matrix3d::Zero());
+  for (size_t k = 0; k < model.springs.size(); ++k) {
+    const Spring& s = model.springs[k];
+    const size_t i = static_cast<size_t>(s.i), j = static_cast<size_t>(s.j);
+    const Vec3 e = x[j] - x[i];
+    const double l = e.norm();
+    if (!(l > 0) || i == j) continue;  // no direction (SPEC 1), or no part in K
+    const double d[3] = {e.x() / l, e.y() / l, e.z() / l};
+    const double ratio = s.rest_length / l, tension = 1.0 - ratio;
+    // B+ = B where B >= 0; compressed (tension < 0), its part along d alone: kappa d d^T.
+    double b[6];
+    spring_tangent_block(model.spring_kappa[k], std::max(tension, 0.0), tension >= 0 ? ratio : 1.0,
+                         d, b);
+    Eigen::Matrix3d B;
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) B(r, c) = b[sym3(r, c)];
+    const bool both = !model.fixed[i] && !model.fixed[j];
+    if (!model.fixed[i]) D[i] += both ? 2 * B : B;
+    if (!model.fixed[j]) D[j] += both ? 2 * B : B;
+  }
+  ceiling.assign(n, 0.0);
+  double largest_trace = 0;
+  for (size_t i = 0; i < n; ++i) {
+    if (model.fixed[i]) continue;
+    D[i].diagonal().array() += model.anchor_kappa[i];
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(D[i], Eigen::EigenvaluesOnly);
+    ceiling[i] = es.eigenvalues()(2) / model.mass[i];
+    largest_trace = std::max(largest_trace, D[i].trace() / model.mass[i]);
+  }
+  for (size_t i = 0; i < n; ++i)
+    if (!model.fixed[i]) ceiling[i] += 1e-12 * largest_trace;
+}
+
 double largest_eigenvalue(const SparseMatrix& A) { return certified_largest_eigenvalue(A).hi; }
 double smallest_eigenvalue_above(const SparseMatrix& A, double floor) {
   const Eigen::Index n = A.rows();

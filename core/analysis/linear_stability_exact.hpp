@@ -79,19 +79,23 @@ struct ExactStability {
   /// (ExactOptions::unfactored_steps = 0).
   struct Unfactored {
     /// lambda_max of M^-1 K lies in [lambda_max_lo, lambda_max_hi] (1/s^2): a Rayleigh
-    /// quotient less its rounding, Gershgorin's bound (SPEC 9's largest R_i).
+    /// quotient less its rounding, and the lower of Gershgorin's bound (SPEC 9's largest R_i,
+    /// also kept in `gershgorin`) and the node-block splitting's (splitting_ceilings).
     double lambda_max_lo = std::numeric_limits<double>::quiet_NaN();
     double lambda_max_hi = std::numeric_limits<double>::quiet_NaN();
+    double gershgorin = std::numeric_limits<double>::quiet_NaN();
     /// The paper's step only: the index lambda_max(dt^2 A + 2 dt C) at the user's gamma and
     /// dt is at least this (>= 4 proves the step unstable), and with the same vector every
     /// gamma >= gamma_unstable_from (at dt) and every dt >= dt_unstable_from (at gamma) is
     /// proved unstable; inf: that vector proves nothing there.
     double index_at_least = std::numeric_limits<double>::quiet_NaN();
-    /// The paper's step with K >= 0 proved (SPEC 9's floor): the index is at most this
-    /// (Gershgorin on its rows, SPEC 9's safe bound); below 4 it proves the step stable
-    /// (`stable`), and dt_stable_up_to and gamma_stable_lo/hi below give the dts and gammas
-    /// that bound proves. NaN otherwise.
+    /// The paper's step with K >= 0 proved (SPEC 9's floor): the index is at most this, the
+    /// lower of Gershgorin on its rows (SPEC 9's safe bound, also kept in
+    /// `index_gershgorin`) and the node-block splitting (splitting_ceilings); below 4 it
+    /// proves the step stable (`stable`), and dt_stable_up_to and gamma_stable_lo/hi below
+    /// give the dts and gammas either bound proves. NaN otherwise.
     double index_at_most = std::numeric_limits<double>::quiet_NaN();
+    double index_gershgorin = std::numeric_limits<double>::quiet_NaN();
     double gamma_unstable_from = std::numeric_limits<double>::quiet_NaN();
     double dt_unstable_from = std::numeric_limits<double>::quiet_NaN();
     /// Forward Euler, Verlet and RK4 at uniform gamma/m (mode_instability; RK4 has no
@@ -104,7 +108,7 @@ struct ExactStability {
     double gamma_unstable_below = std::numeric_limits<double>::quiet_NaN();
     /// The stable side when SPEC 9's floor proves K >= 0. Forward Euler, Verlet and RK4 at
     /// uniform gamma/m (mode_stability): every mode lies in [0, stable_lambda_hi]
-    /// (Gershgorin's bound, raised by 1e-12 of itself for its sums' rounding). Those and the
+    /// (lambda_max_hi, raised by 1e-12 of itself for its sums' rounding). Those and the
     /// paper's step (index_at_most, any rates): every dt <= dt_stable_up_to (at gamma) and
     /// every gamma in [gamma_stable_lo, gamma_stable_hi] (at dt; none when lo > hi) is proved
     /// stable, and `stable` says whether the user's are (RK4's gamma range is the one around

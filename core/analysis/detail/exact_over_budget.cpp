@@ -38,13 +38,14 @@ double weighted_mean_below(const Eigen::VectorXd& u, const Eigen::VectorXd& R) {
 /// Over the budget, forward Euler, Verlet and RK4 at a uniform rate (`r` = gamma_i/(gamma
 /// m_i)): their modes decouple, so the closed forms of linear_stability_modes.hpp prove
 /// instability from the Rayleigh quotient `top.lo` (mode_instability) and, where SPEC 9's
-/// floor proves K >= 0, stability from Gershgorin's `top.hi` (mode_stability).
+/// floor proves K >= 0, stability from `top.hi` (mode_stability), the lower of Gershgorin's
+/// bound and the splitting's (splitting_ceilings).
 void per_mode_proofs(double r, const EigenInterval& top, std::optional<double> floor,
                      const Params& params, ExactStability& e) {
   ExactStability::Unfactored& b = e.unfactored;
   const double h = params.dt, c = params.gamma * r;
   if (floor && *floor >= 0) {                // K >= 0: every mode in [0, hi]
-    const double hi = top.hi * (1 + 1e-12);  // room for the rounding of Gershgorin's sums
+    const double hi = top.hi * (1 + 1e-12);  // room for the rounding of the bound's sums
     const ModeStability m = mode_stability(params.integrator, hi, c, h);
     if (m.proved) {
       b.stable_lambda_hi = hi;
@@ -77,35 +78,53 @@ void per_mode_proofs(double r, const EigenInterval& top, std::optional<double> f
     b.gamma_unstable_below = m.rate_below >= 0 ? kInf : -kInf;
 }
 
-/// Over the budget, the paper's step with K >= 0 (SPEC 9's floor). SPEC 9's safe bound
-/// (core/safe_bound.hpp) is Gershgorin on the index matrix S = h^2 A + 2 h C, node by node:
-/// its top is at most max_i (h^2 R_i + 2 h c_i), and an index below 4 is stability (SPEC 7,
-/// 9). So the exact rows prove what the safe rows judge: the user's point, every gamma up to
-/// min_i gamma_safe_i / gamma_scale_i at dt and every dt up to min_i dt_safe_i at gamma, with
-/// R_i (safe_row_sums) raised and the limits lowered by 1e-12 of themselves for rounding.
-void paper_step_gershgorin(const Model& model, const std::vector<Vec3>& x, const Params& params,
-                           ExactStability& e) {
-  ExactStability::Unfactored& b = e.unfactored;
+/// What a per-node bound on the index matrix proves for the paper's step (below).
+struct IndexProof {
+  double top = 0, gamma_hi = kInf, dt_hi = kInf;
+};
+
+/// From per-node bounds r_i with lambda_max(S) <= max_i (h^2 r_i + 2 h c_i) for the index
+/// matrix S = h^2 A + 2 h C and every h, c >= 0: the index at the user's gamma and dt, every
+/// gamma up to min_i (2 m_i/h - m_i h r_i/2) / gamma_scale_i at dt and every dt up to the
+/// root of h^2 r_i + 2 h c_i = 4 at gamma, with r_i raised and the limits lowered (by the
+/// caller) by 1e-12 of themselves for rounding.
+IndexProof index_proof(const Model& model, const Params& params, const std::vector<double>& bound) {
+  IndexProof p;
   const double h = params.dt;
-  constexpr double kRoom = 1 + 1e-12, kIn = 1 - 1e-12;
+  for (size_t i = 0; i < bound.size(); ++i) {
+    if (model.fixed[i]) continue;
+    const double r = bound[i] * (1 + 1e-12), m = model.mass[i], scale = model.gamma_scale[i];
+    const double gamma_i = params.gamma * scale, safe = safe_gamma(m, h, r);
+    p.top = std::max(p.top, h * h * r + 2 * h * gamma_i / m);
+    if (scale > 0)
+      p.gamma_hi = std::min(p.gamma_hi, safe / scale);
+    else if (safe <= 0)
+      p.gamma_hi = -kInf;  // an undamped node past the index already: no gamma helps
+    // safe_dt's root without its cancellation: (sqrt(c^2 + 4 R) - c) / R, SPEC 9's form that
+    // the reports print, loses 1e-11 of itself at c = 1000, R = 9, more than 1e-12 allows.
+    const double c = gamma_i / m;
+    if (r > 0 || c > 0) p.dt_hi = std::min(p.dt_hi, 4 / (c + std::sqrt(c * c + 4 * r)));
+  }
+  return p;
+}
+
+/// Over the budget, the paper's step with K >= 0 (SPEC 9's floor), from two per-node bounds on
+/// the index matrix S = h^2 A + 2 h C, each a proof: SPEC 9's safe bound (core/safe_bound.hpp),
+/// Gershgorin node by node (R_i, safe_row_sums), and the splitting of K into node blocks
+/// (splitting_ceilings). An index below 4 is stability (SPEC 7, 9), so the exact rows prove
+/// what the safe rows judge, or more where the splitting is tighter: the user's point, and
+/// each limit from whichever bound proves more.
+void paper_step_ceilings(const Model& model, const std::vector<Vec3>& x,
+                         const std::vector<double>& ceiling, const Params& params,
+                         ExactStability& e) {
+  ExactStability::Unfactored& b = e.unfactored;
+  constexpr double kIn = 1 - 1e-12;
   std::vector<double> R;
   safe_row_sums(model, x, R);
-  double top = 0, gamma_hi = kInf, dt_hi = kInf;
-  for (size_t i = 0; i < R.size(); ++i) {
-    if (model.fixed[i]) continue;
-    const double r = R[i] * kRoom, m = model.mass[i], scale = model.gamma_scale[i];
-    const double gamma_i = params.gamma * scale, safe = safe_gamma(m, h, r);
-    top = std::max(top, h * h * r + 2 * h * gamma_i / m);
-    if (scale > 0)
-      gamma_hi = std::min(gamma_hi, safe / scale);
-    else if (safe <= 0)
-      gamma_hi = -kInf;  // an undamped node past the index already: no gamma helps
-    // safe_dt's root without its cancellation: (sqrt(c^2 + 4 R) - c) / R, SPEC 9's form that
-    // the reports print, loses 1e-11 of itself at c = 1000, R = 9, more than kIn allows.
-    const double c = gamma_i / m;
-    if (r > 0 || c > 0) dt_hi = std::min(dt_hi, 4 / (c + std::sqrt(c * c + 4 * r)));
-  }
-  b.index_at_most = top * kRoom;
+  const IndexProof g = index_proof(model, params, R), s = index_proof(model, params, ceiling);
+  b.index_gershgorin = g.top * (1 + 1e-12);
+  b.index_at_most = std::min(g.top, s.top) * (1 + 1e-12);
+  const double gamma_hi = std::max(g.gamma_hi, s.gamma_hi), dt_hi = std::max(g.dt_hi, s.dt_hi);
   if (gamma_hi > 0) {
     b.gamma_stable_lo = 0;
     b.gamma_stable_hi = std::isinf(gamma_hi) ? gamma_hi : gamma_hi * kIn;
@@ -147,8 +166,15 @@ ExactStability over_budget(const Model& model, const std::vector<Vec3>& x, const
                                           h * h, &d)
           : unfactored_largest_eigenvalue(in.A, &u, options.threads, options.unfactored_steps);
   ExactStability::Unfactored& b = e.unfactored;
+  // The upper end: Gershgorin's bound or the splitting's, whichever is lower.
+  std::vector<double> ceiling;
+  splitting_ceilings(model, x, ceiling);
+  EigenInterval bracket = top;  // a fixed node's ceiling is 0
+  if (!ceiling.empty())
+    bracket.hi = std::min(top.hi, *std::max_element(ceiling.begin(), ceiling.end()));
   b.lambda_max_lo = top.lo;
-  b.lambda_max_hi = top.hi;
+  b.lambda_max_hi = bracket.hi;
+  b.gershgorin = top.hi;
   b.lanczos_steps = top.lanczos_steps;
   // Implicit Euler needs no lambda_max: with K positive semidefinite (SPEC 9's floor proves
   // lambda_min >= 0, to the same rounding allowance as the computed route) it is stable for
@@ -159,7 +185,7 @@ ExactStability over_budget(const Model& model, const std::vector<Vec3>& x, const
     e.stable = true;
   }
   if (!paper_step && in.r_max - in.r_min <= 1e-12 * in.r_max)
-    per_mode_proofs(in.r_max, top, floor, params, e);
+    per_mode_proofs(in.r_max, bracket, floor, params, e);
   if (!paper_step) return e;
   // index(gamma', h') >= u^T (h'^2 A + 2 h' gamma' diag(R)) u / u^T u
   //                  >= h'^2 a + 2 h' gamma' rho  (a, rho: the quotients less their rounding),
@@ -175,7 +201,7 @@ ExactStability over_budget(const Model& model, const std::vector<Vec3>& x, const
   // dt: a t^2 + 2 c t >= 4 from its positive root on, when a > 0 (c >= 0).
   const double c = gamma * rho;
   b.dt_unstable_from = a > 0 ? 4 / (c + std::sqrt(c * c + 4 * a)) * kUp * kUp : kInf;
-  if (floor && *floor >= 0) paper_step_gershgorin(model, x, params, e);
+  if (floor && *floor >= 0) paper_step_ceilings(model, x, ceiling, params, e);
   return e;
 }
 
