@@ -41,8 +41,14 @@ void bind_analysis(py::module_& m) {
                     "proves the step unstable (NaN for other integrators)")
       .def_readonly("index_at_most", &ExactStability::Unfactored::index_at_most,
                     "the paper's step with no spring compressed: the index is at most this "
-                    "(the lower of Gershgorin on its rows, SPEC 9's safe bound, and the node-block "
-                    "splitting); < 4 proves it stable (NaN "
+                    "(the lowest of Gershgorin on its rows, SPEC 9's safe bound, the node-block "
+                    "splitting and the patch around the index's top); < 4 proves it stable (NaN "
+                    "otherwise)")
+      .def_readonly("patch_nodes", &ExactStability::Unfactored::patch_nodes,
+                    "the paper's step: the nodes of the patch around the index's top whose "
+                    "proofs are taken where they prove more (0: its top is not local)")
+      .def_readonly("index_patch", &ExactStability::Unfactored::index_patch,
+                    "the patch's upper bound on the index where it is index_at_most (NaN "
                     "otherwise)")
       .def_readonly("gamma_unstable_from", &ExactStability::Unfactored::gamma_unstable_from,
                     "every gamma from this on is proved unstable at dt (inf: none is; NaN: not "

@@ -78,8 +78,12 @@ std::vector<CriterionResult> unfactored_criteria(const ExactStability& e, const 
   const std::string integ = to_string(e.integrator);
   const std::string why = over_budget_test(e);
   const bool tried = !std::isnan(b.lambda_max_lo);
-  const std::string without = "; without a factorisation (Lanczos, " +
-                              std::to_string(b.lanczos_steps) + " steps): ";
+  const std::string without =
+      "; without a factorisation (Lanczos, " + std::to_string(b.lanczos_steps) + " steps" +
+      (b.patch_nodes > 0 ? "; a patch of " + std::to_string(b.patch_nodes) +
+                               " nodes around the index's top"
+                         : std::string()) +
+      "): ";
   std::vector<CriterionResult> out;
   auto row = [&](const std::string& name) {
     CriterionResult c;
@@ -137,7 +141,11 @@ std::vector<CriterionResult> unfactored_criteria(const ExactStability& e, const 
     if (!unstable && !std::isnan(b.index_at_most))
       rho.test +=
           "; <= " + format_digits(b.index_at_most, 8) +
-          (b.index_at_most < b.index_gershgorin
+          (b.index_at_most == b.index_patch
+               ? " (no spring compressed: K >= 0; the patch, each node outside it alone; "
+                 "Gershgorin on its rows, SPEC 9's safe bound: " +
+                     format_digits(b.index_gershgorin, 8) + ")"
+           : b.index_at_most < b.index_gershgorin
                ? " (no spring compressed: K >= 0; the node-block splitting; Gershgorin on "
                  "its rows, SPEC 9's safe bound: " +
                      format_digits(b.index_gershgorin, 8) + ")"

@@ -189,25 +189,33 @@ std::optional<double> psd_floor(const Model& model, const std::vector<Vec3>& x,
   return floor - 4 * worst / m_min;
 }
 
+bool positive_spring_block(const Model& model, const std::vector<Vec3>& x, size_t k,
+                           Eigen::Matrix3d& B) {
+  const Spring& s = model.springs[k];
+  const size_t i = static_cast<size_t>(s.i), j = static_cast<size_t>(s.j);
+  const Vec3 e = x[j] - x[i];
+  const double l = e.norm();
+  if (!(l > 0) || i == j) return false;  // no direction (SPEC 1), or no part in K
+  const double d[3] = {e.x() / l, e.y() / l, e.z() / l};
+  const double ratio = s.rest_length / l, tension = 1.0 - ratio;
+  // B+ = B where B >= 0; compressed (tension < 0), its part along d alone: kappa d d^T.
+  double b[6];
+  spring_tangent_block(model.spring_kappa[k], std::max(tension, 0.0), tension >= 0 ? ratio : 1.0,
+                       d, b);
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) B(r, c) = b[sym3(r, c)];
+  return true;
+}
+
 void splitting_ceilings(const Model& model, const std::vector<Vec3>& x,
                         std::vector<double>& ceiling) {
   const size_t n = model.rest.size();
   std::vector<Eigen::Matrix3d> D(n, Eigen::Matrix3d::Zero());
+  Eigen::Matrix3d B;
   for (size_t k = 0; k < model.springs.size(); ++k) {
-    const Spring& s = model.springs[k];
-    const size_t i = static_cast<size_t>(s.i), j = static_cast<size_t>(s.j);
-    const Vec3 e = x[j] - x[i];
-    const double l = e.norm();
-    if (!(l > 0) || i == j) continue;  // no direction (SPEC 1), or no part in K
-    const double d[3] = {e.x() / l, e.y() / l, e.z() / l};
-    const double ratio = s.rest_length / l, tension = 1.0 - ratio;
-    // B+ = B where B >= 0; compressed (tension < 0), its part along d alone: kappa d d^T.
-    double b[6];
-    spring_tangent_block(model.spring_kappa[k], std::max(tension, 0.0), tension >= 0 ? ratio : 1.0,
-                         d, b);
-    Eigen::Matrix3d B;
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) B(r, c) = b[sym3(r, c)];
+    if (!positive_spring_block(model, x, k, B)) continue;
+    const size_t i = static_cast<size_t>(model.springs[k].i);
+    const size_t j = static_cast<size_t>(model.springs[k].j);
     const bool both = !model.fixed[i] && !model.fixed[j];
     if (!model.fixed[i]) D[i] += both ? 2 * B : B;
     if (!model.fixed[j]) D[j] += both ? 2 * B : B;

@@ -44,6 +44,12 @@ SparseMatrix mass_weighted(const Model& model, SparseMatrix&& K, int threads = 1
 std::optional<double> psd_floor(const Model& model, const std::vector<Vec3>& x,
                                 bool clamp_compression = false);
 
+/// Spring k's part of K at x (SPEC 7's block B on its two nodes: [B, -B; -B, B]) raised to
+/// its positive part B+ >= B: B itself unless the spring is compressed, then kappa d d^T.
+/// False (B untouched) for a spring of no direction (SPEC 1), which has no part in K.
+bool positive_spring_block(const Model& model, const std::vector<Vec3>& x, size_t k,
+                           Eigen::Matrix3d& B);
+
 /// Proved upper bounds from the splitting that psd_floor bounds from below. A spring's part
 /// of K, [B, -B; -B, B] on its two nodes, lies below [2B+, 0; 0, 2B+] (B+ the positive part
 /// of B: [X, -X; -X, X] <= [X, X; X, X] + [X, -X; -X, X] = 2 diag(X, X) for X >= 0), and

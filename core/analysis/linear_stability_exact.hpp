@@ -96,6 +96,13 @@ struct ExactStability {
     /// give the dts and gammas either bound proves. NaN otherwise.
     double index_at_most = std::numeric_limits<double>::quiet_NaN();
     double index_gershgorin = std::numeric_limits<double>::quiet_NaN();
+    /// The paper's step where the index's top is local: the nodes of the patch around it
+    /// (detail/index_patch.hpp; 0: none), whose principal submatrix's top vector also proves
+    /// the instability thresholds below where it proves more than Lanczos's, and, with
+    /// K >= 0, the index's upper bound from the patch (NaN where it proved less than the
+    /// node-by-node bounds; otherwise index_at_most) and the stable gamma and dt it proves.
+    int patch_nodes = 0;
+    double index_patch = std::numeric_limits<double>::quiet_NaN();
     double gamma_unstable_from = std::numeric_limits<double>::quiet_NaN();
     double dt_unstable_from = std::numeric_limits<double>::quiet_NaN();
     /// Forward Euler, Verlet and RK4 at uniform gamma/m (mode_instability; RK4 has no

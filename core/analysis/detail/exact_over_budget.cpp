@@ -7,7 +7,9 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <utility>
 
+#include "core/analysis/detail/index_patch.hpp"
 #include "core/analysis/linear_stability_modes.hpp"
 #include "core/safe_bound.hpp"
 
@@ -133,6 +135,77 @@ void paper_step_ceilings(const Model& model, const std::vector<Vec3>& x,
   e.stable = b.index_at_most < 4;
 }
 
+/// Over the budget, the paper's step, where the index's top is local (detail/index_patch.hpp)
+/// and one dense factorisation of the patch is within the budget: a patch of nodes around it
+/// proves the index from below (its principal submatrix's top
+/// vector, through `unstable_from`) at the user's gamma and dt and at each limit found, and,
+/// with K >= 0 (`psd`), from above: the index at the user's point, and by bisection the largest
+/// gamma (at dt) and dt (at gamma) it proves stable. The true index grows with gamma, and with
+/// dt where A >= 0, so a point proved stable proves every gamma in [0, it] or dt up to it.
+template <class UnstableFrom>
+void patch_proofs(const Model& model, const std::vector<Vec3>& x, const ExactInputs& in,
+                  const std::vector<double>& ceiling, const Params& params, bool psd,
+                  double max_factor_flops, const UnstableFrom& unstable_from,
+                  ExactStability& e) {
+  ExactStability::Unfactored& b = e.unfactored;
+  const double h = params.dt, gamma = params.gamma;
+  // The smallest patch whose two bounds at the user's point meet to 1e-9, else the largest
+  // found (each ring costs little beside the mesh's own passes).
+  std::optional<IndexPatch> patch;
+  double at_most = kInf;
+  for (const int layers : IndexPatch::kLayers) {
+    IndexPatch p(model, x, in.A, in.R, ceiling, gamma, h, b.index_at_least, layers);
+    if (!p.found() || p.flops() > max_factor_flops) break;
+    patch.emplace(std::move(p));
+    if (!psd) break;
+    at_most = patch->index_at_most(gamma, h);
+    if (at_most - b.index_at_least <= 1e-9 * b.index_at_least) break;
+  }
+  if (!patch) return;
+  b.patch_nodes = patch->node_count();
+  const auto from_vector = [&](double g, double t) {
+    const Eigen::VectorXd u = patch->vector(g, t);
+    unstable_from(patch->rayleigh_below(u), weighted_mean_below(u, in.R), false);
+  };
+  from_vector(gamma, h);
+  if (!psd) return;
+  if (at_most < b.index_at_most) {
+    b.index_patch = at_most;
+    b.index_at_most = at_most;
+    e.stable = at_most < 4;
+  }
+  // lo proved stable, hi not (proved unstable, or not proved): halve [lo, hi] down to 1e-13
+  // of hi; a bound that proves nothing at lo leaves it.
+  const auto bisect = [](double lo, double hi, const auto& stable) {
+    for (int k = 0; k < 200 && hi - lo > 1e-13 * hi; ++k) {
+      const double mid = lo + (hi - lo) / 2;
+      (stable(mid) ? lo : hi) = mid;
+    }
+    return std::pair<double, double>{lo, hi};
+  };
+  const auto stable_gamma = [&](double g) { return patch->proved_below(4, g, h); };
+  double gamma_lo = std::isnan(b.gamma_stable_hi) ? 0 : b.gamma_stable_hi;
+  if (!std::isinf(gamma_lo) && stable_gamma(gamma_lo)) {
+    double gamma_hi = b.gamma_unstable_from;
+    if (std::isinf(gamma_hi))  // nothing proved unstable: double until the patch fails
+      for (gamma_hi = std::max(2 * gamma_lo, 1e-300); stable_gamma(gamma_hi) && gamma_hi < 1e300;)
+        gamma_hi *= 2;
+    const auto [lo, hi] = bisect(gamma_lo, gamma_hi, stable_gamma);
+    if (std::isnan(b.gamma_stable_hi) || lo > b.gamma_stable_hi) {
+      b.gamma_stable_lo = 0;
+      b.gamma_stable_hi = lo;
+    }
+    from_vector(hi, h);
+  }
+  const auto stable_dt = [&](double t) { return patch->proved_below(4, gamma, t); };
+  const double dt_lo = std::isnan(b.dt_stable_up_to) ? 0 : b.dt_stable_up_to;
+  if (dt_lo > 0 && !std::isinf(dt_lo) && stable_dt(dt_lo) && !std::isinf(b.dt_unstable_from)) {
+    const auto [lo, hi] = bisect(dt_lo, b.dt_unstable_from, stable_dt);
+    if (lo > b.dt_stable_up_to) b.dt_stable_up_to = lo;
+    from_vector(gamma, hi);
+  }
+}
+
 }  // namespace
 
 ExactStability over_budget(const Model& model, const std::vector<Vec3>& x, const ExactInputs& in,
@@ -189,19 +262,28 @@ ExactStability over_budget(const Model& model, const std::vector<Vec3>& x, const
   if (!paper_step) return e;
   // index(gamma', h') >= u^T (h'^2 A + 2 h' gamma' diag(R)) u / u^T u
   //                  >= h'^2 a + 2 h' gamma' rho  (a, rho: the quotients less their rounding),
-  // and index >= 4 is instability (SPEC 7), so each threshold below proves it.
-  constexpr double kUp = 1 + 4 * std::numeric_limits<double>::epsilon();
-  const double a = top.lo, rho = weighted_mean_below(u, in.R);
-  const double index = h * h * a + 2 * h * gamma * rho;
-  b.index_at_least = index - 4 * std::numeric_limits<double>::epsilon() * std::abs(index);
-  if (h * h * a >= 4 * kUp)
-    b.gamma_unstable_from = 0;
-  else
-    b.gamma_unstable_from = rho > 0 ? (4 - h * h * a) / (2 * h * rho) * kUp : kInf;
-  // dt: a t^2 + 2 c t >= 4 from its positive root on, when a > 0 (c >= 0).
-  const double c = gamma * rho;
-  b.dt_unstable_from = a > 0 ? 4 / (c + std::sqrt(c * c + 4 * a)) * kUp * kUp : kInf;
+  // and index >= 4 is instability (SPEC 7), so each threshold below proves it; a second
+  // vector (the patch's, below) keeps whichever proves more.
+  const auto unstable_from = [&](double a, double rho, bool first) {
+    constexpr double kUp = 1 + 4 * std::numeric_limits<double>::epsilon();
+    const double index = h * h * a + 2 * h * gamma * rho;
+    const double at_least = index - 4 * std::numeric_limits<double>::epsilon() * std::abs(index);
+    double gamma_from = kInf;
+    if (h * h * a >= 4 * kUp)
+      gamma_from = 0;
+    else if (rho > 0)
+      gamma_from = (4 - h * h * a) / (2 * h * rho) * kUp;
+    // dt: a t^2 + 2 c t >= 4 from its positive root on, when a > 0 (c >= 0).
+    const double c = gamma * rho;
+    const double dt_from = a > 0 ? 4 / (c + std::sqrt(c * c + 4 * a)) * kUp * kUp : kInf;
+    b.index_at_least = first ? at_least : std::max(b.index_at_least, at_least);
+    b.gamma_unstable_from = first ? gamma_from : std::min(b.gamma_unstable_from, gamma_from);
+    b.dt_unstable_from = first ? dt_from : std::min(b.dt_unstable_from, dt_from);
+  };
+  unstable_from(top.lo, weighted_mean_below(u, in.R), true);
   if (floor && *floor >= 0) paper_step_ceilings(model, x, ceiling, params, e);
+  patch_proofs(model, x, in, ceiling, params, floor && *floor >= 0, options.max_factor_flops,
+               unstable_from, e);
   return e;
 }
 
