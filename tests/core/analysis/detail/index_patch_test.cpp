@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <random>
 #include <tuple>
 
 #include "core/analysis/linear_stability_exact.hpp"
@@ -140,10 +141,50 @@ TEST(IndexPatch, NoneWhereTheTopIsNotLocal) {
   Params p;
   const Model model = compile_model(make_grid(GridSpec{30, 30, 0.57, true, true}), p);
   const Index s(model, model.rest);
-  const double top = s.top(p.gamma, p.dt);
-  const IndexPatch patch(model, model.rest, s.A, s.R, s.ceiling, p.gamma, p.dt, top * 0.999, 3);
+  // A proved lower bound of the index: its largest diagonal entry (a Rayleigh quotient).
+  const Eigen::VectorXd diagonal =
+      (p.dt * p.dt) * Eigen::MatrixXd(s.A).diagonal() + (2 * p.dt * p.gamma) * s.R;
+  const IndexPatch patch(model, model.rest, s.A, s.R, s.ceiling, p.gamma, p.dt,
+                         diagonal.maxCoeff(), 3);
   EXPECT_FALSE(patch.found());
   EXPECT_FALSE(patch.proved_below(1e300, p.gamma, p.dt));
+}
+
+TEST(IndexPatch, NeverProvesLessThanTheDenseIndexOnRandomStatesAndRates) {
+  // Random damping scales per node, states at rest, stretched, squeezed (compressed springs:
+  // B+ in the bound) and shaken, and points around the limits: nothing the patch proves may
+  // lie below the dense index, nor its vector's quotient above A's.
+  std::mt19937 rng(20261127);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int proved = 0;
+  for (int trial = 0; trial < 8; ++trial) {
+    ModelSpec spec = lumped_block(6 + trial % 3, 4 + trial % 2, 5 + trial % 3);
+    for (double& g : spec.gamma_scale) g = 0.5 + 1.5 * unit(rng);
+    const Model model = compile_model(spec, tissue_params());
+    std::vector<Vec3> x = model.rest;
+    const double f = 0.92 + 0.16 * unit(rng);
+    for (size_t i = 0; i < x.size(); ++i) {
+      x[i][trial % 3] *= f;
+      if (trial >= 4 && !model.fixed[i])
+        x[i] += 0.01 * Vec3(unit(rng) - 0.5, unit(rng) - 0.5, unit(rng) - 0.5);
+    }
+    const Index s(model, x);
+    const double gamma = 0.005 + 0.03 * unit(rng), h = 1e-4 + 1.5e-4 * unit(rng);
+    SCOPED_TRACE(testing::Message() << "trial " << trial << ": gamma " << gamma << ", h " << h
+                                    << ", scale " << f);
+    const double top = s.top(gamma, h);
+    for (const int layers : {1, 3}) {
+      const IndexPatch patch(model, x, s.A, s.R, s.ceiling, gamma, h, top * (1 - 1e-6), layers);
+      if (!patch.found()) continue;
+      EXPECT_FALSE(patch.proved_below(top * (1 - 1e-10), gamma, h));
+      const double at_most = patch.index_at_most(gamma, h);
+      EXPECT_GE(at_most, top);
+      proved += std::isfinite(at_most);
+      const Eigen::VectorXd u = patch.vector(gamma, h);
+      EXPECT_LE(patch.rayleigh_below(u), u.dot(s.A * u) / u.squaredNorm());
+    }
+  }
+  EXPECT_GE(proved, 8);  // most trials found a patch and proved a bound
 }
 
 TEST(IndexPatch, OverTheBudgetItBracketsTheExactLimitsTightly) {
