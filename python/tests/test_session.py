@@ -184,6 +184,26 @@ def test_exact_limits_over_a_factorisation_budget_factorise_nothing(scenes_dir):
             dampbound.exact_limits(scene, factor_budget_gflop=bad)
 
 
+def test_over_the_budget_a_patch_pins_the_tissue_blocks_limits(scenes_dir):
+    # The tissue block's index has its top at a light corner: under a budget that the sparse
+    # factorisation (6.75 GFlop) exceeds and the 90-node patch (0.0066 GFlop) does not, the
+    # paper step's gamma and dt limits are proved from both sides, 1e-10 apart, around the
+    # factorised ones (which err low by up to the certified interval's width).
+    scene = dampbound.load_scene(str(scenes_dir / "tissue-block.toml"))
+    b = dampbound.exact_limits(scene, factor_budget_gflop=0.01).unfactored
+    assert b.patch_nodes == 90 and b.index_patch == b.index_at_most
+    assert b.index_at_least <= b.index_at_most < b.index_at_least * (1 + 1e-10)
+    free = dampbound.exact_limits(scene)
+    for stable, unstable, exact in ((b.gamma_stable_hi, b.gamma_unstable_from, free.gamma_hi),
+                                    (b.dt_stable_up_to, b.dt_unstable_from, free.dt_max)):
+        assert stable <= unstable < stable * (1 + 1e-10)
+        assert stable * (1 - 1e-8) < exact <= unstable
+    # Under a budget the patch exceeds too, the node-by-node bounds alone: 2.5 % wide.
+    g = dampbound.exact_limits(scene, factor_budget_gflop=0.001).unfactored
+    assert g.patch_nodes == 0 and math.isnan(g.index_patch)
+    assert g.gamma_stable_hi < 0.98 * free.gamma_hi
+
+
 def test_settled_rule_runs_to_the_limit_and_reports_the_first_entry(scenes_dir):
     scene = dampbound.load_scene(str(scenes_dir / "two-node.toml"))
     rules = scene.rules
