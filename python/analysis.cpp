@@ -36,6 +36,9 @@ void bind_analysis(py::module_& m) {
       .def_readonly("lambda_max_hi", &ExactStability::Unfactored::lambda_max_hi,
                     "and at most this (the lower of Gershgorin's bound and the node-block "
                     "splitting's; 1/s^2)")
+      .def_readonly("lambda_patch_nodes", &ExactStability::Unfactored::lambda_patch_nodes,
+                    "where A's own top is local: the nodes of the patch around it that narrowed "
+                    "the bracket (0: none did)")
       .def_readonly("index_at_least", &ExactStability::Unfactored::index_at_least,
                     "the paper's step: lambda_max(dt^2 A + 2 dt C) is at least this; >= 4 "
                     "proves the step unstable (NaN for other integrators)")

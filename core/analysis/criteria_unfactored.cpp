@@ -99,10 +99,15 @@ std::vector<CriterionResult> unfactored_criteria(const ExactStability& e, const 
   if (tried)
     lm.test +=
         without + "lambda_max in [" + format_digits(b.lambda_max_lo, 8) + ", " +
-        format_digits(b.lambda_max_hi, 8) + "] (a Rayleigh quotient, " +
-        (b.lambda_max_hi < b.gershgorin
-             ? "the node-block splitting's bound; Gershgorin's: " + format_digits(b.gershgorin, 8)
-             : std::string("Gershgorin's bound")) +
+        format_digits(b.lambda_max_hi, 8) + "] (" +
+        (b.lambda_patch_nodes > 0
+             ? "a patch of " + std::to_string(b.lambda_patch_nodes) +
+                   " nodes around A's top, each node outside it alone; Gershgorin's: " +
+                   format_digits(b.gershgorin, 8)
+         : b.lambda_max_hi < b.gershgorin
+             ? "a Rayleigh quotient, the node-block splitting's bound; Gershgorin's: " +
+                   format_digits(b.gershgorin, 8)
+             : std::string("a Rayleigh quotient, Gershgorin's bound")) +
         ")";
   out.push_back(lm);
   if (b.unconditional) {  // implicit Euler, K >= 0: every row but lambda_max is exact

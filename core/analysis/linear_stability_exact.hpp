@@ -84,6 +84,9 @@ struct ExactStability {
     double lambda_max_lo = std::numeric_limits<double>::quiet_NaN();
     double lambda_max_hi = std::numeric_limits<double>::quiet_NaN();
     double gershgorin = std::numeric_limits<double>::quiet_NaN();
+    /// Where A's own top is local: the nodes of the patch around it (detail/index_patch.hpp at
+    /// gamma 0, dt 1) that narrowed [lambda_max_lo, lambda_max_hi]; 0 where none did.
+    int lambda_patch_nodes = 0;
     /// The paper's step only: the index lambda_max(dt^2 A + 2 dt C) at the user's gamma and
     /// dt is at least this (>= 4 proves the step unstable), and with the same vector every
     /// gamma >= gamma_unstable_from (at dt) and every dt >= dt_unstable_from (at gamma) is

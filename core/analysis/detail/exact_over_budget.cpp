@@ -135,6 +135,63 @@ void paper_step_ceilings(const Model& model, const std::vector<Vec3>& x,
   e.stable = b.index_at_most < 4;
 }
 
+/// The index's lower bound from a vector u (zero outside `patch`): h^2 a + 2 h gamma rho with
+/// a and rho its quotients less their rounding, less 4 eps of itself.
+double index_below(const IndexPatch& patch, const Eigen::VectorXd& u, const ExactInputs& in,
+                   double gamma, double h) {
+  const double index = h * h * patch.rayleigh_below(u) + 2 * h * gamma * weighted_mean_below(u, in.R);
+  return index - 4 * std::numeric_limits<double>::epsilon() * std::abs(index);
+}
+
+/// The patch around the top of S = h^2 A + 2 h gamma diag(R) (A itself at gamma 0, h 1) that
+/// index_patch.hpp describes, or none: first a pilot, the nodes of the largest node-by-node
+/// bound and 2 rings, whose principal submatrix's top vector proves a lower bound that may
+/// prune the seeds more than `at_least` (where Lanczos's vector was aimed elsewhere, or a
+/// stiff region's top lies far above the rest's bounds); then the smallest of 3, 6 and 12
+/// rings whose two bounds meet to 1e-9 at (gamma, h) (`at_most`, where given, receives its
+/// upper bound), else the largest found. A patch whose dense factorisation exceeds the budget
+/// is not used.
+std::optional<IndexPatch> choose_patch(const Model& model, const std::vector<Vec3>& x,
+                                       const ExactInputs& in, const std::vector<double>& ceiling,
+                                       double gamma, double h, double at_least, double budget,
+                                       double* at_most) {
+  int nfree = 0;
+  const std::vector<int> block = free_blocks(model, &nfree);
+  double largest = 0;
+  for (size_t i = 0; i < block.size(); ++i)
+    if (block[i] >= 0)
+      largest = std::max(largest, h * h * ceiling[i] + 2 * h * gamma * in.R(3 * block[i]));
+  const IndexPatch pilot(model, x, in.A, in.R, ceiling, gamma, h, largest, 2);
+  if (pilot.found() && pilot.flops() <= budget)
+    at_least = std::max(at_least, index_below(pilot, pilot.vector(gamma, h), in, gamma, h));
+  std::optional<IndexPatch> patch;
+  for (const int layers : IndexPatch::kLayers) {
+    IndexPatch p(model, x, in.A, in.R, ceiling, gamma, h, at_least, layers);
+    if (!p.found() || p.flops() > budget) break;
+    patch.emplace(std::move(p));
+    if (!at_most) break;
+    *at_most = patch->index_at_most(gamma, h);
+    if (*at_most - at_least <= 1e-9 * at_least) break;
+  }
+  return patch;
+}
+
+/// Where A's own top is local (a stiff or finely meshed region), a patch around it (gamma 0,
+/// dt 1) narrows the bracket of lambda_max from both sides.
+void lambda_patch(const Model& model, const std::vector<Vec3>& x, const ExactInputs& in,
+                  const std::vector<double>& ceiling, double budget, EigenInterval& bracket,
+                  ExactStability::Unfactored& b) {
+  double at_most = kInf;
+  const std::optional<IndexPatch> patch =
+      choose_patch(model, x, in, ceiling, 0, 1, bracket.lo, budget, &at_most);
+  if (!patch) return;
+  const double lo = patch->rayleigh_below(patch->vector(0, 1));
+  if (lo <= bracket.lo && at_most >= bracket.hi) return;
+  b.lambda_patch_nodes = patch->node_count();
+  bracket.lo = std::max(bracket.lo, lo);
+  bracket.hi = std::min(bracket.hi, at_most);
+}
+
 /// Over the budget, the paper's step, where the index's top is local (detail/index_patch.hpp)
 /// and one dense factorisation of the patch is within the budget: a patch of nodes around it
 /// proves the index from below (its principal submatrix's top
@@ -149,18 +206,10 @@ void patch_proofs(const Model& model, const std::vector<Vec3>& x, const ExactInp
                   ExactStability& e) {
   ExactStability::Unfactored& b = e.unfactored;
   const double h = params.dt, gamma = params.gamma;
-  // The smallest patch whose two bounds at the user's point meet to 1e-9, else the largest
-  // found (each ring costs little beside the mesh's own passes).
-  std::optional<IndexPatch> patch;
   double at_most = kInf;
-  for (const int layers : IndexPatch::kLayers) {
-    IndexPatch p(model, x, in.A, in.R, ceiling, gamma, h, b.index_at_least, layers);
-    if (!p.found() || p.flops() > max_factor_flops) break;
-    patch.emplace(std::move(p));
-    if (!psd) break;
-    at_most = patch->index_at_most(gamma, h);
-    if (at_most - b.index_at_least <= 1e-9 * b.index_at_least) break;
-  }
+  const std::optional<IndexPatch> patch =
+      choose_patch(model, x, in, ceiling, gamma, h, b.index_at_least, max_factor_flops,
+                   psd ? &at_most : nullptr);
   if (!patch) return;
   b.patch_nodes = patch->node_count();
   const auto from_vector = [&](double g, double t) {
@@ -245,7 +294,8 @@ ExactStability over_budget(const Model& model, const std::vector<Vec3>& x, const
   EigenInterval bracket = top;  // a fixed node's ceiling is 0
   if (!ceiling.empty())
     bracket.hi = std::min(top.hi, *std::max_element(ceiling.begin(), ceiling.end()));
-  b.lambda_max_lo = top.lo;
+  lambda_patch(model, x, in, ceiling, options.max_factor_flops, bracket, b);
+  b.lambda_max_lo = bracket.lo;
   b.lambda_max_hi = bracket.hi;
   b.gershgorin = top.hi;
   b.lanczos_steps = top.lanczos_steps;

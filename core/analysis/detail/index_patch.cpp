@@ -70,13 +70,62 @@ IndexPatch::IndexPatch(const Model& model, const std::vector<Vec3>& x, const Spa
       for (int r = 0; r < 3; ++r) dofs_.push_back(3 * block[i] + r);
     }
   const Eigen::Index p = static_cast<Eigen::Index>(dofs_.size());
-  // K_P+ with the edge's share, and each outside neighbour's node block D_j.
-  upper_ = Eigen::MatrixXd::Zero(p, p);
-  std::vector<int> edge;  // the free nodes outside P with a spring into it
-  std::vector<Eigen::Matrix3d> edge_block;
-  std::vector<int> edge_position(n, -1);
   Eigen::Matrix3d B;
-  constexpr double a = kEdgeWeight;
+  // The edge: each free node j outside P with springs into it. Its block is D_j = (its other
+  // springs, split as in splitting_ceilings, and its anchor) + c_j X_j, X_j the sum of its
+  // springs into P, whose patch nodes then take (1 + a_j) of them, a_j = 1 / (c_j - 1). c_j
+  // is the largest (up to 1e6) that keeps j's own bound on the index under 0.8 `at_least`
+  // (it cannot then hold the top, and keeps room below it at the gammas and dts up to the
+  // limits, where the bisections evaluate it), else 2 (a_j = 1, the plain splitting).
+  std::vector<int> edge;
+  std::vector<int> edge_position(n, -1);
+  std::vector<Eigen::Matrix3d> across, rest_of;
+  for (const int i : nodes_)
+    for (int e = model.incident_offset[i]; e < model.incident_offset[i + 1]; ++e) {
+      const Incident s = incident(model, e);
+      const size_t j = s.other;
+      if (block[j] < 0 || in[j] || !positive_spring_block(model, x, s.spring, B)) continue;
+      if (edge_position[j] < 0) {
+        edge_position[j] = static_cast<int>(edge.size());
+        edge.push_back(static_cast<int>(j));
+        across.push_back(Eigen::Matrix3d::Zero());
+      }
+      across[static_cast<size_t>(edge_position[j])] += B;
+    }
+  const double ceiling_room = 3e-12 * *std::max_element(ceiling.begin(), ceiling.end());
+  std::vector<double> share(edge.size()), edge_ceiling(edge.size());
+  for (size_t q = 0; q < edge.size(); ++q) {
+    const size_t j = static_cast<size_t>(edge[q]);
+    Eigen::Matrix3d D = Eigen::Matrix3d::Zero();
+    for (int e = model.incident_offset[j]; e < model.incident_offset[j + 1]; ++e) {
+      const Incident s = incident(model, e);
+      if (block[s.other] >= 0 && in[s.other]) continue;  // across: X_j
+      if (!positive_spring_block(model, x, s.spring, B)) continue;
+      D += block[s.other] < 0 ? B : Eigen::Matrix3d(2 * B);
+    }
+    D.diagonal().array() += model.anchor_kappa[j];
+    const double m = model.mass[j], damping = 2 * h * gamma * R(3 * block[j]);
+    const auto bound = [&](double c) {  // lambda_max(D + c X_j) / m_j
+      const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(D + c * across[q],
+                                                              Eigen::EigenvaluesOnly);
+      return es.eigenvalues()(2) / m + ceiling_room;
+    };
+    const auto fits = [&](double c) { return h * h * bound(c) + damping <= 0.8 * at_least; };
+    double c = 2;
+    if (fits(1 + 1e-6)) {  // the largest c that fits, by bisection on log c
+      double lo = std::log(1 + 1e-6), hi = std::log(1e6 + 1);
+      if (fits(std::exp(hi))) lo = hi;
+      for (int k = 0; k < 40 && hi - lo > 1e-3; ++k) {
+        const double mid = (lo + hi) / 2;
+        (fits(std::exp(mid)) ? lo : hi) = mid;
+      }
+      c = std::exp(lo);
+    }
+    share[q] = 1 / (c - 1);
+    edge_ceiling[q] = bound(c);
+  }
+  // K_P+: the springs inside P whole, the edge's (1 + a_j) on its patch node, the anchors.
+  upper_ = Eigen::MatrixXd::Zero(p, p);
   for (const int i : nodes_) {
     const Eigen::Index pi = 3 * position[static_cast<size_t>(i)];
     upper_.block<3, 3>(pi, pi).diagonal().array() += model.anchor_kappa[static_cast<size_t>(i)];
@@ -93,14 +142,8 @@ IndexPatch::IndexPatch(const Model& model, const std::vector<Vec3>& x, const Spa
         upper_.block<3, 3>(pj, pj) += B;
         upper_.block<3, 3>(pi, pj) -= B;
         upper_.block<3, 3>(pj, pi) -= B;
-      } else {  // across the edge: 1 + a of it on i, 1 + 1/a on j
-        upper_.block<3, 3>(pi, pi) += (1 + a) * B;
-        if (edge_position[j] < 0) {
-          edge_position[j] = static_cast<int>(edge.size());
-          edge.push_back(static_cast<int>(j));
-          edge_block.push_back(Eigen::Matrix3d::Zero());
-        }
-        edge_block[static_cast<size_t>(edge_position[j])] += (1 + 1 / a) * B;
+      } else {
+        upper_.block<3, 3>(pi, pi) += (1 + share[static_cast<size_t>(edge_position[j])]) * B;
       }
     }
   }
@@ -109,28 +152,12 @@ IndexPatch::IndexPatch(const Model& model, const std::vector<Vec3>& x, const Spa
       upper_(r, c) /= std::sqrt(model.mass[static_cast<size_t>(nodes_[static_cast<size_t>(r / 3)])] *
                                 model.mass[static_cast<size_t>(nodes_[static_cast<size_t>(c / 3)])]);
   entry_room_ = 1e-12 * largest_abs_row_sum(upper_);
-  // Outside P: splitting_ceilings' bound, but on the edge's nodes with the edge's share.
-  const double ceiling_room = 3e-12 * *std::max_element(ceiling.begin(), ceiling.end());
-  for (size_t q = 0; q < edge.size(); ++q) {
-    const size_t j = static_cast<size_t>(edge[q]);
-    Eigen::Matrix3d& D = edge_block[q];
-    for (int e = model.incident_offset[j]; e < model.incident_offset[j + 1]; ++e) {
-      const Incident s = incident(model, e);
-      if (block[s.other] >= 0 && in[s.other]) continue;  // taken above
-      if (!positive_spring_block(model, x, s.spring, B)) continue;
-      D += block[s.other] < 0 ? B : Eigen::Matrix3d(2 * B);
-    }
-    D.diagonal().array() += model.anchor_kappa[j];
-  }
+  // Outside P: splitting_ceilings' bound, and on the edge the bound with its share.
   for (size_t i = 0; i < n; ++i) {
     if (block[i] < 0 || in[i]) continue;
-    double c = ceiling[i];
-    if (edge_position[i] >= 0) {
-      const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(
-          edge_block[static_cast<size_t>(edge_position[i])], Eigen::EigenvaluesOnly);
-      c = es.eigenvalues()(2) / model.mass[i] + ceiling_room;
-    }
-    outside_ceiling_.push_back(c);
+    outside_ceiling_.push_back(edge_position[i] >= 0
+                                   ? edge_ceiling[static_cast<size_t>(edge_position[i])]
+                                   : ceiling[i]);
     outside_rate_.push_back(R(3 * block[i]));
   }
   // A's principal submatrix on P, and R there.

@@ -8,7 +8,8 @@
 // Above: K is the springs inside the patch P plus every other spring. Each spring's part is
 // raised to its positive part (B <= B+, positive_spring_block). A spring with one node in P
 // and one outside is split between its nodes, [X, -X; -X, X] <= diag((1 + a) X, (1 + 1/a) X)
-// for X >= 0 and any a > 0 (2 |y^T X z| <= a y^T X y + z^T X z / a); a spring with both nodes
+// for X >= 0 and any a > 0 (2 |y^T X z| <= a y^T X y + z^T X z / a), a chosen per outside
+// node as small as keeps that node's own bound under the index's lower bound; a spring with both nodes
 // outside, a = 1, as in splitting_ceilings; a spring to a fixed node, X on its free node. So
 // K <= K_P+ (dense on P) + blockdiag(D_j) (each node outside P alone), and S's top is at most
 // the larger of the patch matrix's top and max_j (h^2 lambda_max(D_j) / m_j + 2 h gamma R_j).
@@ -37,8 +38,6 @@ class IndexPatch {
   /// The rings tried: more where the patch's two bounds still differ (exact_over_budget.cpp).
   static constexpr int kLayers[] = {3, 6, 12};
   static constexpr int kMaxNodes = 400;
-  /// The weight a of a spring across the patch's edge: its patch node takes 1 + a of it.
-  static constexpr double kEdgeWeight = 0.1;
 
   bool found() const { return !nodes_.empty(); }
   int node_count() const { return static_cast<int>(nodes_.size()); }

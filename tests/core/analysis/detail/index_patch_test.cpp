@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <random>
 #include <tuple>
 
@@ -229,6 +230,39 @@ TEST(IndexPatch, OverTheBudgetItBracketsTheExactLimitsTightly) {
   }
   // With a budget of one flop nothing is factorised, the patch included.
   EXPECT_EQ(exact_stability(model, model.rest, p, none).unfactored.patch_nodes, 0);
+}
+
+TEST(IndexPatch, OverTheBudgetAStiffInclusionsPatchNarrowsLambdaMax) {
+  // A stiff inclusion (the springs at one node in the block's middle 6x stiffer, as a badly
+  // shaped small element makes) puts A's own top there: a patch around it brackets lambda_max
+  // where the splitting's bound lay far above.
+  const int nx = 15, ny = 9, nz = 13, centre = (7 * ny + 4) * nz + 6;
+  ModelSpec spec = lumped_block(nx, ny, nz);
+  for (Spring& sp : spec.springs)
+    if (sp.i == centre || sp.j == centre) sp.kappa_scale *= 6;
+  Params p = tissue_params();
+  const Model model = compile_model(spec, p);
+  const ExactStability exact = exact_stability(model, model.rest, p);
+  ExactOptions none;
+  none.max_factor_flops = 1;
+  ExactOptions budget;
+  budget.max_factor_flops = 0.99 * exact_stability(model, model.rest, p, none).factor_flops;
+  const ExactStability over = exact_stability(model, model.rest, p, budget);
+  ASSERT_FALSE(over.computed());
+  const ExactStability::Unfactored& b = over.unfactored;
+  EXPECT_GT(b.lambda_patch_nodes, 0);
+  std::printf("lambda_max in [%.12g, %.12g] (a patch of %d nodes; Gershgorin %.9g), "
+              "factorised [%.12g, %.12g]\n",
+              b.lambda_max_lo, b.lambda_max_hi, b.lambda_patch_nodes, b.gershgorin,
+              exact.lambda_max_lo, exact.spectrum.lambda_max);
+  EXPECT_LE(b.lambda_max_lo, exact.spectrum.lambda_max);
+  EXPECT_GE(b.lambda_max_hi, exact.lambda_max_lo);
+  EXPECT_LT(b.lambda_max_hi - b.lambda_max_lo, 1e-8 * b.lambda_max_lo);
+  EXPECT_LT(b.lambda_max_hi, 0.8 * b.gershgorin);
+  // Without the budget for a patch: the splitting's bound and a Lanczos quotient.
+  const ExactStability::Unfactored& n = exact_stability(model, model.rest, p, none).unfactored;
+  EXPECT_EQ(n.lambda_patch_nodes, 0);
+  EXPECT_GT(n.lambda_max_hi, 1.1 * exact.spectrum.lambda_max);
 }
 
 }  // namespace
