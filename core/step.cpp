@@ -25,6 +25,11 @@ struct ChunkStats {
 StepStats step(const Model& model, const Params& params, State& state, StepWorkspace& ws) {
   const size_t n = model.rest.size();
   NodeThreads& threads = ws.pass.threads;
+  // A step is a few loops back to back, and steps follow one another: the workers poll for
+  // the next loop rather than sleep (docs/performance.md, "step() on threads"). Once per
+  // workspace; the Monitor's pool, between whose calls the user's own code runs, sleeps.
+  if (threads.spin_microseconds() != kStepSpinMicroseconds)
+    threads.set_spin_microseconds(kStepSpinMicroseconds);
   StepStats st;
   // F_i (SPEC 1) and SPEC 9's R_i from the tangent stiffness at t: one pass over the springs.
   const detail::SpringCounts springs =

@@ -39,6 +39,9 @@ struct StepStats {
   int compressed_springs = 0;       ///< springs with l < l0 at t: K may be indefinite (SPEC 9)
 };
 
+/// How long step()'s threads poll for their next loop before they sleep (NodeThreads).
+inline constexpr int kStepSpinMicroseconds = 500;
+
 /// Advances `state` by params.dt: bounds from the state at t, the policy's effective damping
 /// (SPEC 3-4), then params.integrator. Reads the model's m_i, gamma_i and lower_bound; leaves
 /// every per-node value of the step in `ws`. Pure apart from `state` and `ws`.
