@@ -235,16 +235,19 @@ void patch_proofs(const Model& model, const std::vector<Vec3>& x, const ExactInp
   const auto stable_gamma = [&](double g) { return patch->proved_below(4, g, h); };
   double gamma_lo = std::isnan(b.gamma_stable_hi) ? 0 : b.gamma_stable_hi;
   if (!std::isinf(gamma_lo) && stable_gamma(gamma_lo)) {
-    double gamma_hi = b.gamma_unstable_from;
-    if (std::isinf(gamma_hi))  // nothing proved unstable: double until the patch fails
-      for (gamma_hi = std::max(2 * gamma_lo, 1e-300); stable_gamma(gamma_hi) && gamma_hi < 1e300;)
-        gamma_hi *= 2;
-    const auto [lo, hi] = bisect(gamma_lo, gamma_hi, stable_gamma);
-    if (std::isnan(b.gamma_stable_hi) || lo > b.gamma_stable_hi) {
-      b.gamma_stable_lo = 0;
-      b.gamma_stable_hi = lo;
+    // Nothing proved unstable (the vectors saw no damping): from 2 / (h max_r R_r) on some
+    // diagonal entry of the index matrix, a Rayleigh quotient, is at least 4.
+    const double gamma_hi = std::isinf(b.gamma_unstable_from) && in.r_max > 0
+                                ? 2 / (h * in.r_max)
+                                : b.gamma_unstable_from;
+    if (gamma_hi > gamma_lo && !std::isinf(gamma_hi)) {
+      const auto [lo, hi] = bisect(gamma_lo, gamma_hi, stable_gamma);
+      if (std::isnan(b.gamma_stable_hi) || lo > b.gamma_stable_hi) {
+        b.gamma_stable_lo = 0;
+        b.gamma_stable_hi = lo;
+      }
+      from_vector(hi, h);
     }
-    from_vector(hi, h);
   }
   const auto stable_dt = [&](double t) { return patch->proved_below(4, gamma, t); };
   const double dt_lo = std::isnan(b.dt_stable_up_to) ? 0 : b.dt_stable_up_to;

@@ -40,7 +40,7 @@ IndexPatch::IndexPatch(const Model& model, const std::vector<Vec3>& x, const Spa
   const std::vector<int> block = free_blocks(model, &nfree);
   const size_t n = model.rest.size();
   if (!(at_least > 0) || ceiling.size() != n || R.size() != 3 * nfree) return;
-  // The seeds, then kLayers rings of neighbours through the springs.
+  // The seeds, then `layers` rings of neighbours through the springs.
   std::vector<char> in(n, 0);
   std::vector<int> ring;
   for (size_t i = 0; i < n; ++i)
