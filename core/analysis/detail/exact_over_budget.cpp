@@ -139,7 +139,8 @@ void paper_step_ceilings(const Model& model, const std::vector<Vec3>& x,
 /// a and rho its quotients less their rounding, less 4 eps of itself.
 double index_below(const IndexPatch& patch, const Eigen::VectorXd& u, const ExactInputs& in,
                    double gamma, double h) {
-  const double index = h * h * patch.rayleigh_below(u) + 2 * h * gamma * weighted_mean_below(u, in.R);
+  const double index =
+      h * h * patch.rayleigh_below(u) + 2 * h * gamma * weighted_mean_below(u, in.R);
   return index - 4 * std::numeric_limits<double>::epsilon() * std::abs(index);
 }
 
@@ -202,8 +203,7 @@ void lambda_patch(const Model& model, const std::vector<Vec3>& x, const ExactInp
 template <class UnstableFrom>
 void patch_proofs(const Model& model, const std::vector<Vec3>& x, const ExactInputs& in,
                   const std::vector<double>& ceiling, const Params& params, bool psd,
-                  double max_factor_flops, const UnstableFrom& unstable_from,
-                  ExactStability& e) {
+                  double max_factor_flops, const UnstableFrom& unstable_from, ExactStability& e) {
   ExactStability::Unfactored& b = e.unfactored;
   const double h = params.dt, gamma = params.gamma;
   double at_most = kInf;

@@ -149,20 +149,21 @@ IndexPatch::IndexPatch(const Model& model, const std::vector<Vec3>& x, const Spa
   }
   for (Eigen::Index r = 0; r < p; ++r)
     for (Eigen::Index c = 0; c < p; ++c)
-      upper_(r, c) /= std::sqrt(model.mass[static_cast<size_t>(nodes_[static_cast<size_t>(r / 3)])] *
-                                model.mass[static_cast<size_t>(nodes_[static_cast<size_t>(c / 3)])]);
+      upper_(r, c) /=
+          std::sqrt(model.mass[static_cast<size_t>(nodes_[static_cast<size_t>(r / 3)])] *
+                    model.mass[static_cast<size_t>(nodes_[static_cast<size_t>(c / 3)])]);
   entry_room_ = 1e-12 * largest_abs_row_sum(upper_);
   // Outside P: splitting_ceilings' bound, and on the edge the bound with its share.
   for (size_t i = 0; i < n; ++i) {
     if (block[i] < 0 || in[i]) continue;
-    outside_ceiling_.push_back(edge_position[i] >= 0
-                                   ? edge_ceiling[static_cast<size_t>(edge_position[i])]
-                                   : ceiling[i]);
+    outside_ceiling_.push_back(
+        edge_position[i] >= 0 ? edge_ceiling[static_cast<size_t>(edge_position[i])] : ceiling[i]);
     outside_rate_.push_back(R(3 * block[i]));
   }
   // A's principal submatrix on P, and R there.
   std::vector<int> local(static_cast<size_t>(A.rows()), -1);
-  for (Eigen::Index q = 0; q < p; ++q) local[static_cast<size_t>(dofs_[static_cast<size_t>(q)])] = static_cast<int>(q);
+  for (Eigen::Index q = 0; q < p; ++q)
+    local[static_cast<size_t>(dofs_[static_cast<size_t>(q)])] = static_cast<int>(q);
   principal_ = Eigen::MatrixXd::Zero(p, p);
   rate_.resize(p);
   for (Eigen::Index q = 0; q < p; ++q) {

@@ -9,8 +9,8 @@
 // raised to its positive part (B <= B+, positive_spring_block). A spring with one node in P
 // and one outside is split between its nodes, [X, -X; -X, X] <= diag((1 + a) X, (1 + 1/a) X)
 // for X >= 0 and any a > 0 (2 |y^T X z| <= a y^T X y + z^T X z / a), a chosen per outside
-// node as small as keeps that node's own bound under the index's lower bound; a spring with both nodes
-// outside, a = 1, as in splitting_ceilings; a spring to a fixed node, X on its free node. So
+// node as small as keeps that node's own bound under the index's lower bound; a spring with both
+// nodes outside, a = 1, as in splitting_ceilings; a spring to a fixed node, X on its free node. So
 // K <= K_P+ (dense on P) + blockdiag(D_j) (each node outside P alone), and S's top is at most
 // the larger of the patch matrix's top and max_j (h^2 lambda_max(D_j) / m_j + 2 h gamma R_j).
 // The patch's top is proved by a dense Cholesky factorisation and a bound on its rounding.
@@ -32,8 +32,8 @@ class IndexPatch {
   /// kMaxNodes nodes: then the top is not local. `R` holds the rates per free dof of A (A's
   /// order: free nodes in index order, three dofs each), A is M^-1/2 K M^-1/2 at x.
   IndexPatch(const Model& model, const std::vector<Vec3>& x, const SparseMatrix& A,
-             const Eigen::VectorXd& R, const std::vector<double>& ceiling, double gamma,
-             double h, double at_least, int layers);
+             const Eigen::VectorXd& R, const std::vector<double>& ceiling, double gamma, double h,
+             double at_least, int layers);
 
   /// The rings tried: more where the patch's two bounds still differ (exact_over_budget.cpp).
   static constexpr int kLayers[] = {3, 6, 12};
@@ -71,7 +71,7 @@ class IndexPatch {
   Eigen::MatrixXd principal_;  ///< A's principal submatrix on P (A's own values)
   Eigen::VectorXd rate_;       ///< R on P's rows
   std::vector<double> outside_ceiling_, outside_rate_;  ///< lambda_max(D_j) / m_j, R_j off P
-  double entry_room_ = 0;  ///< upper_'s entries' rounding: 1e-12 of its largest row sum
+  double entry_room_ = 0;          ///< upper_'s entries' rounding: 1e-12 of its largest row sum
   mutable double slack_hint_ = 0;  ///< the widest slack proved_below has needed
 };
 

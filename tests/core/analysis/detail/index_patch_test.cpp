@@ -106,11 +106,11 @@ TEST(IndexPatch, BoundsTheIndexFromBothSidesWhereItsTopIsLocal) {
     const Index s(model, stretch ? stretched : model.rest);
     // Near the paper step's limits the light corners' damping sets the top; at a small gamma
     // and dt A's own top weighs more, and the patch need not prove it tightly.
-    for (const auto& [gamma, h, local] : std::vector<std::tuple<double, double, bool>>{
-             {0.02, 2e-4, true},
-             {0.0215, 2e-4, true},
-             {0.02, 2.134e-4, true},
-             {0.005, 1e-4, false}}) {
+    for (const auto& [gamma, h, local] :
+         std::vector<std::tuple<double, double, bool>>{{0.02, 2e-4, true},
+                                                       {0.0215, 2e-4, true},
+                                                       {0.02, 2.134e-4, true},
+                                                       {0.005, 1e-4, false}}) {
       SCOPED_TRACE(testing::Message() << "gamma " << gamma << ", h " << h);
       const double top = s.top(gamma, h);
       const IndexPatch patch(s.model, s.x, s.A, s.R, s.ceiling, gamma, h, top * (1 - 1e-9), 3);
@@ -145,8 +145,8 @@ TEST(IndexPatch, NoneWhereTheTopIsNotLocal) {
   // A proved lower bound of the index: its largest diagonal entry (a Rayleigh quotient).
   const Eigen::VectorXd diagonal =
       (p.dt * p.dt) * Eigen::MatrixXd(s.A).diagonal() + (2 * p.dt * p.gamma) * s.R;
-  const IndexPatch patch(model, model.rest, s.A, s.R, s.ceiling, p.gamma, p.dt,
-                         diagonal.maxCoeff(), 3);
+  const IndexPatch patch(model, model.rest, s.A, s.R, s.ceiling, p.gamma, p.dt, diagonal.maxCoeff(),
+                         3);
   EXPECT_FALSE(patch.found());
   EXPECT_FALSE(patch.proved_below(1e300, p.gamma, p.dt));
 }
@@ -171,8 +171,8 @@ TEST(IndexPatch, NeverProvesLessThanTheDenseIndexOnRandomStatesAndRates) {
     }
     const Index s(model, x);
     const double gamma = 0.005 + 0.03 * unit(rng), h = 1e-4 + 1.5e-4 * unit(rng);
-    SCOPED_TRACE(testing::Message() << "trial " << trial << ": gamma " << gamma << ", h " << h
-                                    << ", scale " << f);
+    SCOPED_TRACE(testing::Message()
+                 << "trial " << trial << ": gamma " << gamma << ", h " << h << ", scale " << f);
     const double top = s.top(gamma, h);
     for (const int layers : {1, 3}) {
       const IndexPatch patch(model, x, s.A, s.R, s.ceiling, gamma, h, top * (1 - 1e-6), layers);
@@ -308,10 +308,11 @@ TEST(IndexPatch, OverTheBudgetAStiffInclusionsPatchNarrowsLambdaMax) {
   ASSERT_FALSE(over.computed());
   const ExactStability::Unfactored& b = over.unfactored;
   EXPECT_GT(b.lambda_patch_nodes, 0);
-  std::printf("lambda_max in [%.12g, %.12g] (a patch of %d nodes; Gershgorin %.9g), "
-              "factorised [%.12g, %.12g]\n",
-              b.lambda_max_lo, b.lambda_max_hi, b.lambda_patch_nodes, b.gershgorin,
-              exact.lambda_max_lo, exact.spectrum.lambda_max);
+  std::printf(
+      "lambda_max in [%.12g, %.12g] (a patch of %d nodes; Gershgorin %.9g), "
+      "factorised [%.12g, %.12g]\n",
+      b.lambda_max_lo, b.lambda_max_hi, b.lambda_patch_nodes, b.gershgorin, exact.lambda_max_lo,
+      exact.spectrum.lambda_max);
   EXPECT_LE(b.lambda_max_lo, exact.spectrum.lambda_max);
   EXPECT_GE(b.lambda_max_hi, exact.lambda_max_lo);
   EXPECT_LT(b.lambda_max_hi - b.lambda_max_lo, 1e-8 * b.lambda_max_lo);
