@@ -102,7 +102,8 @@ CLI::Option* add_factor_budget_option(CLI::App* cmd, double& gflop) {
       ->add_option("--factor-budget", gflop,
                    "the most one sparse factorisation of the exact analysis may take, in GFlop "
                    "(CHOLMOD's prediction, before any is done); over it the exact rows report "
-                   "only what Lanczos and Gershgorin prove without one (default 200: ~25 s per "
+                   "only what Lanczos, Gershgorin, the node-block splitting and a patch around the "
+                   "top prove without one (default 200: ~25 s per "
                    "factorisation on 2 cores)")
       ->check(finite_positive());
 }

@@ -76,7 +76,9 @@ void GuiApp::criteria_panel() {
   const std::string over_budget = over ? over_budget_test(*e) : std::string();
   const std::string method =
       over
-          ? over_budget + "; its rows say what Lanczos and Gershgorin prove without a factorisation"
+          ? over_budget +
+                "; its rows say what Lanczos, Gershgorin, the node-block splitting and a patch "
+                "around the top prove without a factorisation"
       : e != nullptr ? std::string(to_string(e->method))
                      : std::string();
   const std::string exact =

@@ -62,11 +62,15 @@ double cholesky_rounding_bound(const cholmod_factor_struct& L, double max_abs_di
   const double largest = n ? *std::max_element(sums.row_sum.begin(), sums.row_sum.end()) : 0.0;
   const long long longest =
       n ? *std::max_element(sums.row_entries.begin(), sums.row_entries.end()) : 0;
+  return rounding_bound(largest, longest, max_abs_diagonal);
+}
+
+double rounding_bound(double largest_row_sum, long long longest_row, double max_abs_diagonal) {
   const double u = std::numeric_limits<double>::epsilon() / 2;
-  const double m = 2.0 * static_cast<double>(longest) + 4.0;
+  const double m = 2.0 * static_cast<double>(longest_row) + 4.0;
   if (!(m * u < 0.5)) return std::numeric_limits<double>::infinity();
   const double gamma = m * u / (1 - m * u);
-  return (gamma * largest + u * max_abs_diagonal) * (1 + 1e-6);
+  return (gamma * largest_row_sum + u * max_abs_diagonal) * (1 + 1e-6);
 }
 
 }  // namespace dampbound::detail

@@ -22,4 +22,9 @@ namespace dampbound::detail {
 /// largest diagonal entry in magnitude, as factored, was `max_abs_diagonal`.
 double cholesky_rounding_bound(const cholmod_factor_struct& L, double max_abs_diagonal);
 
+/// The same delta from its parts, for any factor (ShiftedCholesky's, and the dense ones of
+/// index_patch.cpp): `largest_row_sum` = max_i (|L| |L|^T 1)_i, `longest_row` the most entries
+/// in a row of L, `max_abs_diagonal` as above.
+double rounding_bound(double largest_row_sum, long long longest_row, double max_abs_diagonal);
+
 }  // namespace dampbound::detail

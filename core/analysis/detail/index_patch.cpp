@@ -8,11 +8,12 @@
 #include <cmath>
 #include <limits>
 
+#include "core/analysis/detail/cholesky_rounding.hpp"
+
 namespace dampbound::detail {
 namespace {
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
-constexpr double kUnit = kEps / 2;
 
 double largest_abs_row_sum(const Eigen::MatrixXd& S) {
   return S.rows() ? S.cwiseAbs().rowwise().sum().maxCoeff() : 0.0;
@@ -206,16 +207,13 @@ bool IndexPatch::proved_below(double t, double gamma, double h) const {
     C.diagonal().array() += t - entries - slack;
     const Eigen::LLT<Eigen::MatrixXd> llt(C);
     if (llt.info() != Eigen::Success) return false;
-    // L L^T = C + E with |E| <= gamma_m |L| |L|^T (Higham, Accuracy and Stability, 2nd ed.,
-    // Thm 10.3; m as ShiftedCholesky takes it: twice the longest inner product plus 4, for
-    // blocked kernels), and the diagonal's subtraction rounds once: lambda_max(S) < shift +
-    // delta, the shift being t - entries - slack.
+    // lambda_max(S) < shift + delta, the shift being t - entries - slack, with delta the
+    // factor's rounding bound (detail/cholesky_rounding.hpp: Higham's Theorem 10.3, a dense
+    // row of L holding up to n entries).
     const Eigen::MatrixXd L = llt.matrixL();
     const Eigen::VectorXd column_sums = L.cwiseAbs().colwise().sum().transpose();
-    const double products = (L.cwiseAbs() * column_sums).maxCoeff();
-    const double m = 2.0 * static_cast<double>(n) + 4;
-    const double gamma_m = m * kUnit / (1 - m * kUnit);
-    const double delta = gamma_m * products + kUnit * C.diagonal().cwiseAbs().maxCoeff();
+    const double delta = rounding_bound((L.cwiseAbs() * column_sums).maxCoeff(), n,
+                                        C.diagonal().cwiseAbs().maxCoeff());
     if (delta < slack) return true;
     slack = 2 * delta;
     slack_hint_ = std::max(slack_hint_, slack);
