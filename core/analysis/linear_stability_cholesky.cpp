@@ -21,6 +21,22 @@
 #include "core/analysis/detail/tridiagonal.hpp"
 
 namespace dampbound {
+
+double detail::rayleigh_rounding(long double uAu, long double abs_uAu, long double uu,
+                                 long double terms, int row_nonzeros, double abs_row_sum,
+                                 double q) {
+  // |fl(Au) - Au| <= k eps |A||u| per row (k nonzeros), and || |A| || <= max row sum of |A|.
+  // The two long double sums of n products err by at most gamma_{n+1} of their absolute sums
+  // (unit roundoff 2^-64; Higham, Accuracy and Stability, 2nd ed., eq. 3.4), which moves the
+  // quotient by at most gamma_{n+1} (sum |u_i (Au)_i| + |u^T A u|) / u^T u; the division and
+  // the conversion to double round once more each.
+  constexpr double eps = std::numeric_limits<double>::epsilon();
+  const long double unit = std::numeric_limits<long double>::epsilon() / 2;
+  const long double gamma = terms * unit / (1 - terms * unit);
+  const double sums = static_cast<double>(2 * gamma * (abs_uAu + std::abs(uAu)) / uu);
+  return 2 * (row_nonzeros + 2) * eps * abs_row_sum + sums + eps * std::abs(q);
+}
+
 using detail::Beside;
 using detail::estimate_beside;
 using detail::inverse_lanczos;
@@ -58,16 +74,8 @@ Rayleigh rayleigh(const SparseMatrix& A, const Eigen::VectorXd& u, double abs_ro
     uu += static_cast<long double>(u(i)) * u(i);
   }
   const double q = static_cast<double>(uAu / uu);
-  // |fl(Au) - Au| <= k eps |A||u| per row (k nonzeros), and || |A| || <= max row sum of |A|.
-  // The two long double sums of n products err by at most gamma_{n+1} of their absolute sums
-  // (unit roundoff 2^-64; Higham, Accuracy and Stability, 2nd ed., eq. 3.4), which moves the
-  // quotient by at most gamma_{n+1} (sum |u_i (Au)_i| + |u^T A u|) / u^T u; the division and
-  // the conversion to double round once more each.
-  const long double unit = std::numeric_limits<long double>::epsilon() / 2;
-  const long double terms = static_cast<long double>(u.size()) + 1;
-  const long double gamma = terms * unit / (1 - terms * unit);
-  const double sums = static_cast<double>(2 * gamma * (abs_uAu + std::abs(uAu)) / uu);
-  const double rounding = 2 * (row_nonzeros + 2) * kEps * abs_row_sum + sums + kEps * std::abs(q);
+  const double rounding = detail::rayleigh_rounding(
+      uAu, abs_uAu, uu, static_cast<long double>(u.size()) + 1, row_nonzeros, abs_row_sum, q);
   return {q, (Au - q * u).norm() / std::sqrt(static_cast<double>(uu)), rounding};
 }
 

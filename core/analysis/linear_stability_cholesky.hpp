@@ -110,4 +110,13 @@ CertifiedSpectrum certified_spectrum(const SparseMatrix& A,
                                      double max_factor_flops = kNoFactorBudget,
                                      const std::function<void()>& within_budget = {});
 
+namespace detail {
+/// The rounding of a Rayleigh quotient q = uAu / uu whose products u_r (A u)_r were summed in
+/// long double over `terms` - 1 rows (uAu, and abs_uAu the sum of their absolute values), each
+/// (A u)_r in double over at most `row_nonzeros` entries of absolute sum at most
+/// `abs_row_sum`: q less this is a lower bound of the exact quotient.
+double rayleigh_rounding(long double uAu, long double abs_uAu, long double uu, long double terms,
+                         int row_nonzeros, double abs_row_sum, double q);
+}  // namespace detail
+
 }  // namespace dampbound

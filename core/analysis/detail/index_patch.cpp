@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "core/analysis/detail/cholesky_rounding.hpp"
+#include "core/analysis/linear_stability_cholesky.hpp"
 
 namespace dampbound::detail {
 namespace {
@@ -243,9 +244,7 @@ Eigen::VectorXd IndexPatch::vector(double gamma, double h) const {
 
 double IndexPatch::rayleigh_below(const Eigen::VectorXd& u) const {
   // linear_stability_cholesky.cpp's rayleigh() over the patch's rows alone (u is zero
-  // elsewhere, so no other row enters the quotient): |fl(Au) - Au| <= k eps |A||u| per row,
-  // the long double sums within gamma_{n+1} of their absolute sums, one rounding each for the
-  // division and the conversion.
+  // elsewhere, so no other row enters the quotient), with its rounding bound.
   long double uAu = 0, abs_uAu = 0, uu = 0;
   double abs_row_sum = 0;
   int row_nonzeros = 0;
@@ -266,11 +265,8 @@ double IndexPatch::rayleigh_below(const Eigen::VectorXd& u) const {
   }
   if (uu == 0) return -std::numeric_limits<double>::infinity();
   const double q = static_cast<double>(uAu / uu);
-  const long double unit = std::numeric_limits<long double>::epsilon() / 2;
-  const long double terms = static_cast<long double>(dofs_.size()) + 1;
-  const long double g = terms * unit / (1 - terms * unit);
-  const double sums = static_cast<double>(2 * g * (abs_uAu + std::abs(uAu)) / uu);
-  return q - (2 * (row_nonzeros + 2) * kEps * abs_row_sum + sums + kEps * std::abs(q));
+  return q - rayleigh_rounding(uAu, abs_uAu, uu, static_cast<long double>(dofs_.size()) + 1,
+                               row_nonzeros, abs_row_sum, q);
 }
 
 }  // namespace dampbound::detail
