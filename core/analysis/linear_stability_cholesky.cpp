@@ -50,7 +50,6 @@ using detail::short_inverse_lanczos;
 using detail::TopEstimate;
 namespace {
 
-constexpr double kEps = std::numeric_limits<double>::epsilon();
 /// Room above a shift, relative to max_r sum_s |A_rs|, so that a factorisation just above
 /// lambda_max does not fail by rounding; what a success proves allows for its rounding
 /// separately (ShiftedCholesky::proved_above).
