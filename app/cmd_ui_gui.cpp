@@ -1,8 +1,11 @@
 // dampbound gui [SCENE]: the interactive tuner window (Dear ImGui + GLFW + OpenGL 3.3). With
 // --frames N it plays N frames and exits (screenshots, frame-time measurement, tests).
+#include <algorithm>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
+#include <cstdint>
+#include <filesystem>
 #include <memory>
 #include <string>
 
@@ -14,9 +17,11 @@
 #include "core/io/scene_write.hpp"
 
 #if defined(DAMPBOUND_HAVE_GLFW)
+#include "ui/close_guard.hpp"
 #include "ui/frame_times.hpp"
 #include "ui/glfw_host.hpp"
 #include "ui/gui_app.hpp"
+#include "ui/gui_self_test.hpp"
 #include "ui/image.hpp"
 #include "ui/tuner_export.hpp"
 #endif
@@ -28,6 +33,10 @@ struct GuiArgs {
   std::string scene, screenshot, size, config_dir;
   int frames = 0, steps_per_frame = 0;
   bool stats = false, play = false, demo = false;
+  bool self_test = false;
+  std::vector<std::string> self_test_scenes, monkey_scenes = {"paper-plane", "tissue-block"};
+  int monkey_events = 1000;
+  std::uint64_t monkey_seed = 1;
   std::string tab, linearise;
   std::vector<std::string> pins;  ///< --pin KEY=VALUE[,KEY=VALUE...], repeatable
   std::string save_scene, export_dir, export_prefix = "dampbound";
@@ -38,11 +47,10 @@ struct GuiArgs {
 };
 
 #if defined(DAMPBOUND_HAVE_GLFW)
-/// Set by Ctrl+C or SIGTERM: the window closes after the frame, and the settings are saved.
-volatile std::sig_atomic_t g_stop = 0;
-void on_stop_signal(int) {
-  g_stop = 1;
-}
+/// How long a close (window button, SIGINT, SIGTERM) may take, and the longest frame of a
+/// self-test before it counts as a hang (seconds).
+constexpr double kCloseGrace = 0.8;
+constexpr double kSelfTestHang = 60.0;
 
 bool have_display() {
   const char* x = std::getenv("DISPLAY");
@@ -91,6 +99,27 @@ void print_stats(const GuiArgs& a, ui::GuiApp& app, const ui::WindowRun& run,
   (void)a;
 }
 
+/// A scene argument as an absolute file name: the file, else a shipped scene of that name.
+std::string resolve_scene_path(const std::string& arg) {
+  namespace fs = std::filesystem;
+  if (fs::exists(arg)) return fs::absolute(arg).string();
+  fs::path shipped = fs::path(shipped_scenes_dir()) / arg;
+  if (shipped.extension() != ".toml") shipped += ".toml";
+  if (fs::exists(shipped)) return shipped.string();
+  throw InputError("scene '" + arg + "': no such file, and no shipped scene of that name");
+}
+
+/// The widgets the self-test operated and what the monkey did.
+void print_self_test(const ui::SelfTest& t, const ui::SelfTestOptions& o) {
+  const ui::SelfTestReport& r = t.report();
+  std::printf("self-test: %zu widgets operated on %d scenes:\n", r.visited.size(), r.scenes_visited);
+  for (const std::string& v : r.visited) std::printf("  %s\n", v.c_str());
+  std::printf("self-test: monkey: %d input events (%d per scene on %zu scenes), seed %llu\n",
+              r.monkey_events, o.monkey_events, o.monkey_scenes.size(),
+              static_cast<unsigned long long>(o.seed));
+  std::printf("self-test: OK, %d frames, no abort, no hang\n", r.frames);
+}
+
 /// The window's title of a --tab value.
 std::string tab_title(const std::string& tab) {
   if (tab == "criteria") return "Criteria";
@@ -130,6 +159,25 @@ int run(GuiArgs& a) {
       throw InputError(std::string("--export-prefix: ") + e.what());
     }
   }
+  if (a.self_test && a.frames > 0) throw InputError("--self-test runs until it is done: drop --frames");
+  ui::SelfTestOptions st;
+  std::string self_test_dir;
+  if (a.self_test) {
+    for (const std::string& s : a.self_test_scenes) st.scenes.push_back(resolve_scene_path(s));
+    if (a.self_test_scenes.empty()) {
+      for (const auto& e : std::filesystem::directory_iterator(shipped_scenes_dir()))
+        if (e.path().extension() == ".toml") st.scenes.push_back(e.path().string());
+      std::sort(st.scenes.begin(), st.scenes.end());
+    }
+    for (const std::string& s : a.monkey_scenes) st.monkey_scenes.push_back(resolve_scene_path(s));
+    st.monkey_events = a.monkey_events;
+    st.seed = a.monkey_seed;
+    // Whatever the widgets write (exports, saved scenes, settings) lands in a folder of its own.
+    std::string tmpl = (std::filesystem::temp_directory_path() / "dampbound-self-test-XXXXXX").string();
+    if (mkdtemp(tmpl.data()) == nullptr) throw std::runtime_error("gui: cannot make a temporary folder");
+    self_test_dir = tmpl;
+    if (a.config_dir.empty()) a.config_dir = self_test_dir + "/config";
+  }
   ui::GuiOptions o;
   o.config_dir = ui::config_dir(a.config_dir);
   o.scenes_dir = shipped_scenes_dir();
@@ -165,9 +213,16 @@ int run(GuiArgs& a) {
   w.vsync = a.frames <= 0;  // measured runs draw as fast as they can
   w.max_frames = a.frames;
   w.screenshot_frame = a.screenshot.empty() ? -1 : a.frames - 1;
+  std::unique_ptr<ui::SelfTest> self_test;
+  if (a.self_test) {
+    app.set_export_folder(self_test_dir + "/export");
+    self_test = std::make_unique<ui::SelfTest>(app, st);
+    std::filesystem::current_path(self_test_dir);
+    w.input = [&self_test] { self_test->input(ImGui::GetIO()); };
+  }
   ui::GlfwHost host(w);
-  std::signal(SIGINT, on_stop_signal);
-  std::signal(SIGTERM, on_stop_signal);
+  ui::CloseGuard guard(kCloseGrace, a.self_test ? kSelfTestHang : 0.0);
+  guard.catch_signals();
   std::string export_message;
   // Scripted pictures of the Map tab: its passes all finish before the last frame draws (the
   // screenshot, the export). Without one nothing waits, so --stats times only the frames.
@@ -178,12 +233,22 @@ int run(GuiArgs& a) {
     app.frame(info);
     if (!a.export_dir.empty() && last)
       export_message = app.export_plots(a.export_dir, a.export_prefix);
-    if (g_stop != 0) info.close = true;
+    if (self_test && self_test->after_frame(info)) info.close = true;
+    guard.heartbeat(self_test ? self_test->doing() : std::string());
+    if (ui::CloseGuard::signalled()) info.close = true;
   });
-  std::signal(SIGINT, SIG_DFL);
-  std::signal(SIGTERM, SIG_DFL);
+  // A close request (the window's button, a signal) ends the process now: the settings are
+  // saved, and no background work is waited for.
+  const bool close_request = ui::CloseGuard::signalled() || (a.frames <= 0 && !a.self_test);
+  if (close_request) {
+    guard.request_close();
+    app.save();
+    std::fflush(nullptr);
+    std::_Exit(0);
+  }
   app.save();
   app.release_gl();
+  if (self_test) print_self_test(*self_test, st);
   if (!a.screenshot.empty()) {
     if (!run.screenshot) throw std::runtime_error("gui: the window closed before the screenshot");
     ui::write_png_atomic(*run.screenshot, a.screenshot);
@@ -249,6 +314,19 @@ std::function<int()> setup(CLI::App& root) {
       ->capture_default_str();
   cmd->add_flag("--demo", a->demo,
                 "pin a run at a quarter of the lower bound and one at it before the first frame");
+  cmd->add_flag("--self-test", a->self_test,
+                "operate every widget on each shipped scene (the cut tool included), then let a "
+                "seeded random monkey loose; prints the widgets visited; exit 0 when nothing "
+                "aborted or hung");
+  cmd->add_option("--self-test-scenes", a->self_test_scenes,
+                  "--self-test: the scenes visited (default: every shipped scene)");
+  cmd->add_option("--monkey-scenes", a->monkey_scenes, "--self-test: the monkey's scenes")
+      ->capture_default_str();
+  cmd->add_option("--monkey-events", a->monkey_events, "--self-test: input events per scene")
+      ->check(CLI::Range(0, 100000000))
+      ->capture_default_str();
+  cmd->add_option("--monkey-seed", a->monkey_seed, "--self-test: the monkey's seed")
+      ->capture_default_str();
   add_factor_budget_option(cmd, a->factor_budget);
   a->flags.add_to(cmd, true);
   return [a] { return run(*a); };

@@ -111,6 +111,7 @@ WindowRun GlfwHost::run(const FrameFn& fn) {
     }
     ImGui::SetCurrentContext(impl_->renderer->context());
     if (impl_->platform_backend) ImGui_ImplGlfw_NewFrame();
+    if (opt.input) opt.input();
     info.index = result.frames;
     info.width = w;
     info.height = h;

@@ -5,6 +5,7 @@
 #include "ui/frame_renderer.hpp"
 #include "ui/image.hpp"
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -22,6 +23,9 @@ struct WindowOptions {
   int max_frames = 0;         ///< end after this many frames; 0: when the window closes
   int screenshot_frame = -1;  ///< copy the back buffer after drawing this frame (-1: never)
   RenderOptions render = gui_render_options();
+  /// Called each frame after the window's input reached ImGui's io and before the frame is
+  /// built: a scripted input source (gui --self-test) writes its own there.
+  std::function<void()> input;
 };
 
 /// Defaults: 1280x800, vsync, dark theme, runs until closed.

@@ -15,6 +15,7 @@
 #include "core/bounds.hpp"
 #include "core/io/files.hpp"
 #include "core/io/scene_file.hpp"
+#include "ui/gui_items.hpp"
 
 namespace dampbound::ui {
 
@@ -240,8 +241,7 @@ void GuiApp::frame(FrameInfo& info) {
     if (selected) select_tab_.clear();
     const std::string label =
         std::string(compact && short_name != nullptr ? short_name : name) + "###" + name;
-    return ImGui::BeginTabItem(label.c_str(), nullptr,
-                               selected ? ImGuiTabItemFlags_SetSelected : 0);
+    return item::begin_tab_item(label.c_str(), selected ? ImGuiTabItemFlags_SetSelected : 0);
   };
   auto status_tabs = [&] {
     if (tab("Status")) {

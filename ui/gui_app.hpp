@@ -104,6 +104,14 @@ class GuiApp {
   /// Brings a tab to the front at the next frame: "Status", "Criteria", "Pins & export",
   /// "Suggest", "Save scene", "Mesh" or "Map".
   void select_tab(const std::string& name) { select_tab_ = name; }
+  /// Opens a scene file as the scene picker does (an error shows under the picker).
+  void open_scene(const std::string& path);
+  /// The file of the current scene ("" when built in code).
+  const std::string& scene_path() const { return scene_.path; }
+  /// The files of the scene picker's list.
+  const std::vector<std::string>& scene_files() const { return scene_.files; }
+  /// The folder the Export button writes to.
+  void set_export_folder(const std::string& dir) { runs_.export_dir = dir; }
   /// Starts the Suggest computation as the button does.
   void start_suggest();
   /// The Suggest computation, and the frame statistics of the window.
@@ -136,7 +144,6 @@ class GuiApp {
   void save_layout_if_needed(bool force);
   void parameters_panel();
   void scene_picker();
-  void open_scene(const std::string& path);
   void playback_controls();
   void status_panel();
   void runs_panel();

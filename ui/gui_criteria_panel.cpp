@@ -2,10 +2,12 @@
 // values from core/analysis/suggest.hpp, verified by runs, with buttons to apply them).
 #include <imgui.h>
 
+#include <optional>
 #include <string>
 
 #include "core/io/report.hpp"
 #include "ui/gui_app.hpp"
+#include "ui/gui_items.hpp"
 #include "ui/gui_widgets.hpp"
 
 namespace dampbound::ui {
@@ -52,7 +54,7 @@ void GuiApp::criteria_panel() {
   static const char* const kAt[] = {"rest", "the current state", "the static equilibrium"};
   int at = static_cast<int>(c.linearisation());
   ImGui::SetNextItemWidth(ImGui::CalcTextSize(kAt[2]).x + 2 * ImGui::GetFrameHeight());
-  if (ImGui::Combo("linearise at", &at, kAt, 3))
+  if (item::combo("linearise at", &at, kAt, 3))
     c.set_linearisation(static_cast<Linearisation>(at));
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip(
@@ -66,7 +68,8 @@ void GuiApp::criteria_panel() {
                             : held != nullptr
                                 ? "at the static equilibrium (" + equilibrium_summary(*held) + ")"
                                 : "at iteration " + std::to_string(c.exact_iteration());
-  ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
+  std::optional<ScopedStyleColor> grey(std::in_place, ImGuiCol_Text,
+                                       ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
   // On a large mesh the rows follow a playing run every 0.2 s: say when they are behind it.
   const int now = t.session().state().iteration, rows_at = c.rows_iteration();
   const std::string behind =
@@ -87,7 +90,7 @@ void GuiApp::criteria_panel() {
                    : c.computing() ? std::string("exact analysis: computing")
                                    : std::string("exact analysis unavailable");
   text_wrapped("at iteration " + std::to_string(rows_at) + behind + "; " + exact);
-  ImGui::PopStyleColor();
+  grey.reset();
   if (const NetForce* n = c.rest_net_force(); n != nullptr && !n->balanced())
     wrapped_colored(gui_amber(),
                     (rest_not_in_equilibrium(*n) +
@@ -123,9 +126,10 @@ void GuiApp::criteria_panel() {
 
 void GuiApp::suggest_panel() {
   Tuner& t = *tuner_;
-  ImGui::BeginDisabled(suggest_.busy());
-  if (ImGui::Button("Suggest stable values")) start_suggest();
-  ImGui::EndDisabled();
+  {
+    const ScopedDisabled off(suggest_.busy());
+    if (item::button("Suggest stable values")) start_suggest();
+  }
   if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
     ImGui::SetTooltip(
         "The damping range every criterion accepts at this dt, the fastest-settling\n"
@@ -150,18 +154,19 @@ void GuiApp::suggest_panel() {
                 fmt(d.dt_max_at_gamma_min).c_str());
   } else {
     text_wrapped("range [" + fmt(d.gamma_min) + ", " + fmt(d.gamma_max) + (d.proved_only ? "]" : ")"));
-    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
-    text_wrapped("from " + d.min_by + "; to " + d.max_by);
-    if (d.proved_only)
-      text_wrapped("exact limits not computed (over the factorisation budget); the exact upper "
-                   "limit lies in [" + fmt(d.gamma_max) + ", " + fmt(d.gamma_unstable_from) + ")");
-    ImGui::PopStyleColor();
+    {
+      const ScopedStyleColor grey(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
+      text_wrapped("from " + d.min_by + "; to " + d.max_by);
+      if (d.proved_only)
+        text_wrapped("exact limits not computed (over the factorisation budget); the exact upper "
+                     "limit lies in [" + fmt(d.gamma_max) + ", " + fmt(d.gamma_unstable_from) + ")");
+    }
     ImGui::Text("fastest settling: gamma = %s", fmt(d.gamma_best).c_str());
     if (ImGui::IsItemHovered())
       ImGui::SetTooltip("%s (spectral radius %s)", d.best_method.c_str(), fmt(d.best_rho).c_str());
-    if (ImGui::SmallButton("apply gamma")) t.set_params(with_best_gamma(t.params(), s));
+    if (item::small_button("apply gamma")) t.set_params(with_best_gamma(t.params(), s));
     ImGui::SameLine();
-    if (ImGui::SmallButton("apply range min")) {
+    if (item::small_button("apply range min")) {
       Params p = t.params();
       p.gamma = d.gamma_min;
       t.set_params(p);
@@ -177,7 +182,7 @@ void GuiApp::suggest_panel() {
   else
     text_wrapped("largest stable dt (exact): " + fmt(st.dt_exact) + " s");
   text_wrapped("every criterion accepts dt <= " + fmt(st.dt_all) + " s (" + st.dt_all_by + ")");
-  if (ImGui::SmallButton("apply dt")) t.set_params(with_suggested_dt(t.params(), s));
+  if (item::small_button("apply dt")) t.set_params(with_suggested_dt(t.params(), s));
   for (const VerifiedRun& r : st.runs) run_line(r);
   if (s.params.gamma != t.params().gamma || s.params.dt != t.params().dt ||
       s.params.m != t.params().m || s.params.kappa != t.params().kappa)

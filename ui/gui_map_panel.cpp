@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/io/report.hpp"
+#include "ui/gui_items.hpp"
 #include "ui/gui_app.hpp"
 #include "ui/gui_widgets.hpp"
 #include "ui/map_plot.hpp"
@@ -30,7 +31,7 @@ void axis_combo(const char* label, MapParam* p, MapParam other) {
   static const char* names[] = {"m", "kappa", "gamma", "dt"};
   int v = static_cast<int>(*p);
   ImGui::SetNextItemWidth(ImGui::CalcTextSize("kappa").x + ImGui::GetFrameHeight() * 1.6f);
-  if (ImGui::Combo(label, &v, names, 4) && v != static_cast<int>(other))
+  if (item::combo(label, &v, names, 4) && v != static_cast<int>(other))
     *p = static_cast<MapParam>(v);
 }
 
@@ -48,7 +49,7 @@ void GuiApp::map_panel() {
   if (line_end - ImGui::GetItemRectMax().x > controls_w) ImGui::SameLine();
   float span = static_cast<float>(v.decades);
   ImGui::SetNextItemWidth(std::max(80.0f, ImGui::CalcTextSize("+-0.00 decades").x + 16.0f));
-  if (ImGui::SliderFloat("##decades", &span, 0.25f, 3.0f, u8"\u00B1%.2f decades"))
+  if (item::slider_float("##decades", &span, 0.25f, 3.0f, u8"\u00B1%.2f decades"))
     v.decades = std::round(span * 4.0f) / 4.0;  // quarter decades: no restart per pixel
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("How far the window reaches around the current point");
   ImGui::SameLine();
@@ -57,7 +58,7 @@ void GuiApp::map_panel() {
   for (int i = 0; i < 5; ++i)
     if (sizes[i] == v.finest) pick = i;
   ImGui::SetNextItemWidth(ImGui::CalcTextSize("64 x 64").x + ImGui::GetFrameHeight() * 1.6f);
-  if (ImGui::Combo("##cells", &pick, "16 x 16\0" "24 x 24\0" "32 x 32\0" "48 x 48\0" "64 x 64\0"))
+  if (item::combo("##cells", &pick, "16 x 16\0" "24 x 24\0" "32 x 32\0" "48 x 48\0" "64 x 64\0"))
     v.finest = sizes[pick];
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("Cells per axis of the finest pass");
   map_.follow(t.session().shared_scene(), t.scene_version(), t.params(), t.session().rules(), v);

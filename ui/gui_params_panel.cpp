@@ -5,10 +5,12 @@
 
 #include <cmath>
 #include <filesystem>
+#include <optional>
 #include <string>
 
 #include "core/bounds.hpp"
 #include "core/io/scene_file.hpp"
+#include "ui/gui_items.hpp"
 #include "ui/gui_app.hpp"
 #include "ui/gui_widgets.hpp"
 
@@ -20,7 +22,7 @@ namespace {
 /// so any value the core accepts can be entered).
 bool log_slider(const char* label, double* v, double lo, double hi, const char* help) {
   const bool changed =
-      ImGui::SliderScalar(label, ImGuiDataType_Double, v, &lo, &hi, "%.5g",
+      item::slider_double(label, v, lo, hi, "%.5g",
                           ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_NoRoundToFormat);
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s\nCtrl+click to type a value.", help);
   return changed;
@@ -47,25 +49,24 @@ void GuiApp::scene_picker() {
   const std::string preview = scene_.path.empty()
                                   ? tuner_->scene().name
                                   : std::filesystem::path(scene_.path).stem().string();
-  if (ImGui::BeginCombo("##scene", preview.c_str())) {
+  if (item::begin_combo("##scene", preview.c_str())) {
     for (const std::string& f : scene_.files) {
       const std::string stem = std::filesystem::path(f).stem().string();
-      if (ImGui::Selectable(stem.c_str(), f == scene_.path)) open_scene(f);
+      if (item::selectable(stem.c_str(), f == scene_.path)) open_scene(f);
     }
     ImGui::EndCombo();
   }
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("The scenes of the source tree (scenes/*.toml).");
   const float open_w = ImGui::CalcTextSize("Open").x + ImGui::GetStyle().FramePadding.x * 2;
   ImGui::SetNextItemWidth(-open_w - ImGui::GetStyle().ItemSpacing.x);
-  const bool enter = ImGui::InputTextWithHint("##path", "scene file (.toml) or name", &scene_.typed,
+  const bool enter = item::input_text_hint("##path", "scene file (.toml) or name", &scene_.typed,
                                               ImGuiInputTextFlags_EnterReturnsTrue);
   ImGui::SameLine();
-  if (ImGui::Button("Open") || enter) open_scene(resolve_scene(scene_.typed, options_.scenes_dir));
+  if (item::button("Open") || enter) open_scene(resolve_scene(scene_.typed, options_.scenes_dir));
   if (!scene_.error.empty()) wrapped_colored(gui_red(), scene_.error.c_str());
   if (!tuner_->scene().description.empty()) {
-    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
+    const ScopedStyleColor grey(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
     text_wrapped(tuner_->scene().description);
-    ImGui::PopStyleColor();
   }
 }
 
@@ -75,28 +76,29 @@ void GuiApp::playback_controls() {
   const ImGuiIO& io = ImGui::GetIO();
   const bool keys = !io.WantCaptureKeyboard;
   const float bw = (ImGui::GetContentRegionAvail().x - 3 * ImGui::GetStyle().ItemSpacing.x) / 4;
-  ImGui::BeginDisabled(!can);
-  if (ImGui::Button(t.playing() ? "Pause" : "Play", ImVec2(bw, 0)) ||
+  {
+  const ScopedDisabled off(!can);
+  if (item::button(t.playing() ? "Pause" : "Play", ImVec2(bw, 0)) ||
       (keys && key_pressed(ImGuiKey_Space)))
     t.set_playing(!t.playing());
   if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) ImGui::SetTooltip("Space");
   ImGui::SameLine();
-  if (ImGui::Button("Step", ImVec2(bw, 0))) t.step(1);
+  if (item::button("Step", ImVec2(bw, 0))) t.step(1);
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("One step of the paper's integrator");
-  ImGui::EndDisabled();
+  }
   ImGui::SameLine();
-  if (ImGui::Button("Reset", ImVec2(bw, 0))) t.reset();
+  if (item::button("Reset", ImVec2(bw, 0))) t.reset();
   if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
     ImGui::SetTooltip("Back to the scene's perturbed start (cuts undone), same parameters");
   ImGui::SameLine();
-  if (ImGui::Button("Perturb", ImVec2(bw, 0))) t.perturb();
+  if (item::button("Perturb", ImVec2(bw, 0))) t.perturb();
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("Apply the scene's perturbation again, now");
   int spf = t.playback().steps_per_frame;
   ImGui::SetNextItemWidth(-ImGui::CalcTextSize("steps / frame").x -
                           ImGui::GetStyle().ItemInnerSpacing.x);
-  if (ImGui::SliderInt("steps / frame", &spf, 1, 1000, "%d", ImGuiSliderFlags_Logarithmic))
+  if (item::slider_int("steps / frame", &spf, 1, 1000, "%d", ImGuiSliderFlags_Logarithmic))
     t.playback().steps_per_frame = std::max(1, std::min(spf, 10000));
-  ImGui::Checkbox("pause at the verdict", &t.playback().pause_at_verdict);
+  item::checkbox("pause at the verdict", &t.playback().pause_at_verdict);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("Pause at the verdict: the iteration limit, or a divergence");
 }
@@ -109,7 +111,7 @@ void GuiApp::parameters_panel() {
   Params p = t.params();
   const float label_w =
       ImGui::CalcTextSize("factor x upper").x + ImGui::GetStyle().ItemInnerSpacing.x;
-  ImGui::PushItemWidth(-label_w);
+  std::optional<ScopedItemWidth> width(std::in_place, -label_w);
   bool changed = false;
   changed |= log_slider("m", &p.m, 1e-5, 10.0, "Node mass m (mass unit)");
   changed |= log_slider(u8"\u03BA kappa", &p.kappa, 1e-5, 100.0,
@@ -130,7 +132,7 @@ void GuiApp::parameters_panel() {
   if (ImGui::GetContentRegionAvail().x - ImGui::GetItemRectSize().x >
       button_w + ImGui::GetStyle().ItemSpacing.x)
     ImGui::SameLine();  // beside the value when there is room, else below it
-  if (ImGui::SmallButton(set_lower)) {
+  if (item::small_button(set_lower)) {
     // The smallest gamma that puts every node at or above its bound.
     p.gamma = per_node && lb.ratio > 0 ? p.gamma / lb.ratio : lo;
     changed = true;
@@ -162,7 +164,7 @@ void GuiApp::parameters_panel() {
     *out = to_string(kPolicies[k]);
     return true;
   };
-  if (ImGui::Combo("policy", &policy, policy_name, nullptr, IM_ARRAYSIZE(kPolicies))) {
+  if (item::combo("policy", &policy, policy_name, nullptr, IM_ARRAYSIZE(kPolicies))) {
     p.policy = kPolicies[policy];
     changed = true;
   }
@@ -173,23 +175,22 @@ void GuiApp::parameters_panel() {
         "upper: factor x upper bound (eq. 6)\nlower: the lower bound (eq. 5)\n"
         "safe: gamma clamped into [lower, safe bound] (SPEC 9): stability of the\n"
         "paper's semi-implicit step guaranteed (not derived for the other integrators)");
-  ImGui::BeginDisabled(p.policy != DampingPolicy::upper);
-  double fmin = 0.0, fmax = 2.0;
-  changed |=
-      ImGui::SliderScalar("factor x upper", ImGuiDataType_Double, &p.factor, &fmin, &fmax, "%.3f");
-  ImGui::EndDisabled();
+  {
+    const ScopedDisabled off(p.policy != DampingPolicy::upper);
+    changed |= item::slider_double("factor x upper", &p.factor, 0.0, 2.0, "%.3f");
+  }
   int integ = static_cast<int>(p.integrator);
   const char* integrators[] = {"semi-implicit Euler (paper)", "forward Euler", "Verlet", "RK4",
                                "implicit Euler"};
-  if (ImGui::Combo("integrator", &integ, integrators, 5)) {
+  if (item::combo("integrator", &integ, integrators, 5)) {
     p.integrator = static_cast<Integrator>(integ);
     changed = true;
   }
   int max_iter = t.session().rules().max_iterations;
-  if (ImGui::InputInt("max iterations", &max_iter, 100, 1000)) t.set_max_iterations(max_iter);
+  if (item::input_int("max iterations", &max_iter, 100, 1000)) t.set_max_iterations(max_iter);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("The iteration limit: the settled rule (SPEC 8) gives its verdict here");
-  ImGui::PopItemWidth();
+  width.reset();
   if (changed) {
     std::string err;
     if (t.set_params(p, &err)) {

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <string>
 
+#include "ui/gui_items.hpp"
 #include "ui/gui_app.hpp"
 #include "ui/gui_widgets.hpp"
 
@@ -27,19 +28,19 @@ void GuiApp::save_panel() {
   section_header("Tolerances of the [[expect]] entries");
   const float w = std::min(ImGui::GetContentRegionAvail().x * 0.45f, 160.0f);
   ImGui::SetNextItemWidth(w);
-  if (ImGui::InputInt("+- iterations", &save_.tolerance.iterations, 1, 10))
+  if (item::input_int("+- iterations", &save_.tolerance.iterations, 1, 10))
     save_.tolerance.iterations = std::max(0, save_.tolerance.iterations);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("The verdict's iteration may move this far (restored, diverged)");
   ImGui::SetNextItemWidth(w);
   double f = save_.tolerance.displacement_factor;
-  if (ImGui::InputDouble("x final displacement", &f, 0.1, 1.0, "%.2f"))
+  if (item::input_double("x final displacement", &f, 0.1, 1.0, "%.2f"))
     save_.tolerance.displacement_factor = std::clamp(f, 1.0, 1e6);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip(
         "max_displacement_below = this x the measured final max displacement\n"
         "(1 = not asserted; diverged runs never)");
-  ImGui::Checkbox("assert the node-step counts", &save_.tolerance.counts);
+  item::checkbox("assert the node-step counts", &save_.tolerance.counts);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("violations_max and unstabilisable_max = the measured node-steps");
   section_header("File");
@@ -47,9 +48,9 @@ void GuiApp::save_panel() {
     save_.path = (t.scene().name.empty() ? std::string("tuned") : t.scene().name) + "-tuned.toml";
   const float bw = ImGui::CalcTextSize("Save").x + ImGui::GetStyle().FramePadding.x * 2;
   ImGui::SetNextItemWidth(-bw - ImGui::GetStyle().ItemSpacing.x);
-  ImGui::InputTextWithHint("##save_path", "scene file (.toml)", &save_.path);
+  item::input_text_hint("##save_path", "scene file (.toml)", &save_.path);
   ImGui::SameLine();
-  if (ImGui::Button("Save")) {
+  if (item::button("Save")) {
     save_.notes.clear();
     save_.result.run([&] { return save_scene(save_.path, &save_.notes); });
   }

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "core/io/report.hpp"
+#include "ui/gui_items.hpp"
 #include "ui/gui_app.hpp"
 #include "ui/gui_export.hpp"
 #include "ui/gui_widgets.hpp"
@@ -21,13 +22,8 @@ void row(const char* label, const std::string& value, const ImVec4* color = null
   ImGui::TableNextColumn();
   ImGui::TextDisabled("%s", label);
   ImGui::TableNextColumn();
-  if (color != nullptr) {
-    ImGui::PushStyleColor(ImGuiCol_Text, *color);
-    text_wrapped(value);
-    ImGui::PopStyleColor();
-  } else {
-    text_wrapped(value);
-  }
+  const ScopedStyleColor coloured(ImGuiCol_Text, color != nullptr ? *color : ImVec4(), color != nullptr);
+  text_wrapped(value);
 }
 
 }  // namespace
@@ -93,7 +89,7 @@ void GuiApp::status_panel() {
     const bool bad = r.outcome == Outcome::diverged || !warnings_.empty();
     wrapped_colored(bad ? gui_red() : gui_amber(), tuner_->notice().c_str());
   }
-  if (ImGui::SmallButton("Reset layout")) layout_.request_reset();
+  if (item::small_button("Reset layout")) layout_.request_reset();
 }
 
 void GuiApp::runs_panel() {
@@ -101,9 +97,9 @@ void GuiApp::runs_panel() {
   const float pin_w = ImGui::CalcTextSize("Pin run").x + ImGui::GetStyle().FramePadding.x * 2;
   ImGui::SetNextItemWidth(-pin_w - ImGui::GetStyle().ItemSpacing.x);
   const std::string hint = params_label(t.params());
-  ImGui::InputTextWithHint("##pin_name", hint.c_str(), &runs_.pin_name);
+  item::input_text_hint("##pin_name", hint.c_str(), &runs_.pin_name);
   ImGui::SameLine();
-  if (ImGui::Button("Pin run")) {
+  if (item::button("Pin run")) {
     t.pin(runs_.pin_name);
     runs_.pin_name.clear();
   }
@@ -122,26 +118,27 @@ void GuiApp::runs_panel() {
     ImGui::TableSetupColumn("x", ImGuiTableColumnFlags_WidthFixed);
     for (size_t i = 0; i < t.pins().size(); ++i) {
       Pin& p = t.pins()[i];
-      ImGui::PushID(static_cast<int>(i));
+      const ScopedID row_id(static_cast<int>(i));
       ImGui::TableNextRow();
       ImGui::TableNextColumn();
-      ImGui::PushStyleColor(ImGuiCol_CheckMark, p.color);
-      ImGui::Checkbox("##visible", &p.visible);
-      ImGui::PopStyleColor();
+      {
+        const ScopedStyleColor mark(ImGuiCol_CheckMark, p.color);
+        item::checkbox("##visible", &p.visible);
+      }
       ImGui::TableNextColumn();
       ImGui::SetNextItemWidth(-1.0f);
-      ImGui::PushStyleColor(ImGuiCol_Text, p.color);
-      ImGui::InputText("##name", &p.name);
-      ImGui::PopStyleColor();
+      {
+        const ScopedStyleColor coloured(ImGuiCol_Text, p.color);
+        item::input_text("##name", &p.name);
+      }
       if (ImGui::IsItemHovered())
         ImGui::SetTooltip("%s\n%s", verdict_short(p.result).c_str(), params_label(p.params).c_str());
       ImGui::TableNextColumn();
       const ImVec4 oc = outcome_color(p.result);
       ImGui::TextColored(oc, "%s", verdict_short(p.result).c_str());
       ImGui::TableNextColumn();
-      if (ImGui::SmallButton("x")) remove = static_cast<int>(i);
+      if (item::small_button("x")) remove = static_cast<int>(i);
       if (ImGui::IsItemHovered()) ImGui::SetTooltip("Remove this pin");
-      ImGui::PopID();
     }
     ImGui::EndTable();
   } else if (t.pins().empty()) {
@@ -151,11 +148,11 @@ void GuiApp::runs_panel() {
   section_header("Export plots (PNG) and data (CSV)");
   const float half = (ImGui::GetContentRegionAvail().x - ImGui::GetStyle().ItemSpacing.x) * 0.5f;
   ImGui::SetNextItemWidth(half);
-  ImGui::InputTextWithHint("##dir", "folder (default: here)", &runs_.export_dir);
+  item::input_text_hint("##dir", "folder (default: here)", &runs_.export_dir);
   ImGui::SameLine();
   ImGui::SetNextItemWidth(-1.0f);
-  ImGui::InputTextWithHint("##prefix", "file prefix", &runs_.export_prefix);
-  if (ImGui::Button("Export"))
+  item::input_text_hint("##prefix", "file prefix", &runs_.export_prefix);
+  if (item::button("Export"))
     runs_.export_result.run([&] { return export_plots(runs_.export_dir, runs_.export_prefix); });
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip(
@@ -177,11 +174,11 @@ void GuiApp::plots_envelope() {
 }
 
 void GuiApp::plots_displacement() {
-  ImGui::Checkbox("log10 y axis", &plot_options_.log_y);
+  item::checkbox("log10 y axis", &plot_options_.log_y);
   same_line_if_fits(checkbox_width("max over all nodes"));
-  ImGui::Checkbox("max over all nodes", &plot_options_.show_max);
+  item::checkbox("max over all nodes", &plot_options_.show_max);
   same_line_if_fits(checkbox_width("pinned runs"));
-  ImGui::Checkbox("pinned runs", &plot_options_.show_pins);
+  item::checkbox("pinned runs", &plot_options_.show_pins);
   const PlotSpec spec = tuner_displacement_plot(*tuner_, plot_options_);
   plot_widget("displacement", spec, ImVec2(-1.0f, -1.0f), gui_plot_style());
 }

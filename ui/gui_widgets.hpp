@@ -8,6 +8,7 @@
 #include <string_view>
 
 #include "core/protocol.hpp"
+#include "ui/gui_items.hpp"
 #include "ui/plot.hpp"
 #include "ui/text_wrap.hpp"
 
@@ -48,9 +49,10 @@ inline ImVec4 outcome_color(const RunResult& r) {
 /// A section title: a little space, the label in the header colour, a separator.
 inline void section_header(const char* label) {
   ImGui::Spacing();
-  ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_PlotHistogram]);
-  ImGui::TextUnformatted(label);
-  ImGui::PopStyleColor();
+  {
+    const ScopedStyleColor header(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_PlotHistogram]);
+    ImGui::TextUnformatted(label);
+  }
   ImGui::Separator();
 }
 
@@ -66,9 +68,8 @@ inline void text_wrapped(std::string_view text) {
 
 /// Wrapped text in `color`.
 inline void wrapped_colored(const ImVec4& color, std::string_view text) {
-  ImGui::PushStyleColor(ImGuiCol_Text, color);
+  const ScopedStyleColor coloured(ImGuiCol_Text, color);
   text_wrapped(text);
-  ImGui::PopStyleColor();
 }
 
 /// SameLine() when an item `width` pixels wide still fits on the current line of the window,

@@ -13,6 +13,7 @@
 #include "ui/mesh_pick.hpp"
 #include "ui/mesh_style.hpp"
 #include "ui/mesh_style.hpp"
+#include "ui/gui_items.hpp"
 
 namespace dampbound::ui {
 
@@ -219,28 +220,31 @@ void MeshView::draw(Tuner& tuner) {
     fit_pending_ = true;
   }
   // Toolbar.
-  if (cut_tool) ImGui::PushStyleColor(ImGuiCol_Button, IM_COL32(200, 60, 50, 255));
-  if (ImGui::Button(cut_tool ? "Cut tool: ON" : "Cut tool")) cut_tool = !cut_tool;
-  if (cut_tool) ImGui::PopStyleColor();
+  bool toggle = false;
+  {
+    const ScopedStyleColor red(ImGuiCol_Button, IM_COL32(200, 60, 50, 255), cut_tool);
+    toggle = item::button(cut_tool ? "Cut tool: ON###cut_tool" : "Cut tool###cut_tool");
+  }
+  if (toggle) cut_tool = !cut_tool;
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("Drag a line across the mesh: the springs it crosses are removed.");
   ImGui::SameLine();
-  if (ImGui::Button("Fit")) fit_pending_ = true;
+  if (item::button("Fit")) fit_pending_ = true;
   same_line_if_fits(checkbox_width("springs"));
-  ImGui::Checkbox("springs", &options.show_springs);
+  item::checkbox("springs", &options.show_springs);
   same_line_if_fits(checkbox_width("anchors"));
-  ImGui::Checkbox("anchors", &options.show_anchors);
+  item::checkbox("anchors", &options.show_anchors);
   const float slider_w = ImGui::CalcTextSize("points 16 px").x + 24.0f;
   same_line_if_fits(slider_w);
   ImGui::SetNextItemWidth(std::max(slider_w, ImGui::GetContentRegionAvail().x));
-  ImGui::SliderFloat("##points", &options.point_size, 2.0f, 16.0f, "points %.0f px");
+  item::slider_float("##points", &options.point_size, 2.0f, 16.0f, "points %.0f px");
   // The view fills the rest of the window but one line of hints.
   const float hint_h = ImGui::GetTextLineHeightWithSpacing();
   ImVec2 size = ImGui::GetContentRegionAvail();
   size.y -= hint_h;
   size = ImVec2(std::max(std::floor(size.x), 32.0f), std::max(std::floor(size.y), 32.0f));
   const ImVec2 tl = ImGui::GetCursorScreenPos();
-  ImGui::InvisibleButton("mesh_view", size,
+  item::invisible_button("mesh_view", size,
                          ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight |
                              ImGuiButtonFlags_MouseButtonMiddle);
   const bool hovered = ImGui::IsItemHovered();

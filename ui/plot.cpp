@@ -2,6 +2,7 @@
 
 #include "ui/fonts.hpp"
 #include "ui/plot_draw.hpp"
+#include "ui/gui_items.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -249,7 +250,7 @@ PlotLayout plot_widget(const char* id, const PlotSpec& spec, ImVec2 size, const 
   if (size.y <= 0.0f) size.y = avail.y;
   size = ImVec2(std::max(size.x, 50.0f), std::max(size.y, 50.0f));
   const ImVec2 tl = ImGui::GetCursorScreenPos();
-  ImGui::InvisibleButton(id, size);
+  item::invisible_button(id, size);
   const bool hovered = ImGui::IsItemHovered();
   ImDrawList* dl = ImGui::GetWindowDrawList();
   const PlotLayout lay = draw_plot(dl, tl, size, spec, style);
