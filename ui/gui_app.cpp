@@ -25,7 +25,8 @@ double now_s() {
   return std::chrono::duration<double>(Clock::now().time_since_epoch()).count();
 }
 
-void warn(std::vector<std::string>& out, const std::string& text) {
+void warn(std::vector<std::string>& out, const std::string& long_text) {
+  const std::string text = shorten(long_text, 400);
   out.push_back(text);
   std::fprintf(stderr, "dampbound: warning: %s\n", text.c_str());
 }

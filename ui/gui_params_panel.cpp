@@ -47,7 +47,7 @@ void GuiApp::open_scene(const std::string& path) {
 void GuiApp::scene_picker() {
   ImGui::SetNextItemWidth(-1.0f);
   const std::string preview = scene_.path.empty()
-                                  ? tuner_->scene().name
+                                  ? shorten(tuner_->scene().name, kShownName)
                                   : std::filesystem::path(scene_.path).stem().string();
   if (item::begin_combo("##scene", preview.c_str())) {
     for (const std::string& f : scene_.files) {

@@ -37,7 +37,7 @@ void GuiApp::status_panel() {
   if (ImGui::BeginTable("status", 2, ImGuiTableFlags_SizingStretchProp)) {
     ImGui::TableSetupColumn("k", ImGuiTableColumnFlags_WidthFixed);
     ImGui::TableSetupColumn("v", ImGuiTableColumnFlags_WidthStretch);
-    row("scene", s.scene().name);
+    row("scene", shorten(s.scene().name, kShownName));
     row("mesh", std::to_string(m.node_count()) + " nodes, " + std::to_string(m.spring_count()) +
                     " springs" +
                     (s.springs_cut() > 0 ? " (" + std::to_string(s.springs_cut()) + " cut)" : ""));

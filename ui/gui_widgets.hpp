@@ -57,10 +57,11 @@ inline void section_header(const char* label) {
 }
 
 /// `text` wrapped to the space left on the line, broken at blanks only (ui/text_wrap.hpp:
-/// ImGui's TextWrapped would split a number after its '.'). One item, for IsItemHovered.
+/// ImGui's TextWrapped would split a number after its '.'), at most kShownText bytes of it.
+/// One item, for IsItemHovered.
 inline void text_wrapped(std::string_view text) {
   const float width = std::max(ImGui::GetContentRegionAvail().x, 1.0f);
-  const std::string lines = wrap_at_blanks(text, width, [](std::string_view s) {
+  const std::string lines = wrap_at_blanks(shorten(text, kShownText), width, [](std::string_view s) {
     return ImGui::CalcTextSize(s.data(), s.data() + s.size()).x;
   });
   ImGui::TextUnformatted(lines.data(), lines.data() + lines.size());

@@ -9,6 +9,7 @@
 
 #include "core/io/files.hpp"
 #include "core/io/format.hpp"
+#include "ui/text_wrap.hpp"
 
 namespace dampbound::ui {
 
@@ -215,7 +216,7 @@ std::optional<GuiSettings> parse_settings(const std::string& text, std::string* 
     if (row == rows.end()) continue;
     any_param |= is_param(*row);
     if (!read_value(*row, value, s, p))
-      return fail(n, "bad value for " + key + ": '" + value + "'");
+      return fail(n, "bad value for " + shorten(key, 60) + ": '" + shorten(value, 60) + "'");
   }
   if (n == 0) return fail(1, "empty file");
   if (any_param) {

@@ -1,44 +1,73 @@
 #include "ui/text_wrap.hpp"
 
+#include <algorithm>
+#include <string>
+
 namespace dampbound::ui {
 
 namespace {
-bool blank(char c) { return c == ' ' || c == '\t'; }
+bool blank(char c) {
+  return c == ' ' || c == '\t';
+}
 
-/// Appends `word` to `out`, whose current line starts at `line` and is empty: a word wider
-/// than `width` is split over lines, after its last '-' or '/' that fits, else after as many
-/// characters as fit (at least one). Returns where the last line starts.
-size_t append_long_word(std::string& out, size_t line, std::string_view word, float width,
-                        const std::function<float(std::string_view)>& measure) {
-  while (measure(word) > width && word.size() > 1) {
-    size_t fit = 1;  // the longest prefix that fits, at least one character
-    while (fit < word.size() && measure(word.substr(0, fit + 1)) <= width) ++fit;
-    size_t cut = fit;
-    for (size_t k = fit; k > 1; --k)
-      if (word[k - 1] == '-' || word[k - 1] == '/') {
-        cut = k;
-        break;
-      }
+/// The length in bytes of the UTF-8 sequence that starts with `lead` (1 for a stray byte).
+size_t sequence_length(unsigned char lead) {
+  if (lead < 0x80) return 1;
+  if ((lead >> 5) == 0x6) return 2;
+  if ((lead >> 4) == 0xE) return 3;
+  if ((lead >> 3) == 0x1E) return 4;
+  return 1;
+}
+
+/// The next character of `s` from byte `k` (whole UTF-8 sequences, clipped to the end).
+size_t next_char(std::string_view s, size_t k) {
+  return std::min(s.size(), k + sequence_length(static_cast<unsigned char>(s[k])));
+}
+
+/// Appends `word` (`word_w` wide) to `out`, whose current line is `line_w` wide: a word wider
+/// than what is left is split over lines, after its last '-' or '/' that fits, else after as
+/// many characters as fit (at least one). One pass over the word, each character measured
+/// once. Returns the width of the last line.
+float append_long_word(std::string& out, float line_w, std::string_view word, float word_w,
+                       float width, const std::function<float(std::string_view)>& measure) {
+  while (line_w + word_w > width && next_char(word, 0) < word.size()) {
+    size_t fit = 0, dash = 0;  // bytes that fit; bytes up to the last '-' or '/' among them
+    float fit_w = 0, dash_w = 0;
+    for (size_t k = 0; k < word.size();) {
+      const size_t next = next_char(word, k);
+      const float w = measure(word.substr(k, next - k));
+      if (fit > 0 && line_w + fit_w + w > width) break;
+      fit = next;
+      fit_w += w;
+      if (next > 1 && (word[k] == '-' || word[k] == '/')) dash = next, dash_w = fit_w;
+      k = next;
+    }
+    const bool at_dash = dash > 0;
+    const size_t cut = at_dash ? dash : fit;
+    const float cut_w = at_dash ? dash_w : fit_w;
     out.append(word.substr(0, cut));
     out += '\n';
-    line = out.size();
     word.remove_prefix(cut);
+    word_w -= cut_w;
+    line_w = 0;
   }
   out.append(word);
-  return line;
+  return line_w + word_w;
 }
 }  // namespace
 
 std::string wrap_at_blanks(std::string_view text, float width,
                            const std::function<float(std::string_view)>& measure) {
   std::string out;
-  out.reserve(text.size());
-  size_t line = 0;  // where the current line starts in `out`
+  out.reserve(text.size() + text.size() / 16);
+  float line_w = 0;  // the width of the current line of `out`
+  bool line_empty = true;
   size_t k = 0;
   while (k < text.size()) {
     if (text[k] == '\n') {
       out += '\n';
-      line = out.size();
+      line_w = 0;
+      line_empty = true;
       ++k;
       continue;
     }
@@ -48,26 +77,35 @@ std::string wrap_at_blanks(std::string_view text, float width,
     size_t end = w;
     while (end < text.size() && !blank(text[end]) && text[end] != '\n') ++end;
     const std::string_view blanks = text.substr(k, w - k), word = text.substr(w, end - w);
-    const bool line_empty = out.size() == line;
-    if (!line_empty && !word.empty()) {
-      const std::string_view candidate(out.data() + line, out.size() - line);
-      std::string joined(candidate);
-      joined.append(blanks).append(word);
-      if (measure(joined) > width) {  // the word goes to a new line, its blanks are dropped
-        out += '\n';
-        line = append_long_word(out, out.size(), word, width, measure);
-        k = end;
-        continue;
-      }
+    const float blanks_w = measure(blanks), word_w = measure(word);
+    k = end;
+    if (!line_empty && !word.empty() && line_w + blanks_w + word_w > width) {
+      out += '\n';  // the word goes to a new line, its blanks are dropped
+      line_w = append_long_word(out, 0, word, word_w, width, measure);
+      continue;
     }
     out.append(blanks);
-    if (line_empty && measure(std::string(out.data() + line, out.size() - line).append(word)) > width)
-      line = append_long_word(out, line, word, width, measure);
-    else
+    if (line_empty) {
+      line_w = append_long_word(out, blanks_w, word, word_w, width, measure);
+    } else {
       out.append(word);
-    k = end;
+      line_w += blanks_w + word_w;
+    }
+    line_empty = out.empty() || out.back() == '\n';
   }
   return out;
+}
+
+std::string shorten(std::string_view text, size_t max_bytes) {
+  if (text.size() <= max_bytes) return std::string(text);
+  size_t cut = 0;
+  while (cut < text.size()) {
+    const size_t next = next_char(text, cut);
+    if (next > max_bytes) break;
+    cut = next;
+  }
+  return std::string(text.substr(0, cut)) + u8"\u2026 (" + std::to_string(text.size()) +
+         " bytes in all)";
 }
 
 }  // namespace dampbound::ui

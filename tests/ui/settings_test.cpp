@@ -232,6 +232,19 @@ TEST(Settings, LoadMissingIsSilentCorruptWarnsOnOneLine) {
   fs::remove_all(d);
 }
 
+TEST(Settings, AFiveMegabyteLineWarnsShortly) {
+  // The warning is shown in the tuner and printed: a 5 MB bad value is not repeated in it.
+  const fs::path d = fresh_dir("long");
+  write(d / "settings.txt",
+        "dampbound-gui-settings 1\nsteps_per_frame = " + std::string(5 << 20, '7') + "x\n");
+  std::string warning;
+  const GuiSettings s = load_gui_settings((d / "settings.txt").string(), &warning);
+  EXPECT_EQ(s.steps_per_frame, 10);
+  EXPECT_NE(warning.find("steps_per_frame"), std::string::npos) << warning.substr(0, 200);
+  EXPECT_LT(warning.size(), 400u);
+  fs::remove_all(d);
+}
+
 TEST(Settings, SaveCreatesTheFolderAndLeavesNoTemporaryFile) {
   const fs::path d = fresh_dir("save");
   const fs::path f = d / "deeper" / "settings.txt";
