@@ -66,7 +66,7 @@ void GuiApp::scene_picker() {
   if (!scene_.error.empty()) wrapped_colored(gui_red(), scene_.error.c_str());
   if (!tuner_->scene().description.empty()) {
     const ScopedStyleColor grey(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
-    text_wrapped(tuner_->scene().description);
+    text_wrapped(shorten(tuner_->scene().description, kShownDescription));
   }
 }
 

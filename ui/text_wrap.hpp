@@ -24,6 +24,7 @@ std::string shorten(std::string_view text, size_t max_bytes);
 
 /// The most of a scene's name, and of any wrapped text, a panel shows (bytes).
 constexpr size_t kShownName = 120;
+constexpr size_t kShownDescription = 600;
 constexpr size_t kShownText = 4000;
 
 }  // namespace dampbound::ui
