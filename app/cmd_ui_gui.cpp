@@ -49,7 +49,7 @@ struct GuiArgs {
 #if defined(DAMPBOUND_HAVE_GLFW)
 /// How long a close (window button, SIGINT, SIGTERM) may take, and the longest frame of a
 /// self-test before it counts as a hang (seconds).
-constexpr double kCloseGrace = 0.8;
+constexpr double kCloseGrace = 0.3;
 constexpr double kSelfTestHang = 60.0;
 
 bool have_display() {

@@ -8,8 +8,10 @@ void FrameMeter::tick(double t, long long steps, double step_s) {
     const double a = stats_.frames < 3 ? 1.0 : 0.05;  // smoothing over ~20 frames
     stats_.frame_ms += a * (dt * 1e3 - stats_.frame_ms);
     if (dt > 0) {
+      // A frame without steps (paused) says 0: the smoothed value would only decay towards it.
       const double sps = static_cast<double>(steps - last_steps_) / dt;
-      stats_.steps_per_second += a * (sps - stats_.steps_per_second);
+      stats_.steps_per_second =
+          steps == last_steps_ ? 0.0 : stats_.steps_per_second + a * (sps - stats_.steps_per_second);
     }
     stats_.step_ms += a * ((step_s - last_step_seconds_) * 1e3 - stats_.step_ms);
   }

@@ -9,7 +9,7 @@ namespace dampbound::ui {
 struct GuiStats {
   int frames = 0;
   double frame_ms = 0;          ///< smoothed wall time between frames
-  double steps_per_second = 0;  ///< smoothed
+  double steps_per_second = 0;  ///< smoothed; 0 after a frame without steps
   double step_ms = 0;           ///< smoothed time in step() per frame
 };
 

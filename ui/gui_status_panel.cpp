@@ -82,7 +82,7 @@ void GuiApp::status_panel() {
     const GuiStats& st = meter_.stats();
     row("frame", fmt(st.frame_ms) + " ms (" + fmt(st.frame_ms > 0 ? 1000.0 / st.frame_ms : 0.0) +
                      " fps)");
-    row("speed", fmt(st.steps_per_second) + " steps/s");
+    row("speed", tuner_->playing() ? fmt(st.steps_per_second) + " steps/s" : std::string("paused"));
     ImGui::EndTable();
   }
   if (!tuner_->notice().empty()) {

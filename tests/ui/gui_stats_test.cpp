@@ -21,6 +21,17 @@ TEST(FrameMeter, FirstFramesSetTheSmoothedValuesThenTheyMoveSlowly) {
   EXPECT_EQ(m.stats().frames, 4);
 }
 
+TEST(FrameMeter, PausedTheSpeedIsZeroNotATinyNumber) {
+  // Paused, the smoothed speed once decayed frame by frame: "speed 6.288e-20 steps/s".
+  FrameMeter m;
+  double t = 0;
+  long long steps = 0;
+  for (int k = 0; k < 50; ++k) m.tick(t += 0.02, steps += 100, 0);
+  EXPECT_GT(m.stats().steps_per_second, 1000);
+  for (int k = 0; k < 900; ++k) m.tick(t += 0.02, steps, 0);
+  EXPECT_EQ(m.stats().steps_per_second, 0.0);
+}
+
 TEST(FrameMeter, MeasuredSpeedLeavesTheFirstFrameOut) {
   FrameMeter m;
   EXPECT_EQ(m.measured_steps_per_second(), 0);
