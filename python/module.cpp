@@ -240,6 +240,9 @@ void bind_session(py::module_& m) {
 }
 
 }  // namespace
+
+void bind_linear_limits(py::module_& m);  // python/linear_limits.cpp
+
 }  // namespace dampbound::python
 
 PYBIND11_MODULE(dampbound, m) {
@@ -262,4 +265,5 @@ PYBIND11_MODULE(dampbound, m) {
   bind_session(m);
   bind_monitor(m);
   bind_analysis(m);
+  bind_linear_limits(m);
 }
