@@ -274,6 +274,19 @@ ModelSpec model_from_mesh(const CellMesh& mesh, const MeshSprings& how) {
   return m;
 }
 
+std::vector<BodyCell> body_cells(const CellMesh& mesh) {
+  int top = 0;
+  for (const MeshCell& c : mesh.cells) top = std::max(top, cell_dimension(c.shape));
+  std::vector<BodyCell> out;
+  for (const MeshCell& c : mesh.cells) {
+    if (cell_dimension(c.shape) != top) continue;
+    BodyCell b{top, c.corners};
+    if (tetra_orientation(mesh.vertices, c) < 0) std::swap(b.corners[1], b.corners[2]);
+    out.push_back(std::move(b));
+  }
+  return out;
+}
+
 std::map<int, std::vector<int>> region_nodes(const CellMesh& mesh) {
   std::map<int, std::set<int>> sets;
   for (const MeshCell& c : mesh.cells)

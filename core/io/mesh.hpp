@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/model.hpp"
+#include "core/scene.hpp"
 
 namespace dampbound {
 
@@ -97,6 +98,10 @@ struct MeshSprings {
 /// neighbours on either side along the line through the edge (Provot's flexion springs). A
 /// bending spring that would repeat an existing spring is skipped.
 ModelSpec model_from_mesh(const CellMesh& mesh, const MeshSprings& how);
+
+/// The body cells (those of the highest dimension) as a scene keeps them for output, each
+/// tetrahedron listed with a positive signed volume (corners 1 and 2 swapped where needed).
+std::vector<BodyCell> body_cells(const CellMesh& mesh);
 
 /// For each region tag, the nodes of the cells (of any dimension) that carry it.
 std::map<int, std::vector<int>> region_nodes(const CellMesh& mesh);

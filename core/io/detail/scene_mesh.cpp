@@ -132,6 +132,7 @@ void read_mesh(const Reader& r, const toml::table& root, SceneSpec& s) {
   } catch (const InputError& e) {
     throw InputError(file + ": " + e.what());
   }
+  s.body = body_cells(mesh);
   read_mesh_regions(r, root, mesh, s);
 }
 
