@@ -242,6 +242,7 @@ void bind_session(py::module_& m) {
 }  // namespace
 
 void bind_linear_limits(py::module_& m);  // python/linear_limits.cpp
+void bind_meshes(py::module_& m);         // python/meshes.cpp
 
 }  // namespace dampbound::python
 
@@ -266,4 +267,5 @@ PYBIND11_MODULE(dampbound, m) {
   bind_monitor(m);
   bind_analysis(m);
   bind_linear_limits(m);
+  bind_meshes(m);
 }
