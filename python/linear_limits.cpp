@@ -1,12 +1,13 @@
 // dampbound.linear_limits(K, mass, dt=, gamma=, C=None): a user's own scipy.sparse stiffness
 // judged by the analysis `bounds` runs (core/analysis/linear_limits.hpp). The matrix comes in
 // as its COO triplets (any scipy.sparse format, or a dense array, converted in Python).
+#include "core/analysis/linear_limits.hpp"
+
 #include <pybind11/stl.h>
 
 #include <string>
 #include <vector>
 
-#include "core/analysis/linear_limits.hpp"
 #include "core/error.hpp"
 #include "python/arrays.hpp"
 
@@ -26,7 +27,8 @@ SparseMatrix sparse_of(const py::object& M, const char* name) {
   const auto rows = py::array_t<long long, py::array::forcecast>::ensure(coo.attr("row"));
   const auto cols = py::array_t<long long, py::array::forcecast>::ensure(coo.attr("col"));
   const auto vals = py::array_t<double, py::array::forcecast>::ensure(coo.attr("data"));
-  if (!rows || !cols || !vals) throw py::type_error(std::string(name) + ": entries must be numbers");
+  if (!rows || !cols || !vals)
+    throw py::type_error(std::string(name) + ": entries must be numbers");
   std::vector<Eigen::Triplet<double>> t;
   t.reserve(size_t(vals.size()));
   for (py::ssize_t k = 0; k < vals.size(); ++k)
@@ -38,7 +40,8 @@ SparseMatrix sparse_of(const py::object& M, const char* name) {
 
 std::vector<double> vector_of(const py::object& v, const char* name) {
   const auto a = py::array_t<double, py::array::forcecast>::ensure(v);
-  if (!a || a.ndim() > 1) throw py::value_error(std::string(name) + ": expected a number or a 1-D array");
+  if (!a || a.ndim() > 1)
+    throw py::value_error(std::string(name) + ": expected a number or a 1-D array");
   std::vector<double> out(size_t(a.size()));
   for (py::ssize_t k = 0; k < a.size(); ++k) out[size_t(k)] = a.data()[k];
   return out;
@@ -65,13 +68,15 @@ void bind_linear_limits(py::module_& m) {
                     "for every node: that gamma)")
       .def_readonly("gamma_ref", &MatrixLimits::gamma_ref, "max_i gamma_i as given")
       .def_readonly("stable", &MatrixLimits::stable, "the given gamma and dt are stable")
-      .def_property_readonly("row_sum", [](const MatrixLimits& r) { return array_of(r.row_sum); },
-                             "SPEC 9's R_i per node (1/s^2)")
-      .def_property_readonly("gamma_safe",
-                             [](const MatrixLimits& r) { return array_of(r.gamma_safe); },
-                             "SPEC 9's gamma_safe_i per node")
-      .def_property_readonly("dt_safe", [](const MatrixLimits& r) { return array_of(r.dt_safe); },
-                             "SPEC 9's dt_safe_i per node at its gamma_i (s)")
+      .def_property_readonly(
+          "row_sum", [](const MatrixLimits& r) { return array_of(r.row_sum); },
+          "SPEC 9's R_i per node (1/s^2)")
+      .def_property_readonly(
+          "gamma_safe", [](const MatrixLimits& r) { return array_of(r.gamma_safe); },
+          "SPEC 9's gamma_safe_i per node")
+      .def_property_readonly(
+          "dt_safe", [](const MatrixLimits& r) { return array_of(r.dt_safe); },
+          "SPEC 9's dt_safe_i per node at its gamma_i (s)")
       .def("__repr__", [](const MatrixLimits& r) {
         return "<MatrixLimits lambda_max in [" + std::to_string(r.lambda_max_lo) + ", " +
                std::to_string(r.lambda_max_hi) + "], dt_max " + std::to_string(r.dt_max) +

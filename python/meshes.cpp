@@ -28,7 +28,8 @@ std::vector<std::pair<std::string, py::object>> blocks_of(const py::object& cell
   std::vector<std::pair<std::string, py::object>> out;
   if (py::isinstance<py::dict>(cells)) {
     for (auto kv : cells.cast<py::dict>())
-      out.emplace_back(py::str(kv.first).cast<std::string>(), py::reinterpret_borrow<py::object>(kv.second));
+      out.emplace_back(py::str(kv.first).cast<std::string>(),
+                       py::reinterpret_borrow<py::object>(kv.second));
     return out;
   }
   for (auto b : cells) {
@@ -56,7 +57,8 @@ SceneSpec from_arrays(const py::object& points, const py::object& cells, const p
     if (py::isinstance<py::dict>(regions)) {
       const auto d = regions.cast<py::dict>();
       for (const auto& [type, data] : named)
-        tags.push_back(d.contains(type) ? py::reinterpret_borrow<py::object>(d[py::str(type)]) : py::none());
+        tags.push_back(d.contains(type) ? py::reinterpret_borrow<py::object>(d[py::str(type)])
+                                        : py::none());
     } else {
       for (auto r : regions) tags.push_back(py::reinterpret_borrow<py::object>(r));
       if (tags.size() != named.size())
@@ -73,7 +75,8 @@ SceneSpec from_arrays(const py::object& points, const py::object& cells, const p
     if (cols != py::ssize_t(corner_count(b.shape)))
       throw py::value_error(named[k].first + " cells: rows of " + std::to_string(cols) +
                             " indices, not " + std::to_string(corner_count(b.shape)));
-    if (!tags.empty() && !tags[k].is_none()) b.regions = ints_of(tags[k], named[k].first + " regions");
+    if (!tags.empty() && !tags[k].is_none())
+      b.regions = ints_of(tags[k], named[k].first + " regions");
     blocks.push_back(std::move(b));
   }
   MeshSceneOptions o;

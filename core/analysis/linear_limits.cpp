@@ -27,9 +27,8 @@ void check(const MatrixModel& m) {
     throw InputError("K: must be square, not " + std::to_string(K.rows()) + " x " +
                      std::to_string(K.cols()));
   if (size_t(K.rows()) != 3 * n)
-    throw InputError("K: must be 3N x 3N for the N = " + std::to_string(n) +
-                     " masses given, not " + std::to_string(K.rows()) + " x " +
-                     std::to_string(K.cols()));
+    throw InputError("K: must be 3N x 3N for the N = " + std::to_string(n) + " masses given, not " +
+                     std::to_string(K.rows()) + " x " + std::to_string(K.cols()));
   for (size_t i = 0; i < n; ++i)
     if (!(std::isfinite(m.mass[i]) && m.mass[i] > 0))
       throw InputError("mass: node " + std::to_string(i) + " has mass " + shown(m.mass[i]) +
@@ -45,8 +44,8 @@ void check(const MatrixModel& m) {
   for (int k = 0; k < K.outerSize(); ++k)
     for (SparseMatrix::InnerIterator it(K, k); it; ++it) {
       if (!std::isfinite(it.value()))
-        throw InputError("K: entry (" + std::to_string(it.row()) + ", " +
-                         std::to_string(it.col()) + ") is not finite");
+        throw InputError("K: entry (" + std::to_string(it.row()) + ", " + std::to_string(it.col()) +
+                         ") is not finite");
       largest = std::max(largest, std::abs(it.value()));
     }
   const SparseMatrix asym = K - SparseMatrix(K.transpose());
@@ -54,9 +53,8 @@ void check(const MatrixModel& m) {
     for (SparseMatrix::InnerIterator it(asym, k); it; ++it)
       if (std::abs(it.value()) > 1e-12 * largest)
         throw InputError("K: not symmetric: entries (" + std::to_string(it.row()) + ", " +
-                         std::to_string(it.col()) + ") and (" + std::to_string(it.col()) +
-                         ", " + std::to_string(it.row()) + ") differ by " +
-                         shown(std::abs(it.value())));
+                         std::to_string(it.col()) + ") and (" + std::to_string(it.col()) + ", " +
+                         std::to_string(it.row()) + ") differ by " + shown(std::abs(it.value())));
   if (m.C)
     throw InputError(
         "C: a damping matrix is not judged yet; give nodal damping as gamma (SPEC 10's "
@@ -68,7 +66,9 @@ void check(const MatrixModel& m) {
 MatrixLimits linear_limits(const MatrixModel& model, const ExactOptions& options) {
   check(model);
   const size_t n = model.mass.size();
-  const auto gamma_of = [&](size_t i) { return model.gamma.size() == 1 ? model.gamma[0] : model.gamma[i]; };
+  const auto gamma_of = [&](size_t i) {
+    return model.gamma.size() == 1 ? model.gamma[0] : model.gamma[i];
+  };
   MatrixLimits out;
   out.gamma_ref = *std::max_element(model.gamma.begin(), model.gamma.end());
   // A = M^-1/2 K M^-1/2 and the rate per dof per unit of gamma_ref, as for a model whose
@@ -102,7 +102,8 @@ MatrixLimits linear_limits(const MatrixModel& model, const ExactOptions& options
   // SPEC 9 on the same A: the Gershgorin row sums of each node's three rows.
   std::vector<double> rows(3 * n, 0.0);
   for (int k = 0; k < A.outerSize(); ++k)
-    for (SparseMatrix::InnerIterator it(A, k); it; ++it) rows[size_t(it.row())] += std::abs(it.value());
+    for (SparseMatrix::InnerIterator it(A, k); it; ++it)
+      rows[size_t(it.row())] += std::abs(it.value());
   out.row_sum.resize(n);
   out.gamma_safe.resize(n);
   out.dt_safe.resize(n);

@@ -34,8 +34,8 @@ SceneSpec scene_from_arrays(const std::vector<Vec3>& points, const std::vector<C
                        " indices are not rows of " + std::to_string(per));
     const size_t count = b.corners.size() / per;
     if (!b.regions.empty() && b.regions.size() != count)
-      throw InputError(block + " cells: " + std::to_string(b.regions.size()) +
-                       " region tags for " + std::to_string(count) + " cells");
+      throw InputError(block + " cells: " + std::to_string(b.regions.size()) + " region tags for " +
+                       std::to_string(count) + " cells");
     for (size_t k = 0; k < count; ++k) {
       MeshCell c;
       c.shape = b.shape;
