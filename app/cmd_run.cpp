@@ -37,7 +37,7 @@ int run(const RunArgs& a) {
   StepObserver save;
   if (!a.vtk.empty()) {
     // Iteration 0, every N-th step and the last one; the .pvd lists them with their times.
-    vtk = std::make_unique<VtuSeries>(a.vtk);
+    vtk = std::make_unique<VtuSeries>(a.vtk, session.scene().body);
     vtk->add(session.model(), session.state(), session.workspace(), session.params().dt);
     save = [&](const StepSample& st) {
       if (st.iteration % a.every == 0 || !session.running())

@@ -60,6 +60,14 @@ struct GridSpec {
   bool anchors = true;
 };
 
+/// A cell of the mesh file a scene was built from, kept for output (ParaView draws the body,
+/// coloured by the per-node fields): dimension 3 a tetrahedron (positive signed volume),
+/// dimension 2 a face of 3 or more corners; corners are node indices.
+struct BodyCell {
+  int dimension = 2;
+  std::vector<int> corners;
+};
+
 /// A scene: its mesh and everything a run of it needs. A new field must also be copied by
 /// scene_as_run() (core/session.cpp), which copies every field but the mesh by name.
 struct SceneSpec {
@@ -75,6 +83,7 @@ struct SceneSpec {
   std::vector<CutEvent> cuts;
   std::vector<RunSpec> runs;
   std::vector<Expectation> expectations;
+  std::vector<BodyCell> body;     ///< the mesh file's body cells (empty without a [mesh])
 };
 
 /// Builds the grid's nodes, springs (a,b)-(a+1,b), (a,b)-(a,b+1), one diagonal

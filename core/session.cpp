@@ -92,6 +92,7 @@ SceneSpec scene_as_run(const SceneSpec& scene, const ModelSpec& model, int itera
   s.watched = scene.watched;
   s.runs = scene.runs;
   s.expectations = scene.expectations;
+  s.body = scene.body;
   // step_once applies a cut due at iteration k before the step that leaves iteration k.
   for (const CutEvent& c : scene.cuts)
     if (c.iteration >= iteration) s.cuts.push_back(c);

@@ -240,6 +240,10 @@ void bind_session(py::module_& m) {
 }
 
 }  // namespace
+
+void bind_linear_limits(py::module_& m);  // python/linear_limits.cpp
+void bind_meshes(py::module_& m);         // python/meshes.cpp
+
 }  // namespace dampbound::python
 
 PYBIND11_MODULE(dampbound, m) {
@@ -262,4 +266,6 @@ PYBIND11_MODULE(dampbound, m) {
   bind_session(m);
   bind_monitor(m);
   bind_analysis(m);
+  bind_linear_limits(m);
+  bind_meshes(m);
 }

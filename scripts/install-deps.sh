@@ -15,6 +15,7 @@ PACKAGES=(
   clang libclang-rt-14-dev
   slurm-wlm munge                # scripts/ci/slurm.sh: a single-node Slurm on localhost
   python3-meshio python3-numpy   # tests read the ParaView (VTU) output back with meshio
+  python3-scipy                  # linear_limits takes scipy.sparse matrices (module, tests)
   locales                        # de_DE.UTF-8 below: numbers keep their point under a comma locale
 )
 missing=()

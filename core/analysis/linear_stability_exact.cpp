@@ -8,6 +8,7 @@
 #include <functional>
 #include <limits>
 #include <memory>
+#include <optional>
 
 #include "core/analysis/detail/beside.hpp"
 #include "core/analysis/detail/exact_over_budget.hpp"
@@ -60,14 +61,23 @@ const char* to_string(ExactMethod m) {
   return "?";
 }
 
-SpectralRadius spectral_radius_at(const Model& model, const SparseMatrix& K_weighted,
-                                  const ExactStability& e, const Params& params, double gamma) {
-  const Eigen::VectorXd R = unit_rates(model);
+namespace {
+
+/// spectral_radius_at with the unit rates R (per free dof) given.
+SpectralRadius radius_at(const Eigen::VectorXd& R, const SparseMatrix& K_weighted,
+                         const ExactStability& e, const Params& params, double gamma) {
   if (e.uniform_rate) {
     const double r = R.size() ? R.maxCoeff() : 0;
     return {spectrum_spectral_radius(e.integrator, e.decaying, gamma * r, params.dt), true};
   }
   return amplification_spectral_radius(e.integrator, K_weighted, gamma * R, params.dt);
+}
+
+}  // namespace
+
+SpectralRadius spectral_radius_at(const Model& model, const SparseMatrix& K_weighted,
+                                  const ExactStability& e, const Params& params, double gamma) {
+  return radius_at(unit_rates(model), K_weighted, e, params, gamma);
 }
 
 namespace {
@@ -81,11 +91,11 @@ ExactInputs assemble(const Model& model, const std::vector<Vec3>& x, int threads
   return in;
 }
 
-void spectrum_and_rates(const Model& model, const std::vector<Vec3>& x, const ExactInputs& in,
-                        const Params& params, const ExactOptions& options, ExactStability& e,
+void spectrum_and_rates(const ExactInputs& in, std::optional<double> floor, const Params& params,
+                        const ExactOptions& options, ExactStability& e,
                         const std::function<void()>& within_budget) {
   e.integrator = params.integrator;
-  const CertifiedSpectrum ends = certified_spectrum(in.A, psd_floor(model, x), options.threads,
+  const CertifiedSpectrum ends = certified_spectrum(in.A, floor, options.threads,
                                                     options.max_factor_flops, within_budget);
   e.spectrum = {ends.smallest.lo, ends.largest.hi};
   e.lambda_max_lo = ends.largest.lo;
@@ -124,11 +134,11 @@ void indefinite_limits(ExactStability& e) {
 }
 
 /// The spectral radius of the step's amplification operator, when asked for (else NaN).
-void add_radius(const Model& model, const ExactInputs& in, const Params& params,
-                const ExactOptions& options, ExactStability& e) {
+void add_radius(const ExactInputs& in, const Params& params, const ExactOptions& options,
+                ExactStability& e) {
   e.spectral_radius = kNaN;
   if (!options.with_radius) return;
-  const SpectralRadius s = spectral_radius_at(model, in.A, e, params, params.gamma);
+  const SpectralRadius s = radius_at(in.R, in.A, e, params, params.gamma);
   e.spectral_radius = s.rho;
   e.radius_converged = s.converged;
 }
@@ -142,9 +152,8 @@ void add_radius(const Model& model, const ExactInputs& in, const Params& params,
 /// has started (nothing does after the budget is cleared), the destructor joins it first.
 class RadiusBeside {
  public:
-  RadiusBeside(const Model& model, const ExactInputs& in, const Params& params,
-               const ExactOptions& options)
-      : model_(model), in_(in), params_(params), options_(options) {}
+  RadiusBeside(const ExactInputs& in, const Params& params, const ExactOptions& options)
+      : in_(in), params_(params), options_(options) {}
   void start() {
     if (thread_ || !options_.with_radius || uniform_rates(in_) ||
         detail::resolved_threads(options_.threads) < 2)
@@ -153,19 +162,18 @@ class RadiusBeside {
       ExactStability r;
       r.integrator = params_.integrator;
       r.uniform_rate = false;
-      add_radius(model_, in_, params_, options_, r);
+      add_radius(in_, params_, options_, r);
       radius_ = {r.spectral_radius, r.radius_converged};
     });
   }
   void add_to(ExactStability& e) {
-    if (!thread_) return add_radius(model_, in_, params_, options_, e);
+    if (!thread_) return add_radius(in_, params_, options_, e);
     thread_->finish();
     e.spectral_radius = radius_.rho;
     e.radius_converged = radius_.converged;
   }
 
  private:
-  const Model& model_;
   const ExactInputs& in_;
   const Params& params_;
   const ExactOptions& options_;
@@ -303,23 +311,22 @@ void frozen_estimate(const ExactInputs& in, const Params& params, ExactStability
   }
 }
 
-ExactStability exact_stability_within_budget(const Model& model, const std::vector<Vec3>& x,
-                                             const ExactInputs& in, const Params& params,
-                                             const ExactOptions& options) {
+ExactStability exact_stability_within_budget(const ExactInputs& in, std::optional<double> floor,
+                                             const Params& params, const ExactOptions& options) {
   ExactStability e;
   // The radius beside the factorisations: the symmetric index's (semi-implicit Euler), else,
   // for forward Euler, Verlet and RK4, the spectrum's, once their analysis clears the budget.
   // Implicit Euler needs it only at an indefinite K, which the spectrum says.
-  RadiusBeside radius(model, in, params, options);
+  RadiusBeside radius(in, params, options);
   const bool frozen = params.integrator != Integrator::semi_implicit_euler &&
                       params.integrator != Integrator::implicit_euler;
-  spectrum_and_rates(model, x, in, params, options, e,
+  spectrum_and_rates(in, floor, params, options, e,
                      frozen ? std::function<void()>([&] { radius.start(); }) : nullptr);
   const double tiny = 1e-12 * std::max(1.0, std::abs(e.spectrum.lambda_max));
   if (e.integrator == Integrator::implicit_euler && e.spectrum.lambda_min >= -tiny) {
     unconditional(e);
     e.spectral_radius = kNaN;
-    if (e.uniform_rate) add_radius(model, in, params, options, e);
+    if (e.uniform_rate) add_radius(in, params, options, e);
   } else if (e.uniform_rate) {
     per_mode(in, params, e);
   } else if (e.integrator == Integrator::semi_implicit_euler) {
@@ -344,10 +351,21 @@ ExactStability exact_stability(const Model& model, const std::vector<Vec3>& x,
                                const Params& params, const ExactOptions& options) {
   const ExactInputs in = assemble(model, x, options.threads);
   try {
-    return exact_stability_within_budget(model, x, in, params, options);
+    return exact_stability_within_budget(in, psd_floor(model, x), params, options);
   } catch (const FactorisationOverBudget& over) {
     return over_budget(model, x, in, params, options, over);
   }
+}
+
+ExactStability exact_stability(const SparseMatrix& A, const Eigen::VectorXd& R,
+                               std::optional<double> floor, const Params& params,
+                               const ExactOptions& options) {
+  ExactInputs in;
+  in.A = A;
+  in.R = R;
+  in.r_min = R.size() ? R.minCoeff() : 0;
+  in.r_max = R.size() ? R.maxCoeff() : 0;
+  return exact_stability_within_budget(in, floor, params, options);
 }
 
 }  // namespace dampbound

@@ -3,6 +3,7 @@
 // (SPEC 7): lambda range of M^-1 K, the spectral radius of the step, the interval of
 // the user's gamma that keeps the step stable at dt, and the largest stable dt at gamma.
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -168,6 +169,15 @@ inline constexpr double kDefaultFactorBudget = 2e11;
 /// params.integrator, with the user's gamma_i = model.gamma[i] held fixed (policy fixed).
 ExactStability exact_stability(const Model& model, const std::vector<Vec3>& x,
                                const Params& params, const ExactOptions& options = {});
+
+/// The same analysis on assembled matrices (what linear_limits.hpp serves a user's own K
+/// with): A = M^-1/2 K M^-1/2 over the free dofs, R the damping rate per dof per unit of
+/// params.gamma (gamma_i / (params.gamma m_i)), `floor` a proved lower bound on A's smallest
+/// eigenvalue where one is known (SPEC 9's, psd_floor), else nullopt. No model: over the
+/// factorisation budget it throws FactorisationOverBudget.
+ExactStability exact_stability(const SparseMatrix& A, const Eigen::VectorXd& R,
+                               std::optional<double> floor, const Params& params,
+                               const ExactOptions& options = {});
 
 /// Spectral radius of the step at the user's gamma scaled by `gamma / params.gamma`
 /// (gamma_i = gamma * gamma_scale_i), everything else as in `exact`. Exact per mode when the

@@ -113,8 +113,8 @@ double tetra_signed_volume(const Vec3& a, const Vec3& b, const Vec3& c, const Ve
   return (b - a).dot((c - a).cross(d - a)) / 6.0;
 }
 
-std::optional<std::string> cell_problem(const std::vector<Vec3>& vertices, const MeshCell& cell,
-                                        int orientation) {
+std::optional<std::string> cell_problem(const std::vector<Vec3>& vertices,
+                                        const MeshCell& cell) {
   const auto& k = cell.corners;
   const size_t want = corner_count(cell.shape);
   if ((want && k.size() != want) || (!want && k.size() < 3))
@@ -143,13 +143,34 @@ std::optional<std::string> cell_problem(const std::vector<Vec3>& vertices, const
             : dim == 2 ? "area"
                        : "length") +
            ")";
-  if (cell.shape == CellShape::tetra && orientation != 0) {
-    const double v = tetra_signed_volume(vertices[size_t(k[0])], vertices[size_t(k[1])],
-                                         vertices[size_t(k[2])], vertices[size_t(k[3])]);
-    if ((v > 0 ? 1 : -1) != orientation)
-      return "inverted tetrahedron (signed volume " + format_digits(v, 6) + ")";
+  return std::nullopt;
+}
+
+int tetra_orientation(const std::vector<Vec3>& vertices, const MeshCell& cell) {
+  if (cell.shape != CellShape::tetra || cell_problem(vertices, cell)) return 0;
+  const auto& k = cell.corners;
+  return tetra_signed_volume(vertices[size_t(k[0])], vertices[size_t(k[1])],
+                             vertices[size_t(k[2])], vertices[size_t(k[3])]) > 0
+             ? 1
+             : -1;
+}
+
+std::optional<std::string> accept_cell(CellMesh& mesh, const MeshCell& cell, int& orientation) {
+  if (auto why = cell_problem(mesh.vertices, cell)) return why;
+  if (const int o = tetra_orientation(mesh.vertices, cell)) {
+    if (orientation == 0) orientation = o;
+    if (o != orientation) ++mesh.reoriented;
   }
   return std::nullopt;
+}
+
+std::string reoriented_note(const CellMesh& mesh, const std::string& file) {
+  if (mesh.reoriented == 0) return "";
+  size_t tets = 0;
+  for (const MeshCell& c : mesh.cells) tets += c.shape == CellShape::tetra;
+  return file + ": note: " + std::to_string(mesh.reoriented) + " of " + std::to_string(tets) +
+         " tetrahedra list their corners in the other orientation; taken as they are (masses "
+         "and stiffnesses use |V|)";
 }
 
 void check_mesh(const CellMesh& mesh, const std::function<std::string(const MeshCell&)>& where) {
@@ -251,6 +272,19 @@ ModelSpec model_from_mesh(const CellMesh& mesh, const MeshSprings& how) {
       m.springs[k].kappa_scale = how.young * held[k] / (l * l);
     }
   return m;
+}
+
+std::vector<BodyCell> body_cells(const CellMesh& mesh) {
+  int top = 0;
+  for (const MeshCell& c : mesh.cells) top = std::max(top, cell_dimension(c.shape));
+  std::vector<BodyCell> out;
+  for (const MeshCell& c : mesh.cells) {
+    if (cell_dimension(c.shape) != top) continue;
+    BodyCell b{top, c.corners};
+    if (tetra_orientation(mesh.vertices, c) < 0) std::swap(b.corners[1], b.corners[2]);
+    out.push_back(std::move(b));
+  }
+  return out;
 }
 
 std::map<int, std::vector<int>> region_nodes(const CellMesh& mesh) {

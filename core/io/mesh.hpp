@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/model.hpp"
+#include "core/scene.hpp"
 
 namespace dampbound {
 
@@ -43,15 +44,30 @@ struct CellMesh {
   std::vector<Vec3> vertices;
   std::vector<MeshCell> cells;
   std::map<std::string, int> region_names;  ///< Gmsh physical names -> tags
+  /// Tetrahedra whose corners run against the format's orientation (Gmsh and VTK: positive
+  /// signed volume; TetGen: the first tetrahedron's sign). They are kept as listed: springs do
+  /// not care, and masses and stiffnesses use |V|.
+  std::size_t reoriented = 0;
 };
 
 /// Why a cell cannot be used, or "" when it can: a corner out of range or repeated, a wrong
-/// corner count, zero length / area / volume (relative to its longest edge), or for a
-/// tetrahedron a negative signed volume when `orientation` is +1 (Gmsh, VTK: det(x1-x0,
-/// x2-x0, x3-x0) > 0) or a sign different from `orientation` when it is -1. 0 skips the
-/// orientation test.
+/// corner count, or zero length / area / volume (relative to its longest edge). A
+/// tetrahedron's orientation is no problem (see tetra_orientation).
 std::optional<std::string> cell_problem(const std::vector<Vec3>& vertices,
-                                        const MeshCell& cell, int orientation = 1);
+                                        const MeshCell& cell);
+
+/// +1 or -1: the sign of a usable tetrahedron's signed volume, det(x1-x0, x2-x0, x3-x0) / 6;
+/// 0 for any other cell.
+int tetra_orientation(const std::vector<Vec3>& vertices, const MeshCell& cell);
+
+/// The readers' one step per cell: throws nothing, returns cell_problem(); when the cell is
+/// usable and a tetrahedron against `orientation` (+1 or -1; 0 sets it from this cell),
+/// counts it in mesh.reoriented.
+std::optional<std::string> accept_cell(CellMesh& mesh, const MeshCell& cell, int& orientation);
+
+/// "FILE: note: N of M tetrahedra ... ", or "" when none was reoriented: what a loader says
+/// once per mesh.
+std::string reoriented_note(const CellMesh& mesh, const std::string& file);
 
 /// The signed volume of a tetrahedron (cm^3 when the positions are in cm): det / 6.
 double tetra_signed_volume(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
@@ -82,6 +98,10 @@ struct MeshSprings {
 /// neighbours on either side along the line through the edge (Provot's flexion springs). A
 /// bending spring that would repeat an existing spring is skipped.
 ModelSpec model_from_mesh(const CellMesh& mesh, const MeshSprings& how);
+
+/// The body cells (those of the highest dimension) as a scene keeps them for output, each
+/// tetrahedron listed with a positive signed volume (corners 1 and 2 swapped where needed).
+std::vector<BodyCell> body_cells(const CellMesh& mesh);
 
 /// For each region tag, the nodes of the cells (of any dimension) that carry it.
 std::map<int, std::vector<int>> region_nodes(const CellMesh& mesh);

@@ -198,7 +198,8 @@ class MshReader {
     have_nodes_ = true;
   }
 
-  /// One element's node tags as vertex indices, validated (Gmsh orientation: +1).
+  /// One element's node tags as vertex indices, validated; a tetrahedron against Gmsh's
+  /// orientation (+1) is counted.
   void add_cell(CellShape shape, const std::vector<long long>& node_tags, int region,
                 long long at) {
     MeshCell c;
@@ -212,7 +213,8 @@ class MshReader {
                            ", which $Nodes does not define");
       c.corners.push_back(it->second);
     }
-    if (const auto why = cell_problem(mesh_.vertices, c, 1)) s_.fail_at(at, *why);
+    int gmsh = 1;
+    if (const auto why = accept_cell(mesh_, c, gmsh)) s_.fail_at(at, *why);
     mesh_.cells.push_back(std::move(c));
   }
 

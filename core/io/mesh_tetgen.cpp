@@ -80,16 +80,8 @@ CellMesh parse_tetgen(const std::string& node, const std::string& node_name, con
       if (a == 0) c.region = region_value(s, v);
     }
     // TetGen writes one orientation for the whole mesh: the first tetrahedron's is the
-    // reference, and a tetrahedron of the other sign is inverted.
-    if (orientation == 0 && !cell_problem(mesh.vertices, c, 0)) {
-      const auto& q = c.corners;
-      orientation =
-          tetra_signed_volume(mesh.vertices[size_t(q[0])], mesh.vertices[size_t(q[1])],
-                              mesh.vertices[size_t(q[2])], mesh.vertices[size_t(q[3])]) > 0
-              ? 1
-              : -1;
-    }
-    if (const auto why = cell_problem(mesh.vertices, c, orientation)) s.fail_at(at, *why);
+    // reference, and a tetrahedron of the other sign is counted.
+    if (const auto why = accept_cell(mesh, c, orientation)) s.fail_at(at, *why);
     mesh.cells.push_back(std::move(c));
   }
   if (!s.at_end()) s.fail("more lines than the header's " + std::to_string(n) + " tetrahedra");
@@ -107,7 +99,7 @@ CellMesh parse_tetgen(const std::string& node, const std::string& node_name, con
       c.where = at;
       c.corners = corners(f, 3, base, mesh.vertices.size());
       if (markers) c.region = region_value(f, static_cast<double>(f.integer("a boundary marker")));
-      if (const auto why = cell_problem(mesh.vertices, c, 0)) f.fail_at(at, *why);
+      if (const auto why = cell_problem(mesh.vertices, c)) f.fail_at(at, *why);
       mesh.cells.push_back(std::move(c));
     }
     if (!f.at_end()) f.fail("more lines than the header's " + std::to_string(nf) + " faces");

@@ -78,7 +78,8 @@ class VtkReader {
           c.shape = vtk_shape(s_, s_.integer("a cell type"), w);
           c.corners = std::move(corners[size_t(k)]);
           c.where = where[size_t(k)];
-          if (const auto why = cell_problem(mesh_.vertices, c, 1)) s_.fail_at(c.where, *why);
+          int vtk = 1;  // VTK's orientation; a tetrahedron against it is counted
+          if (const auto why = accept_cell(mesh_, c, vtk)) s_.fail_at(c.where, *why);
           mesh_.cells.push_back(std::move(c));
         }
       } else if (key == "CELL_DATA" || key == "POINT_DATA") {

@@ -60,7 +60,7 @@ int state_code(NodeStatus s) {
 }
 
 void write_vtu(std::ostream& out, const Model& model, const State& state, const StepWorkspace& ws,
-               double dt) {
+               double dt, const std::vector<BodyCell>& body) {
   const size_t n = model.rest.size(), ns = model.springs.size();
   const bool stepped = ws.status.size() == n;  // else iteration 0: no step has run yet
   std::vector<Vec3> disp(n);
@@ -84,18 +84,29 @@ void write_vtu(std::ostream& out, const Model& model, const State& state, const 
   std::vector<std::int64_t> conn, offsets;
   std::vector<std::uint8_t> types(ns, 3);  // VTK_LINE
   std::vector<double> kappa(ns), strain(ns);
+  std::vector<std::int32_t> spring(ns);
   for (size_t k = 0; k < ns; ++k) {
     const Spring& s = model.springs[k];
     conn.insert(conn.end(), {s.i, s.j});
-    offsets.push_back(static_cast<std::int64_t>(2 * (k + 1)));
+    offsets.push_back(static_cast<std::int64_t>(conn.size()));
     kappa[k] = model.spring_kappa[k];
     const double l = (state.x[size_t(s.j)] - state.x[size_t(s.i)]).norm();
     strain[k] = s.rest_length > 0 ? (l - s.rest_length) / s.rest_length : 0.0;
+    spring[k] = static_cast<std::int32_t>(k);
   }
+  for (const BodyCell& c : body) {
+    conn.insert(conn.end(), c.corners.begin(), c.corners.end());
+    offsets.push_back(static_cast<std::int64_t>(conn.size()));
+    types.push_back(c.dimension == 3 ? 10 : c.corners.size() == 3 ? 5 : c.corners.size() == 4 ? 9 : 7);
+    kappa.push_back(std::numeric_limits<double>::quiet_NaN());
+    strain.push_back(std::numeric_limits<double>::quiet_NaN());
+    spring.push_back(-1);
+  }
+  const size_t cells = types.size();
   out << "<?xml version=\"1.0\"?>\n"
          "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
          "header_type=\"UInt64\">\n  <UnstructuredGrid>\n"
-      << "    <Piece NumberOfPoints=\"" << n << "\" NumberOfCells=\"" << ns << "\">\n"
+      << "    <Piece NumberOfPoints=\"" << n << "\" NumberOfCells=\"" << cells << "\">\n"
       << "      <PointData>\n";
   data_array(out, "Float64", "displacement", 3, flatten(disp));
   data_array(out, "Float64", "velocity", 3, flatten(state.v));
@@ -107,6 +118,7 @@ void write_vtu(std::ostream& out, const Model& model, const State& state, const 
   out << "      </PointData>\n      <CellData>\n";
   data_array(out, "Float64", "stiffness", 1, kappa);
   data_array(out, "Float64", "strain", 1, strain);
+  data_array(out, "Int32", "spring", 1, spring);
   out << "      </CellData>\n      <Points>\n";
   data_array(out, "Float64", "Points", 3, flatten(state.x));
   out << "      </Points>\n      <Cells>\n";
@@ -116,7 +128,8 @@ void write_vtu(std::ostream& out, const Model& model, const State& state, const 
   out << "      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n";
 }
 
-VtuSeries::VtuSeries(std::string dir) : dir_(std::move(dir)) {
+VtuSeries::VtuSeries(std::string dir, std::vector<BodyCell> body)
+    : dir_(std::move(dir)), body_(std::move(body)) {
   std::error_code ec;
   std::filesystem::create_directories(dir_, ec);
   if (ec || !std::filesystem::is_directory(dir_))
@@ -128,7 +141,7 @@ void VtuSeries::add(const Model& model, const State& state, const StepWorkspace&
   char name[32];
   std::snprintf(name, sizeof name, "step_%06d.vtu", state.iteration);
   write_file_atomic(dir_ + "/" + name,
-                    [&](std::ostream& out) { write_vtu(out, model, state, ws, dt); });
+                    [&](std::ostream& out) { write_vtu(out, model, state, ws, dt, body_); });
   files_.emplace_back(state.time, name);
 }
 

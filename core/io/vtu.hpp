@@ -1,13 +1,15 @@
 #pragma once
 // ParaView output (docs/meshes.md "ParaView output"): one VTK XML unstructured grid (.vtu) per
 // saved step and a .pvd collection of them with their times. Points are the nodes at their
-// current positions, cells are the springs (VTK_LINE). Arrays are base64-encoded binary
+// current positions, cells are the springs (VTK_LINE), then the source mesh's cells when the
+// scene has a mesh file. Arrays are base64-encoded binary
 // (header_type UInt64), so +inf (an upper bound with v = 0) survives exactly.
 #include <iosfwd>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "core/scene.hpp"
 #include "core/step.hpp"
 
 namespace dampbound {
@@ -24,14 +26,20 @@ int state_code(NodeStatus s);
 /// this state (evaluated at the state before it), or for iteration 0 the lower bounds, upper
 /// = +inf, the user's gamma and within/fixed. safe = gamma_safe_i of SPEC 9 (mass unit / s;
 /// +inf for fixed nodes) at the same state, with the step `dt` (s).
+/// `body`: the source mesh's cells (SceneSpec::body), written after the springs in the same
+/// piece as VTK_TETRA, VTK_TRIANGLE, VTK_QUAD or VTK_POLYGON cells over the same points, so
+/// the per-node arrays colour them; their stiffness and strain are NaN (springs only). Cell
+/// array "spring": the spring's index, -1 for a body cell (ParaView: Threshold on it, or
+/// Extract Cells By Type, shows either part alone).
 void write_vtu(std::ostream& out, const Model& model, const State& state, const StepWorkspace& ws,
-               double dt);
+               double dt, const std::vector<BodyCell>& body = {});
 
 /// A series in one folder: DIR/step_NNNNNN.vtu (the iteration) and DIR/series.pvd.
 class VtuSeries {
  public:
   /// Creates `dir` when missing. Throws InputError naming it when it cannot be written.
-  explicit VtuSeries(std::string dir);
+  /// `body`: the source mesh's cells, written in every file (write_vtu).
+  explicit VtuSeries(std::string dir, std::vector<BodyCell> body = {});
   /// Writes the state as DIR/step_<iteration>.vtu and remembers its time for the .pvd.
   void add(const Model& model, const State& state, const StepWorkspace& ws, double dt);
   /// Writes DIR/series.pvd listing every file added so far (rewritten on each call).
@@ -42,6 +50,7 @@ class VtuSeries {
 
  private:
   std::string dir_;
+  std::vector<BodyCell> body_;
   std::vector<std::pair<double, std::string>> files_;
 };
 

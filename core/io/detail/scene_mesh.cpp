@@ -3,6 +3,7 @@
 // stiffnesses, and the file's own regions (Gmsh physical groups, TetGen region attributes
 // and boundary markers, VTK cell data) mapped to fixed nodes, scales and a probe's pull.
 #include <algorithm>
+#include <cstdio>
 #include <fstream>
 #include <set>
 
@@ -124,11 +125,14 @@ void read_mesh(const Reader& r, const toml::table& root, SceneSpec& s) {
     }
   }
   const CellMesh mesh = read_mesh_file(file, format, region_array);  // errors name the mesh file
+  if (const std::string note = reoriented_note(mesh, file); !note.empty())
+    std::fprintf(stderr, "%s\n", note.c_str());  // said once, where the scene is loaded
   try {
     s.model = model_from_mesh(mesh, how);
   } catch (const InputError& e) {
     throw InputError(file + ": " + e.what());
   }
+  s.body = body_cells(mesh);
   read_mesh_regions(r, root, mesh, s);
 }
 

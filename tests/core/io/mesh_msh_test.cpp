@@ -42,8 +42,7 @@ TEST(MeshMsh, BadInputNamesTheLine) {
   EXPECT_EQ(msh_error(kHead + "1 4 2 1 1 1 2 3 4\n$EndElements\n"), "");
   EXPECT_EQ(msh_error(kHead + "1 4 2 1 1 1 2 3 9\n$EndElements\n"),
             "m.msh:13: the element refers to node tag 9, which $Nodes does not define");
-  EXPECT_EQ(msh_error(kHead + "1 4 2 1 1 1 3 2 4\n$EndElements\n").substr(0, 33),
-            "m.msh:13: inverted tetrahedron (s");
+  EXPECT_EQ(msh_error(kHead + "1 4 2 1 1 1 3 2 4\n$EndElements\n"), "");  // either orientation
   EXPECT_EQ(msh_error(kHead + "1 5 2 1 1 1 2 3 4 1 2 3 4\n$EndElements\n"),
             "m.msh:13: unsupported element type 5 (hexahedron): only points, lines, triangles, "
             "quadrangles and tetrahedra are read");

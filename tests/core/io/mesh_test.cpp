@@ -65,11 +65,25 @@ TEST(Mesh, CellChecks) {
   EXPECT_DOUBLE_EQ(tetra_signed_volume(v[0], v[2], v[1], v[3]), -1.0 / 6.0);
   MeshCell tet{CellShape::tetra, {0, 1, 2, 3}, 0, 1};
   EXPECT_FALSE(cell_problem(v, tet));
-  EXPECT_EQ(cell_problem(v, tet, -1).value_or("").substr(0, 20), "inverted tetrahedron");
+  EXPECT_EQ(tetra_orientation(v, tet), 1);
   MeshCell flipped{CellShape::tetra, {0, 2, 1, 3}, 0, 1};
-  EXPECT_FALSE(cell_problem(v, flipped, 0));  // orientation not judged
-  EXPECT_FALSE(cell_problem(v, flipped, -1));
-  EXPECT_TRUE(cell_problem(v, flipped, 1));
+  EXPECT_FALSE(cell_problem(v, flipped));  // orientation is no problem
+  EXPECT_EQ(tetra_orientation(v, flipped), -1);
+  CellMesh counted{v, {}, {}, 0};
+  int convention = 1;
+  EXPECT_FALSE(accept_cell(counted, tet, convention));
+  EXPECT_FALSE(accept_cell(counted, flipped, convention));
+  EXPECT_EQ(counted.reoriented, 1u);
+  int first = 0;  // TetGen: the first tetrahedron sets it
+  counted.reoriented = 0;
+  EXPECT_FALSE(accept_cell(counted, flipped, first));
+  EXPECT_FALSE(accept_cell(counted, tet, first));
+  EXPECT_EQ(first, -1);
+  EXPECT_EQ(counted.reoriented, 1u);
+  MeshCell flat_tet{CellShape::tetra, {0, 1, 4, 2}, 0, 1};  // 0, 1, 4 on the x axis
+  EXPECT_EQ(accept_cell(counted, flat_tet, first).value_or(""),
+            "degenerate tetrahedron (zero volume)");
+  EXPECT_EQ(tetra_orientation(v, flat_tet), 0);
   MeshCell flat{CellShape::triangle, {0, 1, 4}, 0, 1};  // three points on the x axis
   EXPECT_TRUE(cell_problem(v, flat));
   MeshCell out{CellShape::triangle, {0, 1, 7}, 0, 1};

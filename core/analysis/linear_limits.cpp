@@ -1,0 +1,118 @@
+#include "core/analysis/linear_limits.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+#include <string>
+
+#include "core/error.hpp"
+#include "core/safe_bound.hpp"
+
+namespace dampbound {
+namespace {
+
+std::string shown(double v) {
+  std::ostringstream o;
+  o << std::setprecision(6) << v;
+  return o.str();
+}
+
+void check(const MatrixModel& m) {
+  if (!m.K) throw InputError("K: no stiffness matrix given");
+  const SparseMatrix& K = *m.K;
+  const size_t n = m.mass.size();
+  if (n == 0) throw InputError("mass: no node (give one mass per node)");
+  if (K.rows() != K.cols())
+    throw InputError("K: must be square, not " + std::to_string(K.rows()) + " x " +
+                     std::to_string(K.cols()));
+  if (size_t(K.rows()) != 3 * n)
+    throw InputError("K: must be 3N x 3N for the N = " + std::to_string(n) + " masses given, not " +
+                     std::to_string(K.rows()) + " x " + std::to_string(K.cols()));
+  for (size_t i = 0; i < n; ++i)
+    if (!(std::isfinite(m.mass[i]) && m.mass[i] > 0))
+      throw InputError("mass: node " + std::to_string(i) + " has mass " + shown(m.mass[i]) +
+                       "; every mass must be finite and > 0");
+  if (m.gamma.size() != 1 && m.gamma.size() != n)
+    throw InputError("gamma: give one value or one per node (" + std::to_string(n) + "), not " +
+                     std::to_string(m.gamma.size()));
+  for (size_t i = 0; i < m.gamma.size(); ++i)
+    if (!(std::isfinite(m.gamma[i]) && m.gamma[i] >= 0))
+      throw InputError("gamma: entry " + std::to_string(i) + " must be finite and >= 0");
+  if (!(std::isfinite(m.dt) && m.dt > 0)) throw InputError("dt: must be finite and > 0");
+  double largest = 0;
+  for (int k = 0; k < K.outerSize(); ++k)
+    for (SparseMatrix::InnerIterator it(K, k); it; ++it) {
+      if (!std::isfinite(it.value()))
+        throw InputError("K: entry (" + std::to_string(it.row()) + ", " + std::to_string(it.col()) +
+                         ") is not finite");
+      largest = std::max(largest, std::abs(it.value()));
+    }
+  const SparseMatrix asym = K - SparseMatrix(K.transpose());
+  for (int k = 0; k < asym.outerSize(); ++k)
+    for (SparseMatrix::InnerIterator it(asym, k); it; ++it)
+      if (std::abs(it.value()) > 1e-12 * largest)
+        throw InputError("K: not symmetric: entries (" + std::to_string(it.row()) + ", " +
+                         std::to_string(it.col()) + ") and (" + std::to_string(it.col()) + ", " +
+                         std::to_string(it.row()) + ") differ by " + shown(std::abs(it.value())));
+  if (m.C)
+    throw InputError(
+        "C: a damping matrix is not judged yet; give nodal damping as gamma (SPEC 10's "
+        "dashpots and Rayleigh damping are judged on scenes)");
+}
+
+}  // namespace
+
+MatrixLimits linear_limits(const MatrixModel& model, const ExactOptions& options) {
+  check(model);
+  const size_t n = model.mass.size();
+  const auto gamma_of = [&](size_t i) {
+    return model.gamma.size() == 1 ? model.gamma[0] : model.gamma[i];
+  };
+  MatrixLimits out;
+  out.gamma_ref = *std::max_element(model.gamma.begin(), model.gamma.end());
+  // A = M^-1/2 K M^-1/2 and the rate per dof per unit of gamma_ref, as for a model whose
+  // gamma_i = gamma * gamma_scale_i (mass_weighted, damping_rates).
+  std::vector<double> inv_sqrt_m(3 * n);
+  Eigen::VectorXd R(Eigen::Index(3 * n));
+  for (size_t i = 0; i < n; ++i)
+    for (size_t r = 0; r < 3; ++r) {
+      inv_sqrt_m[3 * i + r] = 1.0 / std::sqrt(model.mass[i]);
+      const double scale = out.gamma_ref > 0 ? gamma_of(i) / out.gamma_ref : 1.0;
+      R(Eigen::Index(3 * i + r)) = scale / model.mass[i];
+    }
+  SparseMatrix A = *model.K;
+  A.makeCompressed();
+  for (int k = 0; k < A.outerSize(); ++k)
+    for (SparseMatrix::InnerIterator it(A, k); it; ++it)
+      it.valueRef() *= inv_sqrt_m[size_t(it.row())] * inv_sqrt_m[size_t(it.col())];
+  Params p;
+  p.dt = model.dt;
+  p.gamma = out.gamma_ref;
+  p.integrator = Integrator::semi_implicit_euler;
+  // No floor: nothing about K is known beyond the matrix, so lambda_min is certified by a
+  // factorisation as for any model with a compressed spring.
+  out.exact = exact_stability(A, R, std::nullopt, p, options);
+  out.lambda_max_lo = out.exact.lambda_max_lo;
+  out.lambda_max_hi = out.exact.spectrum.lambda_max;
+  out.dt_max = out.exact.dt_max;
+  out.gamma_min = out.exact.gamma_lo;
+  out.gamma_max = out.exact.gamma_hi;
+  out.stable = out.exact.stable;
+  // SPEC 9 on the same A: the Gershgorin row sums of each node's three rows.
+  std::vector<double> rows(3 * n, 0.0);
+  for (int k = 0; k < A.outerSize(); ++k)
+    for (SparseMatrix::InnerIterator it(A, k); it; ++it)
+      rows[size_t(it.row())] += std::abs(it.value());
+  out.row_sum.resize(n);
+  out.gamma_safe.resize(n);
+  out.dt_safe.resize(n);
+  for (size_t i = 0; i < n; ++i) {
+    out.row_sum[i] = std::max({rows[3 * i], rows[3 * i + 1], rows[3 * i + 2]});
+    out.gamma_safe[i] = safe_gamma(model.mass[i], model.dt, out.row_sum[i]);
+    out.dt_safe[i] = safe_dt(model.mass[i], gamma_of(i), out.row_sum[i]);
+  }
+  return out;
+}
+
+}  // namespace dampbound

@@ -1,0 +1,95 @@
+// linear_limits on a user's matrices (core/analysis/linear_limits.hpp): the same numbers as
+// the scene's own analysis (exact_stability, SPEC 9's safe bound) for the scene's K.
+#include "core/analysis/linear_limits.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/analysis/linear_stability.hpp"
+#include "core/io/scene_file.hpp"
+#include "core/safe_bound.hpp"
+#include "core/scene.hpp"
+#include "tests/core/test_util.hpp"
+
+namespace dampbound {
+namespace {
+
+void expect_rel(double a, double b, double tol, const char* what) {
+  EXPECT_LE(std::abs(a - b), tol * std::max(std::abs(a), std::abs(b))) << what << ": " << a
+                                                                       << " vs " << b;
+}
+
+/// The scene's model, its K at rest and the two analyses side by side.
+void compare(const Model& model, const Params& p) {
+  const std::vector<Vec3>& x = model.rest;
+  const SparseMatrix K = tangent_stiffness(model, x);
+  MatrixModel mm;
+  mm.K = &K;
+  mm.mass = model.mass;
+  mm.gamma = model.gamma;  // gamma_i = gamma * gamma_scale_i
+  mm.dt = p.dt;
+  const MatrixLimits got = linear_limits(mm);
+  const ExactStability want = exact_stability(model, x, p);
+  EXPECT_EQ(got.exact.method, want.method);
+  expect_rel(got.lambda_max_hi, want.spectrum.lambda_max, 1e-12, "lambda_max (certified)");
+  expect_rel(got.lambda_max_lo, want.lambda_max_lo, 1e-12, "lambda_max (Rayleigh)");
+  expect_rel(got.dt_max, want.dt_max, 1e-9, "dt_max");
+  // The scene's gamma_hi is of the user's gamma; here of g in gamma_i = g gamma_i / gamma_ref.
+  expect_rel(got.gamma_max * p.gamma / got.gamma_ref, want.gamma_hi, 1e-9, "gamma_max");
+  EXPECT_EQ(got.stable, want.stable);
+  std::vector<double> row_sum;
+  safe_row_sums(model, x, row_sum);
+  for (size_t i = 0; i < model.mass.size(); ++i) {
+    expect_rel(got.row_sum[i], row_sum[i], 1e-12, "R_i");
+    expect_rel(got.gamma_safe[i], safe_gamma(model.mass[i], p.dt, row_sum[i]), 1e-12,
+               "gamma_safe_i");
+    expect_rel(got.dt_safe[i], safe_dt(model.mass[i], model.gamma[i], row_sum[i]), 1e-12,
+               "dt_safe_i");
+  }
+}
+
+TEST(LinearLimits, SameNumbersAsTheScenesAnalysis) {
+  const SceneSpec scene = load_scene(test::source_path("scenes/paper-plane.toml"));
+  Params p = scene.params;
+  p.dt = 0.3;  // well inside dt_max, a non-trivial gamma interval
+  compare(compile_model(scene.model, p), p);
+}
+
+TEST(LinearLimits, PerNodeGammaTakesTheSymmetricIndex) {
+  SceneSpec scene = paper_plane_scene(12);
+  for (size_t i = 0; i < scene.model.gamma_scale.size(); ++i)
+    scene.model.gamma_scale[i] = 1.0 + double(i % 5) / 4;  // up to 2, the largest
+  Params p = scene.params;
+  p.dt = 0.3;
+  const Model model = compile_model(scene.model, p);
+  compare(model, p);
+}
+
+TEST(LinearLimits, BadInputNamesTheArgument) {
+  const SparseMatrix K = tangent_stiffness(compile_model(paper_plane_scene(3).model, Params{}),
+                                           paper_plane_scene(3).model.rest);
+  MatrixModel mm;
+  mm.K = &K;
+  mm.mass.assign(9, 0.001);
+  mm.gamma = {0.002};
+  mm.dt = 0.05;
+  EXPECT_EQ(test::input_error([&] { linear_limits(mm); }), "");
+  mm.mass.assign(8, 0.001);
+  EXPECT_EQ(test::input_error([&] { linear_limits(mm); }).substr(0, 20), "K: must be 3N x 3N f");
+  mm.mass.assign(9, 0.001);
+  mm.mass[4] = 0;
+  EXPECT_EQ(test::input_error([&] { linear_limits(mm); }).substr(0, 24), "mass: node 4 has mass 0;");
+  mm.mass[4] = 0.001;
+  SparseMatrix bent = K;
+  bent.coeffRef(0, 1) += 1;
+  mm.K = &bent;
+  EXPECT_EQ(test::input_error([&] { linear_limits(mm); }).substr(0, 20), "K: not symmetric: en");
+  mm.K = &K;
+  mm.C = &K;
+  EXPECT_EQ(test::input_error([&] { linear_limits(mm); }).substr(0, 38),
+            "C: a damping matrix is not judged yet;");
+}
+
+}  // namespace
+}  // namespace dampbound
