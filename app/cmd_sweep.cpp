@@ -1,6 +1,8 @@
 // dampbound sweep [SCENE]: the paper's experiment at scale (SPEC 5, 6): every combination of
 // m, kappa, gamma (or zeta), dt and factor, one CSV row per trial. docs/sweeps.md.
+#include <fcntl.h>
 #include <signal.h>
+#include <sys/file.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -26,6 +28,29 @@ namespace dampbound::app {
 namespace {
 
 std::atomic<bool> g_interrupted{false};
+
+/// The output's lock, <output>.lock, held (flock) for the whole run: a second sweep on the same
+/// output, resumed or not, is refused while the first holds it. The kernel lets go when the
+/// process ends, killed or not.
+class OutputLock {
+ public:
+  explicit OutputLock(const std::string& output) : path_(output + ".lock") {
+    fd_ = ::open(path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (fd_ < 0) throw InputError("-o: cannot create the lock file " + path_);
+    if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+      ::close(fd_);
+      throw InputError("-o: another dampbound sweep is writing " + output + " (it holds " + path_ +
+                       "); wait for it to finish or stop it, then run again (--resume continues it)");
+    }
+  }
+  ~OutputLock() { ::close(fd_); }
+  OutputLock(const OutputLock&) = delete;
+  OutputLock& operator=(const OutputLock&) = delete;
+
+ private:
+  std::string path_;
+  int fd_ = -1;
+};
 
 extern "C" void on_interrupt(int) {
   g_interrupted.store(true);
@@ -104,7 +129,7 @@ SweepSpec make_spec(const SweepArgs& a, const SceneSpec& scene) {
 int run(const SweepArgs& a) {
   SceneSpec scene = load_scene_arg(a.scene);
   SweepRequest rq;
-  rq.scene_text = read_file_text(scene.path);
+  rq.scene_text = sweep_identity_text(read_file_text(scene.path), scene);
   rq.spec = make_spec(a, scene);
   parse_shard(a.shard, rq.shard, rq.shards);
   auto writable = [](const std::string& flag, const std::string& path) {
@@ -135,6 +160,7 @@ int run(const SweepArgs& a) {
   sa.sa_handler = on_interrupt;
   ::sigaction(SIGINT, &sa, nullptr);
   ::sigaction(SIGTERM, &sa, nullptr);
+  const OutputLock lock(a.output);
   const SweepReport rep = run_sweep(rq);
   ::signal(SIGINT, SIG_DFL);
   ::signal(SIGTERM, SIG_DFL);

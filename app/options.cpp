@@ -35,9 +35,10 @@ CLI::Validator number_check(bool allow_zero) {
         const double x = std::strtod(s.c_str(), &end);
         if (s.empty() || end != s.c_str() + s.size() || std::isspace(static_cast<unsigned char>(s[0])))
           return "'" + printable(s) + "' is not a number";
-        if (!std::isfinite(x) || (errno == ERANGE && std::fabs(x) > 1))
-          return "must be finite, got " + printable(s);
-        if (allow_zero ? x < 0 : x <= 0) return allow_zero ? "must be >= 0" : "must be > 0";
+        // number_problem: the same rule and words as the API's validate(Params).
+        if (errno == ERANGE && std::fabs(x) > 1) return "must be finite, got " + printable(s);
+        if (const auto why = number_problem(x, allow_zero))
+          return *why + (std::isfinite(x) ? "" : ", got " + printable(s));
         if (x != 0 && std::fabs(x) < 1e-300)
           return "'" + printable(s) + "' is too small to compute with (below 1e-300)";
         return {};

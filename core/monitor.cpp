@@ -32,11 +32,40 @@ void require(bool ok, const std::string& what) {
   if (!ok) throw std::invalid_argument("monitor: " + what);
 }
 
+// gamma_i: finite (require_finite's words) and >= 0.
+void require_damping(NodeScalars gamma) {
+  require_finite(gamma, "gamma");
+  for (Eigen::Index i = 0; i < gamma.size(); ++i)
+    require(gamma[i] >= 0, "gamma[" + std::to_string(i) + "] must be >= 0 (node " +
+                               std::to_string(i) + ")");
+}
+
+// dt, factor and the like: number_problem's rule and words, as the CLI's flags.
+void require_number(double x, const char* name, bool allow_zero) {
+  if (const auto why = number_problem(x, allow_zero)) require(false, std::string(name) + " " + *why);
+}
+
 }  // namespace
+
+void require_finite(NodeVectors a, const char* what) {
+  for (Eigen::Index i = 0; i < a.rows(); ++i)
+    if (!a.row(i).allFinite())
+      throw std::invalid_argument(std::string(what) + "[" + std::to_string(i) +
+                                  "] is not finite (node " + std::to_string(i) + ")");
+}
+
+void require_finite(NodeScalars a, const char* what) {
+  for (Eigen::Index i = 0; i < a.size(); ++i)
+    if (!std::isfinite(a[i]))
+      throw std::invalid_argument(std::string(what) + "[" + std::to_string(i) +
+                                  "] is not finite (node " + std::to_string(i) + ")");
+}
 
 Monitor::Monitor(NodeScalars mass, SpringPairs springs, NodeScalars stiffness,
                  NodeScalars rest_length) {
   const Eigen::Index n = mass.size();
+  require(n > 0, "mass must have at least one node");
+  require(n <= std::numeric_limits<int>::max() / 2, "too many nodes");
   ModelSpec spec;
   require(stiffness.size() == springs.rows() && rest_length.size() == springs.rows(),
           "springs, stiffness and rest_length must have the same length");
@@ -73,6 +102,7 @@ void Monitor::check_size(Eigen::Index n, const char* what) const {
 void Monitor::set_anchors(NodeScalars anchor_stiffness, NodeVectors rest) {
   check_size(anchor_stiffness.size(), "anchor_stiffness");
   check_size(rest.rows(), "rest");
+  require_finite(rest, "rest");
   ModelSpec spec = model_;
   for (int i = 0; i < node_count(); ++i) {
     require(std::isfinite(anchor_stiffness[i]) && anchor_stiffness[i] >= 0,
@@ -109,6 +139,9 @@ void Monitor::upper_bounds(NodeVectors v, NodeVectors force, double dt, NodeScal
   check_size(v.rows(), "v");
   check_size(force.rows(), "force");
   check_size(out.size(), "upper bound output");
+  require_number(dt, "dt", false);
+  require_finite(v, "v");
+  require_finite(force, "force");
   std::lock_guard<std::mutex> lock(workers_.mutex);
   workers_.pass.threads.run(model_.rest.size(), [&](int, size_t begin, size_t end) {
     for (size_t k = begin; k < end; ++k) {
@@ -140,7 +173,8 @@ MonitorReport Monitor::check(NodeVectors x, NodeVectors v, NodeVectors force, No
 int Monitor::safe_bounds(NodeVectors x, double dt, NodeScalarsOut out) const {
   check_size(x.rows(), "x");
   check_size(out.size(), "safe bound output");
-  require(std::isfinite(dt) && dt > 0, "dt must be finite and > 0");
+  require_number(dt, "dt", false);
+  require_finite(x, "x");
   std::lock_guard<std::mutex> lock(workers_.mutex);
   std::vector<double>& row_sum = workers_.row_sum;
   const int compressed =
@@ -163,7 +197,11 @@ MonitorReport Monitor::check_with(const std::vector<double>* safe, NodeVectors v
   check_size(gamma.size(), "gamma");
   if (gamma_eff) check_size(gamma_eff->size(), "gamma_eff");
   if (upper) check_size(upper->size(), "upper");
-  require(std::isfinite(dt) && dt > 0, "dt must be finite and > 0");
+  require_number(dt, "dt", false);
+  require_number(factor, "factor", true);
+  require_finite(v, "v");
+  require_finite(force, "force");
+  require_damping(gamma);
   // Contiguous ranges of nodes on threads, each with its own report; combined in range order,
   // so the counts and the first indices are those of one loop.
   std::lock_guard<std::mutex> lock(workers_.mutex);
@@ -229,6 +267,8 @@ int Monitor::internal_forces(
     NodeVectors x,
     Eigen::Ref<Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>> force) const {
   check_size(force.rows(), "force");
+  check_size(x.rows(), "x");
+  require_finite(x, "x");
   std::lock_guard<std::mutex> lock(workers_.mutex);
   std::vector<Vec3>& f = workers_.force;
   const int zero_length =
@@ -243,14 +283,12 @@ MonitorLimits Monitor::exact_limits(NodeVectors x, NodeScalars gamma, double dt,
                                     double max_factor_flops) const {
   check_size(x.rows(), "x");
   check_size(gamma.size(), "gamma");
-  require(std::isfinite(dt) && dt > 0, "dt must be finite and > 0");
-  require(max_factor_flops > 0, "max_factor_flops must be > 0");
+  require_number(dt, "dt", false);
+  require(!std::isnan(max_factor_flops) && max_factor_flops > 0, "max_factor_flops must be > 0");
+  require_finite(x, "x");
+  require_damping(gamma);
   ModelSpec spec = model_;
-  for (int i = 0; i < node_count(); ++i) {
-    require(std::isfinite(gamma[i]) && gamma[i] >= 0,
-            "gamma[" + std::to_string(i) + "] must be >= 0");
-    spec.gamma_scale[static_cast<size_t>(i)] = gamma[i];
-  }
+  for (int i = 0; i < node_count(); ++i) spec.gamma_scale[static_cast<size_t>(i)] = gamma[i];
   const Params params = unit_params(dt);
   const Model model = compile_model(std::move(spec), params);
   std::vector<Vec3> xs;

@@ -47,6 +47,12 @@ inline SpringPairs spring_pairs(const int* data, Eigen::Index s, Eigen::Index st
   return SpringPairs(data, s, 2, Eigen::OuterStride<>(stride));
 }
 
+/// The one rule for a state (docs/embedding.md, "Bad input"): a NaN or infinite value is never
+/// judged. Throws std::invalid_argument naming the array and its first bad node ("v[3] is not
+/// finite (node 3)"). Every Monitor call and the Python module apply it to what they read.
+void require_finite(NodeVectors a, const char* what);
+void require_finite(NodeScalars a, const char* what);
+
 /// What the runtime check of one step found (paper sec. 5, SPEC 3-4), over the free nodes.
 struct MonitorReport {
   int violating = 0;         ///< nodes whose effective gamma is outside [gamma_lo, gamma_hi]
@@ -93,6 +99,12 @@ struct MonitorLimits {
 };
 
 /// A user's mass-spring system, seen by dampbound: masses, springs and (optional) anchors.
+///
+/// Bad input, one rule for every call (docs/embedding.md, "Bad input"): an array of the wrong
+/// size, a NaN or infinite value in a state (x, v, force, gamma, rest), a gamma_i < 0, a dt
+/// that is not finite and > 0 or a factor that is not finite and >= 0 throws
+/// std::invalid_argument naming the array and its first bad node ("v[3] is not
+/// finite (node 3)", require_finite); nothing is judged and no output is complete.
 class Monitor {
  public:
   /// masses m_i > 0 (mass unit); springs as node index pairs with stiffness kappa_ij > 0

@@ -5,6 +5,9 @@
 #include <chrono>
 #include <condition_variable>
 #include <mutex>
+#include <stdexcept>
+#include <string>
+#include <system_error>
 #include <thread>
 #include <vector>
 
@@ -24,16 +27,28 @@ struct NodeThreads::Pool {
   const std::chrono::microseconds spin;
 
   Pool(int threads, int spin_us) : spin(spin_us) {
-    for (int t = 1; t < threads; ++t) workers.emplace_back([this, t] { work(t); });
+    try {
+      for (int t = 1; t < threads; ++t) workers.emplace_back([this, t] { work(t); });
+    } catch (const std::exception& e) {
+      // No thread (an address-space or process limit): stop those started and say so, rather
+      // than leave joinable threads to std::terminate or a loop waiting for them.
+      const std::size_t failed = workers.size() + 1;
+      stop();
+      throw std::runtime_error("could not start worker thread " + std::to_string(failed) + " of " +
+                               std::to_string(threads - 1) + ": " + e.what());
+    }
   }
 
-  ~Pool() {
+  ~Pool() { stop(); }
+
+  void stop() {
     {
       std::lock_guard<std::mutex> lock(mutex);
       stopping = true;
     }
     wake.notify_all();
     for (std::thread& w : workers) w.join();
+    workers.clear();
   }
 
   /// Polls `ready` for up to `spin` (none by default); the caller then takes the lock and

@@ -50,13 +50,22 @@ std::vector<std::string> integrator_names() {
   return out;
 }
 
+std::optional<std::string> number_problem(double x, bool allow_zero) {
+  if (!std::isfinite(x)) return std::string("must be finite");
+  if (allow_zero ? x < 0 : x <= 0) return std::string(allow_zero ? "must be >= 0" : "must be > 0");
+  return std::nullopt;
+}
+
 std::optional<std::string> validate(const Params& p) {
-  auto positive = [](double x) { return std::isfinite(x) && x > 0; };
-  if (!positive(p.m)) return "m must be a finite number > 0";
-  if (!positive(p.kappa)) return "kappa must be a finite number > 0";
-  if (!std::isfinite(p.gamma) || p.gamma < 0) return "gamma must be a finite number >= 0";
-  if (!positive(p.dt)) return "dt must be a finite number > 0";
-  if (!std::isfinite(p.factor) || p.factor < 0) return "factor must be a finite number >= 0";
+  const struct {
+    const char* name;
+    double value;
+    bool allow_zero;
+  } numbers[] = {{"m", p.m, false},         {"kappa", p.kappa, false},
+                 {"gamma", p.gamma, true},  {"dt", p.dt, false},
+                 {"factor", p.factor, true}};
+  for (const auto& n : numbers)
+    if (const auto why = number_problem(n.value, n.allow_zero)) return std::string(n.name) + " " + *why;
   return std::nullopt;
 }
 

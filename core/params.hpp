@@ -58,7 +58,13 @@ std::optional<DampingPolicy> parse_policy(const std::string& s);
 /// Parses "semi-implicit-euler" | "forward-euler" | "verlet" | "rk4" | "implicit-euler".
 std::optional<Integrator> parse_integrator(const std::string& s);
 
-/// What makes the parameters unusable, naming the parameter; nullopt when they are usable.
+/// The one rule for a number the CLI's flags, the scene files and the API take: nullopt when
+/// x is finite and > 0 (>= 0 with allow_zero), else what is wrong: "must be finite",
+/// "must be > 0" or "must be >= 0" (callers put the name of the flag or parameter first).
+std::optional<std::string> number_problem(double x, bool allow_zero);
+
+/// What makes the parameters unusable, naming the parameter ("dt must be > 0"); nullopt when
+/// they are usable. m, kappa, dt: finite and > 0; gamma, factor: finite and >= 0.
 std::optional<std::string> validate(const Params& p);
 
 }  // namespace dampbound

@@ -1,10 +1,19 @@
 #include "core/scene.hpp"
 
+#include <cmath>
 #include <string>
+
+#include "core/error.hpp"
 
 namespace dampbound {
 
 ModelSpec make_grid(const GridSpec& g) {
+  // Each side first: nx * nz of two large sides overflows before it is compared.
+  if (g.nx < 1 || g.nz < 1 || g.nx > 4000000 || g.nz > 4000000 ||
+      static_cast<long long>(g.nx) * g.nz > 4000000)
+    throw InputError("grid: nx and nz must be >= 1 with nx * nz <= 4000000, got " +
+                     std::to_string(g.nx) + " x " + std::to_string(g.nz));
+  if (const auto why = number_problem(g.spacing, false)) throw InputError("grid: spacing " + *why);
   ModelSpec m;
   auto index = [&](int a, int b) { return a * g.nz + b; };
   for (int a = 0; a < g.nx; ++a)
@@ -22,6 +31,8 @@ ModelSpec make_grid(const GridSpec& g) {
 }
 
 SceneSpec paper_plane_scene(int n) {
+  if (n < 1 || n > 2000)
+    throw InputError("paper_plane_scene: n must be in 1..2000, got " + std::to_string(n));
   SceneSpec s;
   s.name = "paper-plane";
   s.description = "Paper sec. 3: " + std::to_string(n) + "x" + std::to_string(n) +
@@ -38,6 +49,39 @@ SceneSpec paper_plane_scene(int n) {
   p.displacement = Vec3(0.0, 5.0, 0.0);
   s.perturbations.push_back(p);
   return s;
+}
+
+std::optional<std::string> validate(const SceneSpec& scene) {
+  const ModelSpec& m = scene.model;
+  const int n = m.node_count();
+  if (n == 0) return std::string("the scene has no node");
+  const size_t nodes = static_cast<size_t>(n);
+  if (m.rest.size() != nodes || m.mass_scale.size() != nodes || m.gamma_scale.size() != nodes ||
+      m.anchor_scale.size() != nodes || m.fixed.size() != nodes)
+    return std::string("the scene's per-node arrays differ in length");
+  auto node = [&](int i) { return i >= 0 && i < n; };
+  auto at = [](const char* what, size_t i) { return std::string(what) + "[" + std::to_string(i) + "] "; };
+  for (size_t i = 0; i < nodes; ++i) {
+    if (!m.rest[i].allFinite()) return at("rest", i) + "must be finite";
+    if (const auto why = number_problem(m.mass_scale[i], false)) return at("mass_scale", i) + *why;
+    if (const auto why = number_problem(m.gamma_scale[i], true)) return at("gamma_scale", i) + *why;
+    if (const auto why = number_problem(m.anchor_scale[i], true)) return at("anchor_scale", i) + *why;
+  }
+  for (size_t k = 0; k < m.springs.size(); ++k) {
+    const Spring& sp = m.springs[k];
+    if (!node(sp.i) || !node(sp.j) || sp.i == sp.j)
+      return "spring " + std::to_string(k) + ": nodes must be two different indices in 0.." +
+             std::to_string(n - 1);
+  }
+  if (!node(scene.watched))
+    return "watched node " + std::to_string(scene.watched) + " is not in 0.." + std::to_string(n - 1);
+  for (const Perturbation& p : scene.perturbations) {
+    if (!node(p.node))
+      return "perturbed node " + std::to_string(p.node) + " is not in 0.." + std::to_string(n - 1);
+    if (!p.displacement.allFinite() || !p.velocity.allFinite())
+      return "the perturbation of node " + std::to_string(p.node) + " must be finite";
+  }
+  return std::nullopt;
 }
 
 State initial_state(const SceneSpec& scene) {

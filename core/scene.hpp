@@ -87,13 +87,21 @@ struct SceneSpec {
 };
 
 /// Builds the grid's nodes, springs (a,b)-(a+1,b), (a,b)-(a,b+1), one diagonal
-/// (a,b)-(a+1,b+1) per cell, rest length = initial length, and anchors (SPEC 5).
+/// (a,b)-(a+1,b+1) per cell, rest length = initial length, and anchors (SPEC 5). Throws
+/// InputError, as a scene file's [grid] does, unless 1 <= nx, nz, nx * nz <= 4 000 000 and
+/// the spacing is finite and > 0.
 ModelSpec make_grid(const GridSpec& grid);
+
+/// What makes a scene unusable by a Session (no node; a watched or perturbed node, a spring
+/// end out of range; a rest position, scale or perturbation that is not finite), naming it;
+/// nullopt when usable. The scene files refuse the same; this serves scenes built in code.
+std::optional<std::string> validate(const SceneSpec& scene);
 
 /// SPEC 5's scene built in code: an n x n grid (n = 36 is the paper's mesh; the file
 /// scenes/paper-plane.toml describes the same scene, which a test checks), node (n/2, n/2)
 /// moved 5 cm along y and watched, the default parameters and protocol. The GUI falls back
-/// on it when scenes/ is missing; tests build small versions of it.
+/// on it when scenes/ is missing; tests build small versions of it. n in 1..2000 (InputError
+/// otherwise).
 SceneSpec paper_plane_scene(int n = 36);
 
 /// The rest state with the scene's perturbations applied.

@@ -12,8 +12,25 @@ Session::Session(SceneSpec scene, const Params& params, const StopRules& rules)
     : scene_(std::make_shared<const SceneSpec>(std::move(scene))),
       params_(params),
       rules_(rules) {
+  if (const auto why = validate(*scene_)) throw InputError("scene: " + *why);
+  if (const auto why = validate(params)) throw InputError(*why);
+  if (const auto why = validate(rules)) throw InputError(*why);
   watched_ = scene_->watched;
   reset();
+}
+
+std::optional<std::string> validate(const StopRules& r) {
+  if (r.max_iterations < 1 || r.max_iterations > 100000000)
+    return std::string("max_iterations must be in 1..100000000");
+  const struct {
+    const char* name;
+    double value;
+  } numbers[] = {{"reference", r.reference},
+                 {"restore_fraction", r.restore_fraction},
+                 {"diverge_factor", r.diverge_factor}};
+  for (const auto& n : numbers)
+    if (const auto why = number_problem(n.value, false)) return std::string(n.name) + " " + *why;
+  return std::nullopt;
 }
 
 Session::Session(SceneSpec scene) : Session(scene, scene.params, scene.rules) {}

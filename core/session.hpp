@@ -2,6 +2,7 @@
 // A running experiment: a scene's model, its state, the parameters, the trace and the verdict.
 // The GUI, `run`, `figure` and `check` all drive a Session, and a Session calls the one step().
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -14,9 +15,14 @@ namespace dampbound {
 /// far): the scene's cuts not reached yet, everything else as loaded (Session::current_scene).
 SceneSpec scene_as_run(const SceneSpec& scene, const ModelSpec& model, int iteration);
 
+/// What makes stop rules unusable, naming the rule as the scene files do ("max_iterations must
+/// be in 1..100000000", "reference must be > 0"); nullopt when usable.
+std::optional<std::string> validate(const StopRules& rules);
+
 class Session {
  public:
   /// Starts from the scene's perturbed state with the given parameters and stop rules.
+  /// Throws InputError naming what validate() refuses in the scene, params or rules.
   Session(SceneSpec scene, const Params& params, const StopRules& rules);
   /// Starts with the scene's own parameters and stop rules.
   explicit Session(SceneSpec scene);

@@ -130,7 +130,16 @@ void bind_analysis(py::module_& m) {
   m.def(
       "exact_limits",
       [options](const Session& s, int threads, std::optional<double> budget) {
-        return exact_stability(s.model(), s.state().x, s.params(), options(threads, budget));
+        SessionInUse::require_idle(&s);
+        const ExactOptions o = options(threads, budget);
+        // A snapshot: the model is shared and never changed again, x and params are copies,
+        // so the session may step on another thread while this runs without the GIL.
+        const std::shared_ptr<const Model> model = s.shared_model();
+        const std::vector<Vec3> x = s.state().x;
+        const Params p = s.params();
+        require_finite(node_vectors(x.front().data(), static_cast<Eigen::Index>(x.size())), "x");
+        py::gil_scoped_release release;
+        return exact_stability(*model, x, p, o);
       },
       py::arg("session"), py::arg("threads") = 1, py::arg("factor_budget_gflop") = py::none(),
       "SPEC 7: the exact limits of the session's model at its current state and parameters "
@@ -143,6 +152,8 @@ void bind_analysis(py::module_& m) {
       [options](const SceneSpec& scene, const Params* params, int threads,
                 std::optional<double> budget, const py::object& x) {
         const Params p = params ? *params : scene.params;
+        require_valid(p);
+        const ExactOptions o = options(threads, budget);
         std::vector<Vec3> at = scene.model.rest;
         if (!x.is_none()) {
           py::array_t<double> keep;
@@ -150,9 +161,11 @@ void bind_analysis(py::module_& m) {
           if (v.rows() != scene.model.node_count())
             throw py::value_error("x must have one row per node (" +
                                   std::to_string(scene.model.node_count()) + ")");
+          require_finite(v, "x");
           for (Eigen::Index i = 0; i < v.rows(); ++i) at[static_cast<size_t>(i)] = v.row(i);
         }
-        return exact_stability(compile_model(scene.model, p), at, p, options(threads, budget));
+        py::gil_scoped_release release;
+        return exact_stability(compile_model(scene.model, p), at, p, o);
       },
       py::arg("scene"), py::arg("params") = nullptr, py::arg("threads") = 1,
       py::arg("factor_budget_gflop") = py::none(), py::arg("x") = py::none(),
@@ -163,9 +176,14 @@ void bind_analysis(py::module_& m) {
       "static_equilibrium",
       [options](const SceneSpec& scene, const Params* params, std::optional<double> budget) {
         const Params p = params ? *params : scene.params;
+        require_valid(p);
         EquilibriumOptions o;
         o.max_factor_flops = options(1, budget).max_factor_flops;
-        const Equilibrium e = static_equilibrium(compile_model(scene.model, p), o);
+        Equilibrium e;
+        {
+          py::gil_scoped_release release;
+          e = static_equilibrium(compile_model(scene.model, p), o);
+        }
         py::array_t<double> x({static_cast<py::ssize_t>(e.x.size()), py::ssize_t{3}});
         auto w = x.mutable_unchecked<2>();
         for (size_t i = 0; i < e.x.size(); ++i)
@@ -192,12 +210,19 @@ void bind_analysis(py::module_& m) {
                 const std::string& what, bool verify, std::optional<double> factor_budget_gflop) {
         const Params p = params ? *params : scene.params;
         const StopRules r = rules ? *rules : scene.rules;
+        require_valid(p);
+        if (const auto why = validate(r)) throw py::value_error(*why);
+        if (const auto why = validate(scene)) throw py::value_error("scene: " + *why);
         SuggestOptions o;
         o.verify = verify;
         o.max_factor_flops = options(1, factor_budget_gflop).max_factor_flops;
         py::dict d;
         if (what == "gamma") {
-          const DampingSuggestion s = suggest_damping(scene, p, r, o);
+          DampingSuggestion s;
+          {
+            py::gil_scoped_release release;
+            s = suggest_damping(scene, p, r, o);
+          }
           d["dt"] = s.dt;
           d["gamma_min"] = s.gamma_min;
           d["gamma_max"] = s.gamma_max;
@@ -211,7 +236,11 @@ void bind_analysis(py::module_& m) {
           d["gamma_unstable_from"] = s.gamma_unstable_from;
           d["runs"] = runs_dict(s.runs);
         } else if (what == "dt") {
-          const StepSuggestion s = suggest_step(scene, p, r, o);
+          StepSuggestion s;
+          {
+            py::gil_scoped_release release;
+            s = suggest_step(scene, p, r, o);
+          }
           d["gamma"] = s.gamma;
           d["dt_exact"] = s.dt_exact;
           d["dt_all"] = s.dt_all;

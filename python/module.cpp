@@ -4,6 +4,9 @@
 // consistent mass unit, as everywhere in dampbound.
 #include <pybind11/stl.h>
 
+#include <stdexcept>
+#include <unordered_set>
+
 #include "core/error.hpp"
 #include "core/io/format.hpp"
 #include "core/session.hpp"
@@ -12,7 +15,35 @@
 #include "python/arrays.hpp"
 
 namespace dampbound::python {
+
 namespace {
+std::unordered_set<const void*>& sessions_in_use() {
+  static std::unordered_set<const void*> in_use;
+  return in_use;
+}
+}  // namespace
+
+SessionInUse::SessionInUse(const void* session) : session_(session) {
+  require_idle(session);
+  sessions_in_use().insert(session);
+}
+
+SessionInUse::~SessionInUse() { sessions_in_use().erase(session_); }
+
+void SessionInUse::require_idle(const void* session) {
+  if (sessions_in_use().count(session))
+    throw std::runtime_error("the session is busy in a call on another thread (run, step or "
+                             "exact_limits); wait for it to return");
+}
+
+namespace {
+
+/// The session behind `self`, when no call on another thread is using it.
+const Session& idle(const py::object& self) {
+  const Session& s = self.cast<const Session&>();
+  SessionInUse::require_idle(&s);
+  return s;
+}
 
 DampingPolicy policy_of(const std::string& s) {
   const auto p = parse_policy(s);
@@ -137,6 +168,7 @@ void bind_scene(py::module_& m) {
           "arrays",
           [](const SceneSpec& s, const Params* params) {
             // The model with params applied, as the arrays a Monitor takes (copies).
+            require_valid(params ? *params : s.params);
             const Model mo = compile_model(s.model, params ? *params : s.params);
             py::array_t<int> pairs({static_cast<py::ssize_t>(mo.spring_count()), py::ssize_t{2}});
             py::array_t<double> kappa(mo.spring_count()), l0(mo.spring_count());
@@ -167,7 +199,12 @@ void bind_scene(py::module_& m) {
           "rest_length (S,), anchor_stiffness (N,), rest (N, 3), fixed (N,).");
   m.def(
       "load_scene",
-      [](const std::string& path) { return load_scene(path); },
+      [](const std::string& path) {
+        // A C path ends at its first NUL: "a.toml\0b" would load a.toml.
+        if (path.find('\0') != std::string::npos)
+          throw py::value_error("path contains a NUL character");
+        return load_scene(path);
+      },
       py::arg("path"), "Loads a scene file (TOML); ValueError naming the file and line if bad.");
   m.def("paper_plane_scene", &paper_plane_scene, py::arg("n") = 36,
         "SPEC 5's scene built in code: an n x n grid, node (n/2, n/2) moved 5 cm along y.");
@@ -187,50 +224,68 @@ void bind_session(py::module_& m) {
           "step",
           [](Session& s, int n) {
             if (n < 1) throw py::value_error("n must be >= 1");
+            SessionInUse use(&s);
+            py::gil_scoped_release release;
             for (int k = 1; k < n; ++k) s.step_once();
-            return s.step_once();
+            return StepSample(s.step_once());
           },
           py::arg("n") = 1, "Takes n steps of params.dt seconds; returns the last StepSample.")
       .def(
-          "run", [](Session& s) { return s.run_to_end(); },
+          "run",
+          [](Session& s) {
+            SessionInUse use(&s);
+            py::gil_scoped_release release;
+            return RunResult(s.run_to_end());
+          },
           "Steps until restored, diverged or the iteration limit (SPEC 5); returns RunResult.")
       .def_property(
-          "params", [](const Session& s) { return s.params(); }, &Session::set_params,
+          "params", [](const py::object& self) { return idle(self).params(); },
+          [](Session& s, const Params& p) {
+            SessionInUse::require_idle(&s);
+            s.set_params(p);
+          },
           "parameters (a copy); assign a new Params to change them at the next step")
-      .def_property_readonly("result", &Session::result, "the protocol's result so far")
-      .def_property_readonly("running", &Session::running)
-      .def_property_readonly("iteration", [](const Session& s) { return s.state().iteration; })
       .def_property_readonly(
-          "time", [](const Session& s) { return s.state().time; }, "s")
+          "result", [](const py::object& self) { return idle(self).result(); },
+          "the protocol's result so far")
+      .def_property_readonly("running", [](const py::object& self) { return idle(self).running(); })
+      .def_property_readonly("iteration",
+                             [](const py::object& self) { return idle(self).state().iteration; })
+      .def_property_readonly(
+          "time", [](const py::object& self) { return idle(self).state().time; }, "s")
       .def_property_readonly(
           "positions",
-          [](py::object self) { return view_of(self.cast<const Session&>().state().x, self); },
+          [](py::object self) { return view_of(idle(self).state().x, self); },
           "(N, 3) positions x_i (cm), read-only view")
       .def_property_readonly(
           "velocities",
-          [](py::object self) { return view_of(self.cast<const Session&>().state().v, self); },
+          [](py::object self) { return view_of(idle(self).state().v, self); },
           "(N, 3) velocities v_i (cm/s), read-only view")
       .def_property_readonly(
           "lower_bounds",
           [](py::object self) {
-            return view_of(self.cast<const Session&>().model().lower_bound, self);
+            const Session& s = idle(self);
+            return view_of_shared(s.model().lower_bound, s.shared_model());
           },
-          "(N,) paper eq. 5: gamma_lo_i = 2 sqrt(m_i kappa_i) (mass unit/s)")
+          "(N,) paper eq. 5: gamma_lo_i = 2 sqrt(m_i kappa_i) (mass unit/s) of the model as it "
+          "is when read: a cut or new params later give the session a new model, and this view "
+          "keeps showing the one it was taken from")
       .def_property_readonly(
           "upper_bounds",
           [](py::object self) {
-            return view_of(self.cast<const Session&>().workspace().upper_bound, self);
+            return view_of(idle(self).workspace().upper_bound, self);
           },
           "(N,) paper eq. 6 of the last step: gamma_hi_i (mass unit/s; inf where v_i = 0)")
       .def_property_readonly(
           "gamma_eff",
           [](py::object self) {
-            return view_of(self.cast<const Session&>().workspace().gamma_eff, self);
+            return view_of(idle(self).workspace().gamma_eff, self);
           },
           "(N,) the effective damping of the last step (mass unit/s)")
       .def_property_readonly(
           "displacements",
-          [](const Session& s) {
+          [](const py::object& self) {
+            const Session& s = idle(self);
             py::array_t<double> d(s.model().node_count());
             for (int i = 0; i < s.model().node_count(); ++i)
               d.mutable_at(i) = displacement(s.model(), s.state(), i);

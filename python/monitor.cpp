@@ -12,14 +12,6 @@ namespace dampbound::python {
 
 namespace {
 
-/// The (S, 2) spring index pairs as int32 (converted once when given another integer type).
-py::array_t<int, py::array::c_style | py::array::forcecast> pairs_of(const py::handle& h) {
-  auto a = py::array_t<int, py::array::c_style | py::array::forcecast>::ensure(h);
-  if (!a || a.ndim() != 2 || a.shape(1) != 2)
-    throw py::value_error("springs must be an integer array of shape (S, 2)");
-  return a;
-}
-
 DampingPolicy policy_arg(const std::string& s) {
   const auto p = parse_policy(s);
   if (!p) throw py::value_error("policy must be fixed, clamp, upper, lower or safe, got '" + s + "'");
@@ -30,25 +22,23 @@ Monitor make_monitor(const py::handle& mass, const py::handle& springs, const py
                      const py::handle& rest_length, const py::object& anchor_stiffness,
                      const py::object& rest, const py::object& fixed) {
   py::array_t<double> km, ks, kl, ka, kr;
-  const auto pairs = pairs_of(springs);
-  try {
-    Monitor mon(node_scalars_of(mass, "mass", km), spring_pairs(pairs.data(), pairs.shape(0)),
-                node_scalars_of(stiffness, "stiffness", ks),
-                node_scalars_of(rest_length, "rest_length", kl));
-    if (!anchor_stiffness.is_none()) {
-      if (rest.is_none()) throw py::value_error("anchor_stiffness needs rest (N, 3)");
-      mon.set_anchors(node_scalars_of(anchor_stiffness, "anchor_stiffness", ka),
-                      node_vectors_of(rest, "rest", kr));
-    }
-    if (!fixed.is_none()) {
-      auto f = py::array_t<std::uint8_t, py::array::c_style | py::array::forcecast>::ensure(fixed);
-      if (!f || f.ndim() != 1) throw py::value_error("fixed must have shape (N,)");
-      mon.set_fixed(f.data(), f.shape(0));
-    }
-    return mon;
-  } catch (const std::invalid_argument& e) {
-    throw py::value_error(e.what());
+  const NodeScalars m = node_scalars_of(mass, "mass", km);
+  const auto pairs = index_array(springs, "springs", m.size(), 2);
+  Monitor mon(m, spring_pairs(pairs.data(), pairs.shape(0)),
+              node_scalars_of(stiffness, "stiffness", ks),
+              node_scalars_of(rest_length, "rest_length", kl));
+  if (!anchor_stiffness.is_none()) {
+    if (rest.is_none()) throw py::value_error("anchor_stiffness needs rest (N, 3)");
+    mon.set_anchors(node_scalars_of(anchor_stiffness, "anchor_stiffness", ka),
+                    node_vectors_of(rest, "rest", kr));
+  } else if (!rest.is_none()) {
+    throw py::value_error("rest needs anchor_stiffness (N,)");
   }
+  if (!fixed.is_none()) {
+    const std::vector<std::uint8_t> f = flags_of(fixed, "fixed");
+    mon.set_fixed(f.data(), static_cast<Eigen::Index>(f.size()));
+  }
+  return mon;
 }
 
 }  // namespace
@@ -117,6 +107,7 @@ void bind_monitor(py::module_& m) {
           "threads", &Monitor::threads,
           [](Monitor& mon, int threads) {
             if (threads < 0) throw py::value_error("threads must be >= 0 (0: one per CPU)");
+            py::gil_scoped_release release;  // waits for a call on another thread to finish
             mon.set_threads(threads);
           },
           "threads for each call's loops over nodes and springs (1 by default, 0 = one per "
@@ -134,8 +125,12 @@ void bind_monitor(py::module_& m) {
           "upper_bounds",
           [](const Monitor& mon, const py::handle& v, const py::handle& force, double dt) {
             py::array_t<double> kv, kf, out(mon.node_count());
-            mon.upper_bounds(node_vectors_of(v, "v", kv), node_vectors_of(force, "force", kf), dt,
-                             node_scalars_out(out.mutable_data(), out.shape(0)));
+            const NodeVectors vv = node_vectors_of(v, "v", kv), ff = node_vectors_of(force, "force", kf);
+            auto o = node_scalars_out(out.mutable_data(), out.shape(0));
+            {
+              py::gil_scoped_release release;
+              mon.upper_bounds(vv, ff, dt, o);
+            }
             return out;
           },
           py::arg("v"), py::arg("force"), py::arg("dt"),
@@ -147,27 +142,22 @@ void bind_monitor(py::module_& m) {
              const py::handle& gamma, double dt, const std::string& policy, double factor,
              const py::object& gamma_eff, const py::object& x) {
             py::array_t<double> kv, kf, kg, kx;
-            py::array_t<double> out = gamma_eff.is_none() ? py::array_t<double>(mon.node_count())
-                                                          : gamma_eff.cast<py::array_t<double>>();
-            if (out.ndim() != 1 || out.shape(0) != mon.node_count() || !out.writeable() ||
-                out.strides(0) % static_cast<py::ssize_t>(sizeof(double)) != 0)
-              throw py::value_error("gamma_eff must be a writeable float64 array of shape (N,)");
+            py::array_t<double> out = out_array(gamma_eff, "gamma_eff", mon.node_count());
             auto ge = node_scalars_out(out.mutable_data(), out.shape(0),
                                        out.strides(0) / static_cast<py::ssize_t>(sizeof(double)));
-            try {
-              const MonitorReport r =
-                  x.is_none()
-                      ? mon.check(node_vectors_of(v, "v", kv), node_vectors_of(force, "force", kf),
-                                  node_scalars_of(gamma, "gamma", kg), dt, policy_arg(policy),
-                                  factor, &ge)
-                      : mon.check(node_vectors_of(x, "x", kx), node_vectors_of(v, "v", kv),
-                                  node_vectors_of(force, "force", kf),
-                                  node_scalars_of(gamma, "gamma", kg), dt, policy_arg(policy),
-                                  factor, &ge);
-              return py::make_tuple(r, out);
-            } catch (const std::invalid_argument& e) {
-              throw py::value_error(e.what());
+            const DampingPolicy p = policy_arg(policy);
+            const NodeVectors vv = node_vectors_of(v, "v", kv), ff = node_vectors_of(force, "force", kf);
+            const NodeScalars gg = node_scalars_of(gamma, "gamma", kg);
+            MonitorReport r;
+            if (x.is_none()) {
+              py::gil_scoped_release release;
+              r = mon.check(vv, ff, gg, dt, p, factor, &ge);
+            } else {
+              const NodeVectors xx = node_vectors_of(x, "x", kx);
+              py::gil_scoped_release release;
+              r = mon.check(xx, vv, ff, gg, dt, p, factor, &ge);
             }
+            return py::make_tuple(r, out);
           },
           py::arg("v"), py::arg("force"), py::arg("gamma"), py::arg("dt"),
           py::arg("policy") = "fixed", py::arg("factor") = 1.0, py::arg("gamma_eff") = py::none(),
@@ -181,11 +171,11 @@ void bind_monitor(py::module_& m) {
           "safe_bounds",
           [](const Monitor& mon, const py::handle& x, double dt) {
             py::array_t<double> kx, out(mon.node_count());
-            try {
-              mon.safe_bounds(node_vectors_of(x, "x", kx), dt,
-                              node_scalars_out(out.mutable_data(), out.shape(0)));
-            } catch (const std::invalid_argument& e) {
-              throw py::value_error(e.what());
+            const NodeVectors xx = node_vectors_of(x, "x", kx);
+            auto o = node_scalars_out(out.mutable_data(), out.shape(0));
+            {
+              py::gil_scoped_release release;
+              mon.safe_bounds(xx, dt, o);
             }
             return out;
           },
@@ -200,7 +190,11 @@ void bind_monitor(py::module_& m) {
             py::array_t<double> out({static_cast<py::ssize_t>(mon.node_count()), py::ssize_t{3}});
             Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>> f(
                 out.mutable_data(), mon.node_count(), 3);
-            mon.internal_forces(node_vectors_of(x, "x", kx), f);
+            const NodeVectors xx = node_vectors_of(x, "x", kx);
+            {
+              py::gil_scoped_release release;
+              mon.internal_forces(xx, f);
+            }
             return out;
           },
           py::arg("x"),
@@ -213,14 +207,12 @@ void bind_monitor(py::module_& m) {
             py::array_t<double> kx, kg;
             if (budget_gflop && !(std::isfinite(*budget_gflop) && *budget_gflop > 0))
               throw py::value_error("factor_budget_gflop must be a finite number > 0 (None: no limit)");
-            try {
-              return mon.exact_limits(node_vectors_of(x, "x", kx),
-                                      node_scalars_of(gamma, "gamma", kg), dt,
-                                      budget_gflop ? *budget_gflop * 1e9
-                                                   : std::numeric_limits<double>::infinity());
-            } catch (const std::invalid_argument& e) {
-              throw py::value_error(e.what());
-            }
+            const NodeVectors xx = node_vectors_of(x, "x", kx);
+            const NodeScalars gg = node_scalars_of(gamma, "gamma", kg);
+            py::gil_scoped_release release;
+            return mon.exact_limits(
+                xx, gg, dt,
+                budget_gflop ? *budget_gflop * 1e9 : std::numeric_limits<double>::infinity());
           },
           py::arg("x"), py::arg("gamma"), py::arg("dt"), py::arg("factor_budget_gflop") = py::none(),
           "SPEC 7: the exact linear stability of the paper's step at positions x (cm) with "

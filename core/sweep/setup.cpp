@@ -74,6 +74,26 @@ std::string sweep_id(const std::string& scene_text, const std::string& definitio
   return fnv1a_hex(fnv1a_hex(scene_text) + "\n" + definition);
 }
 
+std::string sweep_identity_text(const std::string& scene_file_text, const SceneSpec& scene) {
+  if (scene.grid) return scene_file_text;  // all of it is in the file's text
+  const ModelSpec& m = scene.model;
+  std::string bytes;
+  auto add = [&](const void* p, size_t n) { bytes.append(static_cast<const char*>(p), n); };
+  for (const Vec3& x : m.rest) add(x.data(), 3 * sizeof(double));
+  for (const Vec3& f : m.external_force) add(f.data(), 3 * sizeof(double));
+  add(m.mass_scale.data(), m.mass_scale.size() * sizeof(double));
+  add(m.gamma_scale.data(), m.gamma_scale.size() * sizeof(double));
+  add(m.anchor_scale.data(), m.anchor_scale.size() * sizeof(double));
+  add(m.fixed.data(), m.fixed.size());
+  for (const Spring& sp : m.springs) {
+    add(&sp.i, sizeof sp.i);
+    add(&sp.j, sizeof sp.j);
+    add(&sp.rest_length, sizeof sp.rest_length);
+    add(&sp.kappa_scale, sizeof sp.kappa_scale);
+  }
+  return scene_file_text + "\nmodel " + fnv1a_hex(bytes);
+}
+
 std::string sweep_definition(const SweepSpec& s) {
   std::string d = "m=" + s.m.spec + " kappa=" + s.kappa.spec;
   d += (s.gamma_mode == GammaMode::zeta ? " zeta=" : " gamma=") + s.gamma.spec;

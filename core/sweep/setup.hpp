@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "core/scene.hpp"
 #include "core/sweep/csv.hpp"
 #include "core/sweep/grid.hpp"
 #include "core/sweep/kernel.hpp"
@@ -19,6 +20,12 @@ void check_sweep_resources(const SweepGrid& grid, const std::string& output, int
 
 /// The sweep's identity: hash of the scene bytes and the definition (16 hex digits).
 std::string sweep_id(const std::string& scene_text, const std::string& definition);
+
+/// What a sweep's identity takes from its scene: the scene file's bytes and, for a scene whose
+/// geometry comes from another file (a [mesh]: no generated grid), a digest of the model as
+/// loaded, so that a changed mesh file gives another sweep id and --resume and merge refuse the
+/// old journal or part.
+std::string sweep_identity_text(const std::string& scene_file_text, const SceneSpec& scene);
 
 /// The definition in words, as in the CSV header.
 std::string sweep_definition(const SweepSpec& spec);

@@ -39,12 +39,12 @@ TEST(Params, ValidateNamesTheFirstBadParameter) {
     edit(p);
     return validate(p).value_or("usable");
   };
-  EXPECT_EQ(with([](Params& p) { p.m = 0; }), "m must be a finite number > 0");
-  EXPECT_EQ(with([&](Params& p) { p.kappa = inf; }), "kappa must be a finite number > 0");
-  EXPECT_EQ(with([&](Params& p) { p.gamma = nan; }), "gamma must be a finite number >= 0");
-  EXPECT_EQ(with([](Params& p) { p.gamma = -1e-9; }), "gamma must be a finite number >= 0");
-  EXPECT_EQ(with([](Params& p) { p.dt = -0.05; }), "dt must be a finite number > 0");
-  EXPECT_EQ(with([](Params& p) { p.factor = -1; }), "factor must be a finite number >= 0");
+  EXPECT_EQ(with([](Params& p) { p.m = 0; }), "m must be > 0");
+  EXPECT_EQ(with([&](Params& p) { p.kappa = inf; }), "kappa must be finite");
+  EXPECT_EQ(with([&](Params& p) { p.gamma = nan; }), "gamma must be finite");
+  EXPECT_EQ(with([](Params& p) { p.gamma = -1e-9; }), "gamma must be >= 0");
+  EXPECT_EQ(with([](Params& p) { p.dt = -0.05; }), "dt must be > 0");
+  EXPECT_EQ(with([](Params& p) { p.factor = -1; }), "factor must be >= 0");
   EXPECT_EQ(with([](Params& p) { p.gamma = 0, p.factor = 0; }), "usable");  // zero is allowed
 }
 
