@@ -17,6 +17,7 @@
 #include "core/bounds.hpp"
 #include "core/error.hpp"
 #include "core/io/format.hpp"
+#include "core/io/report.hpp"
 #include "core/safe_bound.hpp"
 #include "core/session.hpp"
 
@@ -25,11 +26,11 @@ namespace {
 
 struct BoundsArgs {
   std::string scene, v, force, integrator, system = "two-node";
-  double m = 0, kappa = 0, dt = 0, gamma = 0, factor_budget = 0;
+  double m = 0, kappa = 0, dt = 0, gamma = 0, zeta = 0, factor_budget = 0;
   int after = 0;
   bool equilibrium = false;
   CLI::Option *m_opt = nullptr, *kappa_opt = nullptr, *dt_opt = nullptr, *gamma_opt = nullptr,
-              *integrator_opt = nullptr;
+              *integrator_opt = nullptr, *zeta_opt = nullptr;
 };
 
 Vec3 parse_vec3(const std::string& text, const char* flag) {
@@ -105,7 +106,9 @@ void print_safe_lines(const Model& model, const State& state, const Params& p,
               s.gamma_scaled ? " (the user's gamma: gamma_i = gamma * gamma_scale_i)" : "",
               s.gamma_node, g5(s.row_sum).c_str(), ratio(s.gamma_safe, exact.gamma_hi).c_str());
   std::printf("safe step (SPEC 9)    dt_safe = %s at gamma = %s, node %d%s\n",
-              g5(s.dt_safe).c_str(), format_number(p.gamma).c_str(), s.dt_node,
+              g5(s.dt_safe).c_str(),
+              (format_number(p.gamma) + " (zeta " + zeta_text(damping_ratio_range(model)) + ")").c_str(),
+              s.dt_node,
               ratio(s.dt_safe, exact.dt_max).c_str());
   if (s.infeasible.empty()) {
     std::printf("critical damping      %s at every free node (gamma_lo_i <= gamma_safe_i)\n",
@@ -135,6 +138,7 @@ int run_parameters(const BoundsArgs& a) {
   p.kappa = a.kappa;
   p.dt = a.dt;
   p.gamma = a.gamma_opt->count() ? a.gamma : lower_bound(a.m, a.kappa);
+  if (a.zeta_opt->count()) p.gamma = gamma_of_zeta(a.zeta, p);  // every scale is 1 here
   if (a.integrator_opt->count()) p.integrator = *parse_integrator(a.integrator);
   const bool two = a.system == "two-node";
   const Model model = two ? two_node_system(p) : single_node_system(p);
@@ -142,9 +146,11 @@ int run_parameters(const BoundsArgs& a) {
               two ? "two-node (paper sec. 2): node 0 fixed, node 1 on one spring of rest length "
                     "1 cm, no anchor; at rest"
                   : "single node on a zero-rest-length anchor (the linear oscillator); at rest");
-  std::printf("parameters   m=%s kappa=%s gamma=%s%s dt=%s s integrator=%s\n",
+  std::printf("parameters   m=%s kappa=%s gamma=%s%s (zeta=%s) dt=%s s integrator=%s\n",
               format_number(p.m).c_str(), format_number(p.kappa).c_str(),
-              format_number(p.gamma).c_str(), a.gamma_opt->count() ? "" : " (= gamma_lo)",
+              format_number(p.gamma).c_str(),
+              a.gamma_opt->count() || a.zeta_opt->count() ? "" : " (= gamma_lo)",
+              zeta_text(damping_ratio_range(model)).c_str(),
               format_number(p.dt).c_str(), to_string(p.integrator));
   const State rest = rest_state(model);
   const ExactStability exact = exact_stability(model, rest.x, p);
@@ -160,7 +166,12 @@ int run_scene(const BoundsArgs& a) {
   if (a.m_opt->count()) p.m = a.m;
   if (a.kappa_opt->count()) p.kappa = a.kappa;
   if (a.dt_opt->count()) p.dt = a.dt;
-  if (a.gamma_opt->count()) p.gamma = a.gamma;
+  if (a.gamma_opt->count()) {
+    p.gamma = a.gamma;
+    p.zeta.reset();
+  }
+  if (a.zeta_opt->count()) p.zeta = a.zeta;
+  resolve_zeta(scene.model, p);
   if (a.integrator_opt->count()) p.integrator = *parse_integrator(a.integrator);
   p.policy = DampingPolicy::fixed;  // the user's gamma is what is judged
   const std::string name = scene.name.empty() ? a.scene : scene.name;
@@ -183,10 +194,11 @@ int run_scene(const BoundsArgs& a) {
   }
   std::printf("scene        %s (%d nodes, %d springs, %d anchors)\n", name.c_str(),
               model.node_count(), model.spring_count(), model.anchor_count());
-  std::printf("parameters   m=%s kappa=%s gamma=%s dt=%s s integrator=%s (gamma_i = gamma * "
-              "gamma_scale_i, m_i = m * mass_scale_i)\n",
+  std::printf("parameters   m=%s kappa=%s gamma=%s (zeta=%s) dt=%s s integrator=%s (gamma_i = "
+              "gamma * gamma_scale_i, m_i = m * mass_scale_i)\n",
               format_number(p.m).c_str(), format_number(p.kappa).c_str(),
-              format_number(p.gamma).c_str(), format_number(p.dt).c_str(),
+              format_number(p.gamma).c_str(), zeta_text(damping_ratio_range(model)).c_str(),
+              format_number(p.dt).c_str(),
               to_string(p.integrator));
   if (a.after > 0) {
     std::printf("state        after %d steps of the scene's perturbed run (policy fixed)\n",
@@ -242,6 +254,7 @@ std::function<int()> setup(CLI::App& root) {
                                  "a damping to test against the bounds (mass unit/s); default "
                                  "the scene's, or gamma_lo without a scene")
                      ->check(finite_non_negative());
+  a->zeta_opt = add_zeta_option(cmd, a->zeta, a->gamma_opt);
   a->integrator_opt =
       cmd->add_option("--integrator", a->integrator, "integrator whose exact limits are shown")
           ->check(CLI::IsMember(integrator_names()));

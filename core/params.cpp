@@ -55,6 +55,7 @@ std::optional<std::string> validate(const Params& p) {
   if (!positive(p.m)) return "m must be a finite number > 0";
   if (!positive(p.kappa)) return "kappa must be a finite number > 0";
   if (!std::isfinite(p.gamma) || p.gamma < 0) return "gamma must be a finite number >= 0";
+  if (p.zeta && (!std::isfinite(*p.zeta) || *p.zeta < 0)) return "zeta must be a finite number >= 0";
   if (!positive(p.dt)) return "dt must be a finite number > 0";
   if (!std::isfinite(p.factor) || p.factor < 0) return "factor must be a finite number >= 0";
   return std::nullopt;
