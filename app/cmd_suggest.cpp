@@ -9,6 +9,7 @@
 #include "app/options.hpp"
 #include "core/analysis/criteria_safe.hpp"
 #include "core/analysis/equilibrium.hpp"
+#include "core/analysis/substeps.hpp"
 #include "core/analysis/suggest.hpp"
 #include "core/io/format.hpp"
 #include "core/io/report.hpp"
@@ -18,12 +19,12 @@ namespace {
 
 struct SuggestArgs {
   std::string scene, integrator;
-  double m = 0, kappa = 0, dt = 0, gamma = 0, zeta = 0, factor_budget = 0;
+  double m = 0, kappa = 0, dt = 0, gamma = 0, zeta = 0, factor_budget = 0, frame_dt = 0;
   int max_iter = 0, trials = 16;
   bool no_verify = false;
   CLI::Option *m_opt = nullptr, *kappa_opt = nullptr, *dt_opt = nullptr, *gamma_opt = nullptr,
               *integrator_opt = nullptr, *max_iter_opt = nullptr,
-              *zeta_opt = nullptr;
+              *zeta_opt = nullptr, *frame_dt_opt = nullptr;
 };
 
 /// The nodal damping ratio of `params` on the scene's model (SPEC 10), as zeta_text() gives it.
@@ -146,6 +147,29 @@ int print_step(const SceneSpec& scene, const Params& p, const StepSuggestion& s)
   return 0;
 }
 
+int print_substeps(const SubstepSuggestion& s) {
+  std::printf("substeps per frame of %s s (dt = frame / n, at the rest state)\n",
+              format_digits(s.frame_dt, 8).c_str());
+  int status = 0;
+  for (const SubstepCount* c : {&s.exact, &s.safe}) {
+    const char* what = c == &s.exact ? "exact limit " : "safe (SPEC 9)";
+    if (c->n == 0) {
+      std::printf("  %s no count (dt limit %s s)\n", what, format_digits(c->limit, 8).c_str());
+      continue;
+    }
+    std::printf("  %s %d substeps: dt = %s s < %s s", what, c->n, format_digits(c->dt, 8).c_str(),
+                format_digits(c->limit, 8).c_str());
+    if (c->ran) {
+      std::printf("; %s: %s", c->run.verified() ? "verified" : "NOT verified",
+                  verdict_text(c->run.result, c->run.rules).c_str());
+      if (!c->run.verified()) status = 1;
+    }
+    std::printf("\n");
+  }
+  if (!s.note.empty()) std::printf("  %s\n", s.note.c_str());
+  return status;
+}
+
 int run(const SuggestArgs& a) {
   SceneSpec scene = load_scene_arg(a.scene);
   Params p = scene.params;
@@ -181,6 +205,8 @@ int run(const SuggestArgs& a) {
   options.threads = 0;  // a big mesh's Lanczos products on every CPU (the same bits)
   options.trials = a.trials;
   options.max_factor_flops = a.factor_budget * 1e9;
+  if (a.frame_dt_opt->count())
+    return print_substeps(suggest_substeps(scene, p, rules, a.frame_dt, !a.no_verify));
   if (a.gamma_opt->count() || a.zeta_opt->count()) return print_step(scene, p, suggest_step(scene, p, rules, options));
   return print_damping(scene, suggest_damping(scene, p, rules, options));
 }
@@ -201,6 +227,12 @@ std::function<int()> setup(CLI::App& root) {
                      ->check(finite_non_negative());
   a->zeta_opt = add_zeta_option(cmd, a->zeta, a->gamma_opt);
   a->zeta_opt->description(a->zeta_opt->get_description() + ": suggest the time step");
+  a->frame_dt_opt = cmd->add_option("--frame-dt", a->frame_dt,
+                                    "frame time (s): the fewest substeps n with dt = frame/n "
+                                    "stable by the exact limit, and the n the safe bound "
+                                    "guarantees, each verified (at the scene's gamma or --gamma/--zeta)")
+                        ->check(finite_positive());
+  a->frame_dt_opt->excludes(a->dt_opt);
   a->dt_opt->excludes(a->gamma_opt);
   a->dt_opt->excludes(a->zeta_opt);
   a->integrator_opt =
