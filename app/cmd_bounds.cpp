@@ -14,6 +14,7 @@
 #include "core/analysis/criteria.hpp"
 #include "core/analysis/criteria_safe.hpp"
 #include "core/analysis/equilibrium.hpp"
+#include "core/analysis/worst_nodes.hpp"
 #include "core/bounds.hpp"
 #include "core/error.hpp"
 #include "core/io/format.hpp"
@@ -27,7 +28,8 @@ namespace {
 struct BoundsArgs {
   std::string scene, v, force, integrator, system = "two-node";
   double m = 0, kappa = 0, dt = 0, gamma = 0, zeta = 0, factor_budget = 0;
-  int after = 0;
+  int after = 0, worst = 0;
+  bool json = false;
   bool equilibrium = false;
   CLI::Option *m_opt = nullptr, *kappa_opt = nullptr, *dt_opt = nullptr, *gamma_opt = nullptr,
               *integrator_opt = nullptr, *zeta_opt = nullptr;
@@ -159,6 +161,45 @@ int run_parameters(const BoundsArgs& a) {
   return 0;
 }
 
+/// --worst N: the nodes with the smallest dt_safe_i and gamma_safe_i, and why.
+void print_worst(const Model& model, const State& state, const Params& p, int count, bool json) {
+  const WorstNodes w = worst_nodes(model, state.x, p.dt, count);
+  auto rows = [&](const std::vector<WorstNode>& v) {
+    std::string out;
+    for (const WorstNode& n : v) {
+      if (json) {
+        out += std::string(out.empty() ? "" : ",") + "{\"node\":" + std::to_string(n.node) +
+               ",\"dt_safe\":" + json_number(n.dt_safe) + ",\"gamma_safe\":" + json_number(n.gamma_safe) +
+               ",\"mass\":" + json_number(n.mass) + ",\"stiffest\":" + json_number(n.stiffest) +
+               ",\"shortest_edge\":" + json_number(n.shortest_edge) +
+               ",\"degree\":" + std::to_string(n.degree) + ",\"cause\":" + json_string(n.cause) + "}";
+      } else {
+        char buf[512];
+        std::snprintf(buf, sizeof buf, "  %7d %-12s %-12s %-10s %-10s %-10s %6d  %s\n", n.node,
+                      format_digits(n.dt_safe, 5).c_str(), format_digits(n.gamma_safe, 5).c_str(),
+                      format_digits(n.mass, 4).c_str(), format_digits(n.stiffest, 4).c_str(),
+                      format_digits(n.shortest_edge, 4).c_str(), n.degree, n.cause.c_str());
+        out += buf;
+      }
+    }
+    return out;
+  };
+  if (json) {
+    std::printf("{\"median_mass\":%s,\"median_kappa\":%s,\"median_edge\":%s,\"by_dt_safe\":[%s],"
+                "\"by_gamma_safe\":[%s]}\n",
+                json_number(w.median_mass).c_str(), json_number(w.median_kappa).c_str(),
+                json_number(w.median_edge).c_str(), rows(w.by_dt).c_str(), rows(w.by_gamma).c_str());
+    return;
+  }
+  std::printf("\nmedians      mass %s, spring stiffness %s, edge %s cm\n",
+              format_digits(w.median_mass, 4).c_str(), format_digits(w.median_kappa, 4).c_str(),
+              format_digits(w.median_edge, 4).c_str());
+  const char* head = "     node dt_safe      gamma_safe   mass       stiffest   shortest   degree  cause\n";
+  std::printf("worst %d by dt_safe_i (SPEC 9, at gamma_i):\n%s%s", count, head, rows(w.by_dt).c_str());
+  std::printf("worst %d by gamma_safe_i (SPEC 9, at dt = %s s):\n%s%s", count,
+              format_digits(p.dt, 6).c_str(), head, rows(w.by_gamma).c_str());
+}
+
 int run_scene(const BoundsArgs& a) {
   if (!a.v.empty() || !a.force.empty()) throw InputError("--v and --force need no scene");
   SceneSpec scene = load_scene_arg(a.scene);
@@ -191,6 +232,10 @@ int run_scene(const BoundsArgs& a) {
     }
     if (!held.converged) throw std::runtime_error("--equilibrium: " + no_equilibrium(held));
     state.x = held.x;
+  }
+  if (a.worst > 0 && a.json) {
+    print_worst(model, state, p, a.worst, true);
+    return 0;
   }
   std::printf("scene        %s (%d nodes, %d springs, %d anchors)\n", name.c_str(),
               model.node_count(), model.spring_count(), model.anchor_count());
@@ -227,11 +272,16 @@ int run_scene(const BoundsArgs& a) {
                     ? "; the safe bound (SPEC 9) below still holds"
                     : "");
   print_safe_lines(model, state, p, exact);
+  if (a.worst > 0) print_worst(model, state, p, a.worst, false);
   print_criteria(all_criteria(model, state, p, exact));
   return 0;
 }
 
-int run(const BoundsArgs& a) { return a.scene.empty() ? run_parameters(a) : run_scene(a); }
+int run(const BoundsArgs& a) {
+  if (a.scene.empty() && a.worst > 0) throw InputError("--worst needs a SCENE");
+  if (a.json && a.worst == 0) throw InputError("--json goes with --worst N");
+  return a.scene.empty() ? run_parameters(a) : run_scene(a);
+}
 
 std::function<int()> setup(CLI::App& root) {
   auto a = std::make_shared<BoundsArgs>();
@@ -268,6 +318,12 @@ std::function<int()> setup(CLI::App& root) {
                 "with a scene: analyse at its static equilibrium under its external forces and "
                 "rest lengths (Newton's method; where a damped run settles) instead of at rest")
       ->excludes("--after");
+  cmd->add_option("--worst", a->worst,
+                  "with a scene: the N nodes with the smallest dt_safe_i and the N with the "
+                  "smallest gamma_safe_i (SPEC 9), each with its mass, stiffest spring, shortest "
+                  "edge, degree and the cause in words")
+      ->check(CLI::Range(1, 1000000));
+  cmd->add_flag("--json", a->json, "with --worst: the worst nodes as one JSON object only");
   add_factor_budget_option(cmd, a->factor_budget);
   return [a] { return run(*a); };
 }
