@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "core/model.hpp"
+#include "core/safe_bound_nodes.hpp"
 
 namespace dampbound {
 
@@ -29,9 +30,5 @@ struct WorstNodes {
 /// The `count` free nodes with the smallest dt_safe_i and with the smallest gamma_safe_i at
 /// positions x and step dt.
 WorstNodes worst_nodes(const Model& model, const std::vector<Vec3>& x, double dt, int count);
-
-/// Per node, SPEC 9's dt_safe_i (at gamma_i) and gamma_safe_i (at dt); 0 at fixed nodes.
-void safe_bounds_per_node(const Model& model, const std::vector<Vec3>& x, double dt,
-                          std::vector<double>& dt_safe, std::vector<double>& gamma_safe);
 
 }  // namespace dampbound
