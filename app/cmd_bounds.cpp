@@ -14,9 +14,11 @@
 #include "core/analysis/criteria.hpp"
 #include "core/analysis/criteria_safe.hpp"
 #include "core/analysis/equilibrium.hpp"
+#include "core/analysis/worst_nodes.hpp"
 #include "core/bounds.hpp"
 #include "core/error.hpp"
 #include "core/io/format.hpp"
+#include "core/io/report.hpp"
 #include "core/safe_bound.hpp"
 #include "core/session.hpp"
 
@@ -25,11 +27,12 @@ namespace {
 
 struct BoundsArgs {
   std::string scene, v, force, integrator, system = "two-node";
-  double m = 0, kappa = 0, dt = 0, gamma = 0, factor_budget = 0;
-  int after = 0;
+  double m = 0, kappa = 0, dt = 0, gamma = 0, zeta = 0, factor_budget = 0;
+  int after = 0, worst = 0;
+  bool json = false;
   bool equilibrium = false;
   CLI::Option *m_opt = nullptr, *kappa_opt = nullptr, *dt_opt = nullptr, *gamma_opt = nullptr,
-              *integrator_opt = nullptr;
+              *integrator_opt = nullptr, *zeta_opt = nullptr;
 };
 
 Vec3 parse_vec3(const std::string& text, const char* flag) {
@@ -105,7 +108,9 @@ void print_safe_lines(const Model& model, const State& state, const Params& p,
               s.gamma_scaled ? " (the user's gamma: gamma_i = gamma * gamma_scale_i)" : "",
               s.gamma_node, g5(s.row_sum).c_str(), ratio(s.gamma_safe, exact.gamma_hi).c_str());
   std::printf("safe step (SPEC 9)    dt_safe = %s at gamma = %s, node %d%s\n",
-              g5(s.dt_safe).c_str(), format_number(p.gamma).c_str(), s.dt_node,
+              g5(s.dt_safe).c_str(),
+              (format_number(p.gamma) + " (zeta " + zeta_text(damping_ratio_range(model)) + ")").c_str(),
+              s.dt_node,
               ratio(s.dt_safe, exact.dt_max).c_str());
   if (s.infeasible.empty()) {
     std::printf("critical damping      %s at every free node (gamma_lo_i <= gamma_safe_i)\n",
@@ -135,6 +140,7 @@ int run_parameters(const BoundsArgs& a) {
   p.kappa = a.kappa;
   p.dt = a.dt;
   p.gamma = a.gamma_opt->count() ? a.gamma : lower_bound(a.m, a.kappa);
+  if (a.zeta_opt->count()) p.gamma = gamma_of_zeta(a.zeta, p);  // every scale is 1 here
   if (a.integrator_opt->count()) p.integrator = *parse_integrator(a.integrator);
   const bool two = a.system == "two-node";
   const Model model = two ? two_node_system(p) : single_node_system(p);
@@ -142,15 +148,56 @@ int run_parameters(const BoundsArgs& a) {
               two ? "two-node (paper sec. 2): node 0 fixed, node 1 on one spring of rest length "
                     "1 cm, no anchor; at rest"
                   : "single node on a zero-rest-length anchor (the linear oscillator); at rest");
-  std::printf("parameters   m=%s kappa=%s gamma=%s%s dt=%s s integrator=%s\n",
+  std::printf("parameters   m=%s kappa=%s gamma=%s%s (zeta=%s) dt=%s s integrator=%s\n",
               format_number(p.m).c_str(), format_number(p.kappa).c_str(),
-              format_number(p.gamma).c_str(), a.gamma_opt->count() ? "" : " (= gamma_lo)",
+              format_number(p.gamma).c_str(),
+              a.gamma_opt->count() || a.zeta_opt->count() ? "" : " (= gamma_lo)",
+              zeta_text(damping_ratio_range(model)).c_str(),
               format_number(p.dt).c_str(), to_string(p.integrator));
   const State rest = rest_state(model);
   const ExactStability exact = exact_stability(model, rest.x, p);
   print_safe_lines(model, rest, p, exact);
   print_criteria(all_criteria(model, rest, p, exact));
   return 0;
+}
+
+/// --worst N: the nodes with the smallest dt_safe_i and gamma_safe_i, and why.
+void print_worst(const Model& model, const State& state, const Params& p, int count, bool json) {
+  const WorstNodes w = worst_nodes(model, state.x, p.dt, count);
+  auto rows = [&](const std::vector<WorstNode>& v) {
+    std::string out;
+    for (const WorstNode& n : v) {
+      if (json) {
+        out += std::string(out.empty() ? "" : ",") + "{\"node\":" + std::to_string(n.node) +
+               ",\"dt_safe\":" + json_number(n.dt_safe) + ",\"gamma_safe\":" + json_number(n.gamma_safe) +
+               ",\"mass\":" + json_number(n.mass) + ",\"stiffest\":" + json_number(n.stiffest) +
+               ",\"shortest_edge\":" + json_number(n.shortest_edge) +
+               ",\"degree\":" + std::to_string(n.degree) + ",\"cause\":" + json_string(n.cause) + "}";
+      } else {
+        char buf[512];
+        std::snprintf(buf, sizeof buf, "  %7d %-12s %-12s %-10s %-10s %-10s %6d  %s\n", n.node,
+                      format_digits(n.dt_safe, 5).c_str(), format_digits(n.gamma_safe, 5).c_str(),
+                      format_digits(n.mass, 4).c_str(), format_digits(n.stiffest, 4).c_str(),
+                      format_digits(n.shortest_edge, 4).c_str(), n.degree, n.cause.c_str());
+        out += buf;
+      }
+    }
+    return out;
+  };
+  if (json) {
+    std::printf("{\"median_mass\":%s,\"median_kappa\":%s,\"median_edge\":%s,\"by_dt_safe\":[%s],"
+                "\"by_gamma_safe\":[%s]}\n",
+                json_number(w.median_mass).c_str(), json_number(w.median_kappa).c_str(),
+                json_number(w.median_edge).c_str(), rows(w.by_dt).c_str(), rows(w.by_gamma).c_str());
+    return;
+  }
+  std::printf("\nmedians      mass %s, spring stiffness %s, edge %s cm\n",
+              format_digits(w.median_mass, 4).c_str(), format_digits(w.median_kappa, 4).c_str(),
+              format_digits(w.median_edge, 4).c_str());
+  const char* head = "     node dt_safe      gamma_safe   mass       stiffest   shortest   degree  cause\n";
+  std::printf("worst %d by dt_safe_i (SPEC 9, at gamma_i):\n%s%s", count, head, rows(w.by_dt).c_str());
+  std::printf("worst %d by gamma_safe_i (SPEC 9, at dt = %s s):\n%s%s", count,
+              format_digits(p.dt, 6).c_str(), head, rows(w.by_gamma).c_str());
 }
 
 int run_scene(const BoundsArgs& a) {
@@ -160,7 +207,12 @@ int run_scene(const BoundsArgs& a) {
   if (a.m_opt->count()) p.m = a.m;
   if (a.kappa_opt->count()) p.kappa = a.kappa;
   if (a.dt_opt->count()) p.dt = a.dt;
-  if (a.gamma_opt->count()) p.gamma = a.gamma;
+  if (a.gamma_opt->count()) {
+    p.gamma = a.gamma;
+    p.zeta.reset();
+  }
+  if (a.zeta_opt->count()) p.zeta = a.zeta;
+  resolve_zeta(scene.model, p);
   if (a.integrator_opt->count()) p.integrator = *parse_integrator(a.integrator);
   p.policy = DampingPolicy::fixed;  // the user's gamma is what is judged
   const std::string name = scene.name.empty() ? a.scene : scene.name;
@@ -181,12 +233,17 @@ int run_scene(const BoundsArgs& a) {
     if (!held.converged) throw std::runtime_error("--equilibrium: " + no_equilibrium(held));
     state.x = held.x;
   }
+  if (a.worst > 0 && a.json) {
+    print_worst(model, state, p, a.worst, true);
+    return 0;
+  }
   std::printf("scene        %s (%d nodes, %d springs, %d anchors)\n", name.c_str(),
               model.node_count(), model.spring_count(), model.anchor_count());
-  std::printf("parameters   m=%s kappa=%s gamma=%s dt=%s s integrator=%s (gamma_i = gamma * "
-              "gamma_scale_i, m_i = m * mass_scale_i)\n",
+  std::printf("parameters   m=%s kappa=%s gamma=%s (zeta=%s) dt=%s s integrator=%s (gamma_i = "
+              "gamma * gamma_scale_i, m_i = m * mass_scale_i)\n",
               format_number(p.m).c_str(), format_number(p.kappa).c_str(),
-              format_number(p.gamma).c_str(), format_number(p.dt).c_str(),
+              format_number(p.gamma).c_str(), zeta_text(damping_ratio_range(model)).c_str(),
+              format_number(p.dt).c_str(),
               to_string(p.integrator));
   if (a.after > 0) {
     std::printf("state        after %d steps of the scene's perturbed run (policy fixed)\n",
@@ -215,11 +272,16 @@ int run_scene(const BoundsArgs& a) {
                     ? "; the safe bound (SPEC 9) below still holds"
                     : "");
   print_safe_lines(model, state, p, exact);
+  if (a.worst > 0) print_worst(model, state, p, a.worst, false);
   print_criteria(all_criteria(model, state, p, exact));
   return 0;
 }
 
-int run(const BoundsArgs& a) { return a.scene.empty() ? run_parameters(a) : run_scene(a); }
+int run(const BoundsArgs& a) {
+  if (a.scene.empty() && a.worst > 0) throw InputError("--worst needs a SCENE");
+  if (a.json && a.worst == 0) throw InputError("--json goes with --worst N");
+  return a.scene.empty() ? run_parameters(a) : run_scene(a);
+}
 
 std::function<int()> setup(CLI::App& root) {
   auto a = std::make_shared<BoundsArgs>();
@@ -242,6 +304,7 @@ std::function<int()> setup(CLI::App& root) {
                                  "a damping to test against the bounds (mass unit/s); default "
                                  "the scene's, or gamma_lo without a scene")
                      ->check(finite_non_negative());
+  a->zeta_opt = add_zeta_option(cmd, a->zeta, a->gamma_opt);
   a->integrator_opt =
       cmd->add_option("--integrator", a->integrator, "integrator whose exact limits are shown")
           ->check(CLI::IsMember(integrator_names()));
@@ -255,6 +318,12 @@ std::function<int()> setup(CLI::App& root) {
                 "with a scene: analyse at its static equilibrium under its external forces and "
                 "rest lengths (Newton's method; where a damped run settles) instead of at rest")
       ->excludes("--after");
+  cmd->add_option("--worst", a->worst,
+                  "with a scene: the N nodes with the smallest dt_safe_i and the N with the "
+                  "smallest gamma_safe_i (SPEC 9), each with its mass, stiffest spring, shortest "
+                  "edge, degree and the cause in words")
+      ->check(CLI::Range(1, 1000000));
+  cmd->add_flag("--json", a->json, "with --worst: the worst nodes as one JSON object only");
   add_factor_budget_option(cmd, a->factor_budget);
   return [a] { return run(*a); };
 }

@@ -9,6 +9,7 @@
 
 #include "app/commands.hpp"
 #include "app/options.hpp"
+#include "core/damping_ratio.hpp"
 #include "core/error.hpp"
 #include "core/analysis/expect.hpp"
 #include "core/io/files.hpp"
@@ -112,7 +113,9 @@ int run(const CheckArgs& a) {
     rep.file = file;
     const auto t0 = std::chrono::steady_clock::now();
     try {
-      rep.results = check_expectations(load_scene(file));
+      SceneSpec scene = load_scene(file);
+      resolve_zeta(scene);
+      rep.results = check_expectations(scene);
     } catch (const InputError& e) {
       rep.error = printable(e.what());  // it may quote the file: one inert line
     }

@@ -28,6 +28,7 @@ int run(const RunArgs& a) {
   Params params = scene.params;
   StopRules rules = scene.rules;
   a.flags.apply(params, rules);
+  resolve_zeta(scene.model, params);
   rules.rule = stop_rule_of(a.rule);
   if (!a.trace.empty()) check_writable(a.trace);
   Session session(std::move(scene), params, rules);
@@ -49,16 +50,19 @@ int run(const RunArgs& a) {
   if (!a.trace.empty())
     write_file_atomic(a.trace, [&](std::ostream& out) { write_trace_csv(out, session.trace()); });
   const std::string name = session.scene().name.empty() ? a.scene : session.scene().name;
+  const DampingRatioRange zeta = damping_ratio_range(session.model());
   if (a.json) {
-    std::printf("%s\n", result_json(name, params, rules, session.watched(), r).c_str());
+    std::printf("%s\n", result_json(name, params, rules, session.watched(), r, &zeta).c_str());
     return 0;
   }
   std::printf("scene        %s (%d nodes, %d springs, %d anchors)\n", name.c_str(),
               session.model().node_count(), session.model().spring_count(),
               session.model().anchor_count());
-  std::printf("parameters   m=%s kappa=%s gamma=%s dt=%s s policy=%s factor=%s integrator=%s\n",
+  std::printf("parameters   m=%s kappa=%s gamma=%s (zeta=%s) dt=%s s policy=%s factor=%s "
+              "integrator=%s\n",
               format_number(params.m).c_str(), format_number(params.kappa).c_str(),
-              format_number(params.gamma).c_str(), format_number(params.dt).c_str(),
+              format_number(params.gamma).c_str(), zeta_text(zeta).c_str(),
+              format_number(params.dt).c_str(),
               to_string(params.policy), format_number(params.factor).c_str(),
               to_string(params.integrator));
   std::printf("lower bound  %s (watched node %d, eq. 5)\n",

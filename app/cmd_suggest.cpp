@@ -9,6 +9,7 @@
 #include "app/options.hpp"
 #include "core/analysis/criteria_safe.hpp"
 #include "core/analysis/equilibrium.hpp"
+#include "core/analysis/substeps.hpp"
 #include "core/analysis/suggest.hpp"
 #include "core/io/format.hpp"
 #include "core/io/report.hpp"
@@ -18,26 +19,33 @@ namespace {
 
 struct SuggestArgs {
   std::string scene, integrator;
-  double m = 0, kappa = 0, dt = 0, gamma = 0, factor_budget = 0;
+  double m = 0, kappa = 0, dt = 0, gamma = 0, zeta = 0, factor_budget = 0, frame_dt = 0;
   int max_iter = 0, trials = 16;
   bool no_verify = false;
   CLI::Option *m_opt = nullptr, *kappa_opt = nullptr, *dt_opt = nullptr, *gamma_opt = nullptr,
-              *integrator_opt = nullptr, *max_iter_opt = nullptr;
+              *integrator_opt = nullptr, *max_iter_opt = nullptr,
+              *zeta_opt = nullptr, *frame_dt_opt = nullptr;
 };
 
-void print_runs(const std::vector<VerifiedRun>& runs) {
+/// The nodal damping ratio of `params` on the scene's model (SPEC 10), as zeta_text() gives it.
+std::string zeta_of(const SceneSpec& scene, const Params& params) {
+  return zeta_text(damping_ratio_range(compile_model(scene.model, params)));
+}
+
+void print_runs(const SceneSpec& scene, const std::vector<VerifiedRun>& runs) {
   if (runs.empty()) return;
   std::printf(
       "verification (Session: the scene's perturbation and limit, policy fixed, settled rule: "
       "verified only where the run settles)\n");
   for (const VerifiedRun& r : runs)
-    std::printf("  %-34s gamma=%-12s dt=%-12s %s: %s (max |x-X| %s cm)\n", r.label.c_str(),
-                format_digits(r.params.gamma, 8).c_str(), format_digits(r.params.dt, 8).c_str(),
+    std::printf("  %-34s gamma=%-12s zeta=%-10s dt=%-12s %s: %s (max |x-X| %s cm)\n",
+                r.label.c_str(), format_digits(r.params.gamma, 8).c_str(),
+                zeta_of(scene, r.params).c_str(), format_digits(r.params.dt, 8).c_str(),
                 r.verified() ? "verified" : "NOT verified",
                 verdict_text(r.result, r.rules).c_str(), format_digits(r.result.max_displacement, 8).c_str());
 }
 
-int print_damping(const DampingSuggestion& s) {
+int print_damping(const SceneSpec& scene, const DampingSuggestion& s) {
   std::printf("damping range at dt = %s s (the user's gamma; gamma_i = gamma * gamma_scale_i)\n",
               format_digits(s.dt, 8).c_str());
   std::printf("  gamma_min  %-14s set by %s\n", format_digits(s.gamma_min, 8).c_str(), s.min_by.c_str());
@@ -71,6 +79,9 @@ int print_damping(const DampingSuggestion& s) {
                 c.count, c.example, format_digits(c.mass, 8).c_str(), format_digits(c.kappa, 8).c_str(),
                 format_digits(c.gamma_scale, 8).c_str(), format_digits(c.lower_bound, 8).c_str(), format_digits(c.gamma_min, 8).c_str(),
                 format_digits(c.gamma_max, 8).c_str(), s.proved_only ? ']' : ')');
+    if (c.lower_bound > 0)
+      std::printf("          zeta_i in [%s, %s%c\n", format_digits(c.gamma_min / c.lower_bound, 5).c_str(),
+                  format_digits(c.gamma_max / c.lower_bound, 5).c_str(), s.proved_only ? ']' : ')');
     if (!scope.empty())
       std::printf("          safe (SPEC 9): gamma_i < %s; at eq.5 dt < %s s (%s)\n",
                   format_digits(c.safe_max, 8).c_str(), format_digits(c.dt_safe, 8).c_str(),
@@ -107,12 +118,13 @@ int print_damping(const DampingSuggestion& s) {
                           : "; rho about ") +  // 65 lambdas sampled
                      format_digits(s.best_rho, 8))
                         .c_str());
-  print_runs(s.runs);
+  print_runs(scene, s.runs);
   return 0;
 }
 
-int print_step(const StepSuggestion& s) {
-  std::printf("largest stable dt at gamma = %s\n", format_digits(s.gamma, 8).c_str());
+int print_step(const SceneSpec& scene, const Params& p, const StepSuggestion& s) {
+  std::printf("largest stable dt at gamma = %s (zeta = %s)\n", format_digits(s.gamma, 8).c_str(),
+              zeta_of(scene, p).c_str());
   if (s.proved_only) {
     std::printf("  proved stable dt <= %s s (without a factorisation)\n", format_digits(s.dt_exact, 8).c_str());
     std::printf("  exact limit   not computed: %s\n", s.exact.over_budget_reason().c_str());
@@ -131,8 +143,31 @@ int print_step(const StepSuggestion& s) {
   else
     std::printf("  safe (SPEC 9) dt < %s s (node %d sets it; %s)\n",
                 format_digits(s.dt_safe, 8).c_str(), s.dt_safe_node, scope.c_str());
-  print_runs(s.runs);
+  print_runs(scene, s.runs);
   return 0;
+}
+
+int print_substeps(const SubstepSuggestion& s) {
+  std::printf("substeps per frame of %s s (dt = frame / n, at the rest state)\n",
+              format_digits(s.frame_dt, 8).c_str());
+  int status = 0;
+  for (const SubstepCount* c : {&s.exact, &s.safe}) {
+    const char* what = c == &s.exact ? "exact limit " : "safe (SPEC 9)";
+    if (c->n == 0) {
+      std::printf("  %s no count (dt limit %s s)\n", what, format_digits(c->limit, 8).c_str());
+      continue;
+    }
+    std::printf("  %s %d substeps: dt = %s s < %s s", what, c->n, format_digits(c->dt, 8).c_str(),
+                format_digits(c->limit, 8).c_str());
+    if (c->ran) {
+      std::printf("; %s: %s", c->run.verified() ? "verified" : "NOT verified",
+                  verdict_text(c->run.result, c->run.rules).c_str());
+      if (!c->run.verified()) status = 1;
+    }
+    std::printf("\n");
+  }
+  if (!s.note.empty()) std::printf("  %s\n", s.note.c_str());
+  return status;
 }
 
 int run(const SuggestArgs& a) {
@@ -142,7 +177,12 @@ int run(const SuggestArgs& a) {
   if (a.m_opt->count()) p.m = a.m;
   if (a.kappa_opt->count()) p.kappa = a.kappa;
   if (a.dt_opt->count()) p.dt = a.dt;
-  if (a.gamma_opt->count()) p.gamma = a.gamma;
+  if (a.gamma_opt->count()) {
+    p.gamma = a.gamma;
+    p.zeta.reset();
+  }
+  if (a.zeta_opt->count()) p.zeta = a.zeta;
+  resolve_zeta(scene.model, p);
   if (a.integrator_opt->count()) p.integrator = *parse_integrator(a.integrator);
   if (a.max_iter_opt->count()) rules.max_iterations = a.max_iter;
   p.policy = DampingPolicy::fixed;
@@ -165,8 +205,10 @@ int run(const SuggestArgs& a) {
   options.threads = 0;  // a big mesh's Lanczos products on every CPU (the same bits)
   options.trials = a.trials;
   options.max_factor_flops = a.factor_budget * 1e9;
-  if (a.gamma_opt->count()) return print_step(suggest_step(scene, p, rules, options));
-  return print_damping(suggest_damping(scene, p, rules, options));
+  if (a.frame_dt_opt->count())
+    return print_substeps(suggest_substeps(scene, p, rules, a.frame_dt, !a.no_verify));
+  if (a.gamma_opt->count() || a.zeta_opt->count()) return print_step(scene, p, suggest_step(scene, p, rules, options));
+  return print_damping(scene, suggest_damping(scene, p, rules, options));
 }
 
 std::function<int()> setup(CLI::App& root) {
@@ -183,7 +225,16 @@ std::function<int()> setup(CLI::App& root) {
   a->dt_opt = cmd->add_option("--dt", a->dt, "time step (s): suggest the damping")->check(finite_positive());
   a->gamma_opt = cmd->add_option("--gamma", a->gamma, "damping (mass unit/s): suggest the time step")
                      ->check(finite_non_negative());
+  a->zeta_opt = add_zeta_option(cmd, a->zeta, a->gamma_opt);
+  a->zeta_opt->description(a->zeta_opt->get_description() + ": suggest the time step");
+  a->frame_dt_opt = cmd->add_option("--frame-dt", a->frame_dt,
+                                    "frame time (s): the fewest substeps n with dt = frame/n "
+                                    "stable by the exact limit, and the n the safe bound "
+                                    "guarantees, each verified (at the scene's gamma or --gamma/--zeta)")
+                        ->check(finite_positive());
+  a->frame_dt_opt->excludes(a->dt_opt);
   a->dt_opt->excludes(a->gamma_opt);
+  a->dt_opt->excludes(a->zeta_opt);
   a->integrator_opt =
       cmd->add_option("--integrator", a->integrator, "integrator (default: the scene's)")
           ->check(CLI::IsMember(integrator_names()));

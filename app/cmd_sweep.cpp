@@ -15,6 +15,7 @@
 
 #include "app/commands.hpp"
 #include "app/options.hpp"
+#include "core/damping_ratio.hpp"
 #include "core/error.hpp"
 #include "core/io/files.hpp"
 #include "core/io/format.hpp"
@@ -75,6 +76,7 @@ struct SweepArgs {
 SweepSpec make_spec(const SweepArgs& a, const SceneSpec& scene) {
   std::string m = format_number(scene.params.m), kappa = format_number(scene.params.kappa);
   std::string gamma = format_number(scene.params.gamma), zeta;
+  if (scene.params.zeta) zeta = format_number(*scene.params.zeta);  // the scene's [params] zeta
   std::string dt = format_number(scene.params.dt), factor = format_number(scene.params.factor);
   DampingPolicy policy = scene.params.policy;
   StopRules rules = scene.rules;
@@ -131,6 +133,11 @@ int run(const SweepArgs& a) {
   SweepRequest rq;
   rq.scene_text = sweep_identity_text(read_file_text(scene.path), scene);
   rq.spec = make_spec(a, scene);
+  // Each trial's gamma is zeta * 2 sqrt(m kappa) in zeta mode: with the scales of resolve_zeta()
+  // that is gamma_i = zeta * 2 sqrt(m_i kappa_i) at every node, as run and bounds give it.
+  if (rq.spec.gamma_mode == GammaMode::zeta && !scene.params.zeta) scene.params.zeta = 1;
+  if (rq.spec.gamma_mode != GammaMode::zeta) scene.params.zeta.reset();
+  resolve_zeta(scene.model, scene.params);
   parse_shard(a.shard, rq.shard, rq.shards);
   auto writable = [](const std::string& flag, const std::string& path) {
     try {

@@ -5,6 +5,7 @@
 
 #include "app/commands.hpp"
 #include "app/options.hpp"
+#include "core/damping_ratio.hpp"
 #include "core/error.hpp"
 #include "core/analysis/figures.hpp"
 #include "core/io/files.hpp"
@@ -18,6 +19,8 @@ namespace {
 struct FigureArgs {
   std::string what, output, csv, size = "1200x700";
   std::string scene;
+  double zeta = 0;
+  CLI::Option* zeta_opt = nullptr;
 };
 
 int run(const FigureArgs& a) {
@@ -27,10 +30,18 @@ int run(const FigureArgs& a) {
   if (!a.csv.empty()) check_writable(a.csv);
   FigureData fig;
   if (a.what == "fig1" || a.what == "fig2") {
+    if (a.zeta_opt->count())
+      throw InputError("--zeta: fig1 and fig2 draw the paper's own gammas; give a scene file");
     const SceneSpec plane = load_scene_arg(a.scene);
     fig = a.what == "fig1" ? figure_fig1(plane) : figure_fig2(plane);
   } else {
-    fig = figure_scene(load_scene_arg(a.what));
+    SceneSpec scene = load_scene_arg(a.what);
+    if (a.zeta_opt->count()) {  // every run of the figure at this damping ratio
+      scene.params.zeta = a.zeta;
+      for (RunSpec& r : scene.runs) r.params.zeta = a.zeta;
+    }
+    resolve_zeta(scene);
+    fig = figure_scene(scene);
   }
   // The CSV is finished first and put in place only once the PNG is: a failure of either
   // (a full disk) leaves neither file.
@@ -72,6 +83,7 @@ std::function<int()> setup(CLI::App& root) {
       ->default_str("paper-plane")
       ->capture_default_str();
   a->scene = "paper-plane";
+  a->zeta_opt = add_zeta_option(cmd, a->zeta);
   return [a] { return run(*a); };
 }
 

@@ -11,6 +11,7 @@
 
 #include "app/commands.hpp"
 #include "app/options.hpp"
+#include "core/damping_ratio.hpp"
 #include "core/error.hpp"
 #include "core/io/files.hpp"
 #include "core/io/format.hpp"
@@ -183,7 +184,17 @@ int run(GuiArgs& a) {
   o.scenes_dir = shipped_scenes_dir();
   if (!a.scene.empty()) o.scene = load_scene_arg(a.scene);
   const ParamFlags flags = a.flags;
-  o.overrides = [flags](Params& p, StopRules& r) { flags.apply(p, r); };
+  if (flags.zeta_opt->count() && !o.scene)
+    throw InputError("--zeta: give a SCENE (the ratio is resolved at each of its nodes)");
+  if (o.scene) {  // the scene's or --zeta's damping ratio, resolved at each node
+    StopRules unused;
+    flags.apply(o.scene->params, unused);
+    resolve_zeta(o.scene->model, o.scene->params);
+  }
+  o.overrides = [flags](Params& p, StopRules& r) {
+    flags.apply(p, r);
+    resolve_zeta(p);  // the scene's spec is resolved above; m and kappa may differ here
+  };
   o.steps_per_frame = a.steps_per_frame;
   o.factor_budget = a.factor_budget * 1e9;
   if (!a.linearise.empty()) o.linearise = ui::parse_linearisation(a.linearise);

@@ -63,6 +63,7 @@ void ParamFlags::add_to(CLI::App* cmd, bool with_rules) {
                   ->check(finite_positive());
   gamma_opt = cmd->add_option("--gamma", gamma, "user's viscous damping (mass unit/s)")
                   ->check(finite_non_negative());
+  zeta_opt = add_zeta_option(cmd, zeta, gamma_opt);
   dt_opt = cmd->add_option("--dt", dt, "time step (s)")->check(finite_positive());
   policy_opt = cmd->add_option("--policy", policy, "damping policy (SPEC 4; safe: SPEC 9)")
                    ->check(CLI::IsMember(policy_names()));
@@ -79,12 +80,26 @@ void ParamFlags::add_to(CLI::App* cmd, bool with_rules) {
 void ParamFlags::apply(Params& p, StopRules& rules) const {
   if (m_opt && m_opt->count()) p.m = m;
   if (kappa_opt && kappa_opt->count()) p.kappa = kappa;
-  if (gamma_opt && gamma_opt->count()) p.gamma = gamma;
+  if (gamma_opt && gamma_opt->count()) {
+    p.gamma = gamma;
+    p.zeta.reset();
+  }
+  if (zeta_opt && zeta_opt->count()) p.zeta = zeta;
   if (dt_opt && dt_opt->count()) p.dt = dt;
   if (factor_opt && factor_opt->count()) p.factor = factor;
   if (policy_opt && policy_opt->count()) p.policy = *parse_policy(policy);
   if (integrator_opt && integrator_opt->count()) p.integrator = *parse_integrator(integrator);
   if (max_iter_opt && max_iter_opt->count()) rules.max_iterations = max_iter;
+}
+
+CLI::Option* add_zeta_option(CLI::App* cmd, double& zeta, CLI::Option* gamma) {
+  CLI::Option* o = cmd->add_option("--zeta", zeta,
+                                   "nodal damping ratio in place of --gamma: gamma_i = zeta * 2 "
+                                   "sqrt(m_i kappa_i) at each node (kappa_i its stiffest spring "
+                                   "or anchor; 1 = the lower bound of eq. 5)")
+                       ->check(finite_non_negative());
+  if (gamma) o->excludes(gamma);
+  return o;
 }
 
 CLI::Option* add_rule_option(CLI::App* cmd, std::string& rule, const std::string& what_default) {

@@ -15,18 +15,22 @@ const CLI::Validator& finite_non_negative();
 /// --m --kappa --gamma --dt --policy --factor --integrator --max-iter: each overrides the
 /// scene's value when given.
 struct ParamFlags {
-  double m = 0, kappa = 0, gamma = 0, dt = 0, factor = 1;
+  double m = 0, kappa = 0, gamma = 0, zeta = 0, dt = 0, factor = 1;
   std::string policy, integrator;
   int max_iter = 0;
   CLI::Option *m_opt = nullptr, *kappa_opt = nullptr, *gamma_opt = nullptr, *dt_opt = nullptr,
               *factor_opt = nullptr, *policy_opt = nullptr, *integrator_opt = nullptr,
-              *max_iter_opt = nullptr;
+              *max_iter_opt = nullptr, *zeta_opt = nullptr;
 
   /// Adds the flags to `cmd`. `with_rules` adds --max-iter.
   void add_to(CLI::App* cmd, bool with_rules = true);
-  /// Overrides what was given on the command line.
+  /// Overrides what was given on the command line (--gamma clears a zeta, --zeta sets one:
+  /// resolve_zeta() turns it into gamma once the scene is known).
   void apply(Params& params, StopRules& rules) const;
 };
+
+/// Adds `--zeta Z` (the nodal damping ratio, SPEC 10) to `cmd`, excluding `gamma` when given.
+CLI::Option* add_zeta_option(CLI::App* cmd, double& zeta, CLI::Option* gamma = nullptr);
 
 /// Adds `--rule first-entry|settled` (SPEC 8) to `cmd`, storing the text in `rule`;
 /// `what_default` says which rule applies when the flag is not given.

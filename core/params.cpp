@@ -66,6 +66,8 @@ std::optional<std::string> validate(const Params& p) {
                  {"factor", p.factor, true}};
   for (const auto& n : numbers)
     if (const auto why = number_problem(n.value, n.allow_zero)) return std::string(n.name) + " " + *why;
+  if (p.zeta)
+    if (const auto why = number_problem(*p.zeta, true)) return "zeta " + *why;
   return std::nullopt;
 }
 

@@ -31,6 +31,9 @@ struct Params {
   double m = 0.001;      ///< node mass (mass unit)
   double kappa = 0.001;  ///< spring and anchor stiffness (mass unit / s^2)
   double gamma = 0.002;  ///< user's viscous damping (mass unit / s)
+  /// The nodal damping ratio given in place of gamma (SPEC 10): gamma_i = zeta * 2 sqrt(m_i
+  /// kappa_i). resolve_zeta() (core/damping_ratio.hpp) turns it into gamma and clears it.
+  std::optional<double> zeta;
   double dt = 0.05;      ///< time step (s)
   DampingPolicy policy = DampingPolicy::fixed;
   double factor = 1.0;  ///< multiplier of gamma_hi for DampingPolicy::upper

@@ -32,13 +32,16 @@ void write_trace_csv(std::ostream& out, const std::vector<StepSample>& trace,
   const std::string prefix = run_label.empty() ? "" : csv_field(run_label) + ",";
   if (header)
     out << (run_label.empty() ? "" : "run,") << "iteration,time,displacement,lower_bound,upper_bound,gamma,gamma_effective,"
-         "max_displacement,violating,unstabilisable,clamped,zero_length_springs,"
+         "zeta,zeta_effective,max_displacement,violating,unstabilisable,clamped,zero_length_springs,"
          "safe_bound,unguaranteed,compressed_springs\n";
   for (const StepSample& s : trace)
     out << prefix << s.iteration << ',' << format_number(s.time) << ','
         << format_number(s.watched.displacement) << ',' << format_number(s.watched.lower) << ','
         << format_number(s.watched.upper) << ',' << format_number(s.watched.gamma) << ','
-        << format_number(s.watched.gamma_eff) << ',' << format_number(s.max_displacement) << ','
+        << format_number(s.watched.gamma_eff) << ','
+        << format_number(damping_ratio(s.watched.gamma, s.watched.lower)) << ','
+        << format_number(damping_ratio(s.watched.gamma_eff, s.watched.lower)) << ','
+        << format_number(s.max_displacement) << ','
         << s.violating << ',' << s.unstabilisable << ',' << s.clamped << ','
         << s.zero_length_springs << ',' << format_number(s.watched.safe) << ','
         << s.unguaranteed << ',' << s.compressed_springs << '\n';
@@ -97,12 +100,18 @@ std::string verdict_text(const RunResult& r, const StopRules& rules) {
   return "?";
 }
 
+std::string zeta_text(const DampingRatioRange& z) {
+  if (std::isnan(z.min)) return "none";
+  return z.uniform() ? format_number(z.min) : format_number(z.min) + ".." + format_number(z.max);
+}
+
 std::string result_json(const std::string& scene, const Params& p, const StopRules& rules,
-                        int watched, const RunResult& r) {
+                        int watched, const RunResult& r, const DampingRatioRange* zeta) {
   std::ostringstream os;
   os << "{\"scene\":" << json_string(scene) << ",\"m\":" << json_number(p.m)
-     << ",\"kappa\":" << json_number(p.kappa) << ",\"gamma\":" << json_number(p.gamma)
-     << ",\"dt\":" << json_number(p.dt) << ",\"policy\":" << json_string(to_string(p.policy))
+     << ",\"kappa\":" << json_number(p.kappa) << ",\"gamma\":" << json_number(p.gamma);
+  if (zeta) os << ",\"zeta_min\":" << json_number(zeta->min) << ",\"zeta_max\":" << json_number(zeta->max);
+  os     << ",\"dt\":" << json_number(p.dt) << ",\"policy\":" << json_string(to_string(p.policy))
      << ",\"factor\":" << json_number(p.factor)
      << ",\"integrator\":" << json_string(to_string(p.integrator))
      << ",\"max_iterations\":" << rules.max_iterations << ",\"watched\":" << watched

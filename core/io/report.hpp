@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "core/damping_ratio.hpp"
 #include "core/protocol.hpp"
 
 namespace dampbound {
@@ -26,9 +27,16 @@ std::string verdict_text(const RunResult& result, const StopRules& rules);
 /// while running after an exit "running (entered at K, left at L)".
 std::string verdict_short(const RunResult& result);
 
+/// The nodal damping ratio for a person: "1" where every free node has the same, "0.5..1"
+/// otherwise, "none" where no node has one.
+std::string zeta_text(const DampingRatioRange& zeta);
+
 /// One JSON object: the scene name, the parameters, the outcome and the counts; the rule and
 /// the band history (first_entry, left_at, settled_at: null where none, SPEC 8).
+/// `zeta` (optional): the range of the nodal damping ratio gamma_i / gamma_lo_i over the free
+/// nodes (damping_ratio_range()), written beside gamma as zeta_min and zeta_max.
 std::string result_json(const std::string& scene, const Params& params, const StopRules& rules,
-                        int watched, const RunResult& result);
+                        int watched, const RunResult& result,
+                        const DampingRatioRange* zeta = nullptr);
 
 }  // namespace dampbound

@@ -24,12 +24,19 @@ namespace {
 using scene_file::Keys;
 using scene_file::Reader;
 
-/// Reads the parameter keys (m, kappa, gamma, dt, policy, factor, integrator) present in `t` into
-/// `p`.
-void read_params(const Reader& r, const toml::table& t, Params& p) {
+/// Reads the parameter keys (m, kappa, gamma or zeta, dt, policy, factor, integrator) present in
+/// `t` into `p`. gamma and zeta exclude each other; either one replaces the other inherited.
+void read_params(const Reader& r, const toml::table& t, const std::string& table, Params& p) {
   if (auto* n = t.get("m")) p.m = r.positive(*n, "m");
   if (auto* n = t.get("kappa")) p.kappa = r.positive(*n, "kappa");
-  if (auto* n = t.get("gamma")) p.gamma = r.non_negative(*n, "gamma");
+  if (t.get("gamma") && t.get("zeta"))
+    r.fail(*t.get("zeta"), table + ": zeta and gamma exclude each other (zeta: the damping ratio, "
+                           "gamma = zeta * 2 sqrt(m_i kappa_i)); give one");
+  if (auto* n = t.get("gamma")) {
+    p.gamma = r.non_negative(*n, "gamma");
+    p.zeta.reset();
+  }
+  if (auto* n = t.get("zeta")) p.zeta = r.non_negative(*n, "zeta");
   if (auto* n = t.get("dt")) p.dt = r.positive(*n, "dt");
   if (auto* n = t.get("factor")) p.factor = r.non_negative(*n, "factor");
   if (auto* n = t.get("policy")) {
@@ -216,13 +223,18 @@ void read_cuts(const Reader& r, const toml::table& root, SceneSpec& s) {
 void read_runs(const Reader& r, const toml::table& root, SceneSpec& s) {
   std::set<std::string> labels;
   for (const toml::table& t : r.tables(root, "run",
-                                       {"label", "m", "kappa", "gamma", "dt", "policy", "factor",
+                                       {"label", "m", "kappa", "gamma", "zeta", "dt", "policy", "factor",
                                        "integrator", "max_iterations"})) {
     RunSpec run{r.string(r.required(t, "label", "[[run]]"), "label"), s.params, s.rules};
     check_plain_text(run.label, "run label", r.path(), static_cast<int>(t.source().begin.line));
     if (run.label.empty() || !labels.insert(run.label).second)
       r.fail(t, "run label '" + run.label + "' is empty or used twice");
-    read_params(r, t, run.params);
+    read_params(r, t, "[[run]] '" + run.label + "'", run.params);
+    if (run.params.zeta.has_value() != s.params.zeta.has_value())
+      r.fail(t, "[[run]] '" + run.label + "' gives its damping as " +
+                    (run.params.zeta ? "zeta where [params] gives gamma"
+                                     : "gamma where [params] gives zeta") +
+                    ": give it the same way in every table");
     if (auto* n = t.get("max_iterations")) run.rules.max_iterations = read_max_iterations(r, *n);
     s.runs.push_back(run);
   }
@@ -257,8 +269,8 @@ SceneSpec parse_scene(const std::string& text, const std::string& path) {
   read_regions(r, root, s);
   if (auto* pn = root.get("params")) {
     const toml::table& t = r.table(*pn, "params");
-    r.check_keys(t, {"m", "kappa", "gamma", "dt", "policy", "factor", "integrator"}, "[params]");
-    read_params(r, t, s.params);
+    r.check_keys(t, {"m", "kappa", "gamma", "zeta", "dt", "policy", "factor", "integrator"}, "[params]");
+    read_params(r, t, "[params]", s.params);
   }
   read_perturbations(r, root, s);
   read_protocol(r, root, s);

@@ -84,7 +84,10 @@ void put(std::ostream& out, const Table& t) {
 void put_params(Table& t, const Params& p) {
   t.emplace_back("m", num(p.m));
   t.emplace_back("kappa", num(p.kappa));
-  t.emplace_back("gamma", num(p.gamma));
+  if (p.zeta)
+    t.emplace_back("zeta", num(*p.zeta));
+  else
+    t.emplace_back("gamma", num(p.gamma));
   t.emplace_back("dt", num(p.dt));
   t.emplace_back("policy", str(to_string(p.policy)));
   t.emplace_back("factor", num(p.factor));

@@ -9,7 +9,9 @@
 #include <limits>
 #include <ostream>
 
+#include "core/damping_ratio.hpp"
 #include "core/error.hpp"
+#include "core/safe_bound_nodes.hpp"
 #include "core/io/files.hpp"
 #include "core/io/format.hpp"
 #include "core/safe_bound.hpp"
@@ -115,6 +117,13 @@ void write_vtu(std::ostream& out, const Model& model, const State& state, const 
   data_array(out, "Float64", "effective_damping", 1, gamma);
   data_array(out, "Float64", "safe", 1, safe);
   data_array(out, "Int32", "state", 1, code);
+  {  // SPEC 9 node by node and the damping ratio (SPEC 10) of the user's gamma_i
+    std::vector<double> dt_safe, gamma_safe;
+    safe_bounds_per_node(model, state.x, dt, dt_safe, gamma_safe);
+    data_array(out, "Float64", "dt_safe", 1, dt_safe);
+    data_array(out, "Float64", "gamma_safe", 1, gamma_safe);
+    data_array(out, "Float64", "zeta", 1, damping_ratio(model));
+  }
   out << "      </PointData>\n      <CellData>\n";
   data_array(out, "Float64", "stiffness", 1, kappa);
   data_array(out, "Float64", "strain", 1, strain);

@@ -33,7 +33,7 @@ expect_exit 0 "$DB" run paper-plane --gamma 0.001 --max-iter 40 --trace "$WORK/t
 iters=$(printf '%s' "$OUT" | sed -E 's/.*"iterations":([0-9]+).*/\1/')
 rows=$(($(wc -l <"$WORK/t.csv") - 1))
 [ "$rows" -eq "$iters" ] && ok || bad "trace has $rows rows for $iters iterations"
-expect_match "$(head -1 "$WORK/t.csv")" '^iteration,time,displacement,lower_bound,upper_bound,gamma,gamma_effective,max_displacement' "trace header"
+expect_match "$(head -1 "$WORK/t.csv")" '^iteration,time,displacement,lower_bound,upper_bound,gamma,gamma_effective,zeta,zeta_effective,max_displacement' "trace header"
 expect_match "$(sed -n 2p "$WORK/t.csv")" '^1,0\.05,' "first trace row"
 
 # Flags override the scene; --max-iter stops the run.

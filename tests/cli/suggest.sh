@@ -6,12 +6,12 @@ expect_match "$OUT" 'gamma_min +0\.002 +set by paper eq\. 5' "lower end from eq.
 expect_match "$OUT" 'gamma_max +0\.039804692 +set by exact upper limit \(semi-implicit-euler\)' "upper end exact"
 expect_match "$OUT" '1296 nodes like 0 ' "one node class"
 expect_match "$OUT" 'fastest settling gamma +0\.002 .*rho = 0\.96' "fastest settling"
-expect_match "$OUT" 'fastest-settling gamma +gamma=0\.002 +dt=0\.05 +verified: settled at [0-9]+' "verified by a run (settled rule)"
+expect_match "$OUT" 'fastest-settling gamma +gamma=0\.002 +zeta=1 +dt=0\.05 +verified: settled at [0-9]+' "verified by a run (settled rule)"
 
 expect_exit 0 "$DB" suggest paper-plane --gamma 0.002
 expect_match "$OUT" 'exact limit +dt < 0\.50396164 s' "largest stable dt"
 expect_match "$OUT" 'all criteria +dt <= 0\.31830989 s, set by Delingette' "all criteria"
-expect_match "$OUT" '99% of the exact limit +gamma=0\.002 +dt=0\.49892202 +verified: settled' "verified at 99%"
+expect_match "$OUT" '99% of the exact limit +gamma=0\.002 +zeta=1 +dt=0\.49892202 +verified: settled' "verified at 99%"
 
 expect_exit 1 "$DB" suggest paper-plane --dt 0.6
 expect_match "$OUT" 'no damping satisfies every criterion' "empty range"

@@ -11,7 +11,7 @@ namespace dampbound {
 namespace {
 
 const char* kHeader =
-    "iteration,time,displacement,lower_bound,upper_bound,gamma,gamma_effective,"
+    "iteration,time,displacement,lower_bound,upper_bound,gamma,gamma_effective,zeta,zeta_effective,"
     "max_displacement,violating,unstabilisable,clamped,zero_length_springs,"
     "safe_bound,unguaranteed,compressed_springs\n";
 
@@ -39,8 +39,8 @@ TEST(Report, TraceCsvRows) {
   std::ostringstream out;
   write_trace_csv(out, {row(1), row(2)});
   EXPECT_EQ(out.str(), std::string(kHeader) +
-                           "1,0.05,0.5,0.002,inf,0.001,0.001,0.25,1,2,3,4,inf,5,6\n"
-                           "2,0.1,0.5,0.002,inf,0.001,0.001,0.25,1,2,3,4,inf,5,6\n");
+                           "1,0.05,0.5,0.002,inf,0.001,0.001,0.5,0.5,0.25,1,2,3,4,inf,5,6\n"
+                           "2,0.1,0.5,0.002,inf,0.001,0.001,0.5,0.5,0.25,1,2,3,4,inf,5,6\n");
 }
 
 TEST(Report, TraceCsvWithARunLabel) {
