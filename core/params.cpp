@@ -56,6 +56,11 @@ std::optional<std::string> validate(const Params& p) {
   if (!positive(p.kappa)) return "kappa must be a finite number > 0";
   if (!std::isfinite(p.gamma) || p.gamma < 0) return "gamma must be a finite number >= 0";
   if (!positive(p.dt)) return "dt must be a finite number > 0";
+  if (!std::isfinite(p.kd) || p.kd < 0) return "kd must be a finite number >= 0";
+  if (!std::isfinite(p.rayleigh_mass) || p.rayleigh_mass < 0)
+    return "rayleigh_mass must be a finite number >= 0";
+  if (!std::isfinite(p.rayleigh_stiffness) || p.rayleigh_stiffness < 0)
+    return "rayleigh_stiffness must be a finite number >= 0";
   if (!std::isfinite(p.factor) || p.factor < 0) return "factor must be a finite number >= 0";
   return std::nullopt;
 }
