@@ -72,6 +72,11 @@ class DampedSafeRows {
   std::vector<Entry> entries_;
 };
 
+/// DampedSafeRows(model, x).gamma_safe(i, dt) for every node (+inf at fixed nodes), the same
+/// bits, in one pass that stores no row: what step() calls each step.
+void damped_safe_gammas(const Model& model, const std::vector<Vec3>& x, double dt,
+                        std::vector<double>& gamma_safe);
+
 /// The safe bound over a whole model at one state, for reports (`bounds`, `check`, the tuner).
 struct SafeBoundSummary {
   int free_nodes = 0;

@@ -132,3 +132,44 @@ double DampedSafeRows::dt_safe(int node, double gamma) const {
 }
 
 }  // namespace dampbound
+
+namespace dampbound {
+
+void damped_safe_gammas(const Model& model, const std::vector<Vec3>& x, double dt,
+                        std::vector<double>& gamma_safe) {
+  const size_t n = model.rest.size();
+  gamma_safe.assign(n, std::numeric_limits<double>::infinity());
+  Eigen::Matrix3d B, E;
+  for (size_t i = 0; i < n; ++i) {
+    if (model.fixed[i]) continue;
+    const double m = model.mass[i];
+    Eigen::Matrix3d Ka = model.anchor_kappa[i] * Eigen::Matrix3d::Identity();
+    Eigen::Matrix3d Kc = (model.rayleigh_stiffness * model.anchor_kappa[i] + model.anchor_kd[i]) *
+                         Eigen::Matrix3d::Identity();
+    double off[3] = {0, 0, 0};  // added in DampedSafeRows' entry order: neighbours, then own block
+    for (int e = model.incident_offset[i]; e < model.incident_offset[i + 1]; ++e) {
+      const int code = model.incident[static_cast<size_t>(e)];
+      const size_t k = static_cast<size_t>(code >= 0 ? code : ~code);
+      if (!spring_blocks(model, x, k, B, E)) continue;
+      Ka += B;
+      Kc += E;
+      const Spring& s = model.springs[k];
+      const size_t j = static_cast<size_t>(code >= 0 ? s.j : s.i);
+      if (model.fixed[j]) continue;
+      const double w = 1.0 / std::sqrt(m * model.mass[j]);
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c)
+          off[r] += std::abs(2 * dt * (-E(r, c) * w) + dt * dt * (-B(r, c) * w));
+    }
+    double margin = std::numeric_limits<double>::infinity();
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 3; ++c)
+        if (c != r) off[r] += std::abs(2 * dt * (Kc(r, c) / m) + dt * dt * (Ka(r, c) / m));
+      const double diag_c = model.rayleigh_mass + Kc(r, r) / m, diag_a = Ka(r, r) / m;
+      margin = std::min(margin, 4 - 2 * dt * diag_c - dt * dt * diag_a - off[r]);
+    }
+    gamma_safe[i] = m / (2 * dt) * margin;
+  }
+}
+
+}  // namespace dampbound

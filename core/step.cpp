@@ -44,8 +44,7 @@ StepStats step(const Model& model, const Params& params, State& state, StepWorks
     ws.damping.clear();
   const bool damped = !ws.damping.empty();
   // SPEC 10's generalised safe bound where the model has such damping, else SPEC 9's.
-  std::optional<DampedSafeRows> rows;
-  if (damped) rows.emplace(model, state.x);
+  if (damped) damped_safe_gammas(model, state.x, params.dt, ws.safe_bound);
   ws.upper_bound.resize(n);
   ws.gamma_eff.resize(n);
   ws.status.resize(n);
@@ -68,8 +67,8 @@ StepStats step(const Model& model, const Params& params, State& state, StepWorks
           damped ? upper_bound(state.v[i], Vec3(ws.force[i] - ws.damping[i]), model.mass[i],
                                params.dt)
                  : upper_bound(state.v[i], ws.force[i], model.mass[i], params.dt);
-      const double safe = rows ? rows->gamma_safe(static_cast<int>(i), params.dt)
-                               : safe_gamma(model.mass[i], params.dt, ws.safe_row_sum[i]);
+      const double safe =
+          damped ? ws.safe_bound[i] : safe_gamma(model.mass[i], params.dt, ws.safe_row_sum[i]);
       const DampingChoice d = effective_damping(params.policy, model.gamma[i],
                                                 model.lower_bound[i], hi, params.factor, safe);
       ws.upper_bound[i] = hi;

@@ -152,3 +152,25 @@ TEST(DampingLimits, ZeroDampingKeepsSpec9) {
 
 }  // namespace
 }  // namespace dampbound
+
+namespace dampbound {
+namespace {
+
+TEST(DampingLimits, StepsOnePassEqualsTheRows) {
+  std::mt19937 rng(17);
+  Params p;
+  p.kd = 0.003;
+  p.rayleigh_mass = 0.2;
+  p.rayleigh_stiffness = 0.01;
+  const Model model = compile_model(plane(4, rng, true), p);
+  std::vector<Vec3> x = model.rest;
+  for (Vec3& xi : x) xi += Vec3(0.03, -0.02, 0.01);
+  x[5] += Vec3(0.1, 0.2, -0.1);
+  std::vector<double> g;
+  damped_safe_gammas(model, x, p.dt, g);
+  const DampedSafeRows rows(model, x);
+  for (size_t i = 0; i < g.size(); ++i) EXPECT_EQ(g[i], rows.gamma_safe(static_cast<int>(i), p.dt));
+}
+
+}  // namespace
+}  // namespace dampbound
