@@ -13,6 +13,7 @@
 #include "app/options.hpp"
 #include "core/analysis/criteria.hpp"
 #include "core/analysis/criteria_safe.hpp"
+#include "core/analysis/damping_limits.hpp"
 #include "core/analysis/equilibrium.hpp"
 #include "core/analysis/worst_nodes.hpp"
 #include "core/bounds.hpp"
@@ -33,7 +34,47 @@ struct BoundsArgs {
   bool equilibrium = false;
   CLI::Option *m_opt = nullptr, *kappa_opt = nullptr, *dt_opt = nullptr, *gamma_opt = nullptr,
               *integrator_opt = nullptr, *zeta_opt = nullptr;
+  double kd = 0, rayleigh_mass = 0, rayleigh_stiffness = 0;
+  CLI::Option* damping_opts[3] = {};
 };
+
+/// SPEC 10's lines where the model has dashpot or Rayleigh damping: the damping ratios, the
+/// exact index lambda_max(dt^2 A + 2 dt C^) with the gamma and dt limits, and whether C^
+/// leaves modes undamped. Nothing otherwise (the output stays as it was).
+void print_damping_lines(const Model& model, const State& state, const Params& p) {
+  if (!model.spring_damping) return;
+  auto g5 = [](double x) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.5g", x);
+    return std::string(buf);
+  };
+  const DampingRatios r = damping_ratios(model, state.x);
+  std::printf("\ndamping (SPEC 10)     kd=%s rayleigh_mass=%s 1/s rayleigh_stiffness=%s s\n",
+              format_number(p.kd).c_str(), format_number(p.rayleigh_mass).c_str(),
+              format_number(p.rayleigh_stiffness).c_str());
+  std::printf("damping ratios        nodal zeta %s..%s; dashpots (%d) zeta_ij %s..%s; Rayleigh "
+              "zeta %s at lambda_min = %s, %s at lambda_max = %s 1/s^2\n",
+              g5(r.nodal_min).c_str(), g5(r.nodal_max).c_str(), r.dashpots,
+              g5(r.dashpot_min).c_str(), g5(r.dashpot_max).c_str(), g5(r.rayleigh_low).c_str(),
+              g5(r.lambda_min).c_str(), g5(r.rayleigh_high).c_str(), g5(r.lambda_max).c_str());
+  if (p.integrator != Integrator::semi_implicit_euler) {
+    std::printf("exact index           derived for the paper's semi-implicit step; not shown "
+                "for %s\n",
+                to_string(p.integrator));
+    return;
+  }
+  const GeneralLimits g = general_limits(model, state.x, p);
+  std::printf("exact index (SPEC 10) lambda_max(dt^2 A + 2 dt C^) = %s: %s (stable below 4)\n",
+              g5(g.index).c_str(), g.index < 4 ? "stable" : "UNSTABLE");
+  std::printf("exact limits          gamma < %s, dt < %s s at gamma = %s (%s)\n",
+              g5(g.gamma_max).c_str(), g5(g.dt_max).c_str(), format_number(p.gamma).c_str(),
+              g.commuting ? "Rayleigh closed forms: C^ commutes with A"
+                          : "C^ not diagonal: bisection on the index");
+  if (!(g.damping_min > 0))
+    std::printf("undamped modes        lambda_min(C^) = %s: C^ leaves modes undamped; they are "
+                "marginal at best\n",
+                g5(g.damping_min).c_str());
+}
 
 Vec3 parse_vec3(const std::string& text, const char* flag) {
   std::istringstream in(text);
@@ -99,16 +140,18 @@ void print_safe_lines(const Model& model, const State& state, const Params& p,
     return std::string(buf);
   };
   auto ratio = [&](double safe, double ex) {
-    return paper_step && std::isfinite(ex) && ex != 0
+    // the exact rows below are the nodal analysis (SPEC 7); SPEC 10's own follow
+    return paper_step && !model.spring_damping && std::isfinite(ex) && ex != 0
                ? ", exact limit " + g5(ex) + ", ratio " + g5(safe / ex)
                : std::string();
   };
-  std::printf("\nsafe bound (SPEC 9)   gamma_safe = %s%s at node %d (R = %s 1/s^2)%s\n",
-              g5(s.gamma_safe).c_str(),
+  const char* spec = model.spring_damping ? "SPEC 10" : "SPEC 9";
+  std::printf("\nsafe bound (%s)%sgamma_safe = %s%s at node %d (R = %s 1/s^2)%s\n",
+              spec, model.spring_damping ? "  " : "   ", g5(s.gamma_safe).c_str(),
               s.gamma_scaled ? " (the user's gamma: gamma_i = gamma * gamma_scale_i)" : "",
               s.gamma_node, g5(s.row_sum).c_str(), ratio(s.gamma_safe, exact.gamma_hi).c_str());
-  std::printf("safe step (SPEC 9)    dt_safe = %s at gamma = %s, node %d%s\n",
-              g5(s.dt_safe).c_str(),
+  std::printf("safe step (%s)%sdt_safe = %s at gamma = %s, node %d%s\n", spec,
+              model.spring_damping ? "   " : "    ", g5(s.dt_safe).c_str(),
               (format_number(p.gamma) + " (zeta " + zeta_text(damping_ratio_range(model)) + ")").c_str(),
               s.dt_node,
               ratio(s.dt_safe, exact.dt_max).c_str());
@@ -142,6 +185,7 @@ int run_parameters(const BoundsArgs& a) {
   p.gamma = a.gamma_opt->count() ? a.gamma : lower_bound(a.m, a.kappa);
   if (a.zeta_opt->count()) p.gamma = gamma_of_zeta(a.zeta, p);  // every scale is 1 here
   if (a.integrator_opt->count()) p.integrator = *parse_integrator(a.integrator);
+  apply_damping_flags(a.damping_opts, a.kd, a.rayleigh_mass, a.rayleigh_stiffness, p);
   const bool two = a.system == "two-node";
   const Model model = two ? two_node_system(p) : single_node_system(p);
   std::printf("\nsystem       %s\n",
@@ -157,6 +201,7 @@ int run_parameters(const BoundsArgs& a) {
   const State rest = rest_state(model);
   const ExactStability exact = exact_stability(model, rest.x, p);
   print_safe_lines(model, rest, p, exact);
+  print_damping_lines(model, rest, p);
   print_criteria(all_criteria(model, rest, p, exact));
   return 0;
 }
@@ -214,6 +259,7 @@ int run_scene(const BoundsArgs& a) {
   if (a.zeta_opt->count()) p.zeta = a.zeta;
   resolve_zeta(scene.model, p);
   if (a.integrator_opt->count()) p.integrator = *parse_integrator(a.integrator);
+  apply_damping_flags(a.damping_opts, a.kd, a.rayleigh_mass, a.rayleigh_stiffness, p);
   p.policy = DampingPolicy::fixed;  // the user's gamma is what is judged
   const std::string name = scene.name.empty() ? a.scene : scene.name;
   Session session(std::move(scene), p, StopRules{});
@@ -272,6 +318,7 @@ int run_scene(const BoundsArgs& a) {
                     ? "; the safe bound (SPEC 9) below still holds"
                     : "");
   print_safe_lines(model, state, p, exact);
+  print_damping_lines(model, state, p);
   if (a.worst > 0) print_worst(model, state, p, a.worst, false);
   print_criteria(all_criteria(model, state, p, exact));
   return 0;
@@ -324,6 +371,7 @@ std::function<int()> setup(CLI::App& root) {
                   "edge, degree and the cause in words")
       ->check(CLI::Range(1, 1000000));
   cmd->add_flag("--json", a->json, "with --worst: the worst nodes as one JSON object only");
+  add_damping_flags(cmd, a->kd, a->rayleigh_mass, a->rayleigh_stiffness, a->damping_opts);
   add_factor_budget_option(cmd, a->factor_budget);
   return [a] { return run(*a); };
 }

@@ -56,6 +56,27 @@ const CLI::Validator& finite_non_negative() {
   return v;
 }
 
+void add_damping_flags(CLI::App* cmd, double& kd, double& rayleigh_mass,
+                       double& rayleigh_stiffness, CLI::Option* opts[3]) {
+  opts[0] = cmd->add_option("--kd", kd,
+                            "dashpot along every spring and anchor, kd_ij = kd * kd_scale "
+                            "(mass unit/s; SPEC 10)")
+                ->check(finite_non_negative());
+  opts[1] = cmd->add_option("--rayleigh-mass", rayleigh_mass,
+                            "Rayleigh alpha: force -alpha m_i v_i (1/s; SPEC 10)")
+                ->check(finite_non_negative());
+  opts[2] = cmd->add_option("--rayleigh-stiffness", rayleigh_stiffness,
+                            "Rayleigh beta: force -beta (K(x) v)_i (s; SPEC 10)")
+                ->check(finite_non_negative());
+}
+
+void apply_damping_flags(CLI::Option* const opts[3], double kd, double rayleigh_mass,
+                         double rayleigh_stiffness, Params& p) {
+  if (opts[0] && opts[0]->count()) p.kd = kd;
+  if (opts[1] && opts[1]->count()) p.rayleigh_mass = rayleigh_mass;
+  if (opts[2] && opts[2]->count()) p.rayleigh_stiffness = rayleigh_stiffness;
+}
+
 void ParamFlags::add_to(CLI::App* cmd, bool with_rules) {
   m_opt = cmd->add_option("--m", m, "node mass (mass unit; all nodes, times their mass_scale)")
               ->check(finite_positive());
@@ -72,6 +93,9 @@ void ParamFlags::add_to(CLI::App* cmd, bool with_rules) {
   integrator_opt =
       cmd->add_option("--integrator", integrator, "time integrator (default: the paper's)")
           ->check(CLI::IsMember(integrator_names()));
+  CLI::Option* damping[3] = {};
+  add_damping_flags(cmd, kd, rayleigh_mass, rayleigh_stiffness, damping);
+  kd_opt = damping[0], rayleigh_mass_opt = damping[1], rayleigh_stiffness_opt = damping[2];
   if (with_rules)
     max_iter_opt = cmd->add_option("--max-iter", max_iter, "iteration limit of the protocol")
                        ->check(CLI::Range(1, 100000000));
@@ -89,6 +113,8 @@ void ParamFlags::apply(Params& p, StopRules& rules) const {
   if (factor_opt && factor_opt->count()) p.factor = factor;
   if (policy_opt && policy_opt->count()) p.policy = *parse_policy(policy);
   if (integrator_opt && integrator_opt->count()) p.integrator = *parse_integrator(integrator);
+  CLI::Option* const damping[3] = {kd_opt, rayleigh_mass_opt, rayleigh_stiffness_opt};
+  apply_damping_flags(damping, kd, rayleigh_mass, rayleigh_stiffness, p);
   if (max_iter_opt && max_iter_opt->count()) rules.max_iterations = max_iter;
 }
 

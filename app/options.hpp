@@ -12,10 +12,20 @@ namespace dampbound::app {
 const CLI::Validator& finite_positive();
 const CLI::Validator& finite_non_negative();
 
-/// --m --kappa --gamma --dt --policy --factor --integrator --max-iter: each overrides the
-/// scene's value when given.
+/// SPEC 10's --kd --rayleigh-mass --rayleigh-stiffness on `cmd` (each >= 0, finite), into the
+/// given doubles; the options come back in `opts` (for count()).
+void add_damping_flags(CLI::App* cmd, double& kd, double& rayleigh_mass,
+                       double& rayleigh_stiffness, CLI::Option* opts[3]);
+/// Sets params' kd, rayleigh_mass, rayleigh_stiffness from the options that were given.
+void apply_damping_flags(CLI::Option* const opts[3], double kd, double rayleigh_mass,
+                         double rayleigh_stiffness, Params& p);
+
+/// --m --kappa --gamma --dt --policy --factor --integrator --max-iter and SPEC 10's --kd
+/// --rayleigh-mass --rayleigh-stiffness: each overrides the scene's value when given.
 struct ParamFlags {
   double m = 0, kappa = 0, gamma = 0, zeta = 0, dt = 0, factor = 1;
+  double kd = 0, rayleigh_mass = 0, rayleigh_stiffness = 0;
+  CLI::Option *kd_opt = nullptr, *rayleigh_mass_opt = nullptr, *rayleigh_stiffness_opt = nullptr;
   std::string policy, integrator;
   int max_iter = 0;
   CLI::Option *m_opt = nullptr, *kappa_opt = nullptr, *gamma_opt = nullptr, *dt_opt = nullptr,

@@ -28,4 +28,16 @@ struct SpringPass {
 int internal_forces(const Model& model, const std::vector<Vec3>& x, std::vector<Vec3>& force,
                     SpringPass* pass = nullptr);
 
+/// SPEC 10's damping forces besides the nodal -gamma_i v_i, as the force D'_i subtracted from
+/// F_i (a_i = (F_i - gamma_i v_i - D'_i + f_i) / m_i), at positions x and velocities v:
+///   D'_i = (alpha m_i + kd_a,i + beta kappa_a,i) v_i
+///          - sum over springs (i, j) of [kd_ij ((v_j - v_i) . d) d + beta B_ij (v_j - v_i)],
+/// B_ij the spring's tangent block (SPEC 7; l0/l and 1 - l0/l as they are, compressed too),
+/// d = (x_j - x_i) / l, and the opposite on j: dashpots along springs and anchors plus
+/// Rayleigh damping alpha M v + beta K(x) v, spring by spring (no matrix). Fixed nodes count
+/// as still (v = 0) and get 0. A spring of zero length adds nothing (SPEC 1). `damping` is
+/// resized to the node count; each node's terms are added in spring order after its anchor.
+void damping_forces(const Model& model, const std::vector<Vec3>& x, const std::vector<Vec3>& v,
+                    std::vector<Vec3>& damping);
+
 }  // namespace dampbound

@@ -17,6 +17,7 @@ int add_node(ModelSpec& spec, const Vec3& position) {
   spec.anchor_scale.push_back(0);
   spec.external_force.push_back(Vec3::Zero());
   spec.fixed.push_back(0);
+  if (!spec.anchor_kd_scale.empty()) spec.anchor_kd_scale.push_back(1);
   return spec.node_count() - 1;
 }
 
@@ -41,6 +42,22 @@ void apply_params(Model& model, const Params& params) {
   model.node_kappa.resize(n);
   model.lower_bound.resize(n);
   model.spring_kappa.resize(model.springs.size());
+  model.spring_kd.resize(model.springs.size());
+  model.anchor_kd.resize(n);
+  model.rayleigh_mass = params.rayleigh_mass;
+  model.rayleigh_stiffness = params.rayleigh_stiffness;
+  bool dashpots = false;
+  for (size_t i = 0; i < n; ++i) {
+    const double scale = model.anchor_kd_scale.empty() ? 1.0 : model.anchor_kd_scale[i];
+    model.anchor_kd[i] = model.anchor_scale[i] > 0 ? params.kd * scale : 0.0;
+    dashpots = dashpots || model.anchor_kd[i] != 0;
+  }
+  for (size_t k = 0; k < model.springs.size(); ++k) {
+    model.spring_kd[k] = params.kd * model.springs[k].kd_scale;
+    dashpots = dashpots || model.spring_kd[k] != 0;
+  }
+  model.spring_damping =
+      dashpots || model.rayleigh_mass != 0 || model.rayleigh_stiffness != 0;
   for (size_t i = 0; i < n; ++i) {
     model.mass[i] = params.m * model.mass_scale[i];
     model.gamma[i] = params.gamma * model.gamma_scale[i];

@@ -20,6 +20,7 @@ struct Spring {
   int j = 0;
   double rest_length = 0;  ///< l0_ij >= 0 (cm)
   double kappa_scale = 1;  ///< > 0
+  double kd_scale = 1;     ///< >= 0: its dashpot is kd * kd_scale (SPEC 10)
 };
 
 /// Topology, rest state and per-element scales: what a scene or mesh file describes. Plain
@@ -31,6 +32,8 @@ struct ModelSpec {
   std::vector<double> anchor_scale;  ///< anchor kappa_a,i = kappa * anchor_scale_i; 0 = no anchor
   std::vector<Vec3> external_force;  ///< f_i (mass unit cm / s^2)
   std::vector<std::uint8_t> fixed;   ///< 1 = the node never moves
+  /// Anchor dashpot kd_a,i = kd * anchor_kd_scale_i at anchored nodes (SPEC 10); empty = all 1.
+  std::vector<double> anchor_kd_scale;
   std::vector<Spring> springs;
 
   int node_count() const { return static_cast<int>(rest.size()); }
@@ -61,6 +64,13 @@ class Model : public ModelSpec {
   std::vector<double> spring_kappa;  ///< kappa_ij of spring k (mass unit / s^2)
   std::vector<double> node_kappa;    ///< kappa_i of eq. 5: max stiffness incident to i (SPEC 3)
   std::vector<double> lower_bound;   ///< gamma_lo_i = 2 sqrt(m_i kappa_i) (eq. 5; mass unit / s)
+  // SPEC 10's damping besides the nodal gamma_i (all zero unless params ask for it).
+  std::vector<double> spring_kd;     ///< kd_ij of spring k (mass unit / s)
+  std::vector<double> anchor_kd;     ///< kd_a,i of node i's anchor; 0 without an anchor
+  double rayleigh_mass = 0;          ///< alpha (1/s)
+  double rayleigh_stiffness = 0;     ///< beta (s)
+  /// Some dashpot or Rayleigh coefficient is non-zero: step() evaluates the damping pass.
+  bool spring_damping = false;
   /// The springs at node i, in increasing index: incident[incident_offset[i] ..
   /// incident_offset[i + 1]), k where i is spring k's first node, ~k where it is its second.
   /// What lets a per-node loop add its springs in the serial order (tangent_stiffness()).

@@ -63,7 +63,9 @@ std::optional<std::string> validate(const Params& p) {
     bool allow_zero;
   } numbers[] = {{"m", p.m, false},         {"kappa", p.kappa, false},
                  {"gamma", p.gamma, true},  {"dt", p.dt, false},
-                 {"factor", p.factor, true}};
+                 {"factor", p.factor, true},   {"kd", p.kd, true},
+                 {"rayleigh_mass", p.rayleigh_mass, true},
+                 {"rayleigh_stiffness", p.rayleigh_stiffness, true}};
   for (const auto& n : numbers)
     if (const auto why = number_problem(n.value, n.allow_zero)) return std::string(n.name) + " " + *why;
   if (p.zeta)

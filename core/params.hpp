@@ -35,6 +35,10 @@ struct Params {
   /// kappa_i). resolve_zeta() (core/damping_ratio.hpp) turns it into gamma and clears it.
   std::optional<double> zeta;
   double dt = 0.05;      ///< time step (s)
+  /// SPEC 10: dashpots along springs and anchors, kd_ij = kd * kd_scale (mass unit / s).
+  double kd = 0;
+  double rayleigh_mass = 0;       ///< SPEC 10: Rayleigh alpha (1/s): force -alpha m_i v_i
+  double rayleigh_stiffness = 0;  ///< SPEC 10: Rayleigh beta (s): force -beta (K(x) v)_i
   DampingPolicy policy = DampingPolicy::fixed;
   double factor = 1.0;  ///< multiplier of gamma_hi for DampingPolicy::upper
   Integrator integrator = Integrator::semi_implicit_euler;

@@ -1,6 +1,7 @@
 #include "core/safe_bound.hpp"
 
 #include <limits>
+#include <optional>
 
 #include "core/analysis/linear_stability.hpp"
 #include "core/detail/spring_pass.hpp"
@@ -23,11 +24,16 @@ SafeBoundSummary safe_bound_summary(const Model& model, const std::vector<Vec3>&
   s.compressed_springs = safe_row_sums(model, x, R);
   constexpr double kInf = std::numeric_limits<double>::infinity();
   s.gamma_safe = s.dt_safe = kInf;
+  std::optional<DampedSafeRows> rows;
+  if (model.spring_damping) rows.emplace(model, x);
   for (size_t i = 0; i < R.size(); ++i) {
     if (model.fixed[i]) continue;
     ++s.free_nodes;
     const int node = static_cast<int>(i);
-    const double g = safe_gamma(model.mass[i], dt, R[i]);
+    const double g = rows ? rows->gamma_safe(node, dt) : safe_gamma(model.mass[i], dt, R[i]);
+    const auto dt_at = [&](double gamma) {
+      return rows ? rows->dt_safe(node, gamma) : safe_dt(model.mass[i], gamma, R[i]);
+    };
     const double scale = model.gamma_scale[i];
     s.gamma_scaled = s.gamma_scaled || scale != 1;
     const double user = safe_user_gamma(g, scale);
@@ -36,7 +42,7 @@ SafeBoundSummary safe_bound_summary(const Model& model, const std::vector<Vec3>&
       s.gamma_node = node;
       s.row_sum = R[i];
     }
-    const double h = safe_dt(model.mass[i], model.gamma[i], R[i]);
+    const double h = dt_at(model.gamma[i]);
     s.gamma_over += !(model.gamma[i] < g);
     if (h < s.dt_safe) {
       s.dt_safe = h;
@@ -44,7 +50,7 @@ SafeBoundSummary safe_bound_summary(const Model& model, const std::vector<Vec3>&
     }
     if (model.lower_bound[i] > g) {
       s.infeasible.push_back(node);
-      s.infeasible_dt.push_back(safe_dt(model.mass[i], model.lower_bound[i], R[i]));
+      s.infeasible_dt.push_back(dt_at(model.lower_bound[i]));
     }
   }
   return s;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "core/detail/spring_pass.hpp"
 #include "core/forces.hpp"
@@ -36,6 +37,14 @@ StepStats step(const Model& model, const Params& params, State& state, StepWorks
       detail::spring_pass(model, state.x, &ws.force, &ws.safe_row_sum, &ws.pass);
   st.zero_length_springs = springs.zero_length;
   st.compressed_springs = springs.compressed;
+  // SPEC 10: the dashpot and Rayleigh forces from the state at t, like the nodal damping.
+  if (model.spring_damping)
+    damping_forces(model, state.x, state.v, ws.damping);
+  else
+    ws.damping.clear();
+  const bool damped = !ws.damping.empty();
+  // SPEC 10's generalised safe bound where the model has such damping, else SPEC 9's.
+  if (damped) damped_safe_gammas(model, state.x, params.dt, ws.safe_bound);
   ws.upper_bound.resize(n);
   ws.gamma_eff.resize(n);
   ws.status.resize(n);
@@ -53,8 +62,13 @@ StepStats step(const Model& model, const Params& params, State& state, StepWorks
         ws.safe_bound[i] = std::numeric_limits<double>::infinity();
         continue;
       }
-      const double hi = upper_bound(state.v[i], ws.force[i], model.mass[i], params.dt);
-      const double safe = safe_gamma(model.mass[i], params.dt, ws.safe_row_sum[i]);
+      // Eq. 6 with the other damping counted with the spring forces (SPEC 10).
+      const double hi =
+          damped ? upper_bound(state.v[i], Vec3(ws.force[i] - ws.damping[i]), model.mass[i],
+                               params.dt)
+                 : upper_bound(state.v[i], ws.force[i], model.mass[i], params.dt);
+      const double safe =
+          damped ? ws.safe_bound[i] : safe_gamma(model.mass[i], params.dt, ws.safe_row_sum[i]);
       const DampingChoice d = effective_damping(params.policy, model.gamma[i],
                                                 model.lower_bound[i], hi, params.factor, safe);
       ws.upper_bound[i] = hi;

@@ -14,6 +14,9 @@ namespace dampbound {
 /// `status` to colour nodes.
 struct StepWorkspace {
   std::vector<Vec3> force;          ///< F_i at t (internal force, SPEC 1)
+  /// D'_i at t: the dashpot and Rayleigh force subtracted from F_i (SPEC 10, damping_forces());
+  /// empty when the model has none (Model::spring_damping false).
+  std::vector<Vec3> damping;
   std::vector<double> upper_bound;  ///< gamma_hi_i at t (eq. 6)
   std::vector<double> gamma_eff;    ///< effective damping used this step
   std::vector<NodeStatus> status;

@@ -24,8 +24,9 @@ namespace {
 using scene_file::Keys;
 using scene_file::Reader;
 
-/// Reads the parameter keys (m, kappa, gamma or zeta, dt, policy, factor, integrator) present in
-/// `t` into `p`. gamma and zeta exclude each other; either one replaces the other inherited.
+/// Reads the parameter keys (m, kappa, gamma or zeta, dt, policy, factor, integrator, and
+/// SPEC 10's kd, rayleigh_mass, rayleigh_stiffness) present in `t` into `p`. gamma and zeta
+/// exclude each other; either one replaces the other inherited.
 void read_params(const Reader& r, const toml::table& t, const std::string& table, Params& p) {
   if (auto* n = t.get("m")) p.m = r.positive(*n, "m");
   if (auto* n = t.get("kappa")) p.kappa = r.positive(*n, "kappa");
@@ -39,6 +40,10 @@ void read_params(const Reader& r, const toml::table& t, const std::string& table
   if (auto* n = t.get("zeta")) p.zeta = r.non_negative(*n, "zeta");
   if (auto* n = t.get("dt")) p.dt = r.positive(*n, "dt");
   if (auto* n = t.get("factor")) p.factor = r.non_negative(*n, "factor");
+  if (auto* n = t.get("kd")) p.kd = r.non_negative(*n, "kd");
+  if (auto* n = t.get("rayleigh_mass")) p.rayleigh_mass = r.non_negative(*n, "rayleigh_mass");
+  if (auto* n = t.get("rayleigh_stiffness"))
+    p.rayleigh_stiffness = r.non_negative(*n, "rayleigh_stiffness");
   if (auto* n = t.get("policy")) {
     auto pol = parse_policy(r.string(*n, "policy"));
     if (!pol) r.fail(*n, "policy must be one of fixed, clamp, upper, lower, safe");
@@ -129,7 +134,8 @@ void read_geometry(const Reader& r, const toml::table& root, SceneSpec& s) {
   // An empty model has no node to watch or perturb, and step() needs one.
   if (s.model.node_count() == 0) r.fail(*root.get("node"), "the scene has no node");
   std::set<std::pair<int, int>> seen;
-  for (const toml::table& t : r.tables(root, "spring", {"nodes", "rest_length", "kappa_scale"})) {
+  for (const toml::table& t :
+       r.tables(root, "spring", {"nodes", "rest_length", "kappa_scale", "kd_scale"})) {
     const toml::node& nn = r.required(t, "nodes", "[[spring]]");
     const toml::array* ends = nn.as_array();
     if (!ends || ends->size() != 2) r.fail(nn, "nodes must be [i, j]");
@@ -143,6 +149,7 @@ void read_geometry(const Reader& r, const toml::table& root, SceneSpec& s) {
     add_spring(s.model, i, j, ks);
     if (auto* n = t.get("rest_length"))
       s.model.springs.back().rest_length = r.non_negative(*n, "rest_length");
+    if (auto* n = t.get("kd_scale")) s.model.springs.back().kd_scale = r.non_negative(*n, "kd_scale");
   }
 }
 
@@ -150,7 +157,7 @@ void read_geometry(const Reader& r, const toml::table& root, SceneSpec& s) {
 void read_regions(const Reader& r, const toml::table& root, SceneSpec& s) {
   for (const toml::table& t : r.tables(root, "region",
                                        {"min", "max", "mass_scale", "kappa_scale", "gamma_scale",
-                                       "anchor_scale", "fixed", "force"})) {
+                                       "anchor_scale", "fixed", "force", "kd_scale"})) {
     const Vec3 lo = r.vec3(r.required(t, "min", "[[region]]"), "min");
     const Vec3 hi = r.vec3(r.required(t, "max", "[[region]]"), "max");
     auto inside = [&](int i) {
@@ -175,6 +182,14 @@ void read_regions(const Reader& r, const toml::table& root, SceneSpec& s) {
       const double ks = r.positive(*n, "kappa_scale");
       for (Spring& sp : s.model.springs)
         if (inside(sp.i) && inside(sp.j)) sp.kappa_scale = ks;
+    }
+    if (auto* n = t.get("kd_scale")) {  // the dashpots of its springs and anchors (SPEC 10)
+      const double ds = r.non_negative(*n, "kd_scale");
+      for (Spring& sp : s.model.springs)
+        if (inside(sp.i) && inside(sp.j)) sp.kd_scale = ds;
+      s.model.anchor_kd_scale.resize(s.model.rest.size(), 1.0);
+      for (int i = 0; i < s.model.node_count(); ++i)
+        if (inside(i)) s.model.anchor_kd_scale[static_cast<size_t>(i)] = ds;
     }
   }
 }
@@ -224,7 +239,8 @@ void read_runs(const Reader& r, const toml::table& root, SceneSpec& s) {
   std::set<std::string> labels;
   for (const toml::table& t : r.tables(root, "run",
                                        {"label", "m", "kappa", "gamma", "zeta", "dt", "policy", "factor",
-                                       "integrator", "max_iterations"})) {
+                                       "integrator", "max_iterations", "kd", "rayleigh_mass",
+                                       "rayleigh_stiffness"})) {
     RunSpec run{r.string(r.required(t, "label", "[[run]]"), "label"), s.params, s.rules};
     check_plain_text(run.label, "run label", r.path(), static_cast<int>(t.source().begin.line));
     if (run.label.empty() || !labels.insert(run.label).second)
@@ -269,7 +285,10 @@ SceneSpec parse_scene(const std::string& text, const std::string& path) {
   read_regions(r, root, s);
   if (auto* pn = root.get("params")) {
     const toml::table& t = r.table(*pn, "params");
-    r.check_keys(t, {"m", "kappa", "gamma", "zeta", "dt", "policy", "factor", "integrator"}, "[params]");
+    r.check_keys(t,
+                 {"m", "kappa", "gamma", "zeta", "dt", "policy", "factor", "integrator", "kd",
+                  "rayleigh_mass", "rayleigh_stiffness"},
+                 "[params]");
     read_params(r, t, "[params]", s.params);
   }
   read_perturbations(r, root, s);

@@ -55,7 +55,8 @@ void read_mesh_regions(const Reader& r, const toml::table& root, const CellMesh&
   const auto regions = region_nodes(mesh);
   for (const toml::table& t : r.tables(root, "mesh_region",
                                        {"tag", "name", "fixed", "mass_scale", "kappa_scale",
-                                       "gamma_scale", "anchor_scale", "force", "displacement"})) {
+                                       "gamma_scale", "anchor_scale", "force", "displacement",
+                                       "kd_scale"})) {
     const std::vector<int>& nodes = region_of(r, t, mesh, regions);
     ModelSpec& m = s.model;
     for (int i : nodes) {
@@ -71,6 +72,14 @@ void read_mesh_regions(const Reader& r, const toml::table& root, const CellMesh&
       const std::set<int> in(nodes.begin(), nodes.end());
       for (Spring& sp : m.springs)
         if (in.count(sp.i) && in.count(sp.j)) sp.kappa_scale *= ks;
+    }
+    if (auto* n = t.get("kd_scale")) {  // the dashpots of its springs and anchors (SPEC 10)
+      const double ds = r.non_negative(*n, "kd_scale");
+      const std::set<int> in(nodes.begin(), nodes.end());
+      for (Spring& sp : m.springs)
+        if (in.count(sp.i) && in.count(sp.j)) sp.kd_scale *= ds;
+      m.anchor_kd_scale.resize(m.rest.size(), 1.0);
+      for (int i : nodes) m.anchor_kd_scale[static_cast<size_t>(i)] *= ds;
     }
     if (auto* n = t.get("displacement")) {
       const Vec3 d = r.vec3(*n, "displacement");

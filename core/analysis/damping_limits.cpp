@@ -1,0 +1,117 @@
+#include "core/analysis/damping_limits.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "core/analysis/damping_matrix.hpp"
+#include "core/analysis/linear_stability.hpp"
+
+namespace dampbound {
+
+DampingRatios damping_ratios(const Model& model, const std::vector<Vec3>& x) {
+  DampingRatios r;
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  r.nodal_min = r.dashpot_min = kInf;
+  r.nodal_max = r.dashpot_max = 0;
+  for (size_t i = 0; i < model.rest.size(); ++i) {
+    if (model.fixed[i]) continue;
+    const double z = model.lower_bound[i] > 0 ? model.gamma[i] / model.lower_bound[i] : kInf;
+    r.nodal_min = std::min(r.nodal_min, z);
+    r.nodal_max = std::max(r.nodal_max, z);
+    if (model.anchor_kd[i] > 0) {  // an anchor's reduced mass is m_i
+      const double zd = model.anchor_kd[i] / (2 * std::sqrt(model.mass[i] * model.anchor_kappa[i]));
+      ++r.dashpots;
+      r.dashpot_min = std::min(r.dashpot_min, zd);
+      r.dashpot_max = std::max(r.dashpot_max, zd);
+    }
+  }
+  for (size_t k = 0; k < model.springs.size(); ++k) {
+    if (!(model.spring_kd[k] > 0)) continue;
+    const Spring& s = model.springs[k];
+    const size_t i = static_cast<size_t>(s.i), j = static_cast<size_t>(s.j);
+    if (model.fixed[i] && model.fixed[j]) continue;
+    const double mu = model.fixed[i]   ? model.mass[j]
+                      : model.fixed[j] ? model.mass[i]
+                                       : model.mass[i] * model.mass[j] / (model.mass[i] + model.mass[j]);
+    const double zd = model.spring_kd[k] / (2 * std::sqrt(mu * model.spring_kappa[k]));
+    ++r.dashpots;
+    r.dashpot_min = std::min(r.dashpot_min, zd);
+    r.dashpot_max = std::max(r.dashpot_max, zd);
+  }
+  if (r.dashpots == 0) r.dashpot_min = 0;
+  if (!std::isfinite(r.nodal_min)) r.nodal_min = 0;
+  const StiffnessSpectrum sp = stiffness_spectrum(model, x);
+  r.lambda_min = sp.lambda_min;
+  r.lambda_max = sp.lambda_max;
+  auto zeta = [&](double lambda) {
+    return lambda > 0 ? (model.rayleigh_mass + model.rayleigh_stiffness * lambda) /
+                            (2 * std::sqrt(lambda))
+                      : (model.rayleigh_mass > 0 ? kInf : 0.0);
+  };
+  r.rayleigh_low = zeta(r.lambda_min);
+  r.rayleigh_high = zeta(r.lambda_max);
+  return r;
+}
+
+GeneralLimits general_limits(const Model& model, const std::vector<Vec3>& x, const Params& params) {
+  GeneralLimits g;
+  const double dt = params.dt;
+  const SparseMatrix A = mass_weighted(model, tangent_stiffness(model, x));
+  SparseMatrix Cp = weighted_damping(model, x, std::vector<double>(model.rest.size(), 0.0));
+  // The nodal part per unit user gamma: gamma_scale_i / m_i on node i's rows.
+  std::vector<double> unit(model.rest.size());
+  for (size_t i = 0; i < unit.size(); ++i) unit[i] = model.gamma_scale[i];
+  const SparseMatrix G = weighted_damping(model, x, unit) - Cp;
+  const auto index = [&](double gamma, double h) {
+    const SparseMatrix S = (h * h) * A + (2 * h) * (Cp + gamma * G);
+    return largest_eigenvalue(S);
+  };
+  g.index = index(params.gamma, dt);
+  g.damping_min = smallest_eigenvalue(Cp + params.gamma * G);
+  // Commuting: no dashpot, and gamma_i / m_i the same at every free node.
+  bool dashpot = false;
+  for (double kd : model.spring_kd) dashpot = dashpot || kd != 0;
+  for (double kd : model.anchor_kd) dashpot = dashpot || kd != 0;
+  double rate = -1;
+  bool uniform = true;
+  for (size_t i = 0; i < model.rest.size(); ++i) {
+    if (model.fixed[i]) continue;
+    const double c = model.gamma_scale[i] / model.mass[i];
+    if (rate < 0) rate = c;
+    uniform = uniform && c == rate;
+  }
+  g.commuting = !dashpot && uniform && rate > 0;
+  if (g.commuting) {
+    // c(lambda) = gamma/m + alpha + beta lambda; the binding mode is lambda_max.
+    const double lmax = largest_eigenvalue(A);
+    const double m = 1.0 / rate;  // m_i / gamma_scale_i
+    const double alpha = model.rayleigh_mass, beta = model.rayleigh_stiffness;
+    g.gamma_max = 2 * m / dt - m * lmax * dt / 2 - m * alpha - m * beta * lmax;
+    g.dt_max = semi_implicit_dt_max(lmax, params.gamma * rate + alpha + beta * lmax);
+    return g;
+  }
+  // General C^: the index grows with gamma and with dt (A, C^ positive semi-definite).
+  const auto bisect = [](auto&& stable, double lo, double hi) {
+    for (int k = 0; k < 200 && hi - lo > 1e-10 * hi; ++k) {
+      const double mid = 0.5 * (lo + hi);
+      (stable(mid) ? lo : hi) = mid;
+    }
+    return lo;
+  };
+  if (!(index(0, dt) < 4)) {
+    g.gamma_max = 0;
+  } else {
+    double hi = 1;
+    for (int k = 0; k < 200 && index(hi, dt) < 4; ++k) hi *= 2;
+    g.gamma_max = bisect([&](double gm) { return index(gm, dt) < 4; }, 0, hi);
+  }
+  double hi = dt;
+  for (int k = 0; k < 200 && index(params.gamma, hi) < 4; ++k) hi *= 2;
+  double lo = hi;
+  for (int k = 0; k < 200 && !(index(params.gamma, lo) < 4); ++k) lo /= 2;
+  g.dt_max = bisect([&](double h) { return index(params.gamma, h) < 4; }, lo, std::max(hi, lo * 2));
+  return g;
+}
+
+}  // namespace dampbound

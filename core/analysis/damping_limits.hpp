@@ -1,0 +1,36 @@
+#pragma once
+// SPEC 10's damping ratios and the exact limits of the paper's step with a general damping
+// matrix C = Gamma + C' (dashpots, Rayleigh): stable iff lambda_max(dt^2 A + 2 dt C^) < 4 when
+// K is positive semi-definite and C^ positive definite; the Rayleigh closed forms where C^
+// commutes with A (no dashpot, uniform gamma_i / m_i).
+#include <vector>
+
+#include "core/model.hpp"
+
+namespace dampbound {
+
+/// Damping ratios (SPEC 10) at positions x.
+struct DampingRatios {
+  double nodal_min = 0, nodal_max = 0;      ///< gamma_i / (2 sqrt(m_i kappa_i)), free nodes
+  int dashpots = 0;                         ///< springs and anchors with kd > 0
+  double dashpot_min = 0, dashpot_max = 0;  ///< kd_ij / (2 sqrt(mu_ij kappa_ij))
+  double lambda_min = 0, lambda_max = 0;    ///< ends of the spectrum of M^-1 K (1/s^2)
+  double rayleigh_low = 0, rayleigh_high = 0;  ///< (alpha + beta lambda) / (2 sqrt(lambda)) there
+};
+DampingRatios damping_ratios(const Model& model, const std::vector<Vec3>& x);
+
+/// The exact limits of the paper's step with the model's damping (SPEC 10).
+struct GeneralLimits {
+  double index = 0;       ///< lambda_max(dt^2 A + 2 dt C^) at the model's gamma_i; stable below 4
+  bool commuting = false; ///< C^ commutes with A: the Rayleigh closed forms were used
+  double gamma_max = 0;   ///< the user's gamma below which the step is stable (may be <= 0)
+  double dt_max = 0;      ///< the largest stable dt at the model's damping (s)
+  double damping_min = 0; ///< lambda_min(C^) (1/s): <= 0 leaves modes undamped (marginal)
+};
+
+/// Limits at positions x for step params.dt; gamma_i = gamma * gamma_scale_i. Dense or
+/// certified sparse eigenvalues (linear_stability.hpp); the general case bisects the index in
+/// gamma and in dt (each step one eigenvalue), to 1e-10 relative.
+GeneralLimits general_limits(const Model& model, const std::vector<Vec3>& x, const Params& params);
+
+}  // namespace dampbound

@@ -1,0 +1,175 @@
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "core/safe_bound.hpp"
+
+namespace dampbound {
+
+namespace {
+
+/// Spring k's blocks at x: K's B and C''s E = beta B + kd d d^T (both 3 x 3); false when
+/// the spring has no direction (SPEC 1).
+bool spring_blocks(const Model& model, const std::vector<Vec3>& x, size_t k, Eigen::Matrix3d& B,
+                   Eigen::Matrix3d& E) {
+  const Spring& s = model.springs[k];
+  const Vec3 delta = x[static_cast<size_t>(s.j)] - x[static_cast<size_t>(s.i)];
+  const double l = delta.norm();
+  if (!(l > 0)) return false;
+  const Vec3 d = delta / l;
+  const double ratio = s.rest_length / l, tension = 1.0 - ratio;
+  const Eigen::Matrix3d P = d * d.transpose();
+  B = model.spring_kappa[k] * (ratio * P + tension * Eigen::Matrix3d::Identity());
+  E = model.rayleigh_stiffness * B + model.spring_kd[k] * P;
+  return true;
+}
+
+}  // namespace
+
+DampedSafeRows::DampedSafeRows(const Model& model, const std::vector<Vec3>& x) : model_(model) {
+  const size_t n = model.rest.size();
+  diag_a_.assign(3 * n, 0);
+  diag_c_.assign(3 * n, 0);
+  offset_.assign(3 * n + 1, 0);
+  // Node blocks (K_ii, C'_ii) and, per row, the neighbours' entries, node by node.
+  std::vector<Entry> row_entries[3];
+  Eigen::Matrix3d B, E;
+  for (size_t i = 0; i < n; ++i) {
+    for (auto& r : row_entries) r.clear();
+    if (!model.fixed[i]) {
+      const double m = model.mass[i];
+      Eigen::Matrix3d Ka = model.anchor_kappa[i] * Eigen::Matrix3d::Identity();
+      Eigen::Matrix3d Kc = (model.rayleigh_stiffness * model.anchor_kappa[i] + model.anchor_kd[i]) *
+                           Eigen::Matrix3d::Identity();
+      for (int e = model.incident_offset[i]; e < model.incident_offset[i + 1]; ++e) {
+        const int code = model.incident[static_cast<size_t>(e)];
+        const size_t k = static_cast<size_t>(code >= 0 ? code : ~code);
+        if (!spring_blocks(model, x, k, B, E)) continue;
+        Ka += B;
+        Kc += E;
+        const Spring& s = model.springs[k];
+        const size_t j = static_cast<size_t>(code >= 0 ? s.j : s.i);
+        if (model.fixed[j]) continue;
+        const double w = 1.0 / std::sqrt(m * model.mass[j]);
+        for (int r = 0; r < 3; ++r)
+          for (int c = 0; c < 3; ++c) row_entries[r].push_back({-B(r, c) * w, -E(r, c) * w});
+      }
+      for (int r = 0; r < 3; ++r) {
+        diag_a_[3 * i + r] = Ka(r, r) / m;
+        diag_c_[3 * i + r] = model.rayleigh_mass + Kc(r, r) / m;
+        for (int c = 0; c < 3; ++c)
+          if (c != r) row_entries[r].push_back({Ka(r, c) / m, Kc(r, c) / m});
+      }
+    }
+    for (int r = 0; r < 3; ++r) {
+      entries_.insert(entries_.end(), row_entries[r].begin(), row_entries[r].end());
+      offset_[3 * i + r + 1] = static_cast<int>(entries_.size());
+    }
+  }
+}
+
+double DampedSafeRows::gamma_safe(int node, double dt) const {
+  const size_t i = static_cast<size_t>(node);
+  double margin = std::numeric_limits<double>::infinity();
+  for (size_t r = 3 * i; r < 3 * i + 3; ++r) {
+    double off = 0;
+    for (int e = offset_[r]; e < offset_[r + 1]; ++e) {
+      const Entry& q = entries_[static_cast<size_t>(e)];
+      off += std::abs(2 * dt * q.c + dt * dt * q.a);
+    }
+    margin = std::min(margin, 4 - 2 * dt * diag_c_[r] - dt * dt * diag_a_[r] - off);
+  }
+  return model_.mass[i] / (2 * dt) * margin;
+}
+
+double DampedSafeRows::dt_safe(int node, double gamma) const {
+  const size_t i = static_cast<size_t>(node);
+  const double rate = gamma / model_.mass[i];
+  double best = std::numeric_limits<double>::infinity();
+  for (size_t r = 3 * i; r < 3 * i + 3; ++r) {
+    // margin(dt) = 4 - dt (P + Q dt) on each interval between the dt where an entry
+    // 2 dt c + dt^2 a changes sign (dt = -2c/a > 0); first root of Q dt^2 + P dt = 4.
+    std::vector<double> cuts{0.0};
+    for (int e = offset_[r]; e < offset_[r + 1]; ++e) {
+      const Entry& q = entries_[static_cast<size_t>(e)];
+      if (q.a != 0 && -2 * q.c / q.a > 0) cuts.push_back(-2 * q.c / q.a);
+    }
+    std::sort(cuts.begin(), cuts.end());
+    cuts.push_back(std::numeric_limits<double>::infinity());
+    for (size_t p = 0; p + 1 < cuts.size() && cuts[p] < best; ++p) {
+      const double lo = cuts[p], hi = cuts[p + 1];
+      const double mid = std::isinf(hi) ? (lo > 0 ? 2 * lo : 1.0) : 0.5 * (lo + hi);
+      double P = 2 * (rate + diag_c_[r]), Q = diag_a_[r];
+      for (int e = offset_[r]; e < offset_[r + 1]; ++e) {
+        const Entry& q = entries_[static_cast<size_t>(e)];
+        const double sign = (2 * q.c + mid * q.a) < 0 ? -1.0 : 1.0;
+        P += sign * 2 * q.c;
+        Q += sign * q.a;
+      }
+      // smallest root of Q t^2 + P t - 4 = 0 in [lo, hi]
+      double root = std::numeric_limits<double>::infinity();
+      if (Q == 0) {
+        if (P > 0) root = 4 / P;
+      } else {
+        const double disc = P * P + 16 * Q;
+        if (disc >= 0) {
+          const double s = std::sqrt(disc);
+          const double r1 = (-P - s) / (2 * Q), r2 = (-P + s) / (2 * Q);
+          for (double t : {std::min(r1, r2), std::max(r1, r2)})
+            if (t >= lo && t <= hi && t > 0) {
+              root = t;
+              break;
+            }
+        }
+      }
+      if (root <= hi) {
+        best = std::min(best, root);
+        break;
+      }
+    }
+  }
+  return best;
+}
+
+}  // namespace dampbound
+
+namespace dampbound {
+
+void damped_safe_gammas(const Model& model, const std::vector<Vec3>& x, double dt,
+                        std::vector<double>& gamma_safe) {
+  const size_t n = model.rest.size();
+  gamma_safe.assign(n, std::numeric_limits<double>::infinity());
+  Eigen::Matrix3d B, E;
+  for (size_t i = 0; i < n; ++i) {
+    if (model.fixed[i]) continue;
+    const double m = model.mass[i];
+    Eigen::Matrix3d Ka = model.anchor_kappa[i] * Eigen::Matrix3d::Identity();
+    Eigen::Matrix3d Kc = (model.rayleigh_stiffness * model.anchor_kappa[i] + model.anchor_kd[i]) *
+                         Eigen::Matrix3d::Identity();
+    double off[3] = {0, 0, 0};  // added in DampedSafeRows' entry order: neighbours, then own block
+    for (int e = model.incident_offset[i]; e < model.incident_offset[i + 1]; ++e) {
+      const int code = model.incident[static_cast<size_t>(e)];
+      const size_t k = static_cast<size_t>(code >= 0 ? code : ~code);
+      if (!spring_blocks(model, x, k, B, E)) continue;
+      Ka += B;
+      Kc += E;
+      const Spring& s = model.springs[k];
+      const size_t j = static_cast<size_t>(code >= 0 ? s.j : s.i);
+      if (model.fixed[j]) continue;
+      const double w = 1.0 / std::sqrt(m * model.mass[j]);
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c)
+          off[r] += std::abs(2 * dt * (-E(r, c) * w) + dt * dt * (-B(r, c) * w));
+    }
+    double margin = std::numeric_limits<double>::infinity();
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 3; ++c)
+        if (c != r) off[r] += std::abs(2 * dt * (Kc(r, c) / m) + dt * dt * (Ka(r, c) / m));
+      const double diag_c = model.rayleigh_mass + Kc(r, r) / m, diag_a = Ka(r, r) / m;
+      margin = std::min(margin, 4 - 2 * dt * diag_c - dt * dt * diag_a - off[r]);
+    }
+    gamma_safe[i] = m / (2 * dt) * margin;
+  }
+}
+
+}  // namespace dampbound

@@ -1,0 +1,176 @@
+// SPEC 10's exact limits and generalised safe bound against the dense amplification matrix of
+// the paper's step on small meshes with dashpots and Rayleigh damping.
+#include "core/analysis/damping_limits.hpp"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <random>
+
+#include "core/analysis/damping_matrix.hpp"
+#include "core/analysis/linear_stability.hpp"
+#include "core/safe_bound.hpp"
+
+namespace dampbound {
+namespace {
+
+/// An n x n plane (spacing 0.57, diagonals, anchors), masses and stiffnesses scaled at random.
+ModelSpec plane(int n, std::mt19937& rng, bool random_scales) {
+  std::uniform_real_distribution<double> u(0.5, 2.0);
+  ModelSpec s;
+  for (int a = 0; a < n; ++a)
+    for (int b = 0; b < n; ++b) {
+      const int i = add_node(s, Vec3(a * 0.57, 0, b * 0.57));
+      s.anchor_scale[static_cast<size_t>(i)] = 1;
+      if (random_scales) s.mass_scale[static_cast<size_t>(i)] = u(rng);
+    }
+  for (int a = 0; a < n; ++a)
+    for (int b = 0; b < n; ++b) {
+      const int i = a * n + b;
+      if (a + 1 < n) add_spring(s, i, i + n, random_scales ? u(rng) : 1.0);
+      if (b + 1 < n) add_spring(s, i, i + 1, random_scales ? u(rng) : 1.0);
+      if (a + 1 < n && b + 1 < n) add_spring(s, i, i + n + 1, random_scales ? u(rng) : 1.0);
+    }
+  if (random_scales)
+    for (Spring& sp : s.springs) sp.kd_scale = u(rng);
+  return s;
+}
+
+/// Spectral radius of the paper's step linearised at x with gamma_i given per node.
+double radius(const Model& model, const std::vector<Vec3>& x, const std::vector<double>& gamma,
+              double dt) {
+  const Eigen::MatrixXd K = Eigen::MatrixXd(tangent_stiffness(model, x));
+  std::vector<double> zero(model.rest.size(), 0.0);
+  Eigen::MatrixXd C = Eigen::MatrixXd(spring_damping_matrix(model, x));
+  const long n = K.rows();
+  Eigen::VectorXd minv(n);
+  for (size_t i = 0, b = 0; i < model.rest.size(); ++i) {
+    if (model.fixed[i]) continue;
+    for (int r = 0; r < 3; ++r) {
+      minv(static_cast<long>(3 * b + r)) = 1 / model.mass[i];
+      C(static_cast<long>(3 * b + r), static_cast<long>(3 * b + r)) += gamma[i];
+    }
+    ++b;
+  }
+  const Eigen::MatrixXd I = Eigen::MatrixXd::Identity(n, n);
+  const Eigen::MatrixXd MK = minv.asDiagonal() * K, MC = minv.asDiagonal() * C;
+  Eigen::MatrixXd T(2 * n, 2 * n);
+  // v' = (I - dt M^-1 C) v - dt M^-1 K x;  x' = x + dt v'
+  T.topLeftCorner(n, n) = I - dt * dt * MK;
+  T.topRightCorner(n, n) = dt * (I - dt * MC);
+  T.bottomLeftCorner(n, n) = -dt * MK;
+  T.bottomRightCorner(n, n) = I - dt * MC;
+  return T.eigenvalues().cwiseAbs().maxCoeff();
+}
+
+std::vector<double> scaled(const Model& model, double gamma) {
+  std::vector<double> g(model.rest.size());
+  for (size_t i = 0; i < g.size(); ++i) g[i] = gamma * model.gamma_scale[i];
+  return g;
+}
+
+TEST(DampingLimits, ExactLimitsMatchTheDenseAmplificationMatrix) {
+  std::mt19937 rng(3);
+  struct Case {
+    double kd, alpha, beta;
+    bool random;
+  } cases[] = {{0.002, 0, 0, false}, {0.002, 0.1, 0.01, true}, {0, 0.2, 0.05, false},
+               {0.01, 0, 0.02, true}};
+  for (const Case& c : cases) {
+    Params p;
+    p.kd = c.kd;
+    p.rayleigh_mass = c.alpha;
+    p.rayleigh_stiffness = c.beta;
+    p.gamma = 0.001;
+    const Model model = compile_model(plane(4, rng, c.random), p);
+    const std::vector<Vec3> x = model.rest;
+    const GeneralLimits g = general_limits(model, x, p);
+    ASSERT_GT(g.dt_max, 0);
+    EXPECT_LE(radius(model, x, scaled(model, p.gamma), g.dt_max * 0.999), 1 + 1e-9);
+    EXPECT_GT(radius(model, x, scaled(model, p.gamma), g.dt_max * 1.001), 1 + 1e-6);
+    if (g.gamma_max > 0) {
+      EXPECT_LE(radius(model, x, scaled(model, g.gamma_max * 0.999), p.dt), 1 + 1e-9);
+      EXPECT_GT(radius(model, x, scaled(model, g.gamma_max * 1.001), p.dt), 1 + 1e-6);
+    }
+  }
+}
+
+TEST(DampingLimits, TheIssuesPlaneNumbers) {
+  // 8 x 8 paper plane, m = kappa = 0.001: kd = 0.002 alone, against nodal gamma = 0.002.
+  std::mt19937 rng(1);
+  Params p;
+  p.gamma = 0;
+  p.kd = 0.002;
+  const Model dashpot = compile_model(plane(8, rng, false), p);
+  EXPECT_NEAR(general_limits(dashpot, dashpot.rest, p).dt_max, 0.1289, 5e-4);
+}
+
+TEST(DampingLimits, SafeBoundHoldsOnRandomMeshes) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(0, 1);
+  for (int trial = 0; trial < 20; ++trial) {
+    Params p;
+    p.kd = 0.01 * u(rng);
+    p.rayleigh_mass = 0.5 * u(rng);
+    p.rayleigh_stiffness = 0.05 * u(rng);
+    p.dt = 0.02 + 0.3 * u(rng);
+    const Model model = compile_model(plane(3, rng, true), p);
+    std::vector<Vec3> x = model.rest;
+    for (Vec3& xi : x) xi += 0.05 * Vec3(u(rng), u(rng), u(rng));  // stretched and sheared
+    const DampedSafeRows rows(model, x);
+    std::vector<double> gamma(model.rest.size());
+    bool feasible = true;
+    for (size_t i = 0; i < gamma.size(); ++i) {
+      const double safe = rows.gamma_safe(static_cast<int>(i), p.dt);
+      feasible = feasible && safe > 0;
+      gamma[i] = safe * u(rng);  // the safe policy keeps gamma_i below gamma_safe_i
+    }
+    if (!feasible || psd_floor(model, x) == std::nullopt) continue;
+    EXPECT_LE(radius(model, x, gamma, p.dt), 1 + 1e-9) << "trial " << trial;
+    // dt_safe at those gammas: every node holds, so the step is stable there too.
+    double dt = 1e300;
+    for (size_t i = 0; i < gamma.size(); ++i) dt = std::min(dt, rows.dt_safe(static_cast<int>(i), gamma[i]));
+    EXPECT_GE(dt, p.dt * (1 - 1e-12));
+    EXPECT_LE(radius(model, x, gamma, dt * 0.999), 1 + 1e-9) << "trial " << trial;
+  }
+}
+
+TEST(DampingLimits, ZeroDampingKeepsSpec9) {
+  std::mt19937 rng(5);
+  Params p;
+  const Model model = compile_model(plane(3, rng, true), p);
+  EXPECT_FALSE(model.spring_damping);
+  std::vector<double> R;
+  safe_row_sums(model, model.rest, R);
+  const DampedSafeRows rows(model, model.rest);
+  for (size_t i = 0; i < R.size(); ++i) {
+    EXPECT_NEAR(rows.gamma_safe(static_cast<int>(i), p.dt), safe_gamma(model.mass[i], p.dt, R[i]),
+                1e-12 * model.mass[i] / p.dt);
+    EXPECT_NEAR(rows.dt_safe(static_cast<int>(i), 0.002), safe_dt(model.mass[i], 0.002, R[i]), 1e-12);
+  }
+}
+
+}  // namespace
+}  // namespace dampbound
+
+namespace dampbound {
+namespace {
+
+TEST(DampingLimits, StepsOnePassEqualsTheRows) {
+  std::mt19937 rng(17);
+  Params p;
+  p.kd = 0.003;
+  p.rayleigh_mass = 0.2;
+  p.rayleigh_stiffness = 0.01;
+  const Model model = compile_model(plane(4, rng, true), p);
+  std::vector<Vec3> x = model.rest;
+  for (Vec3& xi : x) xi += Vec3(0.03, -0.02, 0.01);
+  x[5] += Vec3(0.1, 0.2, -0.1);
+  std::vector<double> g;
+  damped_safe_gammas(model, x, p.dt, g);
+  const DampedSafeRows rows(model, x);
+  for (size_t i = 0; i < g.size(); ++i) EXPECT_EQ(g[i], rows.gamma_safe(static_cast<int>(i), p.dt));
+}
+
+}  // namespace
+}  // namespace dampbound
