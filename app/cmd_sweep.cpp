@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -32,19 +33,26 @@ std::atomic<bool> g_interrupted{false};
 
 /// The output's lock, <output>.lock, held (flock) for the whole run: a second sweep on the same
 /// output, resumed or not, is refused while the first holds it. The kernel lets go when the
-/// process ends, killed or not.
+/// process ends, killed or not (a killed sweep leaves the empty file, which the next takes).
 class OutputLock {
  public:
   explicit OutputLock(const std::string& output) : path_(output + ".lock") {
     fd_ = ::open(path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
     if (fd_ < 0) throw InputError("-o: cannot create the lock file " + path_);
-    if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+    // Locked, and still the file at that path (a sweep ending unlinks it, see below).
+    struct stat at {}, held {};
+    if (::flock(fd_, LOCK_EX | LOCK_NB) != 0 || ::stat(path_.c_str(), &at) != 0 ||
+        ::fstat(fd_, &held) != 0 || at.st_ino != held.st_ino || at.st_dev != held.st_dev) {
       ::close(fd_);
       throw InputError("-o: another dampbound sweep is writing " + output + " (it holds " + path_ +
                        "); wait for it to finish or stop it, then run again (--resume continues it)");
     }
   }
-  ~OutputLock() { ::close(fd_); }
+  /// Removed while still held, so a sweep leaves no file beside its output.
+  ~OutputLock() {
+    ::unlink(path_.c_str());
+    ::close(fd_);
+  }
   OutputLock(const OutputLock&) = delete;
   OutputLock& operator=(const OutputLock&) = delete;
 
