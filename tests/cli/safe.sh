@@ -9,7 +9,7 @@ expect_match "$OUT" 'critical damping +guaranteed at every free node' "critical 
 expect_match "$OUT" '^safe damping bound +0\.039775 mass unit/s +within' "criteria row"
 expect_match "$OUT" '^safe check: critical damping +0 nodes +within' "criteria row: check"
 expect_exit 0 "$DB" bounds paper-plane --m 0.001 --kappa 0.001 --dt 0.05 --gamma 0
-expect_match "$OUT" 'safe step \(SPEC 9\) +dt_safe = 0\.66667 at gamma = 0, node [0-9]+, exact limit 0\.71555, ratio 0\.93168' "dt_safe"
+expect_match "$OUT" 'safe step \(SPEC 9\) +dt_safe = 0\.66667 at gamma = 0 \(zeta 0\), node [0-9]+, exact limit 0\.71555, ratio 0\.93168' "dt_safe"
 # The middle square damped 3x (gamma_i = 3 gamma there): gamma_safe is the user's gamma, a
 # third of the square's gamma_safe_i, just under the exact limit (it was 3x above it).
 cat >"$WORK/damped-region.toml" <<'EOF2'
@@ -62,10 +62,13 @@ expect_match "$(head -1 "$WORK/trace.csv")" ',safe_bound,unguaranteed,compressed
 # The watched node is the perturbed one: its springs are stretched, so R is above 9 kappa/m
 # and gamma_safe below 0.039775; the policy damps it at exactly its gamma_safe.
 row=$(sed -n 2p "$WORK/trace.csv")
+column() { head -1 "$WORK/trace.csv" | tr , '\n' | grep -nx "$1" | cut -d: -f1; }
+eff=$(column gamma_effective)
+safe=$(column safe_bound)
 expect_match "$row" '^1,0\.05,' "trace: first row"
-[ "$(echo "$row" | cut -d, -f7)" = "$(echo "$row" | cut -d, -f13)" ] && ok ||
+[ "$(echo "$row" | cut -d, -f"$eff")" = "$(echo "$row" | cut -d, -f"$safe")" ] && ok ||
   bad "trace: effective gamma is the watched node's gamma_safe: $row"
-expect_match "$(echo "$row" | cut -d, -f13)" '^0\.0396' "trace: gamma_safe at the perturbed state"
+expect_match "$(echo "$row" | cut -d, -f"$safe")" '^0\.0396' "trace: gamma_safe at the perturbed state"
 expect_exit 0 "$DB" run paper-plane --policy safe --gamma 1
 expect_match "$OUT" 'safe bound +critical damping not guaranteed in 0 node-steps' "run text"
 
