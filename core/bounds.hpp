@@ -1,12 +1,13 @@
 #pragma once
 // The paper's damping bounds (eqs. 5, 6), the runtime check (sec. 5) and the damping
 // policies (sec. 5, "Dynamic damping"; SPEC 3-4).
+#include "core/export.hpp"
 #include <cstdint>
 #include <limits>
 
 #include "core/model.hpp"
 
-namespace dampbound {
+namespace dampbound DAMPBOUND_API {
 
 /// Paper eq. 5: gamma_lo = 2 sqrt(m kappa) (mass unit / s).
 double lower_bound(double m, double kappa);

@@ -4,10 +4,11 @@
 // precondition of an API call (an array of the wrong size, an index out of range) throws
 // std::invalid_argument or std::out_of_range as the standard library does; a question that
 // may have no answer returns std::optional. No error codes, no "empty string means OK".
+#include "core/export.hpp"
 #include <stdexcept>
 #include <string>
 
-namespace dampbound {
+namespace dampbound DAMPBOUND_API {
 
 /// Bad input: the message names the file and line, the flag or the parameter. The CLI prints
 /// it on one line and exits with code 2.

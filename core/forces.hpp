@@ -1,13 +1,14 @@
 #pragma once
 // The internal force F_i of paper eq. 6 (SPEC 1): spring and anchor forces only, no damping,
 // no external force.
+#include "core/export.hpp"
 #include <cstdint>
 #include <vector>
 
 #include "core/model.hpp"
 #include "core/node_threads.hpp"
 
-namespace dampbound {
+namespace dampbound DAMPBOUND_API {
 
 /// Threads and buffers of the spring loop (forces here, SPEC 9's row sums in safe_bound.hpp,
 /// both at once in step(): core/detail/spring_pass.hpp). Each thread owns a contiguous range

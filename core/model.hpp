@@ -4,13 +4,14 @@
 // file or built in code; compile_model() joins it with the user's uniform m, kappa, gamma into
 // a Model, complete and never changed afterwards. Every function downstream takes a
 // const Model&; a parameter change or a cut compiles a new one.
+#include "core/export.hpp"
 #include <Eigen/Core>
 #include <cstdint>
 #include <vector>
 
 #include "core/params.hpp"
 
-namespace dampbound {
+namespace dampbound DAMPBOUND_API {
 
 using Vec3 = Eigen::Vector3d;
 

@@ -6,6 +6,7 @@
 //
 // Units are the paper's: cm, s, and any consistent mass unit. Every function works for the
 // paper's step (semi-implicit Euler, SPEC 2): v += a dt, then x += v dt.
+#include "core/export.hpp"
 #include <Eigen/Core>
 #include <cstdint>
 #include <limits>
@@ -19,7 +20,7 @@
 #include "core/forces.hpp"
 #include "core/params.hpp"
 
-namespace dampbound {
+namespace dampbound DAMPBOUND_API {
 
 /// N x 3 doubles read in place: row i is node i's (x, y, z); rows `stride` doubles apart
 /// (3 when packed, e.g. an (N, 3) C-ordered NumPy array or a std::vector<std::array<double,3>>).

@@ -3,11 +3,12 @@
 // contiguous chunks, one per thread. Every loop it runs writes disjoint per-node outputs or
 // per-chunk partial results that the caller combines exactly (integer counts, max), so a
 // step gives the same bits on any number of threads.
+#include "core/export.hpp"
 #include <cstddef>
 #include <functional>
 #include <memory>
 
-namespace dampbound {
+namespace dampbound DAMPBOUND_API {
 
 class NodeThreads {
  public:

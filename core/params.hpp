@@ -1,11 +1,12 @@
 #pragma once
 // The user's parameters (paper eq. 1): mass m, stiffness kappa, damping gamma, time step dt,
 // and how the effective damping is chosen from gamma each step (SPEC 4).
+#include "core/export.hpp"
 #include <optional>
 #include <string>
 #include <vector>
 
-namespace dampbound {
+namespace dampbound DAMPBOUND_API {
 
 /// How the effective damping of node i at step t is chosen from the user's gamma (SPEC 4).
 enum class DampingPolicy {

@@ -2,6 +2,7 @@
 // The paper's experiment protocol (sec. 3, SPEC 5): perturb, step until restored, diverged,
 // or the iteration limit; and the settled rule (SPEC 8): step to the limit and judge whether
 // the run stayed below the restore threshold.
+#include "core/export.hpp"
 #include <array>
 #include <functional>
 #include <optional>
@@ -9,7 +10,7 @@
 
 #include "core/step.hpp"
 
-namespace dampbound {
+namespace dampbound DAMPBOUND_API {
 
 /// Which verdict a run gives (SPEC 8).
 enum class StopRule {

@@ -2,6 +2,7 @@
 // Scene descriptions (plain data) and their TOML file format (README "Scene files").
 // A scene is a topology with per-element scales, default parameters, a perturbation, stop
 // rules, the watched node, and optionally cuts, named runs and expectations.
+#include "core/export.hpp"
 #include <optional>
 #include <string>
 #include <vector>
@@ -9,7 +10,7 @@
 #include "core/model.hpp"
 #include "core/protocol.hpp"
 
-namespace dampbound {
+namespace dampbound DAMPBOUND_API {
 
 /// Moves a node away from rest and/or gives it a velocity at t = 0.
 struct Perturbation {

@@ -1,6 +1,7 @@
 #pragma once
 // A running experiment: a scene's model, its state, the parameters, the trace and the verdict.
 // The GUI, `run`, `figure` and `check` all drive a Session, and a Session calls the one step().
+#include "core/export.hpp"
 #include <memory>
 #include <optional>
 #include <string>
@@ -9,7 +10,7 @@
 #include "core/protocol.hpp"
 #include "core/scene.hpp"
 
-namespace dampbound {
+namespace dampbound DAMPBOUND_API {
 
 /// `scene` as a run of it has it at `iteration`, with `model`'s springs (the cuts made so
 /// far): the scene's cuts not reached yet, everything else as loaded (Session::current_scene).

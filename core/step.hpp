@@ -2,13 +2,14 @@
 // One step of the simulation: bounds from the state at t, the policy's effective damping,
 // then the integrator (paper eqs. 3-4 by default). Every mode (GUI, run, figure, check,
 // sweep tests) calls this one function.
+#include "core/export.hpp"
 #include <vector>
 
 #include "core/bounds.hpp"
 #include "core/forces.hpp"
 #include "core/model.hpp"
 
-namespace dampbound {
+namespace dampbound DAMPBOUND_API {
 
 /// Per-node values of the last step, kept between steps to avoid allocation; the GUI reads
 /// `status` to colour nodes.

@@ -4,6 +4,7 @@
 // solver (never a dense decomposition of a large mesh), and from it the exact damping
 // interval and the largest stable dt. Per-integrator mode analysis is in
 // linear_stability_modes.hpp; docs/criteria.md has the derivations.
+#include "core/export.hpp"
 #include <Eigen/SparseCore>
 #include <limits>
 #include <optional>
@@ -11,7 +12,7 @@
 
 #include "core/model.hpp"
 
-namespace dampbound {
+namespace dampbound DAMPBOUND_API {
 
 using SparseMatrix = Eigen::SparseMatrix<double>;
 

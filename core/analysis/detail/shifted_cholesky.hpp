@@ -32,7 +32,7 @@ class SupernodalLLT : public Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lo
 /// Factorisations of sigma I - A for a changing shift sigma, by CHOLMOD's supernodal
 /// Cholesky (fill-reducing ordering chosen by CHOLMOD: AMD or nested dissection): the
 /// pattern is analysed once; each shift is one numeric factorisation of -A + sigma I.
-/// CHOLMOD's own OpenMP loops run serially (detail/serial_openmp.hpp: 3x faster on 2 cores).
+/// CHOLMOD's own OpenMP loops run as teams of one (detail/serial_openmp.hpp).
 class ShiftedCholesky {
  public:
   explicit ShiftedCholesky(const SparseMatrix& A);
