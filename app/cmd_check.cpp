@@ -135,6 +135,11 @@ int run(const CheckArgs& a) {
     std::fflush(stdout);
     reports.push_back(std::move(rep));
   }
+  // Nothing judged is not a pass: a CI job pointed at the wrong folder must not stay green.
+  if (pass + fail == 0)
+    throw InputError("check: no [[expect]] table in the " + std::to_string(files.size()) +
+                     " scene file(s) given: add one (README, \"Scene files\") or "
+                     "point check at scenes that have them");
   if (!a.junit.empty())
     write_file_atomic(a.junit, [&](std::ostream& out) { write_junit(out, reports); });
   std::printf("check: %d passed, %d failed\n", pass, fail);
@@ -146,7 +151,8 @@ std::function<int()> setup(CLI::App& root) {
   CLI::App* cmd = root.add_subcommand(
       "check",
       "Run the [[expect]] tables of every scene under the given files or folders (default: the "
-      "shipped scenes/) headlessly; one line per expectation; exit 1 when any fails.");
+      "shipped scenes/) headlessly; one line per expectation; exit 1 when any fails, 2 when "
+      "there is none to run.");
   cmd->add_option("paths", a->paths, "scene files or folders (searched for *.toml)");
   cmd->add_option("--junit", a->junit, "also write the results as JUnit XML to this file");
   return [a] { return run(*a); };

@@ -66,4 +66,12 @@ expect_exit 1 "$DB" check "$WORK/broken.toml"
 expect_match "$OUT" 'broken.toml:1: missing' "broken scene reported"
 expect_exit 2 "$DB" check "$WORK/nothing-here"
 
+# Scenes with no expectation at all: nothing was checked, so exit 2 and no JUnit file.
+mkdir -p "$WORK/bare"
+cp "$SRC/scenes/two-node.toml" "$WORK/bare/"
+expect_exit 2 "$DB" check "$WORK/bare" --junit "$WORK/bare.xml"
+expect_one_line "$ERR" "no expectation"
+expect_match "$ERR" 'no \[\[expect\]\] table in the 1 scene file' "names what is missing"
+[ ! -e "$WORK/bare.xml" ] && ok || bad "a JUnit file was written for nothing checked"
+
 finish
