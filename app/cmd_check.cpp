@@ -107,7 +107,7 @@ int run(const CheckArgs& a) {
   const auto files = scene_files(paths);
   if (files.empty()) throw InputError("check: no .toml scene under the given paths");
   std::vector<SceneReport> reports;
-  int pass = 0, fail = 0;
+  int pass = 0, fail = 0, broken = 0;
   for (const std::string& file : files) {
     SceneReport rep;
     rep.file = file;
@@ -121,8 +121,11 @@ int run(const CheckArgs& a) {
     }
     rep.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (!rep.error.empty()) {
-      std::printf("FAIL  %s: %s\n", file.c_str(), rep.error.c_str());
-      ++fail;
+      // The reader's message already starts with the file (and line) it names.
+      const bool named = rep.error.rfind(file, 0) == 0;
+      std::printf("FAIL  %s%s%s\n", named ? "" : file.c_str(), named ? "" : ": ",
+                  rep.error.c_str());
+      ++broken;
     } else if (rep.results.empty()) {
       std::printf("----  %s: no expectations\n", file.c_str());
     }
@@ -136,13 +139,17 @@ int run(const CheckArgs& a) {
     reports.push_back(std::move(rep));
   }
   // Nothing judged is not a pass: a CI job pointed at the wrong folder must not stay green.
-  if (pass + fail == 0)
+  if (pass + fail + broken == 0)
     throw InputError("check: no [[expect]] table in the " + std::to_string(files.size()) +
                      " scene file(s) given: add one (README, \"Scene files\") or "
                      "point check at scenes that have them");
   if (!a.junit.empty())
     write_file_atomic(a.junit, [&](std::ostream& out) { write_junit(out, reports); });
   std::printf("check: %d passed, %d failed\n", pass, fail);
+  std::fflush(stdout);
+  if (broken > 0)
+    throw InputError("check: " + std::to_string(broken) +
+                     " scene file(s) not loaded: fix the FAIL lines above");
   return fail ? 1 : 0;
 }
 
@@ -152,7 +159,7 @@ std::function<int()> setup(CLI::App& root) {
       "check",
       "Run the [[expect]] tables of every scene under the given files or folders (default: the "
       "shipped scenes/) headlessly; one line per expectation; exit 1 when any fails, 2 when "
-      "there is none to run.");
+      "a scene file cannot be loaded or there is no expectation to run.");
   cmd->add_option("paths", a->paths, "scene files or folders (searched for *.toml)");
   cmd->add_option("--junit", a->junit, "also write the results as JUnit XML to this file");
   return [a] { return run(*a); };

@@ -60,10 +60,16 @@ for f in settled-word:12 left-first:13 bad-rule:12 restored-settled:13; do
   expect_match "$ERR" "$name\.toml:$line: " "$name names file and line"
 done
 
-# A malformed scene is a failure of check, reported with file and line.
+# A malformed scene is bad input (exit 2), reported with its file named once, and line.
 printf '[grid]\nnx = 2\n' >"$WORK/broken.toml"
-expect_exit 1 "$DB" check "$WORK/broken.toml"
-expect_match "$OUT" 'broken.toml:1: missing' "broken scene reported"
+expect_exit 2 "$DB" check "$WORK/broken.toml"
+expect_match "$OUT" '^FAIL  [^ ]*broken.toml:1: missing' "broken scene reported"
+[ "$(grep '^FAIL' <<<"$OUT" | grep -o 'broken.toml' | wc -l)" = 1 ] && ok ||
+  bad "the broken scene's line names its file more than once: $OUT"
+# ... and so is an expectation that uses the settled rule's words without the rule.
+expect_exit 2 "$DB" check "$WORK/settled-word.toml"
+expect_one_line "$ERR" "not loaded"
+expect_match "$ERR" '1 scene file\(s\) not loaded' "says a scene was not loaded"
 expect_exit 2 "$DB" check "$WORK/nothing-here"
 
 # Scenes with no expectation at all: nothing was checked, so exit 2 and no JUnit file.
