@@ -31,7 +31,7 @@ void GuiApp::save_panel() {
   if (item::input_int("+- iterations", &save_.tolerance.iterations, 1, 10))
     save_.tolerance.iterations = std::max(0, save_.tolerance.iterations);
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("The verdict's iteration may move this far (restored, diverged)");
+    ImGui::SetTooltip("Each asserted iteration may move this far, or 5 %% of it if more");
   ImGui::SetNextItemWidth(w);
   double f = save_.tolerance.displacement_factor;
   if (item::input_double("x final displacement", &f, 0.1, 1.0, "%.2f"))

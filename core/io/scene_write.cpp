@@ -232,8 +232,10 @@ Expectation expectation_for(const RunResult& r, const std::string& run,
   e.run = run;
   e.rule = rule;
   e.outcome = r.outcome;
-  const int k = std::max(0, tol.iterations);
-  auto range = [k](int value, std::optional<int>& lo, std::optional<int>& hi) {
+  auto range = [&tol](int value, std::optional<int>& lo, std::optional<int>& hi) {
+    const int k = std::max(
+        std::max(0, tol.iterations),
+        static_cast<int>(std::ceil(std::max(0.0, tol.iteration_fraction) * value)));
     lo = std::max(1, value - k);
     hi = value + k;
   };
