@@ -64,12 +64,12 @@ TEST(InverseLanczos, AShortLanczosThatCannotReachItsToleranceLeavesTheVectorUnto
   EXPECT_EQ(u, Eigen::VectorXd::Constant(3, 7.0));
 }
 
-TEST(InverseLanczos, SpectrasLanczosFindsTheEigenvalueNearestBelowTheShift) {
+TEST(InverseLanczos, SpectrasLanczosFindsTheTopEigenvectorFromItsOwnStartOrAGivenOne) {
   const SparseMatrix A = test::deformed_plane(12);
   const Dense d = dense(A);
   const Eigen::Index n = A.rows();
   const double top = d.values(n - 1);
-  {  // From Spectra's own start and from a given one.
+  {
     ShiftedCholesky f(A);
     ASSERT_TRUE(f.factor(top * 1.001));
     Eigen::VectorXd u;
@@ -81,8 +81,6 @@ TEST(InverseLanczos, SpectrasLanczosFindsTheEigenvalueNearestBelowTheShift) {
     EXPECT_NEAR(rayleigh(A, v), top, 1e-10 * top);
     EXPECT_GT(alignment(d, n - 1, v), 1 - 1e-8);
   }
-  // A shift inside the spectrum is not positive definite; the eigenvalue nearest below a
-  // shift is the one shift-and-invert finds, which the top-end callers never ask for here.
 }
 
 }  // namespace
