@@ -47,7 +47,8 @@ TEST(CriteriaUnfactored, NothingTriedGivesFourRowsWithTheReasonAndNoVerdict) {
   const auto rows = unfactored_criteria(e, params(Integrator::semi_implicit_euler, 0.1, 0.05));
   ASSERT_EQ(rows.size(), 4u);
   EXPECT_EQ(rows[0].name, "exact lambda_max of M^-1 K");
-  EXPECT_EQ(rows[3].name, std::string("exact dt limit (") + to_string(Integrator::semi_implicit_euler) + ")");
+  EXPECT_EQ(rows[3].name,
+            std::string("exact dt limit (") + to_string(Integrator::semi_implicit_euler) + ")");
   for (const auto& c : rows) {
     EXPECT_EQ(c.verdict, CriterionVerdict::not_applicable) << c.name;
     EXPECT_TRUE(std::isnan(c.value)) << c.name;

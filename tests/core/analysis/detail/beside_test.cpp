@@ -79,8 +79,8 @@ TEST(Beside, TheEstimateBesideGivesTheBitsOfOneThreadAndStopsWhenAsked) {
   EXPECT_EQ(e.steps, expected.steps);
   EXPECT_GT(calls, 30);
   int steps = 0;
-  const TopEstimate stopped =
-      estimate_beside(A, 2, [] { return false; }, [&] { return ++steps > 5; });
+  const TopEstimate stopped = estimate_beside(
+      A, 2, [] { return false; }, [&] { return ++steps > 5; });
   EXPECT_EQ(stopped.steps, 6);  // stop() is asked after each step
   EXPECT_EQ(stopped.alpha, std::vector<double>(expected.alpha.begin(), expected.alpha.begin() + 6));
 }

@@ -138,7 +138,9 @@ TEST(Lanczos, TheEstimateBracketsAnEigenvalueByItsResidualAndStopsOnItsTolerance
   const double nearest = (ev.array() - e.theta).abs().minCoeff();
   EXPECT_LE(nearest, e.residual * (1 + 1e-6) + 1e-12 * top);
   // The stop rule: the extrapolated error below the tolerance, and the true one of its order.
-  if (e.steps < n) { EXPECT_LT(e.error, 1e-9 * std::abs(e.theta)); }
+  if (e.steps < n) {
+    EXPECT_LT(e.error, 1e-9 * std::abs(e.theta));
+  }
   EXPECT_LT(top - e.theta, 1e-6 * top);
   // after_step false stops at once; max_steps caps the steps.
   LanczosRecurrence<double> a(A, 1), b(A, 1);

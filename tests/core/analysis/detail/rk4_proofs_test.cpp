@@ -83,7 +83,9 @@ TEST(Rk4Proofs, EveryStepUpToTheProvedOneIsStableForEveryModeAndItIsNearlyTheLar
       (worst_radius(lambda_hi, c, mid) <= kE1 ? lo : hi) = mid;
     }
     EXPECT_GE(S, 0.99 * lo) << c;
-    if (c == 0) { EXPECT_NEAR(S * std::sqrt(lambda_hi), 2 * std::sqrt(2.0), 1e-3); }
+    if (c == 0) {
+      EXPECT_NEAR(S * std::sqrt(lambda_hi), 2 * std::sqrt(2.0), 1e-3);
+    }
   }
 }
 
@@ -100,8 +102,8 @@ TEST(Rk4Proofs, TheRateRangeHoldsOnlyStableRatesAndContainsAProvedRate) {
     EXPECT_GE(lo, 0);
     for (int k = 0; k <= 100; ++k) {
       const double rate = lo + (hi - lo) * k / 100;
-      EXPECT_LE(worst_radius(lambda_hi, rate, h), kE1) << "lambda_hi " << lambda_hi << " rate "
-                                                       << rate;
+      EXPECT_LE(worst_radius(lambda_hi, rate, h), kE1)
+          << "lambda_hi " << lambda_hi << " rate " << rate;
     }
   }
   // Past the real interval's end (rate h = 2.9: z = -2.9 at lambda = 0) is unstable.
