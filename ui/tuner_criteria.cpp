@@ -1,6 +1,5 @@
 #include "ui/tuner_criteria.hpp"
 #include "core/analysis/criteria_safe.hpp"
-#include "ui/worker_priority.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -168,7 +167,6 @@ const ExactStability* TunerCriteria::exact(const Session& s, std::uint64_t topol
     job_ = std::async(
         std::launch::async, [model = s.shared_model(), x = std::move(x), params = s.params(),
                              iteration, at = at_, budget = factor_budget_] {
-          lower_worker_priority();
           const double t0 = seconds_now();
           Finished f;
           f.iteration = iteration;
@@ -260,7 +258,6 @@ void TunerSuggest::launch(std::shared_ptr<const SceneSpec> shared,
   pending_ = std::async(std::launch::async, [shared = std::move(shared), model = std::move(model),
                                              iteration, params, rules, cut,
                                              budget = factor_budget_] {
-    lower_worker_priority();
     // With a model: the scene as the run has it (Session::current_scene), built here.
     std::optional<SceneSpec> as_run;
     if (model) as_run = scene_as_run(*shared, *model, iteration);
