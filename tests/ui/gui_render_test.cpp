@@ -250,6 +250,8 @@ TEST(GuiRender, CriteriaAndSuggestTabs) {
   app.select_tab("Criteria");
   img = host.render_frames(1600, 1000, app.frame_fn(), 3);
   EXPECT_FALSE(app.tuner().criteria().empty());
+  // Every row at the default window size: the table does not scroll.
+  EXPECT_FALSE(app.criteria_rows_hidden());
   write_png_atomic(img, out_path("gui_criteria.png"));
   app.release_gl();
 }
