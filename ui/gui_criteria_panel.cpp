@@ -158,7 +158,14 @@ void GuiApp::suggest_panel() {
         "run of the mesh as it is now (with the cuts made so far).");
   if (suggest_.busy()) {
     ImGui::SameLine();
-    ImGui::TextDisabled("computing and verifying...");
+    if (item::small_button("Cancel")) suggest_.cancel();
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("Drop this computation (the last suggestion stays)");
+    ImGui::SameLine();
+    ImGui::TextDisabled("computing and verifying... %s s", fmt(suggest_.seconds()).c_str());
+  } else if (suggest_.cancelled()) {
+    ImGui::SameLine();
+    ImGui::TextDisabled("cancelled");
   }
   if (!suggest_.error().empty()) wrapped_colored(gui_red(), suggest_.error().c_str());
   if (!suggest_.result()) return;

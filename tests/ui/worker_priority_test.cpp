@@ -58,5 +58,25 @@ TEST(WorkerPriority, SuggestRunsAtTheFramesPriority) {
   EXPECT_TRUE(s.result().has_value()) << s.error();
 }
 
+TEST(TunerSuggestCancel, DropsTheComputationAtOnceAndKeepsTheLastResult) {
+  Tuner t(load_scene(std::string(DAMPBOUND_SOURCE_DIR) + "/scenes/paper-plane.toml"));
+  TunerSuggest s;
+  s.start(t.session());
+  ASSERT_TRUE(s.busy());
+  const auto t0 = std::chrono::steady_clock::now();
+  s.cancel();
+  EXPECT_FALSE(s.poll());
+  const double ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  EXPECT_LT(ms, 50.0) << "cancel waited for the worker";
+  EXPECT_FALSE(s.busy());
+  EXPECT_TRUE(s.cancelled());
+  EXPECT_FALSE(s.result().has_value());
+  s.start(t.session());  // a new one runs to its end
+  s.wait();
+  EXPECT_FALSE(s.cancelled());
+  EXPECT_TRUE(s.result().has_value()) << s.error();
+}
+
 }  // namespace
 }  // namespace dampbound::ui
