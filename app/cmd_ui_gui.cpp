@@ -35,6 +35,7 @@ struct GuiArgs {
   int frames = 0, steps_per_frame = 0;
   bool stats = false, play = false, demo = false;
   bool self_test = false;
+  bool export_unfinished = false;  ///< --export-unfinished
   std::vector<std::string> self_test_scenes, monkey_scenes = {"paper-plane", "tissue-block"};
   int monkey_events = 1000;
   std::uint64_t monkey_seed = 1;
@@ -231,16 +232,21 @@ int run(GuiArgs& a) {
     std::filesystem::current_path(self_test_dir);
     w.input = [&self_test] { self_test->input(ImGui::GetIO()); };
   }
+  app.set_export_unfinished(a.export_unfinished);
   ui::GlfwHost host(w);
   ui::CloseGuard guard(kCloseGrace, a.self_test ? kSelfTestHang : 0.0);
   guard.catch_signals();
   std::string export_message;
-  // Scripted pictures of the Map tab: its passes all finish before the last frame draws (the
-  // screenshot, the export). Without one nothing waits, so --stats times only the frames.
-  const bool map_picture = a.tab == "map" && (!a.screenshot.empty() || !a.export_dir.empty());
+  // Scripted (--frames), the Map and Suggest tabs compute as a person would have them: the
+  // Map starts when its tab is drawn, Suggest at the first frame as if its button was pressed,
+  // and the last frame waits for them (--stats counts the wait).
+  const bool map_wait = a.tab == "map" && a.frames > 0;
+  const bool suggest_scripted = a.tab == "suggest" && a.frames > 0;
   const ui::WindowRun run = host.run([&](ui::FrameInfo& info) {
     const bool last = info.index == a.frames - 1 && !info.layout_pass;
-    if (map_picture && last) app.map().wait();
+    if (suggest_scripted && info.index == 0 && !info.layout_pass) app.start_suggest();
+    if (map_wait && last) app.map().wait();
+    if (suggest_scripted && last) app.suggestions().wait();
     app.frame(info);
     if (!a.export_dir.empty() && last)
       export_message = app.export_plots(a.export_dir, a.export_prefix);
@@ -265,6 +271,19 @@ int run(GuiArgs& a) {
     ui::write_png_atomic(*run.screenshot, a.screenshot);
   }
   if (!export_message.empty()) std::fprintf(stderr, "gui: %s\n", export_message.c_str());
+  if (suggest_scripted) {  // what the tab shows, in one line
+    ui::TunerSuggest& sg = app.suggestions();
+    if (sg.busy())
+      std::fprintf(stderr, "gui: suggest did not finish by the last frame\n");
+    else if (!sg.error().empty())
+      std::fprintf(stderr, "gui: suggest failed: %s\n", sg.error().c_str());
+    else if (sg.result())
+      std::fprintf(stderr, "gui: suggest: gamma in [%s, %s), fastest settling at %s (dt %s)\n",
+                   format_digits(sg.result()->damping.gamma_min, 4).c_str(),
+                   format_digits(sg.result()->damping.gamma_max, 4).c_str(),
+                   format_digits(sg.result()->damping.gamma_best, 4).c_str(),
+                   format_digits(sg.result()->params.dt, 4).c_str());
+  }
   if (!a.save_scene.empty()) {
     std::vector<std::string> notes;
     const std::string saved = app.save_scene(a.save_scene, &notes);
@@ -323,6 +342,9 @@ std::function<int()> setup(CLI::App& root) {
                   "this folder, as the Export button does");
   cmd->add_option("--export-prefix", a->export_prefix, "file prefix of --export")
       ->capture_default_str();
+  cmd->add_flag("--export-unfinished", a->export_unfinished,
+                "--export and the Export button include the current run before its verdict "
+                "(by default it is exported only once it reached the limit, settled or diverged)");
   cmd->add_flag("--demo", a->demo,
                 "pin a run at a quarter of the lower bound and one at it before the first frame");
   cmd->add_flag("--self-test", a->self_test,

@@ -58,6 +58,7 @@ struct ScenePickerState {
 struct RunsPanelState {
   std::string pin_name;
   std::string export_dir, export_prefix;
+  bool export_unfinished = false;  ///< export the current run while it still runs
   ActionMessage export_result;
 };
 
@@ -112,6 +113,10 @@ class GuiApp {
   const std::vector<std::string>& scene_files() const { return scene_.files; }
   /// The folder the Export button writes to.
   void set_export_folder(const std::string& dir) { runs_.export_dir = dir; }
+  /// True when the Criteria table, last drawn, had rows below the fold (it scrolled).
+  bool criteria_rows_hidden() const { return criteria_rows_hidden_; }
+  /// Whether Export includes the current run before its verdict (the tab's checkbox).
+  void set_export_unfinished(bool on) { runs_.export_unfinished = on; }
   /// Starts the Suggest computation as the button does.
   void start_suggest();
   /// The Suggest computation, and the frame statistics of the window.
@@ -170,6 +175,7 @@ class GuiApp {
   TunerPlotOptions plot_options_;
   GuiLayout layout_;
   FrameMeter meter_;
+  bool criteria_rows_hidden_ = false;
   ScenePickerState scene_;
   RunsPanelState runs_;
   SavePanelState save_;

@@ -103,24 +103,45 @@ void GuiApp::criteria_panel() {
         ("No analysis at the static equilibrium: " + c.equilibrium_failure() + ".").c_str());
   const ImGuiTableFlags tf = ImGuiTableFlags_SizingStretchProp | ImGuiTableFlags_ScrollY |
                              ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerH;
-  if (!ImGui::BeginTable("criteria", 3, tf)) return;
+  // A narrow panel (the default layout's is about 390 px) shows one line per criterion, its
+  // test on hover: with the test wrapped beside it the exact-analysis rows fell below the fold.
+  const bool wide = ImGui::GetContentRegionAvail().x >= 34.0f * ImGui::GetFontSize();
+  if (!ImGui::BeginTable("criteria", wide ? 3 : 2, tf)) return;
   ImGui::TableSetupScrollFreeze(0, 1);
   ImGui::TableSetupColumn("criterion", ImGuiTableColumnFlags_WidthStretch, 1.0f);
   ImGui::TableSetupColumn("verdict", ImGuiTableColumnFlags_WidthFixed);
-  ImGui::TableSetupColumn("test", ImGuiTableColumnFlags_WidthStretch, 1.6f);
+  if (wide) ImGui::TableSetupColumn("test", ImGuiTableColumnFlags_WidthStretch, 1.6f);
   ImGui::TableHeadersRow();
   for (const CriterionResult& r : rows) {
     ImGui::TableNextRow();
     ImGui::TableNextColumn();
-    text_wrapped(r.name);
+    if (wide) {
+      text_wrapped(r.name);
+    } else {
+      const float w = ImGui::GetContentRegionAvail().x;
+      std::string base = r.name, name = r.name;  // shortened with "..." (UTF-8 safe)
+      while (base.size() > 1 && ImGui::CalcTextSize(name.c_str()).x > w) {
+        base.pop_back();
+        while (!base.empty() && (static_cast<unsigned char>(base.back()) & 0xC0) == 0x80)
+          base.pop_back();
+        name = base + "...";
+      }
+      ImGui::TextUnformatted(name.c_str());
+    }
+    const std::string test = shown_test(r, over_budget);
     if (ImGui::IsItemHovered())
-      ImGui::SetTooltip("%s\n%s\nvalue: %s %s", r.formula.c_str(), r.source.c_str(),
-                        fmt(r.value).c_str(), r.unit.c_str());
+      ImGui::SetTooltip("%s\n%s\n%s\nvalue: %s %s", wide ? r.name.c_str() : test.c_str(),
+                        r.formula.c_str(), r.source.c_str(), fmt(r.value).c_str(),
+                        r.unit.c_str());
     ImGui::TableNextColumn();
     ImGui::TextColored(verdict_color(r.verdict), "%s", to_string(r.verdict));
-    ImGui::TableNextColumn();
-    text_wrapped(shown_test(r, over_budget));
+    if (!wide && ImGui::IsItemHovered()) ImGui::SetTooltip("%s", test.c_str());
+    if (wide) {
+      ImGui::TableNextColumn();
+      text_wrapped(test);
+    }
   }
+  criteria_rows_hidden_ = ImGui::GetScrollMaxY() > 0.0f;
   ImGui::EndTable();
 }
 
@@ -137,7 +158,14 @@ void GuiApp::suggest_panel() {
         "run of the mesh as it is now (with the cuts made so far).");
   if (suggest_.busy()) {
     ImGui::SameLine();
-    ImGui::TextDisabled("computing and verifying...");
+    if (item::small_button("Cancel")) suggest_.cancel();
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("Drop this computation (the last suggestion stays)");
+    ImGui::SameLine();
+    ImGui::TextDisabled("computing and verifying... %s s", fmt(suggest_.seconds()).c_str());
+  } else if (suggest_.cancelled()) {
+    ImGui::SameLine();
+    ImGui::TextDisabled("cancelled");
   }
   if (!suggest_.error().empty()) wrapped_colored(gui_red(), suggest_.error().c_str());
   if (!suggest_.result()) return;

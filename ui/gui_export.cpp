@@ -86,17 +86,25 @@ Image render_plots_offscreen(const std::vector<PlotSpec>& plots, int columns, in
   return img;
 }
 
+std::vector<PlotSpec> export_plot_specs(Tuner& tuner, TunerPlotOptions options, bool current) {
+  options.full_traces = true;
+  options.show_current = current;
+  std::vector<PlotSpec> plots = {tuner_displacement_plot(tuner, options)};
+  if (current) plots.push_back(tuner_envelope_plot(tuner, options));
+  return plots;
+}
+
 std::string export_runs(Tuner& tuner, const std::vector<PlotSpec>& plots, const std::string& dir,
-                        const std::string& prefix) {
+                        const std::string& prefix, bool current) {
   const ExportPaths paths = export_paths(dir, prefix);
   std::error_code ec;
   if (!dir.empty()) std::filesystem::create_directories(dir, ec);
   const Image img = render_plots_offscreen(
       plots, 1, 1400, 500 * static_cast<int>(std::max<size_t>(plots.size(), 1)));
   write_png_atomic(img, paths.plots_png);
-  export_csv(tuner, paths);
+  export_csv(tuner, paths, current);
   return "wrote " + paths.plots_png + ", " + paths.traces_csv + ", " + paths.runs_csv + ", " +
-         paths.step_vtu;
+         paths.step_vtu + (current ? "" : " (the unfinished current run left out)");
 }
 
 }  // namespace dampbound::ui

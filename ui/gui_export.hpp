@@ -9,6 +9,7 @@
 #include "ui/image.hpp"
 #include "ui/plot_spec.hpp"
 #include "ui/tuner.hpp"
+#include "ui/tuner_plots.hpp"
 
 namespace dampbound::ui {
 
@@ -18,10 +19,16 @@ namespace dampbound::ui {
 Image render_plots_offscreen(const std::vector<PlotSpec>& plots, int columns, int width,
                              int height);
 
-/// Exports the tuner's plots (PNG, light figure style) and data (CSV) to DIR/PREFIX_*.
-/// Returns a one-line summary of what was written. Throws (InputError, std::runtime_error)
-/// with a one-line reason; nothing half-written is left behind.
+/// Exports the tuner's plots (PNG, light figure style) and data (CSV) to DIR/PREFIX_*, the
+/// current run in the CSVs only when `current`. Returns a one-line summary of what was
+/// written. Throws (InputError, std::runtime_error) with a one-line reason; nothing
+/// half-written is left behind.
 std::string export_runs(Tuner& tuner, const std::vector<PlotSpec>& plots, const std::string& dir,
-                        const std::string& prefix);
+                        const std::string& prefix, bool current = true);
+
+/// The plots an export draws: the displacement of every visible pin (and of the current run
+/// when `current`) from every step, as `figure` draws runs, and, with the current run, its
+/// damping bounds.
+std::vector<PlotSpec> export_plot_specs(Tuner& tuner, TunerPlotOptions options, bool current);
 
 }  // namespace dampbound::ui

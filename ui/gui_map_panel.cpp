@@ -69,12 +69,25 @@ void GuiApp::map_panel() {
     wrapped_colored(gui_amber(), ("no map: " + why).c_str());
     return;
   }
+  // Progress: the passes double the cells per axis from 8 up to the finest.
+  int passes = 1;
+  for (int c = 8; c < v.finest; c *= 2) ++passes;
+  const bool busy = map_.busy();
   if (r) {
     const int n = static_cast<int>(r->x_edges.size()) - 1;
     line = std::to_string(n) + " x " + std::to_string(n) + " trials, " + fmt(r->seconds) + " s" +
-           (map_.busy() ? ", refining..." : "");
+           (busy ? ", computing pass " + std::to_string(std::min(r->pass + 1, passes)) + " of " +
+                       std::to_string(passes) + "..."
+                 : r->finest ? "" : " (cancelled before the finest pass)");
   } else {
-    line = "computing the first pass...";
+    line = busy ? "computing pass 1 of " + std::to_string(passes) + "..." : "cancelled";
+  }
+  if (busy) {
+    if (item::small_button("Cancel")) map_.cancel();
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("Stop computing; the last finished pass stays.\nA change of the window "
+                        "or the parameters starts it again.");
+    ImGui::SameLine();
   }
   if (t.session().springs_cut() > 0) line += "  (the scene as loaded: hand cuts not included)";
   ImGui::TextDisabled("%s", line.c_str());

@@ -1,5 +1,6 @@
 #include "ui/gui_self_test.hpp"
 
+#include <algorithm>
 #include <filesystem>
 #include <utility>
 
@@ -101,9 +102,20 @@ bool SelfTest::plan_visit() {
   std::set<std::string> scene_stems;
   for (const std::string& f : app_.scene_files()) scene_stems.insert(stem(f));
   const ItemRecord* pick = nullptr;
-  for (int pass = 0; pass < 2 && pick == nullptr; ++pass) {
+  // Widgets first, then tabs. A Cancel clicked as soon as it shows would drop the computation
+  // whose result carries widgets of its own (Suggest's apply buttons): until those were
+  // operated it comes last, after them first (it shows only while the work runs).
+  const bool results_seen = std::any_of(report_.visited.begin(), report_.visited.end(),
+                                        [](const std::string& v) {
+                                          return v.find("'apply gamma'") != std::string::npos;
+                                        });
+  const auto pass_of = [&](const ItemRecord& r) {
+    if (r.kind == ItemKind::button && r.label == "Cancel") return results_seen ? 0 : 3;
+    return r.kind == ItemKind::tab ? 2 : 1;
+  };
+  for (int pass = 0; pass < 4 && pick == nullptr; ++pass) {
     for (const ItemRecord& r : items) {
-      if (!r.enabled || (r.kind == ItemKind::tab) != (pass == 1)) continue;
+      if (!r.enabled || pass_of(r) != pass) continue;
       // The scene list's other entries would leave this scene: its own entry is clicked.
       if (r.kind == ItemKind::selectable && r.label != current && scene_stems.count(r.label) > 0)
         continue;

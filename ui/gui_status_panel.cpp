@@ -8,6 +8,7 @@
 #include "ui/gui_items.hpp"
 #include "ui/gui_app.hpp"
 #include "ui/gui_export.hpp"
+#include "ui/tuner_export.hpp"
 #include "ui/gui_widgets.hpp"
 #include "ui/mesh_style.hpp"
 #include "ui/plot.hpp"
@@ -57,16 +58,17 @@ void GuiApp::status_panel() {
                              : std::string("-"));
     row("divergence", r.outcome == Outcome::diverged ? at(r.iterations) : std::string("-"));
     const double thr = rules.restore_fraction * rules.reference;
-    row("max |x - X|", (last ? fmt(last->max_displacement) : std::string("0")) +
-                           " cm (band < " + fmt(thr) + ")");
+    // The state as it is now: at the perturbed start, after a drag or a perturbation, the
+    // last step's numbers are not it.
+    row("max |x - X|", fmt(tuner_->max_displacement_now()) + " cm (band < " + fmt(thr) + ")");
     const int w = s.watched();
     const NodeStatus ns = w < static_cast<int>(s.workspace().status.size())
                               ? s.workspace().status[static_cast<size_t>(w)]
                               : NodeStatus::within;
     const ImVec4 wc = ImGui::ColorConvertU32ToFloat4(status_color(ns));
     row("watched node", "#" + std::to_string(w) + ", " + status_label(ns), &wc);
+    row("  |x - X|", fmt(tuner_->watched_displacement_now()) + " cm");
     if (last != nullptr) {
-      row("  |x - X|", fmt(last->watched.displacement) + " cm");
       row("  bounds", fmt(last->watched.lower) + " .. " + fmt(last->watched.upper));
       row("  gamma",
           fmt(last->watched.gamma) + " (effective " + fmt(last->watched.gamma_eff) + ")");
@@ -158,14 +160,20 @@ void GuiApp::runs_panel() {
     ImGui::SetTooltip(
         "Writes PREFIX_plots.png, PREFIX_traces.csv (one row per run and\n"
         "iteration) and PREFIX_runs.csv (one row per run), each atomically");
+  same_line_if_fits(checkbox_width("unfinished current run"));
+  item::checkbox("unfinished current run", &runs_.export_unfinished);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip(
+        "Export the current run before its verdict too (it is always\n"
+        "exported once it reached the limit, settled or diverged)");
   if (!runs_.export_result.text.empty()) ImGui::SameLine();
   runs_.export_result.show();
 }
 
 std::string GuiApp::export_plots(const std::string& dir, const std::string& prefix) {
-  const std::vector<PlotSpec> plots = {tuner_displacement_plot(*tuner_, plot_options_),
-                                       tuner_envelope_plot(*tuner_, plot_options_)};
-  return export_runs(*tuner_, plots, dir, prefix);
+  const bool current = export_includes_current(*tuner_, runs_.export_unfinished);
+  return export_runs(*tuner_, export_plot_specs(*tuner_, plot_options_, current), dir, prefix,
+                     current);
 }
 
 void GuiApp::plots_envelope() {

@@ -45,6 +45,9 @@ void MeshView::handle_input(Tuner& tuner, const Viewport& vp, bool hovered) {
   const Session& s = tuner.session();
   const Mat4f vpm = camera_.view_projection(vp.aspect());
   if (hovered && io.MouseWheel != 0.0f) camera_.zoom(io.MouseWheel);
+  // A drag starts at the press: the pointer's motion in the frame of the press came before it
+  // (xdotool's "mousemove X Y click 1" jumps and presses in one frame) and moves nothing.
+  const bool pressed_now = drag_ == Drag::none;
   if (drag_ == Drag::none && hovered) {
     if (ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
       drag_distance_ = 0.0f;
@@ -64,7 +67,8 @@ void MeshView::handle_input(Tuner& tuner, const Viewport& vp, bool hovered) {
     }
   }
   const ImVec2 d = io.MouseDelta;
-  const bool moved = std::isfinite(d.x) && std::isfinite(d.y) && (d.x != 0.0f || d.y != 0.0f);
+  const bool moved = !pressed_now && std::isfinite(d.x) && std::isfinite(d.y) &&
+                     (d.x != 0.0f || d.y != 0.0f);
   if (moved && drag_ != Drag::none) drag_distance_ += std::abs(d.x) + std::abs(d.y);
   switch (drag_) {
     case Drag::none:

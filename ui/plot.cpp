@@ -116,16 +116,17 @@ struct PlotMetrics {
 
 }  // namespace
 
-PlotLayout layout_plot(ImVec2 top_left, ImVec2 size, const PlotSpec& spec,
-                       const PlotStyle& style) {
-  const PlotMetrics m(style);
+namespace {
+
+/// The axes and data area in `fr` with `right_w` pixels kept free right of the area (an
+/// outside legend) and `top_h` above it (a legend above).
+PlotLayout layout_axes(const PixelRect& fr, const PlotSpec& spec, const PlotMetrics& m,
+                       double right_w, double top_h) {
   const TextFont &f = m.body, &tf = m.heading;
   const float fs = m.fs, pad = m.pad, tick_len = m.tick_len;
   PlotLayout lay;
-  lay.frame = {top_left.x, top_left.y, top_left.x + size.x, top_left.y + size.y};
-  const PixelRect& fr = lay.frame;
-
-  const double top = fr.y0 + pad + (spec.title.empty() ? 0.0 : tf.size + 0.6 * pad);
+  lay.frame = fr;
+  const double top = fr.y0 + pad + (spec.title.empty() ? 0.0 : tf.size + 0.6 * pad) + top_h;
   const double x_tick_h = spec.x.log ? std::round(1.3f * fs) : fs;
   double bottom = fr.y1 - pad - (spec.x.label.empty() ? 0.0 : fs + 0.4 * pad) - x_tick_h -
                   tick_len - 0.3 * pad;
@@ -138,10 +139,8 @@ PlotLayout layout_plot(ImVec2 top_left, ImVec2 size, const PlotSpec& spec,
   const double ylab_w = max_label_width(f, lay.y_ticks);
   const double left = fr.x0 + pad + (spec.y.label.empty() ? 0.0 : fs + 0.6 * pad) + ylab_w +
                       tick_len + 0.3 * pad;
-  const ImVec2 legend = detail::legend_size(spec, f);
-  const double outside = spec.legend == LegendPos::Outside && legend.x > 0.0f ? legend.x + pad : 0.0;
   // Room on the right for half of the last x tick label.
-  const double right = std::max(fr.x1 - pad - outside - 1.2 * fs, left + 10.0);
+  const double right = std::max(fr.x1 - pad - right_w - 1.2 * fs, left + 10.0);
 
   lay.x = AxisMap{xr, spec.x.log, left, right};
   int target = std::max(2, static_cast<int>((right - left) / (5.0 * fs)));
@@ -152,6 +151,95 @@ PlotLayout layout_plot(ImVec2 top_left, ImVec2 size, const PlotSpec& spec,
   }
   lay.area = {left, top, right, bottom};
   return lay;
+}
+
+double area_of(const PixelRect& r) { return (r.x1 - r.x0) * (r.y1 - r.y0); }
+
+}  // namespace
+
+PlotLayout layout_plot(ImVec2 top_left, ImVec2 size, const PlotSpec& spec,
+                       const PlotStyle& style) {
+  const PlotMetrics m(style);
+  const PixelRect fr{top_left.x, top_left.y, top_left.x + size.x, top_left.y + size.y};
+  const int n = detail::legend_count(spec);
+  if (n == 0) return layout_axes(fr, spec, m, 0.0, 0.0);
+  const detail::LegendMetrics lm(m.fs);
+  const float label_w = detail::legend_label_width(spec, m.body);
+  const ImVec2 one = lm.box(n, 1, label_w);
+  const double gap = lm.pad;
+
+  // Right of the data area, in one column.
+  auto outside = [&] {
+    PlotLayout lay = layout_axes(fr, spec, m, one.x + m.pad, 0.0);
+    lay.legend_pos = LegendPos::Outside;
+    lay.legend_label_width = label_w;
+    const double x = lay.area.x1 + gap;
+    lay.legend = {x, lay.area.y0, x + one.x, lay.area.y0 + one.y};
+    return lay;
+  };
+  // Between the title and the data area, in columns: the fewest whose box takes at most 40 %
+  // of the plot's height, labels shortened to fit the width, but not below kMinLabel pixels
+  // (then as many columns as take them).
+  auto above = [&] {
+    constexpr float kMinLabel = 100.0f;
+    const float avail = static_cast<float>(fr.x1 - fr.x0) - 2.0f * m.pad;
+    const float cap = 0.4f * static_cast<float>(fr.y1 - fr.y0);
+    const auto label_for = [&](int c) {
+      return std::min(label_w, (avail - lm.pad) / static_cast<float>(c) - lm.column_width(0.0f));
+    };
+    int cols = 1;
+    while (cols < n && lm.box(n, cols, label_for(cols)).y > cap &&
+           label_for(cols + 1) >= std::min(kMinLabel, label_w))
+      ++cols;
+    const float w = std::max(20.0f, label_for(cols));
+    const ImVec2 box = lm.box(n, cols, w);
+    PlotLayout lay = layout_axes(fr, spec, m, 0.0, box.y + gap);
+    lay.legend_pos = LegendPos::Above;
+    lay.legend_columns = cols;
+    lay.legend_label_width = w;
+    const double x = std::max(fr.x0 + m.pad, std::min(lay.area.x0, fr.x1 - m.pad - box.x));
+    const double y = lay.area.y0 - gap - box.y;
+    lay.legend = {x, y, x + box.x, y + box.y};
+    return lay;
+  };
+  if (spec.legend == LegendPos::Outside) return outside();
+  if (spec.legend == LegendPos::Above) return above();
+
+  // Inside a corner of the data area; a legend wider than the area has its labels shortened
+  // to fit in it rather than running over the axes and out of the window.
+  PlotLayout lay = layout_axes(fr, spec, m, 0.0, 0.0);
+  const PixelRect& a = lay.area;
+  ImVec2 box = one;
+  float w = label_w;
+  const float room = static_cast<float>(a.x1 - a.x0 - 2.0 * gap);
+  if (box.x > room && room > lm.column_width(0.0f) + lm.pad + 20.0f) {
+    w = room - lm.pad - lm.column_width(0.0f);
+    box.x = room;
+  }
+  auto corner = [&](LegendPos c) {
+    const bool r = c == LegendPos::TopRight || c == LegendPos::BottomRight;
+    const bool t = c == LegendPos::TopRight || c == LegendPos::TopLeft;
+    const double x = std::round(r ? a.x1 - gap - box.x : a.x0 + gap);
+    const double y = std::round(t ? a.y0 + gap : a.y1 - gap - box.y);
+    return PixelRect{x, y, x + box.x, y + box.y};
+  };
+  auto place = [&](LegendPos c) {
+    lay.legend_pos = c;
+    lay.legend_label_width = w;
+    lay.legend = corner(c);
+    return lay;
+  };
+  if (spec.legend != LegendPos::Auto) return place(spec.legend);
+  const bool fits = box.x <= room && box.y <= a.y1 - a.y0 - 2.0 * gap;
+  if (fits) {
+    for (LegendPos c : {LegendPos::TopRight, LegendPos::TopLeft, LegendPos::BottomRight,
+                        LegendPos::BottomLeft})
+      if (curve_pixels_under(lay, spec, corner(c)) == 0) return place(c);
+  }
+  // Every corner would hide a curve: outside the data area, where it leaves the larger area.
+  const PlotLayout o = outside(), t = above();
+  const bool o_fits = o.legend.x1 <= fr.x1 && o.legend.y1 <= fr.y1;
+  return o_fits && area_of(o.area) >= area_of(t.area) ? o : t;
 }
 
 PlotLayout draw_plot(ImDrawList* dl, ImVec2 top_left, ImVec2 size, const PlotSpec& spec,
@@ -187,7 +275,7 @@ PlotLayout draw_plot(ImDrawList* dl, ImVec2 top_left, ImVec2 size, const PlotSpe
   }
   for (const LineAxis axis : {LineAxis::x, LineAxis::y})  // vertical lines under horizontal
     for (const PlotRefLine& l : spec.ref_lines) {
-      if (l.axis != axis) continue;
+      if (l.axis != axis || !style.draw_curves) continue;
       const bool vertical = axis == LineAxis::x;
       const double px = (vertical ? lay.x : lay.y).to_px(l.at);
       if (std::isnan(px)) continue;
@@ -195,7 +283,8 @@ PlotLayout draw_plot(ImDrawList* dl, ImVec2 top_left, ImVec2 size, const PlotSpe
       const ImVec2 to = vertical ? ImVec2(fl(px), amax.y) : ImVec2(amax.x, fl(px));
       detail::draw_polyline(dl, {from, to}, l.color, l.thickness, l.dashed);
     }
-  for (const auto& s : spec.series) detail::draw_series(dl, lay, s);
+  if (style.draw_curves)
+    for (const auto& s : spec.series) detail::draw_series(dl, lay, s);
   dl->PopClipRect();
 
   dl->AddRect(ImVec2(amin.x - 0.5f, amin.y - 0.5f), ImVec2(amax.x + 0.5f, amax.y + 0.5f),
@@ -239,7 +328,7 @@ PlotLayout draw_plot(ImDrawList* dl, ImVec2 top_left, ImVec2 size, const PlotSpe
     const ImVec2 ts = detail::text_size(tf, spec.title);
     detail::draw_text(dl, tf, ImVec2(cx - ts.x * 0.5f, fl(fr.y0) + pad), style.text, spec.title);
   }
-  detail::draw_legend(dl, lay, spec, style, f);
+  if (style.draw_legend) detail::draw_legend(dl, lay, spec, style, f);
   dl->PopClipRect();
   return lay;
 }

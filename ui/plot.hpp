@@ -24,6 +24,8 @@ struct PlotStyle {
   ImU32 crosshair = 0;  ///< hover lines in plot_widget
   ImFont* font = nullptr;
   ImFont* title_font = nullptr;
+  bool draw_curves = true;  ///< series and reference lines (off: the render test's reference)
+  bool draw_legend = true;  ///< the legend box (off: the render test's reference)
 };
 
 /// White background, dark text: figures and papers.
@@ -41,7 +43,16 @@ struct PlotLayout {
   AxisMap y;        ///< data y -> screen y (px_lo is the bottom)
   std::vector<Tick> x_ticks;
   std::vector<Tick> y_ticks;
+  LegendPos legend_pos = LegendPos::Hidden;  ///< where the legend went (Hidden: none)
+  PixelRect legend;                          ///< the legend box in pixels
+  int legend_columns = 1;                    ///< entries per row (Above)
+  float legend_label_width = 0.0f;           ///< labels are shortened to this width
 };
+
+/// How many pixels of the series and reference lines (their width and anti-aliased edge
+/// included) lie inside `box` when the plot is drawn with layout `lay`: 0 means a legend box
+/// there hides no curve. Dashed lines count as solid.
+size_t curve_pixels_under(const PlotLayout& lay, const PlotSpec& spec, const PixelRect& box);
 
 /// Computes the layout of `spec` in the rectangle (top_left, size) for the current font,
 /// without drawing. Needs an ImGui context with a built font atlas (inside a frame).

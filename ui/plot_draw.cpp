@@ -200,6 +200,7 @@ struct LegendEntry {
 
 std::vector<LegendEntry> legend_entries(const PlotSpec& spec) {
   std::vector<LegendEntry> e;
+  if (spec.legend == LegendPos::Hidden) return e;
   for (const auto& s : spec.series) {
     if (!s.label.empty()) e.push_back({s.label, s.color, false, s.dashed, s.thickness});
   }
@@ -216,45 +217,32 @@ std::vector<LegendEntry> legend_entries(const PlotSpec& spec) {
   return e;
 }
 
-/// Legend metrics from the font size: padding, row height, swatch width.
-struct LegendMetrics {
-  float pad, row, swatch;
-  explicit LegendMetrics(float fs)
-      : pad(std::round(0.5f * fs)), row(std::round(1.35f * fs)), swatch(std::round(2.2f * fs)) {}
-};
-
-/// How much data a legend box at `box` would hide: sampled series points inside it, plus a
-/// penalty for each reference line crossing it.
-double hidden_data(const PlotLayout& lay, const PlotSpec& spec, const PixelRect& box) {
-  double score = 0.0;
-  for (const auto& s : spec.series) {
-    const size_t n = std::min(s.x.size(), s.y.size());
-    const size_t stride = std::max<size_t>(1, n / 1000);
-    const double weight = static_cast<double>(stride);
-    for (size_t i = 0; i < n; i += stride) {
-      const double x = lay.x.to_px(s.x[i]), y = lay.y.to_px(s.y[i]);
-      if (box.contains(x, y)) score += weight;
-    }
-  }
-  const double line_penalty = 20.0;
-  for (const PlotRefLine& l : spec.ref_lines) {
-    const bool vertical = l.axis == LineAxis::x;
-    const double px = (vertical ? lay.x : lay.y).to_px(l.at);
-    if (px >= (vertical ? box.x0 : box.y0) && px <= (vertical ? box.x1 : box.y1))
-      score += line_penalty;
-  }
-  return score;
-}
-
 }  // namespace
 
-ImVec2 legend_size(const PlotSpec& spec, const TextFont& f) {
-  const auto entries = legend_entries(spec);
-  if (entries.empty() || spec.legend == LegendPos::Hidden) return ImVec2(0.0f, 0.0f);
-  const LegendMetrics m(f.size);
+LegendMetrics::LegendMetrics(float fs)
+    : pad(std::round(0.5f * fs)), row(std::round(1.35f * fs)), swatch(std::round(2.2f * fs)) {}
+
+float LegendMetrics::column_width(float label_w) const { return pad * 1.5f + swatch + label_w; }
+
+ImVec2 LegendMetrics::box(int entries, int columns, float label_w) const {
+  const int cols = std::max(1, std::min(columns, entries));
+  const int rows = (entries + cols - 1) / cols;
+  return ImVec2(static_cast<float>(cols) * column_width(label_w) + pad,
+                pad * 1.2f + row * static_cast<float>(rows));
+}
+
+int legend_count(const PlotSpec& spec) { return static_cast<int>(legend_entries(spec).size()); }
+
+float legend_label_width(const PlotSpec& spec, const TextFont& f) {
   float w = 0.0f;
-  for (const auto& e : entries) w = std::max(w, text_size(f, e.label).x);
-  return ImVec2(m.pad * 2.5f + m.swatch + w, m.pad * 1.2f + m.row * static_cast<float>(entries.size()));
+  for (const auto& e : legend_entries(spec)) w = std::max(w, text_size(f, e.label).x);
+  return w;
+}
+
+ImVec2 legend_size(const PlotSpec& spec, const TextFont& f) {
+  const int n = legend_count(spec);
+  if (n == 0) return ImVec2(0.0f, 0.0f);
+  return LegendMetrics(f.size).box(n, 1, legend_label_width(spec, f));
 }
 
 std::string elide(const TextFont& f, const std::string& label, float width) {
@@ -269,57 +257,23 @@ std::string elide(const TextFont& f, const std::string& label, float width) {
 
 void draw_legend(ImDrawList* dl, const PlotLayout& lay, const PlotSpec& spec,
                  const PlotStyle& style, const TextFont& f) {
-  ImVec2 size = legend_size(spec, f);
-  if (size.x <= 0.0f) return;
+  if (lay.legend_pos == LegendPos::Hidden) return;
   auto entries = legend_entries(spec);
+  if (entries.empty()) return;
   const LegendMetrics m(f.size);
-  const PixelRect& a = lay.area;
-  const float gap = m.pad;
-  // A legend wider than the data area (a small window) has its labels shortened to fit in it,
-  // rather than running over the axes and out of the window.
-  const float room = static_cast<float>(a.x1 - a.x0) - 2 * gap;
-  if (spec.legend != LegendPos::Outside && size.x > room && room > m.pad * 2.5f + m.swatch + 20) {
-    const float text_w = room - m.pad * 2.5f - m.swatch;
-    for (auto& e : entries) e.label = elide(f, e.label, text_w);
-    size.x = room;
-  }
-  const float left = static_cast<float>(a.x0) + gap;
-  const float right = static_cast<float>(a.x1) - gap - size.x;
-  const float top = static_cast<float>(a.y0) + gap;
-  const float bottom = static_cast<float>(a.y1) - gap - size.y;
-  LegendPos pos = spec.legend;
-  if (pos == LegendPos::Auto) {
-    // The corner hiding the least data; ties keep the order top right, top left, ...
-    const LegendPos corners[] = {LegendPos::TopRight, LegendPos::TopLeft, LegendPos::BottomRight,
-                                 LegendPos::BottomLeft};
-    double best = std::numeric_limits<double>::infinity();
-    for (LegendPos c : corners) {
-      const bool r = c == LegendPos::TopRight || c == LegendPos::BottomRight;
-      const bool t = c == LegendPos::TopRight || c == LegendPos::TopLeft;
-      const double x0 = r ? right : left, y0 = t ? top : bottom;
-      const double score = hidden_data(lay, spec, PixelRect{x0, y0, x0 + size.x, y0 + size.y});
-      if (score < best) {
-        best = score;
-        pos = c;
-      }
-    }
-  }
-  ImVec2 p;
-  switch (pos) {
-    case LegendPos::TopLeft: p = ImVec2(left, top); break;
-    case LegendPos::BottomLeft: p = ImVec2(left, bottom); break;
-    case LegendPos::BottomRight: p = ImVec2(right, bottom); break;
-    case LegendPos::Outside: p = ImVec2(static_cast<float>(a.x1) + gap, static_cast<float>(a.y0)); break;
-    default: p = ImVec2(right, top); break;
-  }
-  p = ImVec2(std::round(p.x), std::round(p.y));
-  dl->AddRectFilled(p, ImVec2(p.x + size.x, p.y + size.y), style.legend_background, 3.0f);
-  dl->AddRect(ImVec2(p.x + 0.5f, p.y + 0.5f), ImVec2(p.x + size.x - 0.5f, p.y + size.y - 0.5f),
-              style.legend_border, 3.0f);
-  float y = p.y + m.pad * 0.6f;
-  for (const auto& e : entries) {
-    const float mid = std::round(y + m.row * 0.5f);
-    const float sx0 = p.x + m.pad, sx1 = p.x + m.pad + m.swatch;
+  for (auto& e : entries) e.label = elide(f, e.label, lay.legend_label_width + 0.5f);
+  const ImVec2 p(static_cast<float>(lay.legend.x0), static_cast<float>(lay.legend.y0));
+  const ImVec2 q(static_cast<float>(lay.legend.x1), static_cast<float>(lay.legend.y1));
+  dl->AddRectFilled(p, q, style.legend_background, 3.0f);
+  dl->AddRect(ImVec2(p.x + 0.5f, p.y + 0.5f), ImVec2(q.x - 0.5f, q.y - 0.5f), style.legend_border,
+              3.0f);
+  const int cols = std::max(1, lay.legend_columns);
+  const float col_w = m.column_width(lay.legend_label_width);
+  for (size_t i = 0; i < entries.size(); ++i) {
+    const LegendEntry& e = entries[i];
+    const int col = static_cast<int>(i) % cols, row = static_cast<int>(i) / cols;
+    const float mid = std::round(p.y + m.pad * 0.6f + m.row * (static_cast<float>(row) + 0.5f));
+    const float sx0 = p.x + m.pad + col_w * static_cast<float>(col), sx1 = sx0 + m.swatch;
     if (e.filled) {
       const float h = std::round(m.row * 0.32f);
       dl->AddRectFilled(ImVec2(sx0, mid - h), ImVec2(sx1, mid + h), e.color);
@@ -332,8 +286,66 @@ void draw_legend(ImDrawList* dl, const PlotLayout& lay, const PlotSpec& spec,
     }
     const ImVec2 ts = text_size(f, e.label);
     draw_text(dl, f, ImVec2(sx1 + m.pad * 0.8f, mid - ts.y * 0.5f), style.text, e.label);
-    y += m.row;
   }
 }
 
 }  // namespace dampbound::ui::detail
+
+namespace dampbound::ui {
+
+size_t curve_pixels_under(const PlotLayout& lay, const PlotSpec& spec, const PixelRect& box) {
+  // Pixels counted: inside the box and inside the data area (curves are clipped to it).
+  const PixelRect& a = lay.area;
+  const double x0 = std::max(box.x0, a.x0), y0 = std::max(box.y0, a.y0);
+  const double x1 = std::min(box.x1, a.x1), y1 = std::min(box.y1, a.y1);
+  if (!(x1 > x0 && y1 > y0)) return 0;
+  const int px0 = static_cast<int>(std::floor(x0)), py0 = static_cast<int>(std::floor(y0));
+  const int w = static_cast<int>(std::ceil(x1)) - px0, h = static_cast<int>(std::ceil(y1)) - py0;
+  std::vector<unsigned char> hit(static_cast<size_t>(w) * static_cast<size_t>(h), 0);
+  // Marks the pixels whose centre lies within r of the segment a-b (r: half the width plus
+  // one pixel of anti-aliased edge), by stamping discs every half pixel along it.
+  auto stamp = [&](ImVec2 p, ImVec2 q, double r) {
+    double ax = p.x, ay = p.y, bx = q.x, by = q.y;
+    const PixelRect near{x0 - r, y0 - r, x1 + r, y1 + r};
+    if (!clip_segment(ax, ay, bx, by, near)) return;
+    const double len = std::hypot(bx - ax, by - ay);
+    const int steps = std::max(1, static_cast<int>(std::ceil(len / 0.5)));
+    for (int k = 0; k <= steps; ++k) {
+      const double t = static_cast<double>(k) / steps;
+      const double cx = ax + (bx - ax) * t, cy = ay + (by - ay) * t;
+      const int i0 = std::max(0, static_cast<int>(std::floor(cx - r - 0.5)) - px0);
+      const int i1 = std::min(w - 1, static_cast<int>(std::ceil(cx + r)) - px0);
+      const int j0 = std::max(0, static_cast<int>(std::floor(cy - r - 0.5)) - py0);
+      const int j1 = std::min(h - 1, static_cast<int>(std::ceil(cy + r)) - py0);
+      for (int j = j0; j <= j1; ++j)
+        for (int i = i0; i <= i1; ++i) {
+          const double dx = px0 + i + 0.5 - cx, dy = py0 + j + 0.5 - cy;
+          if (dx * dx + dy * dy <= r * r) hit[static_cast<size_t>(j) * w + i] = 1;
+        }
+    }
+  };
+  for (const PlotSeries& s : spec.series) {
+    const double m = s.thickness + 2.0;
+    const PixelRect clip{a.x0 - m, a.y0 - m, a.x1 + m, a.y1 + m};
+    const double r = 0.5 * s.thickness + 1.0;
+    for (const auto& line : project_polylines(s.x, s.y, lay.x, lay.y, clip)) {
+      if (line.size() == 1) stamp(line[0], line[0], std::max(s.thickness, 2.0f) + 1.0);
+      for (size_t i = 1; i < line.size(); ++i) stamp(line[i - 1], line[i], r);
+    }
+  }
+  for (const PlotRefLine& l : spec.ref_lines) {
+    const bool vertical = l.axis == LineAxis::x;
+    const double px = (vertical ? lay.x : lay.y).to_px(l.at);
+    if (std::isnan(px)) continue;
+    const ImVec2 from = vertical ? ImVec2(static_cast<float>(px), static_cast<float>(a.y0))
+                                 : ImVec2(static_cast<float>(a.x0), static_cast<float>(px));
+    const ImVec2 to = vertical ? ImVec2(static_cast<float>(px), static_cast<float>(a.y1))
+                               : ImVec2(static_cast<float>(a.x1), static_cast<float>(px));
+    stamp(from, to, 0.5 * l.thickness + 1.0);
+  }
+  size_t n = 0;
+  for (unsigned char c : hit) n += c;
+  return n;
+}
+
+}  // namespace dampbound::ui

@@ -41,10 +41,26 @@ void draw_polyline(ImDrawList* dl, const std::vector<ImVec2>& pts, ImU32 col, fl
 /// A series: projected, clipped, decimated, drawn.
 void draw_series(ImDrawList* dl, const PlotLayout& lay, const PlotSeries& s);
 
-/// Legend box (series, bands, lines, heat map categories) at the spec's position.
+/// Legend metrics from the font size: padding, row height, swatch width; the box of n
+/// entries in columns.
+struct LegendMetrics {
+  float pad, row, swatch;
+  explicit LegendMetrics(float fs);
+  /// One column: swatch and a label `label_w` pixels wide.
+  float column_width(float label_w) const;
+  /// The box of `entries` entries in `columns` columns (filled row by row).
+  ImVec2 box(int entries, int columns, float label_w) const;
+};
+/// Number of legend entries (series, bands, lines, heat map categories with a label); 0 when
+/// the spec hides its legend.
+int legend_count(const PlotSpec& spec);
+/// Width of the widest legend label.
+float legend_label_width(const PlotSpec& spec, const TextFont& f);
+/// Legend box (series, bands, lines, heat map categories) where the layout put it
+/// (lay.legend, lay.legend_columns; labels shortened to lay.legend_label_width).
 void draw_legend(ImDrawList* dl, const PlotLayout& lay, const PlotSpec& spec,
                  const PlotStyle& style, const TextFont& f);
-/// Size of the legend box; (0, 0) when nothing has a label.
+/// Size of the legend box in one column; (0, 0) when nothing has a label.
 ImVec2 legend_size(const PlotSpec& spec, const TextFont& f);
 
 }  // namespace dampbound::ui::detail

@@ -76,9 +76,12 @@ struct AxisSpec {
   std::optional<double> max;
 };
 
-/// Where the legend box goes. Auto picks the inside corner that hides the least data;
-/// Outside puts it right of the plot area, shrinking the area.
-enum class LegendPos { Auto, TopRight, TopLeft, BottomRight, BottomLeft, Outside, Hidden };
+/// Where the legend box goes. Auto takes the first inside corner (top right, top left,
+/// bottom right, bottom left) under which no curve pixel lies; where every corner would hide
+/// one, it goes Outside when that leaves the data area most of the width, else Above.
+/// Outside puts it right of the plot area, Above in columns between the title and the plot
+/// area; both shrink the area.
+enum class LegendPos { Auto, TopRight, TopLeft, BottomRight, BottomLeft, Outside, Above, Hidden };
 
 /// Everything one plot shows. Drawing order: heatmap, bands, grid, reference lines, series, legend.
 struct PlotSpec {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <exception>
+#include <limits>
 #include <stdexcept>
 
 #include "core/io/report.hpp"
@@ -204,6 +205,24 @@ void Tuner::unpin(size_t index) {
 
 ImU32 Tuner::current_color() const {
   return palette_color(0);
+}
+
+double Tuner::max_displacement_now() const {
+  const Model& m = session_->model();
+  double d = 0.0;
+  for (int i = 0; i < m.node_count(); ++i) {
+    const double di = displacement(m, session_->state(), i);
+    if (!std::isfinite(di)) return std::numeric_limits<double>::infinity();
+    d = std::max(d, di);
+  }
+  return d;
+}
+
+double Tuner::watched_displacement_now() const {
+  const int w = session_->watched();
+  return w >= 0 && w < session_->model().node_count()
+             ? displacement(session_->model(), session_->state(), w)
+             : 0.0;
 }
 
 const std::vector<StepSample>& Tuner::reduced_trace() {

@@ -113,6 +113,11 @@ class Tuner {
   void perturb();
   /// The mesh view's drag: moves one node by `offset` (cm).
   void displace(int node, const Vec3& offset);
+  /// max_i |x_i - X_i| (cm) of the state as it is now (the trace's last step says it after a
+  /// step; this also holds at the perturbed start and after a drag); inf if not finite.
+  double max_displacement_now() const;
+  /// |x_c - X_c| (cm) of the watched node now.
+  double watched_displacement_now() const;
   /// Watches another node (its bounds and displacement go into the trace from now on).
   void watch(int node);
   /// Removes the springs (the cut tool); the bounds react at the next step. Returns how many.

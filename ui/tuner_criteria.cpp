@@ -1,6 +1,5 @@
 #include "ui/tuner_criteria.hpp"
 #include "core/analysis/criteria_safe.hpp"
-#include "ui/worker_priority.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -168,7 +167,6 @@ const ExactStability* TunerCriteria::exact(const Session& s, std::uint64_t topol
     job_ = std::async(
         std::launch::async, [model = s.shared_model(), x = std::move(x), params = s.params(),
                              iteration, at = at_, budget = factor_budget_] {
-          lower_worker_priority();
           const double t0 = seconds_now();
           Finished f;
           f.iteration = iteration;
@@ -240,6 +238,7 @@ std::optional<double> TunerCriteria::exact_gamma_max(const Session& s, std::uint
 
 TunerSuggest::~TunerSuggest() {
   wait();
+  for (auto& f : dropped_) f.wait();
 }
 
 void TunerSuggest::start(const Session& session) {
@@ -257,10 +256,12 @@ void TunerSuggest::launch(std::shared_ptr<const SceneSpec> shared,
                           const StopRules& rules, int cut) {
   if (busy()) return;
   error_.clear();
+  cancelled_ = false;
+  started_ = std::chrono::steady_clock::now();
+  cancel_ = std::make_shared<std::atomic<bool>>(false);
   pending_ = std::async(std::launch::async, [shared = std::move(shared), model = std::move(model),
                                              iteration, params, rules, cut,
-                                             budget = factor_budget_] {
-    lower_worker_priority();
+                                             budget = factor_budget_, cancel = cancel_] {
     // With a model: the scene as the run has it (Session::current_scene), built here.
     std::optional<SceneSpec> as_run;
     if (model) as_run = scene_as_run(*shared, *model, iteration);
@@ -271,13 +272,30 @@ void TunerSuggest::launch(std::shared_ptr<const SceneSpec> shared,
     s.springs_cut = cut;
     SuggestOptions options;
     options.max_factor_flops = budget;  // over it: what is proved without a factorisation
+    if (*cancel) return s;
     s.damping = suggest_damping(scene, params, rules, options);
+    if (*cancel) return s;
     s.step = suggest_step(scene, params, rules, options);
     return s;
   });
 }
 
+void TunerSuggest::cancel() {
+  if (!busy()) return;
+  *cancel_ = true;
+  dropped_.push_back(std::move(pending_));
+  cancelled_ = true;
+}
+
+double TunerSuggest::seconds() const {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
+}
+
 bool TunerSuggest::poll() {
+  // Cancelled computations that have ended are joined here, never by a frame waiting.
+  for (size_t i = dropped_.size(); i-- > 0;)
+    if (dropped_[i].wait_for(std::chrono::seconds(0)) == std::future_status::ready)
+      dropped_.erase(dropped_.begin() + static_cast<std::ptrdiff_t>(i));
   if (!busy()) return false;
   if (pending_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return false;
   try {

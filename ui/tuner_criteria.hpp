@@ -2,6 +2,8 @@
 // The tuner's stability criteria without GL: every criterion of core/analysis/criteria.hpp
 // for the current run, updated live, and the suggestions of core/analysis/suggest.hpp computed in the
 // background so the window never stalls. tests/ui/tuner_criteria_test.cpp drives it.
+#include <atomic>
+#include <chrono>
 #include <cstdint>
 #include <future>
 #include <memory>
@@ -179,6 +181,14 @@ class TunerSuggest {
   bool poll();
   /// Waits for a running computation (tests).
   void wait();
+  /// The Cancel button: the running computation's result is dropped and its worker stops at
+  /// its next stage (after the damping suggestion: core's suggest_* cannot be interrupted
+  /// inside); it is joined later, and closing the window does not wait for it.
+  void cancel();
+  /// Seconds since the running computation started (its progress while busy()).
+  double seconds() const;
+  /// True when the last computation was cancelled (nothing new to show).
+  bool cancelled() const { return cancelled_; }
   /// The last finished suggestion.
   const std::optional<Suggestion>& result() const { return result_; }
   /// One line when the computation threw.
@@ -193,6 +203,10 @@ class TunerSuggest {
               int iteration, const Params& params, const StopRules& rules, int cut);
 
   std::future<Suggestion> pending_;
+  std::shared_ptr<std::atomic<bool>> cancel_;  ///< of the running computation
+  std::vector<std::future<Suggestion>> dropped_;  ///< cancelled, not yet joined
+  std::chrono::steady_clock::time_point started_{};
+  bool cancelled_ = false;
   std::optional<Suggestion> result_;
   std::string error_;
   double factor_budget_ = kDefaultFactorBudget;

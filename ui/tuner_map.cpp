@@ -5,7 +5,6 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "ui/worker_priority.hpp"
 
 namespace dampbound::ui {
 
@@ -159,7 +158,6 @@ void TunerMap::start(std::shared_ptr<const SceneSpec> scene, const Params& centr
   job_ = std::make_shared<Job>();
   Job* job = job_.get();
   job->thread = std::thread([this, job, scene = std::move(scene), centre, rules, view] {
-    lower_worker_priority();
     try {
       SceneSpec s = *scene;  // here, not on the frame: it copies the mesh
       s.params = centre;

@@ -64,6 +64,9 @@ class TunerMap {
   void wait();
   /// Stops every worker and waits for them (each returns after its current step).
   void stop();
+  /// The Cancel button: the running computation ends after its current trial and the last
+  /// finished pass stays on show; a change that would restart it (follow()) starts it again.
+  void cancel() { retire_job(); }
 
  private:
   /// One computation. A restart cancels the running job and lets it finish on its own: the

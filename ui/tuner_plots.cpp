@@ -33,16 +33,20 @@ std::vector<PlotRefLine> verdict_markers(const RunResult& r) {
 PlotSpec tuner_displacement_plot(Tuner& tuner, const TunerPlotOptions& options) {
   const StopRules& rules = tuner.session().rules();
   const double threshold = rules.restore_fraction * rules.reference;
-  const std::vector<StepSample>& current = tuner.reduced_trace();
-  PlotSpec p = displacement_plot(
-      {{current_run_label(tuner), &current, tuner.current_color()}}, options.log_y, threshold,
-      options.show_max, "Displacement of node " + std::to_string(tuner.session().watched()));
+  std::vector<TraceView> current;
+  if (options.show_current)
+    current.push_back({current_run_label(tuner),
+                       options.full_traces ? &tuner.session().trace() : &tuner.reduced_trace(),
+                       tuner.current_color()});
+  PlotSpec p = displacement_plot(current, options.log_y, threshold,
+                                 options.show_max && options.show_current,
+                                 "Displacement of node " + std::to_string(tuner.session().watched()));
   if (options.show_pins) {
     std::vector<TraceView> views;
     for (const Pin& pin : tuner.pins())
       if (pin.visible)
-        views.push_back(
-            {pin.name + " (" + verdict_short(pin.result) + ")", &pin.reduced, pin.color});
+        views.push_back({pin.name + " (" + verdict_short(pin.result) + ")",
+                         options.full_traces ? &pin.trace : &pin.reduced, pin.color});
     PlotSpec pins = displacement_plot(views, options.log_y, 0, false);
     // Pins first, so the live run is drawn on top of them.
     pins.series.insert(pins.series.end(), std::make_move_iterator(p.series.begin()),
@@ -51,8 +55,10 @@ PlotSpec tuner_displacement_plot(Tuner& tuner, const TunerPlotOptions& options) 
   }
   show_coincident(p);
   for (PlotSeries& s : p.series) drop_flat_runs(s);
-  const std::vector<PlotRefLine> marks = verdict_markers(tuner.session().result());
-  p.ref_lines.insert(p.ref_lines.end(), marks.begin(), marks.end());
+  if (options.show_current) {
+    const std::vector<PlotRefLine> marks = verdict_markers(tuner.session().result());
+    p.ref_lines.insert(p.ref_lines.end(), marks.begin(), marks.end());
+  }
   return p;
 }
 
@@ -168,7 +174,8 @@ void envelope_headroom(PlotSpec& spec, double cap, double fraction) {
 }
 
 PlotSpec tuner_envelope_plot(Tuner& tuner, const TunerPlotOptions& options) {
-  const std::vector<StepSample>& current = tuner.reduced_trace();
+  const std::vector<StepSample>& current =
+      options.full_traces ? tuner.session().trace() : tuner.reduced_trace();
   const int watched = tuner.session().watched();
   const std::vector<double>& scales = tuner.session().model().gamma_scale;
   const double scale = watched >= 0 && watched < static_cast<int>(scales.size())
@@ -185,7 +192,7 @@ PlotSpec tuner_envelope_plot(Tuner& tuner, const TunerPlotOptions& options) {
       s.color = pin.color;
       s.dashed = true;
       s.thickness = 1.5f;
-      for (const StepSample& st : pin.reduced) {
+      for (const StepSample& st : options.full_traces ? pin.trace : pin.reduced) {
         s.x.push_back(st.iteration);
         s.y.push_back(st.watched.gamma_eff);
       }

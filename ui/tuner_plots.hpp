@@ -14,6 +14,8 @@ struct TunerPlotOptions {
   bool log_y = false;     ///< displacement on a log10 axis
   bool show_max = true;   ///< the max displacement over all nodes (current run)
   bool show_pins = true;  ///< overlay the visible pins
+  bool show_current = true;  ///< the current run (its curves, verdict markers, max over nodes)
+  bool full_traces = false;  ///< every step (exports, as `figure` draws), not the reduced traces
 };
 
 /// Legend label of the current run: "current: <outcome>".

@@ -21,6 +21,15 @@ for f in run_plots.png run_traces.csv run_runs.csv; do
   [ -s "$WORK/export/$f" ] && ok || bad "export: no $f"
 done
 expect_match "$(cat "$WORK/export/run_runs.csv")" '^under,' "exported runs.csv has the pin"
+# The runs' verdicts in the settled rule's words, as run --json has them; the current run
+# (5 frames: unfinished) is left out unless asked for.
+RUNS="$(cat "$WORK/export/run_runs.csv")"
+expect_match "$RUNS" '^run,scene,watched,m,kappa,gamma,dt,policy,factor,rule,outcome,first_entry,left_at,settled_at,diverged_at,verdict,' "runs.csv has the band history"
+expect_match "$RUNS" '^at,paper-plane,[^,]*,[^,]*,[^,]*,0.002,[^,]*,[^,]*,[^,]*,settled,settled,[0-9]+,,[0-9]+,,settled at [0-9]+,1000,' "a pin settled before the limit says where"
+grep -q '^"\?current' "$WORK/export/run_runs.csv" && bad "the unfinished current run was exported" || ok
+expect_exit 0 "${XV[@]}" "$DB" gui "$SRC/scenes/paper-plane.toml" --frames 2 --export "$WORK/export2" \
+  --export-unfinished --config-dir "$CFG"
+grep -q '^"current' "$WORK/export2/dampbound_runs.csv" && ok || bad "--export-unfinished: no current run"
 
 # 2. The saved scene is a check: it passes headless.
 expect_exit 0 "$DB" check "$SAVED" --junit "$WORK/tuned.xml"
@@ -42,6 +51,11 @@ expect_match "$OUT" 'under ' "figure lists the pin"
 expect_exit 0 "${XV[@]}" "$DB" gui "$SRC/scenes/paper-plane.toml" --frames 3 --tab map \
   --size 1024x640 --screenshot "$WORK/map.png" --config-dir "$CFG"
 [ -s "$WORK/map.png" ] && ok || bad "no map screenshot"
+
+# 5b. The Suggest tab computes when scripted, and the last frame waits for it.
+expect_exit 0 "${XV[@]}" "$DB" gui "$SRC/scenes/paper-plane.toml" --frames 2 --tab suggest \
+  --size 1024x640 --screenshot "$WORK/suggest.png" --config-dir "$CFG"
+expect_match "$ERR" 'gui: suggest: gamma in \[[0-9.e-]+, [0-9.e-]+\), fastest settling at' "--tab suggest computes"
 
 # 6. Bad input: one line naming the flag, exit 2, nothing written.
 expect_exit 2 "${XV[@]}" "$DB" gui "$SRC/scenes/paper-plane.toml" --frames 2 --pin foo=1 \

@@ -250,6 +250,8 @@ TEST(GuiRender, CriteriaAndSuggestTabs) {
   app.select_tab("Criteria");
   img = host.render_frames(1600, 1000, app.frame_fn(), 3);
   EXPECT_FALSE(app.tuner().criteria().empty());
+  // Every row at the default window size: the table does not scroll.
+  EXPECT_FALSE(app.criteria_rows_hidden());
   write_png_atomic(img, out_path("gui_criteria.png"));
   app.release_gl();
 }
@@ -466,6 +468,52 @@ TEST(GuiRender, MouseWatchesDragsAndCutsInTheMeshView) {
   EXPECT_GT(app.tuner().session().state().x[drag_node].y(), y_before + 0.5);  // moved up
   EXPECT_GT(app.tuner().session().springs_cut(), 10);
   EXPECT_EQ(app.tuner().session().state().iteration, 0);  // paused all along
+  app.release_gl();
+}
+
+// xdotool's "mousemove X Y click 1" arrives as one frame: the pointer jumps onto a node and the
+// button goes down in the same frame, up in the next. The jump is no drag: the node stays
+// where it was (it moved by the jump and followed the pointer) and is watched.
+TEST(GuiRender, AnInstantClickAfterAJumpWatchesTheNodeAndLeavesItInPlace) {
+  EglHost host(headless());
+  GuiOptions o = bare_options();
+  o.play = false;
+  o.scripted = false;
+  GuiApp app(o);
+  const int node = 100;
+  Vec3 before, after_click, after_move;
+  host.render_frames(
+      1280, 800,
+      [&](FrameInfo& info) {
+        app.frame(info);
+        const Viewport& vp = app.mesh_view().viewport();
+        const ImVec2 away(vp.x + vp.w - 4, vp.y + vp.h - 4);
+        switch (info.index) {
+          case 0:
+            mouse(away, false);
+            break;
+          case 1:
+            before = app.tuner().session().state().x[node];
+            mouse(on_screen(app, node), true);  // the jump and the press in one frame
+            break;
+          case 2:
+            mouse(on_screen(app, node), false);
+            break;
+          case 3:
+            after_click = app.tuner().session().state().x[node];
+            mouse(away, false);  // the pointer leaves without a button
+            break;
+          case 5:
+            after_move = app.tuner().session().state().x[node];
+            break;
+          default:
+            break;
+        }
+      },
+      6);
+  EXPECT_EQ(app.tuner().session().watched(), node);
+  EXPECT_EQ((after_click - before).norm(), 0.0) << "the jump moved the node";
+  EXPECT_EQ((after_move - before).norm(), 0.0) << "the node followed the pointer";
   app.release_gl();
 }
 

@@ -14,6 +14,7 @@
 #include "core/io/files.hpp"
 #include "core/scene.hpp"
 #include "ui/tuner_export.hpp"
+#include "ui/gui_export.hpp"
 #include "core/io/scene_file.hpp"
 
 namespace dampbound::ui {
@@ -234,6 +235,80 @@ TEST(TunerExport, WritesFilesAtomicallyAndRejectsBadPrefixes) {
   EXPECT_THROW(export_paths(dir.string(), "a/b"), InputError);
   EXPECT_THROW(export_paths(dir.string(), ""), InputError);
   std::filesystem::remove_all(dir);
+}
+
+TEST(TunerExport, RunsCsvHasTheBandHistoryAndLeavesOutAnUnfinishedRun) {
+  Tuner t(tiny());
+  t.step(t.session().rules().max_iterations);  // to the verdict under the settled rule
+  const RunResult done = t.session().result();
+  ASSERT_NE(done.outcome, Outcome::running);
+  t.pin("to the limit");
+  t.reset();
+  t.step(7);  // the current run: unfinished
+  EXPECT_FALSE(export_includes_current(t, false));
+  EXPECT_TRUE(export_includes_current(t, true));
+  std::ostringstream runs;
+  write_runs_summary_csv(runs, t, export_includes_current(t, false));
+  std::istringstream in(runs.str());
+  std::string header, row, extra;
+  std::getline(in, header);
+  std::getline(in, row);
+  EXPECT_FALSE(std::getline(in, extra)) << "the unfinished current run is left out: " << extra;
+  EXPECT_EQ(header,
+            "run,scene,watched,m,kappa,gamma,dt,policy,factor,rule,outcome,first_entry,left_at,"
+            "settled_at,diverged_at,verdict,iterations,max_displacement,violations,"
+            "unstabilisable");
+  // The pin's verdict in the settled rule's words, with the iteration it settled at (not the
+  // iteration limit at which the rule decides).
+  const auto field = [](const std::string& line, int k) {
+    std::istringstream f(line);
+    std::string v;
+    for (int i = 0; i <= k; ++i) std::getline(f, v, ',');
+    return v;
+  };
+  EXPECT_EQ(field(row, 9), "settled");
+  EXPECT_EQ(field(row, 10), to_string(done.outcome));
+  EXPECT_EQ(field(row, 11), done.first_entry > 0 ? std::to_string(done.first_entry) : "");
+  EXPECT_EQ(field(row, 13), done.settled_at > 0 ? std::to_string(done.settled_at) : "");
+  EXPECT_EQ(field(row, 14), "");
+  if (done.outcome == Outcome::settled) {
+    EXPECT_NE(field(row, 13), field(row, 16));
+  }
+  std::ostringstream with_current;
+  write_runs_summary_csv(with_current, t, true);
+  EXPECT_NE(with_current.str().find("current: "), std::string::npos);
+  std::ostringstream traces;
+  write_runs_trace_csv(traces, t, false);
+  EXPECT_EQ(traces.str().find("current: "), std::string::npos);
+}
+
+TEST(TunerExport, PlotsDrawEveryStepOfThePinsAsFigureDoes) {
+  // A pin longer than the plotting buckets: the window draws its min/max reduction (a
+  // staircase at export size); the export draws every step, as `figure` does.
+  Tuner t(tiny());
+  t.step(t.session().rules().max_iterations);
+  const Pin& pin = t.pin("long");
+  ASSERT_GT(pin.trace.size(), kPlotBuckets);
+  t.reset();
+  t.step(5);
+  const std::vector<PlotSpec> plots = export_plot_specs(t, {}, false);
+  ASSERT_EQ(plots.size(), 1u);  // the unfinished run's damping bounds are not drawn
+  const PlotSpec& d = plots[0];
+  ASSERT_FALSE(has_series(d, "current"));
+  const PlotSeries* s = nullptr;
+  for (const auto& ser : d.series)
+    if (ser.label.rfind("long", 0) == 0) s = &ser;
+  ASSERT_NE(s, nullptr);
+  // Every drawn point lies on the trace; flat runs drop interior points only.
+  size_t on = 0;
+  for (size_t i = 0; i < s->x.size(); ++i) {
+    const auto& st = pin.trace.at(static_cast<size_t>(s->x[i]) - 1);
+    ASSERT_EQ(st.iteration, static_cast<int>(s->x[i]));
+    on += st.watched.displacement == s->y[i];
+  }
+  EXPECT_EQ(on, s->x.size());
+  EXPECT_GT(s->x.size(), kPlotBuckets);
+  EXPECT_EQ(export_plot_specs(t, {}, true).size(), 2u);
 }
 
 }  // namespace

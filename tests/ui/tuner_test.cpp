@@ -32,6 +32,19 @@ TEST(Tuner, StartsPausedAtTheScenesParameters) {
   EXPECT_DOUBLE_EQ(t.params().gamma, default_params().gamma);
 }
 
+TEST(Tuner, SaysTheDisplacementOfTheStateAsItIsNow) {
+  // At the perturbed start (no step yet) the centre node sits 5 cm out: the status said
+  // "max |x - X| 0 cm" there, from an empty trace.
+  Tuner t(small_plane());
+  ASSERT_TRUE(t.session().trace().empty());
+  EXPECT_NEAR(t.max_displacement_now(), 5.0, 1e-12);
+  EXPECT_NEAR(t.watched_displacement_now(), 5.0, 1e-12);
+  t.step(3);
+  EXPECT_DOUBLE_EQ(t.max_displacement_now(), t.session().trace().back().max_displacement);
+  t.displace(t.session().watched(), Vec3(0, 2, 0));  // a drag: not in the trace until a step
+  EXPECT_NE(t.max_displacement_now(), t.session().trace().back().max_displacement);
+}
+
 TEST(Tuner, ParameterChangeTakesEffectAtTheNextStepWithoutRestart) {
   Tuner t(small_plane());
   t.step(5);
