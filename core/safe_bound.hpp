@@ -2,6 +2,7 @@
 // The per-node bound that guarantees stability (SPEC 9): local (one pass over a node's
 // springs and anchor) and sufficient (Gershgorin's theorem on the semi-implicit step's exact
 // definiteness criterion, Q = 4 I - 2 dt C - dt^2 A positive definite; docs/criteria.md).
+#include <Eigen/SparseCore>
 #include <cstdint>
 #include <limits>
 #include <vector>
@@ -55,6 +56,11 @@ double safe_dt(double m, double gamma, double row_sum);
 class DampedSafeRows {
  public:
   DampedSafeRows(const Model& model, const std::vector<Vec3>& x);
+  /// The same rows from a user's matrices (linear_limits): A = M^-1/2 K M^-1/2 and
+  /// Cp = M^-1/2 C M^-1/2 (3N square, symmetric), node i's rows 3i..3i+2, masses m_i (N;
+  /// kept by reference: they must outlive the rows). Every node is free.
+  DampedSafeRows(const Eigen::SparseMatrix<double>& A, const Eigen::SparseMatrix<double>& Cp,
+                 const std::vector<double>& mass);
   /// The largest nodal gamma_i keeping every margin of node i positive at dt, the other
   /// damping held: m_i / (2 dt) * min_r (margin_r without the nodal term). May be <= 0.
   double gamma_safe(int node, double dt) const;
@@ -66,7 +72,7 @@ class DampedSafeRows {
   struct Entry {
     double a, c;  ///< A_rs and C'^_rs (both weighted by 1/sqrt(m_r m_s))
   };
-  const Model& model_;
+  const std::vector<double>& mass_;      ///< m_i
   std::vector<double> diag_a_, diag_c_;  ///< per node 3 rows: A_rr and C'^_rr (alpha included)
   std::vector<int> offset_;              ///< row (3 i + r)'s entries: [offset_[3i+r], offset_[3i+r+1])
   std::vector<Entry> entries_;

@@ -26,7 +26,8 @@ bool spring_blocks(const Model& model, const std::vector<Vec3>& x, size_t k, Eig
 
 }  // namespace
 
-DampedSafeRows::DampedSafeRows(const Model& model, const std::vector<Vec3>& x) : model_(model) {
+DampedSafeRows::DampedSafeRows(const Model& model, const std::vector<Vec3>& x)
+    : mass_(model.mass) {
   const size_t n = model.rest.size();
   diag_a_.assign(3 * n, 0);
   diag_c_.assign(3 * n, 0);
@@ -68,6 +69,33 @@ DampedSafeRows::DampedSafeRows(const Model& model, const std::vector<Vec3>& x) :
   }
 }
 
+DampedSafeRows::DampedSafeRows(const Eigen::SparseMatrix<double>& A,
+                               const Eigen::SparseMatrix<double>& Cp,
+                               const std::vector<double>& mass)
+    : mass_(mass) {
+  const Eigen::Index rows = A.rows();
+  diag_a_.assign(size_t(rows), 0);
+  diag_c_.assign(size_t(rows), 0);
+  offset_.assign(size_t(rows) + 1, 0);
+  // Row r of a symmetric matrix is its column r: merge A's and Cp's, sorted by index.
+  for (Eigen::Index r = 0; r < rows; ++r) {
+    Eigen::SparseMatrix<double>::InnerIterator a(A, r), c(Cp, r);
+    while (a || c) {
+      const Eigen::Index s = !c || (a && a.row() < c.row()) ? a.row() : c.row();
+      double va = 0, vc = 0;
+      if (a && a.row() == s) va = a.value(), ++a;
+      if (c && c.row() == s) vc = c.value(), ++c;
+      if (s == r) {
+        diag_a_[size_t(r)] = va;
+        diag_c_[size_t(r)] = vc;
+      } else {
+        entries_.push_back({va, vc});
+      }
+    }
+    offset_[size_t(r) + 1] = static_cast<int>(entries_.size());
+  }
+}
+
 double DampedSafeRows::gamma_safe(int node, double dt) const {
   const size_t i = static_cast<size_t>(node);
   double margin = std::numeric_limits<double>::infinity();
@@ -79,12 +107,12 @@ double DampedSafeRows::gamma_safe(int node, double dt) const {
     }
     margin = std::min(margin, 4 - 2 * dt * diag_c_[r] - dt * dt * diag_a_[r] - off);
   }
-  return model_.mass[i] / (2 * dt) * margin;
+  return mass_[i] / (2 * dt) * margin;
 }
 
 double DampedSafeRows::dt_safe(int node, double gamma) const {
   const size_t i = static_cast<size_t>(node);
-  const double rate = gamma / model_.mass[i];
+  const double rate = gamma / mass_[i];
   double best = std::numeric_limits<double>::infinity();
   for (size_t r = 3 * i; r < 3 * i + 3; ++r) {
     // margin(dt) = 4 - dt (P + Q dt) on each interval between the dt where an entry

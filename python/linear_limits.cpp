@@ -68,6 +68,11 @@ void bind_linear_limits(py::module_& m) {
                     "for every node: that gamma)")
       .def_readonly("gamma_ref", &MatrixLimits::gamma_ref, "max_i gamma_i as given")
       .def_readonly("stable", &MatrixLimits::stable, "the given gamma and dt are stable")
+      .def_readonly("damping_matrix", &MatrixLimits::damping_matrix, "a C was given (SPEC 10)")
+      .def_readonly("index", &MatrixLimits::index,
+                    "with C: lambda_max(dt^2 A + 2 dt C^), stable below 4")
+      .def_readonly("damping_min", &MatrixLimits::damping_min,
+                    "with C: lambda_min(C^) (1/s); <= 0 leaves a mode undamped")
       .def_property_readonly(
           "row_sum", [](const MatrixLimits& r) { return array_of(r.row_sum); },
           "SPEC 9's R_i per node (1/s^2)")
@@ -92,11 +97,10 @@ void bind_linear_limits(py::module_& m) {
         mm.mass = vector_of(mass, "mass");
         mm.gamma = vector_of(gamma, "gamma");
         mm.dt = dt;
+        SparseMatrix c;
         if (!C.is_none()) {
-          PyErr_SetString(PyExc_NotImplementedError,
-                          "C: a damping matrix is not judged yet (SPEC 10's generalised index "
-                          "is not wired to user matrices); give nodal damping as gamma");
-          throw py::error_already_set();
+          c = sparse_of(C, "C");
+          mm.C = &c;
         }
         py::gil_scoped_release unlocked;
         return linear_limits(mm);
@@ -105,8 +109,10 @@ void bind_linear_limits(py::module_& m) {
       py::arg("C") = py::none(),
       "The limits of your own matrices (docs/embedding.md, 'Your own matrices'): K a symmetric "
       "scipy.sparse stiffness (3N x 3N, rows 3i..3i+2 node i), mass (N,), gamma one value or "
-      "(N,), dt in s. The same certified analysis as `bounds`: lambda_max interval, dt_max, "
-      "gamma_max, per-node gamma_safe and dt_safe. ValueError names a bad argument.");
+      "(N,), dt in s, C an optional symmetric damping matrix (3N x 3N, SPEC 10: dashpots, "
+      "Rayleigh damping). The same analysis as `bounds`: lambda_max interval, dt_max, "
+      "gamma_max, per-node gamma_safe and dt_safe (with C: SPEC 10's index and generalised "
+      "safe bound). ValueError names a bad argument.");
 }
 
 }  // namespace dampbound::python

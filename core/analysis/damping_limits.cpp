@@ -54,44 +54,16 @@ DampingRatios damping_ratios(const Model& model, const std::vector<Vec3>& x) {
   return r;
 }
 
-GeneralLimits general_limits(const Model& model, const std::vector<Vec3>& x, const Params& params) {
+GeneralLimits general_limits(const SparseMatrix& A, const SparseMatrix& Cp, const SparseMatrix& G,
+                             double gamma, double dt) {
   GeneralLimits g;
-  const double dt = params.dt;
-  const SparseMatrix A = mass_weighted(model, tangent_stiffness(model, x));
-  SparseMatrix Cp = weighted_damping(model, x, std::vector<double>(model.rest.size(), 0.0));
-  // The nodal part per unit user gamma: gamma_scale_i / m_i on node i's rows.
-  std::vector<double> unit(model.rest.size());
-  for (size_t i = 0; i < unit.size(); ++i) unit[i] = model.gamma_scale[i];
-  const SparseMatrix G = weighted_damping(model, x, unit) - Cp;
-  const auto index = [&](double gamma, double h) {
-    const SparseMatrix S = (h * h) * A + (2 * h) * (Cp + gamma * G);
+  const auto index = [&](double gm, double h) {
+    const SparseMatrix S = (h * h) * A + (2 * h) * (Cp + gm * G);
     return largest_eigenvalue(S);
   };
-  g.index = index(params.gamma, dt);
-  g.damping_min = smallest_eigenvalue(Cp + params.gamma * G);
-  // Commuting: no dashpot, and gamma_i / m_i the same at every free node.
-  bool dashpot = false;
-  for (double kd : model.spring_kd) dashpot = dashpot || kd != 0;
-  for (double kd : model.anchor_kd) dashpot = dashpot || kd != 0;
-  double rate = -1;
-  bool uniform = true;
-  for (size_t i = 0; i < model.rest.size(); ++i) {
-    if (model.fixed[i]) continue;
-    const double c = model.gamma_scale[i] / model.mass[i];
-    if (rate < 0) rate = c;
-    uniform = uniform && c == rate;
-  }
-  g.commuting = !dashpot && uniform && rate > 0;
-  if (g.commuting) {
-    // c(lambda) = gamma/m + alpha + beta lambda; the binding mode is lambda_max.
-    const double lmax = largest_eigenvalue(A);
-    const double m = 1.0 / rate;  // m_i / gamma_scale_i
-    const double alpha = model.rayleigh_mass, beta = model.rayleigh_stiffness;
-    g.gamma_max = 2 * m / dt - m * lmax * dt / 2 - m * alpha - m * beta * lmax;
-    g.dt_max = semi_implicit_dt_max(lmax, params.gamma * rate + alpha + beta * lmax);
-    return g;
-  }
-  // General C^: the index grows with gamma and with dt (A, C^ positive semi-definite).
+  g.index = index(gamma, dt);
+  g.damping_min = smallest_eigenvalue(Cp + gamma * G);
+  // The index grows with gamma and with dt (A, C^ positive semi-definite).
   const auto bisect = [](auto&& stable, double lo, double hi) {
     for (int k = 0; k < 200 && hi - lo > 1e-10 * hi; ++k) {
       const double mid = 0.5 * (lo + hi);
@@ -107,10 +79,44 @@ GeneralLimits general_limits(const Model& model, const std::vector<Vec3>& x, con
     g.gamma_max = bisect([&](double gm) { return index(gm, dt) < 4; }, 0, hi);
   }
   double hi = dt;
-  for (int k = 0; k < 200 && index(params.gamma, hi) < 4; ++k) hi *= 2;
+  for (int k = 0; k < 200 && index(gamma, hi) < 4; ++k) hi *= 2;
   double lo = hi;
-  for (int k = 0; k < 200 && !(index(params.gamma, lo) < 4); ++k) lo /= 2;
-  g.dt_max = bisect([&](double h) { return index(params.gamma, h) < 4; }, lo, std::max(hi, lo * 2));
+  for (int k = 0; k < 200 && !(index(gamma, lo) < 4); ++k) lo /= 2;
+  g.dt_max = bisect([&](double h) { return index(gamma, h) < 4; }, lo, std::max(hi, lo * 2));
+  return g;
+}
+
+GeneralLimits general_limits(const Model& model, const std::vector<Vec3>& x, const Params& params) {
+  const double dt = params.dt;
+  const SparseMatrix A = mass_weighted(model, tangent_stiffness(model, x));
+  SparseMatrix Cp = weighted_damping(model, x, std::vector<double>(model.rest.size(), 0.0));
+  // The nodal part per unit user gamma: gamma_scale_i / m_i on node i's rows.
+  std::vector<double> unit(model.rest.size());
+  for (size_t i = 0; i < unit.size(); ++i) unit[i] = model.gamma_scale[i];
+  const SparseMatrix G = weighted_damping(model, x, unit) - Cp;
+  // Commuting: no dashpot, and gamma_i / m_i the same at every free node.
+  bool dashpot = false;
+  for (double kd : model.spring_kd) dashpot = dashpot || kd != 0;
+  for (double kd : model.anchor_kd) dashpot = dashpot || kd != 0;
+  double rate = -1;
+  bool uniform = true;
+  for (size_t i = 0; i < model.rest.size(); ++i) {
+    if (model.fixed[i]) continue;
+    const double c = model.gamma_scale[i] / model.mass[i];
+    if (rate < 0) rate = c;
+    uniform = uniform && c == rate;
+  }
+  if (!(!dashpot && uniform && rate > 0)) return general_limits(A, Cp, G, params.gamma, dt);
+  GeneralLimits g;
+  g.commuting = true;
+  g.index = largest_eigenvalue((dt * dt) * A + (2 * dt) * (Cp + params.gamma * G));
+  g.damping_min = smallest_eigenvalue(Cp + params.gamma * G);
+  // c(lambda) = gamma/m + alpha + beta lambda; the binding mode is lambda_max.
+  const double lmax = largest_eigenvalue(A);
+  const double m = 1.0 / rate;  // m_i / gamma_scale_i
+  const double alpha = model.rayleigh_mass, beta = model.rayleigh_stiffness;
+  g.gamma_max = 2 * m / dt - m * lmax * dt / 2 - m * alpha - m * beta * lmax;
+  g.dt_max = semi_implicit_dt_max(lmax, params.gamma * rate + alpha + beta * lmax);
   return g;
 }
 

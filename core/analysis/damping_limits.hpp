@@ -5,6 +5,7 @@
 // commutes with A (no dashpot, uniform gamma_i / m_i).
 #include <vector>
 
+#include "core/analysis/linear_stability.hpp"
 #include "core/model.hpp"
 
 namespace dampbound {
@@ -32,5 +33,12 @@ struct GeneralLimits {
 /// certified sparse eigenvalues (linear_stability.hpp); the general case bisects the index in
 /// gamma and in dt (each step one eigenvalue), to 1e-10 relative.
 GeneralLimits general_limits(const Model& model, const std::vector<Vec3>& x, const Params& params);
+
+/// The general case on matrices (what the model's overload runs when C^ does not commute with
+/// A, and linear_limits on a user's C): A = M^-1/2 K M^-1/2, Cp = M^-1/2 C' M^-1/2 (the damping
+/// besides the nodal one), G the nodal damping per unit gamma (M^-1/2 diag(scale_i) M^-1/2),
+/// for nodal damping gamma * G at step dt. `commuting` is false.
+GeneralLimits general_limits(const SparseMatrix& A, const SparseMatrix& Cp, const SparseMatrix& G,
+                             double gamma, double dt);
 
 }  // namespace dampbound

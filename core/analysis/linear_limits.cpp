@@ -18,17 +18,38 @@ std::string shown(double v) {
   return o.str();
 }
 
-void check(const MatrixModel& m) {
-  if (!m.K) throw InputError("K: no stiffness matrix given");
-  const SparseMatrix& K = *m.K;
-  const size_t n = m.mass.size();
-  if (n == 0) throw InputError("mass: no node (give one mass per node)");
+/// A matrix of the model (K or C): 3N x 3N, finite, symmetric to 1e-12 of its largest entry.
+void check_matrix(const SparseMatrix& K, const std::string& name, size_t n) {
   if (K.rows() != K.cols())
-    throw InputError("K: must be square, not " + std::to_string(K.rows()) + " x " +
+    throw InputError(name + ": must be square, not " + std::to_string(K.rows()) + " x " +
                      std::to_string(K.cols()));
   if (size_t(K.rows()) != 3 * n)
-    throw InputError("K: must be 3N x 3N for the N = " + std::to_string(n) + " masses given, not " +
-                     std::to_string(K.rows()) + " x " + std::to_string(K.cols()));
+    throw InputError(name + ": must be 3N x 3N for the N = " + std::to_string(n) +
+                     " masses given, not " + std::to_string(K.rows()) + " x " +
+                     std::to_string(K.cols()));
+  double largest = 0;
+  for (int k = 0; k < K.outerSize(); ++k)
+    for (SparseMatrix::InnerIterator it(K, k); it; ++it) {
+      if (!std::isfinite(it.value()))
+        throw InputError(name + ": entry (" + std::to_string(it.row()) + ", " +
+                         std::to_string(it.col()) + ") is not finite");
+      largest = std::max(largest, std::abs(it.value()));
+    }
+  const SparseMatrix asym = K - SparseMatrix(K.transpose());
+  for (int k = 0; k < asym.outerSize(); ++k)
+    for (SparseMatrix::InnerIterator it(asym, k); it; ++it)
+      if (std::abs(it.value()) > 1e-12 * largest)
+        throw InputError(name + ": not symmetric: entries (" + std::to_string(it.row()) + ", " +
+                         std::to_string(it.col()) + ") and (" + std::to_string(it.col()) + ", " +
+                         std::to_string(it.row()) + ") differ by " + shown(std::abs(it.value())));
+}
+
+void check(const MatrixModel& m) {
+  if (!m.K) throw InputError("K: no stiffness matrix given");
+  const size_t n = m.mass.size();
+  if (n == 0) throw InputError("mass: no node (give one mass per node)");
+  check_matrix(*m.K, "K", n);
+  if (m.C) check_matrix(*m.C, "C", n);
   for (size_t i = 0; i < n; ++i)
     if (!(std::isfinite(m.mass[i]) && m.mass[i] > 0))
       throw InputError("mass: node " + std::to_string(i) + " has mass " + shown(m.mass[i]) +
@@ -40,25 +61,15 @@ void check(const MatrixModel& m) {
     if (!(std::isfinite(m.gamma[i]) && m.gamma[i] >= 0))
       throw InputError("gamma: entry " + std::to_string(i) + " must be finite and >= 0");
   if (!(std::isfinite(m.dt) && m.dt > 0)) throw InputError("dt: must be finite and > 0");
-  double largest = 0;
-  for (int k = 0; k < K.outerSize(); ++k)
-    for (SparseMatrix::InnerIterator it(K, k); it; ++it) {
-      if (!std::isfinite(it.value()))
-        throw InputError("K: entry (" + std::to_string(it.row()) + ", " + std::to_string(it.col()) +
-                         ") is not finite");
-      largest = std::max(largest, std::abs(it.value()));
-    }
-  const SparseMatrix asym = K - SparseMatrix(K.transpose());
-  for (int k = 0; k < asym.outerSize(); ++k)
-    for (SparseMatrix::InnerIterator it(asym, k); it; ++it)
-      if (std::abs(it.value()) > 1e-12 * largest)
-        throw InputError("K: not symmetric: entries (" + std::to_string(it.row()) + ", " +
-                         std::to_string(it.col()) + ") and (" + std::to_string(it.col()) + ", " +
-                         std::to_string(it.row()) + ") differ by " + shown(std::abs(it.value())));
-  if (m.C)
-    throw InputError(
-        "C: a damping matrix is not judged yet; give nodal damping as gamma (SPEC 10's "
-        "dashpots and Rayleigh damping are judged on scenes)");
+}
+
+/// M^-1/2 X M^-1/2 for a 3N x 3N X.
+SparseMatrix weighted(SparseMatrix X, const std::vector<double>& inv_sqrt_m) {
+  X.makeCompressed();
+  for (int k = 0; k < X.outerSize(); ++k)
+    for (SparseMatrix::InnerIterator it(X, k); it; ++it)
+      it.valueRef() *= inv_sqrt_m[size_t(it.row())] * inv_sqrt_m[size_t(it.col())];
+  return X;
 }
 
 }  // namespace
@@ -81,11 +92,7 @@ MatrixLimits linear_limits(const MatrixModel& model, const ExactOptions& options
       const double scale = out.gamma_ref > 0 ? gamma_of(i) / out.gamma_ref : 1.0;
       R(Eigen::Index(3 * i + r)) = scale / model.mass[i];
     }
-  SparseMatrix A = *model.K;
-  A.makeCompressed();
-  for (int k = 0; k < A.outerSize(); ++k)
-    for (SparseMatrix::InnerIterator it(A, k); it; ++it)
-      it.valueRef() *= inv_sqrt_m[size_t(it.row())] * inv_sqrt_m[size_t(it.col())];
+  const SparseMatrix A = weighted(*model.K, inv_sqrt_m);
   Params p;
   p.dt = model.dt;
   p.gamma = out.gamma_ref;
@@ -111,6 +118,27 @@ MatrixLimits linear_limits(const MatrixModel& model, const ExactOptions& options
     out.row_sum[i] = std::max({rows[3 * i], rows[3 * i + 1], rows[3 * i + 2]});
     out.gamma_safe[i] = safe_gamma(model.mass[i], model.dt, out.row_sum[i]);
     out.dt_safe[i] = safe_dt(model.mass[i], gamma_of(i), out.row_sum[i]);
+  }
+  if (!model.C) return out;
+  // SPEC 10: the index with C^ = M^-1/2 (Gamma + C) M^-1/2 (general_limits on matrices), the
+  // nodal part per unit of gamma_ref as R above, and the generalised safe bound.
+  out.damping_matrix = true;
+  const SparseMatrix Cp = weighted(*model.C, inv_sqrt_m);
+  SparseMatrix G(A.rows(), A.cols());
+  G.reserve(Eigen::VectorXi::Constant(A.cols(), 1));
+  for (Eigen::Index r = 0; r < A.rows(); ++r) G.insert(r, r) = R(r);
+  G.makeCompressed();
+  const GeneralLimits g = general_limits(A, Cp, G, out.gamma_ref, model.dt);
+  out.index = g.index;
+  out.damping_min = g.damping_min;
+  out.dt_max = g.dt_max;
+  out.gamma_min = 0;
+  out.gamma_max = g.gamma_max;
+  out.stable = g.index < 4 && g.damping_min > 0;
+  const DampedSafeRows damped(A, Cp, model.mass);
+  for (size_t i = 0; i < n; ++i) {
+    out.gamma_safe[i] = damped.gamma_safe(int(i), model.dt);
+    out.dt_safe[i] = damped.dt_safe(int(i), gamma_of(i));
   }
   return out;
 }

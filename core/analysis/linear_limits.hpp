@@ -1,12 +1,15 @@
 #pragma once
 // The limits of a user's own matrices: a stiffness K assembled by another code (FEM, XPBD,
-// a mass-spring engine), lumped masses and nodal damping, judged by the same certified
-// analysis `bounds` runs on a scene's model (exact_stability on A = M^-1/2 K M^-1/2, SPEC 7)
-// and SPEC 9's per-node safe bound from the Gershgorin rows of the same A (docs/embedding.md,
-// "Your own matrices").
+// a mass-spring engine), lumped masses, nodal damping and optionally a damping matrix C,
+// judged by the same analysis `bounds` runs on a scene's model: exact_stability on
+// A = M^-1/2 K M^-1/2 (SPEC 7) and SPEC 9's per-node safe bound from the Gershgorin rows of
+// the same A; with C, SPEC 10's index lambda_max(dt^2 A + 2 dt C^) and its generalised safe
+// bound, as general_limits() and DampedSafeRows compute them for a scene with dashpots or
+// Rayleigh damping (docs/embedding.md, "Your own matrices").
 #include <Eigen/SparseCore>
 #include <vector>
 
+#include "core/analysis/damping_limits.hpp"
 #include "core/analysis/linear_stability_exact.hpp"
 
 namespace dampbound {
@@ -19,8 +22,8 @@ struct MatrixModel {
   std::vector<double> mass;   ///< per node, > 0
   std::vector<double> gamma;  ///< 1 (every node) or N values, >= 0
   double dt = 0;              ///< s, > 0
-  /// A damping matrix C (SPEC 10) is not taken yet: where one is given, linear_limits
-  /// throws InputError saying so. Nodal damping is the only kind judged.
+  /// Optional: the damping besides the nodal gamma_i (SPEC 10: dashpots, Rayleigh
+  /// alpha M + beta K, anything symmetric positive semi-definite), 3N x 3N, mass unit / s.
   const SparseMatrix* C = nullptr;
 };
 
@@ -34,12 +37,20 @@ struct MatrixLimits {
   double dt_max = 0;
   /// gamma_i = g * gamma_i / gamma_ref (gamma_ref = max_i gamma_i; the pattern kept) is
   /// stable at dt for gamma_min <= g < gamma_max; with one gamma for every node that is the
-  /// interval of that gamma (mass unit / s).
+  /// interval of that gamma (mass unit / s). With C: gamma_min = 0 (C held).
   double gamma_min = 0, gamma_max = 0;
   double gamma_ref = 0;
   bool stable = false;  ///< the given gamma and dt are stable
-  /// SPEC 9 per node: R_i (max over its three rows of sum_s |A_rs|, 1/s^2), gamma_safe_i =
-  /// 2 m_i/dt - m_i dt R_i / 2 and dt_safe_i at the node's gamma_i.
+  /// With C (SPEC 10): `exact` is the analysis of the nodal damping alone (its lambda_max
+  /// interval is A's either way); dt_max, gamma_max and stable come from the index
+  /// lambda_max(dt^2 A + 2 dt C^) < 4 with C^ = M^-1/2 (Gamma + C) M^-1/2, and damping_min =
+  /// lambda_min(C^) (<= 0: some mode is not damped, marginal at best, and `stable` is false).
+  bool damping_matrix = false;
+  double index = 0;
+  double damping_min = 0;
+  /// Per node: R_i (max over its three rows of sum_s |A_rs|, 1/s^2) and SPEC 9's
+  /// gamma_safe_i = 2 m_i/dt - m_i dt R_i / 2 and dt_safe_i at the node's gamma_i; with C,
+  /// SPEC 10's generalised gamma_safe_i and dt_safe_i (Gershgorin on 4 I - 2 dt C^ - dt^2 A).
   std::vector<double> row_sum, gamma_safe, dt_safe;
 };
 

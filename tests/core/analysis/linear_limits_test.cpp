@@ -6,6 +6,8 @@
 
 #include <cmath>
 
+#include "core/analysis/damping_limits.hpp"
+#include "core/analysis/damping_matrix.hpp"
 #include "core/analysis/linear_stability.hpp"
 #include "core/io/scene_file.hpp"
 #include "core/safe_bound.hpp"
@@ -86,9 +88,46 @@ TEST(LinearLimits, BadInputNamesTheArgument) {
   mm.K = &bent;
   EXPECT_EQ(test::input_error([&] { linear_limits(mm); }).substr(0, 20), "K: not symmetric: en");
   mm.K = &K;
-  mm.C = &K;
-  EXPECT_EQ(test::input_error([&] { linear_limits(mm); }).substr(0, 38),
-            "C: a damping matrix is not judged yet;");
+  const SparseMatrix small(3, 3);
+  mm.C = &small;
+  EXPECT_EQ(test::input_error([&] { linear_limits(mm); }).substr(0, 30),
+            "C: must be 3N x 3N for the N =");
+  mm.C = &bent;
+  EXPECT_EQ(test::input_error([&] { linear_limits(mm); }).substr(0, 20), "C: not symmetric: en");
+}
+
+// A damping matrix (SPEC 10): a plane with dashpots and Rayleigh damping, its K and C'
+// assembled by core and given as matrices, judged as `bounds` judges the scene.
+TEST(LinearLimits, ADampingMatrixGivesTheScenesGeneralLimits) {
+  const SceneSpec scene = paper_plane_scene(8);
+  Params p = scene.params;
+  p.kd = 0.002;
+  p.rayleigh_mass = 0.01;
+  p.rayleigh_stiffness = 0.001;
+  const Model model = compile_model(scene.model, p);
+  const std::vector<Vec3>& x = model.rest;
+  const SparseMatrix K = tangent_stiffness(model, x);
+  const SparseMatrix C = spring_damping_matrix(model, x);
+  MatrixModel mm;
+  mm.K = &K;
+  mm.C = &C;
+  mm.mass = model.mass;
+  mm.gamma = model.gamma;
+  mm.dt = p.dt;
+  const MatrixLimits got = linear_limits(mm);
+  const GeneralLimits want = general_limits(model, x, p);
+  ASSERT_FALSE(want.commuting);
+  EXPECT_TRUE(got.damping_matrix);
+  expect_rel(got.index, want.index, 1e-12, "index");
+  expect_rel(got.damping_min, want.damping_min, 1e-9, "lambda_min(C^)");
+  expect_rel(got.dt_max, want.dt_max, 1e-9, "dt_max");
+  expect_rel(got.gamma_max, want.gamma_max, 1e-9, "gamma_max");
+  EXPECT_EQ(got.stable, want.index < 4 && want.damping_min > 0);
+  const DampedSafeRows rows(model, x);
+  for (size_t i = 0; i < model.mass.size(); ++i) {
+    expect_rel(got.gamma_safe[i], rows.gamma_safe(int(i), p.dt), 1e-12, "gamma_safe_i");
+    expect_rel(got.dt_safe[i], rows.dt_safe(int(i), model.gamma[i]), 1e-12, "dt_safe_i");
+  }
 }
 
 }  // namespace
