@@ -3,6 +3,9 @@
 # AddressSanitizer + UndefinedBehaviorSanitizer, the ctest suite run under them, then every
 # fuzz target (tests/fuzz/fuzz_*.cpp) for a fixed time on its committed seed corpus. This is
 # also the "builds with clang" job: warnings are errors. Details: docs/hardening.md.
+# The Python module is built instrumented too, and the Python battery (python/tests/
+# test_battery_*.py) runs against it in Debian's uninstrumented interpreter with clang's ASan
+# runtime preloaded (leak detection off there: CPython keeps its objects to the end by design).
 #   FUZZ_SECONDS (default 20) per target; BUILD_DIR (default build-asan); JOBS (default nproc).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
@@ -21,7 +24,7 @@ SAN="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-fram
 cmake -S . -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=Debug \
   -DCMAKE_C_COMPILER=clang-14 -DCMAKE_CXX_COMPILER=clang++-14 "${LAUNCHER[@]}" \
   -DCMAKE_CXX_FLAGS="-O1 -g $SAN" -DCMAKE_EXE_LINKER_FLAGS="$SAN" \
-  -DDAMPBOUND_WERROR=ON -DDAMPBOUND_BENCH=OFF -DDAMPBOUND_FUZZ=ON
+  -DDAMPBOUND_WERROR=ON -DDAMPBOUND_BENCH=OFF -DDAMPBOUND_FUZZ=ON -DDAMPBOUND_PYTHON=ON
 cmake --build "$BUILD_DIR" -j "$JOBS"
 T1=$(date +%s)
 
@@ -42,6 +45,13 @@ unset DISPLAY
    ctest --output-on-failure -j "$JOBS" -L '^ui$' -E '^ui\.glfw_host_under_xvfb$')
 (cd "$BUILD_DIR" && ASAN_OPTIONS="$ASAN_OPTIONS:detect_leaks=0" \
    ctest --output-on-failure -j "$JOBS" -R '^battery$')
+# The Python battery (382 cases: states, indices, flags, out arrays, parameters at every
+# door, the GIL) against the instrumented module.
+ASAN_RT=$(clang-14 -print-file-name=libclang_rt.asan-x86_64.so)
+[ -f "$ASAN_RT" ] || { echo "sanitize: clang's ASan runtime is missing (apt-get install libclang-rt-14-dev)"; exit 3; }
+(cd "$BUILD_DIR/python" && LD_PRELOAD="$ASAN_RT" ASAN_OPTIONS="$ASAN_OPTIONS:detect_leaks=0" \
+   PYTHONPATH=. /usr/bin/python3 -m pytest -q -p no:cacheprovider \
+   "$ROOT/python/tests/test_battery_arrays.py" "$ROOT/python/tests/test_battery_params.py")
 T2=$(date +%s)
 
 echo "== fuzzing: ${FUZZ_SECONDS} s per target on its seed corpus"
@@ -67,6 +77,6 @@ done
 T3=$(date +%s)
 echo "== sanitize summary"
 echo "build (clang 14, ASan+UBSan, -Werror): $((T1 - T0)) s"
-echo "ctest under ASan+UBSan: $((T2 - T1)) s"
+echo "ctest and the Python battery under ASan+UBSan: $((T2 - T1)) s"
 printf '%s\n' "${summary[@]}"
 echo "fuzzing: $((T3 - T2)) s; total $((T3 - T0)) s"
