@@ -163,6 +163,9 @@ void GuiApp::suggest_panel() {
       ImGui::SetTooltip("Drop this computation (the last suggestion stays)");
     ImGui::SameLine();
     ImGui::TextDisabled("computing and verifying... %s s", fmt(suggest_.seconds()).c_str());
+    const std::string where = suggest_.progress();
+    if (!where.empty())
+      wrapped_colored(ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled), where);
   } else if (suggest_.cancelled()) {
     ImGui::SameLine();
     ImGui::TextDisabled("cancelled");

@@ -259,9 +259,11 @@ void TunerSuggest::launch(std::shared_ptr<const SceneSpec> shared,
   cancelled_ = false;
   started_ = std::chrono::steady_clock::now();
   cancel_ = std::make_shared<std::atomic<bool>>(false);
+  progress_ = std::make_shared<Progress>();
   pending_ = std::async(std::launch::async, [shared = std::move(shared), model = std::move(model),
                                              iteration, params, rules, cut,
-                                             budget = factor_budget_, cancel = cancel_] {
+                                             budget = factor_budget_, cancel = cancel_,
+                                             progress = progress_] {
     // With a model: the scene as the run has it (Session::current_scene), built here.
     std::optional<SceneSpec> as_run;
     if (model) as_run = scene_as_run(*shared, *model, iteration);
@@ -272,9 +274,16 @@ void TunerSuggest::launch(std::shared_ptr<const SceneSpec> shared,
     s.springs_cut = cut;
     SuggestOptions options;
     options.max_factor_flops = budget;  // over it: what is proved without a factorisation
-    if (*cancel) return s;
+    std::string part;
+    options.progress = [&part, cancel, progress](int done, int total, const std::string& next) {
+      const std::lock_guard<std::mutex> lock(progress->mutex);
+      progress->text = part + ", stage " + std::to_string(done + 1) + " of " +
+                       std::to_string(total) + ": " + next;
+      return !*cancel;
+    };
+    part = "damping range";
     s.damping = suggest_damping(scene, params, rules, options);
-    if (*cancel) return s;
+    part = "time step";
     s.step = suggest_step(scene, params, rules, options);
     return s;
   });
@@ -285,6 +294,12 @@ void TunerSuggest::cancel() {
   *cancel_ = true;
   dropped_.push_back(std::move(pending_));
   cancelled_ = true;
+}
+
+std::string TunerSuggest::progress() const {
+  if (!progress_) return {};
+  const std::lock_guard<std::mutex> lock(progress_->mutex);
+  return progress_->text;
 }
 
 double TunerSuggest::seconds() const {

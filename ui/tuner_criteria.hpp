@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <future>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
@@ -181,12 +182,15 @@ class TunerSuggest {
   bool poll();
   /// Waits for a running computation (tests).
   void wait();
-  /// The Cancel button: the running computation's result is dropped and its worker stops at
-  /// its next stage (after the damping suggestion: core's suggest_* cannot be interrupted
-  /// inside); it is joined later, and closing the window does not wait for it.
+  /// The Cancel button: the running computation's result is dropped and its worker stops
+  /// before its next stage (SuggestOptions::progress: the exact analysis, a trial run or a
+  /// verifying run); it is joined later, and closing the window does not wait for it.
   void cancel();
-  /// Seconds since the running computation started (its progress while busy()).
+  /// Seconds since the running computation started.
   double seconds() const;
+  /// Where the running computation is: "damping range, stage 2 of 4: verifying the lower
+  /// end of the range" (empty before its first stage).
+  std::string progress() const;
   /// True when the last computation was cancelled (nothing new to show).
   bool cancelled() const { return cancelled_; }
   /// The last finished suggestion.
@@ -204,6 +208,11 @@ class TunerSuggest {
 
   std::future<Suggestion> pending_;
   std::shared_ptr<std::atomic<bool>> cancel_;  ///< of the running computation
+  struct Progress {
+    mutable std::mutex mutex;
+    std::string text;
+  };
+  std::shared_ptr<Progress> progress_;  ///< written by the worker, read by the frame
   std::vector<std::future<Suggestion>> dropped_;  ///< cancelled, not yet joined
   std::chrono::steady_clock::time_point started_{};
   bool cancelled_ = false;

@@ -83,6 +83,21 @@ double stable_dt(const ExactStability& e) {
   return e.unfactored.unconditional ? kInf : e.unfactored.dt_stable_up_to;
 }
 
+/// SuggestOptions::progress, stage by stage: the call's count of stages and the next one.
+class Stages {
+ public:
+  Stages(const SuggestOptions& options, int total) : options_(options), total_(total) {}
+  void add(int more) { total_ += more; }
+  void next(const std::string& what) {
+    if (options_.progress && !options_.progress(done_, total_, what)) throw SuggestCancelled();
+    ++done_;
+  }
+
+ private:
+  const SuggestOptions& options_;
+  int done_ = 0, total_;
+};
+
 }  // namespace
 
 VerifiedRun verify_run(const SceneSpec& scene, const Params& params, const StopRules& rules,
@@ -99,6 +114,8 @@ DampingSuggestion suggest_damping(const SceneSpec& scene, const Params& params_i
   params.policy = DampingPolicy::fixed;
   DampingSuggestion s;
   s.dt = params.dt;
+  Stages stages(options, 1 + (options.verify ? 3 : 0));
+  stages.next("exact limits at this dt");
   const Model model = compile_model(scene.model, params);
   s.exact = exact_limits(model, params, options);
 
@@ -224,9 +241,11 @@ DampingSuggestion suggest_damping(const SceneSpec& scene, const Params& params_i
   } else {
     // Non-uniform rates: trial runs of the scene's protocol; fewest iterations to restore wins.
     const int n = std::max(2, options.trials);
+    stages.add(n + 9);
     auto best_of = [&](double a, double b, int count, double& best_gamma, RunResult& best_run) {
       for (int k = 0; k < count; ++k) {
         const double g = a + (b - a) * k / (count - 1);
+        stages.next("trial run for the fastest-settling gamma");
         const RunResult r = verify_run(scene, with_gamma(params, g), rules, "").result;
         if (best_gamma < 0 || score(r) < score(best_run)) best_gamma = g, best_run = r;
       }
@@ -242,12 +261,17 @@ DampingSuggestion suggest_damping(const SceneSpec& scene, const Params& params_i
                     " trial runs of the scene (rates gamma_i/m_i are not uniform)";
   }
   if (options.verify) {
-    if (std::isfinite(s.gamma_best))
+    if (std::isfinite(s.gamma_best)) {
+      stages.next("verifying the fastest-settling gamma");
       s.runs.push_back(verify_run(scene, with_gamma(params, s.gamma_best), rules, "fastest-settling gamma"));
+    }
+    stages.next("verifying the lower end of the range");
     s.runs.push_back(verify_run(scene, with_gamma(params, s.gamma_min), rules, "lower end of the range"));
-    if (std::isfinite(s.gamma_max))
+    if (std::isfinite(s.gamma_max)) {
+      stages.next("verifying 99% of the way to the upper end");
       s.runs.push_back(verify_run(scene, with_gamma(params, s.gamma_min + 0.99 * (s.gamma_max - s.gamma_min)),
                                   rules, "99% of the way to the upper end"));
+    }
   }
   return s;
 }
@@ -258,6 +282,8 @@ StepSuggestion suggest_step(const SceneSpec& scene, const Params& params_in, con
   params.policy = DampingPolicy::fixed;
   StepSuggestion s;
   s.gamma = params.gamma;
+  Stages stages(options, 1 + (options.verify ? 2 : 0));
+  stages.next("exact limits at this gamma");
   const Model model = compile_model(scene.model, params);
   s.exact = exact_limits(model, params, options);
   s.dt_exact = s.exact.dt_max;
@@ -295,10 +321,14 @@ StepSuggestion suggest_step(const SceneSpec& scene, const Params& params_in, con
     if (dt_d < s.dt_all) s.dt_all = dt_d, s.dt_all_by = "Delingette critical stiffness";
   }
   if (options.verify) {
-    if (std::isfinite(s.dt_exact))
+    if (std::isfinite(s.dt_exact)) {
+      stages.next("verifying 99% of the exact dt limit");
       s.runs.push_back(verify_run(scene, with_dt(params, 0.99 * s.dt_exact), rules, "99% of the exact limit"));
-    if (std::isfinite(s.dt_all) && !(s.dt_all >= 0.99 * s.dt_exact))
+    }
+    if (std::isfinite(s.dt_all) && !(s.dt_all >= 0.99 * s.dt_exact)) {
+      stages.next("verifying the largest dt every criterion accepts");
       s.runs.push_back(verify_run(scene, with_dt(params, s.dt_all), rules, "largest dt every criterion accepts"));
+    }
   }
   return s;
 }

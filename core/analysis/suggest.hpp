@@ -4,7 +4,9 @@
 // suggestion is verified by running it through a Session (the scene's perturbation and
 // protocol). A core function so that the CLI (`dampbound suggest`) and the GUI share it.
 // The algorithm is in docs/criteria.md, "suggest".
+#include <functional>
 #include <limits>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -49,6 +51,15 @@ struct SuggestOptions {
   /// without a factorisation (ExactStability::unfactored; `proved_only` below), and where
   /// that proves no stable range: std::runtime_error.
   double max_factor_flops = std::numeric_limits<double>::infinity();
+  /// Called before each stage of a call (the exact analysis, each trial run, each verifying
+  /// run) with the stages done, the stages known so far (the total grows once the trial runs
+  /// are decided) and what runs next; returning false stops the call with SuggestCancelled.
+  std::function<bool(int done, int total, const std::string& next)> progress;
+};
+
+/// What suggest_damping and suggest_step throw when SuggestOptions::progress asks them to stop.
+struct SuggestCancelled : std::runtime_error {
+  SuggestCancelled() : std::runtime_error("suggest: cancelled") {}
 };
 
 /// For params.dt: the range of the user's gamma that eq. 5 (gamma_i >= 2 sqrt(m_i kappa_i) at

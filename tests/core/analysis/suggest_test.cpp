@@ -10,6 +10,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace dampbound {
 namespace {
@@ -43,6 +44,37 @@ TEST(Suggest, PaperPlaneDampingRangeAndFastestSettling) {
   EXPECT_TRUE(d.runs[0].verified());
   EXPECT_EQ(d.runs[0].rules.rule, StopRule::settled);
   for (const VerifiedRun& r : d.runs) EXPECT_NE(r.result.outcome, Outcome::diverged) << r.label;
+}
+
+// SuggestOptions::progress sees every stage in order, with a total that ends at the count of
+// stages run; returning false stops the call before the next stage.
+TEST(Suggest, ProgressCountsTheStagesAndCanStopThem) {
+  const SceneSpec s = scene("paper-plane");
+  std::vector<std::string> seen;
+  int last_total = 0;
+  SuggestOptions o;
+  o.progress = [&](int done, int total, const std::string& next) {
+    EXPECT_EQ(done, int(seen.size()));
+    EXPECT_LT(done, total);
+    seen.push_back(next);
+    last_total = total;
+    return true;
+  };
+  const DampingSuggestion d = suggest_damping(s, s.params, s.rules, o);
+  ASSERT_EQ(seen.size(), 1 + d.runs.size());  // the exact analysis, then each verifying run
+  EXPECT_EQ(last_total, int(seen.size()));
+  EXPECT_EQ(seen[0], "exact limits at this dt");
+  seen.clear();
+  const StepSuggestion t = suggest_step(s, s.params, s.rules, o);
+  EXPECT_EQ(seen.size(), 1 + t.runs.size());
+  // Stop at the second stage: the first verifying run never starts.
+  int calls = 0;
+  o.progress = [&](int done, int, const std::string&) {
+    ++calls;
+    return done < 1;
+  };
+  EXPECT_THROW(suggest_damping(s, s.params, s.rules, o), SuggestCancelled);
+  EXPECT_EQ(calls, 2);
 }
 
 TEST(Suggest, LargestStableStep) {
