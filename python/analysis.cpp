@@ -149,10 +149,11 @@ void bind_analysis(py::module_& m) {
       "nothing is factorised and the result has computed=False (None: no limit).");
   m.def(
       "exact_limits",
-      [options](const SceneSpec& scene, const Params* params, int threads,
+      [options](const SceneSpec& scene_in, const Params* params, int threads,
                 std::optional<double> budget, const py::object& x) {
-        const Params p = params ? *params : scene.params;
-        require_valid(p);
+        const ResolvedScene resolved(scene_in, params);
+        const SceneSpec& scene = resolved.scene();
+        const Params& p = resolved.params();
         const ExactOptions o = options(threads, budget);
         std::vector<Vec3> at = scene.model.rest;
         if (!x.is_none()) {
@@ -174,9 +175,10 @@ void bind_analysis(py::module_& m) {
       "and factor_budget_gflop as above.");
   m.def(
       "static_equilibrium",
-      [options](const SceneSpec& scene, const Params* params, std::optional<double> budget) {
-        const Params p = params ? *params : scene.params;
-        require_valid(p);
+      [options](const SceneSpec& scene_in, const Params* params, std::optional<double> budget) {
+        const ResolvedScene resolved(scene_in, params);
+        const SceneSpec& scene = resolved.scene();
+        const Params& p = resolved.params();
         EquilibriumOptions o;
         o.max_factor_flops = options(1, budget).max_factor_flops;
         Equilibrium e;
@@ -206,11 +208,12 @@ void bind_analysis(py::module_& m) {
 
   m.def(
       "suggest",
-      [options](const SceneSpec& scene, const Params* params, const StopRules* rules,
+      [options](const SceneSpec& scene_in, const Params* params, const StopRules* rules,
                 const std::string& what, bool verify, std::optional<double> factor_budget_gflop) {
-        const Params p = params ? *params : scene.params;
-        const StopRules r = rules ? *rules : scene.rules;
-        require_valid(p);
+        const ResolvedScene resolved(scene_in, params);
+        const SceneSpec& scene = resolved.scene();
+        const Params& p = resolved.params();
+        const StopRules r = rules ? *rules : scene_in.rules;
         if (const auto why = validate(r)) throw py::value_error(*why);
         if (const auto why = validate(scene)) throw py::value_error("scene: " + *why);
         SuggestOptions o;

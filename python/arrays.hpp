@@ -7,11 +7,14 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "core/damping_ratio.hpp"
 #include "core/model.hpp"
 #include "core/monitor.hpp"
+#include "core/scene.hpp"
 
 namespace dampbound::python {
 
@@ -112,6 +115,30 @@ inline std::vector<std::uint8_t> flags_of(const py::handle& h, const char* name)
 inline void require_valid(const Params& p) {
   if (const auto why = validate(p)) throw py::value_error(*why);
 }
+
+/// The scene and parameters a call uses: `params` (default the scene's) validated, and a
+/// damping ratio given as Params.zeta resolved as the CLI resolves --zeta (gamma_i = zeta * 2
+/// sqrt(m_i kappa_i) at each node, core/damping_ratio.hpp) on a copy of the scene, which is
+/// made only then.
+class ResolvedScene {
+ public:
+  ResolvedScene(const SceneSpec& scene, const Params* params)
+      : params_(params ? *params : scene.params), scene_(&scene) {
+    require_valid(params_);
+    if (params_.zeta) {
+      copy_ = scene;
+      resolve_zeta(copy_->model, params_);
+      scene_ = &*copy_;
+    }
+  }
+  const SceneSpec& scene() const { return *scene_; }
+  const Params& params() const { return params_; }
+
+ private:
+  Params params_;
+  const SceneSpec* scene_;
+  std::optional<SceneSpec> copy_;
+};
 
 /// (N, 3) positions/velocities/forces read in place (rows strided, columns adjacent).
 /// `keep` holds the array (or its copy) alive while the view is used.

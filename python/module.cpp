@@ -64,6 +64,10 @@ void bind_params(py::module_& m) {
       .def_readwrite("m", &Params::m, "node mass (mass unit)")
       .def_readwrite("kappa", &Params::kappa, "spring and anchor stiffness (mass unit/s^2)")
       .def_readwrite("gamma", &Params::gamma, "user's viscous damping (mass unit/s)")
+      .def_readwrite("zeta", &Params::zeta,
+                     "the nodal damping ratio in place of gamma (None: use gamma): every call "
+                     "that takes these params sets gamma_i = zeta * 2 sqrt(m_i kappa_i) at each "
+                     "node, as the CLI's --zeta does")
       .def_readwrite("dt", &Params::dt, "time step (s)")
       .def_property(
           "policy", [](const Params& p) { return std::string(to_string(p.policy)); },
@@ -78,7 +82,8 @@ void bind_params(py::module_& m) {
       .def("__repr__", [](const Params& p) {
         // format_number: the exact value in the "C" locale (%f showed 1e-9 as 0.000000).
         return "Params(m=" + format_number(p.m) + ", kappa=" + format_number(p.kappa) +
-               ", gamma=" + format_number(p.gamma) + ", dt=" + format_number(p.dt) +
+               (p.zeta ? ", zeta=" + format_number(*p.zeta) : ", gamma=" + format_number(p.gamma)) +
+               ", dt=" + format_number(p.dt) +
                ", policy='" + to_string(p.policy) + "')";
       });
 
@@ -168,8 +173,8 @@ void bind_scene(py::module_& m) {
           "arrays",
           [](const SceneSpec& s, const Params* params) {
             // The model with params applied, as the arrays a Monitor takes (copies).
-            require_valid(params ? *params : s.params);
-            const Model mo = compile_model(s.model, params ? *params : s.params);
+            const ResolvedScene r(s, params);
+            const Model mo = compile_model(r.scene().model, r.params());
             py::array_t<int> pairs({static_cast<py::ssize_t>(mo.spring_count()), py::ssize_t{2}});
             py::array_t<double> kappa(mo.spring_count()), l0(mo.spring_count());
             for (int k = 0; k < mo.spring_count(); ++k) {
@@ -182,6 +187,8 @@ void bind_scene(py::module_& m) {
             py::dict d;
             d["mass"] = py::array_t<double>(mo.mass.size(), mo.mass.data());
             d["gamma"] = py::array_t<double>(mo.gamma.size(), mo.gamma.data());
+            const std::vector<double> zeta = damping_ratio(mo);
+            d["zeta"] = py::array_t<double>(zeta.size(), zeta.data());
             d["springs"] = pairs;
             d["stiffness"] = kappa;
             d["rest_length"] = l0;
@@ -195,7 +202,8 @@ void bind_scene(py::module_& m) {
           },
           py::arg("params") = nullptr,
           "The model with params (default: the scene's) applied, as NumPy arrays (copies) in "
-          "the Monitor's terms: mass (N,), gamma (N,), springs (S, 2), stiffness (S,), "
+          "the Monitor's terms: mass (N,), gamma (N,), zeta (N,: gamma_i / 2 sqrt(m_i kappa_i), NaN "
+          "without a spring or anchor), springs (S, 2), stiffness (S,), "
           "rest_length (S,), anchor_stiffness (N,), rest (N, 3), fixed (N,).");
   m.def(
       "load_scene",
@@ -216,7 +224,8 @@ void bind_session(py::module_& m) {
                       "step() of dampbound. Array properties are read-only NumPy views of the "
                       "session's own memory (no copies), valid while the session lives.")
       .def(py::init([](const SceneSpec& scene, const Params* params, const StopRules* rules) {
-             return Session(scene, params ? *params : scene.params, rules ? *rules : scene.rules);
+             const ResolvedScene r(scene, params);
+             return Session(r.scene(), r.params(), rules ? *rules : scene.rules);
            }),
            py::arg("scene"), py::arg("params") = nullptr, py::arg("rules") = nullptr,
            "Starts from the scene's perturbed state; params/rules default to the scene's.")
