@@ -6,12 +6,12 @@
 # The Python module is built instrumented too, and the Python battery (python/tests/
 # test_battery_*.py) runs against it in Debian's uninstrumented interpreter with clang's ASan
 # runtime preloaded (leak detection off there: CPython keeps its objects to the end by design).
-#   FUZZ_SECONDS (default 20) per target; BUILD_DIR (default build-asan); JOBS (default nproc).
+#   FUZZ_SECONDS (default 10) per target; BUILD_DIR (default build-asan); JOBS (default nproc).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 ROOT=$PWD
 BUILD_DIR=${BUILD_DIR:-build-asan}
-FUZZ_SECONDS=${FUZZ_SECONDS:-20}
+FUZZ_SECONDS=${FUZZ_SECONDS:-10}
 JOBS=${JOBS:-$(nproc)}
 T0=$(date +%s)
 for tool in clang-14 clang++-14; do
