@@ -138,7 +138,8 @@ int print_step(const SceneSpec& scene, const Params& p, const StepSuggestion& s)
   std::printf("  all criteria  dt <= %s s, set by %s\n", format_digits(s.dt_all, 8).c_str(), s.dt_all_by.c_str());
   const std::string scope = safe_bound_scope(s.exact.integrator);
   if (scope.empty())
-    std::printf("  safe (SPEC 9) dt < %s s guarantees stability at every node (node %d sets it)\n",
+    std::printf("  safe (SPEC 9) dt < %s s guarantees stability at every node (at rest; node %d "
+                "sets it)\n",
                 format_digits(s.dt_safe, 8).c_str(), s.dt_safe_node);
   else
     std::printf("  safe (SPEC 9) dt < %s s (node %d sets it; %s)\n",
