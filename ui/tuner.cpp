@@ -8,6 +8,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "core/damping_ratio.hpp"
 #include "core/io/report.hpp"
 #include "core/io/scene_file.hpp"
 
@@ -17,6 +18,17 @@ SceneSpec with_settled_rule(SceneSpec scene) {
   scene.rules.rule = StopRule::settled;
   return scene;
 }
+
+namespace {
+
+/// A scene as the tuner runs it: a damping ratio given as `zeta` resolved into gamma_i (as
+/// `dampbound gui SCENE` does; a scene resolved already is left as it is), the settled rule.
+SceneSpec as_tuned(SceneSpec scene) {
+  resolve_zeta(scene);
+  return with_settled_rule(std::move(scene));
+}
+
+}  // namespace
 
 std::string params_label(const Params& p) {
   std::string s = "gamma " + fmt(p.gamma) + ", m " + fmt(p.m) + ", kappa " + fmt(p.kappa) +
@@ -46,7 +58,7 @@ LowerBoundCheck check_lower_bound(const Model& model) {
 }
 
 Tuner::Tuner(SceneSpec scene)
-    : session_(std::make_unique<Session>(with_settled_rule(std::move(scene)))) {
+    : session_(std::make_unique<Session>(as_tuned(std::move(scene)))) {
   session_->set_threads(0);  // the same bits on any count; big meshes step faster
 }
 
@@ -61,7 +73,7 @@ bool Tuner::open_scene(const std::string& path, std::string* error) {
 }
 
 void Tuner::set_scene(SceneSpec scene) {
-  session_ = std::make_unique<Session>(with_settled_rule(std::move(scene)));
+  session_ = std::make_unique<Session>(as_tuned(std::move(scene)));
   session_->set_threads(0);
   ++scene_version_;
   playing_ = false;

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <limits>
 
 #include "core/bounds.hpp"
@@ -30,6 +31,24 @@ TEST(Tuner, StartsPausedAtTheScenesParameters) {
   EXPECT_EQ(t.advance(), 0);
   EXPECT_EQ(t.session().state().iteration, 0);
   EXPECT_DOUBLE_EQ(t.params().gamma, default_params().gamma);
+}
+
+// A scene that gives a damping ratio (zeta) runs with the gamma it means, whether the tuner
+// starts with it or opens it later (the Open button and the scene combo call open_scene).
+TEST(Tuner, AScenesZetaIsResolvedWhenTheTunerOpensIt) {
+  const std::string path = ::testing::TempDir() + "zeta-plane.toml";
+  {
+    std::ofstream out(path);
+    out << "[grid]\nnx = 6\nnz = 6\nspacing = 1.0\nanchors = true\n[params]\nzeta = 0.5\n";
+  }
+  const double want = 0.5 * 2 * std::sqrt(default_params().m * default_params().kappa);
+  Tuner t(small_plane());
+  std::string error;
+  ASSERT_TRUE(t.open_scene(path, &error)) << error;
+  EXPECT_DOUBLE_EQ(t.params().gamma, want);
+  EXPECT_FALSE(t.params().zeta.has_value());
+  Tuner fresh(load_scene(path));
+  EXPECT_DOUBLE_EQ(fresh.params().gamma, want);
 }
 
 TEST(Tuner, SaysTheDisplacementOfTheStateAsItIsNow) {
