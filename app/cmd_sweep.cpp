@@ -71,13 +71,15 @@ extern "C" void on_interrupt(int) {
 struct SweepArgs {
   std::string scene = "paper-plane";
   std::string preset, m, kappa, zeta, gamma, dt, factor, policy, output, shard = "1/1", map;
+  std::string kd, rayleigh_mass, rayleigh_stiffness;  // SPEC 10 axes
   std::string progress = "auto";
   double progress_interval = 10, sync_interval = 1;
   int max_iter = 0, threads = 0;
   std::string rule = "first-entry";
   bool resume = false, no_similarity = false, plain = false;
   CLI::Option *max_iter_opt = nullptr, *m_opt = nullptr, *kappa_opt = nullptr, *zeta_opt = nullptr,
-              *gamma_opt = nullptr, *dt_opt = nullptr, *factor_opt = nullptr, *policy_opt = nullptr;
+              *gamma_opt = nullptr, *dt_opt = nullptr, *factor_opt = nullptr, *policy_opt = nullptr,
+              *kd_opt = nullptr, *rayleigh_mass_opt = nullptr, *rayleigh_stiffness_opt = nullptr;
 };
 
 /// The sweep's definition: preset, then flags, then the scene's own values.
@@ -130,6 +132,27 @@ SweepSpec make_spec(const SweepArgs& a, const SceneSpec& scene) {
                      : parse_axis("--gamma", gamma, AxisDomain::non_negative);
   s.dt = parse_axis("--dt", dt, AxisDomain::positive);
   s.factor = parse_axis("--factor", factor, AxisDomain::non_negative);
+  // SPEC 10: with any of its damping given (by a flag or the scene), all three are axes, the
+  // scene's value where no flag is given, so that every row says its damping.
+  const std::pair<const CLI::Option*, double> damping[3] = {
+      {a.kd_opt, scene.params.kd},
+      {a.rayleigh_mass_opt, scene.params.rayleigh_mass},
+      {a.rayleigh_stiffness_opt, scene.params.rayleigh_stiffness}};
+  bool any = false;
+  for (const auto& [opt, value] : damping) any = any || given(opt) || value != 0;
+  if (any) {
+    s.kd = parse_axis("--kd", given(a.kd_opt) ? a.kd : format_number(scene.params.kd),
+                      AxisDomain::non_negative);
+    s.rayleigh_mass = parse_axis(
+        "--rayleigh-mass",
+        given(a.rayleigh_mass_opt) ? a.rayleigh_mass : format_number(scene.params.rayleigh_mass),
+        AxisDomain::non_negative);
+    s.rayleigh_stiffness = parse_axis("--rayleigh-stiffness",
+                                      given(a.rayleigh_stiffness_opt)
+                                          ? a.rayleigh_stiffness
+                                          : format_number(scene.params.rayleigh_stiffness),
+                                      AxisDomain::non_negative);
+  }
   s.policy = policy;
   s.rules = rules;
   s.allow_similarity = !a.no_similarity;
@@ -232,7 +255,8 @@ int run(const SweepArgs& a) {
     std::printf("warning      no lambda_max for the exact linear limit: %s\n", e.what());
   }
   const DampingPolicy policy = rq.spec.policy;
-  for (const std::string& line : summary_lines(rep.rows, policy, lambda_unit))
+  for (const std::string& line :
+       summary_lines(rep.rows, policy, lambda_unit, dashpot_stiffness_ratio(rq.scene)))
     std::printf("%s\n", line.c_str());
   // SPEC 9: the safe check against the outcomes (fixed), what the safe policy promised (safe).
   for (const std::string& line :
@@ -258,8 +282,9 @@ std::function<int()> setup(CLI::App& root) {
   auto a = std::make_shared<SweepArgs>();
   CLI::App* cmd = root.add_subcommand(
       "sweep",
-      "Run the paper's protocol over a grid of m, kappa, gamma (or zeta), dt and factor; one "
-      "CSV row per trial. Trials sharing kappa/m, gamma/m and dt run once (SPEC 6).");
+      "Run the paper's protocol over a grid of m, kappa, gamma (or zeta), dt, factor and the "
+      "dashpot and Rayleigh damping; one CSV row per trial. Trials sharing kappa/m, gamma/m, "
+      "kd/m, the Rayleigh coefficients and dt run once (SPEC 6, 10).");
   cmd->add_option("scene", a->scene, "scene file or shipped scene name (default paper-plane)");
   cmd->add_option("--preset", a->preset,
                   "paper-lower (SPEC 5: m, kappa 0.0001..0.1 step 0.0001, zeta 0.25,0.5,1, "
@@ -276,6 +301,14 @@ std::function<int()> setup(CLI::App& root) {
   a->dt_opt = cmd->add_option("--dt", a->dt, "time steps (s): a list");
   a->factor_opt =
       cmd->add_option("--factor", a->factor, "factors of the upper bound (policy upper): a list");
+  a->kd_opt = cmd->add_option("--kd", a->kd,
+                              "dashpots along the springs (SPEC 10, mass unit/s): A:B:STEP and/or "
+                              "a list");
+  a->rayleigh_mass_opt = cmd->add_option("--rayleigh-mass", a->rayleigh_mass,
+                                         "Rayleigh alpha (SPEC 10, 1/s): A:B:STEP and/or a list");
+  a->rayleigh_stiffness_opt =
+      cmd->add_option("--rayleigh-stiffness", a->rayleigh_stiffness,
+                      "Rayleigh beta (SPEC 10, s): A:B:STEP and/or a list");
   a->policy_opt = cmd->add_option("--policy", a->policy, "damping policy (SPEC 4; safe: SPEC 9)")
                       ->check(CLI::IsMember(policy_names()));
   a->max_iter_opt = cmd->add_option("--max-iter", a->max_iter, "iteration limit of the protocol")

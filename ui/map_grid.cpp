@@ -66,7 +66,7 @@ std::vector<TrialParams> map_trials(const Params& base, MapParam x, const std::v
       Params p = base;
       set_param(p, x, xv);
       set_param(p, y, yv);
-      out.push_back({p.m, p.kappa, p.gamma, p.dt, p.factor});
+      out.push_back({p.m, p.kappa, p.gamma, p.dt, p.factor, p.kd, p.rayleigh_mass, p.rayleigh_stiffness});
     }
   return out;
 }

@@ -54,13 +54,13 @@ std::string fnv1a_hex(const std::string& bytes) {
   return buf;
 }
 
-const char* sweep_csv_columns(StopRule rule) {
-  return rule == StopRule::settled
-             ? "trial,m,kappa,gamma,zeta,dt,policy,factor,class,ran,outcome,iterations,"
-               "max_displacement,violations,unstabilisable,clamped,zero_length_springs,"
-               "first_entry,left_at,settled_at"
-             : "trial,m,kappa,gamma,zeta,dt,policy,factor,class,ran,outcome,iterations,"
-               "max_displacement,violations,unstabilisable,clamped,zero_length_springs";
+std::string sweep_csv_columns(StopRule rule, bool damping) {
+  std::string c = "trial,m,kappa,gamma,zeta,dt,policy,factor,";
+  if (damping) c += "kd,rayleigh_mass,rayleigh_stiffness,";
+  c += "class,ran,outcome,iterations,max_displacement,violations,unstabilisable,clamped,"
+       "zero_length_springs";
+  if (rule == StopRule::settled) c += ",first_entry,left_at,settled_at";
+  return c;
 }
 
 void write_sweep_header(std::FILE* out, const SweepHeader& h) {
@@ -77,12 +77,14 @@ void write_sweep_header(std::FILE* out, const SweepHeader& h) {
                "# units: m mass unit, kappa mass unit/s^2, gamma mass unit/s, dt s, "
                "max_displacement cm; zeta = gamma/(2 sqrt(m kappa)); counts are node-steps; "
                "ran = 1 for the trial that was stepped, 0 for one that took its class's result "
-               "(SPEC 6)%s\n",
+               "(SPEC 6)%s%s\n",
+               h.damping ? "; kd mass unit/s, rayleigh_mass 1/s, rayleigh_stiffness s (SPEC 10)"
+                         : "",
                h.rule == StopRule::settled
                    ? "; outcome by the settled rule (SPEC 8): first_entry, left_at, settled_at "
                      "are iterations, 0 = none"
                    : "");
-  std::fprintf(out, "%s\n", sweep_csv_columns(h.rule));
+  std::fprintf(out, "%s\n", sweep_csv_columns(h.rule, h.damping).c_str());
 }
 
 void for_each_sweep_row(const SweepGrid& grid, const TrialClasses& classes,
@@ -95,7 +97,8 @@ void for_each_sweep_row(const SweepGrid& grid, const TrialClasses& classes,
     return v;
   };
   const auto mv = values(s.m), kv = values(s.kappa), gv = values(s.gamma), dv = values(s.dt),
-             fv = values(s.factor);
+             fv = values(s.factor), kdv = values(s.kd), av = values(s.rayleigh_mass),
+             bv = values(s.rayleigh_stiffness);
   for (std::uint64_t t = 0; t < grid.trials(); ++t) {
     const std::uint32_t c = classes.class_of[t];
     if (static_cast<int>(c % static_cast<std::uint32_t>(shards)) != shard - 1) continue;
@@ -114,6 +117,9 @@ void for_each_sweep_row(const SweepGrid& grid, const TrialClasses& classes,
     }
     r.dt = dv[ix.dt];
     r.factor = fv[ix.factor];
+    if (!kdv.empty()) r.kd = kdv[ix.kd];
+    if (!av.empty()) r.rayleigh_mass = av[ix.rayleigh_mass];
+    if (!bv.empty()) r.rayleigh_stiffness = bv[ix.rayleigh_stiffness];
     const TrialResult& res = class_results[c];
     r.outcome = res.outcome;
     r.iterations = res.iterations;
@@ -136,7 +142,10 @@ void write_sweep_rows(std::FILE* out, const SweepGrid& grid, const TrialClasses&
   };
   // The axis values as given; gamma in zeta mode and zeta otherwise are computed.
   const auto mt = texts(s.m), kt = texts(s.kappa), gt = texts(s.gamma), dtt = texts(s.dt),
-             ft = texts(s.factor);
+             ft = texts(s.factor), kdt = texts(s.kd), at = texts(s.rayleigh_mass),
+             bt = texts(s.rayleigh_stiffness);
+  const bool damping = s.has_damping_axes();
+  // An axis that is not swept holds the scene's value; a swept sweep's CSV says 0 for none.
   const bool zeta_mode = s.gamma_mode == GammaMode::zeta;
   const char* policy = to_string(s.policy);
   std::string line;
@@ -149,6 +158,11 @@ void write_sweep_rows(std::FILE* out, const SweepGrid& grid, const TrialClasses&
     line += mt[ix.m] + ',' + kt[ix.kappa] + ',' + format_number(row.gamma) + ',';
     line += zeta_mode ? gt[ix.gamma] : format_number(row.zeta);
     line += ',' + dtt[ix.dt] + ',' + policy + ',' + ft[ix.factor] + ',';
+    if (damping) {
+      line += (kdt.empty() ? std::string("0") : kdt[ix.kd]) + ',';
+      line += (at.empty() ? std::string("0") : at[ix.rayleigh_mass]) + ',';
+      line += (bt.empty() ? std::string("0") : bt[ix.rayleigh_stiffness]) + ',';
+    }
     char tail[200];
     c_snprintf(tail, sizeof tail, "%" PRIu32 ",%d,%s,%d,", c,
                   classes.representative[c] == row.trial ? 1 : 0,
@@ -220,16 +234,22 @@ SweepTable read_sweep_csv(const std::string& path, bool keep_lines) {
         }
         continue;
       }
-      if (line == sweep_csv_columns(StopRule::settled))
-        t.header.rule = StopRule::settled;
-      else if (line != sweep_csv_columns(StopRule::first_entry))
-        fail("unexpected column line (not a sweep CSV of this dampbound version)");
+      bool known = false;
+      for (StopRule rule : {StopRule::first_entry, StopRule::settled})
+        for (bool damping : {false, true})
+          if (line == sweep_csv_columns(rule, damping)) {
+            t.header.rule = rule;
+            t.header.damping = damping;
+            known = true;
+          }
+      if (!known) fail("unexpected column line (not a sweep CSV of this dampbound version)");
       columns = true;
       continue;
     }
     if (line.empty()) continue;
     const std::vector<std::string> f = split(line, ',');
-    const size_t fields = t.header.rule == StopRule::settled ? 20 : 17;
+    const size_t extra = t.header.damping ? 3 : 0;  // kd, rayleigh_mass, rayleigh_stiffness
+    const size_t fields = (t.header.rule == StopRule::settled ? 20 : 17) + extra;
     if (f.size() != fields)
       fail("expected " + std::to_string(fields) + " fields, got " + std::to_string(f.size()));
     SweepRow r;
@@ -258,16 +278,23 @@ SweepTable read_sweep_csv(const std::string& path, bool keep_lines) {
     r.zeta = number(4, "zeta");
     r.dt = number(5, "dt");
     r.factor = number(7, "factor");
-    const auto outcome = parse_outcome(f[10], t.header.rule);
-    if (!outcome) fail("bad outcome '" + printable(f[10]) + "' for rule " + to_string(t.header.rule));
+    if (t.header.damping) {
+      r.kd = number(8, "kd");
+      r.rayleigh_mass = number(9, "rayleigh_mass");
+      r.rayleigh_stiffness = number(10, "rayleigh_stiffness");
+    }
+    const auto outcome = parse_outcome(f[10 + extra], t.header.rule);
+    if (!outcome)
+      fail("bad outcome '" + printable(f[10 + extra]) + "' for rule " + to_string(t.header.rule));
     r.outcome = *outcome;
-    r.iterations = static_cast<int>(integer(11, "iterations", 0, kInt));
-    r.max_displacement = number(12, "max_displacement");
-    r.unstabilisable = integer(14, "unstabilisable", 0, std::numeric_limits<long long>::max());
+    r.iterations = static_cast<int>(integer(11 + extra, "iterations", 0, kInt));
+    r.max_displacement = number(12 + extra, "max_displacement");
+    r.unstabilisable =
+        integer(14 + extra, "unstabilisable", 0, std::numeric_limits<long long>::max());
     if (t.header.rule == StopRule::settled) {
-      r.first_entry = static_cast<int>(integer(17, "first_entry", -kInt, kInt));
-      r.left_at = static_cast<int>(integer(18, "left_at", -kInt, kInt));
-      r.settled_at = static_cast<int>(integer(19, "settled_at", -kInt, kInt));
+      r.first_entry = static_cast<int>(integer(17 + extra, "first_entry", -kInt, kInt));
+      r.left_at = static_cast<int>(integer(18 + extra, "left_at", -kInt, kInt));
+      r.settled_at = static_cast<int>(integer(19 + extra, "settled_at", -kInt, kInt));
     } else if (r.outcome == Outcome::restored) {
       r.first_entry = r.iterations;
     }

@@ -29,11 +29,15 @@ struct SweepHeader {
   /// The verdict rule (SPEC 8). A settled sweep says "rule=settled" in its definition and
   /// has three more columns; a first-entry sweep is written exactly as before the rule existed.
   StopRule rule = StopRule::first_entry;
+  /// SPEC 10: the sweep has a kd, rayleigh_mass or rayleigh_stiffness axis, and three more
+  /// columns after factor. A sweep without them is written exactly as before they existed.
+  bool damping = false;
 };
 
 /// The column line (without newline): first-entry sweeps end at zero_length_springs; settled
-/// sweeps add first_entry, left_at, settled_at (0 = none).
-const char* sweep_csv_columns(StopRule rule = StopRule::first_entry);
+/// sweeps add first_entry, left_at, settled_at (0 = none); with `damping`, kd,
+/// rayleigh_mass, rayleigh_stiffness follow factor.
+std::string sweep_csv_columns(StopRule rule = StopRule::first_entry, bool damping = false);
 
 /// Writes the '#' lines and the column line.
 void write_sweep_header(std::FILE* out, const SweepHeader& h);
@@ -42,6 +46,7 @@ void write_sweep_header(std::FILE* out, const SweepHeader& h);
 struct SweepRow {
   std::uint64_t trial = 0;
   double m = 0, kappa = 0, gamma = 0, zeta = 0, dt = 0, factor = 0;
+  double kd = 0, rayleigh_mass = 0, rayleigh_stiffness = 0;  ///< SPEC 10 (0 where not swept)
   Outcome outcome = Outcome::running;
   int iterations = 0;
   double max_displacement = 0;

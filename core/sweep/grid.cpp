@@ -164,14 +164,19 @@ Axis parse_axis(const std::string& flag, const std::string& spec, AxisDomain dom
 SweepGrid::SweepGrid(SweepSpec spec) : spec_(std::move(spec)) {
   constexpr std::uint64_t kMaxTrials = 0xFFFFFFFFull;  // class ids are 32-bit
   std::uint64_t n = 1;
-  for (const Axis* a : {&spec_.dt, &spec_.factor, &spec_.gamma, &spec_.m, &spec_.kappa}) {
-    if (a->values.empty()) bad(a->flag, "no values");
+  for (const Axis* a : {&spec_.dt, &spec_.factor, &spec_.gamma, &spec_.m, &spec_.kappa, &spec_.kd,
+                        &spec_.rayleigh_mass, &spec_.rayleigh_stiffness}) {
+    const bool optional = a == &spec_.kd || a == &spec_.rayleigh_mass || a == &spec_.rayleigh_stiffness;
+    if (a->values.empty()) {
+      if (optional) continue;  // not swept
+      bad(a->flag, "no values");
+    }
     if (a->values.size() > kMaxTrials / n)
       n = kMaxTrials + 1;  // saturate, then complain
     else
       n *= a->values.size();
     if (n > kMaxTrials)
-      bad("--m/--kappa/--gamma/--zeta/--dt/--factor",
+      bad("--m/--kappa/--gamma/--zeta/--dt/--factor/--kd/--rayleigh-mass/--rayleigh-stiffness",
           "the grid has more than 4294967295 trials, too many for one sweep (use smaller "
           "ranges)");
   }
@@ -188,7 +193,15 @@ SweepGrid::Index SweepGrid::index(std::uint64_t t) const {
   t /= spec_.gamma.values.size();
   ix.factor = t % spec_.factor.values.size();
   t /= spec_.factor.values.size();
-  ix.dt = static_cast<size_t>(t);
+  ix.dt = t % spec_.dt.values.size();
+  t /= spec_.dt.values.size();
+  // SPEC 10's axes vary slowest, so that a sweep without them numbers its trials as before.
+  for (auto [axis, at] : {std::pair{&spec_.kd, &ix.kd}, {&spec_.rayleigh_mass, &ix.rayleigh_mass},
+                          {&spec_.rayleigh_stiffness, &ix.rayleigh_stiffness}}) {
+    if (axis->values.empty()) continue;
+    *at = t % axis->values.size();
+    t /= axis->values.size();
+  }
   return ix;
 }
 
@@ -201,6 +214,11 @@ TrialParams SweepGrid::params(std::uint64_t t) const {
   p.factor = spec_.factor.values[ix.factor].value();
   const double g = spec_.gamma.values[ix.gamma].value();
   p.gamma = spec_.gamma_mode == GammaMode::zeta ? g * lower_bound(p.m, p.kappa) : g;
+  if (!spec_.kd.values.empty()) p.kd = spec_.kd.values[ix.kd].value();
+  if (!spec_.rayleigh_mass.values.empty())
+    p.rayleigh_mass = spec_.rayleigh_mass.values[ix.rayleigh_mass].value();
+  if (!spec_.rayleigh_stiffness.values.empty())
+    p.rayleigh_stiffness = spec_.rayleigh_stiffness.values[ix.rayleigh_stiffness].value();
   return p;
 }
 
@@ -211,12 +229,14 @@ double SweepGrid::zeta(std::uint64_t t) const {
   return p.gamma / lower_bound(p.m, p.kappa);
 }
 
-std::optional<std::string> similarity_unavailable(const SceneSpec& scene) {
+std::optional<std::string> similarity_unavailable(const SceneSpec& scene, bool kd_swept) {
   const ModelSpec& m = scene.model;
   // SPEC 10: a uniform kd enters the trajectory as kd/m, which trials of one class (equal
-  // kappa/m and gamma/m at other m) do not share; alpha and beta are the same in every trial.
-  if (scene.params.kd != 0)
-    return "the dashpots (kd) are not scaled with m across the trials (kd/m differs)";
+  // kappa/m and gamma/m at other m) share only when kd is in the class key (swept); alpha and
+  // beta enter as themselves.
+  if (scene.params.kd != 0 && !kd_swept)
+    return "the dashpots (kd) are not scaled with m across the trials (kd/m differs; give --kd "
+           "to make them an axis)";
   for (size_t i = 0; i < m.external_force.size(); ++i)
     if (m.external_force[i] != Vec3::Zero())
       return "node " + std::to_string(i) + " has an external force";
@@ -233,22 +253,32 @@ std::optional<std::string> similarity_unavailable(const SceneSpec& scene) {
   for (const Spring& s : m.springs) stiffness.push_back(s.kappa_scale);
   if (!stiffness.empty() && !uniform(stiffness))
     return "the stiffness is not uniform (kappa_scale / anchor scale)";
+  if (kd_swept) {
+    std::vector<double> dashpots;
+    for (size_t i = 0; i < m.anchor_scale.size(); ++i)
+      if (m.anchor_scale[i] > 0)
+        dashpots.push_back(m.anchor_kd_scale.empty() ? 1.0 : m.anchor_kd_scale[i]);
+    for (const Spring& s : m.springs) dashpots.push_back(s.kd_scale);
+    if (!dashpots.empty() && !uniform(dashpots))
+      return "the dashpots are not uniform (kd_scale)";
+  }
   return std::nullopt;
 }
 
 namespace {
 
 struct ClassKey {
-  std::int64_t a, b, c, g, dt, factor;
+  std::int64_t a, b, c, g, dt, factor, d, alpha, beta;
   bool operator==(const ClassKey& o) const {
-    return a == o.a && b == o.b && c == o.c && g == o.g && dt == o.dt && factor == o.factor;
+    return a == o.a && b == o.b && c == o.c && g == o.g && dt == o.dt && factor == o.factor &&
+           d == o.d && alpha == o.alpha && beta == o.beta;
   }
 };
 
 struct ClassKeyHash {
   size_t operator()(const ClassKey& k) const {
     std::uint64_t h = 1469598103934665603ull;
-    for (std::int64_t v : {k.a, k.b, k.c, k.g, k.dt, k.factor}) {
+    for (std::int64_t v : {k.a, k.b, k.c, k.g, k.dt, k.factor, k.d, k.alpha, k.beta}) {
       h ^= static_cast<std::uint64_t>(v);
       h *= 1099511628211ull;
       h ^= h >> 29;
@@ -292,13 +322,15 @@ TrialClasses find_classes(const SweepGrid& grid, const std::optional<std::string
   const bool uses_gamma = s.policy == DampingPolicy::fixed || s.policy == DampingPolicy::clamp;
   const bool absolute = s.gamma_mode == GammaMode::absolute && uses_gamma;
   int scale = 0;
-  for (const Axis* a : {&s.m, &s.kappa})
+  const bool kd = !s.kd.values.empty();
+  for (const Axis* a : {&s.m, &s.kappa, &s.kd})
     for (const Decimal& d : a->values) scale = std::max(scale, d.scale);
   if (absolute)
     for (const Decimal& d : s.gamma.values) scale = std::max(scale, d.scale);
-  std::vector<std::int64_t> ia, ib, ic;
+  std::vector<std::int64_t> ia, ib, ic, id;
   if (tc.reason.empty() && (!integers(s.m, scale, ia) || !integers(s.kappa, scale, ib) ||
-                            (absolute && !integers(s.gamma, scale, ic))))
+                            (absolute && !integers(s.gamma, scale, ic)) ||
+                            (kd && !integers(s.kd, scale, id))))
     tc.reason = "the values have too many digits for exact integer classes";
   tc.class_of.resize(n);
   if (!tc.reason.empty()) {
@@ -311,7 +343,8 @@ TrialClasses find_classes(const SweepGrid& grid, const std::optional<std::string
   }
   tc.similarity = true;
   const std::vector<std::int64_t> gid = value_ids(s.gamma), did = value_ids(s.dt),
-                                  fid = value_ids(s.factor);
+                                  fid = value_ids(s.factor), alpha = value_ids(s.rayleigh_mass),
+                                  beta = value_ids(s.rayleigh_stiffness);
   std::unordered_map<ClassKey, std::uint32_t, ClassKeyHash> classes;
   classes.reserve(static_cast<size_t>(std::min<std::uint64_t>(n, 1u << 24)));
   for (std::uint64_t t = 0; t < n; ++t) {
@@ -321,12 +354,17 @@ TrialClasses find_classes(const SweepGrid& grid, const std::optional<std::string
                absolute ? ic[ix.gamma] : 0,
                uses_gamma && !absolute ? gid[ix.gamma] : -1,
                did[ix.dt],
-               s.policy == DampingPolicy::upper ? fid[ix.factor] : -1};
-    // kappa/m = b/a and gamma/m = c/a: proportional triples are one class (SPEC 6).
-    const std::int64_t g = std::gcd(std::gcd(k.a, k.b), k.c);
+               s.policy == DampingPolicy::upper ? fid[ix.factor] : -1,
+               kd ? id[ix.kd] : 0,
+               alpha.empty() ? -1 : alpha[ix.rayleigh_mass],
+               beta.empty() ? -1 : beta[ix.rayleigh_stiffness]};
+    // kappa/m = b/a, gamma/m = c/a and kd/m = d/a: proportional tuples are one class (SPEC 6,
+    // 10); alpha and beta enter the trajectory as themselves.
+    const std::int64_t g = std::gcd(std::gcd(std::gcd(k.a, k.b), k.c), k.d);
     k.a /= g;
     k.b /= g;
     k.c /= g;
+    k.d /= g;
     auto [it, inserted] = classes.try_emplace(k, static_cast<std::uint32_t>(tc.count()));
     if (inserted) tc.representative.push_back(t);
     tc.class_of[t] = it->second;

@@ -1,7 +1,8 @@
 #pragma once
-// Sweep grids: axes of exact decimal values (m, kappa, gamma or zeta, dt, factor), the trials
-// they span, and the similarity classes of SPEC 6 (trials sharing kappa/m, gamma/m and dt are
-// one trial), found exactly with integers and gcds, never by comparing doubles.
+// Sweep grids: axes of exact decimal values (m, kappa, gamma or zeta, dt, factor, and SPEC 10's
+// kd, rayleigh_mass, rayleigh_stiffness), the trials they span, and the similarity classes of
+// SPEC 6 and 10 (trials sharing kappa/m, gamma/m, kd/m, alpha, beta and dt are one trial),
+// found exactly with integers and gcds, never by comparing doubles.
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -53,12 +54,20 @@ struct SweepSpec {
   GammaMode gamma_mode = GammaMode::absolute;
   Axis gamma;  ///< zeta values or absolute gamma values
   Axis dt, factor;
+  /// SPEC 10's damping axes; an empty axis is not swept (the scene's value holds in every
+  /// trial). A sweep with none of them writes exactly the CSV it wrote before they existed.
+  Axis kd, rayleigh_mass, rayleigh_stiffness;
+  bool has_damping_axes() const {
+    return !kd.values.empty() || !rayleigh_mass.values.empty() ||
+           !rayleigh_stiffness.values.empty();
+  }
   DampingPolicy policy = DampingPolicy::fixed;
   StopRules rules;
   bool allow_similarity = true;
 };
 
-/// The trials of a sweep: index t -> (dt, factor, gamma, m, kappa) with kappa varying fastest.
+/// The trials of a sweep: index t -> (rayleigh_stiffness, rayleigh_mass, kd, dt, factor, gamma,
+/// m, kappa) with kappa varying fastest (an axis that is not swept counts as one value).
 class SweepGrid {
  public:
   explicit SweepGrid(SweepSpec spec);
@@ -68,10 +77,11 @@ class SweepGrid {
 
   struct Index {
     size_t dt, factor, gamma, m, kappa;
+    size_t kd = 0, rayleigh_mass = 0, rayleigh_stiffness = 0;  ///< 0 where not swept
   };
   Index index(std::uint64_t trial) const;
   /// m, kappa and dt as their decimals; gamma = zeta * 2 sqrt(m kappa) (lower_bound()) in
-  /// zeta mode, else the decimal.
+  /// zeta mode, else the decimal; the swept SPEC 10 damping (unswept ones stay unset).
   TrialParams params(std::uint64_t trial) const;
   /// gamma / (2 sqrt(m kappa)): the axis value in zeta mode, computed otherwise.
   double zeta(std::uint64_t trial) const;
@@ -84,7 +94,10 @@ class SweepGrid {
 /// Why trials with equal kappa/m, gamma/m and dt may not be merged on this scene (nullopt
 /// when they may): SPEC 6 needs uniform m, kappa, gamma (every mass, gamma and stiffness scale
 /// equal) and no external force. Dividing eq. 1 by m then leaves only kappa/m and gamma/m.
-std::optional<std::string> similarity_unavailable(const SceneSpec& scene);
+/// SPEC 10: a scene's kd held across trials of different m is not similar (kd/m differs)
+/// unless `kd_swept` (the kd axis then enters the class key); swept dashpots need uniform
+/// dashpot scales.
+std::optional<std::string> similarity_unavailable(const SceneSpec& scene, bool kd_swept = false);
 
 /// Similarity classes of a grid.
 struct TrialClasses {
@@ -97,7 +110,8 @@ struct TrialClasses {
 
 /// Finds the classes: with m = a q, kappa = b q (and gamma = c q) on one decimal quantum q,
 /// the class key is the reduced fraction b/a with the zeta value (gamma/m = 2 zeta sqrt(b/a)),
-/// or the reduced triple (a, b, c) for absolute gamma; plus dt, and factor under policy
+/// or the reduced triple (a, b, c) for absolute gamma, with kd = d q in the same reduction
+/// (kd/m = d/a) when kd is swept; plus dt, alpha and beta (SPEC 10), and factor under policy
 /// upper. Policies upper and lower ignore the user's gamma, so it is left out of their key.
 /// `scene_reason` (from similarity_unavailable) turns similarity off.
 TrialClasses find_classes(const SweepGrid& grid, const std::optional<std::string>& scene_reason);

@@ -27,6 +27,8 @@ struct TrialParams {
   double gamma = 0;
   double dt = 0.05;
   double factor = 1;
+  /// SPEC 10 damping of a sweep that has these axes (unset: the scene's value).
+  std::optional<double> kd, rayleigh_mass, rayleigh_stiffness;
 };
 
 /// Hands out the next trial: fills `id` and `params`, or returns false when none is left.

@@ -154,6 +154,7 @@ SweepHeader sweep_header(const SweepRequest& rq, const SweepGrid& grid,
   h.shard = rq.shard;
   h.shards = rq.shards;
   h.rule = rq.spec.rules.rule;
+  h.damping = rq.spec.has_damping_axes();
   return h;
 }
 
@@ -271,6 +272,18 @@ int sweep_threads(const SweepRequest& rq, size_t classes_to_run) {
   return std::max(1, std::min<int>(threads, static_cast<int>(std::max<size_t>(classes_to_run, 1))));
 }
 
+/// The scene's params with each swept SPEC 10 damping at its largest value: non-zero where
+/// any trial has that damping (batch_kernel_unsupported() asks no more).
+Params damping_extremes(Params p, const SweepSpec& s) {
+  for (auto [axis, value] : {std::pair{&s.kd, &p.kd}, {&s.rayleigh_mass, &p.rayleigh_mass},
+                             {&s.rayleigh_stiffness, &p.rayleigh_stiffness}})
+    if (!axis->values.empty()) {
+      *value = 0;
+      for (const Decimal& d : axis->values) *value = std::max(*value, d.value());
+    }
+  return p;
+}
+
 }  // namespace
 
 SweepReport run_sweep(const SweepRequest& rq) {
@@ -280,12 +293,15 @@ SweepReport run_sweep(const SweepRequest& rq) {
   const std::string journal_path = rq.output + ".journal";
   const bool journal_exists = check_outputs(rq, grid, journal_path);
 
-  const TrialClasses classes = find_classes(grid, similarity_unavailable(rq.scene));
+  const TrialClasses classes =
+      find_classes(grid, similarity_unavailable(rq.scene, !rq.spec.kd.values.empty()));
   SweepReport rep;
   rep.header = sweep_header(rq, grid, classes);
   const SweepHeader& h = rep.header;
-  rep.plain_reason =
-      rq.use_kernel ? batch_kernel_unsupported(rq.scene).value_or("") : std::string("--plain");
+  rep.plain_reason = rq.use_kernel
+                         ? batch_kernel_unsupported(rq.scene, damping_extremes(rq.scene.params, rq.spec))
+                               .value_or("")
+                         : std::string("--plain");
   rep.batched = rep.plain_reason.empty();
   ShardState state(rq, classes);
   SweepProgress& pr = state.progress;

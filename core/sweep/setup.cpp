@@ -98,6 +98,10 @@ std::string sweep_definition(const SweepSpec& s) {
   std::string d = "m=" + s.m.spec + " kappa=" + s.kappa.spec;
   d += (s.gamma_mode == GammaMode::zeta ? " zeta=" : " gamma=") + s.gamma.spec;
   d += " dt=" + s.dt.spec + " policy=" + to_string(s.policy) + " factor=" + s.factor.spec;
+  // SPEC 10's axes, said only when swept, so that a sweep without them keeps its id and bytes.
+  if (!s.kd.values.empty()) d += " kd=" + s.kd.spec;
+  if (!s.rayleigh_mass.values.empty()) d += " rayleigh-mass=" + s.rayleigh_mass.spec;
+  if (!s.rayleigh_stiffness.values.empty()) d += " rayleigh-stiffness=" + s.rayleigh_stiffness.spec;
   d += " max-iter=" + std::to_string(s.rules.max_iterations);
   d += " reference=" + format_number(s.rules.reference) +
        " restore-fraction=" + format_number(s.rules.restore_fraction) +

@@ -19,6 +19,23 @@ double unit_stiffness_eigenvalue(const SceneSpec& scene);
 /// gamma < gamma_max = 2 m/dt - m lambda_max dt/2 (gamma = 0 is marginal: not unstable).
 bool linearly_unstable(double m, double kappa, double gamma, double dt, double lambda_unit);
 
+/// SPEC 10: the dashpots' damping matrix at rest is `ratio * kd / kappa` times K when every
+/// spring is at its rest length there and kd_scale / kappa_scale (springs) and
+/// anchor_kd_scale / anchor_scale (anchors) are all one ratio; nullopt otherwise.
+std::optional<double> dashpot_stiffness_ratio(const SceneSpec& scene);
+
+/// SPEC 10's closed form for a uniform model: with alpha, beta and dashpots proportional to K
+/// (`dashpot_ratio`, see above) every mode has the rate c(lambda) = gamma/m + alpha +
+/// (beta + ratio kd/kappa) lambda, and the step is linearly unstable about rest iff
+/// spec7_unstable(lambda_max, c(lambda_max), dt) (both conditions grow with lambda). Rows
+/// without SPEC 10 damping give linearly_unstable() above.
+bool linearly_unstable(const SweepRow& row, double lambda_unit, double dashpot_ratio);
+
+/// A row with dashpot or Rayleigh damping (SPEC 10).
+inline bool has_spec10_damping(const SweepRow& r) {
+  return r.kd != 0 || r.rayleigh_mass != 0 || r.rayleigh_stiffness != 0;
+}
+
 /// One prediction: "condition => expected outcome" held in `held` of `of` trials.
 struct PredictionCheck {
   std::string claim;
@@ -31,8 +48,10 @@ struct PredictionCheck {
 /// diverged, stable => not diverged); for policy upper the paper's Fig. 2 claims (factor 1 =>
 /// restored, factor > 1 => diverged); for lower and clamp "within the bounds => restored";
 /// none for safe or an unknown policy (nullopt).
+/// Rows with dashpots are checked against the exact limit only with a `dashpot_ratio`.
 std::vector<PredictionCheck> check_predictions(const std::vector<SweepRow>& rows,
-                                               std::optional<DampingPolicy> policy, double lambda_unit);
+                                               std::optional<DampingPolicy> policy, double lambda_unit,
+                                               std::optional<double> dashpot_ratio = std::nullopt);
 
 /// "key=value" out of a header definition ("policy", "max-iter", ...); nullopt when absent.
 std::optional<std::string> definition_value(const std::string& definition,
@@ -54,6 +73,7 @@ Overturned count_overturned(const std::vector<SweepRow>& rows);
 /// The lines printed after a sweep: outcome counts (under the settled rule also the number of
 /// first-entry verdicts it overturned) and the prediction checks.
 std::vector<std::string> summary_lines(const std::vector<SweepRow>& rows,
-                                       std::optional<DampingPolicy> policy, double lambda_unit);
+                                       std::optional<DampingPolicy> policy, double lambda_unit,
+                                       std::optional<double> dashpot_ratio = std::nullopt);
 
 }  // namespace dampbound

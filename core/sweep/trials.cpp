@@ -17,6 +17,9 @@ Params trial_params(const Params& base, DampingPolicy policy, const TrialParams&
   p.dt = t.dt;
   p.factor = t.factor;
   p.policy = policy;
+  if (t.kd) p.kd = *t.kd;
+  if (t.rayleigh_mass) p.rayleigh_mass = *t.rayleigh_mass;
+  if (t.rayleigh_stiffness) p.rayleigh_stiffness = *t.rayleigh_stiffness;
   return p;
 }
 
