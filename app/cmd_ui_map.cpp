@@ -26,7 +26,25 @@ void render_map(const StabilityMap& map, const std::string& png, int width, int 
   std::vector<ui::PlotSpec> plots;
   for (size_t k = 0; k < map.panels.size(); ++k)
     plots.push_back(ui::map_panel_plot(map.panels[k], map.max_iterations, k == 0, map.rule));
-  plots.front().title = map.title + " - " + plots.front().title;
+  if (!map.side_by_side) plots.front().title = map.title + " - " + plots.front().title;
+  if (map.side_by_side) {  // MapOptions::axes: the panels in one row, each with its legend
+    const int n = static_cast<int>(plots.size());
+    if (width <= 0) width = std::min(2400, 900 * n);
+    if (height <= 0) height = 800;
+    const ui::PlotStyle style = ui::plot_style_light();
+    ui::EglHost host;
+    const ui::Image img = host.render_frames(width, height, [&](ui::FrameInfo& info) {
+      ImDrawList* dl = ImGui::GetBackgroundDrawList();
+      const float w = static_cast<float>(info.width), h = static_cast<float>(info.height);
+      dl->AddRectFilled(ImVec2(0, 0), ImVec2(w, h), style.background);
+      const float cw = std::floor(w / static_cast<float>(n));
+      for (int k = 0; k < n; ++k)
+        ui::draw_plot(dl, ImVec2(cw * static_cast<float>(k), 0), ImVec2(cw, h),
+                      plots[static_cast<size_t>(k)], style);
+    });
+    ui::write_png_atomic(img, png);
+    return;
+  }
   const int below = static_cast<int>(plots.size()) - 1;
   if (width <= 0) width = below >= 3 ? 2100 : 1800;
   if (height <= 0) height = below > 0 ? 1400 : 800;
@@ -49,6 +67,7 @@ void render_map(const StabilityMap& map, const std::string& png, int width, int 
 
 struct MapArgs {
   std::string csv, output, scene, size;
+  std::vector<std::string> axes;
   double dt = 0;
   CLI::Option* dt_opt = nullptr;
 };
@@ -64,13 +83,21 @@ int run(const MapArgs& a) {
   const SweepTable table = read_sweep_csv(a.csv);
   const std::string scene_path = a.scene.empty() ? table.header.scene_path : a.scene;
   double lambda_unit = NAN;
+  MapOptions opt;
+  for (const std::string& pair : a.axes) {
+    const size_t colon = pair.find(':');
+    if (colon == std::string::npos || pair.find(':', colon + 1) != std::string::npos)
+      throw InputError("--axes: '" + pair + "' is not X:Y (for example kd:dt)");
+    opt.axes.emplace_back(pair.substr(0, colon), pair.substr(colon + 1));
+  }
   try {
-    lambda_unit = unit_stiffness_eigenvalue(load_scene_arg(scene_path));
+    const SceneSpec scene = load_scene_arg(scene_path);
+    lambda_unit = unit_stiffness_eigenvalue(scene);
+    opt.dashpot_ratio = dashpot_stiffness_ratio(scene);
   } catch (const std::exception& e) {
     std::printf("warning      no exact linear limit (scene %s: %s)\n",
                 printable(scene_path).c_str(), printable(e.what()).c_str());
   }
-  MapOptions opt;
   if (a.dt_opt->count()) opt.dt = a.dt;
   const StabilityMap map = build_stability_map(table, lambda_unit, opt);
   render_map(map, a.output, width, height);
@@ -95,6 +122,12 @@ std::function<int()> setup(CLI::App& root) {
   a->dt_opt = cmd->add_option("--dt", a->dt, "which dt to draw when the sweep has several")
                   ->check(finite_positive());
   cmd->add_option("--size", a->size, "image size WxH in pixels (default from the panel count)");
+  std::string names;
+  for (const std::string& n : map_axis_names()) names += (names.empty() ? "" : ", ") + n;
+  cmd->add_option("--axes", a->axes,
+                  "X:Y, repeatable: one panel per pair of columns in place of the paper's "
+                  "layout, the other columns held at the first trial's values, with the exact "
+                  "linear limit where it applies (" + names + ")");
   return [a] { return run(*a); };
 }
 

@@ -7,6 +7,7 @@
 #include <cstdlib>
 
 #include "core/analysis/linear_stability.hpp"
+#include "core/bounds.hpp"
 #include "core/error.hpp"
 #include "core/io/format.hpp"
 #include "core/sweep/summary.hpp"
@@ -123,11 +124,175 @@ double critical_ratio(double zeta, double lambda_unit, double dt) {
   return s * s;
 }
 
+/// A column of the sweep CSV as a map axis: how to read it from a row and how to set it on
+/// one (for the boundary search; unset: no boundary along it).
+struct Column {
+  std::string name, label;
+  double (*get)(const SweepRow&);
+  void (*set)(SweepRow&, double);
+};
+
+const std::vector<Column>& columns() {
+  static const std::vector<Column> c = {
+      {"m", "m (mass unit)", [](const SweepRow& r) { return r.m; }, nullptr},
+      {"kappa", "kappa (mass unit/s^2)", [](const SweepRow& r) { return r.kappa; }, nullptr},
+      {"kappa/m", "kappa/m (1/s^2)", [](const SweepRow& r) { return r.kappa / r.m; }, nullptr},
+      {"gamma", "gamma (mass unit/s)", [](const SweepRow& r) { return r.gamma; },
+       [](SweepRow& r, double v) { r.gamma = v; }},
+      {"zeta", "zeta = gamma / (2 sqrt(m kappa))", [](const SweepRow& r) { return r.zeta; },
+       [](SweepRow& r, double v) { r.gamma = v * lower_bound(r.m, r.kappa); }},
+      {"dt", "dt (s)", [](const SweepRow& r) { return r.dt; }, [](SweepRow& r, double v) { r.dt = v; }},
+      {"factor", "factor of the upper bound", [](const SweepRow& r) { return r.factor; }, nullptr},
+      {"kd", "kd, dashpots (mass unit/s)", [](const SweepRow& r) { return r.kd; },
+       [](SweepRow& r, double v) { r.kd = v; }},
+      {"rayleigh_mass", "Rayleigh alpha (1/s)", [](const SweepRow& r) { return r.rayleigh_mass; },
+       [](SweepRow& r, double v) { r.rayleigh_mass = v; }},
+      {"rayleigh_stiffness", "Rayleigh beta (s)",
+       [](const SweepRow& r) { return r.rayleigh_stiffness; },
+       [](SweepRow& r, double v) { r.rayleigh_stiffness = v; }},
+  };
+  return c;
+}
+
+const Column& column(const std::string& name) {
+  for (const Column& c : columns())
+    if (c.name == name) return c;
+  std::string known;
+  for (const Column& c : columns()) known += (known.empty() ? "" : ", ") + c.name;
+  throw InputError("--axes: unknown column '" + name + "' (" + known + ")");
+}
+
+/// One panel of columns x against y, the other columns held at `held`'s values; the exact
+/// linear boundary (SPEC 7 and 10's closed form) found along y by bisection at 300 x values.
+MapPanel axis_panel(const std::vector<const SweepRow*>& all, const SweepRow& held,
+                    const Column& cx, const Column& cy, double lambda_unit,
+                    std::optional<double> dashpot_ratio, bool fixed_policy) {
+  auto drawn = [&](const std::string& n) { return cx.name == n || cy.name == n; };
+  auto held_column = [&](const Column& c) {
+    if (drawn(c.name) || c.name == "kappa/m" || c.name == "zeta") return false;  // derived
+    if (c.name == "gamma" && drawn("zeta")) return false;
+    if ((c.name == "m" || c.name == "kappa") && drawn("kappa/m")) return false;
+    return true;
+  };
+  std::vector<const SweepRow*> rows;
+  std::string fixed;
+  for (const Column& c : columns()) {
+    if (!held_column(c)) continue;
+    bool varies = false;
+    for (const SweepRow* r : all) varies = varies || c.get(*r) != c.get(held);
+    if (varies) fixed += (fixed.empty() ? " (" : ", ") + c.name + " = " + format_number(c.get(held));
+  }
+  for (const SweepRow* r : all) {
+    bool same = true;
+    for (const Column& c : columns()) same = same && (!held_column(c) || c.get(*r) == c.get(held));
+    if (same) rows.push_back(r);
+  }
+  MapPanel p;
+  p.title = "outcome over " + cx.name + " and " + cy.name;
+  if (!fixed.empty()) p.title += fixed + ")";
+  p.x_label = cx.label;
+  p.y_label = cy.label;
+  std::vector<double> xs, ys;
+  for (const SweepRow* r : rows) {
+    xs.push_back(cx.get(*r));
+    ys.push_back(cy.get(*r));
+  }
+  auto spans_decade = [](const std::vector<double>& v) {
+    const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
+    return *lo > 0 && *hi / *lo > 10;
+  };
+  p.x_log = spans_decade(xs);
+  p.y_log = spans_decade(ys);
+  const Binning bx = make_binning(xs, 200, p.x_log), by = make_binning(ys, 200, p.y_log);
+  fill_cells(p, bx, by, rows,
+             [&](const SweepRow& r) { return std::pair<double, double>(cx.get(r), cy.get(r)); });
+  const bool have_lambda = std::isfinite(lambda_unit) && lambda_unit > 0;
+  if (!fixed_policy || !have_lambda || !cx.set || !cy.set) return p;
+  const bool dashpots = held.kd != 0 || cx.name == "kd" || cy.name == "kd";
+  if (dashpots && !dashpot_ratio) return p;
+  auto unstable = [&](double x, double y) {
+    SweepRow r = held;
+    cx.set(r, x);
+    cy.set(r, y);
+    return linearly_unstable(r, lambda_unit, dashpot_ratio.value_or(0));
+  };
+  auto at = [](double a, double b, double f, bool log) {
+    return log ? std::exp(std::log(a) + (std::log(b) - std::log(a)) * f) : a + (b - a) * f;
+  };
+  MapLine l{"exact linear limit (SPEC 7" + std::string(has_spec10_damping(held) || dashpots ||
+                                                           cx.name.rfind("rayleigh", 0) == 0 ||
+                                                           cy.name.rfind("rayleigh", 0) == 0
+                                                       ? ", 10)"
+                                                       : ")"),
+            MapLineKind::exact_linear, {}, {}};
+  const double x0 = std::max(p.x_edges.front(), 0.0), x1 = p.x_edges.back();
+  const double y0 = std::max(p.y_edges.front(), 0.0), y1 = p.y_edges.back();
+  for (int k = 0; k <= 300; ++k) {
+    const double x = at(x0 > 0 ? x0 : x1 * 1e-6, x1, k / 300.0, p.x_log && x0 > 0);
+    const double x_here = k == 0 && !p.x_log ? x0 : x;
+    double lo = y0 > 0 || !p.y_log ? y0 : y1 * 1e-6, hi = y1;
+    const bool u_lo = unstable(x_here, lo), u_hi = unstable(x_here, hi);
+    if (u_lo == u_hi) {  // no boundary along y here
+      l.x.push_back(x_here);
+      l.y.push_back(NAN);
+      continue;
+    }
+    for (int it = 0; it < 60; ++it) {
+      const double mid = p.y_log && lo > 0 ? std::sqrt(lo * hi) : 0.5 * (lo + hi);
+      (unstable(x_here, mid) == u_lo ? lo : hi) = mid;
+    }
+    l.x.push_back(x_here);
+    l.y.push_back(0.5 * (lo + hi));
+  }
+  p.lines.push_back(l);
+  return p;
+}
+
 }  // namespace
+
+const std::vector<std::string>& map_axis_names() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> n;
+    for (const Column& c : columns()) n.push_back(c.name);
+    return n;
+  }();
+  return names;
+}
 
 StabilityMap build_stability_map(const SweepTable& table, double lambda_unit,
                                  const MapOptions& opt) {
   if (table.rows.empty()) throw InputError("map: the sweep has no rows");
+  if (!opt.axes.empty()) {
+    std::vector<const SweepRow*> all;
+    for (const SweepRow& r : table.rows) all.push_back(&r);
+    const SweepRow* first = &table.rows.front();
+    if (opt.dt) {
+      first = nullptr;
+      for (const SweepRow& r : table.rows)
+        if (r.dt == *opt.dt && !first) first = &r;
+      if (!first) throw InputError("--dt: no trials with dt = " + format_number(*opt.dt));
+    }
+    const SweepRow& held = *first;
+    const std::optional<DampingPolicy> policy = table.header.policy;
+    StabilityMap map;
+    map.max_iterations =
+        std::atoi(definition_value(table.header.definition, "max-iter").value_or("0").c_str());
+    map.title = table.header.scene_name + ": policy " +
+                (policy ? std::string(to_string(*policy)) : std::string("?")) + ", " +
+                std::to_string(map.max_iterations) + " iterations";
+    map.rule = table.header.rule;
+    map.side_by_side = true;
+    if (map.rule == StopRule::settled) map.title += ", settled rule";
+    map.summary = summary_lines(table.rows, policy, lambda_unit, opt.dashpot_ratio);
+    for (const auto& [x, y] : opt.axes) {
+      const Column &cx = column(x), &cy = column(y);
+      if (&cx == &cy) throw InputError("--axes: " + x + ":" + y + " draws a column against itself");
+      map.panels.push_back(axis_panel(all, held, cx, cy, lambda_unit, opt.dashpot_ratio,
+                                      policy == DampingPolicy::fixed));
+      map.panels.back().title = table.header.scene_name + ": " + map.panels.back().title;
+    }
+    return map;
+  }
   const std::optional<DampingPolicy> policy = table.header.policy;
   const bool upper = policy == DampingPolicy::upper;
   const bool gamma_policy = policy == DampingPolicy::fixed || policy == DampingPolicy::clamp;

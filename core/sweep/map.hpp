@@ -49,10 +49,16 @@ struct StabilityMap {
   int max_iterations = 0;            ///< the protocol's limit (restored cells are shaded up to it)
   StopRule rule = StopRule::first_entry;  ///< the rule of the sweep (SPEC 8)
   std::vector<std::string> summary;  ///< outcome counts and prediction checks
+  bool side_by_side = false;         ///< panels in one row (MapOptions::axes), not the paper's layout
 };
 
 struct MapOptions {
   std::optional<double> dt;  ///< which dt to draw when the sweep has several (default: first)
+  /// Panels of any two columns instead of the paper's layout: (x, y) names from
+  /// map_axis_names(); every other swept column is held at trial 0's value.
+  std::vector<std::pair<std::string, std::string>> axes;
+  /// dashpot_stiffness_ratio() of the scene: the exact boundary of rows with dashpots.
+  std::optional<double> dashpot_ratio;
   int ratio_bins = 200;      ///< log bins of kappa/m
   int grid_bins = 200;       ///< at most this many cells along m and along kappa
   int max_slices = 3;        ///< (m, kappa) panels, one per zeta or factor value
@@ -62,6 +68,10 @@ struct MapOptions {
 /// unit_stiffness_eigenvalue() of the sweep's scene (NaN: no exact linear lines).
 StabilityMap build_stability_map(const SweepTable& table, double lambda_unit,
                                  const MapOptions& options = {});
+
+/// The columns a map panel can take as an axis: m, kappa, kappa/m, gamma, zeta, dt, factor,
+/// kd, rayleigh_mass, rayleigh_stiffness.
+const std::vector<std::string>& map_axis_names();
 
 /// Draws a map into a PNG (throws on failure). Empty when the build has no EGL host.
 using MapRenderer = std::function<void(const StabilityMap& map, const std::string& png)>;

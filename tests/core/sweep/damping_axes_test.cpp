@@ -8,7 +8,10 @@
 #include <string>
 
 #include "core/analysis/damping_limits.hpp"
+#include "core/bounds.hpp"
+#include "core/error.hpp"
 #include "core/sweep/csv.hpp"
+#include "core/sweep/map.hpp"
 #include "core/sweep/summary.hpp"
 #include "core/sweep/trials.hpp"
 #include "sweep_test_util.hpp"
@@ -184,6 +187,56 @@ TEST(SweepDampingAxes, ClosedFormMatchesTheExactIndex) {
   SceneSpec stretched = scene;
   stretched.model.springs[0].rest_length *= 0.9;
   EXPECT_FALSE(dashpot_stiffness_ratio(stretched).has_value());
+}
+
+// map --axes kd:dt: one panel of the rows at the held gamma, and the exact boundary on it is
+// the dt limit general_limits() certifies at each kd.
+TEST(SweepDampingAxes, MapDrawsAnyTwoColumnsWithTheExactBoundary) {
+  const SceneSpec scene = test::shipped_scene("paper-plane");
+  SweepTable t;
+  t.header.policy = DampingPolicy::fixed;
+  t.header.definition = "policy=fixed max-iter=100";
+  t.header.scene_name = "paper-plane";
+  t.header.damping = true;
+  for (double gamma : {0.0, 0.002})
+    for (double kd : {0.0, 0.001, 0.002, 0.003, 0.004})
+      for (double dt : {0.02, 0.05, 0.1, 0.2, 0.4}) {
+        SweepRow r;
+        r.m = r.kappa = 0.001;
+        r.gamma = gamma;
+        r.zeta = gamma / lower_bound(r.m, r.kappa);
+        r.kd = kd;
+        r.dt = dt;
+        r.outcome = Outcome::restored;
+        t.rows.push_back(r);
+      }
+  MapOptions opt;
+  opt.axes = {{"kd", "dt"}, {"gamma", "dt"}};
+  opt.dashpot_ratio = dashpot_stiffness_ratio(scene);
+  const double lambda_unit = unit_stiffness_eigenvalue(scene);
+  const StabilityMap map = build_stability_map(t, lambda_unit, opt);
+  ASSERT_EQ(map.panels.size(), 2u);
+  const MapPanel& kd_dt = map.panels[0];
+  EXPECT_NE(kd_dt.title.find("gamma = 0"), std::string::npos) << kd_dt.title;
+  EXPECT_EQ(kd_dt.x_edges.size(), 6u);  // five kd values
+  EXPECT_EQ(kd_dt.y_edges.size(), 6u);  // five dt values, at gamma = 0 only
+  ASSERT_EQ(kd_dt.lines.size(), 1u);
+  const MapLine& line = kd_dt.lines[0];
+  int compared = 0;
+  for (size_t k = 0; k < line.x.size(); k += 50) {
+    if (!std::isfinite(line.y[k]) || line.x[k] <= 0) continue;
+    Params p = scene.params;
+    p.m = p.kappa = 0.001;
+    p.gamma = 0;
+    p.kd = line.x[k];
+    const Model model = compile_model(scene.model, p);
+    const double dt_max = general_limits(model, model.rest, p).dt_max;
+    EXPECT_NEAR(line.y[k], dt_max, 1e-6 * dt_max) << "kd " << line.x[k];
+    ++compared;
+  }
+  EXPECT_GE(compared, 4);
+  EXPECT_THROW(build_stability_map(t, lambda_unit, MapOptions{{}, {{"kd", "wobble"}}, {}}),
+               InputError);
 }
 
 }  // namespace
