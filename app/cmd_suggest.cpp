@@ -8,6 +8,7 @@
 #include "app/commands.hpp"
 #include "app/options.hpp"
 #include "core/analysis/criteria_safe.hpp"
+#include "core/analysis/damping_limits.hpp"
 #include "core/analysis/equilibrium.hpp"
 #include "core/analysis/substeps.hpp"
 #include "core/analysis/suggest.hpp"
@@ -25,7 +26,39 @@ struct SuggestArgs {
   CLI::Option *m_opt = nullptr, *kappa_opt = nullptr, *dt_opt = nullptr, *gamma_opt = nullptr,
               *integrator_opt = nullptr, *max_iter_opt = nullptr,
               *zeta_opt = nullptr, *frame_dt_opt = nullptr;
+  double kd = 0, rayleigh_mass = 0, rayleigh_stiffness = 0;
+  CLI::Option* damping_opts[3] = {};
 };
+
+/// SPEC 10: the exact stable range of each damping kind at this dt, the others held, and a
+/// run at the middle of each range (the settled rule judges: stable is not settled in time).
+void print_damping_kinds(const SceneSpec& scene, const Params& p, const StopRules& rules,
+                         bool verify) {
+  std::printf("damping kinds at dt = %s s, each with the others held (exact limit of SPEC 10, "
+              "at rest)\n",
+              format_digits(p.dt, 6).c_str());
+  for (DampingKind kind : {DampingKind::nodal, DampingKind::dashpot, DampingKind::rayleigh_mass,
+                           DampingKind::rayleigh_stiffness}) {
+    Params q = p;
+    const double value = coefficient(q, kind);
+    const double max = damping_kind_max(scene.model, scene.model.rest, p, kind);
+    std::printf("  %-19s now %-10s stable for %s in [0, %s)", to_string(kind),
+                format_digits(value, 6).c_str(), to_string(kind),
+                std::isinf(max) ? "inf" : format_digits(max, 6).c_str());
+    if (max <= 0) {
+      std::printf(": no value is stable with the others held\n");
+      continue;
+    }
+    if (!verify || std::isinf(max)) {
+      std::printf("\n");
+      continue;
+    }
+    coefficient(q, kind) = max / 2;
+    const VerifiedRun mid = verify_run(scene, q, rules, "");
+    std::printf("; run at %s: %s\n", format_digits(max / 2, 6).c_str(),
+                verdict_text(mid.result, mid.rules).c_str());
+  }
+}
 
 /// The nodal damping ratio of `params` on the scene's model (SPEC 10), as zeta_text() gives it.
 std::string zeta_of(const SceneSpec& scene, const Params& params) {
@@ -186,6 +219,7 @@ int run(const SuggestArgs& a) {
   resolve_zeta(scene.model, p);
   if (a.integrator_opt->count()) p.integrator = *parse_integrator(a.integrator);
   if (a.max_iter_opt->count()) rules.max_iterations = a.max_iter;
+  apply_damping_flags(a.damping_opts, a.kd, a.rayleigh_mass, a.rayleigh_stiffness, p);
   p.policy = DampingPolicy::fixed;
   const std::string name = scene.name.empty() ? a.scene : scene.name;
   std::printf("scene        %s (%d nodes, %d springs)\n", name.c_str(), scene.model.node_count(),
@@ -209,7 +243,12 @@ int run(const SuggestArgs& a) {
   if (a.frame_dt_opt->count())
     return print_substeps(suggest_substeps(scene, p, rules, a.frame_dt, !a.no_verify));
   if (a.gamma_opt->count() || a.zeta_opt->count()) return print_step(scene, p, suggest_step(scene, p, rules, options));
-  return print_damping(scene, suggest_damping(scene, p, rules, options));
+  const int status = print_damping(scene, suggest_damping(scene, p, rules, options));
+  // SPEC 10: with dashpot or Rayleigh damping in play, the range of each kind.
+  const bool spec10 = p.kd != 0 || p.rayleigh_mass != 0 || p.rayleigh_stiffness != 0;
+  if (spec10 && p.integrator == Integrator::semi_implicit_euler)
+    print_damping_kinds(scene, p, rules, !a.no_verify);
+  return status;
 }
 
 std::function<int()> setup(CLI::App& root) {
@@ -243,6 +282,7 @@ std::function<int()> setup(CLI::App& root) {
                         ->check(CLI::Range(1, 100000000));
   cmd->add_option("--trials", a->trials, "trial runs for the best damping of a non-uniform model")
       ->check(CLI::Range(2, 1000));
+  add_damping_flags(cmd, a->kd, a->rayleigh_mass, a->rayleigh_stiffness, a->damping_opts);
   cmd->add_flag("--no-verify", a->no_verify, "do not run the suggestions");
   add_factor_budget_option(cmd, a->factor_budget);
   return [a] { return run(*a); };

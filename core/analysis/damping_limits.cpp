@@ -71,19 +71,66 @@ GeneralLimits general_limits(const SparseMatrix& A, const SparseMatrix& Cp, cons
     }
     return lo;
   };
-  if (!(index(0, dt) < 4)) {
-    g.gamma_max = 0;
-  } else {
-    double hi = 1;
-    for (int k = 0; k < 200 && index(hi, dt) < 4; ++k) hi *= 2;
-    g.gamma_max = bisect([&](double gm) { return index(gm, dt) < 4; }, 0, hi);
-  }
+  g.gamma_max = largest_stable_coefficient(A, Cp, G, dt);
   double hi = dt;
   for (int k = 0; k < 200 && index(gamma, hi) < 4; ++k) hi *= 2;
   double lo = hi;
   for (int k = 0; k < 200 && !(index(gamma, lo) < 4); ++k) lo /= 2;
   g.dt_max = bisect([&](double h) { return index(gamma, h) < 4; }, lo, std::max(hi, lo * 2));
   return g;
+}
+
+double largest_stable_coefficient(const SparseMatrix& A, const SparseMatrix& C,
+                                  const SparseMatrix& U, double dt) {
+  const auto stable = [&](double v) {
+    return largest_eigenvalue((dt * dt) * A + (2 * dt) * (C + v * U)) < 4;
+  };
+  if (!stable(0)) return 0;
+  double lo = 0, hi = 1;
+  for (int k = 0; k < 200 && stable(hi); ++k) lo = hi, hi *= 2;
+  if (stable(hi)) return std::numeric_limits<double>::infinity();
+  for (int k = 0; k < 200 && hi - lo > 1e-10 * hi; ++k) {
+    const double mid = 0.5 * (lo + hi);
+    (stable(mid) ? lo : hi) = mid;
+  }
+  return lo;
+}
+
+const char* to_string(DampingKind kind) {
+  switch (kind) {
+    case DampingKind::nodal: return "gamma";
+    case DampingKind::dashpot: return "kd";
+    case DampingKind::rayleigh_mass: return "rayleigh_mass";
+    case DampingKind::rayleigh_stiffness: return "rayleigh_stiffness";
+  }
+  return "?";
+}
+
+double& coefficient(Params& params, DampingKind kind) {
+  switch (kind) {
+    case DampingKind::nodal: return params.gamma;
+    case DampingKind::dashpot: return params.kd;
+    case DampingKind::rayleigh_mass: return params.rayleigh_mass;
+    case DampingKind::rayleigh_stiffness: return params.rayleigh_stiffness;
+  }
+  return params.gamma;
+}
+
+double damping_kind_max(const ModelSpec& spec, const std::vector<Vec3>& x, const Params& params,
+                        DampingKind kind) {
+  // C: every damping but this kind's; U: this kind per unit coefficient (the nodal part
+  // through weighted_damping's gamma_i, the others through a model with only that one on).
+  Params held = params, unit = params;
+  coefficient(held, kind) = 0;
+  unit.gamma = unit.kd = unit.rayleigh_mass = unit.rayleigh_stiffness = 0;
+  unit.zeta.reset();
+  held.zeta.reset();
+  coefficient(unit, kind) = 1;
+  const Model with_held = compile_model(spec, held), only = compile_model(spec, unit);
+  const SparseMatrix A = mass_weighted(with_held, tangent_stiffness(with_held, x));
+  const SparseMatrix C = weighted_damping(with_held, x, with_held.gamma);
+  const SparseMatrix U = weighted_damping(only, x, only.gamma);
+  return largest_stable_coefficient(A, C, U, params.dt);
 }
 
 GeneralLimits general_limits(const Model& model, const std::vector<Vec3>& x, const Params& params) {

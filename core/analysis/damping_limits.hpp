@@ -41,4 +41,18 @@ GeneralLimits general_limits(const Model& model, const std::vector<Vec3>& x, con
 GeneralLimits general_limits(const SparseMatrix& A, const SparseMatrix& Cp, const SparseMatrix& G,
                              double gamma, double dt);
 
+/// The largest coefficient x with lambda_max(dt^2 A + 2 dt (C + x U)) < 4 (A, C, U positive
+/// semi-definite, so the index grows with x), to 1e-10 relative: 0 when x = 0 is already
+/// unstable, +inf when no x up to 2^200 makes it unstable.
+double largest_stable_coefficient(const SparseMatrix& A, const SparseMatrix& C,
+                                  const SparseMatrix& U, double dt);
+
+/// SPEC 10's damping kinds, each with the others held: the exact stable range [0, max) of
+/// the kind's coefficient at params.dt, linearised at x (suggest prints them).
+enum class DampingKind { nodal, dashpot, rayleigh_mass, rayleigh_stiffness };
+const char* to_string(DampingKind kind);       ///< "gamma", "kd", "rayleigh_mass", ...
+double& coefficient(Params& params, DampingKind kind);  ///< gamma, kd, alpha or beta
+double damping_kind_max(const ModelSpec& spec, const std::vector<Vec3>& x, const Params& params,
+                        DampingKind kind);
+
 }  // namespace dampbound

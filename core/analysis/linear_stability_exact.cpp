@@ -3,6 +3,8 @@
 // clang-format on
 #include "core/analysis/linear_stability_exact.hpp"
 
+#include "core/analysis/damping_limits.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <functional>
@@ -311,6 +313,24 @@ void frozen_estimate(const ExactInputs& in, const Params& params, ExactStability
   }
 }
 
+/// SPEC 10: the paper's step with dashpot or Rayleigh damping. The limits and the verdict
+/// become the generalised index's (general_limits: the Rayleigh closed forms where C^ commutes
+/// with A, else bisection on lambda_max(dt^2 A + 2 dt C^)); the nodal spectral radius and its
+/// inner bracket no longer describe the step and are dropped (NaN).
+void with_spec10_damping(const Model& model, const std::vector<Vec3>& x, const Params& params,
+                         ExactStability& e) {
+  const GeneralLimits g = general_limits(model, x, params);
+  e.spec10 = true;
+  e.method = g.commuting ? ExactMethod::per_mode : ExactMethod::symmetric_index;
+  e.index = g.index;
+  e.gamma_lo = 0;
+  e.gamma_hi = std::max(g.gamma_max, 0.0);
+  e.dt_max = g.dt_max;
+  e.stable = g.index < 4;
+  e.spectral_radius = kNaN;
+  e.inner = ExactStability::Inner{};
+}
+
 ExactStability exact_stability_within_budget(const ExactInputs& in, std::optional<double> floor,
                                              const Params& params, const ExactOptions& options) {
   ExactStability e;
@@ -351,7 +371,11 @@ ExactStability exact_stability(const Model& model, const std::vector<Vec3>& x,
                                const Params& params, const ExactOptions& options) {
   const ExactInputs in = assemble(model, x, options.threads);
   try {
-    return exact_stability_within_budget(in, psd_floor(model, x), params, options);
+    ExactStability e = exact_stability_within_budget(in, psd_floor(model, x), params, options);
+    if (model.spring_damping && e.integrator == Integrator::semi_implicit_euler &&
+        !e.indefinite)
+      with_spec10_damping(model, x, params, e);
+    return e;
   } catch (const FactorisationOverBudget& over) {
     return over_budget(model, x, in, params, options, over);
   }

@@ -53,6 +53,10 @@ struct ExactStability {
   double spectral_radius = 0;  ///< rho of one step at the user's gamma and dt (NaN: not computed)
   bool radius_converged = true;
   double index = 0;           ///< symmetric_index only: lambda_max(dt^2 A + 2 dt C); stable < 4
+  /// SPEC 10: the model has dashpot or Rayleigh damping and the step is the paper's; the
+  /// limits, index and verdict are the generalised index's (general_limits), the nodal
+  /// spectral radius is not computed (NaN).
+  bool spec10 = false;
   bool stable = false;        ///< rho <= 1 (bounded; rho = 1 is marginal: no decay); over
                               ///< the budget only where proved without one (Unfactored)
   double gamma_lo = 0;        ///< the user's gamma (gamma_i = gamma * gamma_scale_i) is stable

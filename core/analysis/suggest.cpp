@@ -205,7 +205,9 @@ DampingSuggestion suggest_damping(const SceneSpec& scene, const Params& params_i
     hi = s.gamma_min + 4 * crit / std::max(unit_rate_max, 1e-300);
   }
   hi = s.gamma_min + (hi - s.gamma_min) * (1 - 1e-9);  // stay inside the open end
-  const bool uniform_rate = s.exact.uniform_rate;
+  // With dashpot or Rayleigh damping (SPEC 10) the nodal per-mode radius does not describe
+  // the step: trial runs decide, as for non-uniform rates.
+  const bool uniform_rate = s.exact.uniform_rate && !s.exact.spec10;
   if (s.proved_only && uniform_rate && !(spectrum.lambda_min > 0)) {
     // The slowest mode decides the settling, and only lambda_min >= 0 is proved: at
     // lambda = 0 the radius is 1 for every gamma.
@@ -239,7 +241,8 @@ DampingSuggestion suggest_damping(const SceneSpec& scene, const Params& params_i
                        : "; the largest radius of 65 lambdas sampled in it)")
             : "minimum spectral radius of the step over the range (per-mode, exact)";
   } else {
-    // Non-uniform rates: trial runs of the scene's protocol; fewest iterations to restore wins.
+    // Non-uniform rates or SPEC 10 damping: trial runs of the scene's protocol; fewest
+    // iterations to settle wins.
     const int n = std::max(2, options.trials);
     stages.add(n + 9);
     auto best_of = [&](double a, double b, int count, double& best_gamma, RunResult& best_run) {
@@ -258,7 +261,10 @@ DampingSuggestion suggest_damping(const SceneSpec& scene, const Params& params_i
     s.gamma_best = g;
     s.best_rho = kNaN;
     s.best_method = "earliest settled iteration over " + std::to_string(n + 9) +
-                    " trial runs of the scene (rates gamma_i/m_i are not uniform)";
+                    " trial runs of the scene (" +
+                    (s.exact.spec10 ? std::string("dashpot or Rayleigh damping")
+                                    : std::string("rates gamma_i/m_i are not uniform")) +
+                    ")";
   }
   if (options.verify) {
     if (std::isfinite(s.gamma_best)) {
