@@ -54,6 +54,42 @@ DampingRatios damping_ratios(const Model& model, const std::vector<Vec3>& x) {
   return r;
 }
 
+namespace {
+
+/// The largest stable x with f(x) = lambda_max(S(x)) - 4 < 0, where S(x) is positive
+/// semi-definite, increasing and convex in x (so is f), bracketed by lo (stable) and hi
+/// (unstable). Each round takes Newton's step from the unstable end (a convex f's tangent
+/// meets 0 on the unstable side) and the chord's root (on the stable side), every point
+/// placed by the sign of its certified eigenvalue, halving where neither shrinks the bracket
+/// enough: to 1e-10 relative in a handful of eigensolves where bisection takes about 35.
+template <class Matrix, class Slope>
+double index_root(Matrix&& S, Slope&& dS, double lo, double hi) {
+  struct Point {
+    double x, f, slope;
+  };
+  const auto eval = [&](double x) {
+    Eigen::VectorXd v;
+    const double lambda = largest_eigenpair(S(x), v);
+    const double norm = v.squaredNorm();
+    return Point{x, lambda - 4, norm > 0 ? v.dot(dS(x) * v) / norm : 0.0};
+  };
+  Point a = eval(lo), b = eval(hi);
+  const auto place = [&](double x) {
+    if (!(x > a.x && x < b.x)) return;
+    const Point p = eval(x);
+    (p.f < 0 ? a : b) = p;
+  };
+  for (int k = 0; k < 100 && b.x - a.x > 1e-10 * b.x; ++k) {
+    const double width = b.x - a.x;
+    if (b.slope > 0) place(b.x - b.f / b.slope);
+    if (b.f > a.f) place(a.x - a.f * (b.x - a.x) / (b.f - a.f));
+    if (b.x - a.x > 0.5 * width) place(0.5 * (a.x + b.x));
+  }
+  return a.x;
+}
+
+}  // namespace
+
 GeneralLimits general_limits(const SparseMatrix& A, const SparseMatrix& Cp, const SparseMatrix& G,
                              double gamma, double dt) {
   GeneralLimits g;
@@ -63,37 +99,29 @@ GeneralLimits general_limits(const SparseMatrix& A, const SparseMatrix& Cp, cons
   };
   g.index = index(gamma, dt);
   g.damping_min = smallest_eigenvalue(Cp + gamma * G);
-  // The index grows with gamma and with dt (A, C^ positive semi-definite).
-  const auto bisect = [](auto&& stable, double lo, double hi) {
-    for (int k = 0; k < 200 && hi - lo > 1e-10 * hi; ++k) {
-      const double mid = 0.5 * (lo + hi);
-      (stable(mid) ? lo : hi) = mid;
-    }
-    return lo;
-  };
   g.gamma_max = largest_stable_coefficient(A, Cp, G, dt);
+  // The index grows with dt (A, C^ positive semi-definite) and is convex in it.
   double hi = dt;
   for (int k = 0; k < 200 && index(gamma, hi) < 4; ++k) hi *= 2;
   double lo = hi;
   for (int k = 0; k < 200 && !(index(gamma, lo) < 4); ++k) lo /= 2;
-  g.dt_max = bisect([&](double h) { return index(gamma, h) < 4; }, lo, std::max(hi, lo * 2));
+  if (!(lo < hi)) hi = 2 * lo;
+  const SparseMatrix C = Cp + gamma * G;
+  g.dt_max = index_root([&](double h) -> SparseMatrix { return (h * h) * A + (2 * h) * C; },
+                        [&](double h) -> SparseMatrix { return (2 * h) * A + 2.0 * C; }, lo, hi);
   return g;
 }
 
 double largest_stable_coefficient(const SparseMatrix& A, const SparseMatrix& C,
                                   const SparseMatrix& U, double dt) {
-  const auto stable = [&](double v) {
-    return largest_eigenvalue((dt * dt) * A + (2 * dt) * (C + v * U)) < 4;
-  };
+  const SparseMatrix base = (dt * dt) * A + (2 * dt) * C, step = (2 * dt) * U;
+  const auto stable = [&](double v) { return largest_eigenvalue(base + v * step) < 4; };
   if (!stable(0)) return 0;
   double lo = 0, hi = 1;
   for (int k = 0; k < 200 && stable(hi); ++k) lo = hi, hi *= 2;
   if (stable(hi)) return std::numeric_limits<double>::infinity();
-  for (int k = 0; k < 200 && hi - lo > 1e-10 * hi; ++k) {
-    const double mid = 0.5 * (lo + hi);
-    (stable(mid) ? lo : hi) = mid;
-  }
-  return lo;
+  return index_root([&](double v) -> SparseMatrix { return base + v * step; },
+                    [&](double) -> const SparseMatrix& { return step; }, lo, hi);
 }
 
 const char* to_string(DampingKind kind) {
