@@ -19,8 +19,9 @@ namespace {
 struct FigureArgs {
   std::string what, output, csv, size = "1200x700";
   std::string scene;
-  double zeta = 0;
+  double zeta = 0, kd = 0, rayleigh_mass = 0, rayleigh_stiffness = 0;
   CLI::Option* zeta_opt = nullptr;
+  CLI::Option* damping_opts[3] = {};
 };
 
 int run(const FigureArgs& a) {
@@ -32,6 +33,10 @@ int run(const FigureArgs& a) {
   if (a.what == "fig1" || a.what == "fig2") {
     if (a.zeta_opt->count())
       throw InputError("--zeta: fig1 and fig2 draw the paper's own gammas; give a scene file");
+    for (const CLI::Option* o : a.damping_opts)
+      if (o->count())
+        throw InputError(o->get_name() + ": fig1 and fig2 are the paper's nodal damping; give a "
+                         "scene file");
     const SceneSpec plane = load_scene_arg(a.scene);
     fig = a.what == "fig1" ? figure_fig1(plane) : figure_fig2(plane);
   } else {
@@ -40,6 +45,10 @@ int run(const FigureArgs& a) {
       scene.params.zeta = a.zeta;
       for (RunSpec& r : scene.runs) r.params.zeta = a.zeta;
     }
+    // SPEC 10's damping, given, in the scene and every run of the figure.
+    apply_damping_flags(a.damping_opts, a.kd, a.rayleigh_mass, a.rayleigh_stiffness, scene.params);
+    for (RunSpec& r : scene.runs)
+      apply_damping_flags(a.damping_opts, a.kd, a.rayleigh_mass, a.rayleigh_stiffness, r.params);
     resolve_zeta(scene);
     fig = figure_scene(scene);
   }
@@ -84,6 +93,7 @@ std::function<int()> setup(CLI::App& root) {
       ->capture_default_str();
   a->scene = "paper-plane";
   a->zeta_opt = add_zeta_option(cmd, a->zeta);
+  add_damping_flags(cmd, a->kd, a->rayleigh_mass, a->rayleigh_stiffness, a->damping_opts);
   return [a] { return run(*a); };
 }
 
