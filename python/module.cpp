@@ -74,6 +74,13 @@ void bind_params(py::module_& m) {
           [](Params& p, const std::string& s) { p.policy = policy_of(s); },
           "damping policy (SPEC 4): 'fixed', 'clamp', 'upper' or 'lower'")
       .def_readwrite("factor", &Params::factor, "multiplier of gamma_hi for policy 'upper'")
+      .def_readwrite("kd", &Params::kd,
+                     "dashpots along every spring and anchor (SPEC 10, mass unit/s): kd_ij = kd "
+                     "* kd_scale; the CLI's --kd, Warp's spring_kd")
+      .def_readwrite("rayleigh_mass", &Params::rayleigh_mass,
+                     "Rayleigh alpha (SPEC 10, 1/s): force -alpha m_i v_i")
+      .def_readwrite("rayleigh_stiffness", &Params::rayleigh_stiffness,
+                     "Rayleigh beta (SPEC 10, s): force -beta (K(x) v)_i")
       .def_property(
           "integrator", [](const Params& p) { return std::string(to_string(p.integrator)); },
           [](Params& p, const std::string& s) { p.integrator = integrator_of(s); },
@@ -84,6 +91,12 @@ void bind_params(py::module_& m) {
         return "Params(m=" + format_number(p.m) + ", kappa=" + format_number(p.kappa) +
                (p.zeta ? ", zeta=" + format_number(*p.zeta) : ", gamma=" + format_number(p.gamma)) +
                ", dt=" + format_number(p.dt) +
+               (p.kd != 0 ? ", kd=" + format_number(p.kd) : std::string()) +
+               (p.rayleigh_mass != 0 ? ", rayleigh_mass=" + format_number(p.rayleigh_mass)
+                                     : std::string()) +
+               (p.rayleigh_stiffness != 0
+                    ? ", rayleigh_stiffness=" + format_number(p.rayleigh_stiffness)
+                    : std::string()) +
                ", policy='" + to_string(p.policy) + "')";
       });
 
