@@ -43,11 +43,7 @@ struct BoundsArgs {
 /// leaves modes undamped. Nothing otherwise (the output stays as it was).
 void print_damping_lines(const Model& model, const State& state, const Params& p) {
   if (!model.spring_damping) return;
-  auto g5 = [](double x) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.5g", x);
-    return std::string(buf);
-  };
+  auto g5 = [](double x) { return format_human(x); };
   const DampingRatios r = damping_ratios(model, state.x);
   std::printf("\ndamping (SPEC 10)     kd=%s rayleigh_mass=%s 1/s rayleigh_stiffness=%s s\n",
               format_number(p.kd).c_str(), format_number(p.rayleigh_mass).c_str(),
@@ -99,7 +95,7 @@ Vec3 parse_vec3(const std::string& text, const char* flag) {
 void print_criteria(const std::vector<CriterionResult>& criteria) {
   std::printf("\n%-44s %-24s %-7s %s\n", "criterion", "value", "verdict", "test");
   for (const CriterionResult& c : criteria) {
-    const std::string value = format_digits(c.value, 8) + (c.unit.empty() ? "" : " " + c.unit);
+    const std::string value = format_human(c.value) + (c.unit.empty() ? "" : " " + c.unit);
     std::printf("%-44s %-24s %-7s %s\n", c.name.c_str(), value.c_str(), to_string(c.verdict),
                 c.test.c_str());
     std::printf("    %s  [%s]\n", c.formula.c_str(), c.source.c_str());
@@ -134,11 +130,7 @@ void print_safe_lines(const Model& model, const State& state, const Params& p,
   const SafeBoundSummary s = safe_bound_summary(model, state.x, p.dt);
   if (s.free_nodes == 0) return;
   const bool paper_step = exact.integrator == Integrator::semi_implicit_euler;
-  auto g5 = [](double x) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.5g", x);
-    return std::string(buf);
-  };
+  auto g5 = [](double x) { return format_human(x); };
   auto ratio = [&](double safe, double ex) {
     // the exact rows below are the nodal analysis (SPEC 7); SPEC 10's own follow
     return paper_step && !model.spring_damping && std::isfinite(ex) && ex != 0
@@ -221,7 +213,7 @@ void print_worst(const Model& model, const State& state, const Params& p, int co
       } else {
         char buf[512];
         std::snprintf(buf, sizeof buf, "  %7d %-12s %-12s %-10s %-10s %-10s %6d  %s\n", n.node,
-                      format_digits(n.dt_safe, 5).c_str(), format_digits(n.gamma_safe, 5).c_str(),
+                      format_human(n.dt_safe).c_str(), format_human(n.gamma_safe).c_str(),
                       format_digits(n.mass, 4).c_str(), format_digits(n.stiffest, 4).c_str(),
                       format_digits(n.shortest_edge, 4).c_str(), n.degree, n.cause.c_str());
         out += buf;
@@ -242,7 +234,7 @@ void print_worst(const Model& model, const State& state, const Params& p, int co
   const char* head = "     node dt_safe      gamma_safe   mass       stiffest   shortest   degree  cause\n";
   std::printf("worst %d by dt_safe_i (SPEC 9, at gamma_i):\n%s%s", count, head, rows(w.by_dt).c_str());
   std::printf("worst %d by gamma_safe_i (SPEC 9, at dt = %s s):\n%s%s", count,
-              format_digits(p.dt, 6).c_str(), head, rows(w.by_gamma).c_str());
+              format_human(p.dt).c_str(), head, rows(w.by_gamma).c_str());
 }
 
 int run_scene(const BoundsArgs& a) {

@@ -34,17 +34,17 @@ struct SuggestArgs {
 /// run at the middle of each range (the settled rule judges: stable is not settled in time).
 void print_damping_kinds(const SceneSpec& scene, const Params& p, const StopRules& rules,
                          bool verify) {
-  std::printf("damping kinds at dt = %s s, each with the others held (exact limit of SPEC 10, "
+  std::printf("damping kinds at dt = %s s, each with the others held (the exact limit, "
               "at rest)\n",
-              format_digits(p.dt, 6).c_str());
+              format_human(p.dt).c_str());
   for (DampingKind kind : {DampingKind::nodal, DampingKind::dashpot, DampingKind::rayleigh_mass,
                            DampingKind::rayleigh_stiffness}) {
     Params q = p;
     const double value = coefficient(q, kind);
     const double max = damping_kind_max(scene.model, scene.model.rest, p, kind);
     std::printf("  %-19s now %-10s stable for %s in [0, %s)", to_string(kind),
-                format_digits(value, 6).c_str(), to_string(kind),
-                std::isinf(max) ? "inf" : format_digits(max, 6).c_str());
+                format_human(value).c_str(), to_string(kind),
+                std::isinf(max) ? "inf" : format_human(max).c_str());
     if (max <= 0) {
       std::printf(": no value is stable with the others held\n");
       continue;
@@ -55,7 +55,7 @@ void print_damping_kinds(const SceneSpec& scene, const Params& p, const StopRule
     }
     coefficient(q, kind) = max / 2;
     const VerifiedRun mid = verify_run(scene, q, rules, "");
-    std::printf("; run at %s: %s\n", format_digits(max / 2, 6).c_str(),
+    std::printf("; run at %s: %s\n", format_human(max / 2).c_str(),
                 verdict_text(mid.result, mid.rules).c_str());
   }
 }
@@ -65,68 +65,85 @@ std::string zeta_of(const SceneSpec& scene, const Params& params) {
   return zeta_text(damping_ratio_range(compile_model(scene.model, params)));
 }
 
-void print_runs(const SceneSpec& scene, const std::vector<VerifiedRun>& runs) {
+void print_runs(const SceneSpec& scene, const std::vector<VerifiedRun>& runs,
+                const std::string& recommended) {
   if (runs.empty()) return;
   std::printf(
-      "verification (Session: the scene's perturbation and limit, policy fixed, settled rule: "
-      "verified only where the run settles)\n");
+      "runs (the scene's perturbation and limit, policy fixed, settled rule; the suggested "
+      "value must settle, the others show the range's ends)\n");
+  for (const VerifiedRun& r : runs) {
+    const bool judged = r.label == recommended;
+    std::printf("  %-34s gamma=%-10s zeta=%-8s dt=%-10s %s%s (max |x-X| %s cm)\n",
+                r.label.c_str(), format_human(r.params.gamma).c_str(),
+                zeta_of(scene, r.params).c_str(), format_human(r.params.dt).c_str(),
+                judged ? (r.verified() ? "verified: " : "NOT verified: ") : "",
+                verdict_text(r.result, r.rules).c_str(),
+                format_human(r.result.max_displacement).c_str());
+  }
+}
+
+/// Exit 1 when the value suggested for use (the run labelled `label`) did not settle: a CI job
+/// must not take it. The other runs probe the range's ends and only inform.
+int recommendation_status(const std::vector<VerifiedRun>& runs, const std::string& label) {
   for (const VerifiedRun& r : runs)
-    std::printf("  %-34s gamma=%-12s zeta=%-10s dt=%-12s %s: %s (max |x-X| %s cm)\n",
-                r.label.c_str(), format_digits(r.params.gamma, 8).c_str(),
-                zeta_of(scene, r.params).c_str(), format_digits(r.params.dt, 8).c_str(),
-                r.verified() ? "verified" : "NOT verified",
-                verdict_text(r.result, r.rules).c_str(), format_digits(r.result.max_displacement, 8).c_str());
+    if (r.label == label && !r.verified()) {
+      std::printf("not verified: the %s did not settle in its run; do not use it as is (raise "
+                  "max_iterations, or take a value nearer the middle of the range)\n",
+                  label.c_str());
+      return 1;
+    }
+  return 0;
 }
 
 int print_damping(const SceneSpec& scene, const DampingSuggestion& s) {
   std::printf("damping range at dt = %s s (the user's gamma; gamma_i = gamma * gamma_scale_i)\n",
-              format_digits(s.dt, 8).c_str());
-  std::printf("  gamma_min  %-14s set by %s\n", format_digits(s.gamma_min, 8).c_str(), s.min_by.c_str());
+              format_human(s.dt).c_str());
+  std::printf("  gamma_min  %-14s set by %s\n", format_human(s.gamma_min).c_str(), s.min_by.c_str());
   if (s.proved_only) {
-    std::printf("  gamma_max  %-14s set by %s\n", format_digits(s.gamma_max, 8).c_str(),
+    std::printf("  gamma_max  %-14s set by %s\n", format_human(s.gamma_max).c_str(),
                 s.max_by.c_str());
     std::printf("  exact limits not computed: %s\n", s.exact.over_budget_reason().c_str());
     if (std::isfinite(s.gamma_unstable_from))
       std::printf("  the exact upper limit lies in [%s, %s): every gamma from %s on is proved "
                   "unstable\n",
-                  format_digits(s.gamma_max, 8).c_str(),
-                  format_digits(s.gamma_unstable_from, 8).c_str(),
-                  format_digits(s.gamma_unstable_from, 8).c_str());
+                  format_human(s.gamma_max).c_str(),
+                  format_human(s.gamma_unstable_from).c_str(),
+                  format_human(s.gamma_unstable_from).c_str());
   } else {
-    std::printf("  gamma_max  %-14s set by %s (exclusive)\n", format_digits(s.gamma_max, 8).c_str(),
+    std::printf("  gamma_max  %-14s set by %s (exclusive)\n", format_human(s.gamma_max).c_str(),
                 s.max_by.c_str());
   }
   const std::string scope = safe_bound_scope(s.exact.integrator);
   if (s.safe_max <= 0)  // some node has gamma_safe_i <= 0: SPEC 9 guarantees no gamma here
-    std::printf("  safe (SPEC 9) no gamma: gamma_safe_i <= 0 at some node at this dt (%s)\n",
-                format_digits(s.safe_max, 8).c_str());
+    std::printf("  safe bound no gamma: gamma_safe_i <= 0 at some node at this dt (%s)\n",
+                format_human(s.safe_max).c_str());
   else if (scope.empty())
-    std::printf("  safe (SPEC 9) gamma < %-10s guarantees stability at every node (at rest)\n",
-                format_digits(s.safe_max, 8).c_str());
+    std::printf("  safe bound gamma < %-10s guarantees stability at every node (at rest)\n",
+                format_human(s.safe_max).c_str());
   else
-    std::printf("  safe (SPEC 9) gamma < %-10s (%s)\n", format_digits(s.safe_max, 8).c_str(),
+    std::printf("  safe bound gamma < %-10s (%s)\n", format_human(s.safe_max).c_str(),
                 scope.c_str());
   std::printf("  per node class (m_i, kappa_i = max incident stiffness, gamma_scale_i):\n");
   for (const NodeClass& c : s.classes) {
     std::printf("    %5d nodes like %-5d m_i=%-10s kappa_i=%-10s scale=%-6s eq.5 %-12s gamma_i in [%s, %s%c\n",
-                c.count, c.example, format_digits(c.mass, 8).c_str(), format_digits(c.kappa, 8).c_str(),
-                format_digits(c.gamma_scale, 8).c_str(), format_digits(c.lower_bound, 8).c_str(), format_digits(c.gamma_min, 8).c_str(),
-                format_digits(c.gamma_max, 8).c_str(), s.proved_only ? ']' : ')');
+                c.count, c.example, format_human(c.mass).c_str(), format_human(c.kappa).c_str(),
+                format_human(c.gamma_scale).c_str(), format_human(c.lower_bound).c_str(), format_human(c.gamma_min).c_str(),
+                format_human(c.gamma_max).c_str(), s.proved_only ? ']' : ')');
     if (c.lower_bound > 0)
-      std::printf("          zeta_i in [%s, %s%c\n", format_digits(c.gamma_min / c.lower_bound, 5).c_str(),
-                  format_digits(c.gamma_max / c.lower_bound, 5).c_str(), s.proved_only ? ']' : ')');
+      std::printf("          zeta_i in [%s, %s%c\n", format_human(c.gamma_min / c.lower_bound).c_str(),
+                  format_human(c.gamma_max / c.lower_bound).c_str(), s.proved_only ? ']' : ')');
     if (!scope.empty())
-      std::printf("          safe (SPEC 9): gamma_i < %s; at eq.5 dt < %s s (%s)\n",
-                  format_digits(c.safe_max, 8).c_str(), format_digits(c.dt_safe, 8).c_str(),
+      std::printf("          safe bound: gamma_i < %s; at eq.5 dt < %s s (%s)\n",
+                  format_human(c.safe_max).c_str(), format_human(c.dt_safe).c_str(),
                   scope.c_str());
     else if (c.lower_bound < c.safe_max)
-      std::printf("          safe (SPEC 9): gamma_i in [%s, %s); critical damping guaranteed "
+      std::printf("          safe bound: gamma_i in [%s, %s); critical damping guaranteed "
                   "for dt < %s s\n",
-                  format_digits(c.lower_bound, 8).c_str(), format_digits(c.safe_max, 8).c_str(), format_digits(c.dt_safe, 8).c_str());
+                  format_human(c.lower_bound).c_str(), format_human(c.safe_max).c_str(), format_human(c.dt_safe).c_str());
     else
-      std::printf("          safe (SPEC 9): gamma_safe_i %s < eq.5: critical damping cannot be "
+      std::printf("          safe bound: gamma_safe_i %s < eq.5: critical damping cannot be "
                   "guaranteed at this dt; it is for dt < %s s\n",
-                  format_digits(c.safe_max, 8).c_str(), format_digits(c.dt_safe, 8).c_str());
+                  format_human(c.safe_max).c_str(), format_human(c.dt_safe).c_str());
   }
   std::printf("  dt-only criteria at this dt:");
   for (const CriterionResult& c : s.dt_only) std::printf(" %s %s;", c.name.c_str(), to_string(c.verdict));
@@ -136,11 +153,11 @@ int print_damping(const SceneSpec& scene, const DampingSuggestion& s) {
                 s.proved_only ? ">" : ">=");
     std::printf("largest %s dt at gamma_min: %s s (try suggest --gamma %s)\n",
                 s.proved_only ? "proved stable" : "stable",
-                format_digits(s.dt_max_at_gamma_min, 8).c_str(), format_digits(s.gamma_min, 8).c_str());
+                format_human(s.dt_max_at_gamma_min).c_str(), format_human(s.gamma_min).c_str());
     return 1;
   }
   if (!s.dt_accepted) std::printf("warning: a dt-only criterion rejects this dt whatever the damping\n");
-  std::printf("fastest settling gamma  %s  (%s%s)\n", format_digits(s.gamma_best, 8).c_str(),
+  std::printf("fastest settling gamma  %s  (%s%s)\n", format_human(s.gamma_best).c_str(),
               s.best_method.c_str(),
               std::isnan(s.best_rho)
                   ? ""
@@ -149,50 +166,50 @@ int print_damping(const SceneSpec& scene, const DampingSuggestion& s) {
                               s.exact.integrator == Integrator::forward_euler
                           ? "; rho <= "  // the ends of the interval decide (quasi-convex)
                           : "; rho about ") +  // 65 lambdas sampled
-                     format_digits(s.best_rho, 8))
+                     format_human(s.best_rho))
                         .c_str());
-  print_runs(scene, s.runs);
-  return 0;
+  print_runs(scene, s.runs, "fastest-settling gamma");
+  return recommendation_status(s.runs, "fastest-settling gamma");
 }
 
 int print_step(const SceneSpec& scene, const Params& p, const StepSuggestion& s) {
-  std::printf("largest stable dt at gamma = %s (zeta = %s)\n", format_digits(s.gamma, 8).c_str(),
+  std::printf("largest stable dt at gamma = %s (zeta = %s)\n", format_human(s.gamma).c_str(),
               zeta_of(scene, p).c_str());
   if (s.proved_only) {
-    std::printf("  proved stable dt <= %s s (without a factorisation)\n", format_digits(s.dt_exact, 8).c_str());
+    std::printf("  proved stable dt <= %s s (without a factorisation)\n", format_human(s.dt_exact).c_str());
     std::printf("  exact limit   not computed: %s\n", s.exact.over_budget_reason().c_str());
     if (std::isfinite(s.dt_unstable_from))
       std::printf("                it lies in [%s, %s): every dt from %s s on is proved unstable\n",
-                  format_digits(s.dt_exact, 8).c_str(), format_digits(s.dt_unstable_from, 8).c_str(),
-                  format_digits(s.dt_unstable_from, 8).c_str());
+                  format_human(s.dt_exact).c_str(), format_human(s.dt_unstable_from).c_str(),
+                  format_human(s.dt_unstable_from).c_str());
   } else {
-    std::printf("  exact limit   dt < %s s (%s)\n", format_digits(s.dt_exact, 8).c_str(), to_string(s.exact.method));
+    std::printf("  exact limit   dt < %s s (%s)\n", format_human(s.dt_exact).c_str(), to_string(s.exact.method));
   }
-  std::printf("  all criteria  dt <= %s s, set by %s\n", format_digits(s.dt_all, 8).c_str(), s.dt_all_by.c_str());
+  std::printf("  all criteria  dt <= %s s, set by %s\n", format_human(s.dt_all).c_str(), s.dt_all_by.c_str());
   const std::string scope = safe_bound_scope(s.exact.integrator);
   if (scope.empty())
-    std::printf("  safe (SPEC 9) dt < %s s guarantees stability at every node (at rest; node %d "
+    std::printf("  safe bound dt < %s s guarantees stability at every node (at rest; node %d "
                 "sets it)\n",
-                format_digits(s.dt_safe, 8).c_str(), s.dt_safe_node);
+                format_human(s.dt_safe).c_str(), s.dt_safe_node);
   else
-    std::printf("  safe (SPEC 9) dt < %s s (node %d sets it; %s)\n",
-                format_digits(s.dt_safe, 8).c_str(), s.dt_safe_node, scope.c_str());
-  print_runs(scene, s.runs);
-  return 0;
+    std::printf("  safe bound dt < %s s (node %d sets it; %s)\n",
+                format_human(s.dt_safe).c_str(), s.dt_safe_node, scope.c_str());
+  print_runs(scene, s.runs, "largest dt every criterion accepts");
+  return recommendation_status(s.runs, "largest dt every criterion accepts");
 }
 
 int print_substeps(const SubstepSuggestion& s) {
   std::printf("substeps per frame of %s s (dt = frame / n, at the rest state)\n",
-              format_digits(s.frame_dt, 8).c_str());
+              format_human(s.frame_dt).c_str());
   int status = 0;
   for (const SubstepCount* c : {&s.exact, &s.safe}) {
-    const char* what = c == &s.exact ? "exact limit " : "safe (SPEC 9)";
+    const char* what = c == &s.exact ? "exact limit " : "safe bound";
     if (c->n == 0) {
-      std::printf("  %s no count (dt limit %s s)\n", what, format_digits(c->limit, 8).c_str());
+      std::printf("  %s no count (dt limit %s s)\n", what, format_human(c->limit).c_str());
       continue;
     }
-    std::printf("  %s %d substeps: dt = %s s < %s s", what, c->n, format_digits(c->dt, 8).c_str(),
-                format_digits(c->limit, 8).c_str());
+    std::printf("  %s %d substeps: dt = %s s < %s s", what, c->n, format_human(c->dt).c_str(),
+                format_human(c->limit).c_str());
     if (c->ran) {
       std::printf("; %s: %s", c->run.verified() ? "verified" : "NOT verified",
                   verdict_text(c->run.result, c->run.rules).c_str());
@@ -225,7 +242,7 @@ int run(const SuggestArgs& a) {
   std::printf("scene        %s (%d nodes, %d springs)\n", name.c_str(), scene.model.node_count(),
               scene.model.spring_count());
   std::printf("parameters   m=%s kappa=%s dt=%s s integrator=%s max_iterations=%d\n",
-              format_digits(p.m, 8).c_str(), format_digits(p.kappa, 8).c_str(), format_digits(p.dt, 8).c_str(), to_string(p.integrator),
+              format_human(p.m).c_str(), format_human(p.kappa).c_str(), format_human(p.dt).c_str(), to_string(p.integrator),
               rules.max_iterations);
   {
     const Model model = compile_model(scene.model, p);

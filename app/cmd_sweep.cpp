@@ -264,7 +264,7 @@ int run(const SweepArgs& a) {
     std::printf("%s\n", line.c_str());
   if (rq.scene.params.integrator != Integrator::semi_implicit_euler)
     std::printf(
-        "note         the scene steps %s: SPEC 7's linear limit and SPEC 9's bound above "
+        "note         the scene steps %s: linear limit and bound above "
         "are derived for the paper's semi-implicit step; their lines count how often "
         "they held here, they guarantee nothing\n",
         to_string(rq.scene.params.integrator));
@@ -284,10 +284,10 @@ std::function<int()> setup(CLI::App& root) {
       "sweep",
       "Run the paper's protocol over a grid of m, kappa, gamma (or zeta), dt, factor and the "
       "dashpot and Rayleigh damping; one CSV row per trial. Trials sharing kappa/m, gamma/m, "
-      "kd/m, the Rayleigh coefficients and dt run once (SPEC 6, 10).");
+      "kd/m, the Rayleigh coefficients and dt run once.");
   cmd->add_option("scene", a->scene, "scene file or shipped scene name (default paper-plane)");
   cmd->add_option("--preset", a->preset,
-                  "paper-lower (SPEC 5: m, kappa 0.0001..0.1 step 0.0001, zeta 0.25,0.5,1, "
+                  "paper-lower (m, kappa 0.0001..0.1 step 0.0001, zeta 0.25,0.5,1, "
                   "1000 iterations) or paper-upper (policy upper, factor 1,1.05, 10000 "
                   "iterations); other flags override it");
   a->m_opt = cmd->add_option("--m", a->m, "masses: A:B:STEP and/or a comma list (mass unit)");
@@ -302,14 +302,14 @@ std::function<int()> setup(CLI::App& root) {
   a->factor_opt =
       cmd->add_option("--factor", a->factor, "factors of the upper bound (policy upper): a list");
   a->kd_opt = cmd->add_option("--kd", a->kd,
-                              "dashpots along the springs (SPEC 10, mass unit/s): A:B:STEP and/or "
+                              "dashpots along the springs (mass unit/s): A:B:STEP and/or "
                               "a list");
   a->rayleigh_mass_opt = cmd->add_option("--rayleigh-mass", a->rayleigh_mass,
-                                         "Rayleigh alpha (SPEC 10, 1/s): A:B:STEP and/or a list");
+                                         "Rayleigh alpha (1/s): A:B:STEP and/or a list");
   a->rayleigh_stiffness_opt =
       cmd->add_option("--rayleigh-stiffness", a->rayleigh_stiffness,
-                      "Rayleigh beta (SPEC 10, s): A:B:STEP and/or a list");
-  a->policy_opt = cmd->add_option("--policy", a->policy, "damping policy (SPEC 4; safe: SPEC 9)")
+                      "Rayleigh beta (s): A:B:STEP and/or a list");
+  a->policy_opt = cmd->add_option("--policy", a->policy, "damping policy: fixed, clamp, upper, lower (the paper's), safe (the safe bound)")
                       ->check(CLI::IsMember(policy_names()));
   a->max_iter_opt = cmd->add_option("--max-iter", a->max_iter, "iteration limit of the protocol")
                         ->check(CLI::Range(1, 100000000));

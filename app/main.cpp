@@ -48,12 +48,21 @@ int main(int argc, char** argv) {
   root.add_flag("--allow-any-path", any_path,
                 "let a scene name files outside its own folder ([mesh] file: absolute paths, "
                 "'..')");
+  int digits = 6;
+  root.add_option("--digits", digits,
+                  "significant digits of the numbers printed for people (files keep full "
+                  "precision)")
+      ->check(CLI::Range(1, 17));
   root.fallthrough();  // the flag may also follow the subcommand
   std::map<std::string, std::function<int()>> runners;
   for (auto& entry : command_table()) runners[entry.name] = entry.setup(root);
   // CLI11 answers an unknown first word with "A subcommand is required": name it instead.
   for (int k = 1; k < argc; ++k) {
     const std::string word = argv[k];
+    if (word == "--digits") {  // the root's one option with a value: skip the value
+      ++k;
+      continue;
+    }
     if (word.empty() || word[0] == '-') continue;
     if (runners.count(word)) break;
     std::string names;
@@ -75,6 +84,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   dampbound::set_scene_paths_unrestricted(any_path);
+  dampbound::set_human_digits(digits);
   try {
     for (auto* sub : root.get_subcommands()) {
       auto it = runners.find(sub->get_name());

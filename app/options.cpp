@@ -60,13 +60,13 @@ void add_damping_flags(CLI::App* cmd, double& kd, double& rayleigh_mass,
                        double& rayleigh_stiffness, CLI::Option* opts[3]) {
   opts[0] = cmd->add_option("--kd", kd,
                             "dashpot along every spring and anchor, kd_ij = kd * kd_scale "
-                            "(mass unit/s; SPEC 10)")
+                            "(mass unit/s)")
                 ->check(finite_non_negative());
   opts[1] = cmd->add_option("--rayleigh-mass", rayleigh_mass,
-                            "Rayleigh alpha: force -alpha m_i v_i (1/s; SPEC 10)")
+                            "Rayleigh alpha: force -alpha m_i v_i (1/s)")
                 ->check(finite_non_negative());
   opts[2] = cmd->add_option("--rayleigh-stiffness", rayleigh_stiffness,
-                            "Rayleigh beta: force -beta (K(x) v)_i (s; SPEC 10)")
+                            "Rayleigh beta: force -beta (K(x) v)_i (s)")
                 ->check(finite_non_negative());
 }
 
@@ -86,7 +86,7 @@ void ParamFlags::add_to(CLI::App* cmd, bool with_rules) {
                   ->check(finite_non_negative());
   zeta_opt = add_zeta_option(cmd, zeta, gamma_opt);
   dt_opt = cmd->add_option("--dt", dt, "time step (s)")->check(finite_positive());
-  policy_opt = cmd->add_option("--policy", policy, "damping policy (SPEC 4; safe: SPEC 9)")
+  policy_opt = cmd->add_option("--policy", policy, "damping policy: fixed, clamp, upper, lower (the paper's), safe (the safe bound)")
                    ->check(CLI::IsMember(policy_names()));
   factor_opt = cmd->add_option("--factor", factor, "multiplier of the upper bound for --policy upper")
                    ->check(finite_non_negative());
@@ -131,7 +131,7 @@ CLI::Option* add_zeta_option(CLI::App* cmd, double& zeta, CLI::Option* gamma) {
 CLI::Option* add_rule_option(CLI::App* cmd, std::string& rule, const std::string& what_default) {
   return cmd
       ->add_option("--rule", rule,
-                   "verdict rule (SPEC 8): first-entry = the paper's, restored at the first "
+                   "verdict rule: first-entry = the paper's, restored at the first "
                    "iteration below the 1% band; settled = step to the limit, settled only "
                    "where it stays below from some iteration on (" +
                        what_default + ")")

@@ -100,8 +100,8 @@ std::vector<CriterionResult> classic_criteria(const Model& model, const Params& 
     c.unit = "mass unit/s^2";
     c.value = n ? delingette_critical_stiffness(m_total, n, dt) : kInf;
     c.verdict = verdict_of(kappa_max < c.value);
-    c.test = "kappa_max = " + format_digits(kappa_max, 8) + (kappa_max < c.value ? " < " : " >= ") +
-             "k_c = " + format_digits(c.value, 8) + " (n = " + std::to_string(n) + " free nodes)";
+    c.test = "kappa_max = " + format_human(kappa_max) + (kappa_max < c.value ? " < " : " >= ") +
+             "k_c = " + format_human(c.value) + " (n = " + std::to_string(n) + " free nodes)";
     out.push_back(c);
   }
   const std::vector<double> K = combined_stiffness(model);
@@ -123,11 +123,11 @@ std::vector<CriterionResult> classic_criteria(const Model& model, const Params& 
     if (tk < ka.value) ka.value = tk, ka.node = static_cast<int>(i);
   }
   provot.verdict = verdict_of(dt < provot.value);
-  provot.test = "dt = " + format_digits(dt, 8) + (dt < provot.value ? " < " : " >= ") + "T0 = " +
-                format_digits(provot.value, 8) + " (worst node " + std::to_string(provot.node) + ")";
+  provot.test = "dt = " + format_human(dt) + (dt < provot.value ? " < " : " >= ") + "T0 = " +
+                format_human(provot.value) + " (worst node " + std::to_string(provot.node) + ")";
   ka.verdict = verdict_of(dt <= ka.value);
-  ka.test = "dt = " + format_digits(dt, 8) + (dt <= ka.value ? " <= " : " > ") + "2 sqrt(m/K) = " +
-            format_digits(ka.value, 8) + " (worst node " + std::to_string(ka.node) + ")";
+  ka.test = "dt = " + format_human(dt) + (dt <= ka.value ? " <= " : " > ") + "2 sqrt(m/K) = " +
+            format_human(ka.value) + " (worst node " + std::to_string(ka.node) + ")";
   out.push_back(provot);
   out.push_back(ka);
   return out;
@@ -149,8 +149,8 @@ std::vector<CriterionResult> paper_criteria(const Model& model, const State& sta
     const auto w = static_cast<size_t>(lo.node);
     lo.value = model.lower_bound[w];
     lo.verdict = verdict_of(model.gamma[w] >= lo.value);
-    lo.test = "gamma_i = " + format_digits(model.gamma[w], 8) + (model.gamma[w] >= lo.value ? " >= " : " < ") +
-              "gamma_lo = " + format_digits(lo.value, 8) + " (worst node " + std::to_string(lo.node) + ")";
+    lo.test = "gamma_i = " + format_human(model.gamma[w]) + (model.gamma[w] >= lo.value ? " >= " : " < ") +
+              "gamma_lo = " + format_human(lo.value) + " (worst node " + std::to_string(lo.node) + ")";
   }
   out.push_back(lo);
 
@@ -183,8 +183,8 @@ std::vector<CriterionResult> paper_criteria(const Model& model, const State& sta
   } else {
     const double g = model.gamma[static_cast<size_t>(hi.node)];
     hi.verdict = verdict_of(g <= hi.value);
-    hi.test = "gamma_i = " + format_digits(g, 8) + (g <= hi.value ? " <= " : " > ") + "gamma_hi = " +
-              format_digits(hi.value, 8) + " (worst node " + std::to_string(hi.node) + ")";
+    hi.test = "gamma_i = " + format_human(g) + (g <= hi.value ? " <= " : " > ") + "gamma_hi = " +
+              format_human(hi.value) + " (worst node " + std::to_string(hi.node) + ")";
     // Eq. 6 comes from the Euler velocity update v' = v + a dt, which the paper's step and
     // forward Euler share; for the other integrators it is shown for reference only.
     if (params.integrator != Integrator::semi_implicit_euler &&
@@ -210,14 +210,14 @@ std::vector<CriterionResult> exact_criteria(const ExactStability& e, const Param
                 "largest eigenvalue of M^-1/2 K M^-1/2 at the state; lambda_min " +
                     (bracketed(e.spectrum.lambda_min, e.lambda_min_hi)
                          ? "certified in " + span(e.spectrum.lambda_min, e.lambda_min_hi)
-                         : "= " + format_digits(e.spectrum.lambda_min, 8)));
+                         : "= " + format_human(e.spectrum.lambda_min)));
   lm.unit = "1/s^2";
   lm.value = e.spectrum.lambda_max;
   lm.verdict = CriterionVerdict::not_applicable;
   char interval[80];  // 12 digits: the interval is ~1e-10 wide
   c_snprintf(interval, sizeof interval, "[%.12g, %.12g]", e.lambda_max_lo, e.spectrum.lambda_max);
   lm.test = "a quantity, not a test; certified in " + std::string(interval) + "; dt^2 lambda_max = " +
-            format_digits(params.dt * params.dt * e.spectrum.lambda_max, 8);
+            format_human(params.dt * params.dt * e.spectrum.lambda_max);
   out.push_back(lm);
 
   CriterionResult rho = criterion("exact spectral radius (" + integ + ")", "SPEC 7",
@@ -225,12 +225,12 @@ std::vector<CriterionResult> exact_criteria(const ExactStability& e, const Param
   rho.value = e.spectral_radius;
   rho.verdict = verdict_of(e.stable);
   if (e.method == ExactMethod::symmetric_index)
-    rho.test = "index lambda_max(dt^2 A + 2 dt C) = " + format_digits(e.index, 8) + (e.index < 4 ? " < 4" : " >= 4") +
-               (std::isnan(e.spectral_radius) ? "" : ", rho = " + format_digits(e.spectral_radius, 8));
+    rho.test = "index lambda_max(dt^2 A + 2 dt C) = " + format_human(e.index) + (e.index < 4 ? " < 4" : " >= 4") +
+               (std::isnan(e.spectral_radius) ? "" : ", rho = " + format_human(e.spectral_radius));
   else if (std::isnan(e.spectral_radius))
     rho.test = e.stable ? "stable for every dt and gamma" : "unstable";
   else
-    rho.test = "rho = " + format_digits(e.spectral_radius, 8) + (e.stable ? " <= 1" : " > 1") +
+    rho.test = "rho = " + format_human(e.spectral_radius) + (e.stable ? " <= 1" : " > 1") +
                (e.radius_converged ? ""
                 : e.indefinite && e.method == ExactMethod::per_mode
                     ? " (estimate: modes sampled over [lambda_min, lambda_max])"
@@ -255,8 +255,8 @@ std::vector<CriterionResult> exact_criteria(const ExactStability& e, const Param
   gi.value = e.gamma_hi;
   const bool inside = params.gamma >= e.gamma_lo && params.gamma < e.gamma_hi;
   gi.verdict = verdict_of(inside);
-  gi.test = "gamma = " + format_digits(params.gamma, 8) + (inside ? " in " : " not in ") + "[" +
-            format_digits(e.gamma_lo, 8) + ", " + format_digits(e.gamma_hi, 8) + ")" +
+  gi.test = "gamma = " + format_human(params.gamma) + (inside ? " in " : " not in ") + "[" +
+            format_human(e.gamma_lo) + ", " + format_human(e.gamma_hi) + ")" +
             (e.gamma_lo < e.gamma_hi ? "" : ": empty, no gamma is stable at this dt") +
             (e.method == ExactMethod::frozen_estimate ? " (frozen-rate estimate)" : "");
 
@@ -265,14 +265,14 @@ std::vector<CriterionResult> exact_criteria(const ExactStability& e, const Param
   dm.unit = "s";
   dm.value = e.dt_max;
   dm.verdict = verdict_of(params.dt <= e.dt_max);
-  dm.test = "dt = " + format_digits(params.dt, 8) + (params.dt <= e.dt_max ? " <= " : " > ") + "dt_max = " +
-            format_digits(e.dt_max, 8) + (e.method == ExactMethod::frozen_estimate ? " (frozen-rate estimate)" : "");
+  dm.test = "dt = " + format_human(params.dt) + (params.dt <= e.dt_max ? " <= " : " > ") + "dt_max = " +
+            format_human(e.dt_max) + (e.method == ExactMethod::frozen_estimate ? " (frozen-rate estimate)" : "");
   if (!e.indefinite && bracketed(e.gamma_hi, in.gamma_hi)) {
     const bool inner_inside = params.gamma >= in.gamma_lo && params.gamma < in.gamma_hi;
     gi.verdict = bracketed_verdict(inside, inner_inside);
     gi.test += std::string(only_bracketed) +
                "the stable interval holds this one and lies within [" +
-               format_digits(in.gamma_lo, 8) + ", " + format_digits(in.gamma_hi, 8) + ")" +
+               format_human(in.gamma_lo) + ", " + format_human(in.gamma_hi) + ")" +
                (gi.verdict == CriterionVerdict::not_applicable ? ", undecided)" : ")");
   }
   if (!e.indefinite && bracketed(e.dt_max, in.dt_max)) {
@@ -282,16 +282,16 @@ std::vector<CriterionResult> exact_criteria(const ExactStability& e, const Param
   }
   if (e.indefinite) {  // ExactStability::indefinite
     const std::string why = "K is indefinite at the state (lambda_min = " +
-                            format_digits(e.spectrum.lambda_min, 8) + " < 0)";
+                            format_human(e.spectrum.lambda_min) + " < 0)";
     if (e.integrator == Integrator::implicit_euler) {
       gi.verdict = dm.verdict = CriterionVerdict::not_applicable;
       gi.test = dm.test = "not computed: " + why +
                           "; implicit Euler damps its growing modes only at a long enough step, "
                           "and the spectral radius decides";
     } else {
-      gi.test = "gamma = " + format_digits(params.gamma, 8) + " not in the empty interval: " +
+      gi.test = "gamma = " + format_human(params.gamma) + " not in the empty interval: " +
                 why + ", and a mode grows whatever gamma and dt";
-      dm.test = "dt = " + format_digits(params.dt, 8) + ": no dt > 0 is stable; " + why;
+      dm.test = "dt = " + format_human(params.dt) + ": no dt > 0 is stable; " + why;
     }
   }
   out.push_back(gi);

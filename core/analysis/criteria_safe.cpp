@@ -21,7 +21,7 @@ std::string ratio_text(double safe, double exact, const ExactStability* e) {
   if (!e || e->integrator != Integrator::semi_implicit_euler || !std::isfinite(exact) ||
       exact == 0)
     return "";
-  return "; " + format_digits(safe / exact, 8) + " of the exact limit " + format_digits(exact, 8);
+  return "; " + format_human(safe / exact) + " of the exact limit " + format_human(exact);
 }
 
 }  // namespace
@@ -63,9 +63,9 @@ std::vector<CriterionResult> safe_criteria(const Model& model, const State& stat
   g.verdict = no_guarantee ? unknown : verdict_of(over == 0);
   g.test = std::to_string(over) + " of " + std::to_string(s.free_nodes) +
            " nodes with gamma_i >= gamma_safe_i; smallest gamma_safe " +
-           format_digits(s.gamma_safe, 8) +
+           format_human(s.gamma_safe) +
            (s.gamma_scaled ? " (the user's gamma, gamma_i = gamma * gamma_scale_i)" : "") +
-           " at node " + std::to_string(s.gamma_node) + " (R = " + format_digits(s.row_sum, 8) +
+           " at node " + std::to_string(s.gamma_node) + " (R = " + format_human(s.row_sum) +
            ")" + ratio_text(s.gamma_safe, exact ? exact->gamma_hi : NAN, exact) + caveat;
   out.push_back(g);
 
@@ -77,8 +77,8 @@ std::vector<CriterionResult> safe_criteria(const Model& model, const State& stat
   d.value = s.dt_safe;
   d.node = s.dt_node;
   d.verdict = no_guarantee ? unknown : verdict_of(params.dt < s.dt_safe);
-  d.test = "dt = " + format_digits(params.dt, 8) + (params.dt < s.dt_safe ? " < " : " >= ") + "dt_safe = " +
-           format_digits(s.dt_safe, 8) + " (node " + std::to_string(s.dt_node) + ")" +
+  d.test = "dt = " + format_human(params.dt) + (params.dt < s.dt_safe ? " < " : " >= ") + "dt_safe = " +
+           format_human(s.dt_safe) + " (node " + std::to_string(s.dt_node) + ")" +
            ratio_text(s.dt_safe, exact ? exact->dt_max : NAN, exact) + caveat;
   out.push_back(d);
 
@@ -97,8 +97,8 @@ std::vector<CriterionResult> safe_criteria(const Model& model, const State& stat
     for (double h : s.infeasible_dt) dt_min = std::min(dt_min, h);
     c.test = std::to_string(s.infeasible.size()) + " of " + std::to_string(s.free_nodes) +
              " nodes with gamma_lo > gamma_safe (first: node " + std::to_string(c.node) +
-             ", feasible at dt < " + format_digits(s.infeasible_dt.front(), 8) + "); all at dt < " +
-             format_digits(dt_min, 8);
+             ", feasible at dt < " + format_human(s.infeasible_dt.front()) + "); all at dt < " +
+             format_human(dt_min);
   }
   c.test += caveat;
   out.push_back(c);

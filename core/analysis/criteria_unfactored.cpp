@@ -42,23 +42,23 @@ CriterionResult threshold_row(CriterionResult c, const std::string& without,
     proof = "no " + what + " is proved unstable at this " + at;
   } else {
     unstable = below ? user <= from : user >= from;
-    proof = "every " + what + (below ? " <= " : " >= ") + format_digits(from, 8) +
+    proof = "every " + what + (below ? " <= " : " >= ") + format_human(from) +
             " is unstable at this " + at;
   }
   const bool stable = !unstable && has_stable && stable_lo <= user && user <= stable_hi;
   if (has_stable) {
     const std::string range =
-        stable_lo <= 0 ? (std::isinf(stable_hi) ? ">= 0" : "<= " + format_digits(stable_hi, 8))
+        stable_lo <= 0 ? (std::isinf(stable_hi) ? ">= 0" : "<= " + format_human(stable_hi))
         : std::isinf(stable_hi)
-            ? ">= " + format_digits(stable_lo, 8)
-            : "in [" + format_digits(stable_lo, 8) + ", " + format_digits(stable_hi, 8) + "]";
+            ? ">= " + format_human(stable_lo)
+            : "in [" + format_human(stable_lo) + ", " + format_human(stable_hi) + "]";
     proof += (proof.empty() ? "" : ", ") + ("every " + what + " " + range + " is stable");
   }
   c.verdict = unstable ? CriterionVerdict::beyond
                        : stable ? CriterionVerdict::within : CriterionVerdict::not_applicable;
   c.test += without + proof;
   if (told || has_stable)
-    c.test += "; " + what + " = " + format_digits(user, 8) +
+    c.test += "; " + what + " = " + format_human(user) +
               (unstable ? " is" : stable ? " is stable" : " is not proved either way");
   return c;
 }
@@ -98,15 +98,15 @@ std::vector<CriterionResult> unfactored_criteria(const ExactStability& e, const 
   CriterionResult lm = row("exact lambda_max of M^-1 K");
   if (tried)
     lm.test +=
-        without + "lambda_max in [" + format_digits(b.lambda_max_lo, 8) + ", " +
-        format_digits(b.lambda_max_hi, 8) + "] (" +
+        without + "lambda_max in [" + format_human(b.lambda_max_lo) + ", " +
+        format_human(b.lambda_max_hi) + "] (" +
         (b.lambda_patch_nodes > 0
              ? "a patch of " + std::to_string(b.lambda_patch_nodes) +
                    " nodes around A's top, each node outside it alone; Gershgorin's: " +
-                   format_digits(b.gershgorin, 8)
+                   format_human(b.gershgorin)
          : b.lambda_max_hi < b.gershgorin
              ? "a Rayleigh quotient, the node-block splitting's bound; Gershgorin's: " +
-                   format_digits(b.gershgorin, 8)
+                   format_human(b.gershgorin)
              : std::string("a Rayleigh quotient, Gershgorin's bound")) +
         ")";
   out.push_back(lm);
@@ -126,9 +126,9 @@ std::vector<CriterionResult> unfactored_criteria(const ExactStability& e, const 
                          "; stable for every dt and gamma: K is positive semidefinite (SPEC 9's "
                          "floor, no spring compressed), which needs no factorisation"));
     out.push_back(within("exact gamma interval (" + integ + ")", inf, "mass unit/s",
-                         "; gamma = " + format_digits(params.gamma, 8) + " in [0, inf)"));
+                         "; gamma = " + format_human(params.gamma) + " in [0, inf)"));
     out.push_back(within("exact dt limit (" + integ + ")", inf, "s",
-                         "; dt = " + format_digits(params.dt, 8) + " <= dt_max = inf"));
+                         "; dt = " + format_human(params.dt) + " <= dt_max = inf"));
     return out;
   }
   const bool index = tried && !std::isnan(b.index_at_least);
@@ -141,19 +141,19 @@ std::vector<CriterionResult> unfactored_criteria(const ExactStability& e, const 
                   : stable ? CriterionVerdict::within
                            : CriterionVerdict::not_applicable;
     rho.test += without + "index lambda_max(dt^2 A + 2 dt C) >= " +
-                format_digits(b.index_at_least, 8) +
+                format_human(b.index_at_least) +
                 (unstable ? " >= 4: unstable (proved)" : " (< 4 proves nothing)");
     if (!unstable && !std::isnan(b.index_at_most))
       rho.test +=
-          "; <= " + format_digits(b.index_at_most, 8) +
+          "; <= " + format_human(b.index_at_most) +
           (b.index_at_most == b.index_patch
                ? " (no spring compressed: K >= 0; the patch, each node outside it alone; "
                  "Gershgorin on its rows, SPEC 9's safe bound: " +
-                     format_digits(b.index_gershgorin, 8) + ")"
+                     format_human(b.index_gershgorin) + ")"
            : b.index_at_most < b.index_gershgorin
                ? " (no spring compressed: K >= 0; the node-block splitting; Gershgorin on "
                  "its rows, SPEC 9's safe bound: " +
-                     format_digits(b.index_gershgorin, 8) + ")"
+                     format_human(b.index_gershgorin) + ")"
                : " (no spring compressed: K >= 0; Gershgorin on its rows, SPEC 9's safe bound)") +
           (stable ? " < 4: stable (proved)" : ", which proves nothing");
   } else if (modes) {
@@ -161,12 +161,12 @@ std::vector<CriterionResult> unfactored_criteria(const ExactStability& e, const 
     const bool stable_side = !std::isnan(b.stable_lambda_hi), stable = stable_side && e.stable;
     rho.verdict = unstable ? CriterionVerdict::beyond
                            : stable ? CriterionVerdict::within : CriterionVerdict::not_applicable;
-    rho.test += without + "every mode with lambda >= " + format_digits(b.mode_unstable_from, 8) +
+    rho.test += without + "every mode with lambda >= " + format_human(b.mode_unstable_from) +
                 " is unstable at this gamma and dt; lambda_max >= " +
-                format_digits(b.lambda_max_lo, 8) +
+                format_human(b.lambda_max_lo) +
                 (unstable ? ": unstable (proved)" : " proves nothing");
     if (!unstable && stable_side)
-      rho.test += "; every mode lies in [0, " + format_digits(b.stable_lambda_hi, 8) +
+      rho.test += "; every mode lies in [0, " + format_human(b.stable_lambda_hi) +
                   "] (no spring compressed: K >= 0; " +
                   (b.lambda_max_hi < b.gershgorin ? "the node-block splitting's bound)"
                                                   : "Gershgorin's bound)") +

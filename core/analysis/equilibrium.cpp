@@ -110,22 +110,22 @@ NetForce net_force(const Model& model, const std::vector<Vec3>& x) {
 }
 
 std::string rest_not_in_equilibrium(const NetForce& net) {
-  return "the rest state is not an equilibrium: a net force of " + format_digits(net.largest, 5) +
+  return "the rest state is not an equilibrium: a net force of " + format_human(net.largest) +
          " at node " + std::to_string(net.node) + " (largest force term " +
-         format_digits(net.scale, 5) + ")";
+         format_human(net.scale) + ")";
 }
 
 std::string no_equilibrium(const Equilibrium& e) {
   if (e.converged) return "";
   return "no static equilibrium found in " + std::to_string(e.iterations) +
-         " Newton steps (net force " + format_digits(e.net.largest, 5) + " at node " +
-         std::to_string(e.net.node) + ", largest force term " + format_digits(e.net.scale, 5) + ")";
+         " Newton steps (net force " + format_human(e.net.largest) + " at node " +
+         std::to_string(e.net.node) + ", largest force term " + format_human(e.net.scale) + ")";
 }
 
 std::string equilibrium_summary(const Equilibrium& e) {
   return std::to_string(e.iterations) + " Newton steps, net force " +
          format_digits(e.net.largest, 3) + " against a largest force term of " +
-         format_digits(e.net.scale, 5);
+         format_human(e.net.scale);
 }
 
 std::string equilibrium_over_budget(const FactorisationOverBudget& over) {

@@ -232,8 +232,8 @@ DampingSuggestion suggest_damping(const SceneSpec& scene, const Params& params_i
     s.best_method =
         s.proved_only
             ? "minimum over the range of the largest radius of any lambda in [" +
-                  format_digits(spectrum.lambda_min, 8) + ", " +
-                  format_digits(spectrum.lambda_max, 8) +
+                  format_human(spectrum.lambda_min) + ", " +
+                  format_human(spectrum.lambda_max) +
                   "] (SPEC 9's floor, Gershgorin's bound: the spectrum lies inside" +
                   (params.integrator == Integrator::semi_implicit_euler ||
                            params.integrator == Integrator::forward_euler

@@ -1,5 +1,7 @@
 #include "core/io/format.hpp"
 
+#include <atomic>
+
 #include <clocale>
 #include <cmath>
 #include <cstdarg>
@@ -73,6 +75,16 @@ std::string format_digits(double x, int significant, std::string_view not_a_numb
   char buf[40];
   c_snprintf(buf, sizeof buf, "%.*g", significant, x);
   return buf;
+}
+
+namespace {
+std::atomic<int> g_human_digits{6};
+}  // namespace
+
+int human_digits() { return g_human_digits.load(std::memory_order_relaxed); }
+void set_human_digits(int digits) { g_human_digits.store(digits, std::memory_order_relaxed); }
+std::string format_human(double x, std::string_view not_a_number) {
+  return format_digits(x, human_digits(), not_a_number);
 }
 
 std::string json_number(double x) { return std::isfinite(x) ? format_number(x) : "null"; }

@@ -22,6 +22,13 @@ std::string format_number(double x);
 /// "inf" / "-inf". Every table, status line and message of dampbound uses this one.
 std::string format_digits(double x, int significant, std::string_view not_a_number = "n/a");
 
+/// The significant digits of what people read (6 unless the CLI's --digits says otherwise);
+/// files keep format_number's round-trip precision.
+int human_digits();
+void set_human_digits(int digits);
+/// format_digits(x, human_digits()).
+std::string format_human(double x, std::string_view not_a_number = "n/a");
+
 /// JSON number, or null when not finite (JSON has no inf or NaN).
 std::string json_number(double x);
 

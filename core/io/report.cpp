@@ -74,9 +74,9 @@ std::string verdict_text(const RunResult& r, const StopRules& rules) {
   std::string history;  // "entered the 1% band at K, left it at L"
   if (r.first_entry > 0) history = "entered " + band + " at " + std::to_string(r.first_entry);
   if (r.left_at > 0) history += ", left it at " + std::to_string(r.left_at);
-  const std::string limit = std::to_string(rules.max_iterations);
-  const auto then = [&](const std::string& what) {
-    return history.empty() ? what : history + ", " + what;
+  const std::string checked = ", checked to " + std::to_string(rules.max_iterations);
+  const auto aside = [&](const std::string& what) {
+    return history.empty() ? what : what + " (" + history + ")";
   };
   switch (r.outcome) {
     case Outcome::running:
@@ -87,22 +87,23 @@ std::string verdict_text(const RunResult& r, const StopRules& rules) {
       return "restored at " + std::to_string(r.iterations) + " (first entry into " + band +
              ", the paper's rule)";
     case Outcome::not_restored:
-      return "not restored by the limit " + limit;
+      return "not restored" + checked + " (the paper's rule)";
     case Outcome::diverged:
-      return then("diverged at " + std::to_string(r.iterations));
+      return aside("diverged at " + std::to_string(r.iterations));
     case Outcome::settled:
-      return "settled at " + std::to_string(r.settled_at) + " (" + history + ", below it from " +
-             std::to_string(r.settled_at) + " to the limit " + limit + ")";
+      // A run that settled at its first entry says no more; one that left first says when.
+      return r.left_at > 0 ? aside("settled at " + std::to_string(r.settled_at) + checked)
+                           : "settled at " + std::to_string(r.settled_at) + checked;
     case Outcome::not_settled:
-      return history.empty() ? "never entered " + band + ", not settled by the limit " + limit
-                             : then("not settled by the limit " + limit);
+      return history.empty() ? "not settled" + checked + " (never entered " + band + ")"
+                             : aside("not settled" + checked);
   }
   return "?";
 }
 
 std::string zeta_text(const DampingRatioRange& z) {
   if (std::isnan(z.min)) return "none";
-  return z.uniform() ? format_number(z.min) : format_number(z.min) + ".." + format_number(z.max);
+  return z.uniform() ? format_human(z.min) : format_human(z.min) + ".." + format_human(z.max);
 }
 
 std::string result_json(const std::string& scene, const Params& p, const StopRules& rules,

@@ -16,10 +16,11 @@ namespace dampbound {
 void write_trace_csv(std::ostream& out, const std::vector<StepSample>& trace,
                      const std::string& run_label = "", bool header = true);
 
-/// The verdict in words, with the band history of SPEC 8: e.g. "entered the 1% band at 12,
-/// left it at 63, not settled by the limit 1000", "settled at 260 (entered the 1% band at
-/// 230, left it at 231)", "restored at 112 (first entry, the paper's rule)". While the run goes
-/// on: "running", with the entry and exit so far.
+/// The verdict in one line, the outcome and its iteration first: "settled at 112, checked to
+/// 1000"; "settled at 260, checked to 1000 (entered the 1% band at 230, left it at 231)"; "not
+/// settled, checked to 1000 (never entered the 1% band)"; "diverged at 40"; "restored at 112
+/// (first entry into the 1% band, the paper's rule)". While the run goes on: "running", with
+/// the entry and exit so far.
 std::string verdict_text(const RunResult& result, const StopRules& rules);
 
 /// The verdict in a few words, for legends and tables: "running", "settled at N", "not settled

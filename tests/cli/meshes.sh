@@ -6,7 +6,7 @@
 
 # The tissue block: 6237 nodes, a series of every 20th step of the first 60.
 expect_exit 0 "$DB" run "$SRC/scenes/tissue-block.toml" --max-iter 60 --vtk "$WORK/tissue" \
-  --every 20 --trace "$WORK/tissue.csv"
+  --every 20 --trace "$WORK/tissue.csv" --verbose
 expect_match "$OUT" 'scene +tissue-block \(6237 nodes, [0-9]+ springs, 0 anchors\)' "tissue run"
 watched=$(printf '%s' "$OUT" | sed -nE 's/.*watched node ([0-9]+).*/\1/p')
 for f in step_000000.vtu step_000020.vtu step_000040.vtu step_000060.vtu series.pvd; do
@@ -104,7 +104,7 @@ PY
     free=24
     case $f in *41.msh) region=''; free=48 ;; esac
     printf "[mesh]\nfile = \"%s\"\nanchors = false\n$region[[perturb]]\nnode = 47\ndisplacement = [0, 0.1, 0]\n" "$f" >"$WORK/rt/s.toml"
-    expect_exit 0 "$DB" bounds "$WORK/rt/s.toml"
+    expect_exit 0 "$DB" --digits 8 bounds "$WORK/rt/s.toml"
     expect_match "$OUT" '48 nodes, 197 springs, 0 anchors' "$f loads as the small block"
     expect_match "$OUT" "n = $free free nodes" "$f: its region 7 (the 24 nodes at x <= 0.5 cm) fixed"
   done

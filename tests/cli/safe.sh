@@ -3,13 +3,13 @@
 . "$(dirname "$0")/lib.inc"
 
 # The acceptance numbers on the paper plane.
-expect_exit 0 "$DB" bounds paper-plane --m 0.001 --kappa 0.001 --dt 0.05
-expect_match "$OUT" 'safe bound \(SPEC 9\) +gamma_safe = 0\.039775 at node [0-9]+ \(R = 9 1/s\^2\), exact limit 0\.039805, ratio 0\.9992' "gamma_safe"
+expect_exit 0 "$DB" --digits 5 bounds paper-plane --m 0.001 --kappa 0.001 --dt 0.05
+expect_match "$OUT" 'safe bound \(SPEC 9\) +gamma_safe = 0\.039775[0-9]* at node [0-9]+ \(R = 9 1/s\^2\), exact limit 0\.039805[0-9]*, ratio 0\.9992' "gamma_safe"
 expect_match "$OUT" 'critical damping +guaranteed at every free node' "critical damping feasible"
 expect_match "$OUT" '^safe damping bound +0\.039775 mass unit/s +within' "criteria row"
 expect_match "$OUT" '^safe check: critical damping +0 nodes +within' "criteria row: check"
-expect_exit 0 "$DB" bounds paper-plane --m 0.001 --kappa 0.001 --dt 0.05 --gamma 0
-expect_match "$OUT" 'safe step \(SPEC 9\) +dt_safe = 0\.66667 at gamma = 0 \(zeta 0\), node [0-9]+, exact limit 0\.71555, ratio 0\.93168' "dt_safe"
+expect_exit 0 "$DB" --digits 5 bounds paper-plane --m 0.001 --kappa 0.001 --dt 0.05 --gamma 0
+expect_match "$OUT" 'safe step \(SPEC 9\) +dt_safe = 0\.66667[0-9]* at gamma = 0 \(zeta 0\), node [0-9]+, exact limit 0\.71555[0-9]*, ratio 0\.93168' "dt_safe"
 # The middle square damped 3x (gamma_i = 3 gamma there): gamma_safe is the user's gamma, a
 # third of the square's gamma_safe_i, just under the exact limit (it was 3x above it).
 cat >"$WORK/damped-region.toml" <<'EOF2'
@@ -31,21 +31,21 @@ gamma = 0.013
 dt = 0.05
 policy = "fixed"
 EOF2
-expect_exit 0 "$DB" bounds "$WORK/damped-region.toml"
-expect_match "$OUT" "safe bound \(SPEC 9\) +gamma_safe = 0\.013258 \(the user's gamma: gamma_i = gamma \* gamma_scale_i\) at node [0-9]+ \(R = 9 1/s\^2\), exact limit 0\.013269, ratio 0\.9992" "gamma_safe in the user's gamma"
-expect_match "$OUT" '^safe damping bound +0\.013258333 mass unit/s +within' "gamma = 0.013: every node within"
-expect_exit 0 "$DB" suggest "$WORK/damped-region.toml" --no-verify
-expect_match "$OUT" 'safe \(SPEC 9\) gamma < 0\.013258333 ' "suggest gives the same bound"
+expect_exit 0 "$DB" --digits 5 bounds "$WORK/damped-region.toml"
+expect_match "$OUT" "safe bound \(SPEC 9\) +gamma_safe = 0\.013258[0-9]* \(the user's gamma: gamma_i = gamma \* gamma_scale_i\) at node [0-9]+ \(R = 9 1/s\^2\), exact limit 0\.013269[0-9]*, ratio 0\.9992" "gamma_safe in the user's gamma"
+expect_match "$OUT" '^safe damping bound +0\.013258[0-9]* mass unit/s +within' "gamma = 0.013: every node within"
+expect_exit 0 "$DB" --digits 8 suggest "$WORK/damped-region.toml" --no-verify
+expect_match "$OUT" 'safe bound gamma < 0\.013258333 ' "suggest gives the same bound"
 # At dt = 0.7 an interior node's gamma_safe_i is negative: suggest says no gamma is
 # guaranteed (it printed "gamma < -0.00029285714 guarantees stability at every node").
-expect_exit 1 "$DB" suggest paper-plane --dt 0.7 --no-verify  # 1: no damping range at this dt
-expect_match "$OUT" 'safe \(SPEC 9\) no gamma: gamma_safe_i <= 0 at some node at this dt \(-0\.00029285714\)' "suggest: no safe gamma"
+expect_exit 1 "$DB" --digits 8 suggest paper-plane --dt 0.7 --no-verify  # 1: no damping range at this dt
+expect_match "$OUT" 'safe bound no gamma: gamma_safe_i <= 0 at some node at this dt \(-0\.00029285714\)' "suggest: no safe gamma"
 # A step too long for critical damping: the nodes are named with the dt that would do.
-expect_exit 0 "$DB" bounds paper-plane --dt 0.6
+expect_exit 0 "$DB" --digits 8 bounds paper-plane --dt 0.6
 expect_match "$OUT" 'critical damping +NOT guaranteed at [0-9]+ of 1296 nodes .*node [0-9]+ \(dt < 0\.' "infeasible nodes named"
 expect_match "$OUT" '^safe check: critical damping +[1-9][0-9]* nodes +BEYOND' "criteria row says beyond"
 # Compressed springs: said, not promised.
-expect_exit 0 "$DB" bounds two-node --after 3
+expect_exit 0 "$DB" --digits 8 bounds two-node --after 3
 expect_match "$OUT" 'safe bound \(SPEC 9\)' "two-node safe bound"
 
 # The absurd damping, clamped: fixed diverges, safe settles. Damped at gamma_safe (c dt =
@@ -69,8 +69,8 @@ expect_match "$row" '^1,0\.05,' "trace: first row"
 [ "$(echo "$row" | cut -d, -f"$eff")" = "$(echo "$row" | cut -d, -f"$safe")" ] && ok ||
   bad "trace: effective gamma is the watched node's gamma_safe: $row"
 expect_match "$(echo "$row" | cut -d, -f"$safe")" '^0\.0396' "trace: gamma_safe at the perturbed state"
-expect_exit 0 "$DB" run paper-plane --policy safe --gamma 1
-expect_match "$OUT" 'safe bound +critical damping not guaranteed in 0 node-steps' "run text"
+expect_exit 0 "$DB" run paper-plane --policy safe --gamma 1 --verbose
+expect_match "$OUT" 'safe bound +0 node-steps where critical damping was not guaranteed' "run text"
 
 # sweep --policy safe: the batched kernel writes what the plain step() writes.
 GRID=(sweep paper-plane --m 0.001,0.004 --kappa 0.001,0.3,0.9 --gamma 0,0.002,1 --max-iter 150
@@ -85,21 +85,21 @@ expect_match "$OUT" 'divergence +safe check at rest .*says diverges [0-9]+ \(div
 expect_match "$OUT" 'divergence +paper runtime check' "paper check as predictor"
 
 # suggest: the safe range per node class and the safe dt.
-expect_exit 0 "$DB" suggest paper-plane --no-verify
-expect_match "$OUT" 'safe \(SPEC 9\) gamma < 0\.039775' "suggest: safe gamma"
-expect_match "$OUT" 'safe \(SPEC 9\): gamma_i in \[0\.002, ' "suggest: per class"
-expect_exit 0 "$DB" suggest paper-plane --gamma 0 --no-verify
-expect_match "$OUT" 'safe \(SPEC 9\) dt < 0\.66666667 s' "suggest: safe dt"
+expect_exit 0 "$DB" --digits 8 suggest paper-plane --no-verify
+expect_match "$OUT" 'safe bound gamma < 0\.039775' "suggest: safe gamma"
+expect_match "$OUT" 'safe bound: gamma_i in \[0\.002, ' "suggest: per class"
+expect_exit 0 "$DB" --digits 8 suggest paper-plane --gamma 0 --no-verify
+expect_match "$OUT" 'safe bound dt < 0\.66666667 s' "suggest: safe dt"
 # SPEC 9 is derived for the paper's step. Undamped, the two-node system is within every safe
 # bound, and forward Euler grows at any dt: the rows give no verdict and say why, and suggest
 # promises nothing.
-expect_exit 0 "$DB" bounds two-node --gamma 0 --integrator forward-euler
+expect_exit 0 "$DB" --digits 8 bounds two-node --gamma 0 --integrator forward-euler
 expect_match "$OUT" '^exact spectral radius \(forward-euler\) +[0-9.]+ +BEYOND' "forward Euler undamped grows"
 expect_match "$OUT" "^safe damping bound +[0-9.]+ mass unit/s +n/a .*derived for the paper's semi-implicit step, it guarantees nothing under forward-euler$" "safe row: no verdict under forward Euler"
 expect_match "$OUT" "^safe dt bound +[0-9.]+ s +n/a " "safe dt row: no verdict under forward Euler"
 expect_match "$OUT" '^critical damping +within the safe bound at every free node' "header: not called guaranteed"
-expect_exit 0 "$DB" bounds two-node --gamma 0
+expect_exit 0 "$DB" --digits 8 bounds two-node --gamma 0
 expect_match "$OUT" '^safe damping bound +[0-9.]+ mass unit/s +within' "the paper's step: judged"
-expect_exit 0 "$DB" suggest paper-plane --gamma 0 --integrator verlet --no-verify
-expect_match "$OUT" "safe \(SPEC 9\) dt < 0\.66666667 s \(node [0-9]+ sets it; derived for the paper's semi-implicit step, it guarantees nothing under verlet\)" "suggest: safe dt not promised under Verlet"
+expect_exit 0 "$DB" --digits 8 suggest paper-plane --gamma 0 --integrator verlet --no-verify
+expect_match "$OUT" "safe bound dt < 0\.66666667 s \(node [0-9]+ sets it; derived for the paper's semi-implicit step, it guarantees nothing under verlet\)" "suggest: safe dt not promised under Verlet"
 finish

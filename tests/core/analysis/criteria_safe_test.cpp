@@ -52,7 +52,7 @@ TEST(CriteriaSafe, RatiosToTheExactLimitsAreOneForASingleMode) {
   const auto rows = safe_criteria(t.model, t.state, t.params, &exact);
   EXPECT_NE(rows[0].test.find("; 1 of the exact limit 0.039975"), std::string::npos)
       << rows[0].test;
-  EXPECT_NE(rows[1].test.find("; 1 of the exact limit 0.82842712"), std::string::npos)
+  EXPECT_NE(rows[1].test.find("; 1 of the exact limit 0.828427"), std::string::npos)
       << rows[1].test;
 }
 

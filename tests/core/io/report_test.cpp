@@ -67,18 +67,20 @@ TEST(Report, VerdictsInWords) {
   EXPECT_EQ(verdict_short(r), "restored at 112");
   r = RunResult{};
   r.outcome = Outcome::not_settled, r.iterations = 1000, r.first_entry = 12, r.left_at = 63;
-  EXPECT_EQ(verdict_text(r, rules), "entered the 1% band at 12, left it at 63, not settled by the limit 1000");
+  EXPECT_EQ(verdict_text(r, rules),
+            "not settled, checked to 1000 (entered the 1% band at 12, left it at 63)");
   EXPECT_EQ(verdict_short(r), "not settled at 1000 (entered at 12, left at 63)");
   r = RunResult{};
   r.outcome = Outcome::settled, r.iterations = 1000, r.first_entry = 230, r.left_at = 231;
   r.settled_at = 260;
   EXPECT_EQ(verdict_text(r, rules),
-            "settled at 260 (entered the 1% band at 230, left it at 231, below it from 260 to "
-            "the limit 1000)");
+            "settled at 260, checked to 1000 (entered the 1% band at 230, left it at 231)");
+  r.left_at = 0, r.first_entry = r.settled_at;
+  EXPECT_EQ(verdict_text(r, rules), "settled at 260, checked to 1000");
   EXPECT_EQ(verdict_short(r), "settled at 260");
   r = RunResult{};
   r.outcome = Outcome::not_settled, r.iterations = 1000;
-  EXPECT_EQ(verdict_text(r, rules), "never entered the 1% band, not settled by the limit 1000");
+  EXPECT_EQ(verdict_text(r, rules), "not settled, checked to 1000 (never entered the 1% band)");
   EXPECT_EQ(verdict_short(r), "not settled at 1000");
   r = RunResult{};
   r.outcome = Outcome::diverged, r.iterations = 40;
@@ -86,7 +88,7 @@ TEST(Report, VerdictsInWords) {
   EXPECT_EQ(verdict_short(r), "diverged at 40");
   r.outcome = Outcome::not_restored, r.iterations = 1000;
   rules.restore_fraction = 0.025;
-  EXPECT_EQ(verdict_text(r, rules), "not restored by the limit 1000");
+  EXPECT_EQ(verdict_text(r, rules), "not restored, checked to 1000 (the paper's rule)");
   EXPECT_EQ(verdict_short(r), "not restored at 1000");
   r = RunResult{};  // still running, back in the band after leaving it
   r.first_entry = 5, r.left_at = 9, r.below_since = 14;
