@@ -23,6 +23,7 @@ REST=(
   python3-meshio python3-numpy   # tests read the ParaView (VTU) output back with meshio
   python3-scipy                  # linear_limits takes scipy.sparse matrices (module, tests)
   locales                        # de_DE.UTF-8 below: numbers keep their point under a comma locale
+  g++-aarch64-linux-gnu qemu-user-static  # scripts/ci/aarch64.sh: the kernel and step() on aarch64
 )
 case "${1:-}" in
   --app) PACKAGES=("${APP[@]}") ;;

@@ -60,6 +60,8 @@ std::optional<std::string> batch_kernel_unsupported(const SceneSpec& scene, cons
 
 class BatchKernel {
  public:
+  /// The most trials a kernel runs side by side (one per SIMD lane): 8 for the AVX-512 and
+  /// generic copies, 4 for the AVX2 copy.
   static constexpr int kLanes = 8;
 
   /// Topology, scales, external forces, fixed nodes and initial state from `scene`; the

@@ -2,8 +2,11 @@
 // Lane vectors for the batched sweep kernel (core/sweep/detail/kernel_body.cpp): one double per trial,
 // kLanes trials side by side. GCC/Clang vector extensions give + - * / and comparisons lane by
 // lane with IEEE rounding, exactly like the scalar code of step(); sqrt goes through the
-// matching SIMD instruction (also correctly rounded). With AVX-512 a vector is one zmm
-// register; on narrower machines the compiler splits it into ymm/xmm operations.
+// matching SIMD instruction (also correctly rounded). A vector is one register wide where
+// there is AVX (8 lanes in a zmm register with AVX-512, 4 in a ymm register with AVX2: a
+// wider vector would be split into halves that selects and by-value passing send through
+// memory); without AVX it is 8 lanes split into xmm operations. Lanes are independent trials,
+// so the lane count changes the speed, never a lane's bits.
 //
 // The instruction set comes from the compiler flags (__AVX512F__, __AVX__) or, in the per-ISA
 // copies of the kernel built under a target pragma, from DAMPBOUND_SIMD_AVX512 /
@@ -26,16 +29,24 @@
 namespace dampbound::simd {
 namespace {
 
+#if !(defined(__AVX512F__) || defined(DAMPBOUND_SIMD_AVX512)) && \
+    (defined(__AVX__) || defined(DAMPBOUND_SIMD_AVX2))
+#define DAMPBOUND_SIMD_YMM 1
+/// Trials per vector: 4 doubles = 32 bytes = one AVX2 register.
+constexpr int kLanes = 4;
+#else
 /// Trials per vector: 8 doubles = 64 bytes = one AVX-512 register.
 constexpr int kLanes = 8;
+#endif
+constexpr int kBytes = kLanes * static_cast<int>(sizeof(double));
 
-// aligned(64) is explicit: GCC otherwise derives a vector type's alignment from the target in
-// force where the type is used, so a std::vector<NodeBlock> instantiated after the AVX-512
-// target pragma of core/sweep/detail/kernel_avx512.cpp ends would allocate 16-byte aligned blocks
+// The alignment is explicit: GCC otherwise derives a vector type's alignment from the target
+// in force where the type is used, so a std::vector<NodeBlock> instantiated after the target
+// pragma of core/sweep/detail/kernel_avx512.cpp ends would allocate 16-byte aligned blocks
 // that the kernel's AVX-512 code reads with aligned loads.
-typedef double vd __attribute__((vector_size(kLanes * sizeof(double)), aligned(64)));
-typedef std::int64_t vl __attribute__((vector_size(kLanes * sizeof(std::int64_t)), aligned(64)));
-static_assert(alignof(vd) == 64 && alignof(vl) == 64, "one AVX-512 register per vector");
+typedef double vd __attribute__((vector_size(kBytes), aligned(kBytes)));
+typedef std::int64_t vl __attribute__((vector_size(kBytes), aligned(kBytes)));
+static_assert(alignof(vd) == kBytes && alignof(vl) == kBytes, "one register per vector");
 
 /// Every lane = x (keeps the sign of a zero, unlike `vd{} + x`).
 inline vd splat(double x) {
@@ -57,16 +68,8 @@ inline vd sqrt(vd x) {
   // register and trips -Wmaybe-uninitialized.
   const __m512d v = reinterpret_cast<__m512d>(x);
   return reinterpret_cast<vd>(_mm512_mask_sqrt_pd(v, static_cast<__mmask8>(0xFF), v));
-#elif defined(__AVX__) || defined(DAMPBOUND_SIMD_AVX2)
-  vd r;
-  __m256d lo, hi;
-  __builtin_memcpy(&lo, &x, sizeof lo);
-  __builtin_memcpy(&hi, reinterpret_cast<const char*>(&x) + sizeof lo, sizeof hi);
-  lo = _mm256_sqrt_pd(lo);
-  hi = _mm256_sqrt_pd(hi);
-  __builtin_memcpy(&r, &lo, sizeof lo);
-  __builtin_memcpy(reinterpret_cast<char*>(&r) + sizeof lo, &hi, sizeof hi);
-  return r;
+#elif defined(DAMPBOUND_SIMD_YMM)
+  return reinterpret_cast<vd>(_mm256_sqrt_pd(reinterpret_cast<__m256d>(x)));
 #else
   vd r;
   for (int l = 0; l < kLanes; ++l) r[l] = std::sqrt(x[l]);

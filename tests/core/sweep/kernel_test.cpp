@@ -13,6 +13,7 @@
 #include "core/scene.hpp"
 #include "core/sweep/kernel.hpp"
 #include "core/sweep/trials.hpp"
+#include "tests/core/sweep/sweep_test_util.hpp"
 
 namespace dampbound {
 namespace {
@@ -67,6 +68,11 @@ TEST(SweepKernelDispatch, EveryVariantMatchesStepBitForBit) {
   rules.max_iterations = 150;
   const auto trials = mixed_trials();
   int variants = 0;
+  std::string ran, skipped;
+  for (KernelIsa isa : {KernelIsa::generic, KernelIsa::avx2, KernelIsa::avx512})
+    (kernel_isa_supported(isa) ? ran : skipped) += std::string(" ") + to_string(isa);
+  test::say_kernel_copies("ran:" + ran +
+                          (skipped.empty() ? "" : "; skipped, not on this CPU:" + skipped));
   for (Integrator integ : {Integrator::semi_implicit_euler, Integrator::forward_euler}) {
     scene.params.integrator = integ;
     for (DampingPolicy p :

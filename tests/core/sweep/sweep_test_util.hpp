@@ -2,6 +2,7 @@
 // Shared helpers of the sweep tests: a small grid on a shipped scene.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -32,9 +33,16 @@ inline SweepSpec small_sweep(const SceneSpec& scene, int max_iter = 200,
   return s;
 }
 
+/// Names the kernel copies a test runs, in its output and in its XML report (kernel_copies).
+inline void say_kernel_copies(const std::string& copies) {
+  ::testing::Test::RecordProperty("kernel_copies", copies);
+  std::printf("[ copies   ] %s\n", copies.c_str());
+}
+
 /// The batched kernel built for `isa` gives run_reference's results (the one step() of core)
 /// bit for bit on the two-node and paper-plane scenes, three policies, both stop rules.
 inline void expect_kernel_matches_reference(KernelIsa isa) {
+  say_kernel_copies(to_string(isa));
   for (const char* name : {"two-node", "paper-plane"}) {
     const SceneSpec scene = test::shipped_scene(name);
     for (DampingPolicy policy : {DampingPolicy::fixed, DampingPolicy::clamp, DampingPolicy::upper})

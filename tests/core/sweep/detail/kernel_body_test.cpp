@@ -11,11 +11,13 @@
 #include <cstring>
 #include <random>
 #include <string>
+#include <vector>
 
 #include "core/bounds.hpp"
 #include "core/scene.hpp"
 #include "core/io/scene_file.hpp"
 #include "core/sweep/trials.hpp"
+#include "tests/core/sweep/sweep_test_util.hpp"
 
 namespace dampbound {
 namespace {
@@ -38,30 +40,52 @@ constexpr size_t kOutcomes = 6;  // Outcome's values
 constexpr size_t kLeft = kOutcomes;  // the extra slot of Seen: trials that entered and left
 using Seen = std::array<int, kOutcomes + 1>;
 
-/// Runs every trial both ways and compares; returns how many ended in each outcome (and how
-/// many entered the band and left it) so the caller can check the sample really covers
-/// every verdict.
+/// The kernel copies this CPU runs (generic, and avx2, avx512 where it has them), named in
+/// the test's output.
+std::vector<KernelIsa> copies_here() {
+  std::vector<KernelIsa> copies;
+  std::string names;
+  for (KernelIsa isa : {KernelIsa::generic, KernelIsa::avx2, KernelIsa::avx512})
+    if (kernel_isa_supported(isa)) {
+      copies.push_back(isa);
+      names += std::string(names.empty() ? "" : " ") + to_string(isa);
+    }
+  // Once per test.
+  if (::testing::UnitTest::GetInstance()->current_test_info()->result()->test_property_count() == 0)
+    test::say_kernel_copies(names);
+  return copies;
+}
+
+/// Runs every trial through step() and through every kernel copy this CPU runs, and
+/// compares; returns how many ended in each outcome (and how many entered the band and left
+/// it) so the caller can check the sample really covers every verdict.
 Seen expect_same(const SceneSpec& scene, DampingPolicy policy, const StopRules& rules,
                                const std::vector<TrialParams>& trials) {
-  const std::vector<TrialResult> batched = run_batched(scene, policy, rules, trials);
   Seen seen{};
-  for (size_t k = 0; k < trials.size(); ++k) {
-    const TrialResult ref = run_reference(scene, policy, rules, trials[k]);
-    const TrialResult& got = batched[k];
-    SCOPED_TRACE(describe(trials[k], policy));
-    EXPECT_EQ(to_string(got.outcome), std::string(to_string(ref.outcome)));
-    EXPECT_EQ(got.iterations, ref.iterations);
-    EXPECT_TRUE(same_bits(got.max_displacement, ref.max_displacement))
-        << got.max_displacement << " vs " << ref.max_displacement;
-    EXPECT_EQ(got.violations, ref.violations);
-    EXPECT_EQ(got.unstabilisable, ref.unstabilisable);
-    EXPECT_EQ(got.clamped, ref.clamped);
-    EXPECT_EQ(got.zero_length_springs, ref.zero_length_springs);
-    EXPECT_EQ(got.first_entry, ref.first_entry);
-    EXPECT_EQ(got.left_at, ref.left_at);
-    EXPECT_EQ(got.settled_at, ref.settled_at);
-    ++seen[static_cast<size_t>(ref.outcome)];
-    seen[kLeft] += ref.left_at > 0;
+  std::vector<TrialResult> refs;
+  for (const TrialParams& t : trials) {
+    refs.push_back(run_reference(scene, policy, rules, t));
+    ++seen[static_cast<size_t>(refs.back().outcome)];
+    seen[kLeft] += refs.back().left_at > 0;
+  }
+  for (KernelIsa isa : copies_here()) {
+    const std::vector<TrialResult> batched = run_batched(scene, policy, rules, trials, isa);
+    for (size_t k = 0; k < trials.size(); ++k) {
+      const TrialResult& ref = refs[k];
+      const TrialResult& got = batched[k];
+      SCOPED_TRACE(std::string(to_string(isa)) + " " + describe(trials[k], policy));
+      EXPECT_EQ(to_string(got.outcome), std::string(to_string(ref.outcome)));
+      EXPECT_EQ(got.iterations, ref.iterations);
+      EXPECT_TRUE(same_bits(got.max_displacement, ref.max_displacement))
+          << got.max_displacement << " vs " << ref.max_displacement;
+      EXPECT_EQ(got.violations, ref.violations);
+      EXPECT_EQ(got.unstabilisable, ref.unstabilisable);
+      EXPECT_EQ(got.clamped, ref.clamped);
+      EXPECT_EQ(got.zero_length_springs, ref.zero_length_springs);
+      EXPECT_EQ(got.first_entry, ref.first_entry);
+      EXPECT_EQ(got.left_at, ref.left_at);
+      EXPECT_EQ(got.settled_at, ref.settled_at);
+    }
   }
   return seen;
 }
