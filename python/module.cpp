@@ -118,6 +118,11 @@ void bind_params(py::module_& m) {
           "'first-entry' (the paper's, SPEC 5) or 'settled' (SPEC 8: step to the limit)");
 }
 
+/// An iteration, or None where the result has none (0), as the JSON's null.
+py::object iteration_or_none(int iteration) {
+  return iteration > 0 ? py::object(py::int_(iteration)) : py::object(py::none());
+}
+
 void bind_results(py::module_& m) {
   py::class_<RunResult>(m, "RunResult", "The result of a protocol run (SPEC 5).")
       .def_property_readonly(
@@ -125,12 +130,15 @@ void bind_results(py::module_& m) {
           "'running', 'restored', 'diverged', 'not_restored' (first-entry "
           "rule), 'settled', 'not_settled' (settled rule)")
       .def_readonly("iterations", &RunResult::iterations, "iteration of the outcome")
-      .def_readonly("first_entry", &RunResult::first_entry,
-                    "first iteration below the restore threshold (0 = none)")
-      .def_readonly("left_at", &RunResult::left_at,
-                    "first iteration back at or above it after an entry (0 = none)")
-      .def_readonly("settled_at", &RunResult::settled_at,
-                    "settled rule: below the threshold from here to the limit (0 = none)")
+      .def_property_readonly(
+          "first_entry", [](const RunResult& r) { return iteration_or_none(r.first_entry); },
+          "first iteration below the restore threshold (None: never)")
+      .def_property_readonly(
+          "left_at", [](const RunResult& r) { return iteration_or_none(r.left_at); },
+          "first iteration back at or above it after an entry (None: never)")
+      .def_property_readonly(
+          "settled_at", [](const RunResult& r) { return iteration_or_none(r.settled_at); },
+          "settled rule: below the threshold from here to the limit (None: not settled)")
       .def_readonly("max_displacement", &RunResult::max_displacement,
                     "max |x_i - X_i| at the last iteration (cm; inf if not finite)")
       .def_readonly("violations", &RunResult::violations,
@@ -238,10 +246,15 @@ void bind_session(py::module_& m) {
                       "session's own memory (no copies), valid while the session lives.")
       .def(py::init([](const SceneSpec& scene, const Params* params, const StopRules* rules) {
              const ResolvedScene r(scene, params);
-             return Session(r.scene(), r.params(), rules ? *rules : scene.rules);
+             // The CLI's default: the settled rule, unless the rules given say otherwise.
+             StopRules settled = scene.rules;
+             settled.rule = StopRule::settled;
+             return Session(r.scene(), r.params(), rules ? *rules : settled);
            }),
            py::arg("scene"), py::arg("params") = nullptr, py::arg("rules") = nullptr,
-           "Starts from the scene's perturbed state; params/rules default to the scene's.")
+           "Starts from the scene's perturbed state; params default to the scene's, rules to "
+           "the scene's under the settled rule (as `dampbound run`; pass rules with rule = "
+           "'first-entry' for the paper's).")
       .def(
           "step",
           [](Session& s, int n) {

@@ -20,13 +20,15 @@ def test_bad_scene_file_names_the_file(tmp_path):
         dampbound.load_scene(str(bad))
 
 
-def test_two_node_at_critical_damping_is_restored(scenes_dir):
-    # The paper's sec. 2 system at gamma = 2 sqrt(m kappa): critically damped, it settles.
+def test_two_node_at_critical_damping_settles(scenes_dir):
+    # The paper's sec. 2 system at gamma = 2 sqrt(m kappa): critically damped, it settles,
+    # judged by the settled rule as `dampbound run` judges it.
     scene = dampbound.load_scene(str(scenes_dir / "two-node.toml"))
-    session = dampbound.Session(scene)
-    result = session.run()
-    assert result.outcome == "restored"
-    assert 0 < result.iterations < scene.rules.max_iterations
+    result = dampbound.Session(scene).run()
+    assert result.outcome == "settled"
+    assert result.iterations == scene.rules.max_iterations
+    assert 0 < result.settled_at < scene.rules.max_iterations
+    assert result.left_at is None
     assert result.violations == 0
 
 
@@ -207,9 +209,11 @@ def test_over_the_budget_a_patch_pins_the_tissue_blocks_limits(scenes_dir):
 def test_settled_rule_runs_to_the_limit_and_reports_the_first_entry(scenes_dir):
     scene = dampbound.load_scene(str(scenes_dir / "two-node.toml"))
     rules = scene.rules
-    rules.rule = "settled"
+    rules.rule = "first-entry"  # the paper's rule, asked for
     rules.max_iterations = 400
-    first = dampbound.Session(scene).run()
+    first = dampbound.Session(scene, rules=rules).run()
+    assert first.outcome == "restored" and first.settled_at is None
+    rules.rule = "settled"
     settled = dampbound.Session(scene, rules=rules).run()
     assert settled.outcome == "settled" and settled.iterations == 400
     assert settled.first_entry == first.iterations
