@@ -170,6 +170,12 @@ int run_parameters(const BoundsArgs& a) {
   if (!a.m_opt->count() || !a.kappa_opt->count() || !a.dt_opt->count())
     throw InputError("--m, --kappa and --dt are required without a scene");
   print_paper_lines(a);
+  // Asked about one node's state (--v, --force): that answer, and no table of the system at
+  // rest, whose eq. 6 (v = 0: inf) would contradict it.
+  if (!a.v.empty()) {
+    std::printf("(the system's criteria at rest: the same command without --v and --force)\n");
+    return 0;
+  }
   Params p;
   p.m = a.m;
   p.kappa = a.kappa;

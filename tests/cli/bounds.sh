@@ -38,6 +38,9 @@ expect_match "$OUT" 'system +single node' "single node"
 expect_match "$OUT" 'exact dt limit \(rk4\)' "integrator's own limit"
 expect_exit 0 "$DB" --digits 8 bounds --m 0.001 --kappa 0.001 --dt 0.05 --v 1,0,0 --force -0.001,0,0
 expect_match "$OUT" '= 0\.019' "bounds upper kept"
+# Asked about a node's state, it answers that and prints no table of the system at rest
+# (whose eq. 6 says inf at v = 0).
+if printf '%s\n' "$OUT" | grep -q 'paper upper bound'; then bad "--v/--force printed the at-rest table"; else ok; fi
 
 # Non-uniform scene: the general criterion; a running state: eq. 6 applies.
 expect_exit 0 "$DB" --digits 8 bounds stiff-region
