@@ -150,7 +150,7 @@ TEST(SweepDampingAxes, CsvHasThreeMoreColumnsAndReadsBack) {
 // The closed form the sweep's summary uses (uniform model at rest, dashpots proportional to K)
 // against general_limits(), which bisects the certified index lambda_max(dt^2 A + 2 dt C^).
 TEST(SweepDampingAxes, ClosedFormMatchesTheExactIndex) {
-  const SceneSpec scene = test::shipped_scene("paper-plane");
+  const SceneSpec scene = paper_plane_scene(6);  // the paper's plane, 36 nodes: dense eigensolves
   const double lambda_unit = unit_stiffness_eigenvalue(scene);
   const auto ratio = dashpot_stiffness_ratio(scene);
   ASSERT_TRUE(ratio.has_value());
@@ -192,7 +192,7 @@ TEST(SweepDampingAxes, ClosedFormMatchesTheExactIndex) {
 // map --axes kd:dt: one panel of the rows at the held gamma, and the exact boundary on it is
 // the dt limit general_limits() certifies at each kd.
 TEST(SweepDampingAxes, MapDrawsAnyTwoColumnsWithTheExactBoundary) {
-  const SceneSpec scene = test::shipped_scene("paper-plane");
+  const SceneSpec scene = paper_plane_scene(6);  // the paper's plane, 36 nodes: dense eigensolves
   SweepTable t;
   t.header.policy = DampingPolicy::fixed;
   t.header.definition = "policy=fixed max-iter=100";
