@@ -1,4 +1,4 @@
-// A scene's [mesh] table and its [[mesh_region]] tables (README "Meshes", docs/meshes.md):
+// A scene's [mesh] table and its [[mesh_region]] tables (docs/meshes.md):
 // the mesh file through its format's reader, units, springs, geometric masses and
 // stiffnesses, and the file's own regions (Gmsh physical groups, TetGen region attributes
 // and boundary markers, VTK cell data) mapped to fixed nodes, scales and a probe's pull.
