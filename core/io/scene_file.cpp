@@ -132,8 +132,7 @@ void read_geometry(const Reader& r, const toml::table& root, SceneSpec& s) {
   // An empty model has no node to watch or perturb, and step() needs one.
   if (s.model.node_count() == 0) r.fail(*root.get("node"), "the scene has no node");
   std::set<std::pair<int, int>> seen;
-  for (const toml::table& t :
-       r.tables(root, "spring")) {
+  for (const toml::table& t : r.tables(root, "spring")) {
     const toml::node& nn = r.required(t, "nodes", "[[spring]]");
     const toml::array* ends = nn.as_array();
     if (!ends || ends->size() != 2) r.fail(nn, "nodes must be [i, j]");

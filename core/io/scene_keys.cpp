@@ -18,8 +18,12 @@ std::string num(double x) {
   os << x;
   return os.str();
 }
-std::string yes_no(bool b) { return b ? "true" : "false"; }
-std::string quoted(const char* s) { return std::string("\"") + s + "\""; }
+std::string yes_no(bool b) {
+  return b ? "true" : "false";
+}
+std::string quoted(const char* s) {
+  return std::string("\"") + s + "\"";
+}
 
 std::vector<SceneKey> make_keys() {
   const Params p;
@@ -86,7 +90,8 @@ std::vector<SceneKey> make_keys() {
 
       {"[[region]]", "min", "[x, y, z]", "required", "the box's low corner in rest space (cm)"},
       {"[[region]]", "max", "[x, y, z]", "required", "the box's high corner (cm)"},
-      {"[[region]]", "mass_scale", "number", "unchanged", "sets the mass scale of the nodes inside"},
+      {"[[region]]", "mass_scale", "number", "unchanged",
+       "sets the mass scale of the nodes inside"},
       {"[[region]]", "kappa_scale", "number", "unchanged",
        "sets kappa_scale of the springs with both ends inside"},
       {"[[region]]", "gamma_scale", "number", "unchanged", "sets the nodes' gamma scale"},
@@ -98,7 +103,8 @@ std::vector<SceneKey> make_keys() {
        "sets the dashpot scale of the springs and anchors inside"},
 
       {"[params]", "m", "number", num(p.m), "node mass (mass unit)"},
-      {"[params]", "kappa", "number", num(p.kappa), "spring and anchor stiffness (mass unit / s^2)"},
+      {"[params]", "kappa", "number", num(p.kappa),
+       "spring and anchor stiffness (mass unit / s^2)"},
       {"[params]", "gamma", "number", num(p.gamma),
        "nodal viscous damping (mass unit / s); excludes zeta"},
       {"[params]", "zeta", "number", "none",
@@ -160,8 +166,8 @@ std::vector<SceneKey> make_keys() {
 const std::vector<SceneSection>& scene_sections() {
   static const std::vector<SceneSection> sections = {
       {"", "the top level: names and the watched node", ""},
-      {"[grid]", "a generated plane of nodes (the paper's geometry); one of [grid], [[node]], [mesh]",
-       ""},
+      {"[grid]",
+       "a generated plane of nodes (the paper's geometry); one of [grid], [[node]], [mesh]", ""},
       {"[[node]]", "explicit nodes, one table each; springs follow in [[spring]]", ""},
       {"[[spring]]", "a spring between two [[node]] entries", ""},
       {"[mesh]", "nodes and springs from a mesh file (docs/meshes.md)", ""},

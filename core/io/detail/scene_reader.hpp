@@ -49,7 +49,7 @@ class Reader {
   /// The array of tables [[KEY]] of `root` (none when absent), each checked to be a table with
   /// only the keys the scene key table lists for [[KEY]].
   std::vector<std::reference_wrapper<const toml::table>> tables(const toml::table& root,
-                                                               const std::string& key) const {
+                                                                const std::string& key) const {
     std::vector<std::reference_wrapper<const toml::table>> out;
     const toml::node* n = root.get(key);
     if (!n) return out;
