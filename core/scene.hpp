@@ -1,5 +1,5 @@
 #pragma once
-// Scene descriptions (plain data) and their TOML file format (README "Scene files").
+// Scene descriptions (plain data) and their TOML file format (docs/scene-format.md).
 // A scene is a topology with per-element scales, default parameters, a perturbation, stop
 // rules, the watched node, and optionally cuts, named runs and expectations.
 #include "core/export.hpp"

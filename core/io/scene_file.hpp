@@ -1,5 +1,5 @@
 #pragma once
-// Scene files (docs/scenes.md): TOML text read into a SceneSpec, every error naming the file
+// Scene files (docs/scene-format.md): TOML text read into a SceneSpec, every error naming the file
 // and the line.
 #include <string>
 

@@ -1,5 +1,5 @@
 #pragma once
-// Writing scenes back as TOML (the format of core/io/scene_file.cpp, README "Scene files"), and
+// Writing scenes back as TOML (the format of core/io/scene_file.cpp, docs/scene-format.md), and
 // turning measured runs into [[expect]] entries: how the tuner's "Save as scene" makes a check
 // that `dampbound check FILE` replays headless.
 #include <iosfwd>

@@ -8,7 +8,7 @@ venv=$(mktemp -d)
 trap 'rm -rf "$venv"' EXIT
 /usr/bin/python3 -m venv --system-site-packages "$venv"
 # After scripts/test.sh, CI's build/ already holds the module's objects: build the target
-# there (seconds). Elsewhere setup.py configures build-pip/ (docs: README "Python").
+# there (seconds). Elsewhere setup.py configures build-pip/ (docs/guide.md, "Install and use it from your code").
 if [ -f build/CMakeCache.txt ] && [ -z "${DAMPBOUND_CMAKE_BUILD_DIR+x}" ]; then
   export DAMPBOUND_CMAKE_BUILD_DIR=$PWD/build
 fi

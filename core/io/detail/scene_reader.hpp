@@ -12,11 +12,10 @@
 #include <vector>
 
 #include "core/error.hpp"
+#include "core/io/scene_keys.hpp"
 #include "core/scene.hpp"
 
 namespace dampbound::scene_file {
-
-using Keys = std::initializer_list<std::string_view>;
 
 /// Reads one scene file; every error names the file and the line.
 class Reader {
@@ -32,14 +31,14 @@ class Reader {
     fail(static_cast<int>(n.source().begin.line), msg);
   }
 
-  void check_keys(const toml::table& t, Keys allowed, const std::string& where) const {
-    for (auto&& [key, value] : t) {
-      bool ok = false;
-      for (auto a : allowed) ok = ok || key.str() == a;
-      if (!ok)
+  /// Refuses a key of `t` that the scene key table (core/io/scene_keys.cpp) does not list
+  /// for `section` ("" for the top level, "[grid]", "[[node]]", ...).
+  void check_keys(const toml::table& t, const std::string& section) const {
+    for (auto&& [key, value] : t)
+      if (!scene_key_allowed(section, key.str()))
         fail(static_cast<int>(key.source().begin.line),
-             "unknown key '" + std::string(key.str()) + "' in " + where);
-    }
+             "unknown key '" + std::string(key.str()) + "' in " +
+                 (section.empty() ? std::string("the scene") : section));
   }
 
   const toml::table& table(const toml::node& n, const std::string& what) const {
@@ -48,10 +47,9 @@ class Reader {
   }
 
   /// The array of tables [[KEY]] of `root` (none when absent), each checked to be a table with
-  /// only `allowed` keys.
+  /// only the keys the scene key table lists for [[KEY]].
   std::vector<std::reference_wrapper<const toml::table>> tables(const toml::table& root,
-                                                               const std::string& key,
-                                                               Keys allowed) const {
+                                                                const std::string& key) const {
     std::vector<std::reference_wrapper<const toml::table>> out;
     const toml::node* n = root.get(key);
     if (!n) return out;
@@ -60,7 +58,7 @@ class Reader {
     if (!list) fail(*n, key + " must be an array of tables " + what);
     for (auto&& e : *list) {
       const toml::table& t = table(e, what);
-      check_keys(t, allowed, what);
+      check_keys(t, what);
       out.emplace_back(t);
     }
     return out;
