@@ -141,7 +141,7 @@ int run(const CheckArgs& a) {
   // Nothing judged is not a pass: a CI job pointed at the wrong folder must not stay green.
   if (pass + fail + broken == 0)
     throw InputError("check: no [[expect]] table in the " + std::to_string(files.size()) +
-                     " scene file(s) given: add one (README, \"Scene files\") or "
+                     " scene file(s) given: add one (docs/scene-format.md, [[expect]]) or "
                      "point check at scenes that have them");
   if (!a.junit.empty())
     write_file_atomic(a.junit, [&](std::ostream& out) { write_junit(out, reports); });

@@ -69,7 +69,7 @@ int run(const RunArgs& a) {
                 format_human(params.rayleigh_stiffness).c_str());
   // One verdict; its time from the step count (k dt), not the accumulated clock.
   const int at = r.outcome == Outcome::settled ? r.settled_at : r.iterations;
-  std::printf("verdict      %s (t = %s s)\n", verdict_text(r, rules).c_str(),
+  std::printf("verdict      %s; t = %s s\n", verdict_text(r, rules).c_str(),
               format_human(at * params.dt).c_str());
   std::printf("max |x-X|    %s cm at the end (the band: below %s cm; diverged: above %s cm)\n",
               format_human(r.max_displacement).c_str(),

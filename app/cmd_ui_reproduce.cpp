@@ -170,7 +170,7 @@ void write_report(std::ostream& out, const ReproduceArgs& a, const std::vector<C
         << " similarity classes in " << format_number(std::round(s.report.seconds * 10) / 10)
         << " s. The full grid: `dampbound sweep --preset paper-" << s.name
         << (s.rule == StopRule::settled ? " --rule settled" : "") << "`"
-        << " (README, Sweeps).\n\n![stability map](map-" << s.file << ".png)\n\n";
+        << " (docs/sweeps.md).\n\n![stability map](map-" << s.file << ".png)\n\n";
     for (const std::string& line : s.summary) out << "    " << line << "\n";
     out << "\nData: `sweep-" << s.file << ".csv`.\n";
   }
