@@ -148,6 +148,8 @@ class GuiApp {
   void nearest_font_texture();
   void save_layout_if_needed(bool force);
   void parameters_panel();
+  /// The gamma|zeta toggle and the slider of the chosen one, the other shown beside it.
+  void damping_input(Params& p, bool& changed);
   void scene_picker();
   void playback_controls();
   void status_panel();

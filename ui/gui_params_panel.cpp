@@ -9,6 +9,7 @@
 #include <string>
 
 #include "core/bounds.hpp"
+#include "core/damping_ratio.hpp"
 #include "core/io/scene_file.hpp"
 #include "ui/gui_items.hpp"
 #include "ui/gui_app.hpp"
@@ -103,6 +104,35 @@ void GuiApp::playback_controls() {
     ImGui::SetTooltip("Pause at the verdict: the iteration limit, or a divergence");
 }
 
+void GuiApp::damping_input(Params& p, bool& changed) {
+  Tuner& t = *tuner_;
+  bool zeta_on = t.zeta_mode();
+  if (item::checkbox(u8"as ratio \u03B6", &zeta_on)) {
+    t.set_zeta_mode(zeta_on);
+    p = t.params();
+  }
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Off: the slider sets gamma. On: it sets the damping ratio zeta (SPEC 10),\n"
+                      "each node's gamma_i = zeta 2 sqrt(m_i kappa_i), kept when m or kappa move.\n"
+                      "On a scene whose nodes have their own lower bounds the run restarts once.");
+  ImGui::SameLine();
+  if (t.zeta_mode())
+    ImGui::TextDisabled(u8"\u03B3 = %s", fmt(p.gamma).c_str());
+  else
+    ImGui::TextDisabled(u8"\u03B6 = %s", zeta_text(t.session().model()).c_str());
+  if (t.zeta_mode()) {
+    double z = t.zeta();
+    if (log_slider(u8"\u03B6 zeta", &z, 1e-3, 100.0,
+                   "The damping ratio zeta: gamma_i = zeta 2 sqrt(m_i kappa_i) at each node")) {
+      p.gamma = gamma_of_zeta(z, p);
+      changed = true;
+    }
+  } else {
+    changed |= log_slider(u8"\u03B3 gamma", &p.gamma, 1e-6, 10.0,
+                          "The user's viscous damping gamma (mass unit / s)");
+  }
+}
+
 void GuiApp::parameters_panel() {
   Tuner& t = *tuner_;
   section_header("Scene");
@@ -116,8 +146,7 @@ void GuiApp::parameters_panel() {
   changed |= log_slider("m", &p.m, 1e-5, 10.0, "Node mass m (mass unit)");
   changed |= log_slider(u8"\u03BA kappa", &p.kappa, 1e-5, 100.0,
                         "Spring and anchor stiffness kappa (mass unit / s^2)");
-  changed |= log_slider(u8"\u03B3 gamma", &p.gamma, 1e-6, 10.0,
-                        "The user's viscous damping gamma (mass unit / s)");
+  damping_input(p, changed);
   // The lower bound (eq. 5) at every node: on a non-uniform mesh the worst node speaks.
   const LowerBoundCheck lb = check_lower_bound(t.session().model());
   const double lo = lower_bound(p.m, p.kappa);
