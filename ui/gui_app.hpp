@@ -23,6 +23,7 @@
 #include "ui/tuner_map.hpp"
 #include "ui/tuner_plots.hpp"
 #include "ui/tuner_save.hpp"
+#include "ui/tuner_substeps.hpp"
 
 namespace dampbound::ui {
 
@@ -121,6 +122,12 @@ class GuiApp {
   void start_suggest();
   /// The Suggest computation, and the frame statistics of the window.
   TunerSuggest& suggestions() { return suggest_; }
+  /// Starts the substeps of the Suggest tab for frame_dt() as its button does.
+  void start_substeps() { substeps_.start(tuner_->session(), frame_dt_); }
+  BackgroundJob<SubstepsResult>& substeps() { return substeps_.job(); }
+  /// The Suggest tab's frame time (s; default 1/60).
+  double frame_dt() const { return frame_dt_; }
+  void set_frame_dt(double seconds) { frame_dt_ = seconds; }
   const GuiStats& stats() const { return meter_.stats(); }
   /// Steps per second from the start of the second frame to the last one: the start-up
   /// (first frame, pins run before it) left out. 0 before the third frame.
@@ -156,6 +163,9 @@ class GuiApp {
   void runs_panel();
   void criteria_panel();
   void suggest_panel();
+  void suggest_values();
+  /// The Suggest tab's substeps per frame: the frame time, the two counts, apply buttons.
+  void substeps_section();
   void save_panel();
   void map_panel();
   void plots_envelope();
@@ -172,6 +182,8 @@ class GuiApp {
   std::unique_ptr<Tuner> tuner_;
   MeshView mesh_;
   TunerSuggest suggest_;
+  TunerSubsteps substeps_;
+  double frame_dt_ = kDefaultFrameDt;
   TunerMap map_;
   MapView map_view_;
   TunerPlotOptions plot_options_;

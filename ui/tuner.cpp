@@ -60,16 +60,20 @@ LowerBoundCheck check_lower_bound(const Model& model) {
 
 namespace {
 
-/// True when every node's lower bound at m = kappa = 1 is 2 (its mass and stiffness scales
-/// multiply to 1): gamma = zeta * 2 sqrt(m kappa) then gives every node zeta_i = zeta *
-/// gamma_scale_i without resolving the scene (resolve_zeta() would change nothing).
-bool plain_lower_bounds(const ModelSpec& spec) {
+/// True when gamma_scale_i / (lower bound at m = kappa = 1)_i is the same at every free node
+/// with a bound: gamma = zeta * 2 sqrt(m kappa) then gives every node the same ratio, without
+/// resolving the scene (a plain mesh, or one resolved already, e.g. by `gui --zeta`).
+bool uniform_ratio_per_gamma(const ModelSpec& spec) {
   Params unit;
-  unit.m = unit.kappa = 1;
-  unit.gamma = 0;
+  unit.m = unit.kappa = unit.gamma = 1;
   const Model m = compile_model(spec, unit);
-  for (size_t i = 0; i < m.lower_bound.size(); ++i)
-    if (m.lower_bound[i] != 2.0) return false;
+  double first = -1;
+  for (size_t i = 0; i < m.lower_bound.size(); ++i) {
+    if (m.fixed[i] || !(m.lower_bound[i] > 0)) continue;
+    const double r = m.gamma[i] / m.lower_bound[i];
+    if (first < 0) first = r;
+    if (std::abs(r - first) > 1e-12 * first) return false;
+  }
   return true;
 }
 
@@ -88,7 +92,7 @@ void Tuner::new_session(SceneSpec scene) {
   const bool given_zeta = scene.params.zeta.has_value();
   session_ = std::make_unique<Session>(as_tuned(std::move(scene)));
   session_->set_threads(0);  // the same bits on any count; big meshes step faster
-  zeta_resolved_ = given_zeta || plain_lower_bounds(session_->scene().model);
+  zeta_resolved_ = given_zeta || uniform_ratio_per_gamma(session_->scene().model);
   zeta_mode_ = given_zeta;
 }
 

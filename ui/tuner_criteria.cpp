@@ -236,11 +236,6 @@ std::optional<double> TunerCriteria::exact_gamma_max(const Session& s, std::uint
   return e->gamma_hi;
 }
 
-TunerSuggest::~TunerSuggest() {
-  wait();
-  for (auto& f : dropped_) f.wait();
-}
-
 void TunerSuggest::start(const Session& session) {
   launch(session.shared_scene(), session.shared_model(), session.state().iteration,
          session.params(), session.rules(), session.springs_cut());
@@ -254,16 +249,8 @@ void TunerSuggest::start(const SceneSpec& scene, const Params& params, const Sto
 void TunerSuggest::launch(std::shared_ptr<const SceneSpec> shared,
                           std::shared_ptr<const Model> model, int iteration, const Params& params,
                           const StopRules& rules, int cut) {
-  if (busy()) return;
-  error_.clear();
-  cancelled_ = false;
-  started_ = std::chrono::steady_clock::now();
-  cancel_ = std::make_shared<std::atomic<bool>>(false);
-  progress_ = std::make_shared<Progress>();
-  pending_ = std::async(std::launch::async, [shared = std::move(shared), model = std::move(model),
-                                             iteration, params, rules, cut,
-                                             budget = factor_budget_, cancel = cancel_,
-                                             progress = progress_] {
+  job_.launch([shared = std::move(shared), model = std::move(model), iteration, params, rules,
+               cut, budget = factor_budget_](JobControl& control) {
     // With a model: the scene as the run has it (Session::current_scene), built here.
     std::optional<SceneSpec> as_run;
     if (model) as_run = scene_as_run(*shared, *model, iteration);
@@ -275,11 +262,9 @@ void TunerSuggest::launch(std::shared_ptr<const SceneSpec> shared,
     SuggestOptions options;
     options.max_factor_flops = budget;  // over it: what is proved without a factorisation
     std::string part;
-    options.progress = [&part, cancel, progress](int done, int total, const std::string& next) {
-      const std::lock_guard<std::mutex> lock(progress->mutex);
-      progress->text = part + ", stage " + std::to_string(done + 1) + " of " +
-                       std::to_string(total) + ": " + next;
-      return !*cancel;
+    options.progress = [&part, &control](int done, int total, const std::string& next) {
+      return control.report(part + ", stage " + std::to_string(done + 1) + " of " +
+                            std::to_string(total) + ": " + next);
     };
     part = "damping range";
     s.damping = suggest_damping(scene, params, rules, options);
@@ -287,44 +272,6 @@ void TunerSuggest::launch(std::shared_ptr<const SceneSpec> shared,
     s.step = suggest_step(scene, params, rules, options);
     return s;
   });
-}
-
-void TunerSuggest::cancel() {
-  if (!busy()) return;
-  *cancel_ = true;
-  dropped_.push_back(std::move(pending_));
-  cancelled_ = true;
-}
-
-std::string TunerSuggest::progress() const {
-  if (!progress_) return {};
-  const std::lock_guard<std::mutex> lock(progress_->mutex);
-  return progress_->text;
-}
-
-double TunerSuggest::seconds() const {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
-}
-
-bool TunerSuggest::poll() {
-  // Cancelled computations that have ended are joined here, never by a frame waiting.
-  for (size_t i = dropped_.size(); i-- > 0;)
-    if (dropped_[i].wait_for(std::chrono::seconds(0)) == std::future_status::ready)
-      dropped_.erase(dropped_.begin() + static_cast<std::ptrdiff_t>(i));
-  if (!busy()) return false;
-  if (pending_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return false;
-  try {
-    result_ = pending_.get();
-  } catch (const std::exception& e) {
-    error_ = e.what();
-    result_.reset();
-  }
-  return true;
-}
-
-void TunerSuggest::wait() {
-  if (busy()) pending_.wait();
-  poll();
 }
 
 Params with_best_gamma(const Params& current, const Suggestion& s) {
