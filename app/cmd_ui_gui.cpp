@@ -149,6 +149,7 @@ std::string tab_title(const std::string& tab) {
   if (tab == "pins") return "Pins & export";
   if (tab == "suggest") return "Suggest";
   if (tab == "save") return "Save scene";
+  if (tab == "worst") return "Worst nodes";
   if (tab == "map") return "Map";
   if (tab == "mesh") return "Mesh";
   return "Status";
@@ -342,8 +343,9 @@ std::function<int()> setup(CLI::App& root) {
                   "settings folder (default $XDG_CONFIG_HOME/dampbound or ~/.config/dampbound)");
   cmd->add_flag("--play", a->play, "start playing");
   cmd->add_option("--tab", a->tab,
-                  "open this tab first: status, criteria, pins, suggest, save, mesh or map")
-      ->check(CLI::IsMember({"status", "criteria", "pins", "suggest", "save", "mesh", "map"}));
+                  "open this tab first: status, criteria, pins, suggest, worst, save, mesh or map")
+      ->check(CLI::IsMember(
+          {"status", "criteria", "pins", "suggest", "worst", "save", "mesh", "map"}));
   cmd->add_option("--frame-dt", a->frame_dt,
                   "the Suggest tab's frame time F (s; default 1/60): its substeps n, dt = F/n; "
                   "with --tab suggest and --frames they are computed at the first frame")

@@ -288,6 +288,10 @@ void GuiApp::frame(FrameInfo& info) {
       suggest_panel();
       ImGui::EndTabItem();
     }
+    if (tab("Worst nodes", "Worst")) {
+      worst_panel();
+      ImGui::EndTabItem();
+    }
     if (tab("Save scene", "Save")) {
       save_panel();
       ImGui::EndTabItem();

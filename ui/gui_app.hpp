@@ -24,6 +24,7 @@
 #include "ui/tuner_plots.hpp"
 #include "ui/tuner_save.hpp"
 #include "ui/tuner_substeps.hpp"
+#include "ui/tuner_worst.hpp"
 
 namespace dampbound::ui {
 
@@ -61,6 +62,12 @@ struct RunsPanelState {
   std::string export_dir, export_prefix;
   bool export_unfinished = false;  ///< export the current run while it still runs
   ActionMessage export_result;
+};
+
+/// The "Worst nodes" tab: how many rows, and which order (0: by dt_safe_i, 1: by gamma_safe_i).
+struct WorstPanelState {
+  int count = 10;
+  int order = 0;
 };
 
 /// The "Save scene" tab: the tolerances of the [[expect]] entries, the file, what Save said.
@@ -104,7 +111,7 @@ class GuiApp {
   Tuner& tuner() { return *tuner_; }
   MeshView& mesh_view() { return mesh_; }
   /// Brings a tab to the front at the next frame: "Status", "Criteria", "Pins & export",
-  /// "Suggest", "Save scene", "Mesh" or "Map".
+  /// "Suggest", "Worst nodes", "Save scene", "Mesh" or "Map".
   void select_tab(const std::string& name) { select_tab_ = name; }
   /// Opens a scene file as the scene picker does (an error shows under the picker).
   void open_scene(const std::string& path);
@@ -167,6 +174,7 @@ class GuiApp {
   /// The Suggest tab's substeps per frame: the frame time, the two counts, apply buttons.
   void substeps_section();
   void save_panel();
+  void worst_panel();
   void map_panel();
   void plots_envelope();
   void plots_displacement();
@@ -193,6 +201,8 @@ class GuiApp {
   ScenePickerState scene_;
   RunsPanelState runs_;
   SavePanelState save_;
+  WorstPanelState worst_;
+  TunerWorst worst_nodes_;
   std::string param_error_;  ///< why the last parameter change was not applied
   std::vector<std::string> warnings_;
   std::string select_tab_;  ///< the tab to bring to the front at the next frame
