@@ -164,6 +164,8 @@ class GuiApp {
   void parameters_panel();
   /// The gamma|zeta toggle and the slider of the chosen one, the other shown beside it.
   void damping_input(Params& p, bool& changed);
+  /// kd, rayleigh_mass, rayleigh_stiffness: a checkbox (off: 0) and a log slider each.
+  void other_damping_input(Params& p, bool& changed);
   void scene_picker();
   void playback_controls();
   void status_panel();
@@ -203,7 +205,9 @@ class GuiApp {
   SavePanelState save_;
   WorstPanelState worst_;
   TunerWorst worst_nodes_;
-  std::string param_error_;  ///< why the last parameter change was not applied
+  std::string param_error_;
+  /// The values of kd, rayleigh_mass, rayleigh_stiffness their sliders keep while off.
+  std::array<double, 3> other_damping_{0.001, 0.1, 0.001};  ///< why the last parameter change was not applied
   std::vector<std::string> warnings_;
   std::string select_tab_;  ///< the tab to bring to the front at the next frame
   bool ini_loaded_ = false;

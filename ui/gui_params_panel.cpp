@@ -133,6 +133,47 @@ void GuiApp::damping_input(Params& p, bool& changed) {
   }
 }
 
+void GuiApp::other_damping_input(Params& p, bool& changed) {
+  // SPEC 10: dashpots along the springs and Rayleigh damping, each off (0) by default; the
+  // slider keeps its last value while off.
+  struct Kind {
+    const char* on_id;
+    const char* label;
+    double Params::*member;
+    double lo, hi;
+    const char* help;
+  };
+  static constexpr Kind kinds[] = {
+      {"##kd_on", "kd dashpot", &Params::kd, 1e-6, 10.0,
+       "Dashpot along each spring and anchor, kd (mass unit / s; SPEC 10):\n"
+       "force kd ((v_j - v_i) . d) d on node i (Warp's spring_kd, SOFA's spring damping)"},
+      {"##alpha_on", u8"\u03B1 Rayleigh M", &Params::rayleigh_mass, 1e-4, 100.0,
+       "Rayleigh mass damping alpha (1/s; SPEC 10): force -alpha m_i v_i\n(SOFA's rayleighMass)"},
+      {"##beta_on", u8"\u03B2 Rayleigh K", &Params::rayleigh_stiffness, 1e-6, 1.0,
+       "Rayleigh stiffness damping beta (s; SPEC 10): force -beta (K(x) v)_i\n"
+       "(SOFA's rayleighStiffness)"},
+  };
+  for (size_t k = 0; k < 3; ++k) {
+    const Kind& kind = kinds[k];
+    double& value = p.*kind.member;
+    double& kept = other_damping_[k];
+    bool on = value != 0;
+    if (on) kept = value;
+    if (item::checkbox(kind.on_id, &on)) {
+      value = on ? kept : 0.0;
+      changed = true;
+    }
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s\nOff: 0.", kind.help);
+    ImGui::SameLine(0, ImGui::GetStyle().ItemInnerSpacing.x);
+    const ScopedDisabled off(!on);
+    double v = on ? value : kept;
+    if (log_slider(kind.label, &v, kind.lo, kind.hi, kind.help) && on) {
+      value = kept = v;
+      changed = true;
+    }
+  }
+}
+
 void GuiApp::parameters_panel() {
   Tuner& t = *tuner_;
   section_header("Scene");
@@ -187,6 +228,7 @@ void GuiApp::parameters_panel() {
                                      .c_str());
   }
   changed |= log_slider("dt (s)", &p.dt, 1e-4, 1.0, "Time step dt (s)");
+  other_damping_input(p, changed);
   int policy = 0;
   while (kPolicies[policy] != p.policy) ++policy;
   auto policy_name = [](void*, int k, const char** out) {

@@ -37,6 +37,9 @@ std::string params_label(const Params& p) {
   if (p.policy == DampingPolicy::upper) s += " x" + fmt(p.factor);
   if (p.integrator != Integrator::semi_implicit_euler)
     s += ", " + std::string(to_string(p.integrator));
+  if (p.kd != 0) s += ", kd " + fmt(p.kd);
+  if (p.rayleigh_mass != 0) s += ", alpha " + fmt(p.rayleigh_mass);
+  if (p.rayleigh_stiffness != 0) s += ", beta " + fmt(p.rayleigh_stiffness);
   return s;
 }
 
@@ -162,7 +165,9 @@ bool Tuner::set_params(const Params& given, std::string* error) {
   }
   const bool same = now.m == params.m && now.kappa == params.kappa && now.gamma == params.gamma &&
                     now.dt == params.dt && now.policy == params.policy &&
-                    now.factor == params.factor && now.integrator == params.integrator;
+                    now.factor == params.factor && now.integrator == params.integrator &&
+                    now.kd == params.kd && now.rayleigh_mass == params.rayleigh_mass &&
+                    now.rayleigh_stiffness == params.rayleigh_stiffness;
   if (!same && session_->state().iteration > 0) replayable_ = false;
   session_->set_params(params);
   return true;

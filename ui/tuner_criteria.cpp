@@ -1,10 +1,12 @@
 #include "ui/tuner_criteria.hpp"
 #include "core/analysis/criteria_safe.hpp"
+#include "core/analysis/damping_limits.hpp"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <exception>
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -13,7 +15,13 @@ namespace dampbound::ui {
 namespace {
 bool same_key(const Params& a, const Params& b) {
   return a.m == b.m && a.kappa == b.kappa && a.gamma == b.gamma && a.dt == b.dt &&
-         a.integrator == b.integrator;
+         a.integrator == b.integrator && a.kd == b.kd && a.rayleigh_mass == b.rayleigh_mass &&
+         a.rayleigh_stiffness == b.rayleigh_stiffness;
+}
+
+/// Dashpots or Rayleigh damping (SPEC 10) besides the nodal damping.
+bool other_damping(const Params& p) {
+  return p.kd != 0 || p.rayleigh_mass != 0 || p.rayleigh_stiffness != 0;
 }
 
 /// gamma_i / m_i equal at every free node: the exact radius is a cheap per-mode formula.
@@ -42,7 +50,20 @@ std::optional<ExactStability> analyse(const Model& model, const std::vector<Vec3
     ExactOptions o;
     o.with_radius = uniform_rate(model);  // Arnoldi on a non-uniform mesh can take seconds
     o.max_factor_flops = factor_budget;  // a big 3-D mesh: what Lanczos proves, not hours
-    return exact_stability(model, x, params, o);
+    ExactStability e = exact_stability(model, x, params, o);
+    if (other_damping(params)) {
+      // SPEC 10: the limits of the general damping matrix (index lambda_max(dt^2 A + 2 dt C^)
+      // < 4), known for the paper's step only; the nodal analysis above ignores that damping.
+      if (params.integrator != Integrator::semi_implicit_euler) return std::nullopt;
+      const GeneralLimits g = general_limits(model, x, params);
+      e.index = g.index;
+      e.stable = g.index < 4 && g.damping_min > 0;
+      e.spectral_radius = std::numeric_limits<double>::quiet_NaN();
+      e.gamma_lo = 0;
+      e.gamma_hi = e.inner.gamma_hi = g.gamma_max;
+      e.dt_max = e.inner.dt_max = g.dt_max;
+    }
+    return e;
   } catch (const std::exception&) {
     return std::nullopt;
   }
@@ -139,7 +160,9 @@ const ExactStability* TunerCriteria::exact(const Session& s, std::uint64_t topol
   // once per change); larger ones, every analysis that follows the state and every one at
   // the equilibrium (Newton's method first), on the worker thread.
   const bool following = at_ == Linearisation::state;
-  const bool on_worker = at_ != Linearisation::rest || free_node_count(s.model()) > worker_nodes_;
+  // SPEC 10's general limits bisect an eigenvalue: seconds on the paper plane.
+  const bool on_worker = at_ != Linearisation::rest || free_node_count(s.model()) > worker_nodes_ ||
+                         other_damping(s.params());
   if (!on_worker) wait();  // a result of another mode is of no use at rest
   const double now = seconds_now();
   const bool moved = following && state != state_;
