@@ -19,6 +19,9 @@ bool same_key(const Params& a, const Params& b) {
          a.rayleigh_stiffness == b.rayleigh_stiffness;
 }
 
+/// The most free nodes for which the tuner computes the general damping matrix's limits.
+constexpr int kGeneralLimitsNodes = 2000;
+
 /// Dashpots or Rayleigh damping (SPEC 10) besides the nodal damping.
 bool other_damping(const Params& p) {
   return p.kd != 0 || p.rayleigh_mass != 0 || p.rayleigh_stiffness != 0;
@@ -55,6 +58,9 @@ std::optional<ExactStability> analyse(const Model& model, const std::vector<Vec3
       // SPEC 10: the limits of the general damping matrix (index lambda_max(dt^2 A + 2 dt C^)
       // < 4), known for the paper's step only; the nodal analysis above ignores that damping.
       if (params.integrator != Integrator::semi_implicit_euler) return std::nullopt;
+      // The bisection takes one eigenvalue per step: seconds at the paper plane's 1296 nodes,
+      // minutes at tissue-block's 6237 (`bounds` computes it there).
+      if (free_node_count(model) > kGeneralLimitsNodes) return std::nullopt;
       const GeneralLimits g = general_limits(model, x, params);
       e.index = g.index;
       e.stable = g.index < 4 && g.damping_min > 0;
