@@ -15,6 +15,7 @@
 #include "core/error.hpp"
 #include "core/io/files.hpp"
 #include "core/io/format.hpp"
+#include "core/io/report.hpp"
 #include "core/io/scene_write.hpp"
 
 #if defined(DAMPBOUND_HAVE_GLFW)
@@ -43,6 +44,7 @@ struct GuiArgs {
   std::vector<std::string> pins;  ///< --pin KEY=VALUE[,KEY=VALUE...], repeatable
   std::string save_scene, export_dir, export_prefix = "dampbound";
   double factor_budget = 0;  ///< GFlop (add_factor_budget_option sets the default)
+  double frame_dt = 0;       ///< --frame-dt: the Suggest tab's frame time (0: its default)
   int expect_iterations = default_expect_tolerance().iterations;
   double expect_displacement = default_expect_tolerance().displacement_factor;
   ParamFlags flags;
@@ -53,6 +55,25 @@ struct GuiArgs {
 /// self-test before it counts as a hang (seconds).
 constexpr double kCloseGrace = 0.3;
 constexpr double kSelfTestHang = 60.0;
+
+/// The Suggest tab's substeps, in one line on stderr (scripted --tab suggest runs).
+void print_substeps_line(const ui::BackgroundJob<ui::SubstepsResult>& job) {
+  if (job.busy()) {
+    std::fprintf(stderr, "gui: substeps did not finish by the last frame\n");
+  } else if (!job.error().empty()) {
+    std::fprintf(stderr, "gui: substeps failed: %s\n", job.error().c_str());
+  } else if (job.result()) {
+    const SubstepSuggestion& s = job.result()->substeps;
+    const auto count = [](const SubstepCount& c) {
+      return c.n == 0 ? std::string("none")
+                      : std::to_string(c.n) + " substeps (" +
+                            (c.ran ? verdict_short(c.run.result) : std::string("not run")) + ")";
+    };
+    std::fprintf(stderr, "gui: substeps at frame %s s: exact limit %s, safe bound %s\n",
+                 format_digits(s.frame_dt, 6).c_str(), count(s.exact).c_str(),
+                 count(s.safe).c_str());
+  }
+}
 
 bool have_display() {
   const char* x = std::getenv("DISPLAY");
@@ -128,6 +149,7 @@ std::string tab_title(const std::string& tab) {
   if (tab == "pins") return "Pins & export";
   if (tab == "suggest") return "Suggest";
   if (tab == "save") return "Save scene";
+  if (tab == "worst") return "Worst nodes";
   if (tab == "map") return "Map";
   if (tab == "mesh") return "Mesh";
   return "Status";
@@ -206,6 +228,8 @@ int run(GuiArgs& a) {
   for (const std::string& text : a.pins)
     ui::pin_run(app.tuner(), ui::parse_pin_request(text, app.tuner().params(),
                                                    app.tuner().session().rules().max_iterations));
+  if (flags.zeta_opt->count()) app.tuner().set_zeta_mode(true);  // the slider gives zeta
+  if (a.frame_dt > 0) app.set_frame_dt(a.frame_dt);
   app.save_tolerance().iterations = a.expect_iterations;
   app.save_tolerance().displacement_factor = a.expect_displacement;
   if (!have_display())
@@ -244,9 +268,12 @@ int run(GuiArgs& a) {
   const bool suggest_scripted = a.tab == "suggest" && a.frames > 0;
   const ui::WindowRun run = host.run([&](ui::FrameInfo& info) {
     const bool last = info.index == a.frames - 1 && !info.layout_pass;
-    if (suggest_scripted && info.index == 0 && !info.layout_pass) app.start_suggest();
+    if (suggest_scripted && info.index == 0 && !info.layout_pass) {
+      app.start_suggest();
+      app.start_substeps();
+    }
     if (map_wait && last) app.map().wait();
-    if (suggest_scripted && last) app.suggestions().wait();
+    if (suggest_scripted && last) app.suggestions().wait(), app.substeps().wait();
     app.frame(info);
     if (!a.export_dir.empty() && last)
       export_message = app.export_plots(a.export_dir, a.export_prefix);
@@ -284,6 +311,7 @@ int run(GuiArgs& a) {
                    format_digits(sg.result()->damping.gamma_best, 4).c_str(),
                    format_digits(sg.result()->params.dt, 4).c_str());
   }
+  if (suggest_scripted) print_substeps_line(app.substeps());
   if (!a.save_scene.empty()) {
     std::vector<std::string> notes;
     const std::string saved = app.save_scene(a.save_scene, &notes);
@@ -315,8 +343,13 @@ std::function<int()> setup(CLI::App& root) {
                   "settings folder (default $XDG_CONFIG_HOME/dampbound or ~/.config/dampbound)");
   cmd->add_flag("--play", a->play, "start playing");
   cmd->add_option("--tab", a->tab,
-                  "open this tab first: status, criteria, pins, suggest, save, mesh or map")
-      ->check(CLI::IsMember({"status", "criteria", "pins", "suggest", "save", "mesh", "map"}));
+                  "open this tab first: status, criteria, pins, suggest, worst, save, mesh or map")
+      ->check(CLI::IsMember(
+          {"status", "criteria", "pins", "suggest", "worst", "save", "mesh", "map"}));
+  cmd->add_option("--frame-dt", a->frame_dt,
+                  "the Suggest tab's frame time F (s; default 1/60): its substeps n, dt = F/n; "
+                  "with --tab suggest and --frames they are computed at the first frame")
+      ->check(finite_positive());
   cmd->add_option("--linearise", a->linearise,
                   "linearise the exact analysis at rest, the current state or the static "
                   "equilibrium (the Criteria tab's choice; remembered)")

@@ -234,6 +234,7 @@ void GuiApp::frame(FrameInfo& info) {
   if (layout_.begin("Parameters", 0)) parameters_panel();
   ImGui::End();
   suggest_.poll();
+  substeps_.job().poll();
   // Below kCompactLayoutHeight the status tabs join the runs' tabs, under short titles (the part
   // after ### is the tab's identity, so a selected tab stays selected across sizes).
   const bool compact = layout_.compact();
@@ -285,6 +286,10 @@ void GuiApp::frame(FrameInfo& info) {
     }
     if (tab("Suggest")) {
       suggest_panel();
+      ImGui::EndTabItem();
+    }
+    if (tab("Worst nodes", "Worst")) {
+      worst_panel();
       ImGui::EndTabItem();
     }
     if (tab("Save scene", "Save")) {

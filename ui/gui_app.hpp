@@ -23,6 +23,8 @@
 #include "ui/tuner_map.hpp"
 #include "ui/tuner_plots.hpp"
 #include "ui/tuner_save.hpp"
+#include "ui/tuner_substeps.hpp"
+#include "ui/tuner_worst.hpp"
 
 namespace dampbound::ui {
 
@@ -60,6 +62,12 @@ struct RunsPanelState {
   std::string export_dir, export_prefix;
   bool export_unfinished = false;  ///< export the current run while it still runs
   ActionMessage export_result;
+};
+
+/// The "Worst nodes" tab: how many rows, and which order (0: by dt_safe_i, 1: by gamma_safe_i).
+struct WorstPanelState {
+  int count = 10;
+  int order = 0;
 };
 
 /// The "Save scene" tab: the tolerances of the [[expect]] entries, the file, what Save said.
@@ -103,7 +111,7 @@ class GuiApp {
   Tuner& tuner() { return *tuner_; }
   MeshView& mesh_view() { return mesh_; }
   /// Brings a tab to the front at the next frame: "Status", "Criteria", "Pins & export",
-  /// "Suggest", "Save scene", "Mesh" or "Map".
+  /// "Suggest", "Worst nodes", "Save scene", "Mesh" or "Map".
   void select_tab(const std::string& name) { select_tab_ = name; }
   /// Opens a scene file as the scene picker does (an error shows under the picker).
   void open_scene(const std::string& path);
@@ -121,6 +129,12 @@ class GuiApp {
   void start_suggest();
   /// The Suggest computation, and the frame statistics of the window.
   TunerSuggest& suggestions() { return suggest_; }
+  /// Starts the substeps of the Suggest tab for frame_dt() as its button does.
+  void start_substeps() { substeps_.start(tuner_->session(), frame_dt_); }
+  BackgroundJob<SubstepsResult>& substeps() { return substeps_.job(); }
+  /// The Suggest tab's frame time (s; default 1/60).
+  double frame_dt() const { return frame_dt_; }
+  void set_frame_dt(double seconds) { frame_dt_ = seconds; }
   const GuiStats& stats() const { return meter_.stats(); }
   /// Steps per second from the start of the second frame to the last one: the start-up
   /// (first frame, pins run before it) left out. 0 before the third frame.
@@ -148,13 +162,21 @@ class GuiApp {
   void nearest_font_texture();
   void save_layout_if_needed(bool force);
   void parameters_panel();
+  /// The gamma|zeta toggle and the slider of the chosen one, the other shown beside it.
+  void damping_input(Params& p, bool& changed);
+  /// kd, rayleigh_mass, rayleigh_stiffness: a checkbox (off: 0) and a log slider each.
+  void other_damping_input(Params& p, bool& changed);
   void scene_picker();
   void playback_controls();
   void status_panel();
   void runs_panel();
   void criteria_panel();
   void suggest_panel();
+  void suggest_values();
+  /// The Suggest tab's substeps per frame: the frame time, the two counts, apply buttons.
+  void substeps_section();
   void save_panel();
+  void worst_panel();
   void map_panel();
   void plots_envelope();
   void plots_displacement();
@@ -170,6 +192,8 @@ class GuiApp {
   std::unique_ptr<Tuner> tuner_;
   MeshView mesh_;
   TunerSuggest suggest_;
+  TunerSubsteps substeps_;
+  double frame_dt_ = kDefaultFrameDt;
   TunerMap map_;
   MapView map_view_;
   TunerPlotOptions plot_options_;
@@ -179,7 +203,11 @@ class GuiApp {
   ScenePickerState scene_;
   RunsPanelState runs_;
   SavePanelState save_;
-  std::string param_error_;  ///< why the last parameter change was not applied
+  WorstPanelState worst_;
+  TunerWorst worst_nodes_;
+  std::string param_error_;
+  /// The values of kd, rayleigh_mass, rayleigh_stiffness their sliders keep while off.
+  std::array<double, 3> other_damping_{0.001, 0.1, 0.001};  ///< why the last parameter change was not applied
   std::vector<std::string> warnings_;
   std::string select_tab_;  ///< the tab to bring to the front at the next frame
   bool ini_loaded_ = false;

@@ -145,8 +145,96 @@ void GuiApp::criteria_panel() {
   ImGui::EndTable();
 }
 
+namespace {
+
+/// Busy: Cancel, the seconds so far and the stage; else "cancelled" after a Cancel; the error.
+/// `cancel`: the Cancel button's label ("Cancel", with an ## identity where a window has two).
+template <class T>
+void job_status(BackgroundJob<T>& job, const char* cancel = "Cancel") {
+  if (job.busy()) {
+    ImGui::SameLine();
+    if (item::small_button(cancel)) job.cancel();
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("Drop this computation (the last result stays)");
+    ImGui::SameLine();
+    ImGui::TextDisabled("computing and verifying... %s s", fmt(job.seconds()).c_str());
+    const std::string where = job.progress();
+    if (!where.empty())
+      wrapped_colored(ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled), where);
+  } else if (job.cancelled()) {
+    ImGui::SameLine();
+    ImGui::TextDisabled("cancelled");
+  }
+  if (!job.error().empty()) wrapped_colored(gui_red(), job.error().c_str());
+}
+
+}  // namespace
+
 void GuiApp::suggest_panel() {
+  substeps_section();
+  suggest_values();
+}
+
+void GuiApp::substeps_section() {
   Tuner& t = *tuner_;
+  section_header("Substeps per frame");
+  BackgroundJob<SubstepsResult>& job = substeps_.job();
+  ImGui::SetNextItemWidth(ImGui::CalcTextSize("0.0166667").x * 1.6f);
+  double f = frame_dt_;
+  if (item::input_double("frame (s)", &f, 0, 0, "%.6g") && !number_problem(f, false))
+    frame_dt_ = f;
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("The frame time F (s): dt = F/n with n substeps (default 1/60 s)");
+  ImGui::SameLine();
+  {
+    const ScopedDisabled off(job.busy());
+    if (item::button("Substeps")) start_substeps();
+  }
+  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+    ImGui::SetTooltip(
+        "The fewest substeps n with dt = F/n stable by the exact limit, and the n the\n"
+        "safe bound (SPEC 9) guarantees, at this gamma and the rest state; each verified\n"
+        "by a run of the mesh as it is now (with the cuts made so far).");
+  job_status(job, "Cancel##substeps");
+  if (!job.result()) return;
+  const SubstepsResult& r = *job.result();
+  const SubstepSuggestion& s = r.substeps;
+  if (r.springs_cut > 0) ImGui::TextDisabled("for the mesh as cut (%d springs cut)", r.springs_cut);
+  for (const SubstepCount* c : {&s.exact, &s.safe}) {
+    const bool exact = c == &s.exact;
+    if (c->n == 0) {
+      ImGui::TextDisabled("%s: no count (limit %s s)", exact ? "exact limit" : "safe bound",
+                          fmt(c->limit).c_str());
+      continue;
+    }
+    text_wrapped(std::string(exact ? "exact limit: " : "safe bound: ") + std::to_string(c->n) +
+                 " substeps, dt = " + fmt(c->dt) + " s < " + fmt(c->limit) + " s");
+    if (item::small_button(exact ? "apply dt = F/n##exact" : "apply dt = F/n##safe"))
+      t.set_params(with_substeps(t.params(), *c));
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("Set dt = %s / %d = %s s", fmt(s.frame_dt).c_str(), c->n,
+                        fmt(c->dt).c_str());
+    if (c->ran) {  // the verifying run's verdict (SPEC 8)
+      ImGui::SameLine();
+      ImGui::TextColored(outcome_color(c->run.result), "run: %s",
+                         verdict_short(c->run.result).c_str());
+      if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("%s\n%s\nmax |x - X| = %s cm", c->run.label.c_str(),
+                          params_label(c->run.params).c_str(),
+                          fmt(c->run.result.max_displacement).c_str());
+    }
+  }
+  if (!s.note.empty()) wrapped_colored(gui_amber(), s.note.c_str());
+  const Params& now = t.params();
+  if (r.params.gamma != now.gamma || r.params.m != now.m || r.params.kappa != now.kappa ||
+      s.frame_dt != frame_dt_)
+    ImGui::TextDisabled("(computed for frame %s s, gamma %s)", fmt(s.frame_dt).c_str(),
+                        fmt(r.params.gamma).c_str());
+}
+
+void GuiApp::suggest_values() {
+  Tuner& t = *tuner_;
+  section_header("Stable values");
   {
     const ScopedDisabled off(suggest_.busy());
     if (item::button("Suggest stable values")) start_suggest();
@@ -156,21 +244,7 @@ void GuiApp::suggest_panel() {
         "The damping range every criterion accepts at this dt, the fastest-settling\n"
         "gamma in it, and the largest stable dt at this gamma; each verified by a\n"
         "run of the mesh as it is now (with the cuts made so far).");
-  if (suggest_.busy()) {
-    ImGui::SameLine();
-    if (item::small_button("Cancel")) suggest_.cancel();
-    if (ImGui::IsItemHovered())
-      ImGui::SetTooltip("Drop this computation (the last suggestion stays)");
-    ImGui::SameLine();
-    ImGui::TextDisabled("computing and verifying... %s s", fmt(suggest_.seconds()).c_str());
-    const std::string where = suggest_.progress();
-    if (!where.empty())
-      wrapped_colored(ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled), where);
-  } else if (suggest_.cancelled()) {
-    ImGui::SameLine();
-    ImGui::TextDisabled("cancelled");
-  }
-  if (!suggest_.error().empty()) wrapped_colored(gui_red(), suggest_.error().c_str());
+  job_status(suggest_.job());
   if (!suggest_.result()) return;
   const Suggestion& s = *suggest_.result();
   const DampingSuggestion& d = s.damping;

@@ -28,10 +28,14 @@ int cell_of(const std::vector<double>& edges, double v) {
 
 /// An axis picker; the other axis's parameter cannot be chosen.
 void axis_combo(const char* label, MapParam* p, MapParam other) {
-  static const char* names[] = {"m", "kappa", "gamma", "dt"};
+  auto name = [](void*, int k, const char** out) {
+    *out = to_string(kMapParams[k]);
+    return true;
+  };
   int v = static_cast<int>(*p);
-  ImGui::SetNextItemWidth(ImGui::CalcTextSize("kappa").x + ImGui::GetFrameHeight() * 1.6f);
-  if (item::combo(label, &v, names, 4) && v != static_cast<int>(other))
+  ImGui::SetNextItemWidth(ImGui::CalcTextSize(to_string(*p)).x + ImGui::GetFrameHeight() * 1.6f);
+  if (item::combo(label, &v, name, nullptr, IM_ARRAYSIZE(kMapParams)) &&
+      v != static_cast<int>(other))
     *p = static_cast<MapParam>(v);
 }
 
@@ -90,6 +94,7 @@ void GuiApp::map_panel() {
     ImGui::SameLine();
   }
   if (t.session().springs_cut() > 0) line += "  (the scene as loaded: hand cuts not included)";
+  if (r && r->plain) line += "  (each cell runs step(): slower)";
   ImGui::TextDisabled("%s", line.c_str());
   if (!r || r->view.x != v.x || r->view.y != v.y) return;
   PlotSpec spec = map_panel_plot(map_result_panel(*r), r->max_iterations, true, r->rule);

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "core/bounds.hpp"
+#include "core/damping_ratio.hpp"
 #include "core/io/scene_file.hpp"
 #include "ui/gui_items.hpp"
 #include "ui/gui_app.hpp"
@@ -103,6 +104,76 @@ void GuiApp::playback_controls() {
     ImGui::SetTooltip("Pause at the verdict: the iteration limit, or a divergence");
 }
 
+void GuiApp::damping_input(Params& p, bool& changed) {
+  Tuner& t = *tuner_;
+  bool zeta_on = t.zeta_mode();
+  if (item::checkbox(u8"as ratio \u03B6", &zeta_on)) {
+    t.set_zeta_mode(zeta_on);
+    p = t.params();
+  }
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Off: the slider sets gamma. On: it sets the damping ratio zeta (SPEC 10),\n"
+                      "each node's gamma_i = zeta 2 sqrt(m_i kappa_i), kept when m or kappa move.\n"
+                      "On a scene whose nodes have their own lower bounds the run restarts once.");
+  ImGui::SameLine();
+  if (t.zeta_mode())
+    ImGui::TextDisabled(u8"\u03B3 = %s", fmt(p.gamma).c_str());
+  else
+    ImGui::TextDisabled(u8"\u03B6 = %s", zeta_text(t.session().model()).c_str());
+  if (t.zeta_mode()) {
+    double z = t.zeta();
+    if (log_slider(u8"\u03B6 zeta", &z, 1e-3, 100.0,
+                   "The damping ratio zeta: gamma_i = zeta 2 sqrt(m_i kappa_i) at each node")) {
+      p.gamma = gamma_of_zeta(z, p);
+      changed = true;
+    }
+  } else {
+    changed |= log_slider(u8"\u03B3 gamma", &p.gamma, 1e-6, 10.0,
+                          "The user's viscous damping gamma (mass unit / s)");
+  }
+}
+
+void GuiApp::other_damping_input(Params& p, bool& changed) {
+  // SPEC 10: dashpots along the springs and Rayleigh damping, each off (0) by default; the
+  // slider keeps its last value while off.
+  struct Kind {
+    const char* on_id;
+    const char* label;
+    double Params::*member;
+    double lo, hi;
+    const char* help;
+  };
+  static constexpr Kind kinds[] = {
+      {"##kd_on", "kd dashpot", &Params::kd, 1e-6, 10.0,
+       "Dashpot along each spring and anchor, kd (mass unit / s; SPEC 10):\n"
+       "force kd ((v_j - v_i) . d) d on node i (Warp's spring_kd, SOFA's spring damping)"},
+      {"##alpha_on", u8"\u03B1 Rayleigh M", &Params::rayleigh_mass, 1e-4, 100.0,
+       "Rayleigh mass damping alpha (1/s; SPEC 10): force -alpha m_i v_i\n(SOFA's rayleighMass)"},
+      {"##beta_on", u8"\u03B2 Rayleigh K", &Params::rayleigh_stiffness, 1e-6, 1.0,
+       "Rayleigh stiffness damping beta (s; SPEC 10): force -beta (K(x) v)_i\n"
+       "(SOFA's rayleighStiffness)"},
+  };
+  for (size_t k = 0; k < 3; ++k) {
+    const Kind& kind = kinds[k];
+    double& value = p.*kind.member;
+    double& kept = other_damping_[k];
+    bool on = value != 0;
+    if (on) kept = value;
+    if (item::checkbox(kind.on_id, &on)) {
+      value = on ? kept : 0.0;
+      changed = true;
+    }
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s\nOff: 0.", kind.help);
+    ImGui::SameLine(0, ImGui::GetStyle().ItemInnerSpacing.x);
+    const ScopedDisabled off(!on);
+    double v = on ? value : kept;
+    if (log_slider(kind.label, &v, kind.lo, kind.hi, kind.help) && on) {
+      value = kept = v;
+      changed = true;
+    }
+  }
+}
+
 void GuiApp::parameters_panel() {
   Tuner& t = *tuner_;
   section_header("Scene");
@@ -116,8 +187,7 @@ void GuiApp::parameters_panel() {
   changed |= log_slider("m", &p.m, 1e-5, 10.0, "Node mass m (mass unit)");
   changed |= log_slider(u8"\u03BA kappa", &p.kappa, 1e-5, 100.0,
                         "Spring and anchor stiffness kappa (mass unit / s^2)");
-  changed |= log_slider(u8"\u03B3 gamma", &p.gamma, 1e-6, 10.0,
-                        "The user's viscous damping gamma (mass unit / s)");
+  damping_input(p, changed);
   // The lower bound (eq. 5) at every node: on a non-uniform mesh the worst node speaks.
   const LowerBoundCheck lb = check_lower_bound(t.session().model());
   const double lo = lower_bound(p.m, p.kappa);
@@ -158,6 +228,7 @@ void GuiApp::parameters_panel() {
                                      .c_str());
   }
   changed |= log_slider("dt (s)", &p.dt, 1e-4, 1.0, "Time step dt (s)");
+  other_damping_input(p, changed);
   int policy = 0;
   while (kPolicies[policy] != p.policy) ++policy;
   auto policy_name = [](void*, int k, const char** out) {

@@ -103,14 +103,17 @@ bool SelfTest::plan_visit() {
   for (const std::string& f : app_.scene_files()) scene_stems.insert(stem(f));
   const ItemRecord* pick = nullptr;
   // Widgets first, then tabs. A Cancel clicked as soon as it shows would drop the computation
-  // whose result carries widgets of its own (Suggest's apply buttons): until those were
-  // operated it comes last, after them first (it shows only while the work runs).
-  const bool results_seen = std::any_of(report_.visited.begin(), report_.visited.end(),
-                                        [](const std::string& v) {
-                                          return v.find("'apply gamma'") != std::string::npos;
-                                        });
+  // whose result carries widgets of its own (Suggest's apply buttons, the substeps' apply
+  // buttons): until those were operated it comes last, after them first (it shows only while
+  // the work runs).
+  const auto seen = [&](const char* label) {
+    return std::any_of(report_.visited.begin(), report_.visited.end(),
+                       [&](const std::string& v) { return v.find(label) != std::string::npos; });
+  };
   const auto pass_of = [&](const ItemRecord& r) {
-    if (r.kind == ItemKind::button && r.label == "Cancel") return results_seen ? 0 : 3;
+    if (r.kind == ItemKind::button && r.label == "Cancel") return seen("'apply gamma'") ? 0 : 3;
+    if (r.kind == ItemKind::button && r.label == "Cancel##substeps")
+      return seen("'apply dt = F/n##exact'") ? 0 : 3;
     return r.kind == ItemKind::tab ? 2 : 1;
   };
   for (int pass = 0; pass < 4 && pick == nullptr; ++pass) {

@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "core/damping_ratio.hpp"
 #include "core/io/report.hpp"
 #include "ui/gui_items.hpp"
 #include "ui/gui_app.hpp"
@@ -72,6 +73,10 @@ void GuiApp::status_panel() {
       row("  bounds", fmt(last->watched.lower) + " .. " + fmt(last->watched.upper));
       row("  gamma",
           fmt(last->watched.gamma) + " (effective " + fmt(last->watched.gamma_eff) + ")");
+      // SPEC 10: the ratio beside the gamma it is of (zeta_i = gamma_i / 2 sqrt(m_i kappa_i)).
+      row(u8"  \u03B6 zeta", fmt(damping_ratio(last->watched.gamma, last->watched.lower)) +
+                              " (effective " +
+                              fmt(damping_ratio(last->watched.gamma_eff, last->watched.lower)) + ")");
     }
     const ImVec4 amber = gui_amber();
     auto count_row = [&](const char* label, int now, long long total, bool warn_if_any) {

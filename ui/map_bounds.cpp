@@ -27,7 +27,10 @@ double solve_lower(const MapBoundConstants& k, const Params& p, MapParam var) {
     case MapParam::kappa:
       return half * half / p.m;
     case MapParam::dt:
-      return kNaN;
+    case MapParam::kd:
+    case MapParam::rayleigh_mass:
+    case MapParam::rayleigh_stiffness:
+      return kNaN;  // eq. 5 is the nodal lower bound: the other damping does not enter it
   }
   return kNaN;
 }
@@ -46,6 +49,10 @@ double solve_exact(const MapBoundConstants& k, const Params& p, MapParam var) {
       return (4 * m - 2 * r * g * dt) / (L * dt * dt);
     case MapParam::dt:
       return (-r * g + std::sqrt(r * g * r * g + 4 * L * kap * m)) / (L * kap);
+    case MapParam::kd:
+    case MapParam::rayleigh_mass:
+    case MapParam::rayleigh_stiffness:
+      return kNaN;  // not drawn with that damping (map_bound_lines)
   }
   return kNaN;
 }
@@ -118,16 +125,21 @@ std::vector<MapLine> map_bound_lines(const MapBoundConstants& k, const Params& b
         MapLineKind::paper, [&](const Params& p, MapParam v) { return solve_lower(k, p, v); }, base,
         view, x_edges, y_edges, samples));
   }
-  if (std::isfinite(k.lambda_unit) && k.lambda_unit > 0 && std::isfinite(k.rate_ratio) &&
-      base.integrator == Integrator::semi_implicit_euler)
+  // The exact and safe lines below are the nodal damping's (SPEC 7, 9): with dashpots or
+  // Rayleigh damping (SPEC 10) in the window they are not the limits, so they are not drawn.
+  const bool nodal_only = !map_runs_plain(base, view);
+  if (nodal_only && std::isfinite(k.lambda_unit) && k.lambda_unit > 0 &&
+      std::isfinite(k.rate_ratio) && base.integrator == Integrator::semi_implicit_euler)
     lines.push_back(boundary(
         "exact linear limit (SPEC 7)", MapLineKind::exact_linear,
         [&](const Params& p, MapParam v) { return solve_exact(k, p, v); }, base, view, x_edges,
         y_edges, samples));
-  if (!k.safe.row_sum.empty() && base.integrator == Integrator::semi_implicit_euler)
+  if (nodal_only && !k.safe.row_sum.empty() &&
+      base.integrator == Integrator::semi_implicit_euler)
     lines.push_back(boundary(
         "safe bound, every node (SPEC 9)", MapLineKind::safe,
         [&](const Params& p, MapParam v) {
+          if (other_damping_axis(v)) return kNaN;
           const SafeAxis axis = v == MapParam::m       ? SafeAxis::m
                                 : v == MapParam::kappa ? SafeAxis::kappa
                                 : v == MapParam::gamma ? SafeAxis::gamma

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <string>
 
+#include "core/damping_ratio.hpp"
 #include "core/scene.hpp"
 #include "ui/gui_widgets.hpp"
 #include "ui/mesh_pick.hpp"
@@ -194,6 +195,9 @@ void MeshView::node_tooltip(const Tuner& tuner, const Viewport& vp) const {
               i < ws.upper_bound.size() ? fmt(ws.upper_bound[i]).c_str() : "-");
   ImGui::Text("gamma %s, effective %s", fmt(s.model().gamma[i]).c_str(),
               i < ws.gamma_eff.size() ? fmt(ws.gamma_eff[i]).c_str() : "-");
+  const double lo = s.model().lower_bound[i];  // SPEC 10: zeta_i = gamma_i / 2 sqrt(m_i kappa_i)
+  ImGui::Text("zeta %s, effective %s", fmt(damping_ratio(s.model().gamma[i], lo)).c_str(),
+              i < ws.gamma_eff.size() ? fmt(damping_ratio(ws.gamma_eff[i], lo)).c_str() : "-");
   if (i < ws.safe_bound.size())  // SPEC 9
     ImGui::Text("safe bound %s%s", fmt(ws.safe_bound[i]).c_str(),
                 s.model().lower_bound[i] > ws.safe_bound[i] ? " < lower: not guaranteed" : "");

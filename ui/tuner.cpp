@@ -8,6 +8,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "core/bounds.hpp"
 #include "core/damping_ratio.hpp"
 #include "core/io/report.hpp"
 #include "core/io/scene_file.hpp"
@@ -36,6 +37,9 @@ std::string params_label(const Params& p) {
   if (p.policy == DampingPolicy::upper) s += " x" + fmt(p.factor);
   if (p.integrator != Integrator::semi_implicit_euler)
     s += ", " + std::string(to_string(p.integrator));
+  if (p.kd != 0) s += ", kd " + fmt(p.kd);
+  if (p.rayleigh_mass != 0) s += ", alpha " + fmt(p.rayleigh_mass);
+  if (p.rayleigh_stiffness != 0) s += ", beta " + fmt(p.rayleigh_stiffness);
   return s;
 }
 
@@ -57,9 +61,78 @@ LowerBoundCheck check_lower_bound(const Model& model) {
   return c;
 }
 
-Tuner::Tuner(SceneSpec scene)
-    : session_(std::make_unique<Session>(as_tuned(std::move(scene)))) {
+namespace {
+
+/// True when gamma_scale_i / (lower bound at m = kappa = 1)_i is the same at every free node
+/// with a bound: gamma = zeta * 2 sqrt(m kappa) then gives every node the same ratio, without
+/// resolving the scene (a plain mesh, or one resolved already, e.g. by `gui --zeta`).
+bool uniform_ratio_per_gamma(const ModelSpec& spec) {
+  Params unit;
+  unit.m = unit.kappa = unit.gamma = 1;
+  const Model m = compile_model(spec, unit);
+  double first = -1;
+  for (size_t i = 0; i < m.lower_bound.size(); ++i) {
+    if (m.fixed[i] || !(m.lower_bound[i] > 0)) continue;
+    const double r = m.gamma[i] / m.lower_bound[i];
+    if (first < 0) first = r;
+    if (std::abs(r - first) > 1e-12 * first) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+std::string zeta_text(const Model& model) {
+  const DampingRatioRange r = damping_ratio_range(model);
+  if (std::isnan(r.min)) return "-";
+  if (std::abs(r.max - r.min) <= 1e-12 * r.max) return fmt(r.min);
+  return fmt(r.min) + " .. " + fmt(r.max) + " over the nodes";
+}
+
+Tuner::Tuner(SceneSpec scene) { new_session(std::move(scene)); }
+
+void Tuner::new_session(SceneSpec scene) {
+  const bool given_zeta = scene.params.zeta.has_value();
+  session_ = std::make_unique<Session>(as_tuned(std::move(scene)));
   session_->set_threads(0);  // the same bits on any count; big meshes step faster
+  zeta_resolved_ = given_zeta || uniform_ratio_per_gamma(session_->scene().model);
+  zeta_mode_ = given_zeta;
+}
+
+double Tuner::zeta() const {
+  return params().gamma / lower_bound(params().m, params().kappa);
+}
+
+void Tuner::set_zeta_mode(bool on) {
+  if (on && !zeta_resolved_) {
+    // Resolve the scene's damping scales for the current ratio; the run starts over on the
+    // resolved model (a Session's spec does not change under a run).
+    const int watched = session_->watched();
+    SceneSpec scene = session_->scene();
+    scene.params = params();
+    scene.params.zeta = zeta();
+    scene.rules = session_->rules();
+    for (RunSpec& r : scene.runs) r.params.zeta = r.params.gamma / lower_bound(r.params.m, r.params.kappa);
+    new_session(std::move(scene));
+    watch(watched);
+    ++scene_version_;
+    playing_ = false;
+    on_new_trace();
+    notice_ = "zeta mode: each node's gamma_i resolved from zeta (gamma_i = zeta 2 sqrt(m_i "
+              "kappa_i)); the run restarted from the scene's start";
+  }
+  zeta_mode_ = on;
+}
+
+bool Tuner::set_zeta(double zeta, std::string* error) {
+  if (const auto why = number_problem(zeta, true)) {
+    if (error != nullptr) *error = "zeta " + *why;
+    return false;
+  }
+  set_zeta_mode(true);
+  Params p = params();
+  p.gamma = gamma_of_zeta(zeta, p);
+  return set_params(p, error);
 }
 
 bool Tuner::open_scene(const std::string& path, std::string* error) {
@@ -73,23 +146,28 @@ bool Tuner::open_scene(const std::string& path, std::string* error) {
 }
 
 void Tuner::set_scene(SceneSpec scene) {
-  session_ = std::make_unique<Session>(as_tuned(std::move(scene)));
-  session_->set_threads(0);
+  new_session(std::move(scene));
   ++scene_version_;
   playing_ = false;
   notice_.clear();
   on_new_trace();
 }
 
-bool Tuner::set_params(const Params& params, std::string* error) {
+bool Tuner::set_params(const Params& given, std::string* error) {
+  Params params = given;
+  const Params& now = session_->params();
+  // Zeta mode holds the ratio when m or kappa move, unless gamma itself was set.
+  if (zeta_mode_ && params.gamma == now.gamma && (params.m != now.m || params.kappa != now.kappa))
+    params.gamma = gamma_of_zeta(zeta(), params);
   if (const auto why = validate(params)) {
     if (error != nullptr) *error = *why;
     return false;
   }
-  const Params& now = session_->params();
   const bool same = now.m == params.m && now.kappa == params.kappa && now.gamma == params.gamma &&
                     now.dt == params.dt && now.policy == params.policy &&
-                    now.factor == params.factor && now.integrator == params.integrator;
+                    now.factor == params.factor && now.integrator == params.integrator &&
+                    now.kd == params.kd && now.rayleigh_mass == params.rayleigh_mass &&
+                    now.rayleigh_stiffness == params.rayleigh_stiffness;
   if (!same && session_->state().iteration > 0) replayable_ = false;
   session_->set_params(params);
   return true;

@@ -65,6 +65,10 @@ struct LowerBoundCheck {
 };
 LowerBoundCheck check_lower_bound(const Model& model);
 
+/// The nodal damping ratio of a model's free nodes in words: "0.5" when every node has the
+/// same zeta_i = gamma_i / 2 sqrt(m_i kappa_i), else "0.25 .. 1.2 over the nodes" ("-": none).
+std::string zeta_text(const Model& model);
+
 /// Buckets of the plot decimation (ui/tuner_trace.hpp): up to twice as many samples.
 constexpr size_t kPlotBuckets = 512;
 
@@ -87,6 +91,24 @@ class Tuner {
   /// New parameters, effective at the next step (state, trace and cuts are kept). Invalid
   /// parameters are refused with *error set and nothing changed.
   bool set_params(const Params& params, std::string* error = nullptr);
+  /// The damping given as a ratio (SPEC 10) instead of gamma: the parameters panel's
+  /// gamma|zeta toggle. In zeta mode each node's gamma_i = zeta * 2 sqrt(m_i kappa_i) *
+  /// gamma_scale_i (core resolve_zeta(), as `--zeta` and a scene's `zeta` give it), and a
+  /// change of m or kappa keeps zeta (gamma follows); a gamma set through set_params() (Suggest's
+  /// apply buttons) moves zeta with it. Turning it on for a scene whose nodes' lower bounds
+  /// differ from 2 sqrt(m kappa) (regions, meshes) resolves the scene's damping scales once: the
+  /// run restarts from the scene's start with the current parameters (the notice says so).
+  bool zeta_mode() const { return zeta_mode_; }
+  void set_zeta_mode(bool on);
+  /// zeta = gamma / 2 sqrt(m kappa): every node's ratio over its gamma_scale_i once the scene
+  /// is resolved (zeta_resolved()); in gamma mode, the reference node's ratio.
+  double zeta() const;
+  /// True when gamma = zeta * 2 sqrt(m kappa) gives every free node zeta_i = zeta *
+  /// gamma_scale_i: a scene given with zeta, one whose nodes all have the plain lower bound,
+  /// or one zeta mode has resolved.
+  bool zeta_resolved() const { return zeta_resolved_; }
+  /// Sets zeta (zeta mode on): gamma = zeta * 2 sqrt(m kappa), effective at the next step.
+  bool set_zeta(double zeta, std::string* error = nullptr);
   /// Iteration limit of the protocol (where the settled rule decides), >= 1.
   void set_max_iterations(int n);
 
@@ -176,6 +198,8 @@ class Tuner {
 
  private:
   void on_new_trace();
+  /// Makes a new session for `scene` (tuned: zeta resolved, the settled rule).
+  void new_session(SceneSpec scene);
 
   std::unique_ptr<Session> session_;
   PlaybackOptions playback_;
@@ -194,6 +218,8 @@ class Tuner {
   long long total_steps_ = 0;
   double step_seconds_ = 0;
   TunerCriteria criteria_;
+  bool zeta_mode_ = false;
+  bool zeta_resolved_ = false;
 };
 
 }  // namespace dampbound::ui

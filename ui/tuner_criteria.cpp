@@ -1,10 +1,12 @@
 #include "ui/tuner_criteria.hpp"
 #include "core/analysis/criteria_safe.hpp"
+#include "core/analysis/damping_limits.hpp"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <exception>
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -13,7 +15,16 @@ namespace dampbound::ui {
 namespace {
 bool same_key(const Params& a, const Params& b) {
   return a.m == b.m && a.kappa == b.kappa && a.gamma == b.gamma && a.dt == b.dt &&
-         a.integrator == b.integrator;
+         a.integrator == b.integrator && a.kd == b.kd && a.rayleigh_mass == b.rayleigh_mass &&
+         a.rayleigh_stiffness == b.rayleigh_stiffness;
+}
+
+/// The most free nodes for which the tuner computes the general damping matrix's limits.
+constexpr int kGeneralLimitsNodes = 2000;
+
+/// Dashpots or Rayleigh damping (SPEC 10) besides the nodal damping.
+bool other_damping(const Params& p) {
+  return p.kd != 0 || p.rayleigh_mass != 0 || p.rayleigh_stiffness != 0;
 }
 
 /// gamma_i / m_i equal at every free node: the exact radius is a cheap per-mode formula.
@@ -42,7 +53,16 @@ std::optional<ExactStability> analyse(const Model& model, const std::vector<Vec3
     ExactOptions o;
     o.with_radius = uniform_rate(model);  // Arnoldi on a non-uniform mesh can take seconds
     o.max_factor_flops = factor_budget;  // a big 3-D mesh: what Lanczos proves, not hours
-    return exact_stability(model, x, params, o);
+    if (other_damping(params)) {
+      // SPEC 10's limits (core's exact_stability takes them from the general damping matrix)
+      // are known for the paper's step only, and their bisection takes one certified
+      // eigenvalue per step: seconds at the paper plane's 1296 nodes, minutes at
+      // tissue-block's 6237 (`bounds` computes it there).
+      if (params.integrator != Integrator::semi_implicit_euler) return std::nullopt;
+      if (free_node_count(model) > kGeneralLimitsNodes) return std::nullopt;
+    }
+    ExactStability e = exact_stability(model, x, params, o);
+    return e;
   } catch (const std::exception&) {
     return std::nullopt;
   }
@@ -139,7 +159,9 @@ const ExactStability* TunerCriteria::exact(const Session& s, std::uint64_t topol
   // once per change); larger ones, every analysis that follows the state and every one at
   // the equilibrium (Newton's method first), on the worker thread.
   const bool following = at_ == Linearisation::state;
-  const bool on_worker = at_ != Linearisation::rest || free_node_count(s.model()) > worker_nodes_;
+  // SPEC 10's general limits bisect an eigenvalue: seconds on the paper plane.
+  const bool on_worker = at_ != Linearisation::rest || free_node_count(s.model()) > worker_nodes_ ||
+                         other_damping(s.params());
   if (!on_worker) wait();  // a result of another mode is of no use at rest
   const double now = seconds_now();
   const bool moved = following && state != state_;
@@ -236,11 +258,6 @@ std::optional<double> TunerCriteria::exact_gamma_max(const Session& s, std::uint
   return e->gamma_hi;
 }
 
-TunerSuggest::~TunerSuggest() {
-  wait();
-  for (auto& f : dropped_) f.wait();
-}
-
 void TunerSuggest::start(const Session& session) {
   launch(session.shared_scene(), session.shared_model(), session.state().iteration,
          session.params(), session.rules(), session.springs_cut());
@@ -254,16 +271,8 @@ void TunerSuggest::start(const SceneSpec& scene, const Params& params, const Sto
 void TunerSuggest::launch(std::shared_ptr<const SceneSpec> shared,
                           std::shared_ptr<const Model> model, int iteration, const Params& params,
                           const StopRules& rules, int cut) {
-  if (busy()) return;
-  error_.clear();
-  cancelled_ = false;
-  started_ = std::chrono::steady_clock::now();
-  cancel_ = std::make_shared<std::atomic<bool>>(false);
-  progress_ = std::make_shared<Progress>();
-  pending_ = std::async(std::launch::async, [shared = std::move(shared), model = std::move(model),
-                                             iteration, params, rules, cut,
-                                             budget = factor_budget_, cancel = cancel_,
-                                             progress = progress_] {
+  job_.launch([shared = std::move(shared), model = std::move(model), iteration, params, rules,
+               cut, budget = factor_budget_](JobControl& control) {
     // With a model: the scene as the run has it (Session::current_scene), built here.
     std::optional<SceneSpec> as_run;
     if (model) as_run = scene_as_run(*shared, *model, iteration);
@@ -275,11 +284,9 @@ void TunerSuggest::launch(std::shared_ptr<const SceneSpec> shared,
     SuggestOptions options;
     options.max_factor_flops = budget;  // over it: what is proved without a factorisation
     std::string part;
-    options.progress = [&part, cancel, progress](int done, int total, const std::string& next) {
-      const std::lock_guard<std::mutex> lock(progress->mutex);
-      progress->text = part + ", stage " + std::to_string(done + 1) + " of " +
-                       std::to_string(total) + ": " + next;
-      return !*cancel;
+    options.progress = [&part, &control](int done, int total, const std::string& next) {
+      return control.report(part + ", stage " + std::to_string(done + 1) + " of " +
+                            std::to_string(total) + ": " + next);
     };
     part = "damping range";
     s.damping = suggest_damping(scene, params, rules, options);
@@ -287,44 +294,6 @@ void TunerSuggest::launch(std::shared_ptr<const SceneSpec> shared,
     s.step = suggest_step(scene, params, rules, options);
     return s;
   });
-}
-
-void TunerSuggest::cancel() {
-  if (!busy()) return;
-  *cancel_ = true;
-  dropped_.push_back(std::move(pending_));
-  cancelled_ = true;
-}
-
-std::string TunerSuggest::progress() const {
-  if (!progress_) return {};
-  const std::lock_guard<std::mutex> lock(progress_->mutex);
-  return progress_->text;
-}
-
-double TunerSuggest::seconds() const {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
-}
-
-bool TunerSuggest::poll() {
-  // Cancelled computations that have ended are joined here, never by a frame waiting.
-  for (size_t i = dropped_.size(); i-- > 0;)
-    if (dropped_[i].wait_for(std::chrono::seconds(0)) == std::future_status::ready)
-      dropped_.erase(dropped_.begin() + static_cast<std::ptrdiff_t>(i));
-  if (!busy()) return false;
-  if (pending_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return false;
-  try {
-    result_ = pending_.get();
-  } catch (const std::exception& e) {
-    error_ = e.what();
-    result_.reset();
-  }
-  return true;
-}
-
-void TunerSuggest::wait() {
-  if (busy()) pending_.wait();
-  poll();
 }
 
 Params with_best_gamma(const Params& current, const Suggestion& s) {

@@ -16,6 +16,7 @@
 #include "core/analysis/equilibrium.hpp"
 #include "core/analysis/linear_stability_exact.hpp"
 #include "core/session.hpp"
+#include "ui/background_job.hpp"
 #include "core/analysis/suggest.hpp"
 
 namespace dampbound::ui {
@@ -168,7 +169,6 @@ struct Suggestion {
 /// Runs suggest_damping and suggest_step on a worker thread (each verified through Sessions).
 class TunerSuggest {
  public:
-  ~TunerSuggest();
   /// Starts a computation for `scene` and these parameters (`cut`: springs the scene has
   /// lost to cuts, for the record); ignored while one is running.
   void start(const SceneSpec& scene, const Params& params, const StopRules& rules, int cut = 0);
@@ -177,47 +177,38 @@ class TunerSuggest {
   /// session's shared scene and model: no copy of the mesh on the frame.
   void start(const Session& session);
   /// True while a computation runs.
-  bool busy() const { return pending_.valid(); }
+  bool busy() const { return job_.busy(); }
   /// Collects a finished computation (call once per frame); true when a result arrived.
-  bool poll();
+  bool poll() { return job_.poll(); }
   /// Waits for a running computation (tests).
-  void wait();
+  void wait() { job_.wait(); }
   /// The Cancel button: the running computation's result is dropped and its worker stops
   /// before its next stage (SuggestOptions::progress: the exact analysis, a trial run or a
   /// verifying run); it is joined later, and closing the window does not wait for it.
-  void cancel();
+  void cancel() { job_.cancel(); }
   /// Seconds since the running computation started.
-  double seconds() const;
+  double seconds() const { return job_.seconds(); }
   /// Where the running computation is: "damping range, stage 2 of 4: verifying the lower
   /// end of the range" (empty before its first stage).
-  std::string progress() const;
+  std::string progress() const { return job_.progress(); }
   /// True when the last computation was cancelled (nothing new to show).
-  bool cancelled() const { return cancelled_; }
+  bool cancelled() const { return job_.cancelled(); }
   /// The last finished suggestion.
-  const std::optional<Suggestion>& result() const { return result_; }
+  const std::optional<Suggestion>& result() const { return job_.result(); }
   /// One line when the computation threw.
-  const std::string& error() const { return error_; }
+  const std::string& error() const { return job_.error(); }
   /// The factorisation budget of the next computation (SuggestOptions::max_factor_flops,
   /// default kDefaultFactorBudget); over it the suggestions are what is proved stable
   /// without a factorisation (DampingSuggestion::proved_only).
   void set_factor_budget(double flops) { factor_budget_ = flops; }
+  /// The worker (the tab's Cancel, progress and error line read it).
+  BackgroundJob<Suggestion>& job() { return job_; }
 
  private:
   void launch(std::shared_ptr<const SceneSpec> scene, std::shared_ptr<const Model> model,
               int iteration, const Params& params, const StopRules& rules, int cut);
 
-  std::future<Suggestion> pending_;
-  std::shared_ptr<std::atomic<bool>> cancel_;  ///< of the running computation
-  struct Progress {
-    mutable std::mutex mutex;
-    std::string text;
-  };
-  std::shared_ptr<Progress> progress_;  ///< written by the worker, read by the frame
-  std::vector<std::future<Suggestion>> dropped_;  ///< cancelled, not yet joined
-  std::chrono::steady_clock::time_point started_{};
-  bool cancelled_ = false;
-  std::optional<Suggestion> result_;
-  std::string error_;
+  BackgroundJob<Suggestion> job_;
   double factor_budget_ = kDefaultFactorBudget;
 };
 

@@ -21,7 +21,7 @@ bool same_view(const MapView& a, const MapView& b) {
 
 /// The parameters that are not on an axis are equal.
 bool same_off_axis(const Params& a, const Params& b, const MapView& v) {
-  for (MapParam p : {MapParam::m, MapParam::kappa, MapParam::gamma, MapParam::dt})
+  for (MapParam p : kMapParams)
     if (p != v.x && p != v.y && get_param(a, p) != get_param(b, p)) return false;
   return a.policy == b.policy && a.factor == b.factor && a.integrator == b.integrator;
 }
@@ -146,10 +146,7 @@ void TunerMap::start(std::shared_ptr<const SceneSpec> scene, const Params& centr
   view_ = view;
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    unsupported_ = batch_kernel_unsupported(*scene, centre).value_or("");
-    if (!(get_param(centre, view.x) > 0) || !(get_param(centre, view.y) > 0))
-      unsupported_ = std::string("the map's axes are logarithmic: ") + to_string(view.x) +
-                     " and " + to_string(view.y) + " must be > 0";
+    unsupported_ = map_unsupported(*scene, centre, view);
     if (!unsupported_.empty()) {
       result_.reset();
       return;
@@ -182,10 +179,14 @@ void TunerMap::start(std::shared_ptr<const SceneSpec> scene, const Params& centr
         r->rule = rules.rule;
         r->x_edges = map_log_edges(get_param(centre, view.x), view.decades, n);
         r->y_edges = map_log_edges(get_param(centre, view.y), view.decades, n);
-        r->cells = run_map_trials(s, centre, rules,
-                                  map_trials(centre, view.x, map_cell_centres(r->x_edges), view.y,
-                                             map_cell_centres(r->y_edges)),
-                                  &job->cancel);
+        const std::vector<double> xs = map_cell_centres(r->x_edges),
+                                  ys = map_cell_centres(r->y_edges);
+        r->plain = map_runs_plain(centre, view);
+        r->cells = r->plain ? run_map_cells(s, map_cell_params(centre, view.x, xs, view.y, ys),
+                                            rules, &job->cancel)
+                            : run_map_trials(s, centre, rules,
+                                             map_trials(centre, view.x, xs, view.y, ys),
+                                             &job->cancel);
         if (job->cancel) break;
         r->lines = map_bound_lines(*k, centre, view, r->x_edges, r->y_edges);
         r->pass = ++pass;

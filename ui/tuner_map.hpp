@@ -30,6 +30,9 @@ struct MapResult {
   int pass = 0;                ///< 1 = coarsest
   bool finest = false;         ///< the last pass of this window
   double seconds = 0;          ///< wall time of this pass
+  /// Each cell ran step() through Session (dashpot or Rayleigh damping, SPEC 10, which the
+  /// batched kernel does not apply), not the batched kernel.
+  bool plain = false;
 };
 
 /// The map as a core MapPanel (what ui/map_plot.hpp draws): each cell its trial's outcome,

@@ -328,7 +328,12 @@ void with_spec10_damping(const Model& model, const std::vector<Vec3>& x, const P
   e.dt_max = g.dt_max;
   e.stable = g.index < 4;
   e.spectral_radius = kNaN;
+  // The general limits are one number each (no certified bracket of inner ends).
   e.inner = ExactStability::Inner{};
+  e.inner.gamma_lo = e.gamma_lo;
+  e.inner.gamma_hi = e.gamma_hi;
+  e.inner.dt_max = e.dt_max;
+  e.inner.stable = e.stable;
 }
 
 ExactStability exact_stability_within_budget(const ExactInputs& in, std::optional<double> floor,

@@ -20,6 +20,7 @@
 #include "ui/egl_host.hpp"
 #include "ui/gui_app.hpp"
 #include "ui/gui_export.hpp"
+#include "ui/gui_items.hpp"
 #include "ui/image.hpp"
 #include "ui/mesh_style.hpp"
 #include "ui/settings.hpp"
@@ -468,6 +469,49 @@ TEST(GuiRender, MouseWatchesDragsAndCutsInTheMeshView) {
   EXPECT_GT(app.tuner().session().state().x[drag_node].y(), y_before + 0.5);  // moved up
   EXPECT_GT(app.tuner().session().springs_cut(), 10);
   EXPECT_EQ(app.tuner().session().state().iteration, 0);  // paused all along
+  app.release_gl();
+}
+
+// The Worst nodes tab lists the nodes that limit dt; a click on a row watches that node, as a
+// click on it in the mesh view does (the plots and the status follow it).
+TEST(GuiRender, AClickOnAWorstNodeRowWatchesIt) {
+  EglHost host(headless());
+  GuiOptions o = bare_options();
+  o.scene = load_scene(DAMPBOUND_SOURCE_DIR "/scenes/stiff-region.toml");
+  o.play = false;
+  o.scripted = false;
+  GuiApp app(o);
+  app.select_tab("Worst nodes");
+  const int watched_before = app.tuner().session().watched();
+  item_log().on = true;
+  int target = -1, phase = 0;
+  ImVec2 at;
+  const Image img = host.render_frames(
+      1600, 1000,
+      [&](FrameInfo& info) {
+        app.frame(info);
+        item_log().end_frame();
+        if (info.layout_pass) return;
+        if (target < 0) {  // the third row of the list, by its label "#node"
+          int row = 0;
+          for (const ItemRecord& r : item_log().last())
+            if (r.kind == ItemKind::selectable && r.window.rfind("Runs", 0) == 0 &&
+                r.label[0] == '#' &&
+                ++row == 3) {
+              target = std::stoi(r.label.substr(1));
+              at = ImVec2(0.5f * (r.min.x + r.max.x), 0.5f * (r.min.y + r.max.y));
+            }
+          mouse(at, false);
+          return;
+        }
+        mouse(at, ++phase == 1);  // hovered, then pressed for a frame, then released
+      },
+      10);
+  item_log().on = false;
+  write_png_atomic(img, out_path("gui_worst.png"));
+  ASSERT_GE(target, 0) << "no row drawn";
+  EXPECT_NE(target, watched_before);
+  EXPECT_EQ(app.tuner().session().watched(), target);
   app.release_gl();
 }
 

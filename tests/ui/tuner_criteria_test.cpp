@@ -8,6 +8,7 @@
 #include <cmath>
 #include <thread>
 
+#include "core/analysis/damping_limits.hpp"
 #include "core/bounds.hpp"
 #include "core/scene.hpp"
 #include "tests/test_scenes.hpp"
@@ -378,6 +379,43 @@ TEST(TunerSuggest, IsForTheMeshAsCut) {
   const RunResult& a = cut.result()->damping.runs.front().result;
   const RunResult& b = whole.result()->damping.runs.front().result;
   EXPECT_TRUE(a.iterations != b.iterations || a.max_displacement != b.max_displacement);
+}
+
+}  // namespace
+}  // namespace dampbound::ui
+
+namespace dampbound::ui {
+namespace {
+
+// SPEC 10 in the tuner: the exact limit follows kd, alpha and beta as they are set (the
+// limits of the general damping matrix, on the worker), and goes back when they are off.
+TEST(TunerCriteriaOtherDamping, TheExactLimitFollowsDashpotsAndRayleighDamping) {
+  SceneSpec scene = paper_plane_scene(8);
+  Tuner t(scene);
+  t.criteria_state().set_slow_threshold(1e9);  // no throttling: each change is analysed
+  auto exact_now = [&t] {
+    t.exact_gamma_max();
+    t.criteria_state().wait();
+    return t.exact_gamma_max();
+  };
+  const std::optional<double> nodal = exact_now();
+  ASSERT_TRUE(nodal.has_value());
+  for (const auto& set : {+[](Params& p) { p.kd = 0.002; },
+                          +[](Params& p) { p.rayleigh_mass = 0.5; },
+                          +[](Params& p) { p.rayleigh_stiffness = 0.01; }}) {
+    Params p = t.params();
+    set(p);
+    ASSERT_TRUE(t.set_params(p));
+    const std::optional<double> got = exact_now();
+    const Model& m = t.session().model();
+    const GeneralLimits want = general_limits(m, m.rest, p);
+    ASSERT_TRUE(got.has_value());
+    EXPECT_EQ(*got, want.gamma_max);
+    EXPECT_LT(*got, *nodal);  // more damping elsewhere leaves less room for gamma
+    p.kd = p.rayleigh_mass = p.rayleigh_stiffness = 0;
+    ASSERT_TRUE(t.set_params(p));
+    EXPECT_EQ(exact_now(), nodal);
+  }
 }
 
 }  // namespace

@@ -51,6 +51,67 @@ TEST(Tuner, AScenesZetaIsResolvedWhenTheTunerOpensIt) {
   EXPECT_DOUBLE_EQ(fresh.params().gamma, want);
 }
 
+/// Every free node's zeta_i = gamma_i / 2 sqrt(m_i kappa_i) equals `zeta` (nodes with a bound).
+void expect_every_node_at_zeta(const Model& m, double zeta) {
+  int nodes = 0;
+  for (int i = 0; i < m.node_count(); ++i) {
+    const auto k = static_cast<size_t>(i);
+    if (m.fixed[k] || !(m.lower_bound[k] > 0)) continue;
+    ++nodes;
+    ASSERT_NEAR(m.gamma[k] / m.lower_bound[k], zeta, 1e-12 * zeta) << "node " << i;
+  }
+  EXPECT_GT(nodes, 0);
+}
+
+// SPEC 10 in the tuner: in zeta mode the slider sets the ratio and each node's gamma_i is
+// resolved from it, on a scene whose nodes have their own lower bounds too (stiff-region:
+// 4x heavier, 10x stiffer square), and m or kappa moved keep the ratio.
+TEST(Tuner, ZetaModeResolvesEachNodesGammaFromTheRatio) {
+  Tuner t(load_scene(DAMPBOUND_SOURCE_DIR "/scenes/stiff-region.toml"));
+  EXPECT_FALSE(t.zeta_mode());
+  EXPECT_FALSE(t.zeta_resolved());  // gamma_scale 1: the square's nodes have other ratios
+  t.step(3);
+  std::string error;
+  ASSERT_TRUE(t.set_zeta(0.7, &error)) << error;
+  EXPECT_TRUE(t.zeta_mode());
+  EXPECT_TRUE(t.zeta_resolved());
+  EXPECT_EQ(t.session().state().iteration, 0);  // resolved: the run restarted, and says so
+  EXPECT_NE(t.notice().find("restarted"), std::string::npos);
+  EXPECT_DOUBLE_EQ(t.zeta(), 0.7);
+  expect_every_node_at_zeta(t.session().model(), 0.7);
+  EXPECT_EQ(zeta_text(t.session().model()), "0.7");
+  Params p = t.params();
+  p.m *= 3;
+  p.kappa *= 0.5;
+  ASSERT_TRUE(t.set_params(p, &error)) << error;
+  EXPECT_NEAR(t.zeta(), 0.7, 1e-15);
+  expect_every_node_at_zeta(t.session().model(), 0.7);
+  // A gamma set as such (Suggest's apply) moves zeta with it.
+  p = t.params();
+  p.gamma *= 2;
+  ASSERT_TRUE(t.set_params(p, &error)) << error;
+  EXPECT_NEAR(t.zeta(), 1.4, 1e-14);
+  expect_every_node_at_zeta(t.session().model(), 1.4);
+  EXPECT_FALSE(t.set_zeta(-1, &error));
+  EXPECT_NE(error.find("zeta"), std::string::npos);
+}
+
+// On a scene whose nodes share the lower bound 2 sqrt(m kappa) zeta mode needs no restart.
+TEST(Tuner, ZetaModeOnAPlainMeshKeepsTheRun) {
+  Tuner t(small_plane());
+  EXPECT_TRUE(t.zeta_resolved());
+  t.step(3);
+  ASSERT_TRUE(t.set_zeta(0.25));
+  EXPECT_EQ(t.session().state().iteration, 3);
+  expect_every_node_at_zeta(t.session().model(), 0.25);
+  t.set_zeta_mode(false);
+  Params p = t.params();
+  p.m *= 4;  // gamma mode: gamma held, zeta halves
+  ASSERT_TRUE(t.set_params(p));
+  expect_every_node_at_zeta(t.session().model(), 0.125);
+  EXPECT_EQ(zeta_text(t.session().model()), "0.125");
+}
+
 TEST(Tuner, SaysTheDisplacementOfTheStateAsItIsNow) {
   // At the perturbed start (no step yet) the centre node sits 5 cm out: the status said
   // "max |x - X| 0 cm" there, from an empty trace.

@@ -1,0 +1,47 @@
+#pragma once
+// The Suggest tab's substeps per frame (core/analysis/substeps.hpp) on a worker thread: for a
+// frame time F the fewest n with dt = F/n stable by the exact limit and the n the safe bound
+// (SPEC 9) guarantees, each verified by a run of the mesh as it is now, with progress and
+// Cancel as Suggest has.
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "core/analysis/substeps.hpp"
+#include "core/session.hpp"
+#include "ui/background_job.hpp"
+
+namespace dampbound::ui {
+
+/// The substeps of one frame time, and for which parameters and mesh.
+struct SubstepsResult {
+  Params params;                ///< the parameters asked for (dt aside)
+  SubstepSuggestion substeps;   ///< both counts and their verifying runs
+  int springs_cut = 0;          ///< springs cut away before (by hand or by the scene)
+};
+
+/// The default frame time: 1/60 s.
+inline constexpr double kDefaultFrameDt = 1.0 / 60.0;
+
+class TunerSubsteps {
+ public:
+  /// Starts the computation for the mesh the session has now (its cuts count), its
+  /// parameters and rules, and the frame time `frame_dt` (s, > 0); ignored while one runs.
+  void start(const Session& session, double frame_dt);
+  /// The same for a scene as given.
+  void start(const SceneSpec& scene, const Params& params, const StopRules& rules,
+             double frame_dt);
+  BackgroundJob<SubstepsResult>& job() { return job_; }
+  const BackgroundJob<SubstepsResult>& job() const { return job_; }
+
+ private:
+  void launch(std::shared_ptr<const SceneSpec> scene, std::shared_ptr<const Model> model,
+              int iteration, const Params& params, const StopRules& rules, double frame_dt,
+              int cut);
+  BackgroundJob<SubstepsResult> job_;
+};
+
+/// `current` with dt = F/n of one count (unchanged when the count has none).
+Params with_substeps(const Params& current, const SubstepCount& count);
+
+}  // namespace dampbound::ui
