@@ -94,6 +94,7 @@ std::optional<Linearisation> parse_linearisation(const std::string& text) {
 
 TunerCriteria::~TunerCriteria() {
   wait();
+  for (auto& job : retired_) job.wait();
 }
 
 /// The static equilibrium's positions (empty where there is none: `f` says why) and Newton's
@@ -138,6 +139,12 @@ void TunerCriteria::wait() {
 }
 
 void TunerCriteria::collect() {
+  retired_.erase(std::remove_if(retired_.begin(), retired_.end(),
+                                [](const std::future<Finished>& job) {
+                                  return job.wait_for(std::chrono::seconds(0)) ==
+                                         std::future_status::ready;
+                                }),
+                 retired_.end());
   if (!job_.valid() || job_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return;
   Finished f = job_.get();
   last_seconds_ = f.seconds;
@@ -162,7 +169,12 @@ const ExactStability* TunerCriteria::exact(const Session& s, std::uint64_t topol
   // SPEC 10's general limits bisect an eigenvalue: seconds on the paper plane.
   const bool on_worker = at_ != Linearisation::rest || free_node_count(s.model()) > worker_nodes_ ||
                          other_damping(s.params());
-  if (!on_worker) wait();  // a result of another mode is of no use at rest
+  // A worker's result is of no use once the analysis is back in the frame: retire the job
+  // (it finishes on its own) rather than wait for it (seconds with SPEC 10's damping).
+  if (!on_worker && job_.valid()) {
+    retired_.push_back(std::move(job_));
+    job_ = {};
+  }
   const double now = seconds_now();
   const bool moved = following && state != state_;
   const bool changed = !have_key_ || topology != topology_ || !same_key(key_, s.params()) || moved;

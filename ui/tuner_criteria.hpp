@@ -136,6 +136,9 @@ class TunerCriteria {
   std::optional<Equilibrium> equilibrium_;
   std::string equilibrium_failure_;
   std::future<Finished> job_;  ///< the analysis at the current state, when one runs
+  /// Jobs whose result is of no use any more (the analysis moved back into the frame while
+  /// they ran): kept until they finish, so that no frame waits for one.
+  std::vector<std::future<Finished>> retired_;
   std::uint64_t topology_ = 0, state_ = 0;
   Params key_;
   bool have_key_ = false;
