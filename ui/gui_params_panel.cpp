@@ -99,6 +99,10 @@ void GuiApp::playback_controls() {
                           ImGui::GetStyle().ItemInnerSpacing.x);
   if (item::slider_int("steps / frame", &spf, 1, 1000, "%d", ImGuiSliderFlags_Logarithmic))
     t.playback().steps_per_frame = std::max(1, std::min(spf, 10000));
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Steps per drawn frame, fewer where they would take over %.0f ms: the speed "
+                      "line says the steps per second reached",
+                      t.playback().frame_budget_seconds * 1e3);
   item::checkbox("pause at the verdict", &t.playback().pause_at_verdict);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("Pause at the verdict: the iteration limit, or a divergence");

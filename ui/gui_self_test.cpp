@@ -1,6 +1,8 @@
 #include "ui/gui_self_test.hpp"
 
 #include <algorithm>
+#include <chrono>
+#include <cstdio>
 #include <filesystem>
 #include <utility>
 
@@ -73,9 +75,23 @@ bool SelfTest::after_frame(const FrameInfo& info) {
     if (monkey_) plan_monkey_event();
     return false;
   }
-  if (scene_ >= scenes) return true;
+  if (scene_ >= scenes) {
+    set_doing("done");
+    return true;
+  }
   next_scene();
   return false;
+}
+
+void SelfTest::set_doing(std::string what) {
+  // A step that took long is named in the log, so a slow CI run says where its time went.
+  using clock = std::chrono::steady_clock;
+  const double now = std::chrono::duration<double>(clock::now().time_since_epoch()).count();
+  if (!doing_.empty() && now - doing_since_ >= kSlowStepSeconds)
+    std::fprintf(stderr, "self-test: %s took %.0f s\n", doing_.c_str(), now - doing_since_);
+  if (what.rfind("operating ", 0) != 0) std::fprintf(stderr, "self-test: %s\n", what.c_str());
+  doing_ = std::move(what);
+  doing_since_ = now;
 }
 
 void SelfTest::next_scene() {
@@ -86,7 +102,7 @@ void SelfTest::next_scene() {
   const std::string& path = monkey_ ? options_.monkey_scenes[i - visits] : options_.scenes[i];
   seen_.clear();
   idle_plans_ = 0;
-  doing_ = (monkey_ ? "monkey on " : "visiting the widgets of ") + stem(path);
+  set_doing((monkey_ ? "monkey on " : "visiting the widgets of ") + stem(path));
   app_.open_scene(path);
   if (monkey_)
     monkey_left_ = options_.monkey_events;
@@ -136,8 +152,8 @@ bool SelfTest::plan_visit() {
   seen_.insert(pick->window + "|" + pick->label);
   report_.visited.insert(std::string(to_string(pick->kind)) + " '" + pick->label + "' in " +
                          pick->window);
-  doing_ =
-      std::string("operating ") + to_string(pick->kind) + " '" + pick->label + "' on " + current;
+  set_doing(std::string("operating ") + to_string(pick->kind) + " '" + pick->label + "' on " +
+            current);
   operate(*pick);
   return true;
 }

@@ -80,7 +80,10 @@ class SelfTest {
   int monkey_left_ = 0;
   int idle_plans_ = 0;
   std::mt19937_64 rng_;
+  void set_doing(std::string what);
+  static constexpr double kSlowStepSeconds = 5;
   std::string doing_;
+  double doing_since_ = 0;
   float width_ = 0, height_ = 0;
 };
 

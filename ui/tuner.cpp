@@ -195,12 +195,16 @@ bool Tuner::can_step() const {
          session_->trace().size() < playback_.max_trace;
 }
 
-int Tuner::step(int n) {
+int Tuner::step(int n, double budget_seconds) {
   using Clock = std::chrono::steady_clock;
   const auto t0 = Clock::now();
+  const auto over_budget = [&] {
+    return budget_seconds >= 0 &&
+           std::chrono::duration<double>(Clock::now() - t0).count() >= budget_seconds;
+  };
   int taken = 0;
   const int springs_before = session_->model().spring_count();
-  for (; taken < n && can_step(); ++taken) {
+  for (; taken < n && can_step() && (taken == 0 || !over_budget()); ++taken) {
     const Outcome before = session_->result().outcome;
     session_->step_once();
     const Outcome after = session_->result().outcome;
@@ -235,7 +239,8 @@ int Tuner::step(int n) {
 
 int Tuner::advance() {
   if (!playing_) return 0;
-  return step(playback_.steps_per_frame < 1 ? 1 : playback_.steps_per_frame);
+  return step(playback_.steps_per_frame < 1 ? 1 : playback_.steps_per_frame,
+              playback_.frame_budget_seconds);
 }
 
 void Tuner::reset() {

@@ -40,6 +40,9 @@ struct PlaybackOptions {
   bool pause_at_verdict = false;  ///< pause when the verdict is final: at the iteration limit
                                   ///< (settled or not, SPEC 8) or at a divergence
   size_t max_trace = 1000000;     ///< pause when the trace holds this many steps (~100 MB)
+  /// A frame steps at most this long (seconds), fewer than steps_per_frame if need be, so a
+  /// large mesh or a large steps_per_frame never freezes the window; at least one step.
+  double frame_budget_seconds = 0.05;
 };
 
 /// The scene with the settled rule (SPEC 8): the tuner answers "does it stay stable?".
@@ -120,12 +123,14 @@ class Tuner {
   PlaybackOptions& playback() { return playback_; }
   const PlaybackOptions& playback() const { return playback_; }
 
-  /// One drawn frame: steps_per_frame steps when playing, none when paused. Returns the
-  /// number of steps taken. Playback stops when the run diverges (it cannot go on), when the
+  /// One drawn frame: steps_per_frame steps when playing (fewer where they would take longer
+  /// than frame_budget_seconds), none when paused. Returns the number of steps taken. Playback stops when the run diverges (it cannot go on), when the
   /// trace is full, and at the verdict when pause_at_verdict is set.
   int advance();
   /// Up to n steps now, playing or not (single step). Returns the steps taken.
-  int step(int n = 1);
+  int step(int n = 1) { return step(n, -1); }
+  /// As step(n), stopping after budget_seconds (at least one step; a negative budget: none).
+  int step(int n, double budget_seconds);
   /// False after divergence (reset to go on) or with a full trace.
   bool can_step() const;
 

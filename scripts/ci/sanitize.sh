@@ -39,10 +39,14 @@ export LSAN_OPTIONS="suppressions=$ROOT/scripts/ci/lsan.supp:print_suppressions=
 # (ui, and the battery, whose figure/map/gui cases may) it is off: llvmpipe's driver is
 # dlclosed before LeakSanitizer reports, so its allocations show as "<unknown module>" and no
 # suppression can name them. ASan's memory errors and UBSan stay on everywhere.
+# The slowest unit tests (scripts/ci/asan-skip.txt, each with its reason) run in the plain
+# build only.
 unset DISPLAY
-(cd "$BUILD_DIR" && ctest --output-on-failure -j "$JOBS" -L '^core$')
+SKIP=$(sed -e 's/#.*//' -e 's/[[:space:]]//g' -e '/^$/d' -e 's/\./\\./g' scripts/ci/asan-skip.txt |
+  paste -sd'|')
+(cd "$BUILD_DIR" && ctest --output-on-failure -j "$JOBS" -L '^core$' -E "^($SKIP)\$")
 (cd "$BUILD_DIR" && ASAN_OPTIONS="$ASAN_OPTIONS:detect_leaks=0" \
-   ctest --output-on-failure -j "$JOBS" -L '^ui$' -E '^ui\.glfw_host_under_xvfb$')
+   ctest --output-on-failure -j "$JOBS" -L '^ui$' -E "^(ui\\.glfw_host_under_xvfb|$SKIP)\$")
 (cd "$BUILD_DIR" && ASAN_OPTIONS="$ASAN_OPTIONS:detect_leaks=0" \
    ctest --output-on-failure -j "$JOBS" -R '^battery$')
 # The Python battery (382 cases: states, indices, flags, out arrays, parameters at every

@@ -165,6 +165,7 @@ TEST(Tuner, InvalidParametersAreRefusedAndChangeNothing) {
 TEST(Tuner, PlaybackStepsPerFrame) {
   Tuner t(small_plane());
   t.playback().steps_per_frame = 7;
+  t.playback().frame_budget_seconds = -1;  // no time limit: exactly the steps asked for
   EXPECT_EQ(t.advance(), 0);
   ASSERT_TRUE(t.set_playing(true));
   EXPECT_EQ(t.advance(), 7);
@@ -173,6 +174,21 @@ TEST(Tuner, PlaybackStepsPerFrame) {
   t.set_playing(false);
   EXPECT_EQ(t.step(3), 3);  // single steps while paused
   EXPECT_EQ(t.total_steps(), 17);
+}
+
+TEST(Tuner, AFrameStopsSteppingAtItsTimeBudget) {
+  // 10000 steps per frame would hold a frame for seconds on a large mesh: the budget ends the
+  // frame's stepping early, after at least one step. A zero budget makes that exact.
+  Tuner t(small_plane());
+  t.playback().steps_per_frame = 10000;
+  t.playback().frame_budget_seconds = 0;
+  ASSERT_TRUE(t.set_playing(true));
+  EXPECT_EQ(t.advance(), 1);
+  EXPECT_EQ(t.advance(), 1);
+  EXPECT_EQ(t.session().state().iteration, 2);
+  EXPECT_EQ(t.step(5), 5);  // single steps (the Step buttons) keep their count
+  t.playback().frame_budget_seconds = 1e9;
+  EXPECT_EQ(t.advance(), 10000);
 }
 
 TEST(Tuner, DivergenceStopsPlaybackCleanlyUntilReset) {
