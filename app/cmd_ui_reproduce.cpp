@@ -16,6 +16,7 @@
 #include "app/commands.hpp"
 #include "app/options.hpp"
 #include "core/analysis/claims.hpp"
+#include "core/sweep/sweep_claims.hpp"
 #include "core/error.hpp"
 #include "core/io/files.hpp"
 #include "core/io/format.hpp"

@@ -1,4 +1,4 @@
-#include "core/analysis/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
+#include "core/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
 #include "core/integrate.hpp"
 
 #include <Eigen/IterativeLinearSolvers>
@@ -6,8 +6,8 @@
 #include <string>
 
 #include "core/forces.hpp"
-#include "core/analysis/damping_matrix.hpp"
-#include "core/analysis/linear_stability.hpp"
+#include "core/stiffness.hpp"
+#include "core/stiffness.hpp"
 
 namespace dampbound {
 

@@ -3,7 +3,7 @@
 #include <limits>
 #include <optional>
 
-#include "core/analysis/linear_stability.hpp"
+#include "core/closed_forms.hpp"
 #include "core/detail/spring_pass.hpp"
 
 namespace dampbound {

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "core/analysis/figures.hpp"
-#include "core/sweep/summary.hpp"
+#include "core/protocol.hpp"
 
 namespace dampbound {
 
@@ -39,19 +39,6 @@ std::vector<Claim> fig1_claims(const FigureData& fig1, const std::vector<RunResu
 /// Fig. 2 (factor 1.0, 1.05): "stable within 652 iterations and remained stable thereafter"
 /// and "5% above, unstable", both claims about what the run does for good: settled rule.
 std::vector<Claim> fig2_claims(const FigureData& fig2, const std::vector<RunResult>& settled);
-
-/// A sweep's prediction checks (core/sweep/summary.hpp) as claims of the paper's sec. 4:
-/// holds when it held in every trial, partly when in some, does not hold when in none.
-/// Checks whose text does not mention the paper (dampbound's own, e.g. SPEC 7) are skipped.
-std::vector<Claim> sweep_claims(const std::vector<PredictionCheck>& checks,
-                                const std::string& source, const std::string& grid);
-
-/// One sweep's claims under both rules (SPEC 8), paired by position (the same checks of the
-/// same grid run once per rule): a claim that a run is "not restored" (keeps oscillating) is
-/// about lasting behaviour and judged by the settled rule, the others by the first entry;
-/// each gives the other rule's count beside its own where they differ.
-std::vector<Claim> both_rule_claims(const std::vector<Claim>& first_entry,
-                                    const std::vector<Claim>& settled);
 
 /// Markdown table of the claims, with the rule that judges each.
 void write_claims_table(std::ostream& out, const std::vector<Claim>& claims);

@@ -1,5 +1,5 @@
 #include "core/analysis/criteria_safe.hpp"
-#include "core/analysis/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
+#include "core/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
 // The per-node safe bound of SPEC 9 as criteria rows, beside the paper's and the exact ones.
 #include <algorithm>
 #include <cmath>

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "core/analysis/damping_matrix.hpp"
+#include "core/stiffness.hpp"
 #include "core/analysis/linear_stability.hpp"
 
 namespace dampbound {

@@ -10,31 +10,11 @@
 #include <optional>
 #include <vector>
 
+#include "core/closed_forms.hpp"
 #include "core/model.hpp"
+#include "core/stiffness.hpp"
 
 namespace dampbound DAMPBOUND_API {
-
-using SparseMatrix = Eigen::SparseMatrix<double>;
-
-/// The 3-block of each node among the free nodes (block b = rows 3b..3b+2), -1 for a fixed
-/// node. Fixed nodes never move, so they have no degree of freedom in any linear analysis.
-std::vector<int> free_blocks(const Model& model, int* free_count = nullptr);
-
-/// Tangent stiffness K = -dF/dx over the free nodes (3 n_free square, symmetric), at
-/// positions x. Per spring (i, j), l = |x_j - x_i|, d = (x_j - x_i)/l:
-///   B = kappa_ij [ (1 - l0/l) I + (l0/l) d d^T ],  K_ii += B, K_jj += B, K_ij = K_ji -= B;
-/// per anchor K_ii += kappa_a,i I. At rest (l = l0) B = kappa d d^T. A spring of zero length
-/// is skipped, as in internal_forces (SPEC 1). `clamp_compression` replaces (1 - l0/l) by
-/// max(0, 1 - l0/l) so that K stays positive semi-definite (what implicit Euler solves with;
-/// exact at rest and under tension). `threads` (0: one per CPU) assemble it in node ranges,
-/// the same bits on any count.
-SparseMatrix tangent_stiffness(const Model& model, const std::vector<Vec3>& x,
-                               bool clamp_compression = false, int threads = 1);
-
-/// M^-1/2 K M^-1/2 over the free nodes: symmetric, with the eigenvalues of M^-1 K. The
-/// second form scales K in place (no copy of a big matrix). `threads` as above.
-SparseMatrix mass_weighted(const Model& model, const SparseMatrix& K, int threads = 1);
-SparseMatrix mass_weighted(const Model& model, SparseMatrix&& K, int threads = 1);
 
 /// A proved lower bound on lambda_min of M^-1 K at x (1/s^2), from the splitting
 /// K = diag(kappa_a,i I) + sum of the spring blocks B: B's eigenvalues are kappa (1 - l0/l)
@@ -93,31 +73,6 @@ struct StiffnessSpectrum {
   double lambda_max = 0;
 };
 StiffnessSpectrum stiffness_spectrum(const Model& model, const std::vector<Vec3>& x);
-
-/// SPEC 7, stated once: the paper's semi-implicit Euler step with uniform c = gamma/m is
-/// linearly stable about a state whose M^-1 K has largest eigenvalue lambda_max iff
-/// 0 < c dt < 2 and lambda_max dt^2 < 4 - 2 c dt. Every caller uses these three.
-/// Whether (lambda_max, c, dt) breaks it (c = 0 is marginal: not unstable).
-bool spec7_unstable(double lambda_max, double c, double dt);
-/// The damping limit for mass m: gamma < 2 m/dt - m lambda_max dt/2 (may be <= 0: none).
-double spec7_gamma_max(double lambda_max, double m, double dt);
-/// The undamped step limit: dt < 2/sqrt(lambda_max); inf when lambda_max <= 0.
-double spec7_dt_max_undamped(double lambda_max);
-
-/// The exact limits of the paper's semi-implicit Euler step for uniform c = gamma/m
-/// (SPEC 7): stable iff 0 < c dt < 2 and lambda dt^2 < 4 - 2 c dt for every mode.
-struct LinearLimits {
-  double lambda_max = 0;     ///< 1/s^2
-  double gamma_max = 0;      ///< gamma < 2 m/dt - m lambda_max dt/2 (may be <= 0: none)
-  double dt_max_undamped = 0;  ///< dt < 2/sqrt(lambda_max) at gamma = 0
-};
-
-/// Limits for mass m and step dt from lambda_max.
-LinearLimits linear_limits(double lambda_max, double m, double dt);
-
-/// Largest stable dt of the semi-implicit step for uniform c = gamma/m: the root of
-/// lambda_max dt^2 + 2 c dt = 4, dt = (sqrt(c^2 + 4 lambda_max) - c) / lambda_max.
-double semi_implicit_dt_max(double lambda_max, double c);
 
 /// Non-uniform damping (gamma_i/m_i not all equal) for the semi-implicit step. With all
 /// c_i = gamma_i/m_i > 0 and K positive definite, the step is stable iff

@@ -1,4 +1,4 @@
-#include "core/analysis/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
+#include "core/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
 // Tests of core/integrate.cpp: every integrator against its own amplification matrix, its
 // order of accuracy, the paper's two Euler steps bit for bit, and runs just inside / outside
 // each integrator's exact limit on the paper plane.

@@ -1,4 +1,4 @@
-#include "core/analysis/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
+#include "core/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
 // Tests of core/safe_bound: the O(springs) row sums against the dense mass-weighted tangent
 // stiffness, SPEC 9's numbers on the paper plane, the property that the safe policy keeps the
 // dense linearised step's spectral radius <= 1 on random small meshes (and that just outside

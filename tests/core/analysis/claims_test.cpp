@@ -96,30 +96,6 @@ TEST(Claims, SettledResultsRunEachFigureRunToItsLimit) {
   EXPECT_EQ(r[0].first_entry, 31);
 }
 
-TEST(Claims, SweepClaimsUnderBothRules) {
-  std::vector<Claim> f(2), st(2);
-  f[0].paper = "gamma < lower bound => not restored (paper sec. 4)";
-  f[0].measured = "held in 7 of 1250 trials";
-  f[0].verdict = ClaimVerdict::partly;
-  f[1].paper = "gamma >= lower bound => restored within the limit (paper Fig. 1)";
-  f[1].measured = "held in 625 of 625 trials";
-  f[1].verdict = ClaimVerdict::holds;
-  st[0].paper = "gamma < lower bound => not settled (paper sec. 4) [settled rule]";
-  st[0].measured = "held in 40 of 1250 trials";
-  st[0].rule = StopRule::settled;
-  st[0].verdict = ClaimVerdict::partly;
-  st[1] = f[1];
-  st[1].rule = StopRule::settled;
-  const std::vector<Claim> c = both_rule_claims(f, st);
-  ASSERT_EQ(c.size(), 2u);
-  EXPECT_EQ(c[0].rule, StopRule::settled);  // "keeps oscillating" is about lasting behaviour
-  EXPECT_EQ(c[0].paper, f[0].paper);
-  EXPECT_EQ(c[0].measured,
-            "settled rule: held in 40 of 1250 trials; first entry: held in 7 of 1250 trials");
-  EXPECT_EQ(c[1].rule, StopRule::first_entry);
-  EXPECT_EQ(c[1].measured, "held in 625 of 625 trials");  // the same under both: said once
-}
-
 TEST(Claims, TableHasEveryClaim) {
   std::vector<Claim> c(2);
   c[0].paper = "A";

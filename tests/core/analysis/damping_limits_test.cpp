@@ -7,7 +7,7 @@
 #include <Eigen/Dense>
 #include <random>
 
-#include "core/analysis/damping_matrix.hpp"
+#include "core/stiffness.hpp"
 #include "core/analysis/linear_stability.hpp"
 #include "core/safe_bound.hpp"
 

@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include "core/analysis/damping_limits.hpp"
-#include "core/analysis/damping_matrix.hpp"
+#include "core/stiffness.hpp"
 #include "core/analysis/linear_stability.hpp"
 #include "core/io/scene_file.hpp"
 #include "core/safe_bound.hpp"

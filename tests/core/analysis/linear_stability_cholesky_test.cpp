@@ -1,4 +1,4 @@
-#include "core/analysis/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
+#include "core/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
 // Tests of core/linear_stability_cholesky: Gershgorin's bounds (SPEC 9's R_i on the paper
 // plane), certified intervals that enclose the dense eigenvalues (meshes at rest and deformed,
 // a clustered top, a matrix with negative eigenvalues), and their width; a proved floor that

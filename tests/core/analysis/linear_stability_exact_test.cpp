@@ -2,7 +2,7 @@
 // system every number has a closed form; a chain with unequal masses takes the symmetric
 // index; the simulation check agrees with the limits.
 // clang-format off
-#include "core/analysis/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
+#include "core/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
 // clang-format on
 #include "core/analysis/linear_stability_exact.hpp"
 

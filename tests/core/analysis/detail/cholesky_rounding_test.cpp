@@ -1,4 +1,4 @@
-#include "core/analysis/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
+#include "core/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
 // Tests of core/analysis/detail/cholesky_rounding: on factors of mesh matrices (a deformed
 // plane, a tetrahedral block, one shifted to within 1e-9 of singular), the bound covers the
 // factorisation's actual error ||L L^T - P B~ P^T||_2 plus the diagonal's rounding, and equals

@@ -3,7 +3,7 @@
 // just above the shift, solves match the dense inverse, the budget stops the analysis, and
 // assign() keeps or renews the pattern; against Eigen's dense solvers.
 // clang-format off
-#include "core/analysis/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
+#include "core/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
 // clang-format on
 #include "core/analysis/detail/shifted_cholesky.hpp"
 

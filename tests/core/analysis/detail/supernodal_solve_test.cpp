@@ -1,4 +1,4 @@
-#include "core/analysis/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
+#include "core/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
 // Tests of core/analysis/detail/supernodal_solve: on supernodal factors of mesh matrices (a
 // small plane, all of whose supernodes are under the BLAS threshold; a deformed plane, mostly
 // single columns, and a tetrahedral block, both with top separators past it), the solve agrees with

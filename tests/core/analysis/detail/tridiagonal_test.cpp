@@ -2,7 +2,7 @@
 // component of its eigenvector against Eigen's dense solver, on random matrices, on
 // Wilkinson's W21+ (pairs of eigenvalues equal to 14 digits) and on the smallest sizes.
 // clang-format off
-#include "core/analysis/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
+#include "core/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
 // clang-format on
 #include "core/analysis/detail/tridiagonal.hpp"
 
