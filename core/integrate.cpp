@@ -174,32 +174,48 @@ void implicit_euler(const Model& model, double h, State& s, StepWorkspace& ws) {
   }
 }
 
+int semi_implicit_step(const Model& model, double dt, State& s, StepWorkspace& ws) {
+  if (ws.damping.empty())
+    semi_implicit_euler<false>(model, dt, s, ws);
+  else
+    semi_implicit_euler<true>(model, dt, s, ws);
+  return 0;
+}
+
+int forward_euler_step(const Model& model, double dt, State& s, StepWorkspace& ws) {
+  if (ws.damping.empty())
+    forward_euler<false>(model, dt, s, ws);
+  else
+    forward_euler<true>(model, dt, s, ws);
+  return 0;
+}
+
+int implicit_euler_step(const Model& model, double dt, State& s, StepWorkspace& ws) {
+  implicit_euler(model, dt, s, ws);
+  return 0;
+}
+
+//                                                          paper  Euler v  kernel implicit
+constexpr IntegratorTraits kTraits[] = {
+    {Integrator::semi_implicit_euler, "semi-implicit-euler", semi_implicit_step, true, true, true,
+     false},
+    {Integrator::forward_euler, "forward-euler", forward_euler_step, false, true, true, false},
+    {Integrator::verlet, "verlet", verlet, false, false, false, false},
+    {Integrator::rk4, "rk4", rk4, false, false, false, false},
+    {Integrator::implicit_euler, "implicit-euler", implicit_euler_step, false, false, false, true},
+};
+
 }  // namespace
 
+const IntegratorTraits& integrator_traits(Integrator i) {
+  for (const IntegratorTraits& t : kTraits)
+    if (t.id == i) return t;
+  throw std::invalid_argument("integrator " + std::to_string(static_cast<int>(i)) +
+                              " has no entry in integrate.cpp's table");
+}
+
 int advance(const Model& model, const Params& params, State& state, StepWorkspace& ws) {
-  switch (params.integrator) {
-    case Integrator::semi_implicit_euler:
-      if (ws.damping.empty())
-        semi_implicit_euler<false>(model, params.dt, state, ws);
-      else
-        semi_implicit_euler<true>(model, params.dt, state, ws);
-      return 0;
-    case Integrator::forward_euler:
-      if (ws.damping.empty())
-        forward_euler<false>(model, params.dt, state, ws);
-      else
-        forward_euler<true>(model, params.dt, state, ws);
-      return 0;
-    case Integrator::verlet:
-      return verlet(model, params.dt, state, ws);
-    case Integrator::rk4:
-      return rk4(model, params.dt, state, ws);
-    case Integrator::implicit_euler:
-      implicit_euler(model, params.dt, state, ws);
-      return 0;
-  }
-  throw std::invalid_argument(std::string("integrator not available: ") +
-                              to_string(params.integrator));
+  return integrator_traits(params.integrator).advance(model, params.dt, state, ws);
 }
 
 }  // namespace dampbound

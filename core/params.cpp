@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "core/integrate.hpp"
+
 namespace dampbound {
 
 const char* to_string(DampingPolicy p) {
@@ -16,13 +18,8 @@ const char* to_string(DampingPolicy p) {
 }
 
 const char* to_string(Integrator i) {
-  switch (i) {
-    case Integrator::semi_implicit_euler: return "semi-implicit-euler";
-    case Integrator::forward_euler: return "forward-euler";
-    case Integrator::verlet: return "verlet";
-    case Integrator::rk4: return "rk4";
-    case Integrator::implicit_euler: return "implicit-euler";
-  }
+  for (Integrator k : kIntegrators)
+    if (k == i) return integrator_traits(i).name;
   return "?";
 }
 

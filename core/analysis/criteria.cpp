@@ -15,6 +15,7 @@
 #include "core/bounds.hpp"
 #include "core/forces.hpp"
 #include "core/io/format.hpp"
+#include "core/integrate.hpp"
 
 namespace dampbound {
 namespace {
@@ -187,8 +188,7 @@ std::vector<CriterionResult> paper_criteria(const Model& model, const State& sta
               format_human(hi.value) + " (worst node " + std::to_string(hi.node) + ")";
     // Eq. 6 comes from the Euler velocity update v' = v + a dt, which the paper's step and
     // forward Euler share; for the other integrators it is shown for reference only.
-    if (params.integrator != Integrator::semi_implicit_euler &&
-        params.integrator != Integrator::forward_euler)
+    if (!integrator_traits(params.integrator).euler_velocity_update)
       hi.test += "; derived for the Euler update, shown for reference";
     check.value = unstabilisable;
     check.verdict = verdict_of(unstabilisable == 0);
@@ -237,7 +237,7 @@ std::vector<CriterionResult> exact_criteria(const ExactStability& e, const Param
                     : " (estimate: Arnoldi did not converge)") +
                (e.stable && e.spectral_radius >= 1 - 1e-12 ? " (marginal: no decay)" : "") +
                (e.zero_modes ? " (zero modes, lambda = 0, excluded: z = 1 for any gamma, dt)" : "");
-  if (e.indefinite && e.integrator != Integrator::implicit_euler)
+  if (e.indefinite && !integrator_traits(e.integrator).implicit)
     rho.test += "; K is indefinite at the state (lambda_min < 0): unstable whatever gamma and dt";
   const ExactStability::Inner& in = e.inner;
   const char* only_bracketed = " (an end of the spectrum is only bracketed: ";
@@ -283,7 +283,7 @@ std::vector<CriterionResult> exact_criteria(const ExactStability& e, const Param
   if (e.indefinite) {  // ExactStability::indefinite
     const std::string why = "K is indefinite at the state (lambda_min = " +
                             format_human(e.spectrum.lambda_min) + " < 0)";
-    if (e.integrator == Integrator::implicit_euler) {
+    if (integrator_traits(e.integrator).implicit) {
       gi.verdict = dm.verdict = CriterionVerdict::not_applicable;
       gi.test = dm.test = "not computed: " + why +
                           "; implicit Euler damps its growing modes only at a long enough step, "

@@ -8,6 +8,7 @@
 #include "core/analysis/criteria.hpp"
 #include "core/safe_bound.hpp"
 #include "core/io/format.hpp"
+#include "core/integrate.hpp"
 
 namespace dampbound {
 namespace {
@@ -18,7 +19,7 @@ CriterionVerdict verdict_of(bool ok) {
 
 /// "; ratio to the exact limit r" when the exact analysis is the paper's step's.
 std::string ratio_text(double safe, double exact, const ExactStability* e) {
-  if (!e || e->integrator != Integrator::semi_implicit_euler || !std::isfinite(exact) ||
+  if (!e || !integrator_traits(e->integrator).paper_step || !std::isfinite(exact) ||
       exact == 0)
     return "";
   return "; " + format_human(safe / exact) + " of the exact limit " + format_human(exact);
@@ -27,7 +28,7 @@ std::string ratio_text(double safe, double exact, const ExactStability* e) {
 }  // namespace
 
 std::string safe_bound_scope(Integrator integrator) {
-  if (integrator == Integrator::semi_implicit_euler) return "";
+  if (integrator_traits(integrator).paper_step) return "";
   return std::string("derived for the paper's semi-implicit step, it guarantees nothing under ") +
          to_string(integrator);
 }
@@ -42,7 +43,7 @@ std::vector<CriterionResult> safe_criteria(const Model& model, const State& stat
   // SPEC 9 is derived for the paper's step (Q = 4I - 2dt C - dt^2 A). Under another
   // integrator the same numbers promise nothing: forward Euler, for one, grows at any dt when
   // a mode is undamped, and every gamma_i < gamma_safe_i allows that. Shown for reference.
-  const bool paper_step = params.integrator == Integrator::semi_implicit_euler;
+  const bool paper_step = integrator_traits(params.integrator).paper_step;
   const bool no_guarantee = s.compressed_springs > 0 || !paper_step;
   std::string caveat =
       s.compressed_springs > 0

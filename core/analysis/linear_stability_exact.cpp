@@ -16,6 +16,7 @@
 #include "core/analysis/detail/exact_over_budget.hpp"
 #include "core/analysis/detail/newton.hpp"
 #include "core/analysis/linear_stability_cholesky.hpp"
+#include "core/integrate.hpp"
 
 namespace dampbound {
 using detail::ExactInputs;
@@ -122,7 +123,7 @@ void spectrum_and_rates(const ExactInputs& in, std::optional<double> floor, cons
 /// from below: its limits are not computed (NaN), and where its radius came from sampling
 /// [lambda_min, lambda_max] per mode, that radius is an estimate.
 void indefinite_limits(ExactStability& e) {
-  if (e.integrator == Integrator::implicit_euler) {
+  if (integrator_traits(e.integrator).implicit) {
     e.gamma_lo = e.gamma_hi = e.dt_max = kNaN;
     if (e.method == ExactMethod::per_mode) e.radius_converged = false;
     return;
@@ -207,7 +208,7 @@ ExactStability::Inner per_mode_over(Integrator integrator, const StiffnessSpectr
   // symmetric index decides at non-uniform rates and as the printed gamma_hi and dt_max say.
   // The radius alone counts |z| = 1 + 1e-12 as bounded: "stable" up to 1e-12 past the limits,
   // where over the budget the same vector's index proves the step unstable.
-  if (integrator == Integrator::semi_implicit_euler)
+  if (integrator_traits(integrator).paper_step)
     n.stable = n.stable && spectrum.lambda_max * h * h + 2 * c * h < 4 && c * h < 2;
   const RateInterval ci = uniform_rate_interval(integrator, spectrum, h);
   if (r_max > 0) {
@@ -343,18 +344,18 @@ ExactStability exact_stability_within_budget(const ExactInputs& in, std::optiona
   // for forward Euler, Verlet and RK4, the spectrum's, once their analysis clears the budget.
   // Implicit Euler needs it only at an indefinite K, which the spectrum says.
   RadiusBeside radius(in, params, options);
-  const bool frozen = params.integrator != Integrator::semi_implicit_euler &&
-                      params.integrator != Integrator::implicit_euler;
+  const IntegratorTraits& t = integrator_traits(params.integrator);
+  const bool frozen = !t.paper_step && !t.implicit;
   spectrum_and_rates(in, floor, params, options, e,
                      frozen ? std::function<void()>([&] { radius.start(); }) : nullptr);
   const double tiny = 1e-12 * std::max(1.0, std::abs(e.spectrum.lambda_max));
-  if (e.integrator == Integrator::implicit_euler && e.spectrum.lambda_min >= -tiny) {
+  if (integrator_traits(e.integrator).implicit && e.spectrum.lambda_min >= -tiny) {
     unconditional(e);
     e.spectral_radius = kNaN;
     if (e.uniform_rate) add_radius(in, params, options, e);
   } else if (e.uniform_rate) {
     per_mode(in, params, e);
-  } else if (e.integrator == Integrator::semi_implicit_euler) {
+  } else if (integrator_traits(e.integrator).paper_step) {
     radius.start();
     symmetric_index_limits(in, params, options, e);
     radius.add_to(e);
@@ -377,7 +378,7 @@ ExactStability exact_stability(const Model& model, const std::vector<Vec3>& x,
   const ExactInputs in = assemble(model, x, options.threads);
   try {
     ExactStability e = exact_stability_within_budget(in, psd_floor(model, x), params, options);
-    if (model.spring_damping && e.integrator == Integrator::semi_implicit_euler &&
+    if (model.spring_damping && integrator_traits(e.integrator).paper_step &&
         !e.indefinite)
       with_spec10_damping(model, x, params, e);
     return e;

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "core/analysis/detail/rk4_proofs.hpp"
+#include "core/integrate.hpp"
 
 namespace dampbound {
 namespace {
@@ -80,7 +81,7 @@ struct VectorOps {
   std::unique_ptr<Eigen::ConjugateGradient<SparseMatrix, Eigen::Lower | Eigen::Upper>> cg;
   VectorOps(Integrator integrator, const SparseMatrix& Kw, const Eigen::VectorXd& c, double h)
       : K(&Kw), rate(&c) {
-    if (integrator != Integrator::implicit_euler) return;
+    if (!integrator_traits(integrator).implicit) return;
     S = (h * h) * Kw;
     for (Eigen::Index i = 0; i < S.rows(); ++i) S.coeffRef(i, i) += 1 + h * c(i);
     cg = std::make_unique<Eigen::ConjugateGradient<SparseMatrix, Eigen::Lower | Eigen::Upper>>();
@@ -194,59 +195,84 @@ double mode_spectral_radius(Integrator integrator, double lambda, double c, doub
   return std::sqrt(det);                                        // complex pair: |z|^2 = det
 }
 
-ModeInstability mode_instability(Integrator integrator, double lambda_0, double c, double h) {
+namespace {
+
+// (1 + eps)^2 - 1 and (2 + eps)^2, rounded up (e1 - 1 is exact).
+constexpr double kE1 = 1 + kMarginal;
+constexpr double kGrow = (kE1 - 1) * (kE1 + 1) * kRoundUp;
+constexpr double kTwoPlus = (kE1 + 1) * (kE1 + 1) * kRoundUp;
+
+ModeInstability forward_euler_instability(double lambda_0, double c, double h) {
   ModeInstability m;
-  if (integrator == Integrator::rk4) {
-    m.lambda_from = detail::rk4_lambda_from(c, h, 1 + kMarginal);
-    return m;
-  }
-  if (integrator != Integrator::forward_euler && integrator != Integrator::verlet) return m;
-  // (1 + eps)^2 - 1 and (2 + eps)^2, rounded up (e1 - 1 is exact).
-  const double e1 = 1 + kMarginal, grow = (e1 - 1) * (e1 + 1) * kRoundUp;
-  const double C = (e1 + 1) * (e1 + 1) * kRoundUp;
-  if (integrator == Integrator::forward_euler) {
-    // d > (1 + eps)^2  <=>  h^2 lambda - c h - grow > 0.
-    m.lambda_from = (c * h + grow) / (h * h) * kRoundUp;
-    m.dt_from = lambda_0 > 0 ? (c + std::sqrt(c * c + 4 * lambda_0 * grow)) / (2 * lambda_0) * kRoundUp
-                             : kInf;
-    const double r = (h * h * lambda_0 - grow) / h;
-    m.rate_below = r > 0 ? r / kRoundUp : -kInf;
-    return m;
-  }
-  // Verlet, with q = 1 - h^2 lambda/2 < -1: (1 + c h/2)(z^2 - |t| z + d) at z = 1 + eps is
-  // (1 + eps)^2 (1 + c h/2) + (1 - c h/2) - 2 (1 + eps)(h^2 lambda/2 - 1) < 0, that is
-  // A h^2 - B h - C > 0 with A = (1 + eps) lambda, B = c grow/2, C = (2 + eps)^2; from
-  // lambda_from on, q <= 1 - C/(2 (1 + eps)) < -1.
-  m.lambda_from = (C + c * grow / 2 * h) / (e1 * h * h) * kRoundUp;
-  const double A = e1 * lambda_0, B = c * grow / 2;
-  m.dt_from = A > 0 ? (B + std::sqrt(B * B + 4 * A * C)) / (2 * A) * kRoundUp : kInf;
-  const double r = (A * h * h - C) / (h * grow / 2);
+  // d > (1 + eps)^2  <=>  h^2 lambda - c h - grow > 0.
+  m.lambda_from = (c * h + kGrow) / (h * h) * kRoundUp;
+  m.dt_from = lambda_0 > 0 ? (c + std::sqrt(c * c + 4 * lambda_0 * kGrow)) / (2 * lambda_0) * kRoundUp
+                           : kInf;
+  const double r = (h * h * lambda_0 - kGrow) / h;
   m.rate_below = r > 0 ? r / kRoundUp : -kInf;
   return m;
 }
 
+ModeInstability verlet_instability(double lambda_0, double c, double h) {
+  // With q = 1 - h^2 lambda/2 < -1: (1 + c h/2)(z^2 - |t| z + d) at z = 1 + eps is
+  // (1 + eps)^2 (1 + c h/2) + (1 - c h/2) - 2 (1 + eps)(h^2 lambda/2 - 1) < 0, that is
+  // A h^2 - B h - C > 0 with A = (1 + eps) lambda, B = c grow/2, C = (2 + eps)^2; from
+  // lambda_from on, q <= 1 - C/(2 (1 + eps)) < -1.
+  ModeInstability m;
+  const double C = kTwoPlus;
+  m.lambda_from = (C + c * kGrow / 2 * h) / (kE1 * h * h) * kRoundUp;
+  const double A = kE1 * lambda_0, B = c * kGrow / 2;
+  m.dt_from = A > 0 ? (B + std::sqrt(B * B + 4 * A * C)) / (2 * A) * kRoundUp : kInf;
+  const double r = (A * h * h - C) / (h * kGrow / 2);
+  m.rate_below = r > 0 ? r / kRoundUp : -kInf;
+  return m;
+}
+
+}  // namespace
+
+ModeInstability mode_instability(Integrator integrator, double lambda_0, double c, double h) {
+  switch (integrator) {
+    case Integrator::rk4: {
+      ModeInstability m;
+      m.lambda_from = detail::rk4_lambda_from(c, h, 1 + kMarginal);
+      return m;
+    }
+    case Integrator::forward_euler: return forward_euler_instability(lambda_0, c, h);
+    case Integrator::verlet: return verlet_instability(lambda_0, c, h);
+    case Integrator::semi_implicit_euler:  // the symmetric index and SPEC 7 decide
+    case Integrator::implicit_euler:       // unconditional where K is positive semi-definite
+      return {};
+  }
+  return {};
+}
+
 ModeStability mode_stability(Integrator integrator, double lambda_hi, double c, double h) {
   ModeStability m;
-  if (integrator == Integrator::rk4) {
-    m.proved = true;
-    std::tie(m.rate_lo, m.rate_hi) = detail::rk4_rate_range(lambda_hi, c, h, 1 + kMarginal);
-    m.stable = m.rate_lo <= c && c <= m.rate_hi;  // a range from another rate leaves c out
-    m.dt_up_to = detail::rk4_dt_up_to(lambda_hi, c, 1 + kMarginal);
-    return m;
+  switch (integrator) {
+    case Integrator::rk4:
+      m.proved = true;
+      std::tie(m.rate_lo, m.rate_hi) = detail::rk4_rate_range(lambda_hi, c, h, 1 + kMarginal);
+      m.stable = m.rate_lo <= c && c <= m.rate_hi;  // a range from another rate leaves c out
+      m.dt_up_to = detail::rk4_dt_up_to(lambda_hi, c, 1 + kMarginal);
+      return m;
+    case Integrator::forward_euler:
+      m.proved = true;
+      m.stable = c * h * kRoundUp <= 2 && lambda_hi * h * kRoundUp <= c;
+      m.dt_up_to = c > 0 ? std::min(c / lambda_hi, 2 / c) / kRoundUp : 0;
+      m.rate_lo = h * lambda_hi * kRoundUp;
+      m.rate_hi = 2 / h / kRoundUp;
+      return m;
+    case Integrator::verlet:
+      m.proved = true;
+      m.stable = lambda_hi * h * h * kRoundUp <= 4;
+      m.dt_up_to = 2 / std::sqrt(lambda_hi) / kRoundUp;
+      m.rate_lo = 0;
+      m.rate_hi = m.stable ? kInf : -kInf;
+      return m;
+    case Integrator::semi_implicit_euler:  // the symmetric index and SPEC 7 decide
+    case Integrator::implicit_euler:
+      return m;
   }
-  if (integrator != Integrator::forward_euler && integrator != Integrator::verlet) return m;
-  m.proved = true;
-  if (integrator == Integrator::forward_euler) {
-    m.stable = c * h * kRoundUp <= 2 && lambda_hi * h * kRoundUp <= c;
-    m.dt_up_to = c > 0 ? std::min(c / lambda_hi, 2 / c) / kRoundUp : 0;
-    m.rate_lo = h * lambda_hi * kRoundUp;
-    m.rate_hi = 2 / h / kRoundUp;
-    return m;
-  }
-  m.stable = lambda_hi * h * h * kRoundUp <= 4;
-  m.dt_up_to = 2 / std::sqrt(lambda_hi) / kRoundUp;
-  m.rate_lo = 0;
-  m.rate_hi = m.stable ? kInf : -kInf;
   return m;
 }
 
@@ -262,10 +288,17 @@ double spectrum_spectral_radius(Integrator integrator, const StiffnessSpectrum& 
 }
 
 double uniform_dt_max(Integrator integrator, const StiffnessSpectrum& s, double c) {
-  if (integrator == Integrator::implicit_euler) return kInf;
-  if (integrator == Integrator::semi_implicit_euler) return semi_implicit_dt_max(s.lambda_max, c);
-  // Undamped forward Euler: |z|^2 = 1 + lambda h^2 > 1 for every h > 0 and lambda > 0.
-  if (integrator == Integrator::forward_euler && c <= 0 && s.lambda_max > 0) return 0;
+  switch (integrator) {
+    case Integrator::implicit_euler: return kInf;
+    case Integrator::semi_implicit_euler: return semi_implicit_dt_max(s.lambda_max, c);
+    case Integrator::forward_euler:
+      // Undamped: |z|^2 = 1 + lambda h^2 > 1 for every h > 0 and lambda > 0.
+      if (c <= 0 && s.lambda_max > 0) return 0;
+      break;
+    case Integrator::verlet:
+    case Integrator::rk4:
+      break;  // searched on the spectrum's radius below
+  }
   auto stable = [&](double h) { return spectrum_spectral_radius(integrator, s, c, h) <= 1 + kMarginal; };
   const double scale = 1.0 / std::sqrt(std::max({s.lambda_max, c * c, 1e-300}));
   double lo = 1e-6 * scale;
@@ -284,9 +317,15 @@ double uniform_dt_max(Integrator integrator, const StiffnessSpectrum& s, double 
 }
 
 RateInterval uniform_rate_interval(Integrator integrator, const StiffnessSpectrum& s, double h) {
-  if (integrator == Integrator::implicit_euler) return {0, kInf};
-  if (integrator == Integrator::semi_implicit_euler)  // SPEC 7; empty when lambda h^2 >= 4
-    return {0, std::max(0.0, (4 - s.lambda_max * h * h) / (2 * h))};
+  switch (integrator) {
+    case Integrator::implicit_euler: return {0, kInf};
+    case Integrator::semi_implicit_euler:  // SPEC 7; empty when lambda h^2 >= 4
+      return {0, std::max(0.0, (4 - s.lambda_max * h * h) / (2 * h))};
+    case Integrator::forward_euler:
+    case Integrator::verlet:
+    case Integrator::rk4:
+      break;  // sampled and refined on the spectrum's radius below
+  }
   auto stable = [&](double c) { return spectrum_spectral_radius(integrator, s, c, h) <= 1 + kMarginal; };
   // No explicit step damps a mode with c h > 8; sample [0, 8/h] and refine the first run.
   const int samples = 2000;

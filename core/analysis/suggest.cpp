@@ -11,6 +11,7 @@
 #include "core/io/format.hpp"
 #include "core/safe_bound.hpp"
 #include "core/session.hpp"
+#include "core/integrate.hpp"
 
 namespace dampbound {
 namespace {
@@ -161,7 +162,7 @@ DampingSuggestion suggest_damping(const SceneSpec& scene, const Params& params_i
       if (!(u.gamma_stable_lo <= u.gamma_stable_hi)) nothing_proved(s.exact, "damping range");
       lo = u.gamma_stable_lo;
       upper = u.gamma_stable_hi;
-      s.max_by = params.integrator == Integrator::semi_implicit_euler
+      s.max_by = integrator_traits(params.integrator).paper_step
                      ? "proved stable without a factorisation: Gershgorin on SPEC 7's index "
                        "matrix (SPEC 9), included"
                      : "proved stable without a factorisation: every mode in [0, Gershgorin's "
@@ -235,8 +236,7 @@ DampingSuggestion suggest_damping(const SceneSpec& scene, const Params& params_i
                   format_human(spectrum.lambda_min) + ", " +
                   format_human(spectrum.lambda_max) +
                   "] (SPEC 9's floor, Gershgorin's bound: the spectrum lies inside" +
-                  (params.integrator == Integrator::semi_implicit_euler ||
-                           params.integrator == Integrator::forward_euler
+                  (integrator_traits(params.integrator).euler_velocity_update
                        ? ", and the interval's ends decide, so rho is at most this)"
                        : "; the largest radius of 65 lambdas sampled in it)")
             : "minimum spectral radius of the step over the range (per-mode, exact)";

@@ -6,6 +6,7 @@
 #include "core/sweep/trials.hpp"
 #include "core/session.hpp"
 #include "core/sweep/kernel.hpp"
+#include "core/integrate.hpp"
 
 namespace dampbound {
 
@@ -33,7 +34,7 @@ std::optional<std::string> batch_kernel_unsupported(const SceneSpec& scene, cons
     return "dashpot or Rayleigh damping (SPEC 10): the batched kernel applies the nodal "
            "damping only, so each trial runs step()";
   const Integrator in = params.integrator;
-  if (in != Integrator::semi_implicit_euler && in != Integrator::forward_euler)
+  if (!integrator_traits(in).batched_kernel)
     return std::string("integrator ") + to_string(in);
   return std::nullopt;
 }

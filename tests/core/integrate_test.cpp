@@ -9,6 +9,9 @@
 #include <Eigen/Dense>
 #include <cmath>
 #include <complex>
+#include <set>
+#include <stdexcept>
+#include <string>
 
 #include "core/analysis/criteria.hpp"
 #include "core/analysis/linear_stability_exact.hpp"
@@ -20,8 +23,7 @@
 namespace dampbound {
 namespace {
 
-const Integrator kAll[] = {Integrator::semi_implicit_euler, Integrator::forward_euler,
-                           Integrator::verlet, Integrator::rk4, Integrator::implicit_euler};
+const auto& kAll = kIntegrators;
 
 /// x(T) of y'' = -lambda y - c y', y(0) = 1, y'(0) = 0 (underdamped), exact.
 double exact_oscillator(double lambda, double c, double t) {
@@ -42,6 +44,26 @@ double run_oscillator(Integrator in, double lambda, double c, double T, int n) {
   StepWorkspace ws;
   for (int k = 0; k < n; ++k) step(m, p, s, ws);
   return s.x[0].y();
+}
+
+TEST(IntegratorTraits, OneEntryPerIntegratorNamedAsFlagsSayIt) {
+  std::set<std::string> names;
+  for (Integrator in : kIntegrators) {
+    const IntegratorTraits& t = integrator_traits(in);
+    EXPECT_EQ(t.id, in);
+    ASSERT_NE(t.advance, nullptr);
+    EXPECT_EQ(parse_integrator(t.name), in) << t.name;
+    EXPECT_STREQ(to_string(in), t.name);
+    names.insert(t.name);
+    // An implicit step is not the paper's and has no Euler velocity update.
+    EXPECT_TRUE(!t.implicit || !(t.paper_step || t.euler_velocity_update)) << t.name;
+    // The paper's step is an Euler velocity update.
+    EXPECT_TRUE(!t.paper_step || t.euler_velocity_update) << t.name;
+  }
+  EXPECT_EQ(names.size(), std::size(kIntegrators));
+  EXPECT_STREQ(to_string(static_cast<Integrator>(99)), "?");
+  EXPECT_THROW(integrator_traits(static_cast<Integrator>(99)), std::invalid_argument);
+  EXPECT_TRUE(integrator_traits(Integrator::semi_implicit_euler).paper_step);
 }
 
 TEST(Integrate, EachStepIsItsAmplificationMatrix) {

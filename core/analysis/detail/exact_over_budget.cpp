@@ -12,6 +12,7 @@
 #include "core/analysis/detail/index_patch.hpp"
 #include "core/analysis/linear_stability_modes.hpp"
 #include "core/safe_bound.hpp"
+#include "core/integrate.hpp"
 
 namespace dampbound::detail {
 namespace {
@@ -282,7 +283,7 @@ ExactStability over_budget(const Model& model, const std::vector<Vec3>& x, const
   // The paper's step: the vector is aimed at the index matrix S = h^2 A + 2 h gamma diag(R)
   // at the user's gamma and dt, whose top decides stability (SPEC 7); others: at A.
   const double h = params.dt, gamma = params.gamma;
-  const bool paper_step = params.integrator == Integrator::semi_implicit_euler;
+  const bool paper_step = integrator_traits(params.integrator).paper_step;
   Eigen::VectorXd u;
   const Eigen::VectorXd d = (2 * h * gamma) * in.R;
   const EigenInterval top =
@@ -305,7 +306,7 @@ ExactStability over_budget(const Model& model, const std::vector<Vec3>& x, const
   // Implicit Euler needs no lambda_max: with K positive semidefinite (SPEC 9's floor proves
   // lambda_min >= 0, to the same rounding allowance as the computed route) it is stable for
   // every dt and gamma (unconditional()).
-  if (params.integrator == Integrator::implicit_euler && floor &&
+  if (integrator_traits(params.integrator).implicit && floor &&
       *floor >= -1e-12 * std::max(1.0, std::abs(top.hi))) {
     b.unconditional = true;
     e.stable = true;
