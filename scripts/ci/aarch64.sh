@@ -16,12 +16,13 @@ for tool in aarch64-linux-gnu-g++ qemu-aarch64-static g++; do
   command -v "$tool" >/dev/null ||
     { echo "aarch64.sh: $tool not found (scripts/install-deps.sh installs it)" >&2; exit 1; }
 done
-# The check and the part of core it reaches (the analysis files for implicit Euler's matrices).
+# The check and the part of core it reaches: the physics layer (implicit Euler solves with
+# core/stiffness) and the kernel.
 common=(scripts/ci/aarch64_bits.cpp core/bounds.cpp core/detail/spring_pass.cpp core/forces.cpp
   core/integrate.cpp core/model.cpp core/node_threads.cpp core/params.cpp core/protocol.cpp
   core/safe_bound.cpp core/safe_bound_damped.cpp core/safe_bound_nodes.cpp core/scene.cpp
   core/session.cpp core/step.cpp core/sweep/kernel.cpp core/sweep/detail/kernel_body.cpp
-  core/sweep/trials.cpp core/analysis/linear_stability.cpp core/analysis/damping_matrix.cpp)
+  core/sweep/trials.cpp core/stiffness.cpp core/closed_forms.cpp)
 x86_only=(core/sweep/detail/kernel_avx2.cpp core/sweep/detail/kernel_avx512.cpp)
 # The project's rounding flags: no FMA contraction (CMakeLists.txt). -O1 compiles faster and
 # rounds the same (IEEE operations, no contraction, no fast-math). Sections let the static
