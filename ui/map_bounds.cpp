@@ -5,6 +5,7 @@
 #include <limits>
 #include <string>
 
+#include "core/integrate.hpp"
 #include "core/scene.hpp"
 #include "core/sweep/summary.hpp"
 
@@ -129,13 +130,13 @@ std::vector<MapLine> map_bound_lines(const MapBoundConstants& k, const Params& b
   // Rayleigh damping (SPEC 10) in the window they are not the limits, so they are not drawn.
   const bool nodal_only = !map_runs_plain(base, view);
   if (nodal_only && std::isfinite(k.lambda_unit) && k.lambda_unit > 0 &&
-      std::isfinite(k.rate_ratio) && base.integrator == Integrator::semi_implicit_euler)
+      std::isfinite(k.rate_ratio) && integrator_traits(base.integrator).paper_step)
     lines.push_back(boundary(
         "exact linear limit (SPEC 7)", MapLineKind::exact_linear,
         [&](const Params& p, MapParam v) { return solve_exact(k, p, v); }, base, view, x_edges,
         y_edges, samples));
   if (nodal_only && !k.safe.row_sum.empty() &&
-      base.integrator == Integrator::semi_implicit_euler)
+      integrator_traits(base.integrator).paper_step)
     lines.push_back(boundary(
         "safe bound, every node (SPEC 9)", MapLineKind::safe,
         [&](const Params& p, MapParam v) {

@@ -1,4 +1,5 @@
 #include "ui/tuner_criteria.hpp"
+#include "core/integrate.hpp"
 #include "core/analysis/criteria_safe.hpp"
 #include "core/analysis/damping_limits.hpp"
 
@@ -58,7 +59,7 @@ std::optional<ExactStability> analyse(const Model& model, const std::vector<Vec3
       // are known for the paper's step only, and their bisection takes one certified
       // eigenvalue per step: seconds at the paper plane's 1296 nodes, minutes at
       // tissue-block's 6237 (`bounds` computes it there).
-      if (params.integrator != Integrator::semi_implicit_euler) return std::nullopt;
+      if (!integrator_traits(params.integrator).paper_step) return std::nullopt;
       if (free_node_count(model) > kGeneralLimitsNodes) return std::nullopt;
     }
     ExactStability e = exact_stability(model, x, params, o);
