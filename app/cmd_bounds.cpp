@@ -45,7 +45,7 @@ void print_damping_lines(const Model& model, const State& state, const Params& p
   if (!model.spring_damping) return;
   auto g5 = [](double x) { return format_human(x); };
   const DampingRatios r = damping_ratios(model, state.x);
-  std::printf("\ndamping (SPEC 10)     kd=%s rayleigh_mass=%s 1/s rayleigh_stiffness=%s s\n",
+  std::printf("\ndamping               kd=%s rayleigh_mass=%s 1/s rayleigh_stiffness=%s s\n",
               format_number(p.kd).c_str(), format_number(p.rayleigh_mass).c_str(),
               format_number(p.rayleigh_stiffness).c_str());
   std::printf("damping ratios        nodal zeta %s..%s; dashpots (%d) zeta_ij %s..%s; Rayleigh "
@@ -60,7 +60,7 @@ void print_damping_lines(const Model& model, const State& state, const Params& p
     return;
   }
   const GeneralLimits g = general_limits(model, state.x, p);
-  std::printf("exact index (SPEC 10) lambda_max(dt^2 A + 2 dt C^) = %s: %s (stable below 4)\n",
+  std::printf("exact index           lambda_max(dt^2 A + 2 dt C^) = %s: %s (stable below 4)\n",
               g5(g.index).c_str(), g.index < 4 ? "stable" : "UNSTABLE");
   std::printf("exact limits          gamma < %s, dt < %s s at gamma = %s (%s)\n",
               g5(g.gamma_max).c_str(), g5(g.dt_max).c_str(), format_number(p.gamma).c_str(),
@@ -137,7 +137,7 @@ void print_safe_lines(const Model& model, const State& state, const Params& p,
                ? ", exact limit " + g5(ex) + ", ratio " + g5(safe / ex)
                : std::string();
   };
-  const char* spec = model.spring_damping ? "SPEC 10" : "SPEC 9";
+  const char* spec = model.spring_damping ? "damped" : "nodal";
   std::printf("\nsafe bound (%s)%sgamma_safe = %s%s at node %d (R = %s 1/s^2)%s\n",
               spec, model.spring_damping ? "  " : "   ", g5(s.gamma_safe).c_str(),
               s.gamma_scaled ? " (the user's gamma: gamma_i = gamma * gamma_scale_i)" : "",
@@ -238,8 +238,8 @@ void print_worst(const Model& model, const State& state, const Params& p, int co
               format_digits(w.median_mass, 4).c_str(), format_digits(w.median_kappa, 4).c_str(),
               format_digits(w.median_edge, 4).c_str());
   const char* head = "     node dt_safe      gamma_safe   mass       stiffest   shortest   degree  cause\n";
-  std::printf("worst %d by dt_safe_i (SPEC 9, at gamma_i):\n%s%s", count, head, rows(w.by_dt).c_str());
-  std::printf("worst %d by gamma_safe_i (SPEC 9, at dt = %s s):\n%s%s", count,
+  std::printf("worst %d by dt_safe_i (at gamma_i):\n%s%s", count, head, rows(w.by_dt).c_str());
+  std::printf("worst %d by gamma_safe_i (at dt = %s s):\n%s%s", count,
               format_human(p.dt).c_str(), head, rows(w.by_gamma).c_str());
 }
 
@@ -313,7 +313,7 @@ int run_scene(const BoundsArgs& a) {
   if (!exact.computed())
     std::printf("             %s (--factor-budget)%s\n", exact.over_budget_reason().c_str(),
                 safe_bound_scope(p.integrator).empty()
-                    ? "; the safe bound (SPEC 9) below still holds"
+                    ? "; the safe bound below still holds"
                     : "");
   print_safe_lines(model, state, p, exact);
   print_damping_lines(model, state, p);
@@ -365,7 +365,7 @@ std::function<int()> setup(CLI::App& root) {
       ->excludes("--after");
   cmd->add_option("--worst", a->worst,
                   "with a scene: the N nodes with the smallest dt_safe_i and the N with the "
-                  "smallest gamma_safe_i (SPEC 9), each with its mass, stiffest spring, shortest "
+                  "smallest gamma_safe_i, each with its mass, stiffest spring, shortest "
                   "edge, degree and the cause in words")
       ->check(CLI::Range(1, 1000000));
   cmd->add_flag("--json", a->json, "with --worst: the worst nodes as one JSON object only");
