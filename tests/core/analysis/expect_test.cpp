@@ -47,6 +47,7 @@ TEST(Expect, EachFieldIsJudged) {
   const RunResult r = run_labelled(s, "");
   const int n = r.iterations;
   Expectation pass;
+  pass.rule = StopRule::first_entry;  // the default is settled
   pass.line = 40;
   pass.outcome = Outcome::restored;
   pass.iterations_min = n, pass.iterations_max = n;
@@ -56,6 +57,7 @@ TEST(Expect, EachFieldIsJudged) {
   pass.violations_max = 0;
   pass.unstabilisable_max = 0;
   Expectation fail;
+  fail.rule = StopRule::first_entry;
   fail.line = 41;
   fail.outcome = Outcome::diverged;
   fail.iterations_min = n + 1, fail.iterations_max = n + 10;
