@@ -15,6 +15,7 @@ SceneSpec two_node() { return load_scene(test::source_path("scenes/two-node.toml
 
 TEST(Expect, RunLabelledPicksTheRunsParametersAndRule) {
   SceneSpec s = two_node();
+  s.rules.rule = StopRule::first_entry;  // run_labelled's rule when none is given
   RunSpec soft;
   soft.label = "soft";
   soft.params = s.params;
