@@ -18,6 +18,7 @@
 #include "core/analysis/worst_nodes.hpp"
 #include "core/bounds.hpp"
 #include "core/error.hpp"
+#include "core/integrate.hpp"
 #include "core/io/format.hpp"
 #include "core/io/report.hpp"
 #include "core/safe_bound.hpp"
@@ -45,7 +46,7 @@ void print_damping_lines(const Model& model, const State& state, const Params& p
   if (!model.spring_damping) return;
   auto g5 = [](double x) { return format_human(x); };
   const DampingRatios r = damping_ratios(model, state.x);
-  std::printf("\ndamping (SPEC 10)     kd=%s rayleigh_mass=%s 1/s rayleigh_stiffness=%s s\n",
+  std::printf("\ndamping               kd=%s rayleigh_mass=%s 1/s rayleigh_stiffness=%s s\n",
               format_number(p.kd).c_str(), format_number(p.rayleigh_mass).c_str(),
               format_number(p.rayleigh_stiffness).c_str());
   std::printf("damping ratios        nodal zeta %s..%s; dashpots (%d) zeta_ij %s..%s; Rayleigh "
@@ -53,14 +54,14 @@ void print_damping_lines(const Model& model, const State& state, const Params& p
               g5(r.nodal_min).c_str(), g5(r.nodal_max).c_str(), r.dashpots,
               g5(r.dashpot_min).c_str(), g5(r.dashpot_max).c_str(), g5(r.rayleigh_low).c_str(),
               g5(r.lambda_min).c_str(), g5(r.rayleigh_high).c_str(), g5(r.lambda_max).c_str());
-  if (p.integrator != Integrator::semi_implicit_euler) {
+  if (!integrator_traits(p.integrator).paper_step) {
     std::printf("exact index           derived for the paper's semi-implicit step; not shown "
                 "for %s\n",
                 to_string(p.integrator));
     return;
   }
   const GeneralLimits g = general_limits(model, state.x, p);
-  std::printf("exact index (SPEC 10) lambda_max(dt^2 A + 2 dt C^) = %s: %s (stable below 4)\n",
+  std::printf("exact index           lambda_max(dt^2 A + 2 dt C^) = %s: %s (stable below 4)\n",
               g5(g.index).c_str(), g.index < 4 ? "stable" : "UNSTABLE");
   std::printf("exact limits          gamma < %s, dt < %s s at gamma = %s (%s)\n",
               g5(g.gamma_max).c_str(), g5(g.dt_max).c_str(), format_number(p.gamma).c_str(),
@@ -129,7 +130,7 @@ void print_safe_lines(const Model& model, const State& state, const Params& p,
                       const ExactStability& exact) {
   const SafeBoundSummary s = safe_bound_summary(model, state.x, p.dt);
   if (s.free_nodes == 0) return;
-  const bool paper_step = exact.integrator == Integrator::semi_implicit_euler;
+  const bool paper_step = integrator_traits(exact.integrator).paper_step;
   auto g5 = [](double x) { return format_human(x); };
   auto ratio = [&](double safe, double ex) {
     // the exact rows below are the nodal analysis (SPEC 7); SPEC 10's own follow
@@ -137,7 +138,7 @@ void print_safe_lines(const Model& model, const State& state, const Params& p,
                ? ", exact limit " + g5(ex) + ", ratio " + g5(safe / ex)
                : std::string();
   };
-  const char* spec = model.spring_damping ? "SPEC 10" : "SPEC 9";
+  const char* spec = model.spring_damping ? "damped" : "nodal";
   std::printf("\nsafe bound (%s)%sgamma_safe = %s%s at node %d (R = %s 1/s^2)%s\n",
               spec, model.spring_damping ? "  " : "   ", g5(s.gamma_safe).c_str(),
               s.gamma_scaled ? " (the user's gamma: gamma_i = gamma * gamma_scale_i)" : "",
@@ -238,8 +239,8 @@ void print_worst(const Model& model, const State& state, const Params& p, int co
               format_digits(w.median_mass, 4).c_str(), format_digits(w.median_kappa, 4).c_str(),
               format_digits(w.median_edge, 4).c_str());
   const char* head = "     node dt_safe      gamma_safe   mass       stiffest   shortest   degree  cause\n";
-  std::printf("worst %d by dt_safe_i (SPEC 9, at gamma_i):\n%s%s", count, head, rows(w.by_dt).c_str());
-  std::printf("worst %d by gamma_safe_i (SPEC 9, at dt = %s s):\n%s%s", count,
+  std::printf("worst %d by dt_safe_i (at gamma_i):\n%s%s", count, head, rows(w.by_dt).c_str());
+  std::printf("worst %d by gamma_safe_i (at dt = %s s):\n%s%s", count,
               format_human(p.dt).c_str(), head, rows(w.by_gamma).c_str());
 }
 
@@ -313,7 +314,7 @@ int run_scene(const BoundsArgs& a) {
   if (!exact.computed())
     std::printf("             %s (--factor-budget)%s\n", exact.over_budget_reason().c_str(),
                 safe_bound_scope(p.integrator).empty()
-                    ? "; the safe bound (SPEC 9) below still holds"
+                    ? "; the safe bound below still holds"
                     : "");
   print_safe_lines(model, state, p, exact);
   print_damping_lines(model, state, p);
@@ -365,7 +366,7 @@ std::function<int()> setup(CLI::App& root) {
       ->excludes("--after");
   cmd->add_option("--worst", a->worst,
                   "with a scene: the N nodes with the smallest dt_safe_i and the N with the "
-                  "smallest gamma_safe_i (SPEC 9), each with its mass, stiffest spring, shortest "
+                  "smallest gamma_safe_i, each with its mass, stiffest spring, shortest "
                   "edge, degree and the cause in words")
       ->check(CLI::Range(1, 1000000));
   cmd->add_flag("--json", a->json, "with --worst: the worst nodes as one JSON object only");

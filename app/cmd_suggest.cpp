@@ -12,6 +12,7 @@
 #include "core/analysis/equilibrium.hpp"
 #include "core/analysis/substeps.hpp"
 #include "core/analysis/suggest.hpp"
+#include "core/integrate.hpp"
 #include "core/io/format.hpp"
 #include "core/io/report.hpp"
 
@@ -162,8 +163,7 @@ int print_damping(const SceneSpec& scene, const DampingSuggestion& s) {
               std::isnan(s.best_rho)
                   ? ""
                   : ((!s.proved_only ? "; rho = "
-                      : s.exact.integrator == Integrator::semi_implicit_euler ||
-                              s.exact.integrator == Integrator::forward_euler
+                      : integrator_traits(s.exact.integrator).euler_velocity_update
                           ? "; rho <= "  // the ends of the interval decide (quasi-convex)
                           : "; rho about ") +  // 65 lambdas sampled
                      format_human(s.best_rho))
@@ -263,7 +263,7 @@ int run(const SuggestArgs& a) {
   const int status = print_damping(scene, suggest_damping(scene, p, rules, options));
   // SPEC 10: with dashpot or Rayleigh damping in play, the range of each kind.
   const bool spec10 = p.kd != 0 || p.rayleigh_mass != 0 || p.rayleigh_stiffness != 0;
-  if (spec10 && p.integrator == Integrator::semi_implicit_euler)
+  if (spec10 && integrator_traits(p.integrator).paper_step)
     print_damping_kinds(scene, p, rules, !a.no_verify);
   return status;
 }

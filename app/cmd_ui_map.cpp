@@ -101,7 +101,7 @@ std::function<int()> setup(CLI::App& root) {
       "map",
       "Draw the stability map of a sweep CSV (headless, EGL): outcome over kappa/m and zeta "
       "(or factor), and over m and kappa per zeta, with the paper's boundary and the exact "
-      "linear one (SPEC 7); print how often the predictions held.");
+      "linear one; print how often the predictions held.");
   cmd->add_option("results", a->csv, "a sweep CSV (dampbound sweep -o)")->required();
   cmd->add_option("-o,--output", a->output, "PNG file to write")->required();
   cmd->add_option("--scene", a->scene,

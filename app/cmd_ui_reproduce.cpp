@@ -144,12 +144,12 @@ void write_report(std::ostream& out, const ReproduceArgs& a, const std::vector<C
       << std::thread::hardware_concurrency()
       << " hardware threads. Every number below is measured by this run; nothing is tuned "
          "toward the paper.\n\n"
-      << "The mesh is the paper's (SPEC 5): 36 x 36 nodes 0.57 cm apart in the xz-plane, one "
+      << "The mesh is the paper's: 36 x 36 nodes 0.57 cm apart in the xz-plane, one "
          "diagonal per cell, an anchor spring per node, node (18, 18) moved 5 cm along y, "
          "dt = 0.05 s, semi-implicit Euler (paper eqs. 3-4). *Restored* means every node within "
          "1% of the perturbation (0.05 cm) of rest; *diverged* means a non-finite coordinate or "
          "a node beyond 100x the perturbation.\n\n"
-         "Two rules give a verdict (SPEC 8). The paper's, *first-entry*, calls a run restored at "
+         "Two rules give a verdict. The paper's, *first-entry*, calls a run restored at "
          "the first iteration below the 1% band; the figures and the reduced sweeps use it. "
          "The *settled* rule steps on to the iteration limit and calls a run settled only "
          "where it stays below the band from some iteration to the limit; it judges the "
@@ -233,7 +233,7 @@ int run(const ReproduceArgs& a) {
     std::fprintf(stderr, "reproduce: upper-bound sweep ...\n");
     sweeps.push_back(reduced_sweep(a, plane, true));
     for (Claim& c : sweeps.back().claims) claims.push_back(c);
-    std::fprintf(stderr, "reproduce: fixed damping and the safe policy (SPEC 9) ...\n");
+    std::fprintf(stderr, "reproduce: fixed damping and the safe policy ...\n");
     sweeps.push_back(reduced_sweep(a, plane, false, StopRule::first_entry, true));
     sweeps.push_back(reduced_sweep(a, plane, false, StopRule::first_entry, true, true));
   }

@@ -65,8 +65,10 @@ int main(int argc, char** argv) {
     }
     if (word.empty() || word[0] == '-') continue;
     if (runners.count(word)) break;
-    std::string names;
-    for (const auto& [name, runner] : runners) names += (names.empty() ? "" : ", ") + name;
+    std::string names;  // the ones --help lists: a hidden command (group "") is left out
+    for (const auto& [name, runner] : runners)
+      if (!root.get_subcommand(name)->get_group().empty())
+        names += (names.empty() ? "" : ", ") + name;
     print_error(("unknown subcommand '" + word + "' (one of: " + names + ")").c_str());
     return 2;
   }

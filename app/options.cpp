@@ -151,7 +151,7 @@ CLI::Option* add_factor_budget_option(CLI::App* cmd, double& gflop) {
 }
 
 StopRule stop_rule_of(const std::string& text) {
-  return parse_stop_rule(text).value_or(StopRule::first_entry);
+  return parse_stop_rule(text).value_or(StopRules{}.rule);
 }
 
 void parse_size(const std::string& text, const char* flag, int& width, int& height) {

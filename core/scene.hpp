@@ -38,9 +38,9 @@ struct RunSpec {
 struct Expectation {
   std::string run;  ///< label of a RunSpec; empty = the scene's own parameters
   int line = 0;     ///< line in the scene file, for messages
-  /// The verdict rule the run is judged by (SPEC 8); first-entry (the paper's) when the table
+  /// The verdict rule the run is judged by (SPEC 8); the default rule (settled) when the table
   /// does not say.
-  StopRule rule = StopRule::first_entry;
+  StopRule rule = StopRules{}.rule;
   std::optional<Outcome> outcome;
   std::optional<int> iterations_min, iterations_max;  ///< the outcome's iteration
   std::optional<int> first_entry_min, first_entry_max;  ///< first iteration below the band

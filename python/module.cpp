@@ -115,7 +115,7 @@ void bind_params(py::module_& m) {
             if (!rule) throw py::value_error("rule must be first-entry or settled, got '" + s + "'");
             r.rule = *rule;
           },
-          "'first-entry' (the paper's, SPEC 5) or 'settled' (SPEC 8: step to the limit)");
+          "'settled' (the default, SPEC 8: step to the limit) or 'first-entry' (the paper's, SPEC 5)");
 }
 
 /// An iteration, or None where the result has none (0), as the JSON's null.

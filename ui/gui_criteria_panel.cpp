@@ -58,7 +58,7 @@ void GuiApp::criteria_panel() {
     c.set_linearisation(static_cast<Linearisation>(at));
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip(
-        "Where the exact analysis (SPEC 7) linearises the forces: at rest, at the current\n"
+        "Where the exact analysis linearises the forces: at rest, at the current\n"
         "positions (it follows the run, refreshed every 0.2 s or so), or at the static\n"
         "equilibrium under the scene's loads and rest lengths, where a damped run settles\n"
         "(Newton's method first, as dampbound bounds --equilibrium).");
@@ -193,7 +193,7 @@ void GuiApp::substeps_section() {
   if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
     ImGui::SetTooltip(
         "The fewest substeps n with dt = F/n stable by the exact limit, and the n the\n"
-        "safe bound (SPEC 9) guarantees, at this gamma and the rest state; each verified\n"
+        "safe bound guarantees, at this gamma and the rest state; each verified\n"
         "by a run of the mesh as it is now (with the cuts made so far).");
   job_status(job, "Cancel##substeps");
   if (!job.result()) return;

@@ -116,7 +116,7 @@ void GuiApp::damping_input(Params& p, bool& changed) {
     p = t.params();
   }
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("Off: the slider sets gamma. On: it sets the damping ratio zeta (SPEC 10),\n"
+    ImGui::SetTooltip("Off: the slider sets gamma. On: it sets the damping ratio zeta,\n"
                       "each node's gamma_i = zeta 2 sqrt(m_i kappa_i), kept when m or kappa move.\n"
                       "On a scene whose nodes have their own lower bounds the run restarts once.");
   ImGui::SameLine();
@@ -149,12 +149,12 @@ void GuiApp::other_damping_input(Params& p, bool& changed) {
   };
   static constexpr Kind kinds[] = {
       {"##kd_on", "kd dashpot", &Params::kd, 1e-6, 10.0,
-       "Dashpot along each spring and anchor, kd (mass unit / s; SPEC 10):\n"
+       "Dashpot along each spring and anchor, kd (mass unit / s):\n"
        "force kd ((v_j - v_i) . d) d on node i (Warp's spring_kd, SOFA's spring damping)"},
       {"##alpha_on", u8"\u03B1 Rayleigh M", &Params::rayleigh_mass, 1e-4, 100.0,
-       "Rayleigh mass damping alpha (1/s; SPEC 10): force -alpha m_i v_i\n(SOFA's rayleighMass)"},
+       "Rayleigh mass damping alpha (1/s): force -alpha m_i v_i\n(SOFA's rayleighMass)"},
       {"##beta_on", u8"\u03B2 Rayleigh K", &Params::rayleigh_stiffness, 1e-6, 1.0,
-       "Rayleigh stiffness damping beta (s; SPEC 10): force -beta (K(x) v)_i\n"
+       "Rayleigh stiffness damping beta (s): force -beta (K(x) v)_i\n"
        "(SOFA's rayleighStiffness)"},
   };
   for (size_t k = 0; k < 3; ++k) {
@@ -248,7 +248,7 @@ void GuiApp::parameters_panel() {
         "Effective damping each step (paper sec. 5):\n"
         "fixed: gamma as given\nclamp: gamma clamped into [lower, upper]\n"
         "upper: factor x upper bound (eq. 6)\nlower: the lower bound (eq. 5)\n"
-        "safe: gamma clamped into [lower, safe bound] (SPEC 9): stability of the\n"
+        "safe: gamma clamped into [lower, safe bound]: stability of the\n"
         "paper's semi-implicit step guaranteed (not derived for the other integrators)");
   {
     const ScopedDisabled off(p.policy != DampingPolicy::upper);
@@ -264,7 +264,7 @@ void GuiApp::parameters_panel() {
   int max_iter = t.session().rules().max_iterations;
   if (item::input_int("max iterations", &max_iter, 100, 1000)) t.set_max_iterations(max_iter);
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("The iteration limit: the settled rule (SPEC 8) gives its verdict here");
+    ImGui::SetTooltip("The iteration limit: the settled rule gives its verdict here");
   width.reset();
   if (changed) {
     std::string err;

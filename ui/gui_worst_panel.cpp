@@ -20,7 +20,7 @@ void GuiApp::worst_panel() {
   ImGui::SetNextItemWidth(ImGui::CalcTextSize(orders[1]).x + 3 * ImGui::GetFrameHeight());
   item::combo("##order", &worst_.order, orders, 2);
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("dt_safe_i: the largest dt the safe bound (SPEC 9) allows node i at its gamma_i\n"
+    ImGui::SetTooltip("dt_safe_i: the largest dt the safe bound allows node i at its gamma_i\n"
                       "gamma_safe_i: the largest gamma_i it allows at this dt");
   const WorstNodes& w = worst_nodes_.get(t.session(), t.topology(), worst_.count);
   wrapped_colored(ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled),

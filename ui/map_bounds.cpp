@@ -132,13 +132,13 @@ std::vector<MapLine> map_bound_lines(const MapBoundConstants& k, const Params& b
   if (nodal_only && std::isfinite(k.lambda_unit) && k.lambda_unit > 0 &&
       std::isfinite(k.rate_ratio) && integrator_traits(base.integrator).paper_step)
     lines.push_back(boundary(
-        "exact linear limit (SPEC 7)", MapLineKind::exact_linear,
+        "exact linear limit", MapLineKind::exact_linear,
         [&](const Params& p, MapParam v) { return solve_exact(k, p, v); }, base, view, x_edges,
         y_edges, samples));
   if (nodal_only && !k.safe.row_sum.empty() &&
       integrator_traits(base.integrator).paper_step)
     lines.push_back(boundary(
-        "safe bound, every node (SPEC 9)", MapLineKind::safe,
+        "safe bound, every node", MapLineKind::safe,
         [&](const Params& p, MapParam v) {
           if (other_damping_axis(v)) return kNaN;
           const SafeAxis axis = v == MapParam::m       ? SafeAxis::m

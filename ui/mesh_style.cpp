@@ -61,11 +61,11 @@ ImU32 watched_color() {
 
 ImU32 unguaranteed_color() { return IM_COL32(0, 215, 215, 255); }  // cyan
 
-const char* unguaranteed_label() { return "not guaranteed (SPEC 9)"; }
+const char* unguaranteed_label() { return "not guaranteed"; }
 
 const char* unguaranteed_help() {
   return "gamma_lo > gamma_safe: critical damping cannot be guaranteed stable at this dt "
-         "(SPEC 9); a smaller dt would";
+         "(safe bound); a smaller dt would";
 }
 
 ImU32 node_color(NodeStatus status, bool unguaranteed) {

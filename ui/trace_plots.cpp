@@ -87,7 +87,7 @@ PlotSpec envelope_plot(const std::vector<StepSample>& trace, std::optional<doubl
   series("lower bound (eq. 5)", band.y_lo, IM_COL32(31, 119, 180, 255), false, 2.0f);
   series("upper bound (eq. 6)", band.y_hi, IM_COL32(214, 39, 40, 255), false, 2.0f);
   // SPEC 9: below this the linearised step is guaranteed stable (<= 0 is not drawn on log y).
-  series("safe bound (SPEC 9)", column(trace, [](const StepSample& s) { return s.watched.safe; }),
+  series("safe bound", column(trace, [](const StepSample& s) { return s.watched.safe; }),
          IM_COL32(23, 190, 207, 255), false, 2.0f);
   series("user gamma", column(trace, [](const StepSample& s) { return s.watched.gamma; }),
          IM_COL32(127, 127, 127, 255), true, 1.5f);
@@ -97,7 +97,7 @@ PlotSpec envelope_plot(const std::vector<StepSample>& trace, std::optional<doubl
   // The exact limit is of the user's gamma; the node is damped at gamma_i = gamma * scale.
   if (exact_gamma_max && *exact_gamma_max * gamma_scale > 0) {
     PlotRefLine h;
-    h.label = "exact linear limit (SPEC 7)";
+    h.label = "exact linear limit";
     if (gamma_scale != 1) h.label += " x gamma_scale " + format_digits(gamma_scale, 4);
     h.at = *exact_gamma_max * gamma_scale;
     h.color = IM_COL32(148, 103, 189, 255);

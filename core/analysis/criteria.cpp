@@ -95,7 +95,7 @@ std::vector<CriterionResult> classic_criteria(const Model& model, const Params& 
       kappa_max = std::max(kappa_max, model.node_kappa[i]);
     }
   {
-    CriterionResult c = criterion("Delingette critical stiffness", "Delingette 2000 (paper ref. [11]), SPEC 7",
+    CriterionResult c = criterion("Delingette critical stiffness", "Delingette 2000 (paper ref. [11])",
                       "k_c = m_total / (n pi^2 dt^2); require kappa < k_c (kappa: the stiffest "
                       "spring or anchor)");
     c.unit = "mass unit/s^2";
@@ -106,12 +106,12 @@ std::vector<CriterionResult> classic_criteria(const Model& model, const Params& 
     out.push_back(c);
   }
   const std::vector<double> K = combined_stiffness(model);
-  CriterionResult provot = criterion("Provot natural period", "Provot 1995 (paper ref. [2]), SPEC 7",
+  CriterionResult provot = criterion("Provot natural period", "Provot 1995 (paper ref. [2])",
                          "T0_i = pi sqrt(m_i / kappa_i), kappa_i = max incident stiffness "
-                         "(SPEC 3); require dt < T0 at every node");
+                         "(paper sec. 4); require dt < T0 at every node");
   provot.unit = "s";
   provot.value = kInf;
-  CriterionResult ka = criterion("Kacic-Alesic (Verlet) step", "Kacic-Alesic et al. 2003 (paper ref. [12]), SPEC 7",
+  CriterionResult ka = criterion("Kacic-Alesic (Verlet) step", "Kacic-Alesic et al. 2003 (paper ref. [12])",
                      "dt_i = 2 sqrt(m_i / K_i), K_i = sum of the stiffness of every spring and "
                      "anchor at i; require dt <= dt_i at every node");
   ka.unit = "s";
@@ -137,7 +137,7 @@ std::vector<CriterionResult> classic_criteria(const Model& model, const Params& 
 std::vector<CriterionResult> paper_criteria(const Model& model, const State& state,
                                             const Params& params) {
   std::vector<CriterionResult> out;
-  CriterionResult lo = criterion("paper lower bound", "Bhasin & Liu eq. 5, SPEC 3",
+  CriterionResult lo = criterion("paper lower bound", "Bhasin & Liu eq. 5",
                      "gamma_i >= gamma_lo_i = 2 sqrt(m_i kappa_i), kappa_i = max incident stiffness");
   lo.unit = "mass unit/s";
   double worst = kInf;
@@ -157,11 +157,11 @@ std::vector<CriterionResult> paper_criteria(const Model& model, const State& sta
 
   std::vector<Vec3> force;
   internal_forces(model, state.x, force);
-  CriterionResult hi = criterion("paper upper bound", "Bhasin & Liu eq. 6, SPEC 3",
+  CriterionResult hi = criterion("paper upper bound", "Bhasin & Liu eq. 6",
                      "gamma_i <= gamma_hi_i = |v_i m_i/dt + F_i| / |v_i| at the state (inf at v_i = 0)");
   hi.unit = "mass unit/s";
   hi.value = kInf;
-  CriterionResult check = criterion("paper runtime check", "Bhasin & Liu sec. 5, SPEC 3",
+  CriterionResult check = criterion("paper runtime check", "Bhasin & Liu sec. 5",
                         "node i unstabilisable when gamma_lo_i > gamma_hi_i");
   check.unit = "nodes";
   int unstabilisable = 0, moving = 0;
@@ -206,7 +206,7 @@ std::vector<CriterionResult> exact_criteria(const ExactStability& e, const Param
   if (!e.computed()) return unfactored_criteria(e, params);
   CriterionResult lm =
       criterion("exact lambda_max of M^-1 K",
-                "SPEC 7, 9 (tangent stiffness; Gershgorin, shift-and-invert, Cholesky)",
+                "exact, safe bound (tangent stiffness; Gershgorin, shift-and-invert, Cholesky)",
                 "largest eigenvalue of M^-1/2 K M^-1/2 at the state; lambda_min " +
                     (bracketed(e.spectrum.lambda_min, e.lambda_min_hi)
                          ? "certified in " + span(e.spectrum.lambda_min, e.lambda_min_hi)
@@ -220,7 +220,7 @@ std::vector<CriterionResult> exact_criteria(const ExactStability& e, const Param
             format_human(params.dt * params.dt * e.spectrum.lambda_max);
   out.push_back(lm);
 
-  CriterionResult rho = criterion("exact spectral radius (" + integ + ")", "SPEC 7",
+  CriterionResult rho = criterion("exact spectral radius (" + integ + ")", "exact",
                       std::string("rho of one step's amplification matrix; ") + to_string(e.method));
   rho.value = e.spectral_radius;
   rho.verdict = verdict_of(e.stable);
@@ -249,7 +249,7 @@ std::vector<CriterionResult> exact_criteria(const ExactStability& e, const Param
   }
   out.push_back(rho);
 
-  CriterionResult gi = criterion("exact gamma interval (" + integ + ")", "SPEC 7",
+  CriterionResult gi = criterion("exact gamma interval (" + integ + ")", "exact",
                      "the user's gamma for which the step is stable at this dt");
   gi.unit = "mass unit/s";
   gi.value = e.gamma_hi;
@@ -260,7 +260,7 @@ std::vector<CriterionResult> exact_criteria(const ExactStability& e, const Param
             (e.gamma_lo < e.gamma_hi ? "" : ": empty, no gamma is stable at this dt") +
             (e.method == ExactMethod::frozen_estimate ? " (frozen-rate estimate)" : "");
 
-  CriterionResult dm = criterion("exact dt limit (" + integ + ")", "SPEC 7",
+  CriterionResult dm = criterion("exact dt limit (" + integ + ")", "exact",
                      "the largest stable dt at this gamma");
   dm.unit = "s";
   dm.value = e.dt_max;

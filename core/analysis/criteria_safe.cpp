@@ -55,7 +55,7 @@ std::vector<CriterionResult> safe_criteria(const Model& model, const State& stat
 
   CriterionResult g;
   g.name = "safe damping bound";
-  g.source = "SPEC 9 (Gershgorin on Q = 4I - 2dt C - dt^2 A)";
+  g.source = "safe bound (Gershgorin on Q = 4I - 2dt C - dt^2 A)";
   g.formula = "gamma_i < gamma_safe_i = 2 m_i/dt - m_i dt R_i / 2, R_i = max row sum of |A|";
   g.unit = "mass unit/s";
   g.value = s.gamma_safe;
@@ -72,7 +72,7 @@ std::vector<CriterionResult> safe_criteria(const Model& model, const State& stat
 
   CriterionResult d;
   d.name = "safe dt bound";
-  d.source = "SPEC 9";
+  d.source = "safe bound";
   d.formula = "dt < dt_safe_i = (sqrt(c_i^2 + 4 R_i) - c_i) / R_i, c_i = gamma_i/m_i";
   d.unit = "s";
   d.value = s.dt_safe;
@@ -85,7 +85,7 @@ std::vector<CriterionResult> safe_criteria(const Model& model, const State& stat
 
   CriterionResult c;
   c.name = "safe check: critical damping";
-  c.source = "SPEC 9";
+  c.source = "safe bound";
   c.formula = "critical damping guaranteed at node i when gamma_lo_i <= gamma_safe_i";
   c.unit = "nodes";
   c.value = static_cast<double>(s.infeasible.size());

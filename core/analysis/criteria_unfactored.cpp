@@ -88,7 +88,7 @@ std::vector<CriterionResult> unfactored_criteria(const ExactStability& e, const 
   auto row = [&](const std::string& name) {
     CriterionResult c;
     c.name = name;
-    c.source = "SPEC 7";
+    c.source = "exact";
     c.formula = "not computed";
     c.value = std::numeric_limits<double>::quiet_NaN();
     c.verdict = CriterionVerdict::not_applicable;
@@ -123,8 +123,8 @@ std::vector<CriterionResult> unfactored_criteria(const ExactStability& e, const 
     const double inf = std::numeric_limits<double>::infinity();
     out.push_back(within("exact spectral radius (" + integ + ")",
                          std::numeric_limits<double>::quiet_NaN(), "",
-                         "; stable for every dt and gamma: K is positive semidefinite (SPEC 9's "
-                         "floor, no spring compressed), which needs no factorisation"));
+                         "; stable for every dt and gamma: K is positive semidefinite (the safe "
+                         "bound's floor, no spring compressed), which needs no factorisation"));
     out.push_back(within("exact gamma interval (" + integ + ")", inf, "mass unit/s",
                          "; gamma = " + format_human(params.gamma) + " in [0, inf)"));
     out.push_back(within("exact dt limit (" + integ + ")", inf, "s",
@@ -148,13 +148,13 @@ std::vector<CriterionResult> unfactored_criteria(const ExactStability& e, const 
           "; <= " + format_human(b.index_at_most) +
           (b.index_at_most == b.index_patch
                ? " (no spring compressed: K >= 0; the patch, each node outside it alone; "
-                 "Gershgorin on its rows, SPEC 9's safe bound: " +
+                 "Gershgorin on its rows, the safe bound: " +
                      format_human(b.index_gershgorin) + ")"
            : b.index_at_most < b.index_gershgorin
                ? " (no spring compressed: K >= 0; the node-block splitting; Gershgorin on "
-                 "its rows, SPEC 9's safe bound: " +
+                 "its rows, the safe bound: " +
                      format_human(b.index_gershgorin) + ")"
-               : " (no spring compressed: K >= 0; Gershgorin on its rows, SPEC 9's safe bound)") +
+               : " (no spring compressed: K >= 0; Gershgorin on its rows, the safe bound)") +
           (stable ? " < 4: stable (proved)" : ", which proves nothing");
   } else if (modes) {
     const bool unstable = b.lambda_max_lo >= b.mode_unstable_from;

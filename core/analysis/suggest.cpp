@@ -156,15 +156,15 @@ DampingSuggestion suggest_damping(const SceneSpec& scene, const Params& params_i
     if (u.unconditional) {  // implicit Euler with K >= 0 proved: every gamma and dt
       lo = 0;
       upper = kInf;
-      s.max_by = "proved stable without a factorisation: implicit Euler with K >= 0 (SPEC 9's "
-                 "floor) is stable for every gamma and dt";
+      s.max_by = "proved stable without a factorisation: implicit Euler with K >= 0 (the safe "
+                 "bound's floor) is stable for every gamma and dt";
     } else {
       if (!(u.gamma_stable_lo <= u.gamma_stable_hi)) nothing_proved(s.exact, "damping range");
       lo = u.gamma_stable_lo;
       upper = u.gamma_stable_hi;
       s.max_by = integrator_traits(params.integrator).paper_step
-                     ? "proved stable without a factorisation: Gershgorin on SPEC 7's index "
-                       "matrix (SPEC 9), included"
+                     ? "proved stable without a factorisation: Gershgorin on the exact index "
+                       "matrix, included"
                      : "proved stable without a factorisation: every mode in [0, Gershgorin's "
                        "bound], included";
     }
@@ -214,8 +214,8 @@ DampingSuggestion suggest_damping(const SceneSpec& scene, const Params& params_i
     // lambda = 0 the radius is 1 for every gamma.
     s.gamma_best = kNaN;
     s.best_rho = kNaN;
-    s.best_method = "not computed: over the budget only lambda_min >= 0 is proved (SPEC 9's "
-                    "floor), and the slowest mode decides";
+    s.best_method = "not computed: over the budget only lambda_min >= 0 is proved (the safe "
+                    "bound's floor), and the slowest mode decides";
   } else if (uniform_rate) {
     // Exact: rho(gamma) is the max over the modes' 2x2 amplification matrices; the rate per
     // unit gamma is that of any free node (uniform_rate: all free nodes share it).
@@ -235,7 +235,7 @@ DampingSuggestion suggest_damping(const SceneSpec& scene, const Params& params_i
             ? "minimum over the range of the largest radius of any lambda in [" +
                   format_human(spectrum.lambda_min) + ", " +
                   format_human(spectrum.lambda_max) +
-                  "] (SPEC 9's floor, Gershgorin's bound: the spectrum lies inside" +
+                  "] (the safe bound's floor, Gershgorin's bound: the spectrum lies inside" +
                   (integrator_traits(params.integrator).euler_velocity_update
                        ? ", and the interval's ends decide, so rho is at most this)"
                        : "; the largest radius of 65 lambdas sampled in it)")

@@ -77,11 +77,11 @@ void write_sweep_header(std::FILE* out, const SweepHeader& h) {
                "# units: m mass unit, kappa mass unit/s^2, gamma mass unit/s, dt s, "
                "max_displacement cm; zeta = gamma/(2 sqrt(m kappa)); counts are node-steps; "
                "ran = 1 for the trial that was stepped, 0 for one that took its class's result "
-               "(SPEC 6)%s%s\n",
-               h.damping ? "; kd mass unit/s, rayleigh_mass 1/s, rayleigh_stiffness s (SPEC 10)"
+               "(similarity)%s%s\n",
+               h.damping ? "; kd mass unit/s, rayleigh_mass 1/s, rayleigh_stiffness s"
                          : "",
                h.rule == StopRule::settled
-                   ? "; outcome by the settled rule (SPEC 8): first_entry, left_at, settled_at "
+                   ? "; outcome by the settled rule: first_entry, left_at, settled_at "
                      "are iterations, 0 = none"
                    : "");
   std::fprintf(out, "%s\n", sweep_csv_columns(h.rule, h.damping).c_str());

@@ -219,11 +219,11 @@ MapPanel axis_panel(const std::vector<const SweepRow*>& all, const SweepRow& hel
   auto at = [](double a, double b, double f, bool log) {
     return log ? std::exp(std::log(a) + (std::log(b) - std::log(a)) * f) : a + (b - a) * f;
   };
-  MapLine l{"exact linear limit (SPEC 7" + std::string(has_spec10_damping(held) || dashpots ||
+  MapLine l{"exact linear limit" + std::string(has_spec10_damping(held) || dashpots ||
                                                            cx.name.rfind("rayleigh", 0) == 0 ||
                                                            cy.name.rfind("rayleigh", 0) == 0
-                                                       ? ", 10)"
-                                                       : ")"),
+                                                       ? " (with dashpot/Rayleigh damping)"
+                                                       : ""),
             MapLineKind::exact_linear, {}, {}};
   const double x0 = std::max(p.x_edges.front(), 0.0), x1 = p.x_edges.back();
   const double y0 = std::max(p.y_edges.front(), 0.0), y1 = p.y_edges.back();
@@ -340,7 +340,7 @@ StabilityMap build_stability_map(const SweepTable& table, double lambda_unit,
         horizontal("paper: upper bound, factor = 1 (eq. 6)", MapLineKind::paper, 1.0, ratio));
   if (have_lambda) {
     if (gamma_policy) {
-      MapLine l{"exact linear limit gamma_max (SPEC 7)", MapLineKind::exact_linear, {}, {}};
+      MapLine l{"exact linear limit gamma_max", MapLineKind::exact_linear, {}, {}};
       const double a = std::log(ratio.x_edges.front()), b = std::log(ratio.x_edges.back());
       for (int k = 0; k <= 400; ++k) {
         const double r = std::exp(a + (b - a) * k / 400);
@@ -352,7 +352,7 @@ StabilityMap build_stability_map(const SweepTable& table, double lambda_unit,
     }
     const double r_crit = 4 / (lambda_unit * dt * dt);
     if (r_crit > ratio.x_edges.front() && r_crit < ratio.x_edges.back())
-      ratio.lines.push_back(vertical("dt = 2/sqrt(lambda_max): undamped limit (SPEC 7)",
+      ratio.lines.push_back(vertical("dt = 2/sqrt(lambda_max): undamped limit",
                                      MapLineKind::dt_limit, r_crit, ratio));
   }
   map.panels.push_back(ratio);

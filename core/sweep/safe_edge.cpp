@@ -94,9 +94,9 @@ std::vector<PredictorScore> divergence_confusion(const std::vector<SweepRow>& ro
                                                  const SafeUnit& unit, double lambda_unit) {
   std::vector<PredictorScore> out = {
       {"paper runtime check (gamma_lo > gamma_hi at some node-step, sec. 5)", {}},
-      {"safe check at rest (gamma_i >= gamma_safe_i at some node, SPEC 9)", {}}};
+      {"safe check at rest (gamma_i >= gamma_safe_i at some node)", {}}};
   const bool exact = std::isfinite(lambda_unit) && lambda_unit > 0;
-  if (exact) out.push_back({"exact linear limit at rest (SPEC 7)", {}});
+  if (exact) out.push_back({"exact linear limit at rest", {}});
   for (const SweepRow& r : rows) {
     if (has_spec10_damping(r)) continue;  // the unit safe bound is the nodal one
     const bool diverged = r.outcome == Outcome::diverged;
@@ -135,7 +135,7 @@ std::vector<std::string> safe_summary_lines(const std::vector<SweepRow>& rows,
   if (spec10 > 0 && (policy == DampingPolicy::fixed || policy == DampingPolicy::safe)) {
     c_snprintf(buf, sizeof buf,
                "note         %lld trials with dashpot or Rayleigh damping are not scored below: "
-               "the sweep's safe bound is the nodal one (bounds gives SPEC 10's per scene)",
+               "the sweep's safe bound is the nodal one (bounds gives the damped one per scene)",
                static_cast<long long>(spec10));
     lines.push_back(buf);
   }
@@ -162,7 +162,7 @@ std::vector<std::string> safe_summary_lines(const std::vector<SweepRow>& rows,
     }
     c_snprintf(buf, sizeof buf,
                   "safe policy  gamma_safe_i > 0 at every node (stability guaranteed at rest, "
-                  "SPEC 9): %" PRIu64 " trials, %" PRIu64 " diverged",
+                  "safe bound): %" PRIu64 " trials, %" PRIu64 " diverged",
                   guaranteed, guaranteed_div);
     lines.push_back(buf);
     c_snprintf(buf, sizeof buf,
@@ -206,7 +206,7 @@ std::string safe_report_section(const std::vector<SweepRow>& fixed_rows,
   c_snprintf(num, sizeof num, "%.6g", r_unit);
   std::string s = "\n## What guarantees stability\n\n";
   s += "The paper's runtime check (sec. 5) compares the lower bound of eq. 5 with the upper "
-       "bound of eq. 6 at every node and step. The safe bound of SPEC 9 (docs/criteria.md) "
+       "bound of eq. 6 at every node and step. The safe bound (docs/criteria.md) "
        "is a sufficient condition instead: with the tangent stiffness K positive "
        "semi-definite, the linearised step is stable where every free node has gamma_i < "
        "gamma_safe_i = 2 m_i/dt - m_i dt R_i/2, R_i the largest Gershgorin row sum of "

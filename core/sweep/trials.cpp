@@ -31,7 +31,7 @@ std::optional<std::string> batch_kernel_unsupported(const SceneSpec& scene) {
 std::optional<std::string> batch_kernel_unsupported(const SceneSpec& scene, const Params& params) {
   if (!scene.cuts.empty()) return "the scene cuts springs during the run";
   if (params.kd != 0 || params.rayleigh_mass != 0 || params.rayleigh_stiffness != 0)
-    return "dashpot or Rayleigh damping (SPEC 10): the batched kernel applies the nodal "
+    return "dashpot or Rayleigh damping: the batched kernel applies the nodal "
            "damping only, so each trial runs step()";
   const Integrator in = params.integrator;
   if (!integrator_traits(in).batched_kernel)

@@ -220,6 +220,19 @@ def test_settled_rule_runs_to_the_limit_and_reports_the_first_entry(scenes_dir):
     assert 0 < settled.settled_at <= 400
 
 
+def test_one_default_rule_settled_everywhere(scenes_dir):
+    # The CLI's default (SPEC 8): a new StopRules, a scene's rules and a Session without rules
+    # all judge by the settled rule; first-entry only when asked for.
+    assert dampbound.StopRules().rule == "settled"
+    scene = dampbound.load_scene(str(scenes_dir / "two-node.toml"))
+    assert scene.rules.rule == "settled"
+    rules = dampbound.StopRules()
+    rules.reference = scene.rules.reference
+    rules.max_iterations = 400
+    r = dampbound.Session(scene, rules=rules).run()
+    assert r.outcome == "settled" and r.iterations == 400
+
+
 def test_a_comma_locale_leaves_mesh_scenes_readable(scenes_dir):
     # A script that calls locale.setlocale(LC_ALL, "") in Germany gives the C library a
     # decimal comma; dampbound's mesh readers and writers keep the point.

@@ -34,8 +34,19 @@ displacement = [0.5, 0, 0]
 outcome = "diverged"
 TOML
 expect_exit 1 "$DB" check "$WORK/wrong.toml" --junit "$WORK/wrong.xml"
-expect_match "$OUT" 'FAIL .*wrong.toml:13 \[first-entry\] outcome == diverged \(measured restored at [0-9]+' "fail line"
-expect_match "$(cat "$WORK/wrong.xml")" '<failure message="measured restored' "junit failure"
+# An [[expect]] without a rule is judged by the default rule, settled (SPEC 8).
+expect_match "$OUT" 'FAIL .*wrong.toml:13 \[settled\] outcome == diverged \(measured settled at [0-9]+' "fail line"
+expect_match "$(cat "$WORK/wrong.xml")" '<failure message="measured settled' "junit failure"
+sed 's/^outcome = "diverged"/rule = "first-entry"\noutcome = "diverged"/' "$WORK/wrong.toml" >"$WORK/wrong-first.toml"
+expect_exit 1 "$DB" check "$WORK/wrong-first.toml"
+expect_match "$OUT" 'FAIL .*wrong-first.toml:13 \[first-entry\] outcome == diverged \(measured restored at [0-9]+' "first-entry named"
+sed 's/^outcome = "diverged"/outcome = "settled"/' "$WORK/wrong.toml" >"$WORK/default-settled.toml"
+expect_exit 0 "$DB" check "$WORK/default-settled.toml"
+expect_match "$OUT" 'pass .*default-settled.toml:13 \[settled\] outcome == settled' "no rule: settled"
+# A key an [[expect]] does not have is bad input for check too: exit 2, file and line.
+sed 's/^outcome = "diverged"/outcome = "settled"\nsettled_by = [1, 2]/' "$WORK/wrong.toml" >"$WORK/badkey.toml"
+expect_exit 2 "$DB" check "$WORK/badkey.toml"
+expect_match "$OUT$ERR" "badkey\.toml:[0-9]+: unknown key 'settled_by' in \[\[expect\]\]" "bad expect key"
 
 # The settled rule (SPEC 8): the undamped oscillator enters the band at 31 and leaves it.
 sed -e 's/^gamma = 0.002/gamma = 0.0/' -e 's/^outcome = "diverged"/rule = "settled"\noutcome = "not_settled"\nfirst_entry = [31, 31]\nleft = true/' \
@@ -49,11 +60,11 @@ expect_match "$OUT" 'FAIL .*\[settled\] settled_at in \[1, 1000\] \(measured non
 
 # Expectations that mix the rules' words are bad input, named by file and line.
 write_expect() { printf '[[node]]\nx = [0, 0, 0]\nfixed = true\n[[node]]\nx = [1, 0, 0]\n[[spring]]\nnodes = [0, 1]\n[[perturb]]\nnode = 1\ndisplacement = [0.5, 0, 0]\n[[expect]]\n%b' "$2" >"$WORK/$1.toml"; }
-write_expect settled-word 'outcome = "settled"\n'
+write_expect restored-word 'outcome = "restored"\n'
 write_expect left-first 'rule = "first-entry"\nleft = false\n'
 write_expect bad-rule 'rule = "eventually"\n'
 write_expect restored-settled 'rule = "settled"\noutcome = "restored"\n'
-for f in settled-word:12 left-first:13 bad-rule:12 restored-settled:13; do
+for f in restored-word:12 left-first:13 bad-rule:12 restored-settled:13; do
   name=${f%%:*}; line=${f##*:}
   expect_exit 2 "$DB" run "$WORK/$name.toml"
   expect_one_line "$ERR" "$name"
@@ -66,8 +77,8 @@ expect_exit 2 "$DB" check "$WORK/broken.toml"
 expect_match "$OUT" '^FAIL  [^ ]*broken.toml:1: missing' "broken scene reported"
 [ "$(grep '^FAIL' <<<"$OUT" | grep -o 'broken.toml' | wc -l)" = 1 ] && ok ||
   bad "the broken scene's line names its file more than once: $OUT"
-# ... and so is an expectation that uses the settled rule's words without the rule.
-expect_exit 2 "$DB" check "$WORK/settled-word.toml"
+# ... and so is an expectation that uses the first-entry rule's words without that rule.
+expect_exit 2 "$DB" check "$WORK/restored-word.toml"
 expect_one_line "$ERR" "not loaded"
 expect_match "$ERR" '1 scene file\(s\) not loaded' "says a scene was not loaded"
 expect_exit 2 "$DB" check "$WORK/nothing-here"

@@ -4,12 +4,12 @@
 
 # The acceptance numbers on the paper plane.
 expect_exit 0 "$DB" --digits 5 bounds paper-plane --m 0.001 --kappa 0.001 --dt 0.05
-expect_match "$OUT" 'safe bound \(SPEC 9\) +gamma_safe = 0\.039775[0-9]* at node [0-9]+ \(R = 9 1/s\^2\), exact limit 0\.039805[0-9]*, ratio 0\.9992' "gamma_safe"
+expect_match "$OUT" 'safe bound \(nodal\) +gamma_safe = 0\.039775[0-9]* at node [0-9]+ \(R = 9 1/s\^2\), exact limit 0\.039805[0-9]*, ratio 0\.9992' "gamma_safe"
 expect_match "$OUT" 'critical damping +guaranteed at every free node' "critical damping feasible"
 expect_match "$OUT" '^safe damping bound +0\.039775 mass unit/s +within' "criteria row"
 expect_match "$OUT" '^safe check: critical damping +0 nodes +within' "criteria row: check"
 expect_exit 0 "$DB" --digits 5 bounds paper-plane --m 0.001 --kappa 0.001 --dt 0.05 --gamma 0
-expect_match "$OUT" 'safe step \(SPEC 9\) +dt_safe = 0\.66667[0-9]* at gamma = 0 \(zeta 0\), node [0-9]+, exact limit 0\.71555[0-9]*, ratio 0\.93168' "dt_safe"
+expect_match "$OUT" 'safe step \(nodal\) +dt_safe = 0\.66667[0-9]* at gamma = 0 \(zeta 0\), node [0-9]+, exact limit 0\.71555[0-9]*, ratio 0\.93168' "dt_safe"
 # The middle square damped 3x (gamma_i = 3 gamma there): gamma_safe is the user's gamma, a
 # third of the square's gamma_safe_i, just under the exact limit (it was 3x above it).
 cat >"$WORK/damped-region.toml" <<'EOF2'
@@ -32,7 +32,7 @@ dt = 0.05
 policy = "fixed"
 EOF2
 expect_exit 0 "$DB" --digits 5 bounds "$WORK/damped-region.toml"
-expect_match "$OUT" "safe bound \(SPEC 9\) +gamma_safe = 0\.013258[0-9]* \(the user's gamma: gamma_i = gamma \* gamma_scale_i\) at node [0-9]+ \(R = 9 1/s\^2\), exact limit 0\.013269[0-9]*, ratio 0\.9992" "gamma_safe in the user's gamma"
+expect_match "$OUT" "safe bound \(nodal\) +gamma_safe = 0\.013258[0-9]* \(the user's gamma: gamma_i = gamma \* gamma_scale_i\) at node [0-9]+ \(R = 9 1/s\^2\), exact limit 0\.013269[0-9]*, ratio 0\.9992" "gamma_safe in the user's gamma"
 expect_match "$OUT" '^safe damping bound +0\.013258[0-9]* mass unit/s +within' "gamma = 0.013: every node within"
 expect_exit 0 "$DB" --digits 8 suggest "$WORK/damped-region.toml" --no-verify
 expect_match "$OUT" 'safe bound gamma < 0\.013258333 ' "suggest gives the same bound"
@@ -46,7 +46,7 @@ expect_match "$OUT" 'critical damping +NOT guaranteed at [0-9]+ of 1296 nodes .*
 expect_match "$OUT" '^safe check: critical damping +[1-9][0-9]* nodes +BEYOND' "criteria row says beyond"
 # Compressed springs: said, not promised.
 expect_exit 0 "$DB" --digits 8 bounds two-node --after 3
-expect_match "$OUT" 'safe bound \(SPEC 9\)' "two-node safe bound"
+expect_match "$OUT" 'safe bound \(nodal\)' "two-node safe bound"
 
 # The absurd damping, clamped: fixed diverges, safe settles. Damped at gamma_safe (c dt =
 # 1.989, spectral radius 0.9987 per step) the mesh decays slowly: restored after 2000-odd

@@ -29,7 +29,7 @@ if printf '%s' "$OUT" | grep -q verification; then bad "--no-verify still ran"; 
 # Over the factorisation budget: what is proved stable without one (SPEC 9's Gershgorin
 # proof on SPEC 7's index matrix), with the exact limit bracketed (it printed an error).
 expect_exit 0 "$DB" --digits 8 suggest paper-plane --factor-budget 1e-9 --no-verify
-expect_match "$OUT" 'gamma_max +0\.039775 +set by proved stable without a factorisation: Gershgorin on SPEC 7.s index matrix \(SPEC 9\), included' "over budget: the proved range"
+expect_match "$OUT" 'gamma_max +0\.039775 +set by proved stable without a factorisation: Gershgorin on the exact index matrix, included' "over budget: the proved range"
 expect_match "$OUT" 'exact limits not computed: one factorisation would take .* over the budget of 1e-09 GFlop' "over budget: says why"
 expect_match "$OUT" 'the exact upper limit lies in \[0\.039775, 0\.039804694\)' "over budget: the bracket holds 0.039804692"
 expect_match "$OUT" 'fastest settling gamma +0\.002 .*rho <= 0\.96\)' "over budget: best gamma with a bound on rho"

@@ -20,12 +20,16 @@ awk -F, '!/^#/ && $1 != "trial" { s = ($11 == "settled"); if (s != ($20 > 0) || 
 expect_exit 0 "$DB" sweep "${GRID[@]}" --rule settled -o "$WORK/p.csv" --plain --progress none
 cmp -s "$WORK/s.csv" "$WORK/p.csv" && ok || bad "--plain settled CSV differs from the batched one"
 
-# First-entry (the default) is written as before: 17 columns, no rule in the definition.
-expect_exit 0 "$DB" sweep "${GRID[@]}" -o "$WORK/f.csv" --progress none
+# Settled is the default: a sweep without --rule (and without a preset) is the settled sweep.
+expect_exit 0 "$DB" sweep "${GRID[@]}" -o "$WORK/d.csv" --progress none
+cmp -s "$WORK/s.csv" "$WORK/d.csv" && ok || bad "a sweep without --rule differs from --rule settled"
+# First-entry, asked for, is written as before: 17 columns, no rule in the definition.
+expect_exit 0 "$DB" sweep "${GRID[@]}" --rule first-entry -o "$WORK/f.csv" --progress none
 expect_match "$(grep -v '^#' "$WORK/f.csv" | head -1)" ',clamped,zero_length_springs$' "first-entry columns"
 if grep -q 'rule=' "$WORK/f.csv"; then bad "first-entry definition names a rule"; else ok; fi
-expect_exit 0 "$DB" sweep "${GRID[@]}" --rule first-entry -o "$WORK/f2.csv" --progress none
-cmp -s "$WORK/f.csv" "$WORK/f2.csv" && ok || bad "--rule first-entry differs from the default"
+# A paper preset names first-entry itself.
+expect_exit 0 "$DB" sweep --preset paper-upper --m 0.001 --kappa 0.001 -o "$WORK/preset.csv" --progress none
+expect_match "$(grep -v '^#' "$WORK/preset.csv" | head -1)" ',clamped,zero_length_springs$' "a preset sweeps first-entry"
 # One run gives both: a restore's iteration is the settled run's first entry.
 join -t, <(awk -F, '!/^#/ && $11 == "restored" { print $1 "," $12 }' "$WORK/f.csv" | sort -t, -k1,1) \
   <(awk -F, '!/^#/ && $1 != "trial" { print $1 "," $18 }' "$WORK/s.csv" | sort -t, -k1,1) |
@@ -37,7 +41,7 @@ for k in 1 2; do
 done
 expect_exit 0 "$DB" merge "$WORK/part1.csv" "$WORK/part2.csv" -o "$WORK/merged.csv"
 cmp -s "$WORK/s.csv" "$WORK/merged.csv" && ok || bad "merged settled parts differ"
-expect_exit 0 "$DB" sweep "${GRID[@]}" --shard 2/2 -o "$WORK/fpart2.csv" --progress none
+expect_exit 0 "$DB" sweep "${GRID[@]}" --rule first-entry --shard 2/2 -o "$WORK/fpart2.csv" --progress none
 expect_exit 2 "$DB" merge "$WORK/part1.csv" "$WORK/fpart2.csv" -o "$WORK/mixed.csv"
 expect_match "$ERR" 'belongs to sweep' "first-entry and settled parts are different sweeps"
 

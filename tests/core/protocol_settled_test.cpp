@@ -24,6 +24,14 @@ RunResult run_with(const SceneSpec& s, const Params& p, StopRule rule) {
   return session.run_to_end();
 }
 
+TEST(StopRules, SettledIsTheOneDefault) {
+  // SPEC 8: every command and API judges by the settled rule unless told otherwise; an
+  // [[expect]] without a rule and a scene's own rules follow it.
+  EXPECT_EQ(StopRules{}.rule, StopRule::settled);
+  EXPECT_EQ(Expectation{}.rule, StopRule::settled);
+  EXPECT_EQ(default_stop_rules().rule, StopRule::settled);
+}
+
 TEST(JudgeBand, EntryExitAndSettledAtTheLimit) {
   StopRules r;  // restore below 0.05, diverge above 500, limit 1000
   r.rule = StopRule::settled;
@@ -50,6 +58,7 @@ TEST(JudgeBand, EntryExitAndSettledAtTheLimit) {
 
 TEST(JudgeBand, FirstEntryRuleIsThePapers) {
   StopRules r;
+  r.rule = StopRule::first_entry;
   BandHistory b;
   EXPECT_EQ(judge_band(r, b, 1, 0.2, true), Outcome::running);
   EXPECT_EQ(judge_band(r, b, 2, 0.01, true), Outcome::restored);

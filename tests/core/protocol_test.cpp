@@ -36,6 +36,7 @@ TEST(Protocol, HeavilyDampedTwoNodeRestores) {
   SceneSpec s = two_node();
   Params p = s.params;
   p.gamma = 4 * lower_bound(p.m, p.kappa);
+  s.rules.rule = StopRule::first_entry;  // the paper's protocol, named
   Session session(s, p, s.rules);
   const RunResult& r = session.run_to_end();
   EXPECT_EQ(r.outcome, Outcome::restored);
@@ -48,6 +49,7 @@ TEST(Protocol, UndampedPaperPlaneNeverRestores) {
   SceneSpec s = paper_plane();
   Params p = s.params;
   p.gamma = 0;  // the step conserves a modified energy: the wave never dies out
+  s.rules.rule = StopRule::first_entry;  // the paper's protocol, named
   Session session(s, p, s.rules);
   const RunResult& r = session.run_to_end();
   EXPECT_EQ(r.outcome, Outcome::not_restored);
@@ -62,6 +64,7 @@ TEST(Protocol, UndampedTwoNodePassesThroughRestAndCounts) {
   SceneSpec s = two_node();
   Params p = s.params;
   p.gamma = 0;
+  s.rules.rule = StopRule::first_entry;  // the paper's protocol, named
   Session session(s, p, s.rules);
   const RunResult& r = session.run_to_end();
   EXPECT_EQ(r.outcome, Outcome::restored);
@@ -72,6 +75,7 @@ TEST(Protocol, UndampedStiffPaperPlaneDiverges) {
   SceneSpec s = paper_plane();
   Params p = s.params;
   p.kappa = 1, p.m = 0.001, p.gamma = 0;  // lambda dt^2 far above 4
+  s.rules.rule = StopRule::first_entry;  // the paper's protocol, named
   Session session(s, p, s.rules);
   const RunResult& r = session.run_to_end();
   EXPECT_EQ(r.outcome, Outcome::diverged);
@@ -87,6 +91,7 @@ TEST(Protocol, SessionIsThePureStepPlusAccumulate) {
   SceneSpec s = paper_plane();
   Params p = s.params;
   p.gamma = 0.001;
+  s.rules.rule = StopRule::first_entry;  // the paper's protocol, named
   Session session(s, p, s.rules);
   const RunResult a = session.run_to_end();
   const Model model = compile_model(s.model, p);
@@ -108,6 +113,7 @@ TEST(Protocol, UpperPolicyAtRestAndAboveTheBound) {
   p.policy = DampingPolicy::upper;
   p.factor = 1.05;
   p.kappa = 0.1, p.m = 0.005;
+  s.rules.rule = StopRule::first_entry;  // the paper's protocol, named
   Session session(s, p, s.rules);
   const StepSample& first = session.step_once();
   // At t = 0 every v is 0: gamma_hi = inf, the policy gives 0, below the lower bound.

@@ -95,13 +95,13 @@ TEST(TunerPlots, TheExactLimitIsDrawnInTheWatchedNodesGamma) {
   const PlotRefLine* line = exact_line(scaled);
   ASSERT_NE(line, nullptr);
   EXPECT_DOUBLE_EQ(line->at, 3 * *exact);
-  EXPECT_EQ(line->label, "exact linear limit (SPEC 7) x gamma_scale 3");
+  EXPECT_EQ(line->label, "exact linear limit x gamma_scale 3");
   t.watch(15);  // an unscaled node: the limit itself, the label as before
   const PlotSpec unscaled = tuner_envelope_plot(t, {});
   const PlotRefLine* plain = exact_line(unscaled);
   ASSERT_NE(plain, nullptr);
   EXPECT_DOUBLE_EQ(plain->at, *exact);
-  EXPECT_EQ(plain->label, "exact linear limit (SPEC 7)");
+  EXPECT_EQ(plain->label, "exact linear limit");
 }
 
 TEST(TunerPlots, VerdictMarkersShowEntryExitAndSettled) {

@@ -45,7 +45,7 @@ void read_expectations(const Reader& r, const toml::table& root, SceneSpec& s) {
         if (o == to_string(c)) x.outcome = c;
       if (!x.outcome)
         r.fail(*n, settled ? "outcome must be settled, diverged or not_settled under rule "
-                             "settled"
+                             "settled (give rule = \"first-entry\" for restored, not_restored)"
                            : "outcome must be restored, diverged or not_restored under rule "
                              "first-entry (give rule = \"settled\" for settled, not_settled)");
     }

@@ -15,6 +15,7 @@ SceneSpec two_node() { return load_scene(test::source_path("scenes/two-node.toml
 
 TEST(Expect, RunLabelledPicksTheRunsParametersAndRule) {
   SceneSpec s = two_node();
+  s.rules.rule = StopRule::first_entry;  // run_labelled's rule when none is given
   RunSpec soft;
   soft.label = "soft";
   soft.params = s.params;
@@ -47,6 +48,7 @@ TEST(Expect, EachFieldIsJudged) {
   const RunResult r = run_labelled(s, "");
   const int n = r.iterations;
   Expectation pass;
+  pass.rule = StopRule::first_entry;  // the default is settled
   pass.line = 40;
   pass.outcome = Outcome::restored;
   pass.iterations_min = n, pass.iterations_max = n;
@@ -56,6 +58,7 @@ TEST(Expect, EachFieldIsJudged) {
   pass.violations_max = 0;
   pass.unstabilisable_max = 0;
   Expectation fail;
+  fail.rule = StopRule::first_entry;
   fail.line = 41;
   fail.outcome = Outcome::diverged;
   fail.iterations_min = n + 1, fail.iterations_max = n + 10;

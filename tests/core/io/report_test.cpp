@@ -58,6 +58,7 @@ TEST(Report, TraceCsvWithARunLabel) {
 
 TEST(Report, VerdictsInWords) {
   StopRules rules;
+  rules.rule = StopRule::first_entry;
   rules.max_iterations = 1000;
   RunResult r;
   EXPECT_EQ(verdict_text(r, rules), "running");
@@ -102,6 +103,7 @@ TEST(Report, ResultJson) {
   p.m = 0.001, p.kappa = 0.001, p.gamma = 0.002, p.dt = 0.05;
   p.policy = DampingPolicy::fixed;
   StopRules rules;
+  rules.rule = StopRule::first_entry;
   rules.max_iterations = 1000;
   RunResult r;
   r.outcome = Outcome::restored, r.iterations = 34, r.first_entry = 34, r.time = 1.7;

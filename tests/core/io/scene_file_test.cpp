@@ -127,6 +127,7 @@ gamma = 0.0005
 max_iterations = 50
 [[expect]]
 run = "soft"
+rule = "first-entry"
 outcome = "restored"
 iterations = [1, 40]
 )",

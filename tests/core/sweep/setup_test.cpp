@@ -44,6 +44,7 @@ TEST(SweepSetup, ParseShardRefusesEverythingElse) {
 TEST(SweepSetup, DefinitionAndIdentity) {
   const SceneSpec scene = test::shipped_scene("two-node");
   SweepSpec s = test::small_sweep(scene, 300);
+  s.rules.rule = StopRule::first_entry;  // the paper's sweeps keep their definition and id
   const std::string d = sweep_definition(s);
   EXPECT_EQ(d.rfind("m=0.001,0.002 kappa=0.001,0.004 zeta=0.5,1 dt=0.05 policy=fixed factor=1 "
                     "max-iter=300 ",

@@ -58,23 +58,28 @@ outcome = "diverged"
   const Expectation& y = s.expectations[1];
   EXPECT_EQ(y.line, 21);
   EXPECT_EQ(y.run, "");
-  EXPECT_EQ(y.rule, StopRule::first_entry);  // the paper's unless asked
+  EXPECT_EQ(y.rule, StopRule::settled);  // the default rule unless asked
   EXPECT_EQ(*y.outcome, Outcome::diverged);  // both rules' verdict
   EXPECT_FALSE(y.iterations_min.has_value());
   EXPECT_FALSE(y.left.has_value());
 }
 
 TEST(SceneExpect, EachRuleHasItsOwnVerdicts) {
-  EXPECT_EQ(error_of("[[expect]]\noutcome = \"settled\"\n"),
-            "e.toml:9: outcome must be restored, diverged or not_restored under rule "
+  // Without a rule an expectation is judged by the default, settled.
+  EXPECT_EQ(error_of("[[expect]]\noutcome = \"restored\"\n"),
+            "e.toml:9: outcome must be settled, diverged or not_settled under rule settled "
+            "(give rule = \"first-entry\" for restored, not_restored)");
+  EXPECT_EQ(error_of("[[expect]]\nrule = \"first-entry\"\noutcome = \"settled\"\n"),
+            "e.toml:10: outcome must be restored, diverged or not_restored under rule "
             "first-entry (give rule = \"settled\" for settled, not_settled)");
   EXPECT_EQ(error_of("[[expect]]\nrule = \"settled\"\noutcome = \"restored\"\n"),
-            "e.toml:10: outcome must be settled, diverged or not_settled under rule settled");
+            "e.toml:10: outcome must be settled, diverged or not_settled under rule settled "
+            "(give rule = \"first-entry\" for restored, not_restored)");
   EXPECT_EQ(error_of("[[expect]]\nrule = \"last\"\n"), "e.toml:9: rule must be first-entry or settled");
-  EXPECT_EQ(error_of("[[expect]]\nleft = false\n"),
-            "e.toml:9: left needs rule = \"settled\" (the first-entry rule stops at the entry)");
-  EXPECT_EQ(error_of("[[expect]]\nsettled_at = [1, 2]\n"),
-            "e.toml:9: settled_at needs rule = \"settled\" (the first-entry rule stops at the "
+  EXPECT_EQ(error_of("[[expect]]\nrule = \"first-entry\"\nleft = false\n"),
+            "e.toml:10: left needs rule = \"settled\" (the first-entry rule stops at the entry)");
+  EXPECT_EQ(error_of("[[expect]]\nrule = \"first-entry\"\nsettled_at = [1, 2]\n"),
+            "e.toml:10: settled_at needs rule = \"settled\" (the first-entry rule stops at the "
             "entry)");
 }
 
@@ -100,7 +105,7 @@ TEST(SceneExpect, AnExpectationMustAssertSomething) {
             "violations_min");
   EXPECT_EQ(error_of("[[expect]]\nrun = \"hard\"\noutcome = \"restored\"\n"),
             "e.toml:9: expect refers to run 'hard', which is not declared");
-  EXPECT_EQ(error_of("[[expect]]\noutcome = \"restored\"\ncolour = 1\n"),
+  EXPECT_EQ(error_of("[[expect]]\noutcome = \"settled\"\ncolour = 1\n"),
             "e.toml:10: unknown key 'colour' in [[expect]]");
 }
 
