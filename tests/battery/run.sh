@@ -44,6 +44,7 @@ max_iterations = 200
 label = "under"
 gamma = 0.001
 [[expect]]
+rule = "first-entry"
 outcome = "restored"
 TOML
 printf '[mesh]\nfile = "/nonexistent/x.obj"\n' >"$W/abs-missing.toml"
@@ -61,7 +62,7 @@ sed 's|^# shard: .*|# shard: 1/2147483647|' "$W/part1.csv" >"$W/shard-max.csv"
 sed 's|^# shard: .*|# shard: 0/0|' "$W/part1.csv" >"$W/shard-zero.csv"
 sed 's|^# shard: .*|# shard: 1/999999999|' "$W/part1.csv" >"$W/shard-1e9.csv"
 sed '$ s|,[^,]*,[^,]*$||' "$W/whole.csv" >"$W/short-row.csv"
-sed '$ s|,restored,|,fine,|; $ s|,not_restored,|,fine,|; $ s|,diverged,|,fine,|' "$W/whole.csv" \
+sed '$ s|,settled,|,fine,|; $ s|,not_settled,|,fine,|; $ s|,diverged,|,fine,|' "$W/whole.csv" \
   >"$W/bad-outcome.csv"
 # Meshes named by scenes.txt.
 M=$S/meshes
