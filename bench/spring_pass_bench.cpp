@@ -42,14 +42,7 @@ int main(int argc, char** argv) {
   p.policy = DampingPolicy::fixed;
   const Model model = compile_model(bench::plane(n), p);
   State s = rest_state(model);
-  unsigned seed = 1;
-  for (size_t i = 0; i < s.x.size(); ++i) {
-    if (model.fixed[i]) continue;
-    for (int k = 0; k < 3; ++k) {
-      seed = seed * 1103515245u + 12345u;
-      s.x[i][k] += 0.01 * (static_cast<double>((seed >> 8) & 0xffffu) / 65535.0 - 0.5);
-    }
-  }
+  bench::shake(model, s);
   StepWorkspace ws;
   std::vector<Vec3> force;
   std::vector<double> rows;

@@ -122,14 +122,7 @@ void measure(const char* kind, ModelSpec spec, int threads, int repeats, bool mo
   p.policy = DampingPolicy::clamp;
   const Model model = compile_model(std::move(spec), p);
   State s = rest_state(model);
-  unsigned seed = 1;
-  for (size_t i = 0; i < s.x.size(); ++i) {
-    if (model.fixed[i]) continue;
-    for (int k = 0; k < 3; ++k) {
-      seed = seed * 1103515245u + 12345u;
-      s.x[i][k] += 0.01 * (static_cast<double>((seed >> 8) & 0xffffu) / 65535.0 - 0.5);
-    }
-  }
+  bench::shake(model, s);
   StepWorkspace ws;
   std::optional<MonitorCase> user;  // --what monitor
   if (monitor) user.emplace(model, s);
