@@ -198,27 +198,51 @@ int print_step(const SceneSpec& scene, const Params& p, const StepSuggestion& s)
   return recommendation_status(s.runs, "largest dt every criterion accepts");
 }
 
-int print_substeps(const SubstepSuggestion& s) {
-  std::printf("substeps per frame of %s s (dt = frame / n, at the rest state)\n",
+std::string substeps_text(int n) { return std::to_string(n) + (n == 1 ? " substep" : " substeps"); }
+
+int print_substeps(const std::string& scene_arg, const SubstepSuggestion& s) {
+  std::printf("substeps per frame of %s s (dt = frame / n; limits at the rest state, runs from "
+              "the scene's start)\n",
               format_human(s.frame_dt).c_str());
-  int status = 0;
-  for (const SubstepCount* c : {&s.exact, &s.safe}) {
-    const char* what = c == &s.exact ? "exact limit " : "safe bound";
-    if (c->n == 0) {
-      std::printf("  %s no count (dt limit %s s)\n", what, format_human(c->limit).c_str());
-      continue;
+  auto line = [&](const SubstepCount& c, const char* what) {
+    if (c.n == 0) {
+      std::printf("  %-12s no count (dt limit %s s)\n", what, format_human(c.limit).c_str());
+      return;
     }
-    std::printf("  %s %d substeps: dt = %s s < %s s", what, c->n, format_human(c->dt).c_str(),
-                format_human(c->limit).c_str());
-    if (c->ran) {
-      std::printf("; %s: %s", c->run.verified() ? "verified" : "NOT verified",
-                  verdict_text(c->run.result, c->run.rules).c_str());
-      if (!c->run.verified()) status = 1;
-    }
+    std::printf("  %-12s %s: dt = %s s", what, substeps_text(c.n).c_str(),
+                format_human(c.dt).c_str());
+    if (c.limit > 0) std::printf(" < %s s", format_human(c.limit).c_str());
+    if (c.ran)
+      std::printf("; %s: %s", c.verified() ? "verified" : "NOT verified",
+                  verdict_text(c.run.result, c.run.rules).c_str());
     std::printf("\n");
+  };
+  line(s.exact, "exact limit");
+  line(s.safe, "safe bound");
+  if (s.exact.ran && !s.exact.verified()) {
+    if (s.by_running.n > 0) {
+      line(s.by_running, "by running");
+      std::printf("  %-12s the fewest found: %s did not settle%s\n", "",
+                  substeps_text(s.failed_at_most).c_str(),
+                  s.failed_at_most + 1 == s.by_running.n ? "" : " (not every count between was run)");
+    } else if (s.search_runs > 0) {
+      std::printf("  %-12s no count up to %s settled (%d runs)\n", "by running",
+                  substeps_text(s.failed_at_most).c_str(), s.search_runs);
+    }
   }
   if (!s.note.empty()) std::printf("  %s\n", s.note.c_str());
-  return status;
+  if (!s.exact.ran && !s.safe.ran) return s.exact.n > 0 ? 0 : 1;  // --no-verify
+  if (const SubstepCount* use = s.answer()) {
+    std::printf("answer       %s per frame (dt = %s s)\n", substeps_text(use->n).c_str(),
+                format_human(use->dt).c_str());
+    return 0;
+  }
+  std::printf("answer       none verified: no count's run settled; where none diverged, the "
+              "damping does not let it settle in the scene's time "
+              "(dampbound suggest %s --dt %s gives the damping range)\n",
+              scene_arg.c_str(),
+              format_human(s.exact.n > 0 ? s.exact.dt : s.frame_dt).c_str());
+  return 1;
 }
 
 int run(const SuggestArgs& a) {
@@ -258,7 +282,7 @@ int run(const SuggestArgs& a) {
   options.trials = a.trials;
   options.max_factor_flops = a.factor_budget * 1e9;
   if (a.frame_dt_opt->count())
-    return print_substeps(suggest_substeps(scene, p, rules, a.frame_dt, !a.no_verify));
+    return print_substeps(a.scene, suggest_substeps(scene, p, rules, a.frame_dt, options));
   if (a.gamma_opt->count() || a.zeta_opt->count()) return print_step(scene, p, suggest_step(scene, p, rules, options));
   const int status = print_damping(scene, suggest_damping(scene, p, rules, options));
   // SPEC 10: with dashpot or Rayleigh damping in play, the range of each kind.
@@ -286,8 +310,10 @@ std::function<int()> setup(CLI::App& root) {
   a->zeta_opt->description(a->zeta_opt->get_description() + ": suggest the time step");
   a->frame_dt_opt = cmd->add_option("--frame-dt", a->frame_dt,
                                     "frame time (s): the fewest substeps n with dt = frame/n "
-                                    "stable by the exact limit, and the n the safe bound "
-                                    "guarantees, each verified (at the scene's gamma or --gamma/--zeta)")
+                                    "stable by the exact limit and the n the safe bound "
+                                    "guarantees (at the scene's gamma or --gamma/--zeta), each run from the "
+                                    "scene's start; where the exact count does not settle, the fewest count "
+                                    "that does, found by running. Exit 1 when no count is verified")
                         ->check(finite_positive());
   a->frame_dt_opt->excludes(a->dt_opt);
   a->dt_opt->excludes(a->gamma_opt);

@@ -69,9 +69,12 @@ void print_substeps_line(const ui::BackgroundJob<ui::SubstepsResult>& job) {
                       : std::to_string(c.n) + " substeps (" +
                             (c.ran ? verdict_short(c.run.result) : std::string("not run")) + ")";
     };
-    std::fprintf(stderr, "gui: substeps at frame %s s: exact limit %s, safe bound %s\n",
-                 format_digits(s.frame_dt, 6).c_str(), count(s.exact).c_str(),
-                 count(s.safe).c_str());
+    std::string line = "exact limit " + count(s.exact) + ", safe bound " + count(s.safe);
+    if (s.by_running.n > 0) line += ", by running " + count(s.by_running);
+    const SubstepCount* use = s.answer();
+    line += use ? "; use " + std::to_string(use->n) : std::string("; none verified");
+    std::fprintf(stderr, "gui: substeps at frame %s s: %s\n", format_digits(s.frame_dt, 6).c_str(),
+                 line.c_str());
   }
 }
 

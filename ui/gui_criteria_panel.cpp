@@ -4,6 +4,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/io/report.hpp"
 #include "ui/gui_app.hpp"
@@ -193,24 +194,33 @@ void GuiApp::substeps_section() {
   if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
     ImGui::SetTooltip(
         "The fewest substeps n with dt = F/n stable by the exact limit, and the n the\n"
-        "safe bound guarantees, at this gamma and the rest state; each verified\n"
-        "by a run of the mesh as it is now (with the cuts made so far).");
+        "safe bound guarantees, at this gamma and the rest state; each run from the\n"
+        "mesh as it is now (with the cuts made so far). Where the exact count\n"
+        "does not settle, the fewest count that does is searched for by running.");
   job_status(job, "Cancel##substeps");
   if (!job.result()) return;
   const SubstepsResult& r = *job.result();
   const SubstepSuggestion& s = r.substeps;
   if (r.springs_cut > 0) ImGui::TextDisabled("for the mesh as cut (%d springs cut)", r.springs_cut);
-  for (const SubstepCount* c : {&s.exact, &s.safe}) {
-    const bool exact = c == &s.exact;
+  struct Row {
+    const SubstepCount* count;
+    const char* what;
+    const char* apply;
+  };
+  std::vector<Row> rows = {{&s.exact, "exact limit", "apply dt = F/n##exact"},
+                           {&s.safe, "safe bound", "apply dt = F/n##safe"}};
+  if (s.by_running.n > 0) rows.push_back({&s.by_running, "by running", "apply dt = F/n##running"});
+  for (const Row& row : rows) {
+    const SubstepCount* c = row.count;
     if (c->n == 0) {
-      ImGui::TextDisabled("%s: no count (limit %s s)", exact ? "exact limit" : "safe bound",
-                          fmt(c->limit).c_str());
+      ImGui::TextDisabled("%s: no count (limit %s s)", row.what, fmt(c->limit).c_str());
       continue;
     }
-    text_wrapped(std::string(exact ? "exact limit: " : "safe bound: ") + std::to_string(c->n) +
-                 " substeps, dt = " + fmt(c->dt) + " s < " + fmt(c->limit) + " s");
-    if (item::small_button(exact ? "apply dt = F/n##exact" : "apply dt = F/n##safe"))
-      t.set_params(with_substeps(t.params(), *c));
+    std::string text = std::string(row.what) + ": " + std::to_string(c->n) +
+                       (c->n == 1 ? " substep, dt = " : " substeps, dt = ") + fmt(c->dt) + " s";
+    if (c->limit > 0) text += " < " + fmt(c->limit) + " s";
+    text_wrapped(text);
+    if (item::small_button(row.apply)) t.set_params(with_substeps(t.params(), *c));
     if (ImGui::IsItemHovered())
       ImGui::SetTooltip("Set dt = %s / %d = %s s", fmt(s.frame_dt).c_str(), c->n,
                         fmt(c->dt).c_str());
@@ -224,6 +234,19 @@ void GuiApp::substeps_section() {
                           fmt(c->run.result.max_displacement).c_str());
     }
   }
+  if (s.exact.ran && !s.exact.verified() && s.search_runs > 0)
+    wrapped_colored(gui_amber(),
+                    (s.by_running.n > 0
+                         ? "The exact count did not settle (the run passes through states "
+                           "stiffer than rest): " +
+                               std::to_string(s.failed_at_most) + " substeps did not settle, " +
+                               std::to_string(s.by_running.n) + " did."
+                         : "No count up to " + std::to_string(s.failed_at_most) +
+                               " substeps settled; the damping may be too light to settle.")
+                        .c_str());
+  if (const SubstepCount* use = s.answer())
+    ImGui::Text("use %d substep%s per frame (dt = %s s)", use->n, use->n == 1 ? "" : "s",
+                fmt(use->dt).c_str());
   if (!s.note.empty()) wrapped_colored(gui_amber(), s.note.c_str());
   const Params& now = t.params();
   if (r.params.gamma != now.gamma || r.params.m != now.m || r.params.kappa != now.kappa ||

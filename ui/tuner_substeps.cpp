@@ -28,24 +28,11 @@ void TunerSubsteps::launch(std::shared_ptr<const SceneSpec> shared,
     SubstepsResult r;
     r.params = params;
     r.springs_cut = cut;
-    if (!control.report("substeps, stage 1 of 3: the exact limit and the safe bound"))
-      throw SuggestCancelled();
-    // The counts from core, unverified; each is then run here, one stage each, so Cancel
-    // stops the worker between the runs.
-    r.substeps = suggest_substeps(scene, params, rules, frame_dt, /*verify=*/false);
-    int stage = 2;
-    for (SubstepCount* c : {&r.substeps.exact, &r.substeps.safe}) {
-      const std::string what = c == &r.substeps.exact ? "exact limit" : "safe bound";
-      const std::string label = std::to_string(c->n) + " substeps (" + what + ")";
-      if (!control.report("substeps, stage " + std::to_string(stage++) +
-                          " of 3: verifying " + label))
-        throw SuggestCancelled();
-      if (c->n == 0) continue;
-      Params at = params;
-      at.dt = c->dt;
-      c->run = verify_run(scene, at, rules, label);
-      c->ran = true;
-    }
+    SuggestOptions options;  // Cancel stops the worker before the analysis and each run
+    options.progress = [&control](int, int, const std::string& next) {
+      return control.report("substeps: " + next);
+    };
+    r.substeps = suggest_substeps(scene, params, rules, frame_dt, options);
     return r;
   });
 }

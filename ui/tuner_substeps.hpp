@@ -1,8 +1,9 @@
 #pragma once
 // The Suggest tab's substeps per frame (core/analysis/substeps.hpp) on a worker thread: for a
 // frame time F the fewest n with dt = F/n stable by the exact limit and the n the safe bound
-// (SPEC 9) guarantees, each verified by a run of the mesh as it is now, with progress and
-// Cancel as Suggest has.
+// (SPEC 9) guarantees, each run from the mesh as it is now (and, where the exact count
+// diverges, the fewest count that holds, found by running), with progress and Cancel as
+// Suggest has.
 #include <memory>
 #include <optional>
 #include <string>

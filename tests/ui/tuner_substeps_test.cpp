@@ -20,7 +20,7 @@ SceneSpec small_plane() {
 TEST(TunerSubsteps, GivesCoresCountsEachVerifiedByARun) {
   const SceneSpec scene = small_plane();
   const double frame = 2.0;
-  const SubstepSuggestion want = suggest_substeps(scene, scene.params, scene.rules, frame, true);
+  const SubstepSuggestion want = suggest_substeps(scene, scene.params, scene.rules, frame);
   ASSERT_GT(want.exact.n, 1);
   ASSERT_GE(want.safe.n, want.exact.n);
   TunerSubsteps s;

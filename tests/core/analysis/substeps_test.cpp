@@ -36,7 +36,48 @@ TEST(Substeps, AFrameLongerThanTheLimitNeedsMoreAndAFailedRunIsReported) {
   EXPECT_LT(g.exact.dt, g.exact.limit);
   EXPECT_GE(2.0 / (g.exact.n - 1), g.exact.limit);  // one fewer would not be below it
   EXPECT_TRUE(g.exact.ran);
-  EXPECT_FALSE(g.exact.run.verified());
+  EXPECT_FALSE(g.exact.verified());
+  // No count settles in 2 iterations: the search by running finds none, and there is no
+  // answer (the CLI exits 1).
+  EXPECT_GT(g.search_runs, 0);
+  EXPECT_LE(g.search_runs, kMaxSearchRuns);
+  EXPECT_EQ(g.by_running.n, 0);
+  EXPECT_EQ(g.answer(), nullptr);
+}
+
+// A count's run covers the scene's simulated time: a finer dt runs more iterations.
+TEST(Substeps, AFinerStepRunsOverTheScenesTime) {
+  EXPECT_EQ(verify_iterations(1000, 50.0, 0.05), 1000);
+  EXPECT_EQ(verify_iterations(1000, 50.0, 1.0 / 60), 3000);
+  EXPECT_EQ(verify_iterations(1000, 50.0, 0.001), 4000);  // kVerifySpan caps it
+  EXPECT_EQ(verify_iterations(1000, 0.2, 0.0005), 1000);  // never fewer than the scene's
+}
+
+// The paper plane at kappa/m = 1000 and gamma = 0.02 with a frame of 0.1 s: the exact limit
+// at rest gives 5 substeps (dt = 0.02 s < 0.0202 s), but the 5 cm pull (9 spacings) stretches
+// the mesh beyond its rest stiffness and the run diverges; the search runs finer counts and
+// finds the fewest that settles.
+TEST(Substeps, WhereTheExactCountFailsTheFewestCountThatSettlesIsFoundByRunning) {
+  SceneSpec s = paper_plane_scene();
+  Params p = s.params;
+  p.m = 0.001;
+  p.kappa = 1;
+  p.gamma = 0.02;
+  const SubstepSuggestion g = suggest_substeps(s, p, s.rules, 0.1);
+  ASSERT_EQ(g.exact.n, 5);
+  EXPECT_EQ(g.exact.run.result.outcome, Outcome::diverged);
+  ASSERT_GT(g.by_running.n, g.exact.n);
+  EXPECT_TRUE(g.by_running.verified());
+  EXPECT_EQ(g.by_running.dt, 0.1 / g.by_running.n);
+  EXPECT_EQ(g.answer(), &g.by_running);
+  // The bracket is closed and real: one count fewer, run by hand, does not settle.
+  EXPECT_EQ(g.failed_at_most, g.by_running.n - 1);
+  Params fewer = p;
+  fewer.dt = 0.1 / g.failed_at_most;
+  StopRules r = s.rules;
+  r.max_iterations = verify_iterations(s.rules.max_iterations, s.rules.max_iterations * s.params.dt,
+                                       fewer.dt);
+  EXPECT_FALSE(verify_run(s, fewer, r, "one fewer").verified());
 }
 
 }  // namespace

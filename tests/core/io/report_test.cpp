@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <limits>
 #include <sstream>
 
@@ -120,6 +121,15 @@ TEST(Report, ResultJson) {
       << j;
   const std::string tail = "\"unguaranteed\":0,\"compressed_springs\":0}";
   EXPECT_EQ(j.substr(j.size() - tail.size()), tail);
+}
+
+// A zeta range prints as a range only where its ends read differently (zeta = 1 resolved at
+// each node gives ratios a rounding apart: "1", not "1..1").
+TEST(ZetaText, OneNumberWhereBothEndsReadAlike) {
+  EXPECT_EQ(zeta_text(DampingRatioRange{1.0, std::nextafter(1.0, 2.0)}), "1");
+  EXPECT_EQ(zeta_text(DampingRatioRange{0.5, 0.5}), "0.5");
+  EXPECT_EQ(zeta_text(DampingRatioRange{0.5, 2.0}), "0.5..2");
+  EXPECT_EQ(zeta_text(DampingRatioRange{std::nan(""), std::nan("")}), "none");
 }
 
 }  // namespace
