@@ -221,9 +221,9 @@ int print_substeps(const std::string& scene_arg, const SubstepSuggestion& s) {
   line(s.safe, "safe bound");
   if (s.exact.ran && !s.exact.verified()) {
     if (s.by_running.n > 0) {
-      line(s.by_running, "by running");
-      std::printf("  %-12s the fewest found: %s did not settle%s\n", "",
-                  substeps_text(s.failed_at_most).c_str(),
+      if (s.search_runs > 0) line(s.by_running, "by running");
+      std::printf("  %-12s the fewest that settles: %s; %s did not settle%s\n", "",
+                  substeps_text(s.by_running.n).c_str(), substeps_text(s.failed_at_most).c_str(),
                   s.failed_at_most + 1 == s.by_running.n ? "" : " (not every count between was run)");
     } else if (s.search_runs > 0) {
       std::printf("  %-12s no count up to %s settled (%d runs)\n", "by running",

@@ -209,7 +209,8 @@ void GuiApp::substeps_section() {
   };
   std::vector<Row> rows = {{&s.exact, "exact limit", "apply dt = F/n##exact"},
                            {&s.safe, "safe bound", "apply dt = F/n##safe"}};
-  if (s.by_running.n > 0) rows.push_back({&s.by_running, "by running", "apply dt = F/n##running"});
+  if (s.search_runs > 0 && s.by_running.n > 0)
+    rows.push_back({&s.by_running, "by running", "apply dt = F/n##running"});
   for (const Row& row : rows) {
     const SubstepCount* c = row.count;
     if (c->n == 0) {
@@ -234,7 +235,7 @@ void GuiApp::substeps_section() {
                           fmt(c->run.result.max_displacement).c_str());
     }
   }
-  if (s.exact.ran && !s.exact.verified() && s.search_runs > 0)
+  if (s.exact.ran && !s.exact.verified() && (s.search_runs > 0 || s.by_running.n > 0))
     wrapped_colored(gui_amber(),
                     (s.by_running.n > 0
                          ? "The exact count did not settle (the run passes through states "

@@ -13,8 +13,12 @@ expect_match "$OUT" '^answer +none verified' "no answer when nothing settles"
 # pull; the fewest count that settles is found by running.
 expect_exit 0 "$DB" suggest paper-plane --frame-dt 0.1 --kappa 1 --gamma 0.02
 expect_match "$OUT" 'exact limit +5 substeps: .*NOT verified: diverged at' "the exact count diverges"
-expect_match "$OUT" 'by running +6 substeps: dt = 0\.0166667 s; verified: settled' "found by running"
-expect_match "$OUT" 'the fewest found: 5 substeps did not settle' "the bracket"
+expect_match "$OUT" 'the fewest that settles: 6 substeps; 5 substeps did not settle' "the bracket"
 expect_match "$OUT" '^answer +6 substeps per frame' "the answer"
+# At gamma 0.005 neither count settles (5 substeps each): the search runs 7 (settles) and 6
+# (does not).
+expect_exit 0 "$DB" suggest paper-plane --frame-dt 0.1 --kappa 1 --gamma 0.005
+expect_match "$OUT" 'by running +7 substeps: dt = 0\.0142857 s; verified: settled' "found by running"
+expect_match "$OUT" 'the fewest that settles: 7 substeps; 6 substeps did not settle' "the bracket, closed"
 expect_exit 2 "$DB" --digits 8 suggest paper-plane --frame-dt 0
 finish

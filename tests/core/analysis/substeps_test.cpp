@@ -78,6 +78,17 @@ TEST(Substeps, WhereTheExactCountFailsTheFewestCountThatSettlesIsFoundByRunning)
   r.max_iterations = verify_iterations(s.rules.max_iterations, s.rules.max_iterations * s.params.dt,
                                        fewer.dt);
   EXPECT_FALSE(verify_run(s, fewer, r, "one fewer").verified());
+  // At gamma 0.005 neither the exact nor the safe count settles: the search itself runs
+  // (a count a quarter up, then the bisection) and closes the bracket.
+  p.gamma = 0.005;
+  const SubstepSuggestion h = suggest_substeps(s, p, s.rules, 0.1);
+  EXPECT_FALSE(h.exact.verified());
+  EXPECT_FALSE(h.safe.verified());
+  EXPECT_GE(h.search_runs, 2);
+  ASSERT_GT(h.by_running.n, 0);
+  EXPECT_TRUE(h.by_running.verified());
+  EXPECT_EQ(h.failed_at_most, h.by_running.n - 1);
+  EXPECT_EQ(h.answer(), &h.by_running);
 }
 
 }  // namespace
