@@ -49,10 +49,10 @@ void print_damping_lines(const Model& model, const State& state, const Params& p
   std::printf("\ndamping               kd=%s rayleigh_mass=%s 1/s rayleigh_stiffness=%s s\n",
               format_number(p.kd).c_str(), format_number(p.rayleigh_mass).c_str(),
               format_number(p.rayleigh_stiffness).c_str());
-  std::printf("damping ratios        nodal zeta %s..%s; dashpots (%d) zeta_ij %s..%s; Rayleigh "
+  std::printf("damping ratios        nodal zeta %s; dashpots (%d) zeta_ij %s; Rayleigh "
               "zeta %s at lambda_min = %s, %s at lambda_max = %s 1/s^2\n",
-              g5(r.nodal_min).c_str(), g5(r.nodal_max).c_str(), r.dashpots,
-              g5(r.dashpot_min).c_str(), g5(r.dashpot_max).c_str(), g5(r.rayleigh_low).c_str(),
+              format_human_range(r.nodal_min, r.nodal_max).c_str(), r.dashpots,
+              format_human_range(r.dashpot_min, r.dashpot_max).c_str(), g5(r.rayleigh_low).c_str(),
               g5(r.lambda_min).c_str(), g5(r.rayleigh_high).c_str(), g5(r.lambda_max).c_str());
   if (!integrator_traits(p.integrator).paper_step) {
     std::printf("exact index           derived for the paper's semi-implicit step; not shown "

@@ -87,6 +87,11 @@ std::string format_human(double x, std::string_view not_a_number) {
   return format_digits(x, human_digits(), not_a_number);
 }
 
+std::string format_human_range(double lo, double hi) {
+  const std::string a = format_human(lo), b = format_human(hi);
+  return a == b ? a : a + ".." + b;
+}
+
 std::string json_number(double x) { return std::isfinite(x) ? format_number(x) : "null"; }
 
 std::string json_string(const std::string& s) {

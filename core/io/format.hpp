@@ -28,6 +28,8 @@ int human_digits();
 void set_human_digits(int digits);
 /// format_digits(x, human_digits()).
 std::string format_human(double x, std::string_view not_a_number = "n/a");
+/// "lo..hi" in format_human's digits, or one number where both ends read alike.
+std::string format_human_range(double lo, double hi);
 
 /// JSON number, or null when not finite (JSON has no inf or NaN).
 std::string json_number(double x);

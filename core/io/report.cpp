@@ -103,8 +103,7 @@ std::string verdict_text(const RunResult& r, const StopRules& rules) {
 
 std::string zeta_text(const DampingRatioRange& z) {
   if (std::isnan(z.min)) return "none";
-  const std::string lo = format_human(z.min), hi = format_human(z.max);
-  return z.uniform() || lo == hi ? lo : lo + ".." + hi;  // one number where both read alike
+  return format_human_range(z.min, z.max);
 }
 
 std::string result_json(const std::string& scene, const Params& p, const StopRules& rules,

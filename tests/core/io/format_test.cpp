@@ -88,5 +88,11 @@ TEST(Format, NumbersKeepTheirPointUnderACommaLocale) {
   EXPECT_STREQ(probe, "0,5");  // the calling thread's own formatting is left as the host set it
 }
 
+TEST(FormatHumanRange, OneNumberWhereBothEndsReadAlike) {
+  EXPECT_EQ(format_human_range(0.25, std::nextafter(0.25, 1.0)), "0.25");
+  EXPECT_EQ(format_human_range(1, 1.41421356), "1..1.41421");
+  EXPECT_EQ(format_human_range(0, 0), "0");
+}
+
 }  // namespace
 }  // namespace dampbound
