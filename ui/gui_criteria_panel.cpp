@@ -46,6 +46,12 @@ std::string shown_test(const CriterionResult& r, const std::string& over_budget)
   return rest.empty() ? "not computed" : rest;
 }
 
+/// "exact analysis unavailable", with the reason where the tuner leaves it out by design.
+std::string unavailable(Tuner& t) {
+  const std::string why = exact_not_computed_reason(t.session().model(), t.params());
+  return "exact analysis unavailable" + (why.empty() ? std::string() : ": " + why);
+}
+
 }  // namespace
 
 void GuiApp::criteria_panel() {
@@ -89,7 +95,7 @@ void GuiApp::criteria_panel() {
       e != nullptr ? "exact analysis " + where + " (" + method + ")" +
                          (c.computing() ? "; computing a new one" : "")
                    : c.computing() ? std::string("exact analysis: computing")
-                                   : std::string("exact analysis unavailable");
+                                   : unavailable(t);
   text_wrapped("at iteration " + std::to_string(rows_at) + behind + "; " + exact);
   grey.reset();
   if (const NetForce* n = c.rest_net_force(); n != nullptr && !n->balanced())

@@ -20,9 +20,6 @@ bool same_key(const Params& a, const Params& b) {
          a.rayleigh_stiffness == b.rayleigh_stiffness;
 }
 
-/// The most free nodes for which the tuner computes the general damping matrix's limits.
-constexpr int kGeneralLimitsNodes = 2000;
-
 /// Dashpots or Rayleigh damping (SPEC 10) besides the nodal damping.
 bool other_damping(const Params& p) {
   return p.kd != 0 || p.rayleigh_mass != 0 || p.rayleigh_stiffness != 0;
@@ -54,14 +51,7 @@ std::optional<ExactStability> analyse(const Model& model, const std::vector<Vec3
     ExactOptions o;
     o.with_radius = uniform_rate(model);  // Arnoldi on a non-uniform mesh can take seconds
     o.max_factor_flops = factor_budget;  // a big 3-D mesh: what Lanczos proves, not hours
-    if (other_damping(params)) {
-      // SPEC 10's limits (core's exact_stability takes them from the general damping matrix)
-      // are known for the paper's step only, and their bisection takes one certified
-      // eigenvalue per step: seconds at the paper plane's 1296 nodes, minutes at
-      // tissue-block's 6237 (`bounds` computes it there).
-      if (!integrator_traits(params.integrator).paper_step) return std::nullopt;
-      if (free_node_count(model) > kGeneralLimitsNodes) return std::nullopt;
-    }
+    if (!exact_not_computed_reason(model, params).empty()) return std::nullopt;
     ExactStability e = exact_stability(model, x, params, o);
     return e;
   } catch (const std::exception&) {
@@ -74,6 +64,20 @@ double seconds_now() {
   return std::chrono::duration<double>(Clock::now().time_since_epoch()).count();
 }
 }  // namespace
+
+std::string exact_not_computed_reason(const Model& model, const Params& params) {
+  if (!other_damping(params)) return "";
+  // SPEC 10's limits (core's exact_stability takes them from the general damping matrix).
+  if (!integrator_traits(params.integrator).paper_step)
+    return std::string("with dashpot or Rayleigh damping it is derived for the paper's "
+                       "semi-implicit step only, not ") +
+           to_string(params.integrator);
+  if (const int n = free_node_count(model); n > kGeneralLimitsNodes)
+    return "with dashpot or Rayleigh damping on " + std::to_string(n) + " free nodes (over " +
+           std::to_string(kGeneralLimitsNodes) +
+           ") it takes minutes; dampbound bounds SCENE computes it";
+  return "";
+}
 
 const char* to_string(Linearisation at) {
   switch (at) {

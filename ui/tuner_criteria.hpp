@@ -32,6 +32,14 @@ const char* to_string(Linearisation at);
 /// The inverse of to_string; nullopt for any other text.
 std::optional<Linearisation> parse_linearisation(const std::string& text);
 
+/// Why the tuner does not compute the exact analysis for these parameters ("" when it does):
+/// dashpot or Rayleigh damping (SPEC 10) with another integrator than the paper's step, or on
+/// more free nodes than kGeneralLimitsNodes.
+std::string exact_not_computed_reason(const Model& model, const Params& params);
+/// The most free nodes for which the tuner computes the general damping matrix's limits
+/// (its bisection takes one certified eigenvalue per step: minutes at 6000 nodes).
+inline constexpr int kGeneralLimitsNodes = 2000;
+
 /// The criteria of a session. The exact linear analysis (SPEC 7) is linearised at the rest
 /// state by default (as `dampbound bounds SCENE` does) and cached until the parameters or the
 /// springs change (on a worker thread above 5000 free nodes, the last result on show

@@ -261,6 +261,23 @@ TEST(TunerCriteria, AnalysesAtTheStaticEquilibrium) {
   EXPECT_EQ(c.exact_equilibrium(), nullptr);
 }
 
+// Where the tuner leaves the exact analysis out by design, it says why (the Criteria tab shows
+// "exact analysis unavailable: ..."), and nothing where it computes it.
+TEST(TunerCriteria, SaysWhyItDoesNotComputeTheExactAnalysis) {
+  const SceneSpec small = paper_plane_scene(8), big = paper_plane_scene(50);
+  Params p = small.params;
+  EXPECT_EQ(exact_not_computed_reason(compile_model(small.model, p), p), "");
+  EXPECT_EQ(exact_not_computed_reason(compile_model(big.model, p), p), "");  // nodal only
+  p.kd = 0.002;
+  EXPECT_EQ(exact_not_computed_reason(compile_model(small.model, p), p), "");
+  const std::string many = exact_not_computed_reason(compile_model(big.model, p), p);
+  EXPECT_NE(many.find("on 2500 free nodes (over 2000)"), std::string::npos) << many;
+  EXPECT_NE(many.find("dampbound bounds"), std::string::npos) << many;
+  p.integrator = Integrator::rk4;
+  const std::string other = exact_not_computed_reason(compile_model(small.model, p), p);
+  EXPECT_NE(other.find("paper's semi-implicit step only"), std::string::npos) << other;
+}
+
 TEST(TunerCriteria, LinearisationNamesRoundTrip) {
   for (Linearisation at : {Linearisation::rest, Linearisation::state, Linearisation::equilibrium})
     EXPECT_EQ(parse_linearisation(to_string(at)), at);
