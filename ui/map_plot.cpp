@@ -101,7 +101,7 @@ PlotSpec map_panel_plot(const MapPanel& p, int max_iterations, bool with_legend,
     }
     s.series.push_back(ser);
   }
-  s.legend = with_legend ? LegendPos::Outside : LegendPos::BottomRight;
+  s.legend = with_legend ? LegendPos::Outside : LegendPos::Above;  // inside, a key covers cells
   return s;
 }
 
