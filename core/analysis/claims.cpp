@@ -109,7 +109,7 @@ std::vector<Claim> fig2_claims(const FigureData& fig, const std::vector<RunResul
 }
 
 void write_claims_table(std::ostream& out, const std::vector<Claim>& claims) {
-  out << "| # | Source | The paper says | dampbound measured | Rule | ClaimVerdict |\n"
+  out << "| # | Source | The paper says | dampbound measured | Rule | Verdict |\n"
          "|---|---|---|---|---|---|\n";
   int k = 1;
   for (const Claim& c : claims)
