@@ -19,6 +19,10 @@ expect_exit 0 "$DB" check "$S/two-node-damping.toml" && no_spec "check"
 expect_exit 0 "$DB" sweep --m 0.001 --kappa 0.001,0.002 --zeta 0.5,1 --dt 0.05 --max-iter 50 \
   -o "$WORK/s.csv" --progress none && no_spec "sweep"
 if grep -Eq 'SPEC [0-9]' "$WORK/s.csv"; then bad "the sweep CSV's header cites SPEC"; else ok; fi
+# The shipped scenes' names and descriptions: the tuner shows them under its scene combo.
+if grep -E '^(name|description) *=.*SPEC [0-9]' "$S"/*.toml; then
+  bad "a shipped scene's description cites SPEC"
+else ok; fi
 
 # An unknown subcommand lists what --help lists: not the hidden scene-format.
 expect_exit 2 "$DB" frobnicate
