@@ -184,6 +184,20 @@ PlotSpec tuner_envelope_plot(Tuner& tuner, const TunerPlotOptions& options) {
   PlotSpec p = envelope_plot(current, tuner.exact_gamma_max(),
                              "Damping bounds of node " + std::to_string(watched), scale);
   p.x.min = 0;
+  const Model& model = tuner.session().model();
+  if (current.empty() && watched >= 0 && watched < model.node_count()) {
+    // Before the first step the node's lower bound and the user's gamma are known already:
+    // draw them across the empty axis instead of a blank plot.
+    const auto i = static_cast<size_t>(watched);
+    for (PlotSeries& s : p.series) {
+      const bool lower = s.label.rfind("lower bound", 0) == 0, user = s.label == "user gamma";
+      if (!lower && !user) continue;
+      const double v = lower ? model.lower_bound[i] : model.gamma[i];
+      if (!(std::isfinite(v) && v > 0)) continue;
+      s.x = {0.0, 1.0};
+      s.y = {v, v};
+    }
+  }
   if (options.show_pins) {
     for (const Pin& pin : tuner.pins()) {
       if (!pin.visible) continue;
@@ -208,6 +222,9 @@ PlotSpec tuner_envelope_plot(Tuner& tuner, const TunerPlotOptions& options) {
   for (const StepSample& st : current)
     for (double v : {st.watched.lower, st.watched.gamma, st.watched.gamma_eff})
       if (std::isfinite(v)) ref = std::max(ref, v);
+  for (const PlotSeries& s : p.series)
+    for (double v : s.y)
+      if (current.empty() && std::isfinite(v)) ref = std::max(ref, v);
   envelope_headroom(p, ref > 0 ? 100 * ref : 0.0, 0.4);
   return p;
 }

@@ -137,6 +137,33 @@ TEST(TunerPlots, VerdictMarkersShowEntryExitAndSettled) {
   EXPECT_EQ(marks, 2);
 }
 
+// Before the first step the envelope is not blank: the watched node's lower bound and the
+// user's gamma are drawn across it, and the log axis takes them in.
+TEST(TunerPlots, BeforeTheFirstStepTheLowerBoundAndTheUsersGammaAreDrawn) {
+  SceneSpec scene = load_scene(DAMPBOUND_SOURCE_DIR "/scenes/two-node.toml");
+  scene.params.gamma = 0.0005;  // below the lower bound 0.002, so that the lines are two
+  Tuner t(std::move(scene));
+  ASSERT_EQ(t.session().state().iteration, 0);
+  const PlotSpec p = tuner_envelope_plot(t, TunerPlotOptions{});
+  const auto i = static_cast<size_t>(t.session().watched());
+  const Model& m = t.session().model();
+  int drawn = 0;
+  for (const PlotSeries& s : p.series) {
+    if (s.label.rfind("lower bound", 0) == 0) {
+      ASSERT_EQ(s.y.size(), 2u);
+      EXPECT_EQ(s.y[0], m.lower_bound[i]);
+      ++drawn;
+    } else if (s.label == "user gamma") {
+      ASSERT_EQ(s.y.size(), 2u);
+      EXPECT_EQ(s.y[0], m.gamma[i]);
+      ++drawn;
+    }
+  }
+  EXPECT_EQ(drawn, 2);
+  EXPECT_LT(p.y.min, std::min(m.lower_bound[i], m.gamma[i]));
+  EXPECT_GT(p.y.max, std::max(m.lower_bound[i], m.gamma[i]));
+}
+
 TEST(TunerPlots, BandIsCoarsenedConservatively) {
   PlotBand b;
   const double inf = std::numeric_limits<double>::infinity();
