@@ -42,6 +42,7 @@ void apply_params(Model& model, const Params& params) {
   model.node_kappa.resize(n);
   model.lower_bound.resize(n);
   model.spring_kappa.resize(model.springs.size());
+  model.spring_weight.resize(model.springs.size());
   model.spring_kd.resize(model.springs.size());
   model.anchor_kd.resize(n);
   model.rayleigh_mass = params.rayleigh_mass;
@@ -68,6 +69,8 @@ void apply_params(Model& model, const Params& params) {
     const Spring& s = model.springs[k];
     const double kappa = params.kappa * s.kappa_scale;
     model.spring_kappa[k] = kappa;
+    model.spring_weight[k] = 1.0 / std::sqrt(model.mass[static_cast<size_t>(s.i)] *
+                                             model.mass[static_cast<size_t>(s.j)]);
     auto& ki = model.node_kappa[static_cast<size_t>(s.i)];
     auto& kj = model.node_kappa[static_cast<size_t>(s.j)];
     ki = std::max(ki, kappa);

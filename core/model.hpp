@@ -63,6 +63,9 @@ class Model : public ModelSpec {
   std::vector<double> gamma;         ///< the user's gamma_i before the policy (mass unit / s)
   std::vector<double> anchor_kappa;  ///< kappa_a,i (mass unit / s^2)
   std::vector<double> spring_kappa;  ///< kappa_ij of spring k (mass unit / s^2)
+  /// 1 / sqrt(m_i m_j) of spring k: the weight of its block in A = M^-1/2 K M^-1/2 (SPEC 9's
+  /// row sums read it every step; the masses change only with the params).
+  std::vector<double> spring_weight;
   std::vector<double> node_kappa;    ///< kappa_i of eq. 5: max stiffness incident to i (SPEC 3)
   std::vector<double> lower_bound;   ///< gamma_lo_i = 2 sqrt(m_i kappa_i) (eq. 5; mass unit / s)
   // SPEC 10's damping besides the nodal gamma_i (all zero unless params ask for it).

@@ -34,7 +34,7 @@ inline bool spring_block(const Model& model, size_t k, const SpringGeometry& g, 
   const double ratio = s.rest_length / l;
   const double tension = 1.0 - ratio;
   spring_tangent_block(model.spring_kappa[k], tension, ratio, d, b);
-  b[6] = 1.0 / std::sqrt(model.mass[static_cast<size_t>(s.i)] * model.mass[static_cast<size_t>(s.j)]);
+  b[6] = model.spring_weight[k];
   return tension < 0;
 }
 

@@ -39,6 +39,7 @@ void expect_same_parameter_values(const Model& a, const Model& b) {
   EXPECT_EQ(a.gamma, b.gamma);
   EXPECT_EQ(a.anchor_kappa, b.anchor_kappa);
   EXPECT_EQ(a.spring_kappa, b.spring_kappa);
+  EXPECT_EQ(a.spring_weight, b.spring_weight);
   EXPECT_EQ(a.node_kappa, b.node_kappa);
   EXPECT_EQ(a.lower_bound, b.lower_bound);
 }
@@ -70,6 +71,10 @@ TEST(CompileModel, FillsEveryDerivedArrayWithSpec3sValues) {
   EXPECT_DOUBLE_EQ(m.node_kappa[2], m.spring_kappa[1]);
   for (size_t i = 0; i < 3; ++i)
     EXPECT_DOUBLE_EQ(m.lower_bound[i], 2 * std::sqrt(m.mass[i] * m.node_kappa[i])) << i;
+  // Each spring's weight in A = M^-1/2 K M^-1/2, the bits SPEC 9's row sums computed inline.
+  ASSERT_EQ(m.spring_weight.size(), 2u);
+  EXPECT_EQ(m.spring_weight[0], 1.0 / std::sqrt(m.mass[0] * m.mass[1]));
+  EXPECT_EQ(m.spring_weight[1], 1.0 / std::sqrt(m.mass[1] * m.mass[2]));
   // The spec travels with it unchanged.
   EXPECT_EQ(m.rest[1], Vec3(3, 4, 0));
   EXPECT_EQ(m.fixed[2], 1);
