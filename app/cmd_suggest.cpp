@@ -198,8 +198,6 @@ int print_step(const SceneSpec& scene, const Params& p, const StepSuggestion& s)
   return recommendation_status(s.runs, "largest dt every criterion accepts");
 }
 
-std::string substeps_text(int n) { return std::to_string(n) + (n == 1 ? " substep" : " substeps"); }
-
 int print_substeps(const std::string& scene_arg, const SubstepSuggestion& s) {
   std::printf("substeps per frame of %s s (dt = frame / n; limits at the rest state, runs from "
               "the scene's start)\n",

@@ -66,7 +66,7 @@ void print_substeps_line(const ui::BackgroundJob<ui::SubstepsResult>& job) {
     const SubstepSuggestion& s = job.result()->substeps;
     const auto count = [](const SubstepCount& c) {
       return c.n == 0 ? std::string("none")
-                      : std::to_string(c.n) + " substeps (" +
+                      : substeps_text(c.n) + " (" +
                             (c.ran ? verdict_short(c.run.result) : std::string("not run")) + ")";
     };
     std::string line = "exact limit " + count(s.exact) + ", safe bound " + count(s.safe);

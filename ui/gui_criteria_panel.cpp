@@ -223,8 +223,8 @@ void GuiApp::substeps_section() {
       ImGui::TextDisabled("%s: no count (limit %s s)", row.what, fmt(c->limit).c_str());
       continue;
     }
-    std::string text = std::string(row.what) + ": " + std::to_string(c->n) +
-                       (c->n == 1 ? " substep, dt = " : " substeps, dt = ") + fmt(c->dt) + " s";
+    std::string text =
+        std::string(row.what) + ": " + substeps_text(c->n) + ", dt = " + fmt(c->dt) + " s";
     if (c->limit > 0) text += " < " + fmt(c->limit) + " s";
     text_wrapped(text);
     if (item::small_button(row.apply)) t.set_params(with_substeps(t.params(), *c));
@@ -246,10 +246,11 @@ void GuiApp::substeps_section() {
                     (s.by_running.n > 0
                          ? "The exact count did not settle (the run passes through states "
                            "stiffer than rest): " +
-                               std::to_string(s.failed_at_most) + " substeps did not settle, " +
+                               substeps_text(s.failed_at_most) + " did not settle, " +
                                std::to_string(s.by_running.n) + " did."
-                         : "No count up to " + std::to_string(s.failed_at_most) +
-                               " substeps settled; the damping may be too light to settle.")
+                         : "No count up to " + substeps_text(s.failed_at_most) +
+                               " settled; where none diverged, the damping does not let it "
+                               "settle in the scene's time.")
                         .c_str());
   if (const SubstepCount* use = s.answer())
     ImGui::Text("use %d substep%s per frame (dt = %s s)", use->n, use->n == 1 ? "" : "s",

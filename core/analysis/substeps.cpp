@@ -27,6 +27,10 @@ int verify_iterations(int max_iterations, double horizon, double dt) {
   return static_cast<int>(std::min(want, most));
 }
 
+std::string substeps_text(int n) {
+  return std::to_string(n) + (n == 1 ? " substep" : " substeps");
+}
+
 const SubstepCount* SubstepSuggestion::answer() const {
   if (exact.verified()) return &exact;
   if (by_running.verified()) return &by_running;
@@ -37,7 +41,7 @@ const SubstepCount* SubstepSuggestion::answer() const {
 namespace {
 
 std::string count_label(int n, const char* what) {
-  return std::to_string(n) + (n == 1 ? " substep (" : " substeps (") + what + ")";
+  return substeps_text(n) + " (" + what + ")";
 }
 
 class Runner {

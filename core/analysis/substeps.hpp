@@ -53,6 +53,9 @@ inline constexpr int kSearchSpan = 8;
 inline constexpr int kVerifySpan = 4;
 int verify_iterations(int max_iterations, double horizon, double dt);
 
+/// "1 substep", "N substeps": how every output names a count.
+std::string substeps_text(int n);
+
 /// The fewest n >= 1 with frame_dt / n < limit (limit exclusive); 0 when limit is not a
 /// positive number or n would exceed kMaxSubsteps.
 int substeps_below(double frame_dt, double limit);

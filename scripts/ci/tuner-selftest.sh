@@ -3,8 +3,8 @@
 # widget (tabs, buttons, checkboxes, combos and an entry of each, sliders, text and number
 # fields, the cut tool with a cut dragged across the mesh, drags on the mesh and the plots) on
 # every shipped scene, then a seeded random monkey of 1000 input events on paper-plane and on
-# tissue-block (two processes at once). Fails on an abort, a hang (a frame over 60 s) or a non-zero exit; prints the
-# widgets visited and the monkey's seed.
+# tissue-block (two processes at once). Fails on an abort, a hang (a frame over 60 s) or a
+# non-zero exit; prints the widgets visited and the monkey's seed.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 start=$(date +%s)

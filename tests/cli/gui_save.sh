@@ -58,7 +58,7 @@ expect_exit 0 "${XV[@]}" "$DB" gui "$SRC/scenes/paper-plane.toml" --frames 2 --t
 expect_match "$ERR" 'gui: suggest: gamma in \[[0-9.e-]+, [0-9.e-]+\), fastest settling at' "--tab suggest computes"
 # ... and the substeps for its frame time (--frame-dt; 1/60 s by default), the counts `suggest
 # --frame-dt` gives, each verified.
-expect_match "$ERR" 'gui: substeps at frame 0.0166667 s: exact limit 1 substeps \(settled at [0-9]+\), safe bound 1 substeps \(settled' "--tab suggest gives the substeps"
+expect_match "$ERR" 'gui: substeps at frame 0.0166667 s: exact limit 1 substep \(settled at [0-9]+\), safe bound 1 substep \(settled' "--tab suggest gives the substeps"
 expect_exit 0 "${XV[@]}" "$DB" gui "$SRC/scenes/paper-plane.toml" --frames 2 --tab suggest \
   --frame-dt 2 --size 1024x640 --config-dir "$CFG"
 want=$("$DB" suggest "$SRC/scenes/paper-plane.toml" --frame-dt 2 --no-verify 2>&1 | grep -Eo '[0-9]+ substeps' | head -2 | tr '\n' ' ')
