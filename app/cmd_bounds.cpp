@@ -24,7 +24,7 @@
 #include "core/safe_bound.hpp"
 #include "core/session.hpp"
 
-namespace dampbound::app {
+namespace dampbound::app::cmd_bounds {
 namespace {
 
 struct BoundsArgs {
@@ -378,4 +378,4 @@ std::function<int()> setup(CLI::App& root) {
 const bool registered = register_command("bounds", setup);
 
 }  // namespace
-}  // namespace dampbound::app
+}  // namespace dampbound::app::cmd_bounds

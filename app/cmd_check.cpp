@@ -16,7 +16,7 @@
 #include "core/io/format.hpp"
 #include "core/io/scene_file.hpp"
 
-namespace dampbound::app {
+namespace dampbound::app::cmd_check {
 namespace {
 
 namespace fs = std::filesystem;
@@ -168,4 +168,4 @@ std::function<int()> setup(CLI::App& root) {
 const bool registered = register_command("check", setup);
 
 }  // namespace
-}  // namespace dampbound::app
+}  // namespace dampbound::app::cmd_check

@@ -6,7 +6,7 @@
 #include "core/error.hpp"
 #include "core/sweep/csv.hpp"
 
-namespace dampbound::app {
+namespace dampbound::app::cmd_merge {
 namespace {
 
 struct MergeArgs {
@@ -37,4 +37,4 @@ std::function<int()> setup(CLI::App& root) {
 const bool registered = register_command("merge", setup);
 
 }  // namespace
-}  // namespace dampbound::app
+}  // namespace dampbound::app::cmd_merge

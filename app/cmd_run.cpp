@@ -10,7 +10,7 @@
 #include "core/session.hpp"
 #include "core/io/vtu.hpp"
 
-namespace dampbound::app {
+namespace dampbound::app::cmd_run {
 namespace {
 
 struct RunArgs {
@@ -134,4 +134,4 @@ std::function<int()> setup(CLI::App& root) {
 const bool registered = register_command("run", setup);
 
 }  // namespace
-}  // namespace dampbound::app
+}  // namespace dampbound::app::cmd_run

@@ -5,7 +5,7 @@
 #include "app/commands.hpp"
 #include "core/io/scene_keys.hpp"
 
-namespace dampbound::app {
+namespace dampbound::app::cmd_scene_keys {
 namespace {
 
 std::function<int()> setup(CLI::App& root) {
@@ -21,4 +21,4 @@ std::function<int()> setup(CLI::App& root) {
 const bool registered = register_command("scene-format", setup);
 
 }  // namespace
-}  // namespace dampbound::app
+}  // namespace dampbound::app::cmd_scene_keys

@@ -16,7 +16,7 @@
 #include "core/io/format.hpp"
 #include "core/io/report.hpp"
 
-namespace dampbound::app {
+namespace dampbound::app::cmd_suggest {
 namespace {
 
 struct SuggestArgs {
@@ -332,4 +332,4 @@ std::function<int()> setup(CLI::App& root) {
 const bool registered = register_command("suggest", setup);
 
 }  // namespace
-}  // namespace dampbound::app
+}  // namespace dampbound::app::cmd_suggest

@@ -27,7 +27,7 @@
 #include "core/sweep/runner.hpp"
 #include "core/sweep/summary.hpp"
 
-namespace dampbound::app {
+namespace dampbound::app::cmd_sweep {
 namespace {
 
 std::atomic<bool> g_interrupted{false};
@@ -345,4 +345,4 @@ std::function<int()> setup(CLI::App& root) {
 const bool registered = register_command("sweep", setup);
 
 }  // namespace
-}  // namespace dampbound::app
+}  // namespace dampbound::app::cmd_sweep

@@ -13,7 +13,7 @@
 #include "ui/render_png.hpp"
 #include "ui/trace_plots.hpp"
 
-namespace dampbound::app {
+namespace dampbound::app::cmd_ui_figure {
 namespace {
 
 struct FigureArgs {
@@ -100,4 +100,4 @@ std::function<int()> setup(CLI::App& root) {
 const bool registered = register_command("figure", setup);
 
 }  // namespace
-}  // namespace dampbound::app
+}  // namespace dampbound::app::cmd_ui_figure

@@ -28,7 +28,7 @@
 #include "ui/tuner_export.hpp"
 #endif
 
-namespace dampbound::app {
+namespace dampbound::app::cmd_ui_gui {
 namespace {
 
 struct GuiArgs {
@@ -404,4 +404,4 @@ std::function<int()> setup(CLI::App& root) {
 const bool registered = register_command("gui", setup);
 
 }  // namespace
-}  // namespace dampbound::app
+}  // namespace dampbound::app::cmd_ui_gui

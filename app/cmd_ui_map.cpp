@@ -17,7 +17,7 @@
 #include "ui/map_plot.hpp"
 #include "ui/plot.hpp"
 
-namespace dampbound::app {
+namespace dampbound::app::cmd_ui_map {
 namespace {
 
 /// The paper's layout: the kappa/m panel across the top (its legend beside it), the (m, kappa)
@@ -127,4 +127,4 @@ const bool hooked = [] {
 }();
 
 }  // namespace
-}  // namespace dampbound::app
+}  // namespace dampbound::app::cmd_ui_map

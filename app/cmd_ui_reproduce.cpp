@@ -27,7 +27,7 @@
 #include "ui/render_png.hpp"
 #include "ui/trace_plots.hpp"
 
-namespace dampbound::app {
+namespace dampbound::app::cmd_ui_reproduce {
 namespace {
 
 struct ReproduceArgs {
@@ -269,4 +269,4 @@ std::function<int()> setup(CLI::App& root) {
 const bool registered = register_command("reproduce", setup);
 
 }  // namespace
-}  // namespace dampbound::app
+}  // namespace dampbound::app::cmd_ui_reproduce

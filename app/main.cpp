@@ -1,4 +1,5 @@
 // dampbound: the command line. Subcommands live in cmd_*.cpp and register themselves.
+#include <algorithm>
 #include <cstdio>
 #include <exception>
 #include <map>
@@ -54,8 +55,12 @@ int main(int argc, char** argv) {
                   "precision)")
       ->check(CLI::Range(1, 17));
   root.fallthrough();  // the flag may also follow the subcommand
+  // Registration order depends on how the files were linked: list the subcommands by name.
+  auto& table = command_table();
+  std::sort(table.begin(), table.end(),
+            [](const CommandEntry& a, const CommandEntry& b) { return a.name < b.name; });
   std::map<std::string, std::function<int()>> runners;
-  for (auto& entry : command_table()) runners[entry.name] = entry.setup(root);
+  for (auto& entry : table) runners[entry.name] = entry.setup(root);
   // CLI11 answers an unknown first word with "A subcommand is required": name it instead.
   for (int k = 1; k < argc; ++k) {
     const std::string word = argv[k];
