@@ -48,9 +48,8 @@ class Model;
 Model compile_model(ModelSpec spec, const Params& params);
 
 /// The model's per-node and per-spring values for other params, in place: the same values as
-/// compile_model(model, params), without copying the spec or rebuilding the incidence lists.
-/// What a parameter change in the tuner costs on its frame: 18 to 20 ms on a 1M-node block
-/// where recompiling took 240 to 280 ms (docs/performance.md).
+/// compile_model(model, params), without copying the spec or rebuilding the incidence lists:
+/// what the tuner does on a slider's change (its cost: docs/performance.md).
 void reparameterise(Model& model, const Params& params);
 
 /// A compiled model: its spec plus the per-node and per-spring values the step reads. Only

@@ -159,14 +159,14 @@ struct ExactOptions {
   /// The command line and the tuner use kDefaultFactorBudget.
   double max_factor_flops = std::numeric_limits<double>::infinity();
   /// Over the budget: the most Lanczos steps of the bounds proved without a factorisation
-  /// (ExactStability::unfactored; two runs of up to this many matrix-vector products, about
-  /// 5 s on a 1M-node tetrahedral mesh at 40, docs/performance.md). 0: none.
+  /// (ExactStability::unfactored; two runs of up to this many matrix-vector products; their
+  /// cost on big meshes: docs/performance.md). 0: none.
   int unfactored_steps = 40;
 };
 
-/// The command line's and the tuner's budget: 200 GFlop, about 25 s per factorisation on the
-/// 2-core machine of docs/performance.md. Every plane up to 1M nodes fits (1M: ~160 GFlop);
-/// tetrahedral blocks up to ~40k nodes (27k: 79 GFlop; 97k: 940 GFlop).
+/// The command line's and the tuner's budget: 200 GFlop per factorisation. Every plane up to
+/// 1M nodes fits (1M: ~160 GFlop); tetrahedral blocks up to ~40k nodes (27k: 79 GFlop; 97k:
+/// 940 GFlop). What it costs in seconds: docs/performance.md.
 inline constexpr double kDefaultFactorBudget = 2e11;
 
 /// The analysis at positions x for the model (set_params(params) done) and params.dt,

@@ -186,9 +186,9 @@ double mode_spectral_radius(Integrator integrator, double lambda, double c, doub
   const Eigen::Matrix2d G = mode_amplification(integrator, lambda, c, h);
   const double tr = G.trace(), det = G.determinant();
   // tr^2 - 4 det, written without its cancellation: a mode near lambda = 0 has the real pair
-  // 1 and about 1 - c h, and at small h tr^2 and 4 det agree to 1e-14 and more, so their
-  // difference's rounding (1e-16 of tr^2) put the radius above 1 + 1e-12 (uniform_dt_max
-  // then gave 7.7e-7 s on two-node, whose step is stable up to 2 s).
+  // 1 and about 1 - c h, and at small h tr^2 and 4 det agree to 1e-14 and more, so the
+  // rounding of their difference (1e-16 of tr^2) would put the radius above 1 + 1e-12 and
+  // make uniform_dt_max absurdly small (7.7e-7 s on two-node, stable up to 2 s).
   const double gap = G(0, 0) - G(1, 1);
   const double disc = gap * gap + 4 * G(0, 1) * G(1, 0);
   if (disc >= 0) return (std::abs(tr) + std::sqrt(disc)) / 2;  // real pair: max |z|

@@ -149,8 +149,8 @@ TEST(SafeBound, PaperPlaneMatchesSpec9) {
 }
 
 // gamma_safe is the user's gamma: with the middle square damped 3x (gamma_i = 3 gamma there)
-// the bound is a third of the square's gamma_safe_i. It used to be the smallest gamma_safe_i
-// itself, 3x above the exact limit on that plane (bounds printed "ratio 2.9976").
+// the bound is a third of the square's gamma_safe_i, not the smallest gamma_safe_i itself
+// (that would be 3x above the exact limit on that plane).
 TEST(SafeBound, TheSummarysGammaSafeIsTheUsersGamma) {
   SceneSpec s = shipped("paper-plane");
   Params p = s.params;

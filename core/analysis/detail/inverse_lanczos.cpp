@@ -22,11 +22,10 @@ struct InverseOp {
 };
 
 /// Spectra's restarts before inverse iteration takes over. Where shift-and-invert Lanczos
-/// converges it has taken 1 restart (9 solves) on the shipped scenes, at rest and after 20
+/// converges it takes 1 restart (9 solves) on the shipped scenes, at rest and after 20
 /// steps, and 13 at most; where it does not (a cluster at the end of the spectrum, e.g. the
-/// anchors' lambda = 1 of a perturbed plane), it went on for 200 restarts (809 solves, 15 s
-/// on a 40k-node plane) before the same inverse iteration: stopping at 20 gives the same
-/// bits in a fifth of the solves.
+/// anchors' lambda = 1 of a perturbed plane), more restarts only delay the same inverse
+/// iteration, which then gives the same bits.
 constexpr int kLanczosRestarts = 20;
 
 }  // namespace

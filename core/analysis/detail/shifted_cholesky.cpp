@@ -40,9 +40,8 @@ std::mutex& cholmod_turn() {
 /// when any of their rows couple, and the prediction is expanded to rows: a node column of c
 /// nodes (its diagonal one included) stands for row columns of 3c, 3c - 1 and 3c - 2 entries,
 /// and CHOLMOD counts a factorisation's flops as the sum of its columns' squares. The node
-/// graph has about a ninth of the rows' entries: on the 1M-node tetrahedral block the check
-/// took about 1 s against 7 s for AMD on the rows (docs/performance.md). Otherwise AMD on the
-/// rows.
+/// graph has about a ninth of the rows' entries, and AMD on it is several times faster than
+/// on the rows (docs/performance.md). Otherwise AMD on the rows.
 struct Prediction {
   double flops = 0, entries = 0;
 };

@@ -15,10 +15,10 @@ namespace dampbound::detail {
 
 /// Above this many rows a budget is first checked against AMD's ordering alone (of the
 /// nodes, when the rows come in threes): CHOLMOD's default analysis also tries METIS and
-/// nested dissection, 49 s for the 3M rows of a 1M-node tetrahedral block, AMD on the rows
-/// 8.5 s, on the nodes about 1 s. AMD's prediction was 12x (46^3 block) and 17x (100^3) above the
-/// better ordering's on the rows, 7.5x on the nodes (100^3), so only a prediction kAmdSlack
-/// times over the budget stops the analysis there.
+/// nested dissection, which on a million-node mesh costs many times AMD alone. AMD's flop
+/// prediction runs up to about 17x above the better ordering's on tetrahedral blocks
+/// (docs/performance.md), so only a prediction kAmdSlack times over the budget stops the
+/// analysis there.
 inline constexpr Eigen::Index kQuickCheckRows = 500000;
 inline constexpr double kAmdSlack = 32;
 
@@ -40,7 +40,7 @@ class ShiftedCholesky {
   /// factorisation would take more than `budget` flops. Within the budget it also allocates
   /// the factor's values and touches their pages, which the first factorisation would
   /// otherwise do: certified_largest_eigenvalue analyses beside its estimate, so that work
-  /// leaves the critical path (at 160k nodes 0.15 s of a first factorisation's 0.66 s).
+  /// leaves the critical path.
   void analyse(double budget);
   /// Factors sigma I - A; true when it is positive definite (every pivot > 0).
   bool factor(double sigma);

@@ -39,17 +39,16 @@ struct SolveSplit {
   bool empty() const { return bins[0].empty() && bins[1].empty(); }
 };
 
-/// Factors of fewer entries are solved serially (a solve of a 40k-node plane's factor, 5.6
-/// million entries, takes about 18 ms).
+/// Factors of fewer entries are solved serially: below a million entries a solve is too
+/// short for a second thread to pay for itself.
 inline constexpr std::size_t kSplitEntries = std::size_t{1} << 20;
 /// Subtrees taken apart from the root down at most this many times.
 inline constexpr int kSplitRounds = 64;
 /// A split is kept when the top plus the heavier bin is under this share of the work, and
 /// the bins' supernodes of 32 columns or more (BLAS in a serial solve, the loops in bin 1)
-/// hold at most kSplitWideShare of it (measured with the loops in both bins). Five solves on 2
-/// threads against serial: planes of 40k and 160k nodes (39 and 47 % wide) 1.4 to 1.5x faster;
-/// tetrahedral blocks of 8k and 27k nodes and the tissue block (62 to 70 % wide) 1.0 to 1.3x,
-/// and 1.3 to 1.5x slower when the second core is busy, so they stay serial.
+/// hold at most kSplitWideShare of it. Planes (about 40 % wide) gain from the second thread;
+/// tetrahedral blocks (62 to 70 % wide) gain little and lose when the second core is busy,
+/// so they stay serial (the measurements: docs/performance.md).
 inline constexpr double kSplitWorthIt = 0.8;
 inline constexpr double kSplitWideShare = 0.55;
 
