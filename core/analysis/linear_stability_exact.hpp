@@ -12,7 +12,7 @@
 
 namespace dampbound {
 
-/// How the numbers were obtained (docs/criteria.md, "exact limits").
+/// How the numbers were obtained (docs/criteria.md, "Exact linear stability").
 enum class ExactMethod {
   per_mode,           ///< gamma_i/m_i uniform: modes decouple; closed form or per-mode 2x2
   symmetric_index,    ///< semi-implicit, non-uniform: lambda_max(dt^2 A + 2 dt C) < 4
