@@ -25,7 +25,8 @@ LanczosRecurrence<Scalar>::LanczosRecurrence(const SparseMatrix& A, int threads,
                                              const Eigen::VectorXd* d)
     : A_(A), d_(d), scale_(scale), pool_(threads) {
   // One product follows another after a few vector passes (about 0.1 ms at 40k nodes): the
-  // workers poll for it rather than sleep (docs/performance.md, "Lanczos's products").
+  // workers poll for it rather than sleep (docs/performance.md, "Lanczos's products on
+  // threads").
   pool_.set_spin_microseconds(kLanczosSpinMicroseconds);
   // The passes run over blocks of rows (detail/symmetric_product.hpp): the pool's grain in
   // blocks, the rows per thread as for any other loop.
