@@ -8,6 +8,7 @@
 #include "core/error.hpp"
 #include "core/io/format.hpp"
 #include "core/io/scene_text.hpp"
+#include "core/step_isa.hpp"
 #include "core/sweep/kernel.hpp"
 #include "dampbound/version.hpp"
 
@@ -39,11 +40,13 @@ int main(int argc, char** argv) {
       "dampbound: damping bounds that guarantee stability in mass-spring systems\n"
       "(Bhasin & Liu). Units: cm, s, and any consistent mass unit."};
   root.require_subcommand(1);
-  // The version, and which compiled variant of the sweep kernel this CPU runs.
+  // The version, and which compiled copies of the sweep kernel and of step()'s spring loop
+  // this CPU runs.
   root.set_version_flag("--version", std::string("dampbound ") + DAMPBOUND_VERSION +
                                          " (sweep kernel: " +
                                          dampbound::to_string(dampbound::best_kernel_isa()) +
-                                         ")");
+                                         ", step: " +
+                                         dampbound::to_string(dampbound::best_step_isa()) + ")");
   root.set_help_all_flag("--help-all", "Print help for every subcommand");
   bool any_path = false;
   root.add_flag("--allow-any-path", any_path,

@@ -7,6 +7,7 @@
 
 #include "core/model.hpp"
 #include "core/node_threads.hpp"
+#include "core/step_isa.hpp"
 
 namespace dampbound DAMPBOUND_API {
 
@@ -19,6 +20,9 @@ struct SpringPass {
   NodeThreads threads;
   std::vector<double> rows;          ///< per-node row-sum accumulators (9 doubles each)
   std::vector<int> counts;           ///< per-chunk counts (zero-length, compressed springs)
+  /// Which compiled copy of the springs' arithmetic runs (core/step_isa.hpp); every copy gives
+  /// the same bits.
+  StepIsa isa = StepIsa::best;
 };
 
 /// F_i = sum_j kappa_ij (l_ij - l0_ij) d_ij  -  kappa_a,i (x_i - X_i),  d_ij = (x_j - x_i)/l_ij

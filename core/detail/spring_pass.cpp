@@ -3,40 +3,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/detail/spring_batch.hpp"
 #include "core/detail/spring_block.hpp"
 
 namespace dampbound::detail {
 namespace {
-
-/// One spring at x: its vector and length (what both outputs start from).
-struct SpringGeometry {
-  Vec3 delta;     ///< x_j - x_i (cm)
-  double length;  ///< |delta|; not > 0 (zero or NaN): no direction
-};
-
-inline SpringGeometry geometry(const Model& model, const std::vector<Vec3>& x, size_t k) {
-  const Spring& s = model.springs[k];
-  const Vec3 delta = x[static_cast<size_t>(s.j)] - x[static_cast<size_t>(s.i)];
-  return {delta, delta.norm()};
-}
-
-/// The force on the spring's first node, kappa_k (l - l0) / l * (x_j - x_i) (SPEC 1).
-inline Vec3 spring_force(const Model& model, size_t k, const SpringGeometry& g) {
-  return (model.spring_kappa[k] * (g.length - model.springs[k].rest_length) / g.length) * g.delta;
-}
-
-/// The spring's tangent block B (upper triangle, b[0..5]) and w = 1/sqrt(m_i m_j) (b[6]);
-/// true when compressed (l < l0).
-inline bool spring_block(const Model& model, size_t k, const SpringGeometry& g, double* b) {
-  const Spring& s = model.springs[k];
-  const double l = g.length;
-  const double d[3] = {g.delta[0] / l, g.delta[1] / l, g.delta[2] / l};
-  const double ratio = s.rest_length / l;
-  const double tension = 1.0 - ratio;
-  spring_tangent_block(model.spring_kappa[k], tension, ratio, d, b);
-  b[6] = model.spring_weight[k];
-  return tension < 0;
-}
 
 /// |b| summed along row r of a symmetric block, left to right.
 inline double row_abs(const double* b, int r) {
@@ -89,7 +60,8 @@ inline long last_spring(const Model& model, size_t i) {
 /// order) and its R_i is taken once its last spring is added, so on a mesh numbered along its
 /// rows or layers a node's accumulators live in cache for the few rows between the two instead
 /// of being written out, read back and written again.
-SpringCounts owned_pass(const Model& model, const std::vector<Vec3>& x, std::vector<Vec3>* force,
+SpringCounts owned_pass(SpringBatchFunction compute, const Model& model,
+                        const std::vector<Vec3>& x, std::vector<Vec3>* force,
                         std::vector<double>* row_sum, double* acc, size_t begin, size_t end) {
   const std::vector<std::uint8_t>& fixed = model.fixed;
   SpringCounts counts;
@@ -120,33 +92,41 @@ SpringCounts owned_pass(const Model& model, const std::vector<Vec3>& x, std::vec
       last = std::max(last, spring + 1);
     }
   }
-  double b[7];
-  for (size_t k = first; k < last; ++k) {
-    const size_t i = static_cast<size_t>(model.springs[k].i);
-    const size_t j = static_cast<size_t>(model.springs[k].j);
-    const bool own_i = all || (i >= begin && i < end), own_j = all || (j >= begin && j < end);
-    if (!own_i && !own_j) continue;
-    if (own_i) start_to(i);
-    if (own_j) start_to(j);
-    const SpringGeometry g = geometry(model, x, k);
-    if (!(g.length > 0)) {  // also catches NaN
-      counts.zero_length += own_i;
+  // Each batch of springs' directions, forces and blocks in SIMD lanes, then added to the
+  // nodes one spring at a time, in index order.
+  const SpringBatchInput in = spring_batch_input(model, x);
+  SpringBatch batch;
+  for (size_t k0 = first; k0 < last; k0 += kSpringBatch) {
+    const size_t count = std::min(kSpringBatch, last - k0);
+    compute(in, k0, count, force != nullptr, row_sum != nullptr, batch);
+    for (size_t q = 0; q < count; ++q) {
+      const size_t k = k0 + q;
+      const size_t i = static_cast<size_t>(model.springs[k].i);
+      const size_t j = static_cast<size_t>(model.springs[k].j);
+      const bool own_i = all || (i >= begin && i < end), own_j = all || (j >= begin && j < end);
+      if (!own_i && !own_j) continue;
+      if (own_i) start_to(i);
+      if (own_j) start_to(j);
+      if (!batch.direction[q]) {  // zero or NaN length
+        counts.zero_length += own_i;
+        finish_after(static_cast<long>(k));
+        continue;
+      }
+      if (force) {
+        const Vec3 f(batch.force[0][q], batch.force[1][q], batch.force[2][q]);
+        if (own_i) (*force)[i] += f;
+        if (own_j) (*force)[j] -= f;
+      }
+      if (row_sum) {
+        counts.compressed += own_i && batch.compressed[q];
+        const double b[6] = {batch.block[0][q], batch.block[1][q], batch.block[2][q],
+                             batch.block[3][q], batch.block[4][q], batch.block[5][q]};
+        const double off[3] = {batch.off[0][q], batch.off[1][q], batch.off[2][q]};
+        if (own_i && !fixed[i]) add_block(&acc[9 * i], b, off, fixed[j]);
+        if (own_j && !fixed[j]) add_block(&acc[9 * j], b, off, fixed[i]);
+      }
       finish_after(static_cast<long>(k));
-      continue;
     }
-    if (force) {
-      const Vec3 f = spring_force(model, k, g);
-      if (own_i) (*force)[i] += f;
-      if (own_j) (*force)[j] -= f;
-    }
-    if (row_sum) {
-      const bool compressed = spring_block(model, k, g, b);
-      counts.compressed += own_i && compressed;
-      const double off[3] = {row_abs(b, 0) * b[6], row_abs(b, 1) * b[6], row_abs(b, 2) * b[6]};
-      if (own_i && !fixed[i]) add_block(&acc[9 * i], b, off, fixed[j]);
-      if (own_j && !fixed[j]) add_block(&acc[9 * j], b, off, fixed[i]);
-    }
-    finish_after(static_cast<long>(k));
   }
   if (end > begin) start_to(end - 1);
   finish_after(static_cast<long>(model.springs.size()));
@@ -154,6 +134,20 @@ SpringCounts owned_pass(const Model& model, const std::vector<Vec3>& x, std::vec
 }
 
 }  // namespace
+
+SpringBatchFunction spring_batch_for(StepIsa isa) {
+  if (isa == StepIsa::best) isa = best_step_isa();
+#if defined(__x86_64__)
+  if (isa == StepIsa::avx2 && step_isa_supported(StepIsa::avx2)) return spring_batch_avx2::compute;
+#endif
+  return spring_batch_generic::compute;
+}
+
+SpringBatchInput spring_batch_input(const Model& model, const std::vector<Vec3>& x) {
+  static_assert(sizeof(Vec3) == 3 * sizeof(double), "positions are packed x, y, z");
+  return {model.springs.data(), model.spring_kappa.data(), model.spring_weight.data(),
+          x.empty() ? nullptr : x.front().data()};
+}
 
 SpringCounts spring_pass(const Model& model, const std::vector<Vec3>& x,
                          std::vector<Vec3>* force, std::vector<double>* row_sum,
@@ -163,9 +157,10 @@ SpringCounts spring_pass(const Model& model, const std::vector<Vec3>& x,
   if (row_sum) row_sum->resize(n);  // every node's R_i written by its range (0 when fixed)
   std::vector<double> local;
   std::vector<double>& acc = pass ? pass->rows : local;
+  const SpringBatchFunction compute = spring_batch_for(pass ? pass->isa : StepIsa::best);
   acc.resize(row_sum ? 9 * n : 0);
   if (!pass || pass->threads.chunks(ns) <= 1)
-    return owned_pass(model, x, force, row_sum, acc.data(), 0, n);
+    return owned_pass(compute, model, x, force, row_sum, acc.data(), 0, n);
   // Threads: the nodes split into as many contiguous ranges as the springs would be (a
   // chunk's work is its springs), each range one owned_pass.
   SpringPass& p = *pass;
@@ -174,7 +169,8 @@ SpringCounts spring_pass(const Model& model, const std::vector<Vec3>& x,
   p.threads.run(ns, [&](int chunk, size_t, size_t) {
     const size_t c = static_cast<size_t>(chunk);
     const SpringCounts cs =
-        owned_pass(model, x, force, row_sum, acc.data(), n * c / parts, n * (c + 1) / parts);
+        owned_pass(compute, model, x, force, row_sum, acc.data(), n * c / parts,
+                   n * (c + 1) / parts);
     p.counts[2 * c] = cs.zero_length;
     p.counts[2 * c + 1] = cs.compressed;
   });

@@ -20,7 +20,7 @@ struct SpringCounts {
 
 /// F_i into *force (resized to the node count) when force is not null, and R_i into *row_sum
 /// (0 at fixed nodes) when row_sum is not null, at positions x. `pass` (optional) brings the
-/// threads and keeps up to 10 doubles per spring between calls.
+/// threads, the copy of the spring batch to run (spring_batch.hpp) and the row sums' buffers.
 SpringCounts spring_pass(const Model& model, const std::vector<Vec3>& x,
                          std::vector<Vec3>* force, std::vector<double>* row_sum,
                          SpringPass* pass = nullptr);

@@ -3,6 +3,7 @@
 #include <cstdlib>
 #include <stdexcept>
 
+#include "core/detail/cpu_features.hpp"
 #include "core/sweep/detail/kernel_avx512.hpp"
 #include "core/sweep/detail/kernel_avx2.hpp"
 #include "core/sweep/kernel.hpp"
@@ -31,27 +32,17 @@ std::optional<KernelIsa> parse_kernel_isa(const std::string& s) {
 }
 
 bool kernel_isa_supported(KernelIsa isa) {
-#if defined(__x86_64__)
   // The features of the target pragmas in core/sweep/detail/kernel_avx2.cpp and _avx512.cpp.
-  // __builtin_cpu_supports also checks that the OS saves the wider registers (XCR0).
-  const bool avx2 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("avx") &&
-                    __builtin_cpu_supports("fma") && __builtin_cpu_supports("bmi") &&
-                    __builtin_cpu_supports("bmi2") && __builtin_cpu_supports("popcnt");
   switch (isa) {
     case KernelIsa::best:
     case KernelIsa::generic:
       return true;
     case KernelIsa::avx2:
-      return avx2;
+      return detail::cpu_has_avx2_set();
     case KernelIsa::avx512:
-      return avx2 && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512cd") &&
-             __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512bw") &&
-             __builtin_cpu_supports("avx512vl");
+      return detail::cpu_has_avx512_set();
   }
   return false;
-#else
-  return isa == KernelIsa::best || isa == KernelIsa::generic;
-#endif
 }
 
 KernelIsa best_kernel_isa() {

@@ -19,7 +19,7 @@
 
 #define DAMPBOUND_KERNEL_VARIANT kernel_avx2
 #define DAMPBOUND_SIMD_AVX2 1
-// The feature list is kernel_isa_supported()'s (core/sweep/kernel.cpp).
+// The feature list is detail::cpu_has_avx2_set()'s (core/detail/cpu_features.hpp).
 #if defined(__clang__)
 #pragma clang attribute push(__attribute__((target("avx2,avx,fma,bmi,bmi2,popcnt"))), apply_to = function)
 #else

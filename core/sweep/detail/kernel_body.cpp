@@ -15,7 +15,7 @@
 #include "core/session.hpp"
 #include "core/sweep/detail/kernel_body.hpp"
 #include "core/sweep/detail/lanes.hpp"
-#include "core/sweep/detail/simd.hpp"
+#include "core/detail/simd.hpp"
 #include "core/sweep/trials.hpp"
 
 #ifndef DAMPBOUND_KERNEL_VARIANT

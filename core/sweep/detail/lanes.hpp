@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "core/detail/spring_block.hpp"
-#include "core/sweep/detail/simd.hpp"
+#include "core/detail/simd.hpp"
 
 namespace dampbound::sweep_lanes {
 // Internal linkage, as in simd.hpp: each compiled variant of the kernel (generic,

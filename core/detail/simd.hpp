@@ -1,18 +1,18 @@
 #pragma once
-// Lane vectors for the batched sweep kernel (core/sweep/detail/kernel_body.cpp): one double per trial,
-// kLanes trials side by side. GCC/Clang vector extensions give + - * / and comparisons lane by
-// lane with IEEE rounding, exactly like the scalar code of step(); sqrt goes through the
+// Lane vectors: one double per lane, kLanes side by side. The batched sweep kernel
+// (core/sweep/detail/kernel_body.cpp) puts one trial in each lane, step()'s spring loop
+// (core/detail/spring_batch.cpp) one spring. GCC/Clang vector extensions give + - * / and
+// comparisons lane by lane with IEEE rounding, exactly like scalar code; sqrt goes through the
 // matching SIMD instruction (also correctly rounded). A vector is one register wide where
 // there is AVX (8 lanes in a zmm register with AVX-512, 4 in a ymm register with AVX2: a
 // wider vector would be split into halves that selects and by-value passing send through
-// memory); without AVX it is 8 lanes split into xmm operations. Lanes are independent trials,
-// so the lane count changes the speed, never a lane's bits.
+// memory); without AVX it is 8 lanes split into xmm operations. Lanes are independent, so the
+// lane count changes the speed, never a lane's bits.
 //
 // The instruction set comes from the compiler flags (__AVX512F__, __AVX__) or, in the per-ISA
-// copies of the kernel built under a target pragma, from DAMPBOUND_SIMD_AVX512 /
-// DAMPBOUND_SIMD_AVX2 (a target pragma does not define the macros under clang). Everything
-// here has internal linkage, so the copies compiled for different targets never meet at link
-// time.
+// copies built under a target pragma, from DAMPBOUND_SIMD_AVX512 / DAMPBOUND_SIMD_AVX2 (a
+// target pragma does not define the macros under clang). Everything here has internal
+// linkage, so the copies compiled for different targets never meet at link time.
 #include <cmath>
 #include <cstdint>
 #if defined(__x86_64__) || defined(__i386__)
@@ -20,8 +20,8 @@
 #endif
 
 // Without AVX-512 (DAMPBOUND_NATIVE=OFF) GCC warns that passing these 64-byte vectors
-// by value has another ABI than with it. They never cross a translation unit (only
-// core/sweep/detail/kernel_body.cpp includes this header), so the warning does not apply.
+// by value has another ABI than with it. They never cross a translation unit (only the
+// kernel's and the spring batch's bodies include this header), so the warning does not apply.
 #if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic ignored "-Wpsabi"
 #endif
@@ -34,8 +34,13 @@ namespace {
 #define DAMPBOUND_SIMD_YMM 1
 /// Trials per vector: 4 doubles = 32 bytes = one AVX2 register.
 constexpr int kLanes = 4;
+#elif !(defined(__AVX512F__) || defined(DAMPBOUND_SIMD_AVX512)) && defined(DAMPBOUND_SIMD_REGISTER)
+/// Lanes per vector: 2 doubles = 16 bytes = one SSE2 (or NEON) register, for a user that asks
+/// for one register's width everywhere (DAMPBOUND_SIMD_REGISTER: the spring batch, whose
+/// lanes are gathered one by one).
+constexpr int kLanes = 2;
 #else
-/// Trials per vector: 8 doubles = 64 bytes = one AVX-512 register.
+/// Lanes per vector: 8 doubles = 64 bytes = one AVX-512 register.
 constexpr int kLanes = 8;
 #endif
 constexpr int kBytes = kLanes * static_cast<int>(sizeof(double));
