@@ -1,6 +1,7 @@
 // What a step() on the paper's plane spends on the spring pass: the internal forces alone
 // (SPEC 1), SPEC 9's row sums alone, both in one pass (what step() runs every step), and the
-// whole step, in ms per call on 1 thread. The plane's free nodes are moved by a small
+// whole step, in ms per call on 1 thread, with each copy of the spring batch this CPU runs
+// (core/step_isa.hpp: generic, avx2). The plane's free nodes are moved by a small
 // pseudo-random vector first (all springs busy); the fastest of 5 windows of 20 calls is
 // printed (the least disturbed on a shared machine).
 //
@@ -14,6 +15,7 @@
 #include "bench/bench_meshes.hpp"
 #include "core/detail/spring_pass.hpp"
 #include "core/step.hpp"
+#include "core/step_isa.hpp"
 
 namespace {
 
@@ -43,20 +45,35 @@ int main(int argc, char** argv) {
   const Model model = compile_model(bench::plane(n), p);
   State s = rest_state(model);
   bench::shake(model, s);
-  StepWorkspace ws;
-  std::vector<Vec3> force;
-  std::vector<double> rows;
-  const double both = fastest_ms([&] { detail::spring_pass(model, s.x, &force, &rows, &ws.pass); });
-  const double forces =
-      fastest_ms([&] { detail::spring_pass(model, s.x, &force, nullptr, &ws.pass); });
-  const double sums = fastest_ms([&] { detail::spring_pass(model, s.x, nullptr, &rows, &ws.pass); });
-  State moving = s;
-  const double whole = fastest_ms([&] { step(model, p, moving, ws); });
   std::printf("plane %dx%d (%zu nodes, %zu springs), 1 thread, ms per call:\n", n, n, s.x.size(),
               model.springs.size());
-  std::printf("  forces only %.3g  row sums only %.3g  both in one pass %.3g  whole step() %.3g\n",
-              forces, sums, both, whole);
-  std::printf("  the row sums add %.3g ms to the pass (%.2gx the forces), %.0f%% of the step\n",
-              both - forces, (both - forces) / forces, 100 * (both - forces) / whole);
+  // Each copy of the spring batch the CPU runs (core/step_isa.hpp), measured in turn.
+  double first_step = 0;
+  for (StepIsa isa : {StepIsa::generic, StepIsa::avx2}) {
+    if (!step_isa_supported(isa)) {
+      std::printf("  %-8s not run: this CPU lacks it\n", to_string(isa));
+      continue;
+    }
+    StepWorkspace ws;
+    ws.pass.isa = isa;
+    std::vector<Vec3> force;
+    std::vector<double> rows;
+    const double both =
+        fastest_ms([&] { detail::spring_pass(model, s.x, &force, &rows, &ws.pass); });
+    const double forces =
+        fastest_ms([&] { detail::spring_pass(model, s.x, &force, nullptr, &ws.pass); });
+    const double sums =
+        fastest_ms([&] { detail::spring_pass(model, s.x, nullptr, &rows, &ws.pass); });
+    State moving = s;
+    const double whole = fastest_ms([&] { step(model, p, moving, ws); });
+    std::printf("  %-8s forces only %.3g  row sums only %.3g  both in one pass %.3g  "
+                "whole step() %.3g",
+                to_string(isa), forces, sums, both, whole);
+    if (first_step > 0)
+      std::printf("  (step %.2fx the generic copy's)", first_step / whole);
+    else
+      first_step = whole;
+    std::printf("\n");
+  }
   return 0;
 }
