@@ -82,6 +82,9 @@ inline vd sqrt(vd x) {
 #endif
 }
 
+/// |x| lane by lane (clears the sign bit, as std::abs does).
+inline vd abs(vd x) { return (vd)((vl)x & splat_int(INT64_MAX)); }
+
 /// Lane-wise `mask ? a : b` (mask lanes are all ones or zero, as comparisons give).
 inline vd select(vl mask, vd a, vd b) {
   return mask ? a : b;

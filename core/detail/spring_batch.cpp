@@ -24,12 +24,9 @@ using simd::vl;
 
 static_assert(kSpringBatch % kLanes == 0, "a batch is whole vectors");
 
-/// |x| lane by lane (clears the sign bit, as std::abs does).
-inline vd lane_abs(vd x) { return (vd)((vl)x & simd::splat_int(INT64_MAX)); }
-
-/// spring_pass.cpp's row_abs: |b| along row r of a symmetric block, left to right.
+/// |b| along row r of a symmetric block, left to right (spring_block.hpp).
 inline vd row_abs(const vd* b, int r) {
-  return (lane_abs(b[sym3(r, 0)]) + lane_abs(b[sym3(r, 1)])) + lane_abs(b[sym3(r, 2)]);
+  return block_row_abs(b, r, [](vd v) { return simd::abs(v); });
 }
 
 using Lanes = std::make_integer_sequence<int, kLanes>;

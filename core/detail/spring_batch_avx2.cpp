@@ -16,18 +16,9 @@
 
 #define DAMPBOUND_SPRING_BATCH_VARIANT spring_batch_avx2
 #define DAMPBOUND_SIMD_AVX2 1
-#if defined(__clang__)
-#pragma clang attribute push(__attribute__((target("avx2,avx,fma,bmi,bmi2,popcnt"))), apply_to = function)
-#else
-#pragma GCC push_options
-#pragma GCC target("avx2,avx,fma,bmi,bmi2,popcnt")
-#endif
+#include "core/detail/target_push.hpp"
 
 #include "core/detail/spring_batch.cpp"
 
-#if defined(__clang__)
-#pragma clang attribute pop
-#else
-#pragma GCC pop_options
-#endif
+#include "core/detail/target_pop.hpp"
 #endif  // __x86_64__

@@ -28,4 +28,11 @@ static constexpr int sym3(int r, int c) {
   return r <= c ? (r == 0 ? c : r == 1 ? 2 + c : 5) : sym3(c, r);
 }
 
+/// |.| of row r of a symmetric block (upper triangle `b`) summed left to right, the order
+/// every caller keeps: `abs` is std::abs for doubles, simd::abs for lane vectors.
+template <class T, class Abs>
+static inline T block_row_abs(const T* b, int r, Abs abs) {
+  return (abs(b[sym3(r, 0)]) + abs(b[sym3(r, 1)])) + abs(b[sym3(r, 2)]);
+}
+
 }  // namespace dampbound

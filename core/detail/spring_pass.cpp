@@ -9,9 +9,9 @@
 namespace dampbound::detail {
 namespace {
 
-/// |b| summed along row r of a symmetric block, left to right.
+/// |b| summed along row r of a symmetric block, left to right (spring_block.hpp).
 inline double row_abs(const double* b, int r) {
-  return (std::abs(b[sym3(r, 0)]) + std::abs(b[sym3(r, 1)])) + std::abs(b[sym3(r, 2)]);
+  return block_row_abs(b, r, [](double v) { return std::abs(v); });
 }
 
 /// Node i's row-sum accumulators: K_ii's upper triangle (6), then the off-diagonal row sums

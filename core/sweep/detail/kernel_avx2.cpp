@@ -19,20 +19,10 @@
 
 #define DAMPBOUND_KERNEL_VARIANT kernel_avx2
 #define DAMPBOUND_SIMD_AVX2 1
-// The feature list is detail::cpu_has_avx2_set()'s (core/detail/cpu_features.hpp).
-#if defined(__clang__)
-#pragma clang attribute push(__attribute__((target("avx2,avx,fma,bmi,bmi2,popcnt"))), apply_to = function)
-#else
-#pragma GCC push_options
-#pragma GCC target("avx2,avx,fma,bmi,bmi2,popcnt")
-#endif
+#include "core/detail/target_push.hpp"
 
 #include "core/sweep/detail/kernel_body.cpp"
 #include "core/sweep/trials.hpp"
 
-#if defined(__clang__)
-#pragma clang attribute pop
-#else
-#pragma GCC pop_options
-#endif
+#include "core/detail/target_pop.hpp"
 #endif  // __x86_64__

@@ -19,20 +19,10 @@
 
 #define DAMPBOUND_KERNEL_VARIANT kernel_avx512
 #define DAMPBOUND_SIMD_AVX512 1
-// The feature list is detail::cpu_has_avx512_set()'s (core/detail/cpu_features.hpp).
-#if defined(__clang__)
-#pragma clang attribute push(__attribute__((target("avx512f,avx512cd,avx512dq,avx512bw,avx512vl,avx2,avx,fma,bmi,bmi2,popcnt"))), apply_to = function)
-#else
-#pragma GCC push_options
-#pragma GCC target("avx512f,avx512cd,avx512dq,avx512bw,avx512vl,avx2,avx,fma,bmi,bmi2,popcnt")
-#endif
+#include "core/detail/target_push.hpp"
 
 #include "core/sweep/detail/kernel_body.cpp"
 #include "core/sweep/trials.hpp"
 
-#if defined(__clang__)
-#pragma clang attribute pop
-#else
-#pragma GCC pop_options
-#endif
+#include "core/detail/target_pop.hpp"
 #endif  // __x86_64__

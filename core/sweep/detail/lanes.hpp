@@ -37,12 +37,9 @@ struct SafeBlock {
   vd a[9];
 };
 
-/// |x| lane by lane (clears the sign bit, as std::abs does).
-inline vd lane_abs(vd x) { return (vd)((vl)x & simd::splat_int(INT64_MAX)); }
-
-/// safe_bound.cpp's row_abs: |b| along row r of a symmetric block, left to right.
+/// |b| along row r of a symmetric block, left to right (spring_block.hpp).
 inline vd row_abs(const vd* b, int r) {
-  return (lane_abs(b[sym3(r, 0)]) + lane_abs(b[sym3(r, 1)])) + lane_abs(b[sym3(r, 2)]);
+  return block_row_abs(b, r, [](vd v) { return simd::abs(v); });
 }
 
 /// std::max(a, b) lane by lane: (a < b) ? b : a.
