@@ -283,7 +283,7 @@ int run_scene(const BoundsArgs& a) {
     return 0;
   }
   std::printf("scene        %s (%d nodes, %d springs, %d anchors)\n", name.c_str(),
-              model.node_count(), model.spring_count(), model.anchor_count());
+              model.spec().node_count(), model.spec().spring_count(), model.spec().anchor_count());
   std::printf("parameters   m=%s kappa=%s gamma=%s (zeta=%s) dt=%s s integrator=%s (gamma_i = "
               "gamma * gamma_scale_i, m_i = m * mass_scale_i)\n",
               format_number(p.m).c_str(), format_number(p.kappa).c_str(),

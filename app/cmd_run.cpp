@@ -56,8 +56,8 @@ int run(const RunArgs& a) {
     return 0;
   }
   std::printf("scene        %s (%d nodes, %d springs, %d anchors)\n", name.c_str(),
-              session.model().node_count(), session.model().spring_count(),
-              session.model().anchor_count());
+              session.model().spec().node_count(), session.model().spec().spring_count(),
+              session.model().spec().anchor_count());
   std::printf("parameters   m=%s kappa=%s gamma=%s (zeta=%s) dt=%s s policy=%s integrator=%s\n",
               format_human(params.m).c_str(), format_human(params.kappa).c_str(),
               format_human(params.gamma).c_str(), zeta_text(zeta).c_str(),

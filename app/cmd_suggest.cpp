@@ -268,7 +268,7 @@ int run(const SuggestArgs& a) {
               rules.max_iterations);
   {
     const Model model = compile_model(scene.model, p);
-    const NetForce n = net_force(model, model.rest);
+    const NetForce n = net_force(model, model.spec().rest);
     if (!n.balanced())  // external forces, or rest lengths other than the rest geometry's
       std::printf("note         %s; these suggestions linearise at rest, which a run leaves; "
                   "bounds --equilibrium analyses where a damped run settles\n",

@@ -38,7 +38,7 @@ inline ModelSpec tet_block(int nx, int ny, int nz) {
 inline void shake(const Model& model, State& s) {
   unsigned seed = 1;
   for (size_t i = 0; i < s.x.size(); ++i) {
-    if (model.fixed[i]) continue;
+    if (model.spec().fixed[i]) continue;
     for (int k = 0; k < 3; ++k) {
       seed = seed * 1103515245u + 12345u;
       s.x[i][k] += 0.01 * (static_cast<double>((seed >> 8) & 0xffffu) / 65535.0 - 0.5);

@@ -96,7 +96,7 @@ int main(int argc, char** argv) {
 
   auto t = Clock::now();
   const SparseMatrix A =
-      mass_weighted(model, tangent_stiffness(model, model.rest, false, threads), threads);
+      mass_weighted(model, tangent_stiffness(model, model.spec().rest, false, threads), threads);
   const double t_assemble = since(t);
   t = Clock::now();
   double c = cpu_now();
@@ -104,7 +104,7 @@ int main(int argc, char** argv) {
   const double t_lambda = since(t), c_lambda = cpu_now() - c;
   // Every limit: both ends of the spectrum (exact_stability), then the other integrators'.
   const auto every_limit = [&] {
-    const ExactStability e = exact_stability(model, model.rest, p, {false, threads});
+    const ExactStability e = exact_stability(model, model.spec().rest, p, {false, threads});
     double worst = e.dt_max;  // keeps the other integrators' limits from being optimised away
     for (Integrator i : {Integrator::forward_euler, Integrator::verlet, Integrator::rk4,
                          Integrator::implicit_euler}) {
@@ -142,7 +142,7 @@ int main(int argc, char** argv) {
       "lanczos_steps=%d factorizations=%d solves=%d lambda_min=%.10g gamma_max=%.10g dt_max=%.10g "
       "all_limits_s=%.3f all_limits_cpu_s=%.3f all_limits_runs=%d all_limits_best_s=%.3f "
       "all_limits_median_s=%.3f check=%.3g\n",
-      kind.c_str(), n, threads, model.node_count(), model.spring_count(),
+      kind.c_str(), n, threads, model.spec().node_count(), model.spec().spring_count(),
       static_cast<long long>(A.rows()), static_cast<long long>(A.nonZeros()), t_assemble, top.lo,
       top.hi, t_lambda, c_lambda, top.lanczos_steps, top.factorizations, top.solves,
       e.spectrum.lambda_min, e.gamma_hi, e.dt_max, t_all, c_all, repeats, best, median, worst);

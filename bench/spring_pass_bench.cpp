@@ -46,7 +46,7 @@ int main(int argc, char** argv) {
   State s = rest_state(model);
   bench::shake(model, s);
   std::printf("plane %dx%d (%zu nodes, %zu springs), 1 thread, ms per call:\n", n, n, s.x.size(),
-              model.springs.size());
+              model.spec().springs.size());
   // Each copy of the spring batch the CPU runs (core/step_isa.hpp), measured in turn.
   double first_step = 0;
   for (StepIsa isa : {StepIsa::generic, StepIsa::avx2}) {

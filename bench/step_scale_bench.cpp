@@ -43,8 +43,8 @@ size_t bytes(const std::vector<T>& v) {
 /// Per node: the model's per-node arrays, the state and the workspace's per-node arrays
 /// (with the spring pass's 9 row-sum accumulators).
 size_t node_bytes(const Model& m, const State& s, const StepWorkspace& ws) {
-  return bytes(m.rest) + bytes(m.mass_scale) + bytes(m.gamma_scale) + bytes(m.anchor_scale) +
-         bytes(m.external_force) + bytes(m.fixed) + bytes(m.mass) + bytes(m.gamma) +
+  return bytes(m.spec().rest) + bytes(m.spec().mass_scale) + bytes(m.spec().gamma_scale) + bytes(m.spec().anchor_scale) +
+         bytes(m.spec().external_force) + bytes(m.spec().fixed) + bytes(m.mass) + bytes(m.gamma) +
          bytes(m.anchor_kappa) + bytes(m.node_kappa) + bytes(m.lower_bound) +
          bytes(m.incident_offset) + bytes(s.x) + bytes(s.v) + bytes(ws.force) +
          bytes(ws.upper_bound) + bytes(ws.gamma_eff) + bytes(ws.status) +
@@ -54,7 +54,7 @@ size_t node_bytes(const Model& m, const State& s, const StepWorkspace& ws) {
 /// Per spring: the spring, its kappa and its two incidence entries (the step keeps nothing
 /// per spring).
 size_t spring_bytes(const Model& m) {
-  return bytes(m.springs) + bytes(m.spring_kappa) + bytes(m.incident);
+  return bytes(m.spec().springs) + bytes(m.spring_kappa) + bytes(m.incident);
 }
 
 /// Wall seconds per call of `once`, over at least 0.3 s after one call (which sizes the
@@ -82,14 +82,14 @@ struct MonitorCase {
   std::optional<Monitor> monitor;  // made once the arrays are filled
 
   MonitorCase(const Model& m, const State& s) : x(s.x), v(s.v) {
-    const auto n = static_cast<Eigen::Index>(m.node_count());
-    const auto ns = static_cast<Eigen::Index>(m.spring_count());
+    const auto n = static_cast<Eigen::Index>(m.spec().node_count());
+    const auto ns = static_cast<Eigen::Index>(m.spec().spring_count());
     mass = m.mass;
     anchor = m.anchor_kappa;
     gamma = m.gamma;
-    rest = m.rest;
+    rest = m.spec().rest;
     stiffness = m.spring_kappa;
-    for (const Spring& sp : m.springs) {
+    for (const Spring& sp : m.spec().springs) {
       pairs.insert(pairs.end(), {sp.i, sp.j});
       rest_length.push_back(sp.rest_length);
     }
@@ -99,7 +99,7 @@ struct MonitorCase {
     monitor.emplace(node_scalars(mass.data(), n), spring_pairs(pairs.data(), ns),
                      node_scalars(stiffness.data(), ns), node_scalars(rest_length.data(), ns));
     monitor->set_anchors(node_scalars(anchor.data(), n), node_vectors(rest[0].data(), n));
-    monitor->set_fixed(m.fixed.data(), n);
+    monitor->set_fixed(m.spec().fixed.data(), n);
   }
   void call(double dt) {
     const auto n = static_cast<Eigen::Index>(mass.size());
@@ -143,11 +143,11 @@ void measure(const char* kind, ModelSpec spec, int threads, int repeats, bool mo
   }
   const double best1 = *std::min_element(one.begin(), one.end());
   const double bestT = *std::min_element(many.begin(), many.end());
-  const double ns = 1e9 / model.node_count(), springs = model.spring_count();
+  const double ns = 1e9 / model.spec().node_count(), springs = model.spec().spring_count();
   if (monitor) {
     std::printf("%-6s %8d nodes %8d springs  1 thread %6.1f (median %6.1f)  %d threads %6.1f "
                 "(median %6.1f) ns/node-call  x%.2f (pairs x%.2f to x%.2f)  monitor\n",
-                kind, model.node_count(), model.spring_count(), best1 * ns, median(one) * ns,
+                kind, model.spec().node_count(), model.spec().spring_count(), best1 * ns, median(one) * ns,
                 threads, bestT * ns, median(many) * ns, best1 / bestT,
                 *std::min_element(ratio.begin(), ratio.end()),
                 *std::max_element(ratio.begin(), ratio.end()));
@@ -159,10 +159,10 @@ void measure(const char* kind, ModelSpec spec, int threads, int repeats, bool mo
   std::printf("%-6s %8d nodes %8d springs  1 thread %6.1f (median %6.1f)  %d threads %6.1f "
               "(median %6.1f) ns/node-step  x%.2f (pairs x%.2f to x%.2f)  %4.0f B/node "
               "%3.0f B/spring %6.1f MB\n",
-              kind, model.node_count(), model.spring_count(), best1 * ns, median(one) * ns,
+              kind, model.spec().node_count(), model.spec().spring_count(), best1 * ns, median(one) * ns,
               threads, bestT * ns, median(many) * ns, best1 / bestT,
               *std::min_element(ratio.begin(), ratio.end()),
-              *std::max_element(ratio.begin(), ratio.end()), nb / double(model.node_count()),
+              *std::max_element(ratio.begin(), ratio.end()), nb / double(model.spec().node_count()),
               sb / springs, (nb + sb) / 1e6);
   std::fflush(stdout);
 }

@@ -160,7 +160,7 @@ void BM_PlainStep(benchmark::State& state) {
     benchmark::DoNotOptimize(step(model, params, s, ws));
     ++steps;
   }
-  const double per_step = model.spring_count() + model.anchor_count();
+  const double per_step = model.spec().spring_count() + model.spec().anchor_count();
   state.counters["spring_evals_per_s"] =
       benchmark::Counter(static_cast<double>(steps) * per_step, benchmark::Counter::kIsRate);
   state.counters["trial_steps_per_s"] =

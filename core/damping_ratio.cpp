@@ -22,7 +22,7 @@ DampingRatioRange damping_ratio_range(const Model& model) {
   DampingRatioRange r{nan, nan};
   const std::vector<double> zeta = damping_ratio(model);
   for (size_t i = 0; i < zeta.size(); ++i) {
-    if (model.fixed[i] || std::isnan(zeta[i])) continue;
+    if (model.spec().fixed[i] || std::isnan(zeta[i])) continue;
     r.min = std::isnan(r.min) ? zeta[i] : std::min(r.min, zeta[i]);
     r.max = std::isnan(r.max) ? zeta[i] : std::max(r.max, zeta[i]);
   }

@@ -19,18 +19,18 @@ void damping_forces(const Model& model, const std::vector<Vec3>& x, const std::v
   damping.resize(n);
   const double alpha = model.rayleigh_mass, beta = model.rayleigh_stiffness;
   for (size_t i = 0; i < n; ++i)
-    damping[i] = model.fixed[i] ? Vec3::Zero()
+    damping[i] = model.spec().fixed[i] ? Vec3::Zero()
                                 : Vec3((alpha * model.mass[i] + model.anchor_kd[i] +
                                         beta * model.anchor_kappa[i]) * v[i]);
-  for (size_t k = 0; k < model.springs.size(); ++k) {
-    const Spring& s = model.springs[k];
+  for (size_t k = 0; k < model.spec().springs.size(); ++k) {
+    const Spring& s = model.spec().springs[k];
     const size_t i = static_cast<size_t>(s.i), j = static_cast<size_t>(s.j);
     const Vec3 delta = x[j] - x[i];
     const double l = delta.norm();
     if (!(l > 0)) continue;  // no direction (also NaN): no force, as for the spring (SPEC 1)
     const Vec3 d = delta / l;
-    const Vec3 vi = model.fixed[i] ? Vec3::Zero() : v[i];
-    const Vec3 vj = model.fixed[j] ? Vec3::Zero() : v[j];
+    const Vec3 vi = model.spec().fixed[i] ? Vec3::Zero() : v[i];
+    const Vec3 vj = model.spec().fixed[j] ? Vec3::Zero() : v[j];
     const Vec3 u = vj - vi;
     const double kappa = model.spring_kappa[k];
     const double ratio = s.rest_length / l, tension = 1.0 - ratio;
@@ -38,8 +38,8 @@ void damping_forces(const Model& model, const std::vector<Vec3>& x, const std::v
     const double along = u.dot(d);
     const Vec3 w = (model.spring_kd[k] * along) * d +
                    beta * (kappa * (tension * u + (ratio * along) * d));
-    if (!model.fixed[i]) damping[i] -= w;
-    if (!model.fixed[j]) damping[j] += w;
+    if (!model.spec().fixed[i]) damping[i] -= w;
+    if (!model.spec().fixed[j]) damping[j] += w;
   }
 }
 

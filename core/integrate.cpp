@@ -22,9 +22,9 @@ template <bool damped>
 void semi_implicit_euler(const Model& model, double dt, State& s, StepWorkspace& ws) {
   ws.pass.threads.run(s.x.size(), [&](int, size_t begin, size_t end) {
     for (size_t i = begin; i < end; ++i) {
-      if (model.fixed[i]) continue;
+      if (model.spec().fixed[i]) continue;
       const Vec3 f = damped ? net_force(ws, i) : ws.force[i];
-      const Vec3 a = (f - ws.gamma_eff[i] * s.v[i] + model.external_force[i]) / model.mass[i];
+      const Vec3 a = (f - ws.gamma_eff[i] * s.v[i] + model.spec().external_force[i]) / model.mass[i];
       s.v[i] += a * dt;
       s.x[i] += s.v[i] * dt;
     }
@@ -36,9 +36,9 @@ template <bool damped>
 void forward_euler(const Model& model, double dt, State& s, StepWorkspace& ws) {
   ws.pass.threads.run(s.x.size(), [&](int, size_t begin, size_t end) {
     for (size_t i = begin; i < end; ++i) {
-      if (model.fixed[i]) continue;
+      if (model.spec().fixed[i]) continue;
       const Vec3 f = damped ? net_force(ws, i) : ws.force[i];
-      const Vec3 a = (f - ws.gamma_eff[i] * s.v[i] + model.external_force[i]) / model.mass[i];
+      const Vec3 a = (f - ws.gamma_eff[i] * s.v[i] + model.spec().external_force[i]) / model.mass[i];
       s.x[i] += s.v[i] * dt;
       s.v[i] += a * dt;
     }
@@ -48,7 +48,7 @@ void forward_euler(const Model& model, double dt, State& s, StepWorkspace& ws) {
 /// a_i = (F_i - gamma_i v_i + f_i) / m_i with gamma_i held from the state at t.
 inline Vec3 acceleration(const Model& model, const StepWorkspace& ws, size_t i, const Vec3& force,
                          const Vec3& v) {
-  return (force - ws.gamma_eff[i] * v + model.external_force[i]) / model.mass[i];
+  return (force - ws.gamma_eff[i] * v + model.spec().external_force[i]) / model.mass[i];
 }
 
 /// Velocity Verlet (central differences when undamped), damping held over the step:
@@ -65,7 +65,7 @@ int verlet(const Model& model, double h, State& s, StepWorkspace& ws) {
   std::vector<Vec3>& damping_new = ws.scratch[1];
   const bool damped = !ws.damping.empty();
   for (size_t i = 0; i < s.x.size(); ++i) {
-    if (model.fixed[i]) continue;
+    if (model.spec().fixed[i]) continue;
     const Vec3 f = damped ? net_force(ws, i) : ws.force[i];
     s.v[i] += (h / 2) * acceleration(model, ws, i, f, s.v[i]);
     s.x[i] += h * s.v[i];
@@ -76,8 +76,8 @@ int verlet(const Model& model, double h, State& s, StepWorkspace& ws) {
     for (size_t i = 0; i < s.x.size(); ++i) force_new[i] -= damping_new[i];
   }
   for (size_t i = 0; i < s.x.size(); ++i) {
-    if (model.fixed[i]) continue;
-    const Vec3 kick = s.v[i] + (h / 2) * (force_new[i] + model.external_force[i]) / model.mass[i];
+    if (model.spec().fixed[i]) continue;
+    const Vec3 kick = s.v[i] + (h / 2) * (force_new[i] + model.spec().external_force[i]) / model.mass[i];
     s.v[i] = kick / (1 + ws.gamma_eff[i] * h / (2 * model.mass[i]));
   }
   return zero;
@@ -104,7 +104,7 @@ int rk4(const Model& model, double h, State& s, StepWorkspace& ws) {
   sum_a.resize(n);
   for (size_t i = 0; i < n; ++i) {
     vk[i] = s.v[i];
-    ak[i] = model.fixed[i] ? Vec3::Zero()
+    ak[i] = model.spec().fixed[i] ? Vec3::Zero()
                            : acceleration(model, ws, i, damped ? net_force(ws, i) : ws.force[i],
                                           s.v[i]);
     sum_v[i] = vk[i];
@@ -114,23 +114,23 @@ int rk4(const Model& model, double h, State& s, StepWorkspace& ws) {
   int zero = 0;
   for (int stage = 0; stage < 3; ++stage) {
     for (size_t i = 0; i < n; ++i)
-      if (!model.fixed[i]) xt[i] = s.x[i] + (c[stage] * h) * vk[i];
+      if (!model.spec().fixed[i]) xt[i] = s.x[i] + (c[stage] * h) * vk[i];
     zero += internal_forces(model, xt, ft, &ws.pass);
     for (size_t i = 0; i < n; ++i)
-      if (!model.fixed[i]) vk[i] = s.v[i] + (c[stage] * h) * ak[i];
+      if (!model.spec().fixed[i]) vk[i] = s.v[i] + (c[stage] * h) * ak[i];
     if (damped) {
       damping_forces(model, xt, vk, damping_stage);
       for (size_t i = 0; i < n; ++i) ft[i] -= damping_stage[i];
     }
     for (size_t i = 0; i < n; ++i) {
-      if (model.fixed[i]) continue;
+      if (model.spec().fixed[i]) continue;
       ak[i] = acceleration(model, ws, i, ft[i], vk[i]);
       sum_v[i] += weight[stage] * vk[i];
       sum_a[i] += weight[stage] * ak[i];
     }
   }
   for (size_t i = 0; i < n; ++i) {
-    if (model.fixed[i]) continue;
+    if (model.spec().fixed[i]) continue;
     s.x[i] += (h / 6) * sum_v[i];
     s.v[i] += (h / 6) * sum_a[i];
   }
@@ -155,7 +155,7 @@ void implicit_euler(const Model& model, double h, State& s, StepWorkspace& ws) {
   for (size_t i = 0; i < s.x.size(); ++i) {
     const int b = block[i];
     if (b < 0) continue;
-    const Vec3 r = model.mass[i] * s.v[i] + h * (ws.force[i] + model.external_force[i]);
+    const Vec3 r = model.mass[i] * s.v[i] + h * (ws.force[i] + model.spec().external_force[i]);
     for (int k = 0; k < 3; ++k) {
       A.coeffRef(3 * b + k, 3 * b + k) += model.mass[i] + h * ws.gamma_eff[i];
       rhs(3 * b + k) = r(k);

@@ -35,38 +35,38 @@ namespace {
 /// Every per-node and per-spring value that depends on the params (SPEC 1 and 3), into the
 /// model's vectors, sized here.
 void apply_params(Model& model, const Params& params) {
-  const size_t n = model.rest.size();
+  const size_t n = model.spec().rest.size();
   model.mass.resize(n);
   model.gamma.resize(n);
   model.anchor_kappa.resize(n);
   model.node_kappa.resize(n);
   model.lower_bound.resize(n);
-  model.spring_kappa.resize(model.springs.size());
-  model.spring_weight.resize(model.springs.size());
-  model.spring_kd.resize(model.springs.size());
+  model.spring_kappa.resize(model.spec().springs.size());
+  model.spring_weight.resize(model.spec().springs.size());
+  model.spring_kd.resize(model.spec().springs.size());
   model.anchor_kd.resize(n);
   model.rayleigh_mass = params.rayleigh_mass;
   model.rayleigh_stiffness = params.rayleigh_stiffness;
   bool dashpots = false;
   for (size_t i = 0; i < n; ++i) {
-    const double scale = model.anchor_kd_scale.empty() ? 1.0 : model.anchor_kd_scale[i];
-    model.anchor_kd[i] = model.anchor_scale[i] > 0 ? params.kd * scale : 0.0;
+    const double scale = model.spec().anchor_kd_scale.empty() ? 1.0 : model.spec().anchor_kd_scale[i];
+    model.anchor_kd[i] = model.spec().anchor_scale[i] > 0 ? params.kd * scale : 0.0;
     dashpots = dashpots || model.anchor_kd[i] != 0;
   }
-  for (size_t k = 0; k < model.springs.size(); ++k) {
-    model.spring_kd[k] = params.kd * model.springs[k].kd_scale;
+  for (size_t k = 0; k < model.spec().springs.size(); ++k) {
+    model.spring_kd[k] = params.kd * model.spec().springs[k].kd_scale;
     dashpots = dashpots || model.spring_kd[k] != 0;
   }
   model.spring_damping =
       dashpots || model.rayleigh_mass != 0 || model.rayleigh_stiffness != 0;
   for (size_t i = 0; i < n; ++i) {
-    model.mass[i] = params.m * model.mass_scale[i];
-    model.gamma[i] = params.gamma * model.gamma_scale[i];
-    model.anchor_kappa[i] = params.kappa * model.anchor_scale[i];
+    model.mass[i] = params.m * model.spec().mass_scale[i];
+    model.gamma[i] = params.gamma * model.spec().gamma_scale[i];
+    model.anchor_kappa[i] = params.kappa * model.spec().anchor_scale[i];
     model.node_kappa[i] = model.anchor_kappa[i];
   }
-  for (size_t k = 0; k < model.springs.size(); ++k) {
-    const Spring& s = model.springs[k];
+  for (size_t k = 0; k < model.spec().springs.size(); ++k) {
+    const Spring& s = model.spec().springs[k];
     const double kappa = params.kappa * s.kappa_scale;
     model.spring_kappa[k] = kappa;
     model.spring_weight[k] = 1.0 / std::sqrt(model.mass[static_cast<size_t>(s.i)] *
@@ -86,21 +86,21 @@ void apply_params(Model& model, const Params& params) {
 
 Model compile_model(ModelSpec spec, const Params& params) {
   Model model;
-  static_cast<ModelSpec&>(model) = std::move(spec);
+  model.spec_ = std::move(spec);
   apply_params(model, params);
-  const size_t n = model.rest.size();
+  const size_t n = model.spec().rest.size();
   // Incidence lists by counting sort: springs are visited in index order, so each node's
   // list is sorted. A spring from a node to itself is listed once (it has no direction).
   model.incident_offset.assign(n + 1, 0);
-  for (const Spring& s : model.springs) {
+  for (const Spring& s : model.spec().springs) {
     ++model.incident_offset[static_cast<size_t>(s.i) + 1];
     if (s.j != s.i) ++model.incident_offset[static_cast<size_t>(s.j) + 1];
   }
   for (size_t i = 0; i < n; ++i) model.incident_offset[i + 1] += model.incident_offset[i];
   model.incident.resize(static_cast<size_t>(model.incident_offset[n]));
   std::vector<int> fill(model.incident_offset.begin(), model.incident_offset.end() - 1);
-  for (int k = 0; k < model.spring_count(); ++k) {
-    const Spring& s = model.springs[static_cast<size_t>(k)];
+  for (int k = 0; k < model.spec().spring_count(); ++k) {
+    const Spring& s = model.spec().springs[static_cast<size_t>(k)];
     model.incident[static_cast<size_t>(fill[static_cast<size_t>(s.i)]++)] = k;
     if (s.j != s.i) model.incident[static_cast<size_t>(fill[static_cast<size_t>(s.j)]++)] = ~k;
   }

@@ -54,10 +54,17 @@ void reparameterise(Model& model, const Params& params);
 
 /// A compiled model: its spec plus the per-node and per-spring values the step reads. Only
 /// compile_model() makes one, so no Model is ever without them; pass it as const Model&.
-/// compile_model(model, params) recompiles its topology with other parameters; so does
-/// reparameterise(), in place.
-class Model : public ModelSpec {
+/// The spec is held, not inherited, and read-only: the incidence lists and per-spring values
+/// are derived from its springs, so a change of topology goes through compile_model() (or
+/// without_springs() and compile_model()). compile_model(model.spec(), params) recompiles it
+/// with other parameters; so does reparameterise(), in place.
+class Model {
  public:
+  /// The topology, rest state and scales it was compiled from.
+  const ModelSpec& spec() const { return spec_; }
+  /// A Model reads as its spec wherever one is asked for (rest_state(model), ...).
+  operator const ModelSpec&() const { return spec_; }
+
   std::vector<double> mass;          ///< m_i (mass unit)
   std::vector<double> gamma;         ///< the user's gamma_i before the policy (mass unit / s)
   std::vector<double> anchor_kappa;  ///< kappa_a,i (mass unit / s^2)
@@ -82,6 +89,7 @@ class Model : public ModelSpec {
 
  private:
   Model() = default;
+  ModelSpec spec_;
   friend Model compile_model(ModelSpec spec, const Params& params);
 };
 

@@ -143,7 +143,7 @@ void Monitor::upper_bounds(NodeVectors v, NodeVectors force, double dt, NodeScal
   require_finite(v, "v");
   require_finite(force, "force");
   std::lock_guard<std::mutex> lock(workers_.mutex);
-  workers_.pass.threads.run(model_.rest.size(), [&](int, size_t begin, size_t end) {
+  workers_.pass.threads.run(model_.spec().rest.size(), [&](int, size_t begin, size_t end) {
     for (size_t k = begin; k < end; ++k) {
       const auto i = static_cast<Eigen::Index>(k);
       out[i] = upper_bound(v.row(i).transpose(), force.row(i).transpose(), model_.mass[k], dt);
@@ -182,7 +182,7 @@ int Monitor::safe_bounds(NodeVectors x, double dt, NodeScalarsOut out) const {
   workers_.pass.threads.run(row_sum.size(), [&](int, size_t begin, size_t end) {
     for (size_t k = begin; k < end; ++k)
       out[static_cast<Eigen::Index>(k)] =
-          model_.fixed[k] ? HUGE_VAL : safe_gamma(model_.mass[k], dt, row_sum[k]);
+          model_.spec().fixed[k] ? HUGE_VAL : safe_gamma(model_.mass[k], dt, row_sum[k]);
   });
   return compressed;
 }
@@ -206,8 +206,8 @@ MonitorReport Monitor::check_with(const std::vector<double>* safe, NodeVectors v
   // so the counts and the first indices are those of one loop.
   std::lock_guard<std::mutex> lock(workers_.mutex);
   NodeThreads& threads = workers_.pass.threads;
-  std::vector<MonitorReport> parts(static_cast<size_t>(threads.chunks(model_.rest.size())));
-  threads.run(model_.rest.size(), [&](int chunk, size_t begin, size_t end) {
+  std::vector<MonitorReport> parts(static_cast<size_t>(threads.chunks(model_.spec().rest.size())));
+  threads.run(model_.spec().rest.size(), [&](int chunk, size_t begin, size_t end) {
     MonitorReport part;  // counted here, stored once: the parts share cache lines
     check_range(safe, v, force, gamma, dt, policy, factor, gamma_eff, upper, status,
                 static_cast<int>(begin), static_cast<int>(end), part);
@@ -231,7 +231,7 @@ void Monitor::check_range(const std::vector<double>* safe, NodeVectors v, NodeVe
                           int begin, int end, MonitorReport& r) const {
   for (int i = begin; i < end; ++i) {
     const size_t k = static_cast<size_t>(i);
-    if (model_.fixed[k]) {
+    if (model_.spec().fixed[k]) {
       if (gamma_eff) (*gamma_eff)[i] = gamma[i];
       if (upper) (*upper)[i] = HUGE_VAL;
       if (status) status[i] = NodeStatus::fixed;

@@ -127,7 +127,7 @@ class Monitor {
   void set_threads(int threads);
   int threads() const;
 
-  int node_count() const { return model_.node_count(); }
+  int node_count() const { return model_.spec().node_count(); }
   /// The copy of the topology in core's terms (model.lower_bound is eq. 5 per node).
   const Model& model() const { return model_; }
 

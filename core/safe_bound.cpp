@@ -27,14 +27,14 @@ SafeBoundSummary safe_bound_summary(const Model& model, const std::vector<Vec3>&
   std::optional<DampedSafeRows> rows;
   if (model.spring_damping) rows.emplace(model, x);
   for (size_t i = 0; i < R.size(); ++i) {
-    if (model.fixed[i]) continue;
+    if (model.spec().fixed[i]) continue;
     ++s.free_nodes;
     const int node = static_cast<int>(i);
     const double g = rows ? rows->gamma_safe(node, dt) : safe_gamma(model.mass[i], dt, R[i]);
     const auto dt_at = [&](double gamma) {
       return rows ? rows->dt_safe(node, gamma) : safe_dt(model.mass[i], gamma, R[i]);
     };
-    const double scale = model.gamma_scale[i];
+    const double scale = model.spec().gamma_scale[i];
     s.gamma_scaled = s.gamma_scaled || scale != 1;
     const double user = safe_user_gamma(g, scale);
     if (user < s.gamma_safe) {

@@ -12,7 +12,7 @@ namespace {
 /// the spring has no direction (SPEC 1).
 bool spring_blocks(const Model& model, const std::vector<Vec3>& x, size_t k, Eigen::Matrix3d& B,
                    Eigen::Matrix3d& E) {
-  const Spring& s = model.springs[k];
+  const Spring& s = model.spec().springs[k];
   const Vec3 delta = x[static_cast<size_t>(s.j)] - x[static_cast<size_t>(s.i)];
   const double l = delta.norm();
   if (!(l > 0)) return false;
@@ -28,7 +28,7 @@ bool spring_blocks(const Model& model, const std::vector<Vec3>& x, size_t k, Eig
 
 DampedSafeRows::DampedSafeRows(const Model& model, const std::vector<Vec3>& x)
     : mass_(model.mass) {
-  const size_t n = model.rest.size();
+  const size_t n = model.spec().rest.size();
   diag_a_.assign(3 * n, 0);
   diag_c_.assign(3 * n, 0);
   offset_.assign(3 * n + 1, 0);
@@ -37,7 +37,7 @@ DampedSafeRows::DampedSafeRows(const Model& model, const std::vector<Vec3>& x)
   Eigen::Matrix3d B, E;
   for (size_t i = 0; i < n; ++i) {
     for (auto& r : row_entries) r.clear();
-    if (!model.fixed[i]) {
+    if (!model.spec().fixed[i]) {
       const double m = model.mass[i];
       Eigen::Matrix3d Ka = model.anchor_kappa[i] * Eigen::Matrix3d::Identity();
       Eigen::Matrix3d Kc = (model.rayleigh_stiffness * model.anchor_kappa[i] + model.anchor_kd[i]) *
@@ -48,9 +48,9 @@ DampedSafeRows::DampedSafeRows(const Model& model, const std::vector<Vec3>& x)
         if (!spring_blocks(model, x, k, B, E)) continue;
         Ka += B;
         Kc += E;
-        const Spring& s = model.springs[k];
+        const Spring& s = model.spec().springs[k];
         const size_t j = static_cast<size_t>(code >= 0 ? s.j : s.i);
-        if (model.fixed[j]) continue;
+        if (model.spec().fixed[j]) continue;
         const double w = 1.0 / std::sqrt(m * model.mass[j]);
         for (int r = 0; r < 3; ++r)
           for (int c = 0; c < 3; ++c) row_entries[r].push_back({-B(r, c) * w, -E(r, c) * w});
@@ -165,11 +165,11 @@ namespace dampbound {
 
 void damped_safe_gammas(const Model& model, const std::vector<Vec3>& x, double dt,
                         std::vector<double>& gamma_safe) {
-  const size_t n = model.rest.size();
+  const size_t n = model.spec().rest.size();
   gamma_safe.assign(n, std::numeric_limits<double>::infinity());
   Eigen::Matrix3d B, E;
   for (size_t i = 0; i < n; ++i) {
-    if (model.fixed[i]) continue;
+    if (model.spec().fixed[i]) continue;
     const double m = model.mass[i];
     Eigen::Matrix3d Ka = model.anchor_kappa[i] * Eigen::Matrix3d::Identity();
     Eigen::Matrix3d Kc = (model.rayleigh_stiffness * model.anchor_kappa[i] + model.anchor_kd[i]) *
@@ -181,9 +181,9 @@ void damped_safe_gammas(const Model& model, const std::vector<Vec3>& x, double d
       if (!spring_blocks(model, x, k, B, E)) continue;
       Ka += B;
       Kc += E;
-      const Spring& s = model.springs[k];
+      const Spring& s = model.spec().springs[k];
       const size_t j = static_cast<size_t>(code >= 0 ? s.j : s.i);
-      if (model.fixed[j]) continue;
+      if (model.spec().fixed[j]) continue;
       const double w = 1.0 / std::sqrt(m * model.mass[j]);
       for (int r = 0; r < 3; ++r)
         for (int c = 0; c < 3; ++c)

@@ -71,7 +71,7 @@ void Session::set_params(const Params& params) {
 }
 
 void Session::set_watched(int node) {
-  if (node < 0 || node >= model_->node_count()) throw std::out_of_range("watched node");
+  if (node < 0 || node >= model_->spec().node_count()) throw std::out_of_range("watched node");
   watched_ = node;
 }
 
@@ -91,8 +91,8 @@ void Session::perturb() {
 }
 
 void Session::displace(int node, const Vec3& offset) {
-  if (node < 0 || node >= model_->node_count()) throw std::out_of_range("node");
-  if (!model_->fixed[static_cast<size_t>(node)]) state_.x[static_cast<size_t>(node)] += offset;
+  if (node < 0 || node >= model_->spec().node_count()) throw std::out_of_range("node");
+  if (!model_->spec().fixed[static_cast<size_t>(node)]) state_.x[static_cast<size_t>(node)] += offset;
 }
 
 SceneSpec scene_as_run(const SceneSpec& scene, const ModelSpec& model, int iteration) {
@@ -121,9 +121,9 @@ SceneSpec Session::current_scene() const {
 }
 
 int Session::cut(const std::vector<int>& springs) {
-  const int before = model_->spring_count();
+  const int before = model_->spec().spring_count();
   model_ = std::make_shared<Model>(compile_model(without_springs(*model_, springs), params_));
-  const int removed = before - model_->spring_count();
+  const int removed = before - model_->spec().spring_count();
   springs_cut_ += removed;
   return removed;
 }

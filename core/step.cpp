@@ -24,7 +24,7 @@ struct ChunkStats {
 }  // namespace
 
 StepStats step(const Model& model, const Params& params, State& state, StepWorkspace& ws) {
-  const size_t n = model.rest.size();
+  const size_t n = model.spec().rest.size();
   NodeThreads& threads = ws.pass.threads;
   // A step is a few loops back to back, and steps follow one another: the workers poll for
   // the next loop rather than sleep (docs/performance.md, "step() on threads"). Once per
@@ -55,7 +55,7 @@ StepStats step(const Model& model, const Params& params, State& state, StepWorks
   threads.run(n, [&](int c, size_t begin, size_t end) {
     ChunkStats cs;  // counted here, stored once: the chunks share cache lines
     for (size_t i = begin; i < end; ++i) {
-      if (model.fixed[i]) {
+      if (model.spec().fixed[i]) {
         ws.upper_bound[i] = std::numeric_limits<double>::infinity();
         ws.gamma_eff[i] = 0;
         ws.status[i] = NodeStatus::fixed;
@@ -97,7 +97,7 @@ StepStats step(const Model& model, const Params& params, State& state, StepWorks
   threads.run(n, [&](int c, size_t begin, size_t end) {
     ChunkStats cs;
     for (size_t i = begin; i < end; ++i) {
-      const double d = (state.x[i] - model.rest[i]).norm();
+      const double d = (state.x[i] - model.spec().rest[i]).norm();
       if (!std::isfinite(d)) {
         cs.finite = false;
         cs.max_displacement = std::numeric_limits<double>::infinity();
@@ -117,7 +117,7 @@ StepStats step(const Model& model, const Params& params, State& state, StepWorks
 NodeSample sample_node(const Model& model, const State& state, const StepWorkspace& ws, int node) {
   const size_t c = static_cast<size_t>(node);
   NodeSample s;
-  const double d = (state.x[c] - model.rest[c]).norm();
+  const double d = (state.x[c] - model.spec().rest[c]).norm();
   s.displacement = std::isfinite(d) ? d : std::numeric_limits<double>::infinity();
   s.lower = model.lower_bound[c];
   s.upper = ws.upper_bound[c];

@@ -10,10 +10,10 @@
 namespace dampbound {
 
 std::vector<int> free_blocks(const Model& model, int* free_count) {
-  std::vector<int> block(model.rest.size(), -1);
+  std::vector<int> block(model.spec().rest.size(), -1);
   int count = 0;
   for (size_t i = 0; i < block.size(); ++i)
-    if (!model.fixed[i]) block[i] = count++;
+    if (!model.spec().fixed[i]) block[i] = count++;
   if (free_count) *free_count = count;
   return block;
 }
@@ -24,12 +24,12 @@ SparseMatrix tangent_stiffness(const Model& model, const std::vector<Vec3>& x,
   const std::vector<int> block = free_blocks(model, &nfree);
   NodeThreads pool(threads);
   // Each spring's block B once (upper triangle); springs of no direction have none (SPEC 1).
-  const size_t ns = model.springs.size();
+  const size_t ns = model.spec().springs.size();
   std::vector<double> spring_block(6 * ns);
   std::vector<std::uint8_t> directed(ns, 0);
   pool.run(ns, [&](int, size_t begin, size_t end) {
     for (size_t k = begin; k < end; ++k) {
-      const Spring& s = model.springs[k];
+      const Spring& s = model.spec().springs[k];
       const Vec3 delta = x[static_cast<size_t>(s.j)] - x[static_cast<size_t>(s.i)];
       const double l = delta.norm();
       if (!(l > 0)) continue;
@@ -60,7 +60,7 @@ SparseMatrix tangent_stiffness(const Model& model, const std::vector<Vec3>& x,
     std::vector<int> inner;
     std::vector<double> values;
   };
-  const size_t nodes = model.rest.size();
+  const size_t nodes = model.spec().rest.size();
   std::vector<Rows> parts(static_cast<size_t>(pool.chunks(nodes)));
   auto add = [](Column& c, int q, double v) {
     if (v == 0) return;  // a zero term adds no entry (as the triplet list skipped it)
@@ -89,7 +89,7 @@ SparseMatrix tangent_stiffness(const Model& model, const std::vector<Vec3>& x,
         if (!directed[spring]) continue;
         const double* b = &spring_block[6 * spring];
         for (int q = 0; q < 9; ++q) add(row_blocks[0], q, b[sym3(q / 3, q % 3)]);
-        const Spring& s = model.springs[spring];
+        const Spring& s = model.spec().springs[spring];
         const int bj = block[static_cast<size_t>(k >= 0 ? s.j : s.i)];
         if (bj < 0) continue;
         auto it = std::find_if(row_blocks.begin() + 1, row_blocks.end(),
@@ -139,8 +139,8 @@ SparseMatrix mass_weighted(const Model& model, const SparseMatrix& K, int thread
 
 SparseMatrix mass_weighted(const Model& model, SparseMatrix&& K, int threads) {
   std::vector<double> inv_sqrt_m;
-  for (size_t i = 0; i < model.rest.size(); ++i)
-    if (!model.fixed[i])
+  for (size_t i = 0; i < model.spec().rest.size(); ++i)
+    if (!model.spec().fixed[i])
       for (int r = 0; r < 3; ++r) inv_sqrt_m.push_back(1.0 / std::sqrt(model.mass[i]));
   SparseMatrix A = std::move(K);
   NodeThreads(threads).run(static_cast<size_t>(A.outerSize()), [&](int, size_t begin, size_t end) {
@@ -158,15 +158,15 @@ SparseMatrix spring_damping_matrix(const Model& model, const std::vector<Vec3>& 
   const std::vector<int> block = free_blocks(model, &nfree);
   std::vector<Eigen::Triplet<double>> t;
   const double alpha = model.rayleigh_mass, beta = model.rayleigh_stiffness;
-  for (size_t i = 0; i < model.rest.size(); ++i) {
+  for (size_t i = 0; i < model.spec().rest.size(); ++i) {
     const int b = block[i];
     if (b < 0) continue;
     const double diag = alpha * model.mass[i] + beta * model.anchor_kappa[i] + model.anchor_kd[i];
     if (diag != 0)
       for (int r = 0; r < 3; ++r) t.emplace_back(3 * b + r, 3 * b + r, diag);
   }
-  for (size_t k = 0; k < model.springs.size(); ++k) {
-    const Spring& s = model.springs[k];
+  for (size_t k = 0; k < model.spec().springs.size(); ++k) {
+    const Spring& s = model.spec().springs[k];
     const Vec3 delta = x[static_cast<size_t>(s.j)] - x[static_cast<size_t>(s.i)];
     const double l = delta.norm();
     if (!(l > 0)) continue;
@@ -203,7 +203,7 @@ SparseMatrix weighted_damping(const Model& model, const std::vector<Vec3>& x,
   const std::vector<int> block = free_blocks(model, &nfree);
   Eigen::VectorXd w(3 * nfree);
   std::vector<Eigen::Triplet<double>> g;
-  for (size_t i = 0; i < model.rest.size(); ++i) {
+  for (size_t i = 0; i < model.spec().rest.size(); ++i) {
     const int b = block[i];
     if (b < 0) continue;
     for (int r = 0; r < 3; ++r) {

@@ -196,10 +196,10 @@ void bind_scene(py::module_& m) {
             // The model with params applied, as the arrays a Monitor takes (copies).
             const ResolvedScene r(s, params);
             const Model mo = compile_model(r.scene().model, r.params());
-            py::array_t<int> pairs({static_cast<py::ssize_t>(mo.spring_count()), py::ssize_t{2}});
-            py::array_t<double> kappa(mo.spring_count()), l0(mo.spring_count());
-            for (int k = 0; k < mo.spring_count(); ++k) {
-              const Spring& sp = mo.springs[static_cast<size_t>(k)];
+            py::array_t<int> pairs({static_cast<py::ssize_t>(mo.spec().spring_count()), py::ssize_t{2}});
+            py::array_t<double> kappa(mo.spec().spring_count()), l0(mo.spec().spring_count());
+            for (int k = 0; k < mo.spec().spring_count(); ++k) {
+              const Spring& sp = mo.spec().springs[static_cast<size_t>(k)];
               pairs.mutable_at(k, 0) = sp.i;
               pairs.mutable_at(k, 1) = sp.j;
               kappa.mutable_at(k) = mo.spring_kappa[static_cast<size_t>(k)];
@@ -216,9 +216,9 @@ void bind_scene(py::module_& m) {
             d["anchor_stiffness"] =
                 py::array_t<double>(mo.anchor_kappa.size(), mo.anchor_kappa.data());
             d["rest"] =
-                py::array_t<double>({static_cast<py::ssize_t>(mo.rest.size()), py::ssize_t{3}},
-                                    mo.rest.empty() ? nullptr : mo.rest.front().data());
-            d["fixed"] = py::array_t<std::uint8_t>(mo.fixed.size(), mo.fixed.data());
+                py::array_t<double>({static_cast<py::ssize_t>(mo.spec().rest.size()), py::ssize_t{3}},
+                                    mo.spec().rest.empty() ? nullptr : mo.spec().rest.front().data());
+            d["fixed"] = py::array_t<std::uint8_t>(mo.spec().fixed.size(), mo.spec().fixed.data());
             return d;
           },
           py::arg("params") = nullptr,
@@ -321,8 +321,8 @@ void bind_session(py::module_& m) {
           "displacements",
           [](const py::object& self) {
             const Session& s = idle(self);
-            py::array_t<double> d(s.model().node_count());
-            for (int i = 0; i < s.model().node_count(); ++i)
+            py::array_t<double> d(s.model().spec().node_count());
+            for (int i = 0; i < s.model().spec().node_count(); ++i)
               d.mutable_at(i) = displacement(s.model(), s.state(), i);
             return d;
           },

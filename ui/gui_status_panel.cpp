@@ -40,7 +40,7 @@ void GuiApp::status_panel() {
     ImGui::TableSetupColumn("k", ImGuiTableColumnFlags_WidthFixed);
     ImGui::TableSetupColumn("v", ImGuiTableColumnFlags_WidthStretch);
     row("scene", shorten(s.scene().name, kShownName));
-    row("mesh", std::to_string(m.node_count()) + " nodes, " + std::to_string(m.spring_count()) +
+    row("mesh", std::to_string(m.spec().node_count()) + " nodes, " + std::to_string(m.spec().spring_count()) +
                     " springs" +
                     (s.springs_cut() > 0 ? " (" + std::to_string(s.springs_cut()) + " cut)" : ""));
     row("iteration",

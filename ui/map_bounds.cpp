@@ -92,9 +92,9 @@ MapBoundConstants map_bound_constants(const SceneSpec& scene) {
   const Model model = compile_model(scene.model, unit);
   double worst = kNaN, rate = kNaN;
   bool uniform = true;
-  for (int i = 0; i < model.node_count(); ++i) {
+  for (int i = 0; i < model.spec().node_count(); ++i) {
     const auto n = static_cast<size_t>(i);
-    if (model.fixed[n]) continue;
+    if (model.spec().fixed[n]) continue;
     // With gamma_i = gamma gamma_scale_i: gamma_i >= 2 sqrt(m_i kappa_i) iff
     // gamma >= 2 sqrt(m kappa) sqrt(mass_scale_i kappa_scale_i) / gamma_scale_i.
     if (model.gamma[n] > 0 && model.lower_bound[n] > 0) {

@@ -184,12 +184,12 @@ void MeshRenderer::resize(int width, int height, int samples) {
 void MeshRenderer::upload(const MeshDrawData& d) {
   const Model& m = *d.model;
   const std::vector<Vec3>& x = *d.x;
-  const size_t n = std::min(x.size(), m.rest.size());
+  const size_t n = std::min(x.size(), m.spec().rest.size());
   pos_.resize(3 * n);
   col_.resize(4 * n);
   for (size_t i = 0; i < n; ++i) {
     const bool ok = x[i].allFinite();
-    const Vec3& p = ok ? x[i] : m.rest[i];  // a non-finite node is hidden, never sent to GL
+    const Vec3& p = ok ? x[i] : m.spec().rest[i];  // a non-finite node is hidden, never sent to GL
     for (int k = 0; k < 3; ++k) pos_[3 * i + static_cast<size_t>(k)] = static_cast<float>(p[k]);
     const NodeStatus s = i < d.status->size() ? (*d.status)[i] : NodeStatus::within;
     const bool unguaranteed = d.safe_bound && i < d.safe_bound->size() &&
@@ -203,8 +203,8 @@ void MeshRenderer::upload(const MeshDrawData& d) {
   glBufferData(GL_ARRAY_BUFFER, bytes(col_.size()), col_.data(), GL_STREAM_DRAW);
   if (d.topology != topology_ || d.model != model_) {  // springs changed: new index buffer
     std::vector<std::uint32_t> idx;
-    idx.reserve(2 * m.springs.size());
-    for (const Spring& s : m.springs) {
+    idx.reserve(2 * m.spec().springs.size());
+    for (const Spring& s : m.spec().springs) {
       if (static_cast<size_t>(s.i) >= n || static_cast<size_t>(s.j) >= n) continue;
       idx.push_back(static_cast<std::uint32_t>(s.i));
       idx.push_back(static_cast<std::uint32_t>(s.j));
@@ -221,9 +221,9 @@ void MeshRenderer::upload(const MeshDrawData& d) {
   if (d.anchors) {
     anchor_pos_.clear();
     anchor_col_.clear();
-    for (size_t i = 0; i < n && i < m.anchor_scale.size(); ++i) {
-      if (m.anchor_scale[i] <= 0 || !x[i].allFinite()) continue;
-      for (const Vec3* p : {&x[i], &m.rest[i]})
+    for (size_t i = 0; i < n && i < m.spec().anchor_scale.size(); ++i) {
+      if (m.spec().anchor_scale[i] <= 0 || !x[i].allFinite()) continue;
+      for (const Vec3* p : {&x[i], &m.spec().rest[i]})
         for (int k = 0; k < 3; ++k) anchor_pos_.push_back(static_cast<float>((*p)[k]));
       for (int v = 0; v < 2; ++v) {
         anchor_col_.resize(anchor_col_.size() + 4);

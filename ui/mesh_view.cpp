@@ -32,7 +32,7 @@ constexpr NodeStatus kLegend[] = {NodeStatus::within, NodeStatus::clamped, NodeS
 void MeshView::fit(const Tuner& tuner, float aspect) {
   const Session& s = tuner.session();
   Vec3f lo, hi, lo2, hi2;
-  if (!bounding_box(s.model().rest, lo, hi)) return;
+  if (!bounding_box(s.model().spec().rest, lo, hi)) return;
   // Include the scene's perturbed start so the initial bump is in view.
   if (bounding_box(initial_state(s.scene()).x, lo2, hi2)) {
     lo = lo.cwiseMin(lo2);
@@ -85,7 +85,7 @@ void MeshView::handle_input(Tuner& tuner, const Viewport& vp, bool hovered) {
         drag_ = Drag::none;
       break;
     case Drag::node: {
-      if (drag_node_ >= s.model().node_count()) {  // the scene changed under the mouse
+      if (drag_node_ >= s.model().spec().node_count()) {  // the scene changed under the mouse
         drag_ = Drag::none;
         break;
       }
@@ -126,7 +126,7 @@ void MeshView::draw_overlays(const Tuner& tuner, const Viewport& vp) const {
   const Mat4f vpm = camera_.view_projection(vp.aspect());
   // The watched node: a ring and its index.
   const int w = s.watched();
-  if (w >= 0 && w < s.model().node_count()) {
+  if (w >= 0 && w < s.model().spec().node_count()) {
     const ScreenPoint p = project(vpm, vp, s.state().x[static_cast<size_t>(w)].cast<float>());
     if (p.visible) {
       const float r = options.point_size * 0.5f + 5.0f;
@@ -278,9 +278,9 @@ void MeshView::draw(Tuner& tuner) {
   d.point_size = std::min(options.point_size, std::max(2.0f, 0.9f * spacing));
   // Below 5 px, 4x multisampling against the moire, except on a big mesh while it plays
   // (ui/mesh_style.hpp).
-  d.samples = mesh_samples(spacing, s.model().springs.size(), tuner.playing());
+  d.samples = mesh_samples(spacing, s.model().spec().springs.size(), tuner.playing());
   d.point_alpha = std::clamp((spacing - 1.5f) / 3.0f, 0.3f, 1.0f);
-  d.springs = springs_drawn(options.show_springs, spacing, s.model().springs.size(),
+  d.springs = springs_drawn(options.show_springs, spacing, s.model().spec().springs.size(),
                             tuner.playing());
   springs_left_out_ = options.show_springs && !d.springs;
   d.anchors = options.show_anchors;

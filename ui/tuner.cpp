@@ -45,9 +45,9 @@ std::string params_label(const Params& p) {
 
 LowerBoundCheck check_lower_bound(const Model& model) {
   LowerBoundCheck c;
-  for (int i = 0; i < model.node_count(); ++i) {
+  for (int i = 0; i < model.spec().node_count(); ++i) {
     const auto k = static_cast<size_t>(i);
-    if (model.fixed[k] || !(model.lower_bound[k] > 0)) continue;
+    if (model.spec().fixed[k] || !(model.lower_bound[k] > 0)) continue;
     const double r = model.gamma[k] / model.lower_bound[k];
     ++c.nodes;
     c.below += r < 1 ? 1 : 0;
@@ -72,7 +72,7 @@ bool uniform_ratio_per_gamma(const ModelSpec& spec) {
   const Model m = compile_model(spec, unit);
   double first = -1;
   for (size_t i = 0; i < m.lower_bound.size(); ++i) {
-    if (m.fixed[i] || !(m.lower_bound[i] > 0)) continue;
+    if (m.spec().fixed[i] || !(m.lower_bound[i] > 0)) continue;
     const double r = m.gamma[i] / m.lower_bound[i];
     if (first < 0) first = r;
     if (std::abs(r - first) > 1e-12 * first) return false;
@@ -203,7 +203,7 @@ int Tuner::step(int n, double budget_seconds) {
            std::chrono::duration<double>(Clock::now() - t0).count() >= budget_seconds;
   };
   int taken = 0;
-  const int springs_before = session_->model().spring_count();
+  const int springs_before = session_->model().spec().spring_count();
   for (; taken < n && can_step() && (taken == 0 || !over_budget()); ++taken) {
     const Outcome before = session_->result().outcome;
     session_->step_once();
@@ -232,7 +232,7 @@ int Tuner::step(int n, double budget_seconds) {
   total_steps_ += taken;
   if (taken > 0) ++state_version_;
   // The scene's own cuts happen inside a step: the renderer and the criteria must hear of them.
-  if (session_->model().spring_count() != springs_before) ++topology_;
+  if (session_->model().spec().spring_count() != springs_before) ++topology_;
   step_seconds_ += std::chrono::duration<double>(Clock::now() - t0).count();
   return taken;
 }
@@ -256,14 +256,14 @@ void Tuner::perturb() {
 }
 
 void Tuner::displace(int node, const Vec3& offset) {
-  if (node < 0 || node >= session_->model().node_count() || !offset.allFinite()) return;
+  if (node < 0 || node >= session_->model().spec().node_count() || !offset.allFinite()) return;
   replayable_ = false;
   session_->displace(node, offset);
   ++state_version_;
 }
 
 void Tuner::watch(int node) {
-  if (node < 0 || node >= session_->model().node_count()) return;
+  if (node < 0 || node >= session_->model().spec().node_count()) return;
   session_->set_watched(node);
 }
 
@@ -305,7 +305,7 @@ ImU32 Tuner::current_color() const {
 double Tuner::max_displacement_now() const {
   const Model& m = session_->model();
   double d = 0.0;
-  for (int i = 0; i < m.node_count(); ++i) {
+  for (int i = 0; i < m.spec().node_count(); ++i) {
     const double di = displacement(m, session_->state(), i);
     if (!std::isfinite(di)) return std::numeric_limits<double>::infinity();
     d = std::max(d, di);
@@ -315,7 +315,7 @@ double Tuner::max_displacement_now() const {
 
 double Tuner::watched_displacement_now() const {
   const int w = session_->watched();
-  return w >= 0 && w < session_->model().node_count()
+  return w >= 0 && w < session_->model().spec().node_count()
              ? displacement(session_->model(), session_->state(), w)
              : 0.0;
 }

@@ -29,7 +29,7 @@ bool other_damping(const Params& p) {
 bool uniform_rate(const Model& m) {
   double r0 = -1;
   for (size_t i = 0; i < m.mass.size(); ++i) {
-    if (m.fixed[i]) continue;
+    if (m.spec().fixed[i]) continue;
     const double r = m.gamma[i] / m.mass[i];
     if (r0 < 0) r0 = r;
     if (std::abs(r - r0) > 1e-12 * std::max(r0, 1e-300)) return false;
@@ -38,7 +38,7 @@ bool uniform_rate(const Model& m) {
 }
 
 int free_node_count(const Model& model) {
-  return static_cast<int>(std::count(model.fixed.begin(), model.fixed.end(), 0));
+  return static_cast<int>(std::count(model.spec().fixed.begin(), model.spec().fixed.end(), 0));
 }
 
 /// The analysis itself (SPEC 7), linearised at positions x; nullopt when x is not finite or
@@ -214,16 +214,16 @@ const ExactStability* TunerCriteria::exact(const Session& s, std::uint64_t topol
             std::vector<Vec3> held = equilibrium_positions(*model, budget, f);
             if (!held.empty()) f.exact = analyse(*model, held, params, budget);
           } else {
-            f.exact = analyse(*model, at == Linearisation::state ? x : model->rest, params, budget);
+            f.exact = analyse(*model, at == Linearisation::state ? x : model->spec().rest, params, budget);
           }
-          if (at == Linearisation::rest) f.rest_net = net_force(*model, model->rest);
+          if (at == Linearisation::rest) f.rest_net = net_force(*model, model->spec().rest);
           f.seconds = seconds_now() - t0;
           return f;
         });
     return exact_ ? &*exact_ : nullptr;
   }
-  exact_ = analyse(s.model(), s.model().rest, s.params(), factor_budget_);
-  rest_net_ = net_force(s.model(), s.model().rest);
+  exact_ = analyse(s.model(), s.model().spec().rest, s.params(), factor_budget_);
+  rest_net_ = net_force(s.model(), s.model().spec().rest);
   ++exact_version_;
   exact_iteration_ = 0;
   exact_shown_at_ = Linearisation::rest;

@@ -177,7 +177,7 @@ PlotSpec tuner_envelope_plot(Tuner& tuner, const TunerPlotOptions& options) {
   const std::vector<StepSample>& current =
       options.full_traces ? tuner.session().trace() : tuner.reduced_trace();
   const int watched = tuner.session().watched();
-  const std::vector<double>& scales = tuner.session().model().gamma_scale;
+  const std::vector<double>& scales = tuner.session().model().spec().gamma_scale;
   const double scale = watched >= 0 && watched < static_cast<int>(scales.size())
                            ? scales[static_cast<size_t>(watched)]
                            : 1.0;
@@ -185,7 +185,7 @@ PlotSpec tuner_envelope_plot(Tuner& tuner, const TunerPlotOptions& options) {
                              "Damping bounds of node " + std::to_string(watched), scale);
   p.x.min = 0;
   const Model& model = tuner.session().model();
-  if (current.empty() && watched >= 0 && watched < model.node_count()) {
+  if (current.empty() && watched >= 0 && watched < model.spec().node_count()) {
     // Before the first step the node's lower bound and the user's gamma are known already:
     // draw them across the empty axis instead of a blank plot.
     const auto i = static_cast<size_t>(watched);

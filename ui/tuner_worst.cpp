@@ -18,7 +18,7 @@ const WorstNodes& TunerWorst::get(const Session& session, std::uint64_t topology
   if (valid_ && topology == topology_ && count == count_ && same_inputs(session.params(), key_))
     return nodes_;
   const Model& model = session.model();
-  nodes_ = worst_nodes(model, model.rest, session.params().dt, count);
+  nodes_ = worst_nodes(model, model.spec().rest, session.params().dt, count);
   valid_ = true;
   topology_ = topology;
   count_ = count;

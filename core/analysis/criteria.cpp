@@ -75,8 +75,8 @@ double kacic_alesic_dt(double m, double K) { return 2.0 * std::sqrt(m / K); }
 
 std::vector<double> combined_stiffness(const Model& model) {
   std::vector<double> K = model.anchor_kappa;
-  for (size_t k = 0; k < model.springs.size(); ++k) {
-    const Spring& s = model.springs[k];
+  for (size_t k = 0; k < model.spec().springs.size(); ++k) {
+    const Spring& s = model.spec().springs[k];
     K[static_cast<size_t>(s.i)] += model.spring_kappa[k];
     K[static_cast<size_t>(s.j)] += model.spring_kappa[k];
   }
@@ -88,8 +88,8 @@ std::vector<CriterionResult> classic_criteria(const Model& model, const Params& 
   std::vector<CriterionResult> out;
   double m_total = 0, kappa_max = 0;
   int n = 0;
-  for (size_t i = 0; i < model.rest.size(); ++i)
-    if (!model.fixed[i]) {
+  for (size_t i = 0; i < model.spec().rest.size(); ++i)
+    if (!model.spec().fixed[i]) {
       m_total += model.mass[i];
       ++n;
       kappa_max = std::max(kappa_max, model.node_kappa[i]);
@@ -116,8 +116,8 @@ std::vector<CriterionResult> classic_criteria(const Model& model, const Params& 
                      "anchor at i; require dt <= dt_i at every node");
   ka.unit = "s";
   ka.value = kInf;
-  for (size_t i = 0; i < model.rest.size(); ++i) {
-    if (model.fixed[i]) continue;
+  for (size_t i = 0; i < model.spec().rest.size(); ++i) {
+    if (model.spec().fixed[i]) continue;
     const double t0 = model.node_kappa[i] > 0 ? provot_natural_period(model.mass[i], model.node_kappa[i]) : kInf;
     if (t0 < provot.value) provot.value = t0, provot.node = static_cast<int>(i);
     const double tk = K[i] > 0 ? kacic_alesic_dt(model.mass[i], K[i]) : kInf;
@@ -141,8 +141,8 @@ std::vector<CriterionResult> paper_criteria(const Model& model, const State& sta
                      "gamma_i >= gamma_lo_i = 2 sqrt(m_i kappa_i), kappa_i = max incident stiffness");
   lo.unit = "mass unit/s";
   double worst = kInf;
-  for (size_t i = 0; i < model.rest.size(); ++i) {
-    if (model.fixed[i]) continue;
+  for (size_t i = 0; i < model.spec().rest.size(); ++i) {
+    if (model.spec().fixed[i]) continue;
     const double margin = model.gamma[i] - model.lower_bound[i];
     if (margin < worst) worst = margin, lo.node = static_cast<int>(i);
   }
@@ -166,8 +166,8 @@ std::vector<CriterionResult> paper_criteria(const Model& model, const State& sta
   check.unit = "nodes";
   int unstabilisable = 0, moving = 0;
   worst = kInf;
-  for (size_t i = 0; i < model.rest.size(); ++i) {
-    if (model.fixed[i]) continue;
+  for (size_t i = 0; i < model.spec().rest.size(); ++i) {
+    if (model.spec().fixed[i]) continue;
     const double bound = upper_bound(state.v[i], force[i], model.mass[i], params.dt);
     if (std::isinf(bound)) continue;
     ++moving;

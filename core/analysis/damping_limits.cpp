@@ -14,8 +14,8 @@ DampingRatios damping_ratios(const Model& model, const std::vector<Vec3>& x) {
   constexpr double kInf = std::numeric_limits<double>::infinity();
   r.nodal_min = r.dashpot_min = kInf;
   r.nodal_max = r.dashpot_max = 0;
-  for (size_t i = 0; i < model.rest.size(); ++i) {
-    if (model.fixed[i]) continue;
+  for (size_t i = 0; i < model.spec().rest.size(); ++i) {
+    if (model.spec().fixed[i]) continue;
     const double z = model.lower_bound[i] > 0 ? model.gamma[i] / model.lower_bound[i] : kInf;
     r.nodal_min = std::min(r.nodal_min, z);
     r.nodal_max = std::max(r.nodal_max, z);
@@ -26,13 +26,13 @@ DampingRatios damping_ratios(const Model& model, const std::vector<Vec3>& x) {
       r.dashpot_max = std::max(r.dashpot_max, zd);
     }
   }
-  for (size_t k = 0; k < model.springs.size(); ++k) {
+  for (size_t k = 0; k < model.spec().springs.size(); ++k) {
     if (!(model.spring_kd[k] > 0)) continue;
-    const Spring& s = model.springs[k];
+    const Spring& s = model.spec().springs[k];
     const size_t i = static_cast<size_t>(s.i), j = static_cast<size_t>(s.j);
-    if (model.fixed[i] && model.fixed[j]) continue;
-    const double mu = model.fixed[i]   ? model.mass[j]
-                      : model.fixed[j] ? model.mass[i]
+    if (model.spec().fixed[i] && model.spec().fixed[j]) continue;
+    const double mu = model.spec().fixed[i]   ? model.mass[j]
+                      : model.spec().fixed[j] ? model.mass[i]
                                        : model.mass[i] * model.mass[j] / (model.mass[i] + model.mass[j]);
     const double zd = model.spring_kd[k] / (2 * std::sqrt(mu * model.spring_kappa[k]));
     ++r.dashpots;
@@ -164,10 +164,10 @@ double damping_kind_max(const ModelSpec& spec, const std::vector<Vec3>& x, const
 GeneralLimits general_limits(const Model& model, const std::vector<Vec3>& x, const Params& params) {
   const double dt = params.dt;
   const SparseMatrix A = mass_weighted(model, tangent_stiffness(model, x));
-  SparseMatrix Cp = weighted_damping(model, x, std::vector<double>(model.rest.size(), 0.0));
+  SparseMatrix Cp = weighted_damping(model, x, std::vector<double>(model.spec().rest.size(), 0.0));
   // The nodal part per unit user gamma: gamma_scale_i / m_i on node i's rows.
-  std::vector<double> unit(model.rest.size());
-  for (size_t i = 0; i < unit.size(); ++i) unit[i] = model.gamma_scale[i];
+  std::vector<double> unit(model.spec().rest.size());
+  for (size_t i = 0; i < unit.size(); ++i) unit[i] = model.spec().gamma_scale[i];
   const SparseMatrix G = weighted_damping(model, x, unit) - Cp;
   // Commuting: no dashpot, and gamma_i / m_i the same at every free node.
   bool dashpot = false;
@@ -175,9 +175,9 @@ GeneralLimits general_limits(const Model& model, const std::vector<Vec3>& x, con
   for (double kd : model.anchor_kd) dashpot = dashpot || kd != 0;
   double rate = -1;
   bool uniform = true;
-  for (size_t i = 0; i < model.rest.size(); ++i) {
-    if (model.fixed[i]) continue;
-    const double c = model.gamma_scale[i] / model.mass[i];
+  for (size_t i = 0; i < model.spec().rest.size(); ++i) {
+    if (model.spec().fixed[i]) continue;
+    const double c = model.spec().gamma_scale[i] / model.mass[i];
     if (rate < 0) rate = c;
     uniform = uniform && c == rate;
   }

@@ -23,14 +23,14 @@ NetForce residual(const Model& model, const std::vector<Vec3>& x, const std::vec
   NetForce n;
   for (size_t i = 0; i < x.size(); ++i) {
     if (block[i] < 0) continue;
-    const Vec3 net = F[i] + model.external_force[i];
+    const Vec3 net = F[i] + model.spec().external_force[i];
     r.segment<3>(3 * block[i]) = net;
     if (net.norm() > n.largest || n.node < 0) n.largest = net.norm(), n.node = static_cast<int>(i);
-    n.scale = std::max({n.scale, model.external_force[i].norm(),
-                        model.anchor_kappa[i] * (x[i] - model.rest[i]).norm()});
+    n.scale = std::max({n.scale, model.spec().external_force[i].norm(),
+                        model.anchor_kappa[i] * (x[i] - model.spec().rest[i]).norm()});
   }
-  for (size_t k = 0; k < model.springs.size(); ++k) {
-    const Spring& s = model.springs[k];
+  for (size_t k = 0; k < model.spec().springs.size(); ++k) {
+    const Spring& s = model.spec().springs[k];
     const auto i = static_cast<size_t>(s.i), j = static_cast<size_t>(s.j);
     if (block[i] < 0 && block[j] < 0) continue;
     n.scale = std::max(n.scale, model.spring_kappa[k] * std::abs((x[j] - x[i]).norm() - s.rest_length));
@@ -43,15 +43,15 @@ NetForce residual(const Model& model, const std::vector<Vec3>& x, const std::vec
 /// double (its decrease is what a step is judged by, a difference of large sums).
 long double energy(const Model& model, const std::vector<Vec3>& x) {
   long double e = 0;
-  for (size_t k = 0; k < model.springs.size(); ++k) {
-    const Spring& s = model.springs[k];
+  for (size_t k = 0; k < model.spec().springs.size(); ++k) {
+    const Spring& s = model.spec().springs[k];
     const double stretch = (x[static_cast<size_t>(s.j)] - x[static_cast<size_t>(s.i)]).norm() -
                            s.rest_length;
     e += 0.5L * model.spring_kappa[k] * stretch * stretch;
   }
   for (size_t i = 0; i < x.size(); ++i) {
-    const Vec3 u = x[i] - model.rest[i];
-    e += 0.5L * model.anchor_kappa[i] * u.squaredNorm() - model.external_force[i].dot(u);
+    const Vec3 u = x[i] - model.spec().rest[i];
+    e += 0.5L * model.anchor_kappa[i] * u.squaredNorm() - model.spec().external_force[i].dot(u);
   }
   return e;
 }
@@ -91,7 +91,7 @@ SparseMatrix block_pattern(const Model& model, const std::vector<int>& block, in
   };
   for (size_t i = 0; i < block.size(); ++i)
     if (block[i] >= 0) add(block[i], block[i]);
-  for (const Spring& s : model.springs) {
+  for (const Spring& s : model.spec().springs) {
     const int a = block[static_cast<size_t>(s.i)], b = block[static_cast<size_t>(s.j)];
     if (a >= 0 && b >= 0) add(a, b), add(b, a);
   }
@@ -137,7 +137,7 @@ Equilibrium static_equilibrium(const Model& model, const EquilibriumOptions& opt
   int free = 0;
   const std::vector<int> block = free_blocks(model, &free);
   Equilibrium e;
-  e.x = model.rest;
+  e.x = model.spec().rest;
   Eigen::VectorXd r(3 * free), trial_r(3 * free);
   std::optional<detail::ShiftedCholesky> chol;
   SparseMatrix pattern;  // built at the first step

@@ -22,8 +22,8 @@ std::optional<double> psd_floor(const Model& model, const std::vector<Vec3>& x,
                                 bool clamp_compression) {
   double floor = std::numeric_limits<double>::infinity();
   double m_min = std::numeric_limits<double>::infinity();
-  for (size_t i = 0; i < model.rest.size(); ++i)
-    if (!model.fixed[i]) {
+  for (size_t i = 0; i < model.spec().rest.size(); ++i)
+    if (!model.spec().fixed[i]) {
       floor = std::min(floor, model.anchor_kappa[i] / model.mass[i]);
       m_min = std::min(m_min, model.mass[i]);
     }
@@ -31,9 +31,9 @@ std::optional<double> psd_floor(const Model& model, const std::vector<Vec3>& x,
   // The negative part a rounding-short spring adds, kappa |1 - l0/l| (I - d d^T), has
   // absolute row sums below 2 per 3x3 block, twice per row (diagonal and off-diagonal
   // block), divided by sqrt(m_i m_j) >= m_min: per node at most 4 sum kappa |t| / m_min.
-  std::vector<double> deficit(model.rest.size(), 0.0);
-  for (size_t k = 0; k < model.springs.size(); ++k) {
-    const Spring& s = model.springs[k];
+  std::vector<double> deficit(model.spec().rest.size(), 0.0);
+  for (size_t k = 0; k < model.spec().springs.size(); ++k) {
+    const Spring& s = model.spec().springs[k];
     const double l = (x[static_cast<size_t>(s.j)] - x[static_cast<size_t>(s.i)]).norm();
     if (!(l > 0)) continue;  // skipped by tangent_stiffness too
     const double tension = 1.0 - s.rest_length / l;
@@ -48,7 +48,7 @@ std::optional<double> psd_floor(const Model& model, const std::vector<Vec3>& x,
 
 bool positive_spring_block(const Model& model, const std::vector<Vec3>& x, size_t k,
                            Eigen::Matrix3d& B) {
-  const Spring& s = model.springs[k];
+  const Spring& s = model.spec().springs[k];
   const size_t i = static_cast<size_t>(s.i), j = static_cast<size_t>(s.j);
   const Vec3 e = x[j] - x[i];
   const double l = e.norm();
@@ -66,28 +66,28 @@ bool positive_spring_block(const Model& model, const std::vector<Vec3>& x, size_
 
 void splitting_ceilings(const Model& model, const std::vector<Vec3>& x,
                         std::vector<double>& ceiling) {
-  const size_t n = model.rest.size();
+  const size_t n = model.spec().rest.size();
   std::vector<Eigen::Matrix3d> D(n, Eigen::Matrix3d::Zero());
   Eigen::Matrix3d B;
-  for (size_t k = 0; k < model.springs.size(); ++k) {
+  for (size_t k = 0; k < model.spec().springs.size(); ++k) {
     if (!positive_spring_block(model, x, k, B)) continue;
-    const size_t i = static_cast<size_t>(model.springs[k].i);
-    const size_t j = static_cast<size_t>(model.springs[k].j);
-    const bool both = !model.fixed[i] && !model.fixed[j];
-    if (!model.fixed[i]) D[i] += both ? 2 * B : B;
-    if (!model.fixed[j]) D[j] += both ? 2 * B : B;
+    const size_t i = static_cast<size_t>(model.spec().springs[k].i);
+    const size_t j = static_cast<size_t>(model.spec().springs[k].j);
+    const bool both = !model.spec().fixed[i] && !model.spec().fixed[j];
+    if (!model.spec().fixed[i]) D[i] += both ? 2 * B : B;
+    if (!model.spec().fixed[j]) D[j] += both ? 2 * B : B;
   }
   ceiling.assign(n, 0.0);
   double largest_trace = 0;
   for (size_t i = 0; i < n; ++i) {
-    if (model.fixed[i]) continue;
+    if (model.spec().fixed[i]) continue;
     D[i].diagonal().array() += model.anchor_kappa[i];
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(D[i], Eigen::EigenvaluesOnly);
     ceiling[i] = es.eigenvalues()(2) / model.mass[i];
     largest_trace = std::max(largest_trace, D[i].trace() / model.mass[i]);
   }
   for (size_t i = 0; i < n; ++i)
-    if (!model.fixed[i]) ceiling[i] += 1e-12 * largest_trace;
+    if (!model.spec().fixed[i]) ceiling[i] += 1e-12 * largest_trace;
 }
 
 double largest_eigenvalue(const SparseMatrix& A) { return certified_largest_eigenvalue(A).hi; }
@@ -133,8 +133,8 @@ double semi_implicit_stability_index(const Model& model, const SparseMatrix& K_w
   SparseMatrix S = (dt * dt) * K_weighted;
   std::vector<Eigen::Triplet<double>> diag;
   int b = 0;
-  for (size_t i = 0; i < model.rest.size(); ++i) {
-    if (model.fixed[i]) continue;
+  for (size_t i = 0; i < model.spec().rest.size(); ++i) {
+    if (model.spec().fixed[i]) continue;
     for (int r = 0; r < 3; ++r) diag.emplace_back(3 * b + r, 3 * b + r, 2.0 * dt * gamma[i] / model.mass[i]);
     ++b;
   }

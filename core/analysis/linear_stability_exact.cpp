@@ -46,8 +46,8 @@ Index symmetric_index(const SparseMatrix& A, const Eigen::VectorXd& R, double ga
 
 /// Per free dof, gamma_scale_i / m_i: the damping rate c_i per unit of the user's gamma.
 Eigen::VectorXd unit_rates(const Model& model) {
-  std::vector<double> scale(model.rest.size());
-  for (size_t i = 0; i < scale.size(); ++i) scale[i] = model.gamma_scale[i];
+  std::vector<double> scale(model.spec().rest.size());
+  for (size_t i = 0; i < scale.size(); ++i) scale[i] = model.spec().gamma_scale[i];
   return damping_rates(model, scale);
 }
 

@@ -353,8 +353,8 @@ RateInterval uniform_rate_interval(Integrator integrator, const StiffnessSpectru
 
 Eigen::VectorXd damping_rates(const Model& model, const std::vector<double>& gamma) {
   std::vector<double> rates;
-  for (size_t i = 0; i < model.rest.size(); ++i)
-    if (!model.fixed[i])
+  for (size_t i = 0; i < model.spec().rest.size(); ++i)
+    if (!model.spec().fixed[i])
       for (int r = 0; r < 3; ++r) rates.push_back(gamma[i] / model.mass[i]);
   return Eigen::Map<Eigen::VectorXd>(rates.data(), static_cast<Eigen::Index>(rates.size()));
 }

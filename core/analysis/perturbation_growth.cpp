@@ -13,12 +13,12 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 
 double perturbation_growth(const Model& model, const Params& params, int steps,
                            double amplitude, unsigned seed) {
-  return perturbation_growth(model, model.rest, params, steps, amplitude, seed);
+  return perturbation_growth(model, model.spec().rest, params, steps, amplitude, seed);
 }
 
 double perturbation_growth(const Model& model, const std::vector<Vec3>& about,
                            const Params& params_in, int steps, double amplitude, unsigned seed) {
-  if (about.size() != model.rest.size())
+  if (about.size() != model.spec().rest.size())
     throw std::invalid_argument("perturbation_growth: one position per node is needed");
   Params params = params_in;
   params.policy = DampingPolicy::fixed;
@@ -38,7 +38,7 @@ double perturbation_growth(const Model& model, const std::vector<Vec3>& about,
     return d;
   };
   for (size_t i = 0; i < state.x.size(); ++i) {
-    if (model.fixed[i]) continue;
+    if (model.spec().fixed[i]) continue;
     const Vec3 d(uniform(), uniform(), uniform());
     state.x[i] += (2 * amplitude) * d;
   }

@@ -67,7 +67,7 @@ ExactStability exact_limits(const Model& model, const Params& params,
   o.with_radius = false;
   o.threads = options.threads;
   o.max_factor_flops = options.max_factor_flops;
-  return exact_stability(model, model.rest, params, o);
+  return exact_stability(model, model.spec().rest, params, o);
 }
 
 /// Over the budget with nothing proved stable: nothing to suggest.
@@ -123,12 +123,12 @@ DampingSuggestion suggest_damping(const SceneSpec& scene, const Params& params_i
   // Eq. 5 at every free node: gamma * gamma_scale_i >= 2 sqrt(m_i kappa_i) (SPEC 3).
   double eq5 = 0, unit_rate_max = 0;
   std::vector<double> R;  // SPEC 9 at rest
-  safe_row_sums(model, model.rest, R);
+  safe_row_sums(model, model.spec().rest, R);
   s.safe_max = kInf;
   std::map<std::tuple<double, double, double>, NodeClass> classes;
-  for (size_t i = 0; i < model.rest.size(); ++i) {
-    if (model.fixed[i]) continue;
-    const double lo = model.lower_bound[i], sc = model.gamma_scale[i];
+  for (size_t i = 0; i < model.spec().rest.size(); ++i) {
+    if (model.spec().fixed[i]) continue;
+    const double lo = model.lower_bound[i], sc = model.spec().gamma_scale[i];
     eq5 = std::max(eq5, sc > 0 ? lo / sc : (lo > 0 ? kInf : 0.0));
     unit_rate_max = std::max(unit_rate_max, sc / model.mass[i]);
     NodeClass& c = classes[{model.mass[i], model.node_kappa[i], sc}];
@@ -197,7 +197,7 @@ DampingSuggestion suggest_damping(const SceneSpec& scene, const Params& params_i
   // Over the budget the spectrum is known to lie in [SPEC 9's floor, Gershgorin's bound].
   StiffnessSpectrum spectrum = s.exact.decaying;
   if (s.proved_only) {
-    const std::optional<double> floor = psd_floor(model, model.rest);
+    const std::optional<double> floor = psd_floor(model, model.spec().rest);
     spectrum = {floor ? std::max(*floor, 0.0) : 0.0, s.exact.unfactored.lambda_max_hi};
   }
   double hi = s.gamma_max;
@@ -220,9 +220,9 @@ DampingSuggestion suggest_damping(const SceneSpec& scene, const Params& params_i
     // Exact: rho(gamma) is the max over the modes' 2x2 amplification matrices; the rate per
     // unit gamma is that of any free node (uniform_rate: all free nodes share it).
     double rate = 0;
-    for (size_t i = 0; i < model.rest.size(); ++i)
-      if (!model.fixed[i]) {
-        rate = model.gamma_scale[i] / model.mass[i];
+    for (size_t i = 0; i < model.spec().rest.size(); ++i)
+      if (!model.spec().fixed[i]) {
+        rate = model.spec().gamma_scale[i] / model.mass[i];
         break;
       }
     auto rho_free = [&](double g) {
@@ -304,10 +304,10 @@ StepSuggestion suggest_step(const SceneSpec& scene, const Params& params_in, con
   s.dt_all = s.dt_exact;
   {  // SPEC 9 at rest: the smallest dt_safe_i at the user's gamma_i
     std::vector<double> R;
-    safe_row_sums(model, model.rest, R);
+    safe_row_sums(model, model.spec().rest, R);
     s.dt_safe = kInf;
     for (size_t i = 0; i < R.size(); ++i) {
-      if (model.fixed[i]) continue;
+      if (model.spec().fixed[i]) continue;
       const double h = safe_dt(model.mass[i], model.gamma[i], R[i]);
       if (h < s.dt_safe) s.dt_safe = h, s.dt_safe_node = static_cast<int>(i);
     }
@@ -319,8 +319,8 @@ StepSuggestion suggest_step(const SceneSpec& scene, const Params& params_in, con
     if (c.name.rfind("Provot", 0) == 0 && c.value < s.dt_all) s.dt_all = c.value, s.dt_all_by = c.name;
     if (c.name.rfind("Kacic", 0) == 0 && c.value < s.dt_all) s.dt_all = c.value, s.dt_all_by = c.name;
   }
-  for (size_t i = 0; i < model.rest.size(); ++i)
-    if (!model.fixed[i]) m_total += model.mass[i], ++n, kappa_max = std::max(kappa_max, model.node_kappa[i]);
+  for (size_t i = 0; i < model.spec().rest.size(); ++i)
+    if (!model.spec().fixed[i]) m_total += model.mass[i], ++n, kappa_max = std::max(kappa_max, model.node_kappa[i]);
   if (n > 0 && kappa_max > 0) {
     // Delingette: kappa_max < m_total / (n pi^2 dt^2)  <=>  dt < sqrt(m_total / (n pi^2 kappa_max)).
     const double dt_d = std::sqrt(m_total / (n * kPi * kPi * kappa_max));

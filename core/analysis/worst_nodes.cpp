@@ -32,13 +32,13 @@ WorstNodes worst_nodes(const Model& model, const std::vector<Vec3>& x, double dt
   safe_bounds_per_node(model, x, dt, dts, gammas);
   std::vector<int> free;
   std::vector<double> masses, edges;
-  for (int i = 0; i < model.node_count(); ++i)
-    if (!model.fixed[static_cast<size_t>(i)]) {
+  for (int i = 0; i < model.spec().node_count(); ++i)
+    if (!model.spec().fixed[static_cast<size_t>(i)]) {
       free.push_back(i);
       masses.push_back(model.mass[static_cast<size_t>(i)]);
     }
-  for (const Spring& s : model.springs)
-    edges.push_back((model.rest[static_cast<size_t>(s.j)] - model.rest[static_cast<size_t>(s.i)]).norm());
+  for (const Spring& s : model.spec().springs)
+    edges.push_back((model.spec().rest[static_cast<size_t>(s.j)] - model.spec().rest[static_cast<size_t>(s.i)]).norm());
   w.median_mass = median(masses);
   w.median_kappa = median(model.spring_kappa);
   w.median_edge = median(edges);

@@ -39,7 +39,7 @@ inline double row_sum_of(const double* a, double mass) {
 }
 
 inline Vec3 anchor_force(const Model& model, const std::vector<Vec3>& x, size_t i) {
-  return -model.anchor_kappa[i] * (x[i] - model.rest[i]);
+  return -model.anchor_kappa[i] * (x[i] - model.spec().rest[i]);
 }
 
 /// The last spring at node i (its incident springs are listed in increasing index), or -1.
@@ -63,7 +63,7 @@ inline long last_spring(const Model& model, size_t i) {
 SpringCounts owned_pass(SpringBatchFunction compute, const Model& model,
                         const std::vector<Vec3>& x, std::vector<Vec3>* force,
                         std::vector<double>* row_sum, double* acc, size_t begin, size_t end) {
-  const std::vector<std::uint8_t>& fixed = model.fixed;
+  const std::vector<std::uint8_t>& fixed = model.spec().fixed;
   SpringCounts counts;
   size_t started = begin;   // the nodes [begin, started) have their sums started
   size_t finished = begin;  // and [begin, finished) their R_i taken
@@ -82,7 +82,7 @@ SpringCounts owned_pass(SpringBatchFunction compute, const Model& model,
   const bool all = begin == 0 && end == x.size();
   // Only the springs from the first to the last listed at these nodes can reach them: on a
   // mesh numbered along its rows or layers, about this range's share of the list.
-  size_t first = 0, last = model.springs.size();
+  size_t first = 0, last = model.spec().springs.size();
   if (!all) {
     std::swap(first, last);
     for (int e = model.incident_offset[begin]; e < model.incident_offset[end]; ++e) {
@@ -101,8 +101,8 @@ SpringCounts owned_pass(SpringBatchFunction compute, const Model& model,
     compute(in, k0, count, force != nullptr, row_sum != nullptr, batch);
     for (size_t q = 0; q < count; ++q) {
       const size_t k = k0 + q;
-      const size_t i = static_cast<size_t>(model.springs[k].i);
-      const size_t j = static_cast<size_t>(model.springs[k].j);
+      const size_t i = static_cast<size_t>(model.spec().springs[k].i);
+      const size_t j = static_cast<size_t>(model.spec().springs[k].j);
       const bool own_i = all || (i >= begin && i < end), own_j = all || (j >= begin && j < end);
       if (!own_i && !own_j) continue;
       if (own_i) start_to(i);
@@ -129,7 +129,7 @@ SpringCounts owned_pass(SpringBatchFunction compute, const Model& model,
     }
   }
   if (end > begin) start_to(end - 1);
-  finish_after(static_cast<long>(model.springs.size()));
+  finish_after(static_cast<long>(model.spec().springs.size()));
   return counts;
 }
 
@@ -145,14 +145,14 @@ SpringBatchFunction spring_batch_for(StepIsa isa) {
 
 SpringBatchInput spring_batch_input(const Model& model, const std::vector<Vec3>& x) {
   static_assert(sizeof(Vec3) == 3 * sizeof(double), "positions are packed x, y, z");
-  return {model.springs.data(), model.spring_kappa.data(), model.spring_weight.data(),
+  return {model.spec().springs.data(), model.spring_kappa.data(), model.spring_weight.data(),
           x.empty() ? nullptr : x.front().data()};
 }
 
 SpringCounts spring_pass(const Model& model, const std::vector<Vec3>& x,
                          std::vector<Vec3>* force, std::vector<double>* row_sum,
                          SpringPass* pass) {
-  const size_t n = x.size(), ns = model.springs.size();
+  const size_t n = x.size(), ns = model.spec().springs.size();
   if (force) force->resize(n);
   if (row_sum) row_sum->resize(n);  // every node's R_i written by its range (0 when fixed)
   std::vector<double> local;

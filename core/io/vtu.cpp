@@ -63,7 +63,7 @@ int state_code(NodeStatus s) {
 
 void write_vtu(std::ostream& out, const Model& model, const State& state, const StepWorkspace& ws,
                double dt, const std::vector<BodyCell>& body) {
-  const size_t n = model.rest.size(), ns = model.springs.size();
+  const size_t n = model.spec().rest.size(), ns = model.spec().springs.size();
   const bool stepped = ws.status.size() == n;  // else iteration 0: no step has run yet
   std::vector<Vec3> disp(n);
   std::vector<double> upper(n), gamma(n), safe = stepped ? ws.safe_bound : std::vector<double>(n);
@@ -71,16 +71,16 @@ void write_vtu(std::ostream& out, const Model& model, const State& state, const 
     std::vector<double> row_sum;
     safe_row_sums(model, state.x, row_sum);
     for (size_t i = 0; i < n; ++i)
-      safe[i] = model.fixed[i] ? std::numeric_limits<double>::infinity()
+      safe[i] = model.spec().fixed[i] ? std::numeric_limits<double>::infinity()
                                : safe_gamma(model.mass[i], dt, row_sum[i]);
   }
   std::vector<std::int32_t> code(n);
   for (size_t i = 0; i < n; ++i) {
-    disp[i] = state.x[i] - model.rest[i];
+    disp[i] = state.x[i] - model.spec().rest[i];
     upper[i] = stepped ? ws.upper_bound[i] : std::numeric_limits<double>::infinity();
-    gamma[i] = stepped ? ws.gamma_eff[i] : (model.fixed[i] ? 0.0 : model.gamma[i]);
+    gamma[i] = stepped ? ws.gamma_eff[i] : (model.spec().fixed[i] ? 0.0 : model.gamma[i]);
     code[i] = state_code(stepped          ? ws.status[i]
-                         : model.fixed[i] ? NodeStatus::fixed
+                         : model.spec().fixed[i] ? NodeStatus::fixed
                                           : NodeStatus::within);
   }
   std::vector<std::int64_t> conn, offsets;
@@ -88,7 +88,7 @@ void write_vtu(std::ostream& out, const Model& model, const State& state, const 
   std::vector<double> kappa(ns), strain(ns);
   std::vector<std::int32_t> spring(ns);
   for (size_t k = 0; k < ns; ++k) {
-    const Spring& s = model.springs[k];
+    const Spring& s = model.spec().springs[k];
     conn.insert(conn.end(), {s.i, s.j});
     offsets.push_back(static_cast<std::int64_t>(conn.size()));
     kappa[k] = model.spring_kappa[k];

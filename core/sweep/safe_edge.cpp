@@ -19,12 +19,12 @@ SafeUnit unit_safe_bound(const SceneSpec& scene) {
   p.kappa = 1;
   const Model model = compile_model(scene.model, p);
   std::vector<double> R;
-  safe_row_sums(model, model.rest, R);
+  safe_row_sums(model, model.spec().rest, R);
   SafeUnit u;
   for (size_t i = 0; i < R.size(); ++i) {
-    if (model.fixed[i]) continue;
-    u.mass_scale.push_back(model.mass_scale[i]);
-    u.gamma_scale.push_back(model.gamma_scale[i]);
+    if (model.spec().fixed[i]) continue;
+    u.mass_scale.push_back(model.spec().mass_scale[i]);
+    u.gamma_scale.push_back(model.spec().gamma_scale[i]);
     u.row_sum.push_back(R[i]);
   }
   return u;

@@ -16,7 +16,7 @@ double unit_stiffness_eigenvalue(const SceneSpec& scene) {
   p.m = 1;
   p.kappa = 1;
   const Model model = compile_model(scene.model, p);
-  return max_stiffness_eigenvalue(model, model.rest);
+  return max_stiffness_eigenvalue(model, model.spec().rest);
 }
 
 bool linearly_unstable(double m, double kappa, double gamma, double dt, double lambda_unit) {

@@ -68,7 +68,7 @@ TEST(InternalForces, SpringForcesSumToZero) {
   for (int i = 0; i < 12; ++i)
     for (int j = i + 1; j < 12; j += 3) add_spring(s, i, j, 1 + u(rng) * 0.5);
   const Model m = compile_model(s, unit_kappa(0.7));
-  std::vector<Vec3> x = m.rest;
+  std::vector<Vec3> x = m.spec().rest;
   for (Vec3& q : x) q += 0.3 * Vec3(u(rng), u(rng), u(rng));
   std::vector<Vec3> f;
   internal_forces(m, x, f);

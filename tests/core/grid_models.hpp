@@ -18,7 +18,7 @@ inline Model grid_model(int nx, int nz, const Params& p) {
 
 /// m's rest positions shaken by up to `size` (seed 7): stretched and compressed springs.
 inline std::vector<Vec3> deformed(const Model& m, double size) {
-  std::vector<Vec3> x = m.rest;
+  std::vector<Vec3> x = m.spec().rest;
   test::shake(x, size, 7);
   return x;
 }

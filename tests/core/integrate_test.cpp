@@ -143,15 +143,16 @@ TEST(Integrate, PaperEulerStepsBitForBit) {
     Params p = s.params;
     p.integrator = in;
     p.gamma = 0.0013;
-    Model m = compile_model(s.model, p);
-    m.external_force[5] = Vec3(0.001, 0, -0.002);
+    ModelSpec spec = s.model;
+    spec.external_force[5] = Vec3(0.001, 0, -0.002);
+    const Model m = compile_model(spec, p);
     State st = initial_state(s), ref;
     StepWorkspace ws;
     for (int k = 0; k < 5; ++k) {
       ref = st;
       step(m, p, st, ws);
       for (size_t i = 0; i < st.x.size(); ++i) {
-        const Vec3 a = (ws.force[i] - ws.gamma_eff[i] * ref.v[i] + m.external_force[i]) / m.mass[i];
+        const Vec3 a = (ws.force[i] - ws.gamma_eff[i] * ref.v[i] + m.spec().external_force[i]) / m.mass[i];
         Vec3 v = ref.v[i], x = ref.x[i];
         if (in == Integrator::semi_implicit_euler) {
           v += a * p.dt;
@@ -203,7 +204,7 @@ TEST(Integrate, EachIntegratorDecaysInsideItsLimitAndGrowsOutside) {
     Params p = s.params;
     p.integrator = in;
     const Model m = compile_model(s.model, p);
-    const ExactStability e = exact_stability(m, m.rest, p);
+    const ExactStability e = exact_stability(m, m.spec().rest, p);
     ASSERT_EQ(e.method, in == Integrator::implicit_euler ? ExactMethod::unconditional : ExactMethod::per_mode);
     auto check = [&](const char* what, Params q, bool inside, int steps = 0) {
       const Model mq = compile_model(s.model, q);

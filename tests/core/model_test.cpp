@@ -76,8 +76,8 @@ TEST(CompileModel, FillsEveryDerivedArrayWithSpec3sValues) {
   EXPECT_EQ(m.spring_weight[0], 1.0 / std::sqrt(m.mass[0] * m.mass[1]));
   EXPECT_EQ(m.spring_weight[1], 1.0 / std::sqrt(m.mass[1] * m.mass[2]));
   // The spec travels with it unchanged.
-  EXPECT_EQ(m.rest[1], Vec3(3, 4, 0));
-  EXPECT_EQ(m.fixed[2], 1);
+  EXPECT_EQ(m.spec().rest[1], Vec3(3, 4, 0));
+  EXPECT_EQ(m.spec().fixed[2], 1);
 }
 
 TEST(CompileModel, ALonelyNodeHasNoStiffnessAndNoLowerBound) {

@@ -23,15 +23,15 @@ struct UserArrays {
   std::vector<int> pairs;
   std::vector<std::array<double, 3>> rest;
   explicit UserArrays(const Model& mo) {
-    for (int i = 0; i < mo.node_count(); ++i) {
+    for (int i = 0; i < mo.spec().node_count(); ++i) {
       const size_t k = static_cast<size_t>(i);
       mass.push_back(mo.mass[k]);
       gamma.push_back(mo.gamma[k]);
       anchor.push_back(mo.anchor_kappa[k]);
-      rest.push_back({mo.rest[k].x(), mo.rest[k].y(), mo.rest[k].z()});
+      rest.push_back({mo.spec().rest[k].x(), mo.spec().rest[k].y(), mo.spec().rest[k].z()});
     }
-    for (size_t k = 0; k < mo.springs.size(); ++k) {
-      const Spring& s = mo.springs[k];
+    for (size_t k = 0; k < mo.spec().springs.size(); ++k) {
+      const Spring& s = mo.spec().springs[k];
       pairs.insert(pairs.end(), {s.i, s.j});
       stiffness.push_back(mo.spring_kappa[k]);
       rest_length.push_back(s.rest_length);
@@ -128,7 +128,7 @@ TEST(Monitor, ThreadsGiveTheSameBitsAndTheSameFirstIndices) {
   const Session session(scene, scene.params, scene.rules);
   const UserArrays user(session.model());
   Monitor one = user.monitor();
-  std::vector<std::uint8_t> fixed(session.model().fixed.begin(), session.model().fixed.end());
+  std::vector<std::uint8_t> fixed(session.model().spec().fixed.begin(), session.model().spec().fixed.end());
   const Eigen::Index n = one.node_count();
   one.set_fixed(fixed.data(), n);
   std::mt19937 rng(7);
@@ -137,7 +137,7 @@ TEST(Monitor, ThreadsGiveTheSameBitsAndTheSameFirstIndices) {
   for (Eigen::Index i = 0; i < n; ++i) {
     const size_t k = static_cast<size_t>(i);
     for (int c = 0; c < 3; ++c) {
-      x[3 * k + static_cast<size_t>(c)] = session.model().rest[k][c] + 0.2 * u(rng);
+      x[3 * k + static_cast<size_t>(c)] = session.model().spec().rest[k][c] + 0.2 * u(rng);
       v[3 * k + static_cast<size_t>(c)] = i < 45 * n / 100 ? 0.0 : 5 * u(rng);
     }
     gamma[k] = 3 * session.model().mass[k] / scene.params.dt;  // above eq. 6's m/dt + |F|/|v|

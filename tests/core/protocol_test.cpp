@@ -147,11 +147,11 @@ TEST(Session, CutRemovesCrossingSpringsAndBoundsReact) {
   const auto crossing = springs_crossing(cut.model(), cut.state().x, from, to);
   EXPECT_EQ(crossing.size(), 71u);
   EXPECT_EQ(cut.cut(crossing), 71);
-  EXPECT_EQ(cut.model().spring_count(), 3745 - 71);
+  EXPECT_EQ(cut.model().spec().spring_count(), 3745 - 71);
   const StepSample a = cut.step_once(), b = whole.step_once();
   EXPECT_NE(a.watched.upper, b.watched.upper);  // the node next to the cut lost springs
   cut.reset();
-  EXPECT_EQ(cut.model().spring_count(), 3745);
+  EXPECT_EQ(cut.model().spec().spring_count(), 3745);
   EXPECT_TRUE(cut.trace().empty());
 }
 
@@ -160,7 +160,7 @@ TEST(Session, ScheduledCutFromScene) {
   s.cuts.push_back({3, {10.0, -1}, {10.0, 25}});  // along x = 10.0 cm after 3 steps
   Session session(s);
   for (int k = 0; k < 3; ++k) session.step_once();
-  EXPECT_EQ(session.model().spring_count(), 3745);
+  EXPECT_EQ(session.model().spec().spring_count(), 3745);
   session.step_once();
   EXPECT_EQ(session.springs_cut(), 71);
 }
@@ -180,7 +180,7 @@ TEST(Session, CurrentSceneHasTheCutsMadeSoFar) {
   ASSERT_EQ(now.cuts.size(), 1u);  // due before the next step: still to come
   session.step_once();
   now = session.current_scene();
-  EXPECT_EQ(now.model.spring_count(), session.model().spring_count());
+  EXPECT_EQ(now.model.spring_count(), session.model().spec().spring_count());
   EXPECT_LT(now.model.spring_count(), 3745 - 71);
   EXPECT_TRUE(now.cuts.empty());
   // A fresh run of the current scene starts from the perturbed state on the cut mesh, with
@@ -188,7 +188,7 @@ TEST(Session, CurrentSceneHasTheCutsMadeSoFar) {
   Params p = session.params();
   p.kappa *= 2;
   Session fresh(now, p, session.rules());
-  EXPECT_EQ(fresh.model().spring_count(), now.model.spring_count());
+  EXPECT_EQ(fresh.model().spec().spring_count(), now.model.spring_count());
   EXPECT_DOUBLE_EQ(fresh.model().spring_kappa.front(), 2 * session.model().spring_kappa.front());
   EXPECT_DOUBLE_EQ(fresh.state().x[666].y(), 5.0);
   EXPECT_EQ(fresh.state().iteration, 0);

@@ -39,14 +39,14 @@ TEST(SafeBoundDamped, OneFreeNodeByHand) {
   const double a = (k + ka) / m;
   const double c = p.rayleigh_mass + (p.rayleigh_stiffness * (k + ka) + kd + kda) / m;
   const double margin = 4 - 2 * p.dt * c - p.dt * p.dt * a;
-  const DampedSafeRows rows(model, model.rest);
+  const DampedSafeRows rows(model, model.spec().rest);
   EXPECT_NEAR(rows.gamma_safe(0, p.dt), m / (2 * p.dt) * margin, 1e-12);
   // dt_safe at gamma: the positive root of a t^2 + 2 (gamma/m + c) t = 4.
   const double gamma = 0.3, P = 2 * (gamma / m + c);
   const double root = (-P + std::sqrt(P * P + 16 * a)) / (2 * a);
   EXPECT_NEAR(rows.dt_safe(0, gamma), root, 1e-12);
   std::vector<double> g;
-  damped_safe_gammas(model, model.rest, p.dt, g);
+  damped_safe_gammas(model, model.spec().rest, p.dt, g);
   EXPECT_EQ(g[0], rows.gamma_safe(0, p.dt));
   EXPECT_TRUE(std::isinf(g[1]));  // a fixed node has no bound
 }
@@ -64,7 +64,7 @@ TEST(SafeBoundDamped, StretchedSpringsGiveOffDiagonalsBothWaysAgree) {
   }
   for (int i = 0; i + 1 < 5; ++i) add_spring(s, i, i + 1, 1.0 + i);
   const Model model = compile_model(s, p);
-  std::vector<Vec3> x = model.rest;
+  std::vector<Vec3> x = model.spec().rest;
   x[2] += Vec3(0.1, 0.2, -0.05);
   x[4] += Vec3(0.3, 0, 0);
   std::vector<double> g;
@@ -72,7 +72,7 @@ TEST(SafeBoundDamped, StretchedSpringsGiveOffDiagonalsBothWaysAgree) {
   const DampedSafeRows rows(model, x);
   for (size_t i = 0; i < g.size(); ++i) EXPECT_EQ(g[i], rows.gamma_safe(static_cast<int>(i), p.dt));
   // Stretching lowers the bound of the bent node below its value at rest.
-  const DampedSafeRows at_rest(model, model.rest);
+  const DampedSafeRows at_rest(model, model.spec().rest);
   EXPECT_LT(rows.gamma_safe(2, p.dt), at_rest.gamma_safe(2, p.dt));
 }
 

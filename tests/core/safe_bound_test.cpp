@@ -30,7 +30,7 @@ SceneSpec shipped(const std::string& name) {
 /// max over each free node's three rows of sum_s |A_rs|, from the dense A = M^-1/2 K M^-1/2.
 std::vector<double> dense_row_sums(const Model& m, const std::vector<Vec3>& x) {
   const Eigen::MatrixXd A = Eigen::MatrixXd(mass_weighted(m, tangent_stiffness(m, x)));
-  std::vector<double> R(m.rest.size(), 0.0);
+  std::vector<double> R(m.spec().rest.size(), 0.0);
   const std::vector<int> block = free_blocks(m);
   for (size_t i = 0; i < R.size(); ++i)
     if (block[i] >= 0)
@@ -113,11 +113,11 @@ TEST(SafeBound, PaperPlaneMatchesSpec9) {
   p.dt = 0.05;
   const Model m = compile_model(s.model, p);
   std::vector<double> R;
-  safe_row_sums(m, m.rest, R);
+  safe_row_sums(m, m.spec().rest, R);
   EXPECT_NEAR(R[18 * 36 + 18], 9.0, 1e-12);  // interior node: 9 kappa/m
   p.gamma = 0.002;
   const Model mg = compile_model(s.model, p);
-  const SafeBoundSummary sum = safe_bound_summary(mg, mg.rest, p.dt);
+  const SafeBoundSummary sum = safe_bound_summary(mg, mg.spec().rest, p.dt);
   EXPECT_EQ(sum.free_nodes, 1296);
   EXPECT_NEAR(sum.gamma_safe, 0.039775, 1e-12);
   EXPECT_TRUE(sum.infeasible.empty());
@@ -129,20 +129,20 @@ TEST(SafeBound, PaperPlaneMatchesSpec9) {
   const Model mo = compile_model(s.model, over);
   int expected_over = 0;
   for (size_t i = 0; i < R.size(); ++i)
-    if (!mo.fixed[i]) expected_over += !(mo.gamma[i] < safe_gamma(mo.mass[i], p.dt, R[i]));
+    if (!mo.spec().fixed[i]) expected_over += !(mo.gamma[i] < safe_gamma(mo.mass[i], p.dt, R[i]));
   EXPECT_GT(expected_over, 1000);
   EXPECT_LT(expected_over, 1296);
-  EXPECT_EQ(safe_bound_summary(mo, mo.rest, p.dt).gamma_over, expected_over);
-  const LinearLimits exact = linear_limits(max_stiffness_eigenvalue(mg, mg.rest), p.m, p.dt);
+  EXPECT_EQ(safe_bound_summary(mo, mo.spec().rest, p.dt).gamma_over, expected_over);
+  const LinearLimits exact = linear_limits(max_stiffness_eigenvalue(mg, mg.spec().rest), p.m, p.dt);
   EXPECT_NEAR(exact.gamma_max, 0.039805, 5e-7);
   EXPECT_LT(sum.gamma_safe, exact.gamma_max);
   p.gamma = 0;
   const Model m0 = compile_model(s.model, p);
-  EXPECT_NEAR(safe_bound_summary(m0, m0.rest, p.dt).dt_safe, 2.0 / 3.0, 1e-12);
+  EXPECT_NEAR(safe_bound_summary(m0, m0.spec().rest, p.dt).dt_safe, 2.0 / 3.0, 1e-12);
   EXPECT_NEAR(exact.dt_max_undamped, 0.7155, 5e-5);
   // At dt = 0.6 an interior node has gamma_safe = 2m/dt - m dt 9/2 = 0.00063 < gamma_lo =
   // 0.002: critical damping cannot be guaranteed there; the dt_safe at gamma_lo would.
-  const SafeBoundSummary at_big_dt = safe_bound_summary(m0, m0.rest, 0.6);
+  const SafeBoundSummary at_big_dt = safe_bound_summary(m0, m0.spec().rest, 0.6);
   EXPECT_GT(at_big_dt.infeasible.size(), 1000u);
   EXPECT_NEAR(at_big_dt.infeasible_dt[0], safe_dt(0.001, 0.002, R[at_big_dt.infeasible[0]]), 0);
   EXPECT_LT(at_big_dt.infeasible_dt[0], 0.6);
@@ -158,22 +158,22 @@ TEST(SafeBound, TheSummarysGammaSafeIsTheUsersGamma) {
   p.dt = 0.05;
   p.gamma = 0.002;
   const Model plain = compile_model(s.model, p);
-  const SafeBoundSummary unscaled = safe_bound_summary(plain, plain.rest, p.dt);
+  const SafeBoundSummary unscaled = safe_bound_summary(plain, plain.spec().rest, p.dt);
   EXPECT_FALSE(unscaled.gamma_scaled);
   EXPECT_NEAR(unscaled.gamma_safe, 0.039775, 1e-12);
   for (int a = 12; a <= 24; ++a)
     for (int b = 12; b <= 24; ++b) s.model.gamma_scale[static_cast<size_t>(a * 36 + b)] = 3;
   const Model m = compile_model(s.model, p);
-  const SafeBoundSummary sum = safe_bound_summary(m, m.rest, p.dt);
+  const SafeBoundSummary sum = safe_bound_summary(m, m.spec().rest, p.dt);
   EXPECT_TRUE(sum.gamma_scaled);
   EXPECT_NEAR(sum.gamma_safe, 0.039775 / 3, 1e-12);
-  EXPECT_EQ(m.gamma_scale[static_cast<size_t>(sum.gamma_node)], 3);
+  EXPECT_EQ(m.spec().gamma_scale[static_cast<size_t>(sum.gamma_node)], 3);
   // Just below it every node holds and the paper's step is stable; the exact limit lies above.
   Params below = p;
   below.gamma = 0.999 * sum.gamma_safe;
   const Model mb = compile_model(s.model, below);
-  EXPECT_EQ(safe_bound_summary(mb, mb.rest, p.dt).gamma_over, 0);
-  const ExactStability e = exact_stability(mb, mb.rest, below);
+  EXPECT_EQ(safe_bound_summary(mb, mb.spec().rest, p.dt).gamma_over, 0);
+  const ExactStability e = exact_stability(mb, mb.spec().rest, below);
   EXPECT_TRUE(e.stable);
   EXPECT_GT(e.gamma_hi, sum.gamma_safe);
   EXPECT_LT(e.gamma_hi, 0.039775 / 3 * 1.01);
@@ -201,16 +201,16 @@ TEST(SafeBound, SafePolicyKeepsTheLinearisedStepStableOnRandomMeshes) {
     if (!(r_max > 0)) continue;
     const double dt = 2.0 / std::sqrt(r_max) * (0.05 + 0.94 * u(rng));
     const double user = std::exp(std::log(1e-5) + u(rng) * std::log(1e7));  // 1e-5 .. 1e2
-    std::vector<double> gamma(m.rest.size(), 0.0), beyond(m.rest.size(), 0.0);
+    std::vector<double> gamma(m.spec().rest.size(), 0.0), beyond(m.spec().rest.size(), 0.0);
     for (size_t i = 0; i < gamma.size(); ++i) {
-      if (m.fixed[i]) continue;
+      if (m.spec().fixed[i]) continue;
       const double safe = safe_gamma(m.mass[i], dt, R[i]);
       ASSERT_GT(safe, 0);
-      const DampingChoice c = effective_damping(DampingPolicy::safe, user * m.gamma_scale[i],
+      const DampingChoice c = effective_damping(DampingPolicy::safe, user * m.spec().gamma_scale[i],
                                                 m.lower_bound[i], HUGE_VAL, 1, safe);
       gamma[i] = c.gamma;
       infeasible_nodes += c.unguaranteed;
-      clamped_down += user * m.gamma_scale[i] > safe;
+      clamped_down += user * m.spec().gamma_scale[i] > safe;
       EXPECT_LE(c.gamma, safe);
       beyond[i] = 1.02 * safe;
     }
@@ -258,7 +258,7 @@ TEST(SafeBound, FollowsACutAtTheNextStep) {
       incident.push_back(k);
   const Model cut = compile_model(without_springs(s.model, incident), s.params);
   EXPECT_EQ(incident.size(), 6u);  // 4 along the axes, 2 diagonals
-  EXPECT_EQ(cut.spring_count(), whole.spring_count() - 6);
+  EXPECT_EQ(cut.spec().spring_count(), whole.spec().spring_count() - 6);
   step(cut, s.params, st, ws);
   EXPECT_GT(ws.safe_bound[18 * 36 + 18], before[18 * 36 + 18]);
   EXPECT_GT(ws.safe_bound[19 * 36 + 19], before[19 * 36 + 19]);  // its diagonal neighbour

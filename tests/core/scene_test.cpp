@@ -80,8 +80,8 @@ force = [0, -0.5, 0.25]
   EXPECT_EQ(m.node_kappa[2 * 3 + 1], 10.0);
   EXPECT_EQ(m.node_kappa[1 * 3 + 1], 1.0);  // only its springs into the region are... 1x
   EXPECT_DOUBLE_EQ(m.lower_bound[2 * 3 + 1], 2 * std::sqrt(2.0 * 10.0));
-  EXPECT_EQ(m.external_force[2 * 3 + 1], Vec3(0, -0.5, 0.25));  // a load on the nodes inside
-  EXPECT_EQ(m.external_force[1 * 3 + 1], Vec3::Zero());
+  EXPECT_EQ(m.spec().external_force[2 * 3 + 1], Vec3(0, -0.5, 0.25));  // a load on the nodes inside
+  EXPECT_EQ(m.spec().external_force[1 * 3 + 1], Vec3::Zero());
 }
 
 }  // namespace

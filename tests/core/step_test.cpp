@@ -176,10 +176,10 @@ TEST(Step, ForcesAreTheSerialScatterSumsBitForBit) {
   Params p;
   const Model m = lattice(p);
   const State s = shaken(m);
-  std::vector<Vec3> want(m.rest.size());
-  for (size_t i = 0; i < want.size(); ++i) want[i] = -m.anchor_kappa[i] * (s.x[i] - m.rest[i]);
-  for (size_t k = 0; k < m.springs.size(); ++k) {
-    const Spring& sp = m.springs[k];
+  std::vector<Vec3> want(m.spec().rest.size());
+  for (size_t i = 0; i < want.size(); ++i) want[i] = -m.anchor_kappa[i] * (s.x[i] - m.spec().rest[i]);
+  for (size_t k = 0; k < m.spec().springs.size(); ++k) {
+    const Spring& sp = m.spec().springs[k];
     const Vec3 delta = s.x[size_t(sp.j)] - s.x[size_t(sp.i)];
     const double l = delta.norm();
     const Vec3 f = (m.spring_kappa[k] * (l - sp.rest_length) / l) * delta;
@@ -229,7 +229,7 @@ TEST(Step, ThreadsOwningNodeRangesAddCrossingSpringsInTheSerialOrder) {
     SpringPass pass;
     pass.threads.set_threads(threads);
     pass.threads.set_grain(1000);
-    ASSERT_EQ(pass.threads.chunks(m.springs.size()), threads);
+    ASSERT_EQ(pass.threads.chunks(m.spec().springs.size()), threads);
     std::vector<Vec3> f;
     std::vector<double> r;
     EXPECT_EQ(internal_forces(m, s.x, f, &pass), 2);
@@ -259,7 +259,7 @@ TEST(Step, AnyThreadCountGivesTheSameBits) {
         StepWorkspace ws;
         ws.pass.threads.set_threads(threads);
         ws.pass.threads.set_grain(1000);  // split this 9261-node model
-        ASSERT_GE(ws.pass.threads.chunks(m.rest.size()), 2);
+        ASSERT_GE(ws.pass.threads.chunks(m.spec().rest.size()), 2);
         for (int k = 0; k < 15; ++k) {
           const StepStats st = step(m, p, many, ws);
           ASSERT_EQ(std::memcmp(&st.max_displacement, &serial[size_t(k)].max_displacement,

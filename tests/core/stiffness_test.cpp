@@ -25,8 +25,9 @@ using test::grid_model;
 TEST(TangentStiffness, IsMinusTheForceJacobian) {
   Params p;
   p.kappa = 0.3;
-  Model m = grid_model(3, 3, p);
-  m.fixed[4] = 1;  // the middle node: its block must be absent
+  ModelSpec spec = grid_model(3, 3, p).spec();
+  spec.fixed[4] = 1;  // the middle node: its block must be absent
+  const Model m = compile_model(spec, p);
   const std::vector<Vec3> x = deformed(m, 0.2);  // stretched and compressed springs
   const SparseMatrix K = tangent_stiffness(m, x);
   const std::vector<int> block = free_blocks(m);
@@ -69,11 +70,11 @@ SparseMatrix tangent_stiffness_by_triplets(const Model& model, const std::vector
       for (int c = 0; c < 3; ++c)
         if (b[sym3(r, c)] != 0) t.emplace_back(3 * bi + r, 3 * bj + c, sign * b[sym3(r, c)]);
   };
-  for (size_t i = 0; i < model.rest.size(); ++i)
+  for (size_t i = 0; i < model.spec().rest.size(); ++i)
     if (block[i] >= 0 && model.anchor_kappa[i] > 0)
       for (int r = 0; r < 3; ++r) t.emplace_back(3 * block[i] + r, 3 * block[i] + r, model.anchor_kappa[i]);
-  for (size_t k = 0; k < model.springs.size(); ++k) {
-    const Spring& s = model.springs[k];
+  for (size_t k = 0; k < model.spec().springs.size(); ++k) {
+    const Spring& s = model.spec().springs[k];
     const Vec3 delta = x[static_cast<size_t>(s.j)] - x[static_cast<size_t>(s.i)];
     const double l = delta.norm();
     if (!(l > 0)) continue;
@@ -122,8 +123,8 @@ TEST(TangentStiffness, SameBitsAsTheTripletSum) {
   ModelSpec spec = make_grid(g);
   {
     const Model at_rest = compile_model(spec, p);
-    expect_same_bits(tangent_stiffness(at_rest, at_rest.rest),
-                     tangent_stiffness_by_triplets(at_rest, at_rest.rest, false));
+    expect_same_bits(tangent_stiffness(at_rest, at_rest.spec().rest),
+                     tangent_stiffness_by_triplets(at_rest, at_rest.spec().rest, false));
   }
   spec.fixed[0] = spec.fixed[5] = 1;
   for (size_t i = 0; i < spec.anchor_scale.size(); ++i) spec.anchor_scale[i] = (i % 3 == 0) ? 0 : 0.5 * static_cast<double>(i % 4);
@@ -132,18 +133,18 @@ TEST(TangentStiffness, SameBitsAsTheTripletSum) {
   add_spring(spec, 20, 27, 0.7);
   add_spring(spec, 3, 4, 1.0);
   Model model = compile_model(spec, p);
-  std::vector<Vec3> x = model.rest;
+  std::vector<Vec3> x = model.spec().rest;
   test::shake(x, 0.3, 11);
   x[4] = x[3];  // the spring (3, 4) has zero length
   int compressed = 0;
-  for (const Spring& s : model.springs)
+  for (const Spring& s : model.spec().springs)
     compressed += (x[static_cast<size_t>(s.j)] - x[static_cast<size_t>(s.i)]).norm() < s.rest_length;
   ASSERT_GT(compressed, 0);
   for (bool clamp : {false, true})
     expect_same_bits(tangent_stiffness(model, x, clamp), tangent_stiffness_by_triplets(model, x, clamp));
   // The deformed model at rest: the doubled and the added springs, still exact zeros.
-  expect_same_bits(tangent_stiffness(model, model.rest),
-                   tangent_stiffness_by_triplets(model, model.rest, false));
+  expect_same_bits(tangent_stiffness(model, model.spec().rest),
+                   tangent_stiffness_by_triplets(model, model.spec().rest, false));
 }
 
 TEST(TangentStiffness, SameBitsOnAnyThreadCount) {
@@ -155,7 +156,7 @@ TEST(TangentStiffness, SameBitsOnAnyThreadCount) {
   for (size_t i = 0; i < spec.fixed.size(); i += 997) spec.fixed[i] = 1;
   for (size_t i = 0; i < spec.anchor_scale.size(); i += 5) spec.anchor_scale[i] = 0;
   const Model model = compile_model(spec, p);
-  std::vector<Vec3> x = model.rest;
+  std::vector<Vec3> x = model.spec().rest;
   test::shake(x, 0.2, 5);
   for (bool clamp : {false, true}) {
     const SparseMatrix one = tangent_stiffness(model, x, clamp, 1);

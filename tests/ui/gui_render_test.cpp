@@ -101,7 +101,7 @@ TEST(GuiRender, ARememberedHostileSceneDoesNotStopTheNextStart) {
   ASSERT_FALSE(app.warnings().empty());
   EXPECT_NE(app.warnings().front().find("more than 64 parts"), std::string::npos)
       << app.warnings().front();
-  EXPECT_EQ(app.tuner().session().model().node_count(), 1296);  // the paper plane
+  EXPECT_EQ(app.tuner().session().model().spec().node_count(), 1296);  // the paper plane
   fs::remove_all(config);
 }
 

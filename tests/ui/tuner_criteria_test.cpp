@@ -373,14 +373,14 @@ TEST(TunerSuggest, IsForTheMeshAsCut) {
   whole.start(t.session());
   whole.wait();
   ASSERT_TRUE(whole.result().has_value()) << whole.error();
-  EXPECT_EQ(whole.result()->springs, t.session().model().spring_count());
+  EXPECT_EQ(whole.result()->springs, t.session().model().spec().spring_count());
   EXPECT_EQ(whole.result()->springs_cut, 0);
   // Cut every spring of the node in the middle of the grid: the suggestion is computed (and
   // its runs verified) on the mesh without them.
   std::vector<int> around;
   const Model& m = t.session().model();
-  for (int k = 0; k < m.spring_count(); ++k) {
-    const Spring& sp = m.springs[static_cast<size_t>(k)];
+  for (int k = 0; k < m.spec().spring_count(); ++k) {
+    const Spring& sp = m.spec().springs[static_cast<size_t>(k)];
     if (sp.i == t.session().watched() || sp.j == t.session().watched()) around.push_back(k);
   }
   ASSERT_EQ(t.cut(around), 6);
@@ -425,7 +425,7 @@ TEST(TunerCriteriaOtherDamping, TheExactLimitFollowsDashpotsAndRayleighDamping) 
     ASSERT_TRUE(t.set_params(p));
     const std::optional<double> got = exact_now();
     const Model& m = t.session().model();
-    const GeneralLimits want = general_limits(m, m.rest, p);
+    const GeneralLimits want = general_limits(m, m.spec().rest, p);
     ASSERT_TRUE(got.has_value());
     EXPECT_EQ(*got, want.gamma_max);
     EXPECT_LT(*got, *nodal);  // more damping elsewhere leaves less room for gamma

@@ -81,7 +81,7 @@ TEST(TunerMap, LowerBoundCheckNamesTheWorstNode) {
   EXPECT_EQ(c.below, 169);  // the 13 x 13 stiff square
   EXPECT_EQ(c.nodes, 1296);
   EXPECT_NEAR(c.ratio, 0.005 / (2 * std::sqrt(0.004 * 0.01)), 1e-12);
-  EXPECT_TRUE(t.session().model().mass_scale[static_cast<size_t>(c.worst)] == 4.0);
+  EXPECT_TRUE(t.session().model().spec().mass_scale[static_cast<size_t>(c.worst)] == 4.0);
   Tuner u(small_plane());
   const LowerBoundCheck d = check_lower_bound(u.session().model());
   EXPECT_TRUE(d.uniform);

@@ -252,7 +252,7 @@ TEST(TunerExport, WritesFilesAtomicallyAndRejectsBadPrefixes) {
   EXPECT_TRUE(std::filesystem::exists(p.runs_csv));
   // The current step for ParaView: the tiny scene's nodes and springs at iteration 3.
   const std::string vtu = read_file_text(p.step_vtu);
-  EXPECT_NE(vtu.find("NumberOfPoints=\"" + std::to_string(t.session().model().node_count())),
+  EXPECT_NE(vtu.find("NumberOfPoints=\"" + std::to_string(t.session().model().spec().node_count())),
             std::string::npos);
   EXPECT_NE(vtu.find("Name=\"effective_damping\""), std::string::npos);
   int files = 0;

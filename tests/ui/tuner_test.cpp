@@ -54,9 +54,9 @@ TEST(Tuner, AScenesZetaIsResolvedWhenTheTunerOpensIt) {
 /// Every free node's zeta_i = gamma_i / 2 sqrt(m_i kappa_i) equals `zeta` (nodes with a bound).
 void expect_every_node_at_zeta(const Model& m, double zeta) {
   int nodes = 0;
-  for (int i = 0; i < m.node_count(); ++i) {
+  for (int i = 0; i < m.spec().node_count(); ++i) {
     const auto k = static_cast<size_t>(i);
-    if (m.fixed[k] || !(m.lower_bound[k] > 0)) continue;
+    if (m.spec().fixed[k] || !(m.lower_bound[k] > 0)) continue;
     ++nodes;
     ASSERT_NEAR(m.gamma[k] / m.lower_bound[k], zeta, 1e-12 * zeta) << "node " << i;
   }
@@ -307,14 +307,14 @@ TEST(Tuner, TheScenesOwnCutChangesTheTopology) {
   s.cuts.push_back({4, {2.6, -1}, {2.6, 10}});  // along x = 2.6 cm after 4 steps
   Tuner t(s);
   t.criteria_state().set_slow_threshold(1e9);  // counts analyses: no throttle, however slow
-  const int springs = t.session().model().spring_count();
+  const int springs = t.session().model().spec().spring_count();
   ASSERT_NE(t.exact(), nullptr);
   const int runs = t.criteria_state().exact_runs();
   const auto topo = t.topology();
   t.step(4);
   EXPECT_EQ(t.topology(), topo);  // no cut yet
   t.step(1);
-  EXPECT_LT(t.session().model().spring_count(), springs);
+  EXPECT_LT(t.session().model().spec().spring_count(), springs);
   EXPECT_NE(t.topology(), topo);
   ASSERT_NE(t.exact(), nullptr);
   EXPECT_EQ(t.criteria_state().exact_runs(), runs + 1);  // analysed again, on the cut mesh
@@ -328,7 +328,7 @@ TEST(Tuner, CutWithTheScreenToolWhileRunningAndTheBoundsReact) {
   // Look down on the mesh and drag a line across the middle, as the mesh view does.
   OrbitCamera cam;
   Vec3f lo, hi;
-  bounding_box(t.session().model().rest, lo, hi);
+  bounding_box(t.session().model().spec().rest, lo, hi);
   cam.fit(lo, hi);
   cam.pitch = 1.2f;
   const Viewport vp{0, 0, 800, 600};
@@ -339,11 +339,11 @@ TEST(Tuner, CutWithTheScreenToolWhileRunningAndTheBoundsReact) {
   const ScreenPoint b = project(m, vp, Vec3f(mid, 0, hi.z() + 1));
   const auto springs =
       springs_crossing_screen(t.session().model(), pts, Vec2f(a.x, a.y), Vec2f(b.x, b.y));
-  const int before = t.session().model().spring_count();
+  const int before = t.session().model().spec().spring_count();
   const auto topo = t.topology();
   ASSERT_GT(springs.size(), 5u);
   EXPECT_EQ(t.cut(springs), static_cast<int>(springs.size()));
-  EXPECT_EQ(t.session().model().spring_count(), before - static_cast<int>(springs.size()));
+  EXPECT_EQ(t.session().model().spec().spring_count(), before - static_cast<int>(springs.size()));
   EXPECT_NE(t.topology(), topo);
   EXPECT_EQ(t.session().springs_cut(), static_cast<int>(springs.size()));
   // Next step: the forces changed, so the upper bound (eq. 6) of the watched node changes.
@@ -353,7 +353,7 @@ TEST(Tuner, CutWithTheScreenToolWhileRunningAndTheBoundsReact) {
   EXPECT_NE(t.session().trace().back().watched.upper, twin.session().trace().back().watched.upper);
   // A reset brings the springs back.
   t.reset();
-  EXPECT_EQ(t.session().model().spring_count(), before);
+  EXPECT_EQ(t.session().model().spec().spring_count(), before);
 }
 
 TEST(Tuner, ReducedTraceFollowsTheSession) {

@@ -26,7 +26,7 @@ TEST(TunerWorst, ListsCoresWorstNodesAtRestAndFollowsChanges) {
   TunerWorst w;
   const WorstNodes& got = w.get(t.session(), t.topology(), 7);
   const Model& m = t.session().model();
-  const WorstNodes want = worst_nodes(m, m.rest, t.params().dt, 7);
+  const WorstNodes want = worst_nodes(m, m.spec().rest, t.params().dt, 7);
   ASSERT_EQ(got.by_dt.size(), 7u);
   expect_same(got.by_dt, want.by_dt);
   expect_same(got.by_gamma, want.by_gamma);
@@ -40,7 +40,7 @@ TEST(TunerWorst, ListsCoresWorstNodesAtRestAndFollowsChanges) {
   ASSERT_TRUE(t.set_params(p));
   const WorstNodes& again = w.get(t.session(), t.topology(), 7);
   EXPECT_EQ(w.computations(), 2);
-  expect_same(again.by_gamma, worst_nodes(m, m.rest, p.dt, 7).by_gamma);
+  expect_same(again.by_gamma, worst_nodes(m, m.spec().rest, p.dt, 7).by_gamma);
   t.cut({0, 1, 2});
   w.get(t.session(), t.topology(), 7);
   EXPECT_EQ(w.computations(), 3);

@@ -95,8 +95,8 @@ IndexProof index_proof(const Model& model, const Params& params, const std::vect
   IndexProof p;
   const double h = params.dt;
   for (size_t i = 0; i < bound.size(); ++i) {
-    if (model.fixed[i]) continue;
-    const double r = bound[i] * (1 + 1e-12), m = model.mass[i], scale = model.gamma_scale[i];
+    if (model.spec().fixed[i]) continue;
+    const double r = bound[i] * (1 + 1e-12), m = model.mass[i], scale = model.spec().gamma_scale[i];
     const double gamma_i = params.gamma * scale, safe = safe_gamma(m, h, r);
     p.top = std::max(p.top, h * h * r + 2 * h * gamma_i / m);
     if (scale > 0)

@@ -28,7 +28,7 @@ struct Incident {
 Incident incident(const Model& model, int e) {
   const int k = model.incident[static_cast<size_t>(e)];
   const size_t spring = static_cast<size_t>(k >= 0 ? k : ~k);
-  const Spring& s = model.springs[spring];
+  const Spring& s = model.spec().springs[spring];
   return {spring, static_cast<size_t>(k >= 0 ? s.j : s.i)};
 }
 
@@ -40,7 +40,7 @@ IndexPatch::IndexPatch(const Model& model, const std::vector<Vec3>& x, const Spa
     : A_(A) {
   int nfree = 0;
   const std::vector<int> block = free_blocks(model, &nfree);
-  const size_t n = model.rest.size();
+  const size_t n = model.spec().rest.size();
   if (!(at_least > 0) || ceiling.size() != n || R.size() != 3 * nfree) return;
   // The seeds, then `layers` rings of neighbours through the springs.
   std::vector<char> in(n, 0);

@@ -300,14 +300,14 @@ TEST(Criteria, OverTheBudgetAStepProvedUnstableWithoutAFactorisationIsBeyond) {
   ModelSpec undamped = make_grid(GridSpec{14, 14, 0.57, true, true});
   std::fill(undamped.gamma_scale.begin(), undamped.gamma_scale.end(), 0.0);
   const Model u = compile_model(undamped, p);
-  const auto none = all_criteria(u, rest_state(u), p, exact_stability(u, u.rest, p, tight));
+  const auto none = all_criteria(u, rest_state(u), p, exact_stability(u, u.spec().rest, p, tight));
   EXPECT_NE(find(none, "exact gamma interval").test.find("no gamma is proved unstable at this dt"),
             std::string::npos)
       << find(none, "exact gamma interval").test;
   // Forward Euler on that mesh is unstable whatever gamma: no rate damps it.
   Params fe = p;
   fe.integrator = Integrator::forward_euler;
-  const auto any = all_criteria(u, rest_state(u), fe, exact_stability(u, u.rest, fe, tight));
+  const auto any = all_criteria(u, rest_state(u), fe, exact_stability(u, u.spec().rest, fe, tight));
   EXPECT_EQ(find(any, "exact gamma interval").verdict, CriterionVerdict::beyond);
   EXPECT_NE(find(any, "exact gamma interval").test.find("every gamma is unstable at this dt"),
             std::string::npos)

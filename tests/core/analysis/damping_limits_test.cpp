@@ -40,12 +40,12 @@ ModelSpec plane(int n, std::mt19937& rng, bool random_scales) {
 double radius(const Model& model, const std::vector<Vec3>& x, const std::vector<double>& gamma,
               double dt) {
   const Eigen::MatrixXd K = Eigen::MatrixXd(tangent_stiffness(model, x));
-  std::vector<double> zero(model.rest.size(), 0.0);
+  std::vector<double> zero(model.spec().rest.size(), 0.0);
   Eigen::MatrixXd C = Eigen::MatrixXd(spring_damping_matrix(model, x));
   const long n = K.rows();
   Eigen::VectorXd minv(n);
-  for (size_t i = 0, b = 0; i < model.rest.size(); ++i) {
-    if (model.fixed[i]) continue;
+  for (size_t i = 0, b = 0; i < model.spec().rest.size(); ++i) {
+    if (model.spec().fixed[i]) continue;
     for (int r = 0; r < 3; ++r) {
       minv(static_cast<long>(3 * b + r)) = 1 / model.mass[i];
       C(static_cast<long>(3 * b + r), static_cast<long>(3 * b + r)) += gamma[i];
@@ -64,8 +64,8 @@ double radius(const Model& model, const std::vector<Vec3>& x, const std::vector<
 }
 
 std::vector<double> scaled(const Model& model, double gamma) {
-  std::vector<double> g(model.rest.size());
-  for (size_t i = 0; i < g.size(); ++i) g[i] = gamma * model.gamma_scale[i];
+  std::vector<double> g(model.spec().rest.size());
+  for (size_t i = 0; i < g.size(); ++i) g[i] = gamma * model.spec().gamma_scale[i];
   return g;
 }
 
@@ -83,7 +83,7 @@ TEST(DampingLimits, ExactLimitsMatchTheDenseAmplificationMatrix) {
     p.rayleigh_stiffness = c.beta;
     p.gamma = 0.001;
     const Model model = compile_model(plane(4, rng, c.random), p);
-    const std::vector<Vec3> x = model.rest;
+    const std::vector<Vec3> x = model.spec().rest;
     const GeneralLimits g = general_limits(model, x, p);
     ASSERT_GT(g.dt_max, 0);
     EXPECT_LE(radius(model, x, scaled(model, p.gamma), g.dt_max * 0.999), 1 + 1e-9);
@@ -102,7 +102,7 @@ TEST(DampingLimits, TheIssuesPlaneNumbers) {
   p.gamma = 0;
   p.kd = 0.002;
   const Model dashpot = compile_model(plane(8, rng, false), p);
-  EXPECT_NEAR(general_limits(dashpot, dashpot.rest, p).dt_max, 0.1289, 5e-4);
+  EXPECT_NEAR(general_limits(dashpot, dashpot.spec().rest, p).dt_max, 0.1289, 5e-4);
 }
 
 TEST(DampingLimits, SafeBoundHoldsOnRandomMeshes) {
@@ -118,18 +118,18 @@ TEST(DampingLimits, SafeBoundHoldsOnRandomMeshes) {
     p.rayleigh_mass = 0.5 * u(rng);
     p.rayleigh_stiffness = 0.05 * u(rng);
     const Model model = compile_model(plane(3, rng, true), p);
-    std::vector<Vec3> x = model.rest;
+    std::vector<Vec3> x = model.spec().rest;
     for (Vec3& xi : x) xi = 1.05 * xi + 0.005 * Vec3(u(rng), u(rng), u(rng));
     ASSERT_TRUE(psd_floor(model, x).has_value()) << "trial " << trial;
     const DampedSafeRows rows(model, x);
     double dt_cap = 1e300;  // the largest dt every node's margin allows at gamma_i = 0
     for (size_t i = 0; i < x.size(); ++i)
-      if (!model.fixed[i]) dt_cap = std::min(dt_cap, rows.dt_safe(static_cast<int>(i), 0.0));
+      if (!model.spec().fixed[i]) dt_cap = std::min(dt_cap, rows.dt_safe(static_cast<int>(i), 0.0));
     ASSERT_TRUE(dt_cap > 0 && dt_cap < 1e300) << "trial " << trial;
     p.dt = dt_cap * (0.2 + 0.7 * u(rng));
-    std::vector<double> gamma(model.rest.size(), 0.0);
+    std::vector<double> gamma(model.spec().rest.size(), 0.0);
     for (size_t i = 0; i < gamma.size(); ++i) {
-      if (model.fixed[i]) continue;
+      if (model.spec().fixed[i]) continue;
       const double safe = rows.gamma_safe(static_cast<int>(i), p.dt);
       ASSERT_GT(safe, 0) << "trial " << trial << " node " << i;
       gamma[i] = safe * u(rng);  // the safe policy keeps gamma_i below gamma_safe_i
@@ -138,7 +138,7 @@ TEST(DampingLimits, SafeBoundHoldsOnRandomMeshes) {
     // dt_safe at those gammas: every node holds, so the step is stable there too.
     double dt = 1e300;
     for (size_t i = 0; i < gamma.size(); ++i)
-      if (!model.fixed[i]) dt = std::min(dt, rows.dt_safe(static_cast<int>(i), gamma[i]));
+      if (!model.spec().fixed[i]) dt = std::min(dt, rows.dt_safe(static_cast<int>(i), gamma[i]));
     EXPECT_GE(dt, p.dt * (1 - 1e-12));
     EXPECT_LE(radius(model, x, gamma, dt * 0.999), 1 + 1e-9) << "trial " << trial;
     ++checked;
@@ -152,8 +152,8 @@ TEST(DampingLimits, ZeroDampingKeepsSpec9) {
   const Model model = compile_model(plane(3, rng, true), p);
   EXPECT_FALSE(model.spring_damping);
   std::vector<double> R;
-  safe_row_sums(model, model.rest, R);
-  const DampedSafeRows rows(model, model.rest);
+  safe_row_sums(model, model.spec().rest, R);
+  const DampedSafeRows rows(model, model.spec().rest);
   for (size_t i = 0; i < R.size(); ++i) {
     EXPECT_NEAR(rows.gamma_safe(static_cast<int>(i), p.dt), safe_gamma(model.mass[i], p.dt, R[i]),
                 1e-12 * model.mass[i] / p.dt);
@@ -174,7 +174,7 @@ TEST(DampingLimits, StepsOnePassEqualsTheRows) {
   p.rayleigh_mass = 0.2;
   p.rayleigh_stiffness = 0.01;
   const Model model = compile_model(plane(4, rng, true), p);
-  std::vector<Vec3> x = model.rest;
+  std::vector<Vec3> x = model.spec().rest;
   for (Vec3& xi : x) xi += Vec3(0.03, -0.02, 0.01);
   x[5] += Vec3(0.1, 0.2, -0.1);
   std::vector<double> g;

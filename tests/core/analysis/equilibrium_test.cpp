@@ -39,7 +39,7 @@ double largest_gap(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
 TEST(Equilibrium, ASlackChainPulledDownSettlesWhereADampedRunDoes) {
   Params p;  // m = kappa = 0.001
   const Model m = compile_model(test::loaded_chain(0.0005), p);
-  const NetForce at_rest = net_force(m, m.rest);
+  const NetForce at_rest = net_force(m, m.spec().rest);
   EXPECT_DOUBLE_EQ(at_rest.largest, 0.0005);  // the load itself: no spring is stretched
   EXPECT_FALSE(at_rest.balanced());
   const Equilibrium e = static_equilibrium(m);
@@ -47,8 +47,8 @@ TEST(Equilibrium, ASlackChainPulledDownSettlesWhereADampedRunDoes) {
   EXPECT_LE(e.net.largest, 1e-10 * e.net.scale);
   EXPECT_GT(e.iterations, 1);
   EXPECT_LT(e.x[6].y(), -0.1);  // it sags
-  EXPECT_EQ(e.x[0], m.rest[0]);  // fixed ends stay
-  EXPECT_EQ(e.x[11], m.rest[11]);
+  EXPECT_EQ(e.x[0], m.spec().rest[0]);  // fixed ends stay
+  EXPECT_EQ(e.x[11], m.spec().rest[11]);
   EXPECT_LT(largest_gap(e.x, settled(test::loaded_chain(0.0005), p, e.x, 20000)), 1e-9);
 }
 
@@ -58,8 +58,8 @@ TEST(Equilibrium, AMeshAlreadyInEquilibriumStaysAtRest) {
   const Equilibrium e = static_equilibrium(m);
   EXPECT_TRUE(e.converged);
   EXPECT_EQ(e.iterations, 0);
-  EXPECT_EQ(e.x, m.rest);
-  EXPECT_TRUE(net_force(m, m.rest).balanced());
+  EXPECT_EQ(e.x, m.spec().rest);
+  EXPECT_TRUE(net_force(m, m.spec().rest).balanced());
 }
 
 TEST(Equilibrium, APreStretchedLoadedMembraneSettlesWhereADampedRunDoes) {
@@ -92,7 +92,7 @@ TEST(Equilibrium, APreStretchedLoadedMembraneSettlesWhereADampedRunDoes) {
   EXPECT_LT(largest_gap(e.x, settled(s, p, e.x, 20000)), 1e-9);
   // The analysis there differs from the one at rest: the load adds to the tension.
   EXPECT_NE(exact_stability(m, e.x, p).spectrum.lambda_max,
-            exact_stability(m, m.rest, p).spectrum.lambda_max);
+            exact_stability(m, m.spec().rest, p).spectrum.lambda_max);
   // Over a factorisation budget nothing is factorised.
   EquilibriumOptions tight;
   tight.max_factor_flops = 1;

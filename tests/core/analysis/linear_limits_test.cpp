@@ -24,7 +24,7 @@ void expect_rel(double a, double b, double tol, const char* what) {
 
 /// The scene's model, its K at rest and the two analyses side by side.
 void compare(const Model& model, const Params& p) {
-  const std::vector<Vec3>& x = model.rest;
+  const std::vector<Vec3>& x = model.spec().rest;
   const SparseMatrix K = tangent_stiffness(model, x);
   MatrixModel mm;
   mm.K = &K;
@@ -105,7 +105,7 @@ TEST(LinearLimits, ADampingMatrixGivesTheScenesGeneralLimits) {
   p.rayleigh_mass = 0.01;
   p.rayleigh_stiffness = 0.001;
   const Model model = compile_model(scene.model, p);
-  const std::vector<Vec3>& x = model.rest;
+  const std::vector<Vec3>& x = model.spec().rest;
   const SparseMatrix K = tangent_stiffness(model, x);
   const SparseMatrix C = spring_damping_matrix(model, x);
   MatrixModel mm;

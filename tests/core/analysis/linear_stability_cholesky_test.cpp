@@ -38,7 +38,7 @@ Model plane_model(int n) {
 
 SparseMatrix plane_matrix(int n, double deform) {
   const Model m = plane_model(n);
-  std::vector<Vec3> x = m.rest;
+  std::vector<Vec3> x = m.spec().rest;
   test::shake(x, deform, 3);
   return mass_weighted(m, tangent_stiffness(m, x));
 }
@@ -56,7 +56,7 @@ TEST(Gershgorin, PaperPlaneRowSumsAreSpec9sBound) {
   p.m = 0.001;
   p.kappa = 0.001;
   const Model m = compile_model(make_grid(GridSpec{12, 12, 0.57, true, true}), p);
-  const SparseMatrix A = mass_weighted(m, tangent_stiffness(m, m.rest));
+  const SparseMatrix A = mass_weighted(m, tangent_stiffness(m, m.spec().rest));
   const GershgorinBounds g = gershgorin_bounds(A);
   EXPECT_NEAR(g.hi, 9.0, 1e-12);
   const Eigen::VectorXd ev = dense_eigenvalues(A);
@@ -112,7 +112,7 @@ TEST(CertifiedEigenvalue, BothEndsFromOneAnalysisGiveTheBitsOfSeparateCalls) {
   // under the top), so with -A the bottom end, which reuses the top's factorisations, retries
   // its shift as a lone call would.
   const Model block = compile_model(bench::tet_block(20, 20, 20), Params{});
-  const SparseMatrix negated_block = -mass_weighted(block, tangent_stiffness(block, block.rest));
+  const SparseMatrix negated_block = -mass_weighted(block, tangent_stiffness(block, block.spec().rest));
   EXPECT_GE(certified_largest_eigenvalue(-negated_block).factorizations, 3);
   for (const SparseMatrix& A : {plane_matrix(14, 0.0), plane_matrix(14, 0.2), negated_block}) {
     const CertifiedSpectrum both = certified_spectrum(A);
@@ -133,7 +133,7 @@ TEST(CertifiedEigenvalue, PaperPlaneLambdaMax) {
   // The paper plane (SPEC 5) at kappa = m: lambda_max = 7.8123249218733 (docs/criteria.md).
   const SceneSpec s = paper_plane_scene();
   const Model m = compile_model(s.model, s.params);
-  const SparseMatrix A = mass_weighted(m, tangent_stiffness(m, m.rest));
+  const SparseMatrix A = mass_weighted(m, tangent_stiffness(m, m.spec().rest));
   const EigenInterval r = certified_largest_eigenvalue(A);
   EXPECT_LE(r.lo, 7.8123249218733 + 1e-12);
   EXPECT_GE(r.hi, 7.8123249218733 - 1e-12);
@@ -166,9 +166,9 @@ TEST(CertifiedEigenvalue, AProvedFloorPinsTheSmallestWithoutFactorising) {
   // A flat plane at rest: its out-of-plane rows hold only the anchors, so lambda_min is the
   // anchor rate kappa_a/m, which psd_floor proves and the smallest diagonal entry attains.
   const Model m = plane_model(12);
-  const SparseMatrix A = mass_weighted(m, tangent_stiffness(m, m.rest));
+  const SparseMatrix A = mass_weighted(m, tangent_stiffness(m, m.spec().rest));
   ASSERT_GT(A.rows(), 400);  // past the dense path
-  const std::optional<double> floor = psd_floor(m, m.rest);
+  const std::optional<double> floor = psd_floor(m, m.spec().rest);
   ASSERT_TRUE(floor.has_value());
   const Eigen::VectorXd ev = dense_eigenvalues(A);
   const GershgorinBounds g = gershgorin_bounds(A);
@@ -227,7 +227,7 @@ TEST(CertifiedEigenvalue, ABudgetStopsBeforeFactorising) {
 TEST(CertifiedEigenvalue, WorkBesideTheEstimateGivesTheBitsOfOneThread) {
   const Params p;
   const Model block = compile_model(bench::tet_block(9, 9, 9), p);
-  std::vector<Vec3> x = block.rest;
+  std::vector<Vec3> x = block.spec().rest;
   test::shake(x, 0.01, 17);
   for (const SparseMatrix& A :
        {plane_matrix(30, 0.2), mass_weighted(block, tangent_stiffness(block, x))}) {
@@ -370,7 +370,7 @@ void expect_two_at_once_give_the_bits_of_one(const SparseMatrix& A, int rounds) 
 
 SparseMatrix block_matrix(int n) {
   const Model m = compile_model(bench::tet_block(n, n, n), Params{});
-  return mass_weighted(m, tangent_stiffness(m, m.rest));
+  return mass_weighted(m, tangent_stiffness(m, m.spec().rest));
 }
 
 TEST(CertifiedEigenvalue, CallsFromTwoThreadsAtOnceGiveTheBitsOfOne) {

@@ -42,13 +42,13 @@ struct PlaneOverBudget {
     return q;
   }();
   Model model = compile_model(plane_with_masses_12x_apart(), p);
-  ExactStability free = exact_stability(model, model.rest, p);
+  ExactStability free = exact_stability(model, model.spec().rest, p);
   ExactOptions tight = [] {
     ExactOptions o;
     o.max_factor_flops = 1;
     return o;
   }();
-  ExactStability over = exact_stability(model, model.rest, p, tight);
+  ExactStability over = exact_stability(model, model.spec().rest, p, tight);
 };
 
 /// Two exact analyses that should agree bit for bit: the method, both ends of the spectrum,
@@ -71,7 +71,7 @@ struct TwoNode {
 
 TEST(LinearStabilityExact, TwoNodeClosedForms) {
   const TwoNode t;
-  const ExactStability e = exact_stability(t.model, t.model.rest, t.params);
+  const ExactStability e = exact_stability(t.model, t.model.spec().rest, t.params);
   EXPECT_EQ(e.method, ExactMethod::per_mode);
   EXPECT_STREQ(to_string(e.method), "per-mode (uniform gamma/m)");
   EXPECT_TRUE(e.uniform_rate);
@@ -106,7 +106,7 @@ TEST(LinearStabilityExact, TwoNodeOtherIntegratorsClosedForms) {
                        Case{Integrator::rk4, 2.785293563405282 / 2}}) {
     TwoNode t;
     t.params.integrator = k.integrator;
-    const ExactStability e = exact_stability(t.model, t.model.rest, t.params);
+    const ExactStability e = exact_stability(t.model, t.model.spec().rest, t.params);
     SCOPED_TRACE(to_string(k.integrator));
     EXPECT_EQ(e.method, ExactMethod::per_mode);
     EXPECT_TRUE(e.stable);
@@ -132,7 +132,7 @@ TEST(LinearStabilityExact, EveryVerdictAgreesWithItsLimitsAndItsInnerEndsOnTheSc
       Params p = scene.params;
       p.integrator = i;
       const Model model = compile_model(scene.model, p);
-      const ExactStability e = exact_stability(model, model.rest, p);
+      const ExactStability e = exact_stability(model, model.spec().rest, p);
       SCOPED_TRACE(std::string(name) + " " + to_string(i));
       EXPECT_LE(e.spectrum.lambda_min, e.lambda_min_hi);
       EXPECT_NEAR(e.lambda_min_hi, e.spectrum.lambda_min, 1e-8 * e.spectrum.lambda_max);
@@ -164,7 +164,7 @@ TEST(LinearStabilityExact, EveryVerdictAgreesWithItsLimitsAndItsInnerEndsOnTheSc
 TEST(LinearStabilityExact, ImplicitEulerIsUnconditional) {
   TwoNode t;
   t.params.integrator = Integrator::implicit_euler;
-  const ExactStability e = exact_stability(t.model, t.model.rest, t.params);
+  const ExactStability e = exact_stability(t.model, t.model.spec().rest, t.params);
   EXPECT_EQ(e.method, ExactMethod::unconditional);
   EXPECT_TRUE(e.stable);
   EXPECT_TRUE(std::isinf(e.gamma_hi));
@@ -174,8 +174,8 @@ TEST(LinearStabilityExact, ImplicitEulerIsUnconditional) {
 
 TEST(LinearStabilityExact, SpectralRadiusAtAnotherGamma) {
   const TwoNode t;
-  const ExactStability e = exact_stability(t.model, t.model.rest, t.params);
-  const SparseMatrix A = mass_weighted(t.model, tangent_stiffness(t.model, t.model.rest));
+  const ExactStability e = exact_stability(t.model, t.model.spec().rest, t.params);
+  const SparseMatrix A = mass_weighted(t.model, tangent_stiffness(t.model, t.model.spec().rest));
   // gamma = 0: c = 0, the undamped x mode has |z| = 1.
   EXPECT_NEAR(spectral_radius_at(t.model, A, e, t.params, 0.0).rho, 1.0, 1e-12);
   EXPECT_NEAR(spectral_radius_at(t.model, A, e, t.params, 0.002).rho, 0.96, 1e-9);
@@ -203,7 +203,7 @@ TEST(LinearStabilityExact, UnequalMassesTakeTheSymmetricIndex) {
   p.m = 0.001, p.kappa = 0.001, p.gamma = 0.002, p.dt = 0.05;
   p.policy = DampingPolicy::fixed;
   const Model m = compile_model(spec, p);
-  const ExactStability e = exact_stability(m, m.rest, p);
+  const ExactStability e = exact_stability(m, m.spec().rest, p);
   EXPECT_EQ(e.method, ExactMethod::symmetric_index);
   EXPECT_FALSE(e.uniform_rate);
   EXPECT_DOUBLE_EQ(e.rate_min, 1.0);  // gamma / (2 m)
@@ -231,14 +231,14 @@ TEST(LinearStabilityExact, WhetherNoDampingIsUnstableComesFromTheSpectrumAsFromT
   p.policy = DampingPolicy::fixed;
   const Model model = compile_model(plane_with_masses_12x_apart(), p);  // 588 rows: factored
   const Eigen::MatrixXd dense =
-      Eigen::MatrixXd(mass_weighted(model, tangent_stiffness(model, model.rest)));
+      Eigen::MatrixXd(mass_weighted(model, tangent_stiffness(model, model.spec().rest)));
   const double lambda_max =
       Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(dense).eigenvalues().maxCoeff();
   const double edge = 2 / std::sqrt(lambda_max);
   for (const double factor : {1 + 1e-3, 1 + 1e-6, 1 - 1e-6, 1 - 1e-3}) {
     Params q = p;
     q.dt = edge * factor;
-    const ExactStability e = exact_stability(model, model.rest, q);
+    const ExactStability e = exact_stability(model, model.spec().rest, q);
     ASSERT_EQ(e.method, ExactMethod::symmetric_index);
     EXPECT_LE(e.lambda_max_lo, lambda_max * (1 + 1e-12));
     EXPECT_GE(e.spectrum.lambda_max, lambda_max * (1 - 1e-12));
@@ -260,11 +260,11 @@ TEST(LinearStabilityExact, NewtonsLimitsAreTheIndexRootsToNineDigits) {
   p.gamma = 0.02;
   p.policy = DampingPolicy::fixed;
   const Model model = compile_model(plane_with_masses_12x_apart(), p);
-  const ExactStability e = exact_stability(model, model.rest, p);
+  const ExactStability e = exact_stability(model, model.spec().rest, p);
   ASSERT_EQ(e.method, ExactMethod::symmetric_index);
   const Eigen::MatrixXd A =
-      Eigen::MatrixXd(mass_weighted(model, tangent_stiffness(model, model.rest)));
-  const Eigen::VectorXd R = damping_rates(model, model.gamma_scale);
+      Eigen::MatrixXd(mass_weighted(model, tangent_stiffness(model, model.spec().rest)));
+  const Eigen::VectorXd R = damping_rates(model, model.spec().gamma_scale);
   const auto index = [&](double gamma, double h) {
     Eigen::MatrixXd S = h * h * A;
     S.diagonal() += 2 * h * gamma * R;
@@ -294,8 +294,8 @@ TEST(LinearStabilityExact, TheRadiusBesideTheFactorisationsGivesTheBitsOfOneThre
     ExactOptions one, two;
     one.threads = 1;
     two.threads = 2;
-    const ExactStability a = exact_stability(model, model.rest, p, one);
-    const ExactStability b = exact_stability(model, model.rest, p, two);
+    const ExactStability a = exact_stability(model, model.spec().rest, p, one);
+    const ExactStability b = exact_stability(model, model.spec().rest, p, two);
     ASSERT_FALSE(a.uniform_rate);
     ASSERT_FALSE(std::isnan(a.spectral_radius)) << to_string(integrator);
     expect_same_numbers(a, b);
@@ -309,11 +309,11 @@ TEST(LinearStabilityExact, TheRadiusBesideTheFactorisationsGivesTheBitsOfOneThre
 TEST(LinearStabilityExact, OverTheFactorisationBudgetNothingIsComputed) {
   Params p;
   const Model model = compile_model(make_grid(GridSpec{14, 14, 0.57, true, true}), p);  // 588 rows
-  const ExactStability free = exact_stability(model, model.rest, p);
+  const ExactStability free = exact_stability(model, model.spec().rest, p);
   ASSERT_TRUE(free.computed());
   ExactOptions tight;
   tight.max_factor_flops = 1;
-  const ExactStability over = exact_stability(model, model.rest, p, tight);
+  const ExactStability over = exact_stability(model, model.spec().rest, p, tight);
   EXPECT_FALSE(over.computed());
   EXPECT_EQ(over.method, ExactMethod::over_budget);
   EXPECT_STREQ(to_string(over.method), "not computed (factorisation over budget)");
@@ -328,7 +328,7 @@ TEST(LinearStabilityExact, OverTheFactorisationBudgetNothingIsComputed) {
   // A budget above the prediction changes nothing.
   ExactOptions roomy;
   roomy.max_factor_flops = 2 * over.factor_flops;
-  expect_same_numbers(exact_stability(model, model.rest, p, roomy), free);
+  expect_same_numbers(exact_stability(model, model.spec().rest, p, roomy), free);
 }
 
 TEST(LinearStabilityExact, OverTheBudgetLanczosProvesInstabilityWithoutAFactorisation) {
@@ -357,7 +357,7 @@ TEST(LinearStabilityExact, OverTheBudgetLanczosProvesInstabilityWithoutAFactoris
   EXPECT_LT(b.dt_unstable_from, free.dt_max * (1 + 1e-4));
   // No steps: nothing tried.
   tight.unfactored_steps = 0;
-  const ExactStability bare = exact_stability(model, model.rest, p, tight);
+  const ExactStability bare = exact_stability(model, model.spec().rest, p, tight);
   for (double v : {bare.unfactored.lambda_max_lo, bare.unfactored.index_at_least,
                    bare.unfactored.gamma_unstable_from, bare.unfactored.dt_unstable_from})
     EXPECT_TRUE(std::isnan(v));
@@ -375,7 +375,7 @@ TEST(LinearStabilityExact, OverTheBudgetGershgorinProvesThePaperStepStable) {
   const ExactStability& over = t.over;
   ASSERT_EQ(free.method, ExactMethod::symmetric_index);
   const ExactStability::Unfactored& b = over.unfactored;
-  const SafeBoundSummary safe = safe_bound_summary(model, model.rest, p.dt);
+  const SafeBoundSummary safe = safe_bound_summary(model, model.spec().rest, p.dt);
   ASSERT_EQ(safe.gamma_over, 0);  // every node within its safe bound at gamma 0.02
   EXPECT_TRUE(over.stable);
   EXPECT_LT(b.index_at_most, 4);
@@ -392,13 +392,13 @@ TEST(LinearStabilityExact, OverTheBudgetGershgorinProvesThePaperStepStable) {
   Params between = p;
   between.gamma = 0.5 * (safe.gamma_safe + free.gamma_hi);
   const Model mb = compile_model(plane_with_masses_12x_apart(), between);
-  const ExactStability open = exact_stability(mb, mb.rest, between, tight);
+  const ExactStability open = exact_stability(mb, mb.spec().rest, between, tight);
   EXPECT_FALSE(open.stable);
   EXPECT_GE(open.unfactored.index_at_most, 4);
   EXPECT_LT(open.unfactored.index_at_least, 4);
   EXPECT_NEAR(open.unfactored.gamma_stable_hi, b.gamma_stable_hi, 1e-15);  // gamma-free
   // Squeezed to 90 %, every spring is compressed: nothing proves K >= 0, nor stability.
-  std::vector<Vec3> squeezed = model.rest;
+  std::vector<Vec3> squeezed = model.spec().rest;
   for (Vec3& x : squeezed) x *= 0.9;
   const ExactStability sq = exact_stability(model, squeezed, p, tight);
   EXPECT_FALSE(sq.stable);
@@ -415,21 +415,21 @@ TEST(LinearStabilityExact, OverTheBudgetImplicitEulerIsUnconditionalWhenNoSpring
   tight.max_factor_flops = 1;
   // At rest every spring block is positive semidefinite: stable for every dt and gamma, as the
   // computed route says, with no factorisation.
-  const ExactStability free = exact_stability(model, model.rest, p);
+  const ExactStability free = exact_stability(model, model.spec().rest, p);
   ASSERT_EQ(free.method, ExactMethod::unconditional);
-  const ExactStability over = exact_stability(model, model.rest, p, tight);
+  const ExactStability over = exact_stability(model, model.spec().rest, p, tight);
   EXPECT_FALSE(over.computed());
   EXPECT_TRUE(over.unfactored.unconditional);
   EXPECT_TRUE(over.stable);
   // Squeezed to 90 %, every spring is compressed: nothing proves K >= 0 without a factorisation.
-  std::vector<Vec3> squeezed = model.rest;
+  std::vector<Vec3> squeezed = model.spec().rest;
   for (Vec3& x : squeezed) x *= 0.9;
   const ExactStability tight_squeeze = exact_stability(model, squeezed, p, tight);
   EXPECT_FALSE(tight_squeeze.unfactored.unconditional);
   EXPECT_FALSE(tight_squeeze.stable);
   // The paper's step is never unconditional.
   p.integrator = Integrator::semi_implicit_euler;
-  EXPECT_FALSE(exact_stability(model, model.rest, p, tight).unfactored.unconditional);
+  EXPECT_FALSE(exact_stability(model, model.spec().rest, p, tight).unfactored.unconditional);
 }
 
 TEST(LinearStabilityExact, OverTheBudgetUniformRatesGiveThePerModeLimitsFromBelow) {
@@ -438,11 +438,11 @@ TEST(LinearStabilityExact, OverTheBudgetUniformRatesGiveThePerModeLimitsFromBelo
   Params p;
   p.gamma = 0.001;
   const Model model = compile_model(make_grid(GridSpec{14, 14, 0.57, true, true}), p);
-  const ExactStability free = exact_stability(model, model.rest, p);
+  const ExactStability free = exact_stability(model, model.spec().rest, p);
   ASSERT_EQ(free.method, ExactMethod::per_mode);
   ExactOptions tight;
   tight.max_factor_flops = 1;
-  const ExactStability over = exact_stability(model, model.rest, p, tight);
+  const ExactStability over = exact_stability(model, model.spec().rest, p, tight);
   const ExactStability::Unfactored& b = over.unfactored;
   EXPECT_GE(b.gamma_unstable_from, free.gamma_hi);
   EXPECT_GE(b.dt_unstable_from, free.dt_max);
@@ -454,9 +454,9 @@ TEST(LinearStabilityExact, OverTheBudgetUniformRatesGiveThePerModeLimitsFromBelo
   // unstable side of the computed per-mode limits and close to them.
   for (Integrator i : {Integrator::forward_euler, Integrator::verlet}) {
     p.integrator = i;
-    const ExactStability exact = exact_stability(model, model.rest, p);
+    const ExactStability exact = exact_stability(model, model.spec().rest, p);
     ASSERT_EQ(exact.method, ExactMethod::per_mode);
-    const ExactStability::Unfactored& u = exact_stability(model, model.rest, p, tight).unfactored;
+    const ExactStability::Unfactored& u = exact_stability(model, model.spec().rest, p, tight).unfactored;
     SCOPED_TRACE(to_string(i));
     EXPECT_GE(u.dt_unstable_from, exact.dt_max);
     EXPECT_LT(u.dt_unstable_from, exact.dt_max * (1 + 1e-3));
@@ -468,9 +468,9 @@ TEST(LinearStabilityExact, OverTheBudgetUniformRatesGiveThePerModeLimitsFromBelo
     EXPECT_GE(u.gamma_stable_lo, exact.gamma_lo);
     EXPECT_LE(u.gamma_stable_hi, exact.gamma_hi);
     EXPECT_GE(u.stable_lambda_hi, exact.spectrum.lambda_max);
-    EXPECT_TRUE(exact_stability(model, model.rest, p, tight).stable);
+    EXPECT_TRUE(exact_stability(model, model.spec().rest, p, tight).stable);
     // Squeezed to 90 %, every spring is compressed: nothing proves K >= 0, nor stability.
-    std::vector<Vec3> squeezed = model.rest;
+    std::vector<Vec3> squeezed = model.spec().rest;
     for (Vec3& x : squeezed) x *= 0.9;
     const ExactStability sq = exact_stability(model, squeezed, p, tight);
     EXPECT_TRUE(std::isnan(sq.unfactored.dt_stable_up_to));
@@ -486,20 +486,20 @@ TEST(LinearStabilityExact, OverTheBudgetUniformRatesGiveThePerModeLimitsFromBelo
   // no thresholds. At the scene's dt the step is not proved unstable; 1 % past the computed
   // dt limit it is.
   p.integrator = Integrator::rk4;
-  const ExactStability rk4_free = exact_stability(model, model.rest, p);
-  const ExactStability rk4 = exact_stability(model, model.rest, p, tight);
+  const ExactStability rk4_free = exact_stability(model, model.spec().rest, p);
+  const ExactStability rk4 = exact_stability(model, model.spec().rest, p, tight);
   EXPECT_LE(rk4.unfactored.lambda_max_lo, free.spectrum.lambda_max);
   EXPECT_TRUE(std::isnan(rk4.unfactored.dt_unstable_from));
   EXPECT_TRUE(std::isnan(rk4.unfactored.gamma_unstable_below));
   EXPECT_GT(rk4.unfactored.mode_unstable_from, rk4_free.spectrum.lambda_max);
   p.dt = 1.01 * rk4_free.dt_max;
-  const ExactStability past = exact_stability(model, model.rest, p, tight);
+  const ExactStability past = exact_stability(model, model.spec().rest, p, tight);
   EXPECT_GE(past.unfactored.lambda_max_lo, past.unfactored.mode_unstable_from);
   // Rates that differ between nodes: no per-mode proof.
   ModelSpec heavy = make_grid(GridSpec{14, 14, 0.57, true, true});
   heavy.mass_scale[0] = 3;
   const Model varied = compile_model(heavy, p);
-  EXPECT_TRUE(std::isnan(exact_stability(varied, varied.rest, p, tight).unfactored.mode_unstable_from));
+  EXPECT_TRUE(std::isnan(exact_stability(varied, varied.spec().rest, p, tight).unfactored.mode_unstable_from));
 }
 
 }  // namespace

@@ -332,7 +332,7 @@ TEST(LinearStabilityModes, TwoNodeSystemEigenvalues) {
   // transverse modes (lambda = 0) give 1 and 0.9, twice.
   const SceneSpec s = load_scene(test::source_path("scenes/two-node.toml"));
   const Model m = compile_model(s.model, s.params);
-  const SparseMatrix K = mass_weighted(m, tangent_stiffness(m, m.rest));
+  const SparseMatrix K = mass_weighted(m, tangent_stiffness(m, m.spec().rest));
   const Eigen::VectorXd rate = damping_rates(m, m.gamma);
   ASSERT_EQ(rate.size(), 3);
   for (int k = 0; k < 3; ++k) EXPECT_DOUBLE_EQ(rate(k), 2.0);

@@ -58,12 +58,12 @@ TEST(PsdFloor, IsTheAnchorRateWhenNoSpringIsCompressed) {
   p.kappa = 0.05;
   const Model m = nonuniform_grid(6, 6, p);  // heavier, stiffer-anchored first rows
   double expected = 1e300;
-  for (size_t i = 0; i < m.rest.size(); ++i)
-    if (!m.fixed[i]) expected = std::min(expected, m.anchor_kappa[i] / m.mass[i]);
+  for (size_t i = 0; i < m.spec().rest.size(); ++i)
+    if (!m.spec().fixed[i]) expected = std::min(expected, m.anchor_kappa[i] / m.mass[i]);
   // At rest (lengths equal to rest lengths up to rounding) and stretched by 10%.
-  std::vector<Vec3> stretched = m.rest;
+  std::vector<Vec3> stretched = m.spec().rest;
   for (Vec3& x : stretched) x *= 1.1;
-  for (const std::vector<Vec3>* x : std::vector<const std::vector<Vec3>*>{&m.rest, &stretched}) {
+  for (const std::vector<Vec3>* x : std::vector<const std::vector<Vec3>*>{&m.spec().rest, &stretched}) {
     const std::optional<double> floor = psd_floor(m, *x);
     ASSERT_TRUE(floor.has_value());
     EXPECT_NEAR(*floor, expected, 1e-12 * expected);
@@ -78,7 +78,7 @@ TEST(PsdFloor, NoneWithACompressedSpringUnlessClamped) {
   p.m = 0.002;
   p.kappa = 0.05;
   const Model m = grid_model(6, 6, p);
-  std::vector<Vec3> squeezed = m.rest;
+  std::vector<Vec3> squeezed = m.spec().rest;
   for (Vec3& x : squeezed) x *= 0.9;  // every spring 10% short
   EXPECT_FALSE(psd_floor(m, squeezed).has_value());
   // Clamped, the compressed springs keep only kappa d d^T >= 0: the floor holds again.
@@ -90,7 +90,7 @@ TEST(PsdFloor, NoneWithACompressedSpringUnlessClamped) {
   ModelSpec all_fixed = make_grid(GridSpec{3, 3, 0.57, true, true});
   for (auto& f : all_fixed.fixed) f = 1;
   const Model fixed = compile_model(std::move(all_fixed), p);
-  EXPECT_FALSE(psd_floor(fixed, fixed.rest).has_value());
+  EXPECT_FALSE(psd_floor(fixed, fixed.spec().rest).has_value());
 }
 
 TEST(SplittingCeilings, BoundEveryEigenvalueAndTheIndexOnDeformedMeshes) {
@@ -102,16 +102,16 @@ TEST(SplittingCeilings, BoundEveryEigenvalueAndTheIndexOnDeformedMeshes) {
   p.kappa = 0.05;
   const SceneSpec cap = load_scene(source_path("scenes/tissue-cap.toml"));
   for (const Model& m : {nonuniform_grid(6, 6, p), compile_model(cap.model, cap.params)}) {
-    std::vector<Vec3> stretched = m.rest;
+    std::vector<Vec3> stretched = m.spec().rest;
     for (Vec3& x : stretched) x *= 1.1;
-    for (const auto& x : {m.rest, stretched, deformed(m, 0.2)}) {
+    for (const auto& x : {m.spec().rest, stretched, deformed(m, 0.2)}) {
       const SparseMatrix A = mass_weighted(m, tangent_stiffness(m, x));
       std::vector<double> ceiling;
       splitting_ceilings(m, x, ceiling);
-      ASSERT_EQ(ceiling.size(), m.rest.size());
+      ASSERT_EQ(ceiling.size(), m.spec().rest.size());
       double top = 0;
       for (size_t i = 0; i < ceiling.size(); ++i) {
-        if (m.fixed[i]) {
+        if (m.spec().fixed[i]) {
           EXPECT_EQ(ceiling[i], 0.0);
         }
         top = std::max(top, ceiling[i]);
@@ -122,8 +122,8 @@ TEST(SplittingCeilings, BoundEveryEigenvalueAndTheIndexOnDeformedMeshes) {
       const double h = 0.05;
       Eigen::VectorXd rates(A.rows());
       double index_bound = 0;
-      for (size_t i = 0, b = 0; i < m.rest.size(); ++i) {
-        if (m.fixed[i]) continue;
+      for (size_t i = 0, b = 0; i < m.spec().rest.size(); ++i) {
+        if (m.spec().fixed[i]) continue;
         const double c = 0.5 + static_cast<double>(i % 7);
         rates.segment<3>(3 * static_cast<Eigen::Index>(b++)).setConstant(c);
         index_bound = std::max(index_bound, h * h * ceiling[i] + 2 * h * c);
@@ -137,8 +137,8 @@ TEST(SplittingCeilings, BoundEveryEigenvalueAndTheIndexOnDeformedMeshes) {
   // 370.7: docs/criteria.md).
   const Model m = compile_model(cap.model, cap.params);
   std::vector<double> ceiling;
-  splitting_ceilings(m, m.rest, ceiling);
-  const double gershgorin = gershgorin_bounds(mass_weighted(m, tangent_stiffness(m, m.rest))).hi;
+  splitting_ceilings(m, m.spec().rest, ceiling);
+  const double gershgorin = gershgorin_bounds(mass_weighted(m, tangent_stiffness(m, m.spec().rest))).hi;
   EXPECT_LT(*std::max_element(ceiling.begin(), ceiling.end()), 0.8 * gershgorin);
 }
 
@@ -148,7 +148,7 @@ TEST(LinearStability, LanczosMatchesDenseOnGrids) {
   p.kappa = 0.05;
   for (int n : {4, 10}) {
     const Model m = grid_model(n, n, p);
-    for (const auto& x : {m.rest, deformed(m, 0.1)}) {
+    for (const auto& x : {m.spec().rest, deformed(m, 0.1)}) {
       const SparseMatrix A = mass_weighted(m, tangent_stiffness(m, x));
       const Eigen::VectorXd ev = dense_eigenvalues(A);
       EXPECT_NEAR(max_stiffness_eigenvalue(m, x), ev.maxCoeff(), 1e-9 * ev.maxCoeff()) << n;
@@ -163,7 +163,7 @@ TEST(LinearStability, TwoNodeClosedForm) {
   p.kappa = 0.2;
   p.dt = 0.05;
   const Model m = two_node_system(p);
-  const double lambda = max_stiffness_eigenvalue(m, m.rest);
+  const double lambda = max_stiffness_eigenvalue(m, m.spec().rest);
   EXPECT_NEAR(lambda, p.kappa / p.m, 1e-12 * lambda);
   const LinearLimits l = linear_limits(lambda, p.m, p.dt);
   EXPECT_NEAR(l.gamma_max, 2 * p.m / p.dt - p.kappa * p.dt / 2, 1e-12);
@@ -177,13 +177,13 @@ TEST(LinearStability, PaperPlaneLambdaMax) {
   const SceneSpec s = load_scene(source_path("scenes/paper-plane.toml"));
   Params p = s.params;  // m = kappa = 0.001
   const Model m = compile_model(s.model, p);
-  const StiffnessSpectrum sp = stiffness_spectrum(m, m.rest);
+  const StiffnessSpectrum sp = stiffness_spectrum(m, m.spec().rest);
   EXPECT_NEAR(sp.lambda_max, 7.8123249218733, 1e-9);  // measured; docs/criteria.md
   EXPECT_NEAR(sp.lambda_min, 1.0, 1e-9);              // the anchors: kappa/m
   p.kappa = 0.1;  // lambda scales with kappa/m (SPEC 6)
   p.m = 0.005;
   const Model m2 = compile_model(s.model, p);
-  EXPECT_NEAR(max_stiffness_eigenvalue(m2, m2.rest), 20 * sp.lambda_max, 1e-8 * 20 * sp.lambda_max);
+  EXPECT_NEAR(max_stiffness_eigenvalue(m2, m2.spec().rest), 20 * sp.lambda_max, 1e-8 * 20 * sp.lambda_max);
 }
 
 TEST(LinearStability, SymmetricIndexIsExactForNonUniformDamping) {
@@ -192,20 +192,20 @@ TEST(LinearStability, SymmetricIndexIsExactForNonUniformDamping) {
   p.kappa = 0.004;
   p.dt = 0.1;
   const Model m = nonuniform_grid(4, 4, p);
-  const SparseMatrix A = mass_weighted(m, tangent_stiffness(m, m.rest));
+  const SparseMatrix A = mass_weighted(m, tangent_stiffness(m, m.spec().rest));
   // gamma_i = gamma (gamma_scale 1) on masses 1x and 4x: rates differ by 4.
   for (double gamma : {0.001, 0.004, 0.01, 0.015, 0.02, 0.03}) {
-    const std::vector<double> g(m.rest.size(), gamma);
+    const std::vector<double> g(m.spec().rest.size(), gamma);
     const double index = semi_implicit_stability_index(m, A, g, p.dt);
     const double rho = dense_rho(Integrator::semi_implicit_euler, A, damping_rates(m, g), p.dt);
     EXPECT_EQ(index < 4, rho <= 1 + 1e-12) << "gamma " << gamma << " index " << index << " rho " << rho;
   }
   p.gamma = 0.005;
   const Model m5 = compile_model(m, p);
-  const ExactStability e = exact_stability(m5, m5.rest, p);
+  const ExactStability e = exact_stability(m5, m5.spec().rest, p);
   ASSERT_EQ(e.method, ExactMethod::symmetric_index);
   auto rho_at = [&](double gamma, double dt) {
-    const std::vector<double> g(m.rest.size(), gamma);
+    const std::vector<double> g(m.spec().rest.size(), gamma);
     return dense_rho(Integrator::semi_implicit_euler, A, damping_rates(m, g), dt);
   };
   EXPECT_LE(rho_at(0.999 * e.gamma_hi, p.dt), 1.0);
@@ -219,8 +219,8 @@ TEST(LinearStability, PerModeAnalysisMatchesTheWholeOperator) {
   p.kappa = 0.02;
   p.dt = 0.1;
   const Model m = grid_model(3, 3, p);
-  const SparseMatrix A = mass_weighted(m, tangent_stiffness(m, m.rest));
-  const StiffnessSpectrum sp = stiffness_spectrum(m, m.rest);
+  const SparseMatrix A = mass_weighted(m, tangent_stiffness(m, m.spec().rest));
+  const StiffnessSpectrum sp = stiffness_spectrum(m, m.spec().rest);
   for (Integrator in : {Integrator::semi_implicit_euler, Integrator::forward_euler, Integrator::verlet,
                         Integrator::rk4, Integrator::implicit_euler})
     for (double c : {0.0, 0.7, 3.0, 15.0}) {
@@ -241,7 +241,7 @@ TEST(LinearStability, ArnoldiMatchesDenseOnASmallNonUniformMesh) {
   p.gamma = 0.02;
   p.dt = 0.2;
   const Model m = nonuniform_grid(5, 5, p);  // 150 dofs: Arnoldi, not the dense shortcut
-  const SparseMatrix A = mass_weighted(m, tangent_stiffness(m, m.rest));
+  const SparseMatrix A = mass_weighted(m, tangent_stiffness(m, m.spec().rest));
   const Eigen::VectorXd rate = damping_rates(m, m.gamma);
   for (Integrator in : {Integrator::forward_euler, Integrator::verlet, Integrator::rk4}) {
     const SpectralRadius s = amplification_spectral_radius(in, A, rate, p.dt);
@@ -272,7 +272,7 @@ TEST(LinearStability, StiffRegionRunsDecayInsideAndGrowOutside) {
   const SceneSpec s = load_scene(source_path("scenes/stiff-region.toml"));
   const Params p = s.params;  // m = kappa = 0.001, gamma = 0.02, dt = 0.05
   const Model m = compile_model(s.model, p);
-  const ExactStability e = exact_stability(m, m.rest, p, {false});
+  const ExactStability e = exact_stability(m, m.spec().rest, p, {false});
   ASSERT_EQ(e.method, ExactMethod::symmetric_index);
   EXPECT_FALSE(e.uniform_rate);
   EXPECT_NEAR(e.gamma_hi, 0.0398054, 1e-6);  // measured; docs/criteria.md

@@ -32,14 +32,14 @@ TEST(PerturbationGrowth, ARunThatOverflowsHasGrown) {
   p.dt = 10 * exact_stability(compile_model(spec, p), spec.rest, p).dt_max;
   const Model m = compile_model(spec, p);
   EXPECT_TRUE(std::isinf(perturbation_growth(m, p, 20000)));
-  EXPECT_TRUE(std::isinf(perturbation_growth(m, m.rest, p, 20000)));
+  EXPECT_TRUE(std::isinf(perturbation_growth(m, m.spec().rest, p, 20000)));
 }
 
 // About the rest state the two forms are one; positions must be one per node.
 TEST(PerturbationGrowth, AboutRestIsTheRestForm) {
   Params p;
   const Model m = compile_model(chain(), p);
-  EXPECT_EQ(perturbation_growth(m, p, 300), perturbation_growth(m, m.rest, p, 300));
+  EXPECT_EQ(perturbation_growth(m, p, 300), perturbation_growth(m, m.spec().rest, p, 300));
   EXPECT_LT(perturbation_growth(m, p, 300), 1.0);
   EXPECT_THROW(perturbation_growth(m, {Vec3::Zero()}, p, 10), std::invalid_argument);
 }

@@ -185,7 +185,7 @@ TEST(Suggest, OverTheBudgetWhatIsProvedIsSuggested) {
     Params p = s.params;
     p.gamma = d.gamma_min + (d.gamma_max - d.gamma_min) * k / 8;
     const Model m = compile_model(s.model, p);
-    EXPECT_TRUE(exact_stability(m, m.rest, p).stable) << p.gamma;
+    EXPECT_TRUE(exact_stability(m, m.spec().rest, p).stable) << p.gamma;
   }
   // The best gamma minimises a bound over [SPEC 9's floor, Gershgorin's bound] = [1, 9] kappa/m,
   // which holds the exact spectrum [1, 7.81]: its radius bound is no lower than the exact one.

@@ -269,8 +269,8 @@ void check_case(const Case& c, Lcg& r, Checked& checked) {
       safe_row_sums(m, c.x, R);
       double gamma_safe = std::numeric_limits<double>::infinity();
       for (size_t i = 0; i < R.size(); ++i)
-        if (!m.fixed[i])
-          gamma_safe = std::min(gamma_safe, safe_gamma(m.mass[i], p.dt, R[i]) / m.gamma_scale[i]);
+        if (!m.spec().fixed[i])
+          gamma_safe = std::min(gamma_safe, safe_gamma(m.mass[i], p.dt, R[i]) / m.spec().gamma_scale[i]);
       EXPECT_EQ(safe.gamma_safe, gamma_safe) << where;  // the summary's is the user's gamma
       if (gamma_safe > 0) {
         Params q = p;
@@ -397,7 +397,7 @@ TEST(VerdictsOnRandomMeshes, ArnoldiRitzPairsAreCheckedBeforeTheyAreBelieved) {
   q.gamma = 0.0014581;
   q.dt = 0.169076;
   const Model m = compile_model(mesh.spec, q);
-  const ExactStability e = exact_stability(m, m.rest, q);
+  const ExactStability e = exact_stability(m, m.spec().rest, q);
   EXPECT_EQ(e.method, ExactMethod::frozen_estimate);
   EXPECT_TRUE(e.radius_converged);
   EXPECT_NEAR(e.spectral_radius, 0.99381944, 1e-7);  // dense: 0.993819438386

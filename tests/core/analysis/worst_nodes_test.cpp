@@ -18,7 +18,7 @@ TEST(WorstNodes, ALightNodeComesFirstAndIsNamedForItsMass) {
   s.mass_scale[12] = 0.01;
   Params p;
   const Model model = compile_model(s, p);
-  const WorstNodes w = worst_nodes(model, model.rest, p.dt, 3);
+  const WorstNodes w = worst_nodes(model, model.spec().rest, p.dt, 3);
   ASSERT_EQ(w.by_dt.size(), 3u);
   ASSERT_EQ(w.by_gamma.size(), 3u);
   EXPECT_EQ(w.by_dt[0].node, 12);
@@ -38,14 +38,14 @@ TEST(WorstNodes, AShortEdgeIsNamedAndTheCountIsClamped) {
   s.rest[12] = s.rest[13] + (s.rest[12] - s.rest[13]) * 0.1;
   Params p;
   const Model model = compile_model(s, p);
-  const WorstNodes w = worst_nodes(model, model.rest, p.dt, 1000);
+  const WorstNodes w = worst_nodes(model, model.spec().rest, p.dt, 1000);
   EXPECT_EQ(w.by_dt.size(), 25u);  // every free node, no more
   const WorstNode& first = w.by_dt[0];
   EXPECT_TRUE(first.node == 12 || first.node == 13) << first.node;
   EXPECT_EQ(first.cause.rfind("edge ", 0), 0u) << first.cause;
   EXPECT_NEAR(first.shortest_edge, 0.057, 1e-12);
-  EXPECT_TRUE(worst_nodes(model, model.rest, p.dt, 0).by_dt.empty());
-  EXPECT_TRUE(worst_nodes(model, model.rest, p.dt, -3).by_gamma.empty());
+  EXPECT_TRUE(worst_nodes(model, model.spec().rest, p.dt, 0).by_dt.empty());
+  EXPECT_TRUE(worst_nodes(model, model.spec().rest, p.dt, -3).by_gamma.empty());
 }
 
 }  // namespace

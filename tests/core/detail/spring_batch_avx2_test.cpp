@@ -18,7 +18,7 @@ TEST(SpringBatchAVX2, GivesThePortableCopysBits) {
   if (!step_isa_supported(StepIsa::avx2)) GTEST_SKIP() << "this CPU has no avx2";
   const test::BatchMesh m = test::batch_mesh();
   const SpringBatchInput in = spring_batch_input(m.model, m.x);
-  const size_t ns = m.model.springs.size();
+  const size_t ns = m.model.spec().springs.size();
   SpringBatch want, got;
   size_t checked = 0;
   for (bool forces : {true, false}) {

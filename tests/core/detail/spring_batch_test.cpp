@@ -27,7 +27,7 @@ struct Scalar {
 };
 
 Scalar scalar(const Model& model, const std::vector<Vec3>& x, size_t k) {
-  const Spring& s = model.springs[k];
+  const Spring& s = model.spec().springs[k];
   const Vec3 delta = x[size_t(s.j)] - x[size_t(s.i)];
   const double l = delta.norm();
   Scalar out;
@@ -49,7 +49,7 @@ Scalar scalar(const Model& model, const std::vector<Vec3>& x, size_t k) {
 TEST(SpringBatch, EveryColumnHasTheScalarFormulasBits) {
   const test::BatchMesh m = test::batch_mesh();
   const SpringBatchInput in = spring_batch_input(m.model, m.x);
-  const size_t ns = m.model.springs.size();
+  const size_t ns = m.model.spec().springs.size();
   int compressed = 0, undirected = 0;
   SpringBatch b;
   for (size_t first = 0; first < ns; first += kSpringBatch) {

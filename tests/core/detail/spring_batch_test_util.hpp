@@ -23,11 +23,11 @@ inline BatchMesh batch_mesh() {
                                            }),
                               p),
                 {}};
-  out.x = out.model.rest;
+  out.x = out.model.spec().rest;
   shake(out.x, 0.3, 11);
-  const Spring& s0 = out.model.springs[0];
+  const Spring& s0 = out.model.spec().springs[0];
   out.x[static_cast<size_t>(s0.j)] = out.x[static_cast<size_t>(s0.i)];
-  out.x[static_cast<size_t>(out.model.springs[5].j)][1] = std::numeric_limits<double>::quiet_NaN();
+  out.x[static_cast<size_t>(out.model.spec().springs[5].j)][1] = std::numeric_limits<double>::quiet_NaN();
   return out;
 }
 

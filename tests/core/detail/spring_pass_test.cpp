@@ -34,9 +34,9 @@ Mesh mesh() {
                                             }),
                          p),
            {}};
-  out.x = out.model.rest;
+  out.x = out.model.spec().rest;
   test::shake(out.x, 0.3, 7);
-  const Spring& s0 = out.model.springs[0];
+  const Spring& s0 = out.model.spec().springs[0];
   out.x[static_cast<size_t>(s0.j)] = out.x[static_cast<size_t>(s0.i)];
   return out;
 }
@@ -85,7 +85,7 @@ TEST(SpringPass, FixedNodesHaveNoRowsAndTheirColumnsDropOut) {
   ASSERT_EQ(rows.size(), m.x.size());
   int fixed = 0;
   for (size_t i = 0; i < rows.size(); ++i) {
-    if (m.model.fixed[i]) {
+    if (m.model.spec().fixed[i]) {
       ++fixed;
       EXPECT_EQ(rows[i], 0.0) << "node " << i;
     } else {

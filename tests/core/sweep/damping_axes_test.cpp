@@ -166,7 +166,7 @@ TEST(SweepDampingAxes, ClosedFormMatchesTheExactIndex) {
         p.rayleigh_mass = alpha;
         p.rayleigh_stiffness = beta;
         const Model model = compile_model(scene.model, p);
-        const GeneralLimits exact = general_limits(model, model.rest, p);
+        const GeneralLimits exact = general_limits(model, model.spec().rest, p);
         for (double f : {0.97, 1.03}) {
           SweepRow r;
           r.m = p.m;
@@ -230,7 +230,7 @@ TEST(SweepDampingAxes, MapDrawsAnyTwoColumnsWithTheExactBoundary) {
     p.gamma = 0;
     p.kd = line.x[k];
     const Model model = compile_model(scene.model, p);
-    const double dt_max = general_limits(model, model.rest, p).dt_max;
+    const double dt_max = general_limits(model, model.spec().rest, p).dt_max;
     EXPECT_NEAR(line.y[k], dt_max, 1e-6 * dt_max) << "kd " << line.x[k];
     ++compared;
   }

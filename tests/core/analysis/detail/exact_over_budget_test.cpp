@@ -40,7 +40,7 @@ struct Case {
 
 Case plane(const Params& p, bool shaken) {
   Case c{compile_model(make_grid(GridSpec{14, 14, 0.57, true, true}), p), {}};
-  c.x = c.model.rest;
+  c.x = c.model.spec().rest;
   if (shaken) test::shake(c.x, 0.15, 5);
   return c;
 }

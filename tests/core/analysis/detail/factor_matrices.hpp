@@ -13,14 +13,14 @@ namespace dampbound::test {
 
 inline SparseMatrix deformed_plane(int n) {
   const Model m = compile_model(make_grid(GridSpec{n, n, 0.57, true, true}), Params{});
-  std::vector<Vec3> x = m.rest;
+  std::vector<Vec3> x = m.spec().rest;
   test::shake(x, 0.2, 11);
   return mass_weighted(m, tangent_stiffness(m, x));
 }
 
 inline SparseMatrix block(int n) {
   const Model m = compile_model(bench::tet_block(n, n, n), Params{});
-  return mass_weighted(m, tangent_stiffness(m, m.rest));
+  return mass_weighted(m, tangent_stiffness(m, m.spec().rest));
 }
 
 }  // namespace dampbound::test

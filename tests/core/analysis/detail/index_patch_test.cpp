@@ -84,8 +84,8 @@ struct Index {
   std::vector<double> ceiling;
   Index(const Model& m, const std::vector<Vec3>& at) : model(m), x(at) {
     A = mass_weighted(model, tangent_stiffness(model, x));
-    std::vector<double> scale(model.rest.size());
-    for (size_t i = 0; i < scale.size(); ++i) scale[i] = model.gamma_scale[i];
+    std::vector<double> scale(model.spec().rest.size());
+    for (size_t i = 0; i < scale.size(); ++i) scale[i] = model.spec().gamma_scale[i];
     R = damping_rates(model, scale);
     splitting_ceilings(model, x, ceiling);
   }
@@ -100,10 +100,10 @@ struct Index {
 
 TEST(IndexPatch, BoundsTheIndexFromBothSidesWhereItsTopIsLocal) {
   const Model model = compile_model(lumped_block(9, 5, 7), tissue_params());
-  std::vector<Vec3> stretched = model.rest;
+  std::vector<Vec3> stretched = model.spec().rest;
   for (Vec3& x : stretched) x.y() *= 1.05;
   for (const bool stretch : {false, true}) {
-    const Index s(model, stretch ? stretched : model.rest);
+    const Index s(model, stretch ? stretched : model.spec().rest);
     // Near the paper step's limits the light corners' damping sets the top; at a small gamma
     // and dt A's own top weighs more, and the patch need not prove it tightly.
     for (const auto& [gamma, h, local] :
@@ -141,11 +141,11 @@ TEST(IndexPatch, NoneWhereTheTopIsNotLocal) {
   // alone are more than a patch may hold.
   Params p;
   const Model model = compile_model(make_grid(GridSpec{30, 30, 0.57, true, true}), p);
-  const Index s(model, model.rest);
+  const Index s(model, model.spec().rest);
   // A proved lower bound of the index: its largest diagonal entry (a Rayleigh quotient).
   const Eigen::VectorXd diagonal =
       (p.dt * p.dt) * Eigen::MatrixXd(s.A).diagonal() + (2 * p.dt * p.gamma) * s.R;
-  const IndexPatch patch(model, model.rest, s.A, s.R, s.ceiling, p.gamma, p.dt, diagonal.maxCoeff(),
+  const IndexPatch patch(model, model.spec().rest, s.A, s.R, s.ceiling, p.gamma, p.dt, diagonal.maxCoeff(),
                          3);
   EXPECT_FALSE(patch.found());
   EXPECT_FALSE(patch.proved_below(1e300, p.gamma, p.dt));
@@ -162,11 +162,11 @@ TEST(IndexPatch, NeverProvesLessThanTheDenseIndexOnRandomStatesAndRates) {
     ModelSpec spec = lumped_block(6 + trial % 3, 4 + trial % 2, 5 + trial % 3);
     for (double& g : spec.gamma_scale) g = 0.5 + 1.5 * unit(rng);
     const Model model = compile_model(spec, tissue_params());
-    std::vector<Vec3> x = model.rest;
+    std::vector<Vec3> x = model.spec().rest;
     const double f = 0.92 + 0.16 * unit(rng);
     for (size_t i = 0; i < x.size(); ++i) {
       x[i][trial % 3] *= f;
-      if (trial >= 4 && !model.fixed[i])
+      if (trial >= 4 && !model.spec().fixed[i])
         x[i] += 0.01 * Vec3(unit(rng) - 0.5, unit(rng) - 0.5, unit(rng) - 0.5);
     }
     const Index s(model, x);
@@ -191,18 +191,18 @@ TEST(IndexPatch, NeverProvesLessThanTheDenseIndexOnRandomStatesAndRates) {
 TEST(IndexPatch, OverTheBudgetItBracketsTheExactLimitsTightly) {
   const Params p = tissue_params();
   const Model model = compile_model(lumped_block(11, 7, 9), p);
-  const ExactStability exact = exact_stability(model, model.rest, p);
+  const ExactStability exact = exact_stability(model, model.spec().rest, p);
   ASSERT_TRUE(exact.computed());
   ASSERT_EQ(exact.method, ExactMethod::symmetric_index);
   // A budget under the sparse factorisation's and over one of the patch's (0.0066 GFlop for
   // its 90 nodes): the patch is used.
   ExactOptions none;
   none.max_factor_flops = 1;
-  const double sparse = exact_stability(model, model.rest, p, none).factor_flops;
+  const double sparse = exact_stability(model, model.spec().rest, p, none).factor_flops;
   ExactOptions budget;
   budget.max_factor_flops = 0.99 * sparse;
   ASSERT_GT(budget.max_factor_flops, 1e7);
-  const ExactStability over = exact_stability(model, model.rest, p, budget);
+  const ExactStability over = exact_stability(model, model.spec().rest, p, budget);
   ASSERT_FALSE(over.computed());
   const ExactStability::Unfactored& b = over.unfactored;
   EXPECT_GT(b.patch_nodes, 0);
@@ -225,11 +225,11 @@ TEST(IndexPatch, OverTheBudgetItBracketsTheExactLimitsTightly) {
       Params q = p;
       (gamma ? q.gamma : q.dt) = side;
       const Model mq = compile_model(lumped_block(11, 7, 9), q);
-      EXPECT_EQ(exact_stability(mq, mq.rest, q).stable, side < stable) << side;
+      EXPECT_EQ(exact_stability(mq, mq.spec().rest, q).stable, side < stable) << side;
     }
   }
   // With a budget of one flop nothing is factorised, the patch included.
-  EXPECT_EQ(exact_stability(model, model.rest, p, none).unfactored.patch_nodes, 0);
+  EXPECT_EQ(exact_stability(model, model.spec().rest, p, none).unfactored.patch_nodes, 0);
 }
 
 TEST(IndexPatch, OverTheBudgetWhatItProvesHoldsOnRandomStatesAndRates) {
@@ -245,10 +245,10 @@ TEST(IndexPatch, OverTheBudgetWhatItProvesHoldsOnRandomStatesAndRates) {
     Params p = tissue_params();
     p.gamma = 0.01 + 0.02 * unit(rng);
     const Model model = compile_model(spec, p);
-    std::vector<Vec3> x = model.rest;
+    std::vector<Vec3> x = model.spec().rest;
     for (size_t i = 0; i < x.size(); ++i) {
       if (trial == 1) x[i].y() *= 1.04;
-      if (trial == 2 && !model.fixed[i])
+      if (trial == 2 && !model.spec().fixed[i])
         x[i] += 0.01 * Vec3(unit(rng) - 0.5, unit(rng) - 0.5, unit(rng) - 0.5);
     }
     SCOPED_TRACE(testing::Message() << "trial " << trial << ", gamma " << p.gamma);
@@ -299,12 +299,12 @@ TEST(IndexPatch, OverTheBudgetAStiffInclusionsPatchNarrowsLambdaMax) {
     if (sp.i == centre || sp.j == centre) sp.kappa_scale *= 6;
   Params p = tissue_params();
   const Model model = compile_model(spec, p);
-  const ExactStability exact = exact_stability(model, model.rest, p);
+  const ExactStability exact = exact_stability(model, model.spec().rest, p);
   ExactOptions none;
   none.max_factor_flops = 1;
   ExactOptions budget;
-  budget.max_factor_flops = 0.99 * exact_stability(model, model.rest, p, none).factor_flops;
-  const ExactStability over = exact_stability(model, model.rest, p, budget);
+  budget.max_factor_flops = 0.99 * exact_stability(model, model.spec().rest, p, none).factor_flops;
+  const ExactStability over = exact_stability(model, model.spec().rest, p, budget);
   ASSERT_FALSE(over.computed());
   const ExactStability::Unfactored& b = over.unfactored;
   EXPECT_GT(b.lambda_patch_nodes, 0);
@@ -318,7 +318,7 @@ TEST(IndexPatch, OverTheBudgetAStiffInclusionsPatchNarrowsLambdaMax) {
   EXPECT_LT(b.lambda_max_hi - b.lambda_max_lo, 1e-8 * b.lambda_max_lo);
   EXPECT_LT(b.lambda_max_hi, 0.8 * b.gershgorin);
   // Without the budget for a patch: the splitting's bound and a Lanczos quotient.
-  const ExactStability::Unfactored& n = exact_stability(model, model.rest, p, none).unfactored;
+  const ExactStability::Unfactored& n = exact_stability(model, model.spec().rest, p, none).unfactored;
   EXPECT_EQ(n.lambda_patch_nodes, 0);
   EXPECT_GT(n.lambda_max_hi, 1.1 * exact.spectrum.lambda_max);
 }

@@ -156,7 +156,7 @@ TEST(SymmetricProduct, AssembledStiffnessGivesEigensBits) {
   const Model model = compile_model(test::cube_lattice(6, 0.57, [](ModelSpec& m, int i, int a, int, int) {
     if (a == 0) m.fixed[static_cast<size_t>(i)] = 1;
   }), p);
-  std::vector<Vec3> x = model.rest;
+  std::vector<Vec3> x = model.spec().rest;
   test::shake(x, 0.05, 99);
   expect_eigen_bits(mass_weighted(model, tangent_stiffness(model, x)), 5);
 }
@@ -220,7 +220,7 @@ TEST(SymmetricProduct, SinglePrecisionEstimateLiesWithinItsMatrixErrorOfTheDoubl
   Params p;
   p.m = p.kappa = 0.001;
   const Model model = compile_model(make_grid(GridSpec{105, 105, 0.57, true, true}), p);
-  std::vector<Vec3> x = model.rest;
+  std::vector<Vec3> x = model.spec().rest;
   test::shake(x, 0.05, 17);
   const SparseMatrix A = mass_weighted(model, tangent_stiffness(model, x));
   ASSERT_GT(A.rows(), 32768);  // two threads take part
@@ -260,7 +260,7 @@ TEST(SymmetricProduct, CertifiedEigenvalueSameOnOneAndTwoThreads) {
   Params p;
   p.m = p.kappa = 0.001;
   const Model model = compile_model(make_grid(GridSpec{105, 105, 0.57, true, true}), p);
-  const SparseMatrix A = mass_weighted(model, tangent_stiffness(model, model.rest));
+  const SparseMatrix A = mass_weighted(model, tangent_stiffness(model, model.spec().rest));
   ASSERT_GT(A.rows(), 32768);
   Eigen::VectorXd u1, u2;
   const EigenInterval one = certified_largest_eigenvalue(A, &u1, 1);
