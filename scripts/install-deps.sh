@@ -10,6 +10,7 @@ APP=(
   cmake ninja-build g++ pkg-config
   libeigen3-dev libspectra-dev libtomlplusplus-dev libcli11-dev libstb-dev libsuitesparse-dev
   libopenblas0-serial            # CHOLMOD's BLAS: factorisations ~2x faster than the reference BLAS
+  liblapack-dev                  # dstebz/dstein (OpenBLAS's LAPACK once libopenblas0-serial is in)
   libimgui-dev libglfw3-dev libgl-dev libegl-dev libegl-mesa0 libgl1-mesa-dri
   fonts-dejavu-core
 )

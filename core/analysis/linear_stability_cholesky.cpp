@@ -18,7 +18,6 @@
 #include "core/analysis/detail/inverse_lanczos.hpp"
 #include "core/analysis/detail/lanczos.hpp"
 #include "core/analysis/detail/shifted_cholesky.hpp"
-#include "core/analysis/detail/tridiagonal.hpp"
 
 namespace dampbound {
 
@@ -240,7 +239,7 @@ EigenInterval largest(const SparseMatrix& A, std::unique_ptr<ShiftedCholesky>& h
   std::optional<double> first_shift;
   for (;;) {
     const double s = estimate.theta + step + margin;
-    if (s >= gershgorin) break;
+    if (!(s < gershgorin)) break;  // NaN too: no estimate (T not finite), Gershgorin's shift
     if (f.factor(s)) {
       first_shift = s;
       break;
@@ -348,7 +347,7 @@ EigenInterval unfactored_largest_eigenvalue(const SparseMatrix& A, Eigen::Vector
     return lanczos_estimate(lanczos, n, max_steps, kUnfactoredCheck, 1e-6);
   }();
   const int m = e.steps;
-  std::vector<double> y = detail::tridiagonal_eigenvector(e.alpha.data(), e.beta.data(), m, e.theta);
+  std::vector<double> y = e.y;
   if (y.empty()) y = {1.0};  // inverse iteration broke down: the start vector itself
   LanczosRecurrence<double> replay(A, threads, scale, d);
   Eigen::VectorXd u = y[0] * replay.vector();

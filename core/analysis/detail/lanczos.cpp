@@ -108,11 +108,13 @@ TopEstimate lanczos_estimate(LanczosRecurrence<Scalar>& lanczos, Eigen::Index n,
     if (e.error < tolerance * std::abs(checkpoints[c - 1])) break;
   }
   const int m = static_cast<int>(lanczos.alpha.size());
-  e.theta = largest_tridiagonal_eigenvalue(lanczos.alpha.data(), lanczos.beta.data(), m);
+  TridiagonalTop top = tridiagonal_top(lanczos.alpha.data(), lanczos.beta.data(), m);
+  e.theta = top.value;
   e.steps = m;
   // The Ritz pair's residual: beta_m times the last component of its eigenvector of T.
-  e.residual = std::abs(lanczos.beta.back()) *
-               last_eigenvector_component(lanczos.alpha.data(), lanczos.beta.data(), m, e.theta);
+  e.residual = top.vector.empty() ? std::numeric_limits<double>::quiet_NaN()
+                                  : std::abs(lanczos.beta.back()) * std::abs(top.vector.back());
+  e.y = std::move(top.vector);
   if (!std::isfinite(e.residual)) e.residual = std::abs(e.theta);  // no estimate: be wide
   if (checkpoints.size() < 3) e.error = e.residual;  // too few steps to extrapolate
   e.matrix_error = lanczos.matrix_error();

@@ -70,6 +70,9 @@ struct TopEstimate {
   /// is a Ritz value of that matrix, and `residual` and `error` are measured against it.
   double matrix_error = 0;
   std::vector<double> alpha, beta;  ///< T
+  /// T's unit eigenvector of theta, the Ritz vector's coefficients in the Lanczos basis
+  /// (empty when inverse iteration failed).
+  std::vector<double> y;
 };
 
 /// Up to `max_steps` steps (at most n), checked every `check`: the Ritz value converges

@@ -105,6 +105,26 @@ TEST(CertifiedEigenvalue, ClusteredTopAndNegativeEigenvalues) {
   EXPECT_LT(bottom.lo, -1.99);
 }
 
+TEST(CertifiedEigenvalue, EntriesBeyondFloatsRangeFallBackToGershgorinsShift) {
+  // The estimate runs in float: entries near 1e41 make its tridiagonal infinite, so there is
+  // no Ritz value to place a shift (detail/tridiagonal.hpp gives NaN) and the first
+  // factorisation is at Gershgorin's bound. The answer is an enclosure, on one thread and on
+  // two, but not a narrow one: from that far above a clustered top, inverse iteration does not
+  // reach lambda_max, and the certificate just above its Rayleigh quotient fails.
+  const SparseMatrix A = plane_matrix(12, 0.2) * 1e40;
+  ASSERT_GT(A.coeffs().cwiseAbs().maxCoeff(), 1e41);
+  const double top = dense_eigenvalues(A).maxCoeff();
+  const GershgorinBounds g = gershgorin_bounds(A);
+  for (int threads : {1, 2}) {
+    const EigenInterval r = certified_largest_eigenvalue(A, nullptr, threads);
+    EXPECT_TRUE(r.certified);
+    EXPECT_LE(r.lo, top * (1 + 1e-13));
+    EXPECT_GE(r.hi, top);
+    EXPECT_LE(r.hi, g.hi + 1e-5 * (g.hi - g.lo));
+    EXPECT_GT(r.lo, 0.5 * top);
+  }
+}
+
 // certified_spectrum analyses the pattern once for both ends (-A has A's pattern): the same
 // bits as the two ends computed apart, each with an analysis of its own.
 TEST(CertifiedEigenvalue, BothEndsFromOneAnalysisGiveTheBitsOfSeparateCalls) {
