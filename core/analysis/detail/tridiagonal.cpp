@@ -6,7 +6,9 @@
 #include <vector>
 
 // LAPACK's Fortran entry points (Debian's liblapack.so.3: OpenBLAS's, or the reference one),
-// with gfortran's hidden length of each character argument.
+// with gfortran's hidden length of each character argument. They run outside CHOLMOD's turn
+// (shifted_cholesky.cpp), beside a factorisation: dstebz calls no BLAS, dstein only level-1
+// BLAS, which takes none of the work buffers that OpenBLAS shares between threads.
 extern "C" {
 double dlamch_(const char* cmach, std::size_t cmach_len);
 void dstebz_(const char* range, const char* order, const int* n, const double* vl, const double* vu,
