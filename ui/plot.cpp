@@ -3,10 +3,13 @@
 #include "ui/fonts.hpp"
 #include "ui/plot_draw.hpp"
 #include "ui/gui_items.hpp"
+#include "ui/text_wrap.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
+#include <vector>
 
 namespace dampbound::ui {
 
@@ -99,6 +102,38 @@ bool x_labels_fit(const TextFont& f, const std::vector<Tick>& ticks, const AxisM
   return true;
 }
 
+/// The title as drawn: in the title font where it fits the frame's width less its margins;
+/// else in the title font at the body's size, broken at blanks (ui/text_wrap.hpp) where even
+/// that is too wide. So none of it is cut off at a narrow --size or in a narrow panel, and a
+/// tuner panel loses no more height to it than it must. One source for the layout (the
+/// title's height) and the drawing.
+struct TitleText {
+  TextFont font;
+  std::vector<std::string> lines;
+  double height() const { return static_cast<double>(lines.size()) * font.size; }
+};
+TitleText title_text(const TextFont& heading, float body_size, const std::string& title,
+                     double width) {
+  TitleText t{heading, {}};
+  if (title.empty()) return t;
+  if (detail::text_size(heading, title).x <= width) {
+    t.lines.push_back(title);
+    return t;
+  }
+  t.font = TextFont{heading.font, std::min(heading.size, body_size)};
+  const std::string wrapped =
+      wrap_at_blanks(title, static_cast<float>(width), [&](std::string_view piece) {
+        return detail::text_size(t.font, std::string(piece)).x;
+      });
+  size_t start = 0;
+  for (;;) {
+    const size_t end = wrapped.find('\n', start);
+    t.lines.push_back(wrapped.substr(start, end == std::string::npos ? end : end - start));
+    if (end == std::string::npos) return t;
+    start = end + 1;
+  }
+}
+
 /// The text and spacing of a plot (pixels), from the style's fonts: one source for the layout
 /// and the drawing.
 struct PlotMetrics {
@@ -126,7 +161,9 @@ PlotLayout layout_axes(const PixelRect& fr, const PlotSpec& spec, const PlotMetr
   const float fs = m.fs, pad = m.pad, tick_len = m.tick_len;
   PlotLayout lay;
   lay.frame = fr;
-  const double top = fr.y0 + pad + (spec.title.empty() ? 0.0 : tf.size + 0.6 * pad) + top_h;
+  const TitleText title = title_text(tf, fs, spec.title, fr.x1 - fr.x0 - 2.0 * pad);
+  const double top =
+      fr.y0 + pad + (title.lines.empty() ? 0.0 : title.height() + 0.6 * pad) + top_h;
   const double x_tick_h = spec.x.log ? std::round(1.3f * fs) : fs;
   double bottom = fr.y1 - pad - (spec.x.label.empty() ? 0.0 : fs + 0.4 * pad) - x_tick_h -
                   tick_len - 0.3 * pad;
@@ -324,9 +361,15 @@ PlotLayout draw_plot(ImDrawList* dl, ImVec2 top_left, ImVec2 size, const PlotSpe
     detail::draw_text_vertical(dl, f, ImVec2(fl(fr.x0) + pad + 0.5f * fs, 0.5f * (amin.y + amax.y)),
                                style.text, detail::elide(f, spec.y.label, amax.y - amin.y + 2 * fs));
   }
-  if (!spec.title.empty()) {
-    const ImVec2 ts = detail::text_size(tf, spec.title);
-    detail::draw_text(dl, tf, ImVec2(cx - ts.x * 0.5f, fl(fr.y0) + pad), style.text, spec.title);
+  // Each line of the title centred on the data area, moved in where that would cross the
+  // frame's margin.
+  const TitleText title = title_text(tf, fs, spec.title, fr.x1 - fr.x0 - 2.0 * pad);
+  for (size_t i = 0; i < title.lines.size(); ++i) {
+    const ImVec2 ts = detail::text_size(title.font, title.lines[i]);
+    const float x = std::max(fl(fr.x0) + pad, std::min(cx - ts.x * 0.5f, fl(fr.x1) - pad - ts.x));
+    detail::draw_text(dl, title.font,
+                      ImVec2(x, fl(fr.y0) + pad + static_cast<float>(i) * title.font.size),
+                      style.text, title.lines[i]);
   }
   if (style.draw_legend) detail::draw_legend(dl, lay, spec, style, f);
   dl->PopClipRect();

@@ -8,6 +8,9 @@
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "core/analysis/figures.hpp"
 #include "ui/egl_host.hpp"
@@ -116,6 +119,56 @@ TEST(Figure, ReadableLabels) {
   ASSERT_EQ(spec.ref_lines.size(), 1u);
   EXPECT_EQ(spec.ref_lines[0].axis, LineAxis::y);
   EXPECT_DOUBLE_EQ(spec.ref_lines[0].at, 0.05);
+}
+
+/// Rows [first, last] of dark (text) pixels in rows [0, below) of `img`, and how many of them
+/// lie within 2 pixels of the left or right edge (a title cut off there).
+struct TitleInk {
+  int first = -1, last = -1;
+  long at_edges = 0;
+};
+TitleInk title_ink(const Image& img, int below) {
+  TitleInk ink;
+  for (int y = 0; y < below; ++y)
+    for (int x = 0; x < img.width; ++x) {
+      const Rgba p = img.pixel(x, y);
+      if (p.r + p.g + p.b >= 3 * 128) continue;
+      if (ink.first < 0) ink.first = y;
+      ink.last = y;
+      if (x < 3 || x >= img.width - 3) ++ink.at_edges;
+    }
+  return ink;
+}
+
+TEST(Figure, ATitleWiderThanTheImageWrapsInsteadOfBeingCutOff) {
+  // Fig. 2's title is about 900 pixels wide in the title font: at the default size it is drawn
+  // so, at 800 x 500 in that font at the body's size (one shorter line), at 500 x 400 broken
+  // into two lines of it; never against the image's edges.
+  const PlotSpec spec = figure_plot(figure_fig2(plane()));
+  EglHost host;
+  int one_line = 0;
+  for (const auto& [w, h] : std::vector<std::pair<int, int>>{{1200, 700}, {800, 500}, {500, 400}}) {
+    const std::string what = std::to_string(w) + "x" + std::to_string(h);
+    const std::string png = "fig2-title-" + what + ".png";
+    render_plots_png({spec}, 1, w, h, png);
+    const Image img = read_png(png);
+    PlotLayout lay;
+    host.render_frames(w, h, [&](FrameInfo&) {
+      lay = layout_plot(ImVec2(0, 0), ImVec2(static_cast<float>(w), static_cast<float>(h)), spec,
+                        plot_style_light());
+    });
+    // The title ends above the data area's frame line.
+    const TitleInk ink = title_ink(img, static_cast<int>(lay.area.y0) - 1);
+    ASSERT_GE(ink.first, 0) << what << ": no title";
+    EXPECT_EQ(ink.at_edges, 0) << what << ": title cut off at the image's edge";
+    const int height = ink.last - ink.first + 1;
+    if (w == 1200)
+      one_line = height;
+    else if (w == 800)
+      EXPECT_LT(height, one_line) << what << ": expected one line at the body's size";
+    else
+      EXPECT_GT(height, 1.2 * one_line) << what << ": expected two lines";
+  }
 }
 
 }  // namespace
