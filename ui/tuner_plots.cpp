@@ -106,18 +106,21 @@ void simplify_band(PlotBand& band, size_t max_columns) {
     out.y_lo.push_back(lo);
     out.y_hi.push_back(hi);
   };
-  // Buckets of k samples: where the whole bucket is feasible (largest lower, smallest upper).
+  // Buckets of k samples, each drawn flat from its first sample to the next bucket's: over that
+  // span the band is what is feasible throughout it (the largest lower and the smallest upper
+  // edge of the samples at both ends and between). A step in the data stays where it is,
+  // instead of reaching a bucket early, and the band never shows more than the data allows.
   const size_t k = (n + max_columns - 1) / max_columns;
   for (size_t i0 = 0; i0 < n - 1; i0 += k) {
     const size_t i1 = std::min(i0 + k, n - 1);
     double lo = band.y_lo[i0], hi = band.y_hi[i0];
-    for (size_t i = i0 + 1; i < i1; ++i) {
+    for (size_t i = i0 + 1; i <= i1; ++i) {
       lo = std::fmax(lo, band.y_lo[i]);
       hi = std::fmin(hi, band.y_hi[i]);
     }
     push(band.x[i0], lo, hi);
+    push(band.x[i1], lo, hi);
   }
-  push(band.x[n - 1], band.y_lo[n - 1], band.y_hi[n - 1]);
   // Runs of equal samples: keep their ends only.
   auto same = [&](size_t a, size_t b) {
     return out.y_lo[a] == out.y_lo[b] && out.y_hi[a] == out.y_hi[b];
@@ -213,7 +216,10 @@ PlotSpec tuner_envelope_plot(Tuner& tuner, const TunerPlotOptions& options) {
       p.series.push_back(std::move(s));
     }
   }
-  for (PlotBand& b : p.bands) simplify_band(b, 240);
+  // Live, the band is coarsened for the software rasteriser; an export draws every step (the
+  // plot itself merges samples finer than a pixel column).
+  if (!options.full_traces)
+    for (PlotBand& b : p.bands) simplify_band(b, 240);
   show_coincident(p);
   for (PlotSeries& s : p.series) drop_flat_runs(s);
   // The upper bound (eq. 6) grows without limit as |v| -> 0: cap the axis at 100 x the

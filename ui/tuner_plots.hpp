@@ -31,9 +31,9 @@ std::vector<PlotRefLine> verdict_markers(const RunResult& result);
 /// run's verdict_markers().
 PlotSpec tuner_displacement_plot(Tuner& tuner, const TunerPlotOptions& options);
 
-/// Coarsens a band for drawing: at most about max_columns samples (per bucket of consecutive
-/// samples the largest lower and the smallest upper edge: where the whole bucket is feasible),
-/// then runs of equal samples reduced to their ends. A software rasteriser (llvmpipe) fills a
+/// Coarsens a band for drawing: at most about max_columns buckets of consecutive samples, each
+/// flat over its span (the largest lower and the smallest upper edge of the span: where all of
+/// it is feasible), then runs of equal samples reduced to their ends. A software rasteriser (llvmpipe) fills a
 /// few wide quads far faster than hundreds of one-pixel slivers.
 void simplify_band(PlotBand& band, size_t max_columns);
 

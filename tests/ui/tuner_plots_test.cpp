@@ -173,7 +173,7 @@ TEST(TunerPlots, BandIsCoarsenedConservatively) {
     b.y_hi.push_back(i < 500 ? inf : 10.0 + (i % 7));
   }
   simplify_band(b, 100);
-  ASSERT_LE(b.x.size(), 102u);
+  ASSERT_LE(b.x.size(), 202u);
   EXPECT_EQ(b.x.front(), 0);
   EXPECT_EQ(b.x.back(), 999);
   // The constant first half became its two ends.
@@ -181,9 +181,43 @@ TEST(TunerPlots, BandIsCoarsenedConservatively) {
   for (double x : b.x) first_half += x < 490;
   EXPECT_LE(first_half, 2u);
   for (size_t i = 0; i + 1 < b.x.size(); ++i)
-    if (b.x[i] >= 500) {
+    if (b.x[i] > 500) {
       EXPECT_EQ(b.y_hi[i], 10.0);  // the smallest upper edge of its bucket
     }
+}
+
+/// The simplified band's edge at x (linear between its samples; not at a step's x).
+double band_edge_at(const PlotBand& b, const std::vector<double>& edge, double x) {
+  for (size_t i = 0; i + 1 < b.x.size(); ++i)
+    if (b.x[i] <= x && x <= b.x[i + 1] && b.x[i + 1] > b.x[i])
+      return edge[i] + (edge[i + 1] - edge[i]) * (x - b.x[i]) / (b.x[i + 1] - b.x[i]);
+  return std::nan("");
+}
+
+TEST(TunerPlots, ACoarsenedBandKeepsAStepWhereItIs) {
+  // The upper edge drops from 20 to 10 at sample 505, inside the bucket 500..510. Coarsened,
+  // it stays 20 up to that bucket (it used to slope down from sample 490, ahead of the curve
+  // drawn over it) and never lies above the data.
+  PlotBand b;
+  std::vector<double> hi;
+  for (int i = 0; i < 1000; ++i) {
+    b.x.push_back(i);
+    b.y_lo.push_back(1.0);
+    hi.push_back(i < 505 ? 20.0 : 10.0);
+  }
+  b.y_hi = hi;
+  simplify_band(b, 100);
+  for (int x = 1; x < 1000; ++x) {
+    if (x % 10 == 0) continue;  // a bucket's edge: a vertical step in the coarse band
+    const double edge = band_edge_at(b, b.y_hi, x);
+    EXPECT_LE(edge, hi[static_cast<size_t>(x)]) << x;
+    if (x < 500) {
+      EXPECT_EQ(edge, 20.0) << x;
+    }
+    if (x > 510) {
+      EXPECT_EQ(edge, 10.0) << x;
+    }
+  }
 }
 
 TEST(TunerPlots, FlatRunsKeepTheirEndsOnly) {
