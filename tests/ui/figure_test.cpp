@@ -147,7 +147,8 @@ TEST(Figure, ATitleWiderThanTheImageWrapsInsteadOfBeingCutOff) {
   const PlotSpec spec = figure_plot(figure_fig2(plane()));
   EglHost host;
   int one_line = 0;
-  for (const auto& [w, h] : std::vector<std::pair<int, int>>{{1200, 700}, {800, 500}, {500, 400}}) {
+  for (const auto& size : std::vector<std::pair<int, int>>{{1200, 700}, {800, 500}, {500, 400}}) {
+    const int w = size.first, h = size.second;  // (a lambda below captures them)
     const std::string what = std::to_string(w) + "x" + std::to_string(h);
     const std::string png = "fig2-title-" + what + ".png";
     render_plots_png({spec}, 1, w, h, png);
