@@ -187,6 +187,7 @@ int run_parameters(const BoundsArgs& a) {
   apply_damping_flags(a.damping_opts, a.kd, a.rayleigh_mass, a.rayleigh_stiffness, p);
   const bool two = a.system == "two-node";
   const Model model = two ? two_node_system(p) : single_node_system(p);
+  if (const auto why = magnitude_problem(model, p.dt)) throw InputError(*why);
   std::printf("\nsystem       %s\n",
               two ? "two-node (paper sec. 2): node 0 fixed, node 1 on one spring of rest length "
                     "1 cm, no anchor; at rest"
@@ -259,6 +260,7 @@ int run_scene(const BoundsArgs& a) {
   resolve_zeta(scene.model, p);
   if (a.integrator_opt->count()) p.integrator = *parse_integrator(a.integrator);
   apply_damping_flags(a.damping_opts, a.kd, a.rayleigh_mass, a.rayleigh_stiffness, p);
+  require_magnitudes(scene.model, p);
   p.policy = DampingPolicy::fixed;  // the user's gamma is what is judged
   const std::string name = scene.name.empty() ? a.scene : scene.name;
   Session session(std::move(scene), p, StopRules{});

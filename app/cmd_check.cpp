@@ -115,6 +115,7 @@ int run(const CheckArgs& a) {
     try {
       SceneSpec scene = load_scene(file);
       resolve_zeta(scene);
+      require_magnitudes(scene.model, scene.params);
       rep.results = check_expectations(scene);
     } catch (const InputError& e) {
       rep.error = printable(e.what());  // it may quote the file: one inert line

@@ -29,6 +29,7 @@ int run(const RunArgs& a) {
   StopRules rules = scene.rules;
   a.flags.apply(params, rules);
   resolve_zeta(scene.model, params);
+  require_magnitudes(scene.model, params);
   rules.rule = stop_rule_of(a.rule);
   if (!a.trace.empty()) check_writable(a.trace);
   Session session(std::move(scene), params, rules);

@@ -188,4 +188,9 @@ SceneSpec load_scene_arg(const std::string& arg) {
   return load_scene(resolve_scene(arg, shipped_scenes_dir()));
 }
 
+void require_magnitudes(const ModelSpec& spec, const Params& params) {
+  if (const auto why = magnitude_problem(compile_model(spec, params), params.dt))
+    throw InputError(*why);
+}
+
 }  // namespace dampbound::app

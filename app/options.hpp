@@ -64,4 +64,9 @@ std::string shipped_scenes_dir();
 /// shipped_scenes_dir(), with ".toml" appended when missing.
 SceneSpec load_scene_arg(const std::string& arg);
 
+/// InputError with magnitude_problem's line when the scene's numbers at `params` would
+/// overflow an intermediate of the step or the analysis (core/model.hpp): no verdict is
+/// printed beside an inf or a NaN.
+void require_magnitudes(const ModelSpec& spec, const Params& params);
+
 }  // namespace dampbound::app

@@ -29,8 +29,11 @@ LinearLimits linear_limits(double lambda_max, double m, double dt) {
 
 double semi_implicit_dt_max(double lambda_max, double c) {
   // lambda dt^2 + 2 c dt - 4 = 0, the positive root; dt < 2/c when lambda = 0.
+  // Written as 4 / (c + sqrt(c^2 + 4 lambda)): (sqrt(c^2 + 4 lambda) - c) / lambda loses every
+  // digit to cancellation where 4 lambda is far below c^2 (a heavily damped or nearly free
+  // node: it rounds to 0), and hypot keeps c^2 from overflowing.
   if (!(lambda_max > 0)) return c > 0 ? 2.0 / c : std::numeric_limits<double>::infinity();
-  return (std::sqrt(c * c + 4.0 * lambda_max) - c) / lambda_max;
+  return 4.0 / (c + std::hypot(c, 2.0 * std::sqrt(lambda_max)));
 }
 
 }  // namespace dampbound

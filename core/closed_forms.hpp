@@ -27,7 +27,8 @@ struct LinearLimits {
 LinearLimits linear_limits(double lambda_max, double m, double dt);
 
 /// Largest stable dt of the semi-implicit step for uniform c = gamma/m: the root of
-/// lambda_max dt^2 + 2 c dt = 4, dt = (sqrt(c^2 + 4 lambda_max) - c) / lambda_max.
+/// lambda_max dt^2 + 2 c dt = 4, dt = (sqrt(c^2 + 4 lambda_max) - c) / lambda_max (evaluated as
+/// 4 / (c + sqrt(c^2 + 4 lambda_max)), which keeps its digits when 4 lambda_max << c^2).
 double semi_implicit_dt_max(double lambda_max, double c);
 
 }  // namespace dampbound

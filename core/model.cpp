@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <locale>
+#include <sstream>
 
 namespace dampbound {
 
@@ -120,6 +122,84 @@ ModelSpec without_springs(ModelSpec spec, const std::vector<int>& indices) {
     if (!cut[k]) spec.springs[kept++] = spec.springs[k];
   spec.springs.resize(kept);
   return spec;
+}
+
+namespace {
+
+constexpr double kSmallest = 1e-150, kLargest = 1e150;
+
+std::string shown(double x) {  // locale-free: a host's setlocale must not give "1,5e-200"
+  std::ostringstream text;
+  text.imbue(std::locale::classic());
+  text.precision(6);
+  text << x;
+  return text.str();
+}
+
+/// A coefficient that may be 0 (allow_zero) or must be positive, inside [kSmallest, kLargest].
+bool representable(double x, bool allow_zero) {
+  if (allow_zero && x == 0) return true;
+  return std::isfinite(x) && x >= kSmallest && x <= kLargest;
+}
+
+}  // namespace
+
+std::optional<std::string> magnitude_problem(const Model& model, double dt) {
+  const std::string range = " (dampbound keeps every number within 1e-150 .. 1e150 so that no "
+                            "intermediate overflows; only ratios matter: change units)";
+  if (!representable(dt, false)) return "dt = " + shown(dt) + " is out of range" + range;
+  const struct {
+    const char* name;
+    double value;
+  } uniform[] = {{"rayleigh_mass (alpha)", model.rayleigh_mass},
+                 {"rayleigh_stiffness (beta)", model.rayleigh_stiffness}};
+  for (const auto& u : uniform)
+    if (!representable(u.value, true))
+      return std::string(u.name) + " = " + shown(u.value) + " is out of range" + range;
+  if (!(model.rayleigh_mass * dt <= kLargest))
+    return "rayleigh_mass * dt = " + shown(model.rayleigh_mass * dt) +
+           " overflows the step's terms: lower rayleigh_mass or dt" + range;
+  for (size_t i = 0; i < model.mass.size(); ++i) {
+    if (model.spec().fixed[i]) continue;
+    const std::string node = "node " + std::to_string(i) + "'s ";
+    const double m = model.mass[i];
+    if (!representable(m, false))
+      return node + "mass " + shown(m) + " is out of range: change m or the node's mass scale" +
+             range;
+    if (!representable(model.gamma[i], true))
+      return node + "gamma " + shown(model.gamma[i]) + " is out of range: change gamma or zeta" +
+             range;
+    if (!representable(model.node_kappa[i], true))
+      return node + "stiffness " + shown(model.node_kappa[i]) +
+             " is out of range: change kappa or the stiffness scales" + range;
+    const struct {
+      const char* what;
+      double rate;
+      const char* change;
+    } rates[] = {{"kappa_i/m_i", model.node_kappa[i] / m, "kappa or m"},
+                 {"gamma_i/m_i", model.gamma[i] / m, "gamma (zeta) or m"},
+                 {"kd_a/m_i", model.anchor_kd[i] / m, "kd or m"},
+                 {"beta kappa_i/m_i", model.rayleigh_stiffness * model.node_kappa[i] / m,
+                  "rayleigh_stiffness"}};
+    for (const auto& r : rates)
+      if (!(r.rate <= kLargest && r.rate * dt <= kLargest && r.rate * dt * dt <= kLargest))
+        return node + r.what + " = " + shown(r.rate) + " (times dt = " + shown(r.rate * dt) +
+               ") overflows the step's terms: change " + r.change + " or dt" + range;
+  }
+  for (size_t k = 0; k < model.spring_kd.size(); ++k) {
+    const std::string spring = "spring " + std::to_string(k) + "'s ";
+    if (!representable(model.spring_kappa[k], false))
+      return spring + "stiffness " + shown(model.spring_kappa[k]) +
+             " is out of range: change kappa or its scale" + range;
+    if (!representable(model.spring_kd[k], true))
+      return spring + "dashpot kd " + shown(model.spring_kd[k]) +
+             " is out of range: change kd or its scale" + range;
+    const double w = model.spring_weight[k];
+    if (!(w <= kLargest && model.spring_kd[k] * w * dt <= kLargest))
+      return spring + "weight 1/sqrt(m_i m_j) = " + shown(w) +
+             " overflows: change m or the mass scales of its nodes" + range;
+  }
+  return std::nullopt;
 }
 
 State rest_state(const ModelSpec& spec) {

@@ -7,6 +7,8 @@
 #include "core/export.hpp"
 #include <Eigen/Core>
 #include <cstdint>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "core/params.hpp"
@@ -110,6 +112,16 @@ void add_spring(ModelSpec& spec, int i, int j, double kappa_scale = 1);
 /// The spec without the springs of the given indices (any order, duplicates and out-of-range
 /// indices allowed): the topology change of a cut (paper sec. 5).
 ModelSpec without_springs(ModelSpec spec, const std::vector<int>& indices);
+
+/// Whether the model's numbers at step dt stay where double precision holds every
+/// intermediate of the step and the analysis: each mass, stiffness and damping coefficient in
+/// [1e-150, 1e150] (or 0 where 0 is allowed), and each rate they make (kappa/m, gamma/m,
+/// kd/m, alpha, beta kappa/m) and its product with dt and dt^2 at most 1e150, so that squares
+/// and the sums of a row cannot overflow (1/sqrt(m_i m_j) does at m = 1e-200; (gamma/m)^2 at
+/// zeta = 1e300). Nullopt when they do; otherwise one line naming the node or spring, the
+/// value, what overflows and the input to change. Only ratios matter (SPEC: units), so a
+/// change of units always brings a model inside.
+std::optional<std::string> magnitude_problem(const Model& model, double dt);
 
 /// The state at rest: x = X, v = 0, t = 0.
 State rest_state(const ModelSpec& spec);

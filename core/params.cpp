@@ -17,6 +17,17 @@ const char* to_string(DampingPolicy p) {
   return "?";
 }
 
+bool uses_user_gamma(DampingPolicy p) {
+  switch (p) {
+    case DampingPolicy::fixed:
+    case DampingPolicy::clamp:
+    case DampingPolicy::safe: return true;
+    case DampingPolicy::upper:
+    case DampingPolicy::lower: return false;
+  }
+  return true;
+}
+
 const char* to_string(Integrator i) {
   for (Integrator k : kIntegrators)
     if (k == i) return integrator_traits(i).name;

@@ -58,6 +58,11 @@ inline constexpr Integrator kIntegrators[] = {Integrator::semi_implicit_euler,
 
 const char* to_string(DampingPolicy p);
 const char* to_string(Integrator i);
+/// Whether the policy's effective gamma_i depends on the user's gamma (SPEC 4, 9): fixed,
+/// clamp and safe start from it; upper and lower ignore it. Sweeps key their similarity
+/// classes on it (SPEC 6): two trials that differ only in gamma are one trial only where
+/// the policy ignores gamma.
+bool uses_user_gamma(DampingPolicy p);
 /// The names of kPolicies and kIntegrators (what flags and menus accept).
 std::vector<std::string> policy_names();
 std::vector<std::string> integrator_names();

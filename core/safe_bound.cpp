@@ -18,31 +18,41 @@ double safe_dt(double m, double gamma, double row_sum) {
   return semi_implicit_dt_max(row_sum, gamma / m);
 }
 
+NodeSafeBounds::NodeSafeBounds(const Model& model, const std::vector<Vec3>& x) : model_(model) {
+  compressed_ = safe_row_sums(model, x, row_sum_);
+  if (model.spring_damping) damped_.emplace(model, x);
+}
+
+double NodeSafeBounds::gamma_safe(int node, double dt) const {
+  return damped_ ? damped_->gamma_safe(node, dt)
+                 : safe_gamma(model_.mass[static_cast<size_t>(node)], dt, row_sum(node));
+}
+
+double NodeSafeBounds::dt_safe(int node, double gamma) const {
+  return damped_ ? damped_->dt_safe(node, gamma)
+                 : safe_dt(model_.mass[static_cast<size_t>(node)], gamma, row_sum(node));
+}
+
 SafeBoundSummary safe_bound_summary(const Model& model, const std::vector<Vec3>& x, double dt) {
   SafeBoundSummary s;
-  std::vector<double> R;
-  s.compressed_springs = safe_row_sums(model, x, R);
+  const NodeSafeBounds rows(model, x);
+  s.compressed_springs = rows.compressed_springs();
   constexpr double kInf = std::numeric_limits<double>::infinity();
   s.gamma_safe = s.dt_safe = kInf;
-  std::optional<DampedSafeRows> rows;
-  if (model.spring_damping) rows.emplace(model, x);
-  for (size_t i = 0; i < R.size(); ++i) {
+  for (size_t i = 0; i < model.mass.size(); ++i) {
     if (model.spec().fixed[i]) continue;
     ++s.free_nodes;
     const int node = static_cast<int>(i);
-    const double g = rows ? rows->gamma_safe(node, dt) : safe_gamma(model.mass[i], dt, R[i]);
-    const auto dt_at = [&](double gamma) {
-      return rows ? rows->dt_safe(node, gamma) : safe_dt(model.mass[i], gamma, R[i]);
-    };
+    const double g = rows.gamma_safe(node, dt);
     const double scale = model.spec().gamma_scale[i];
     s.gamma_scaled = s.gamma_scaled || scale != 1;
     const double user = safe_user_gamma(g, scale);
     if (user < s.gamma_safe) {
       s.gamma_safe = user;
       s.gamma_node = node;
-      s.row_sum = R[i];
+      s.row_sum = rows.row_sum(node);
     }
-    const double h = dt_at(model.gamma[i]);
+    const double h = rows.dt_safe(node, model.gamma[i]);
     s.gamma_over += !(model.gamma[i] < g);
     if (h < s.dt_safe) {
       s.dt_safe = h;
@@ -50,7 +60,7 @@ SafeBoundSummary safe_bound_summary(const Model& model, const std::vector<Vec3>&
     }
     if (model.lower_bound[i] > g) {
       s.infeasible.push_back(node);
-      s.infeasible_dt.push_back(dt_at(model.lower_bound[i]));
+      s.infeasible_dt.push_back(rows.dt_safe(node, model.lower_bound[i]));
     }
   }
   return s;

@@ -5,6 +5,7 @@
 #include <Eigen/SparseCore>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include "core/forces.hpp"
@@ -76,6 +77,26 @@ class DampedSafeRows {
   std::vector<double> diag_a_, diag_c_;  ///< per node 3 rows: A_rr and C'^_rr (alpha included)
   std::vector<int> offset_;              ///< row (3 i + r)'s entries: [offset_[3i+r], offset_[3i+r+1])
   std::vector<Entry> entries_;
+};
+
+/// The safe bound of one model at one state, node by node: SPEC 9's rows, or SPEC 10's
+/// generalised rows (DampedSafeRows) where the model has dashpot or Rayleigh damping. The one
+/// place that chooses between them, for every report (bounds, suggest, files, the tuner).
+class NodeSafeBounds {
+ public:
+  NodeSafeBounds(const Model& model, const std::vector<Vec3>& x);
+  /// gamma_safe_i at step dt (mass unit / s; may be <= 0).
+  double gamma_safe(int node, double dt) const;
+  /// dt_safe_i at nodal damping gamma_i (s; +inf when no margin ever closes).
+  double dt_safe(int node, double gamma) const;
+  double row_sum(int node) const { return row_sum_[static_cast<size_t>(node)]; }  ///< SPEC 9's R_i
+  int compressed_springs() const { return compressed_; }
+
+ private:
+  const Model& model_;
+  std::vector<double> row_sum_;
+  int compressed_ = 0;
+  std::optional<DampedSafeRows> damped_;
 };
 
 /// DampedSafeRows(model, x).gamma_safe(i, dt) for every node (+inf at fixed nodes), the same

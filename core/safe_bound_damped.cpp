@@ -24,6 +24,17 @@ bool spring_blocks(const Model& model, const std::vector<Vec3>& x, size_t k, Eig
   return true;
 }
 
+/// sqrt(P^2 + 16 Q) without forming P^2, which overflows for a rate above ~1e154 (an
+/// extreme alpha or kd) and would send the row's root to 0 and its limit to +inf; NaN where
+/// P^2 + 16 Q < 0 (no real root).
+double discriminant_root(double P, double Q) {
+  const double a = 4 * std::sqrt(std::abs(Q));
+  if (Q >= 0) return std::hypot(P, a);
+  const double p = std::abs(P);
+  if (!(p >= a)) return std::numeric_limits<double>::quiet_NaN();
+  return std::sqrt(p - a) * std::sqrt(p + a);
+}
+
 }  // namespace
 
 DampedSafeRows::DampedSafeRows(const Model& model, const std::vector<Vec3>& x)
@@ -139,10 +150,13 @@ double DampedSafeRows::dt_safe(int node, double gamma) const {
       if (Q == 0) {
         if (P > 0) root = 4 / P;
       } else {
-        const double disc = P * P + 16 * Q;
-        if (disc >= 0) {
-          const double s = std::sqrt(disc);
-          const double r1 = (-P - s) / (2 * Q), r2 = (-P + s) / (2 * Q);
+        const double s = discriminant_root(P, Q);
+        if (!std::isnan(s)) {
+          // Roots without cancellation: q = -(P + sign(P) s) / 2, roots q / Q and -4 / q
+          // (their product is -4 / Q). (-P + s) / (2Q) rounds to 0 when 16 Q is below P^2's
+          // last bit, and a root dropped there would leave the row's limit at +inf.
+          const double q = -(0.5 * P + (P < 0 ? -0.5 * s : 0.5 * s));
+          const double r1 = q / Q, r2 = -4 / q;  // q != 0: Q != 0 and disc >= 0
           for (double t : {std::min(r1, r2), std::max(r1, r2)})
             if (t >= lo && t <= hi && t > 0) {
               root = t;

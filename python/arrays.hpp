@@ -130,6 +130,10 @@ class ResolvedScene {
       resolve_zeta(copy_->model, params_);
       scene_ = &*copy_;
     }
+    // What the CLI refuses (app/options.hpp require_magnitudes): numbers whose intermediates
+    // overflow get no verdict.
+    if (const auto why = magnitude_problem(compile_model(scene_->model, params_), params_.dt))
+      throw py::value_error(*why);
   }
   const SceneSpec& scene() const { return *scene_; }
   const Params& params() const { return params_; }

@@ -82,6 +82,8 @@ void bind_linear_limits(py::module_& m) {
       .def_property_readonly(
           "dt_safe", [](const MatrixLimits& r) { return array_of(r.dt_safe); },
           "SPEC 9's dt_safe_i per node at its gamma_i (s)")
+      .def_readonly("reason", &MatrixLimits::reason,
+                    "empty, or why nothing is guaranteed (K or C not positive semi-definite)")
       .def("__repr__", [](const MatrixLimits& r) {
         return "<MatrixLimits lambda_max in [" + std::to_string(r.lambda_max_lo) + ", " +
                std::to_string(r.lambda_max_hi) + "], dt_max " + std::to_string(r.dt_max) +

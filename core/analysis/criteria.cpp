@@ -224,7 +224,10 @@ std::vector<CriterionResult> exact_criteria(const ExactStability& e, const Param
                       std::string("rho of one step's amplification matrix; ") + to_string(e.method));
   rho.value = e.spectral_radius;
   rho.verdict = verdict_of(e.stable);
-  if (e.method == ExactMethod::symmetric_index)
+  if (e.method == ExactMethod::damped_radius && !e.radius_converged)
+    rho.verdict = CriterionVerdict::not_applicable;  // an estimate from below decides nothing
+  if (e.method == ExactMethod::symmetric_index || (e.spec10 && std::isnan(e.spectral_radius) &&
+                                                    !std::isnan(e.index)))
     rho.test = "index lambda_max(dt^2 A + 2 dt C) = " + format_human(e.index) + (e.index < 4 ? " < 4" : " >= 4") +
                (std::isnan(e.spectral_radius) ? "" : ", rho = " + format_human(e.spectral_radius));
   else if (std::isnan(e.spectral_radius))
@@ -279,6 +282,11 @@ std::vector<CriterionResult> exact_criteria(const ExactStability& e, const Param
     dm.verdict = bracketed_verdict(params.dt <= e.dt_max, params.dt <= in.dt_max);
     dm.test += std::string(only_bracketed) + "dt_max in " + span(e.dt_max, in.dt_max) +
                (dm.verdict == CriterionVerdict::not_applicable ? ", undecided)" : ")");
+  }
+  if (e.method == ExactMethod::damped_radius) {
+    gi.verdict = dm.verdict = CriterionVerdict::not_applicable;
+    gi.test = dm.test = "not computed for this damping (dashpot or Rayleigh under " + integ +
+                        "): the spectral radius above decides";
   }
   if (e.indefinite) {  // ExactStability::indefinite
     const std::string why = "K is indefinite at the state (lambda_min = " +

@@ -6,6 +6,7 @@
 
 #include "core/stiffness.hpp"
 #include "core/analysis/linear_stability.hpp"
+#include "core/analysis/linear_stability_modes.hpp"
 
 namespace dampbound {
 
@@ -165,10 +166,16 @@ GeneralLimits general_limits(const Model& model, const std::vector<Vec3>& x, con
   const double dt = params.dt;
   const SparseMatrix A = mass_weighted(model, tangent_stiffness(model, x));
   SparseMatrix Cp = weighted_damping(model, x, std::vector<double>(model.spec().rest.size(), 0.0));
-  // The nodal part per unit user gamma: gamma_scale_i / m_i on node i's rows.
+  // The nodal part per unit user gamma: gamma_scale_i / m_i on node i's rows, built as the
+  // diagonal it is: weighted_damping(scales) - C' would keep only the digits of
+  // gamma_scale_i / m_i above C''s last bit, and a large gamma multiplies the loss.
   std::vector<double> unit(model.spec().rest.size());
   for (size_t i = 0; i < unit.size(); ++i) unit[i] = model.spec().gamma_scale[i];
-  const SparseMatrix G = weighted_damping(model, x, unit) - Cp;
+  const Eigen::VectorXd rates = damping_rates(model, unit);
+  SparseMatrix G(rates.size(), rates.size());
+  G.reserve(Eigen::VectorXi::Constant(rates.size(), 1));
+  for (Eigen::Index r = 0; r < rates.size(); ++r) G.insert(r, r) = rates(r);
+  G.makeCompressed();
   // Commuting: no dashpot, and gamma_i / m_i the same at every free node.
   bool dashpot = false;
   for (double kd : model.spring_kd) dashpot = dashpot || kd != 0;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
+#include <limits>
 #include <sstream>
 #include <string>
 
@@ -72,6 +73,22 @@ SparseMatrix weighted(SparseMatrix X, const std::vector<double>& inv_sqrt_m) {
   return X;
 }
 
+/// The largest absolute row sum of X: a bound on its eigenvalues' magnitude.
+double gershgorin_bound(const SparseMatrix& X) {
+  Eigen::VectorXd rows = Eigen::VectorXd::Zero(X.rows());
+  for (int k = 0; k < X.outerSize(); ++k)
+    for (SparseMatrix::InnerIterator it(X, k); it; ++it) rows(it.row()) += std::abs(it.value());
+  return rows.size() ? rows.maxCoeff() : 0.0;
+}
+
+/// Where the safe bound guarantees nothing: no gamma is safe, and no dt (`dt` = 0) or none
+/// computed (NaN).
+void no_safe_bound(MatrixLimits& out, double dt) {
+  const double none = std::isnan(dt) ? dt : -std::numeric_limits<double>::infinity();
+  std::fill(out.gamma_safe.begin(), out.gamma_safe.end(), none);
+  std::fill(out.dt_safe.begin(), out.dt_safe.end(), dt);
+}
+
 }  // namespace
 
 MatrixLimits linear_limits(const MatrixModel& model, const ExactOptions& options) {
@@ -119,6 +136,11 @@ MatrixLimits linear_limits(const MatrixModel& model, const ExactOptions& options
     out.gamma_safe[i] = safe_gamma(model.mass[i], model.dt, out.row_sum[i]);
     out.dt_safe[i] = safe_dt(model.mass[i], gamma_of(i), out.row_sum[i]);
   }
+  if (out.exact.indefinite) {  // SPEC 9: no damping bound helps a growing mode
+    out.reason = "K is not positive semi-definite (lambda_min = " + shown(out.exact.spectrum.lambda_min) +
+                 " < 0): a mode grows whatever gamma and dt";
+    no_safe_bound(out, 0.0);
+  }
   if (!model.C) return out;
   // SPEC 10: the index with C^ = M^-1/2 (Gamma + C) M^-1/2 (general_limits on matrices), the
   // nodal part per unit of gamma_ref as R above, and the generalised safe bound.
@@ -135,6 +157,21 @@ MatrixLimits linear_limits(const MatrixModel& model, const ExactOptions& options
   out.gamma_min = 0;
   out.gamma_max = g.gamma_max;
   out.stable = g.index < 4 && g.damping_min > 0;
+  if (out.exact.indefinite) {  // the index criterion needs K >= 0: the nodal verdict stands
+    out.dt_max = out.gamma_max = 0;
+    out.stable = false;
+    return out;
+  }
+  if (g.damping_min < -1e-12 * gershgorin_bound(Cp + out.gamma_ref * G)) {
+    // SPEC 10's index decides stability only with C^ >= 0; a negative rate can make a mode
+    // grow or not, and nothing here decides which.
+    out.reason = "C is not positive semi-definite (lambda_min(C^) = " + shown(g.damping_min) +
+                 " < 0): the limits and the safe bound are not computed for this damping";
+    out.dt_max = out.gamma_min = out.gamma_max = std::numeric_limits<double>::quiet_NaN();
+    out.stable = false;
+    no_safe_bound(out, std::numeric_limits<double>::quiet_NaN());
+    return out;
+  }
   const DampedSafeRows damped(A, Cp, model.mass);
   for (size_t i = 0; i < n; ++i) {
     out.gamma_safe[i] = damped.gamma_safe(int(i), model.dt);

@@ -7,6 +7,7 @@
 // bound, as general_limits() and DampedSafeRows compute them for a scene with dashpots or
 // Rayleigh damping (docs/embedding.md, "Your own matrices").
 #include <Eigen/SparseCore>
+#include <string>
 #include <vector>
 
 #include "core/analysis/damping_limits.hpp"
@@ -52,6 +53,11 @@ struct MatrixLimits {
   /// gamma_safe_i = 2 m_i/dt - m_i dt R_i / 2 and dt_safe_i at the node's gamma_i; with C,
   /// SPEC 10's generalised gamma_safe_i and dt_safe_i (Gershgorin on 4 I - 2 dt C^ - dt^2 A).
   std::vector<double> row_sum, gamma_safe, dt_safe;
+  /// Empty, or why nothing is guaranteed: K not positive semi-definite (unstable at every
+  /// dt: dt_max 0, the gamma interval empty, every gamma_safe_i -inf and dt_safe_i 0), or C
+  /// not positive semi-definite (the index does not decide: dt_max, the gamma interval and the
+  /// safe bounds NaN, `stable` false).
+  std::string reason;
 };
 
 /// Checks the input (InputError naming the argument: shapes, symmetry to 1e-12 of the largest

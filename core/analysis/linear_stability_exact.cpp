@@ -59,6 +59,8 @@ const char* to_string(ExactMethod m) {
     case ExactMethod::symmetric_index: return "symmetric index lambda_max(dt^2 A + 2 dt C) < 4";
     case ExactMethod::unconditional: return "unconditional (A-stable)";
     case ExactMethod::frozen_estimate: return "Arnoldi rho; limits are frozen-rate estimates";
+    case ExactMethod::damped_radius:
+      return "rho with the dashpot and Rayleigh damping; limits not computed for this damping";
     case ExactMethod::over_budget: return "not computed (factorisation over budget)";
   }
   return "?";
@@ -101,6 +103,10 @@ void spectrum_and_rates(const ExactInputs& in, std::optional<double> floor, cons
   const CertifiedSpectrum ends = certified_spectrum(in.A, floor, options.threads,
                                                     options.max_factor_flops, within_budget);
   e.spectrum = {ends.smallest.lo, ends.largest.hi};
+  // A proved floor (SPEC 9's, psd_floor) is as certain as the factorisation's end and often
+  // sharper: a zero mode's end at -1e-15 would make every undamped explicit step "grow" at
+  // rate sqrt(1e-15) and cut its dt limit to nothing.
+  if (floor) e.spectrum.lambda_min = std::max(e.spectrum.lambda_min, *floor);
   e.lambda_max_lo = ends.largest.lo;
   e.lambda_min_hi = ends.smallest.hi;
   e.rate_min = params.gamma * in.r_min;
@@ -337,6 +343,30 @@ void with_spec10_damping(const Model& model, const std::vector<Vec3>& x, const P
   e.inner.stable = e.stable;
 }
 
+/// SPEC 10's damping under the other integrators. Implicit Euler stays unconditional (C' is
+/// positive semi-definite and joins its matrix, integrate.cpp); its radius is left out (NaN)
+/// rather than quoted without C'. Forward Euler, Verlet and RK4: no closed form or index
+/// covers them with a general C, so their gamma interval and dt limit are not computed (NaN)
+/// and the verdict is the spectral radius of the step with the whole damping (dense below 25
+/// rows, else Arnoldi); a radius that did not converge decides nothing (not stable).
+void with_spec10_radius(const Model& model, const std::vector<Vec3>& x, const ExactInputs& in,
+                        const Params& params, ExactStability& e) {
+  e.spec10 = true;
+  e.inner = ExactStability::Inner{};
+  e.spectral_radius = kNaN;
+  if (integrator_traits(e.integrator).implicit) return;
+  e.method = ExactMethod::damped_radius;
+  e.index = kNaN;
+  e.gamma_lo = e.gamma_hi = e.dt_max = kNaN;
+  const SparseMatrix Cp =
+      weighted_damping(model, x, std::vector<double>(model.spec().rest.size(), 0.0));
+  const Eigen::VectorXd rate = params.gamma * in.R;
+  const SpectralRadius r = amplification_spectral_radius(e.integrator, in.A, rate, params.dt, &Cp);
+  e.spectral_radius = r.rho;
+  e.radius_converged = r.converged;
+  e.stable = r.converged && r.rho <= 1 + 1e-9;
+}
+
 ExactStability exact_stability_within_budget(const ExactInputs& in, std::optional<double> floor,
                                              const Params& params, const ExactOptions& options) {
   ExactStability e;
@@ -378,9 +408,12 @@ ExactStability exact_stability(const Model& model, const std::vector<Vec3>& x,
   const ExactInputs in = assemble(model, x, options.threads);
   try {
     ExactStability e = exact_stability_within_budget(in, psd_floor(model, x), params, options);
-    if (model.spring_damping && integrator_traits(e.integrator).paper_step &&
-        !e.indefinite)
-      with_spec10_damping(model, x, params, e);
+    if (model.spring_damping && !e.indefinite) {
+      if (integrator_traits(e.integrator).paper_step)
+        with_spec10_damping(model, x, params, e);
+      else
+        with_spec10_radius(model, x, in, params, e);
+    }
     return e;
   } catch (const FactorisationOverBudget& over) {
     return over_budget(model, x, in, params, options, over);

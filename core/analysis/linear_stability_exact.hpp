@@ -19,6 +19,9 @@ enum class ExactMethod {
   unconditional,      ///< implicit Euler: stable for every dt > 0 and gamma >= 0
   frozen_estimate,    ///< other explicit steps, non-uniform: limits from the worst uniform
                       ///< rate in [c_min, c_max] (an estimate); verdict from Arnoldi's rho
+  damped_radius,      ///< forward Euler, Verlet, RK4 with SPEC 10's dashpot or Rayleigh
+                      ///< damping: the verdict from the spectral radius of the step with the
+                      ///< whole damping; the gamma interval and dt limit are not computed (NaN)
   over_budget,        ///< not computed: one factorisation would exceed the budget
                       ///< (ExactOptions::max_factor_flops); every number is NaN
 };

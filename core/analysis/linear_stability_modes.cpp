@@ -46,7 +46,9 @@ void linear_step(Integrator integrator, const Ops& ops, double h, V& y, V& w) {
     case Integrator::verlet: {  // integrate.cpp: kick h/2, drift h, kick h/2 (damping implicit)
       const V wh = w + (h / 2) * accel(y, w);
       y = y + h * wh;
-      w = ops.half_damp_solve(V(wh - (h / 2) * ops.A(y)), h);
+      V r = wh - (h / 2) * ops.A(y);
+      ops.explicit_damping(r, wh, h / 2);  // SPEC 10's C' at (x', v_h), as integrate.cpp
+      w = ops.half_damp_solve(r, h);
       return;
     }
     case Integrator::rk4: {
@@ -70,6 +72,7 @@ struct ScalarOps {
   double lambda, c;
   double A(double y) const { return lambda * y; }
   double C(double w) const { return c * w; }
+  void explicit_damping(double&, double, double) const {}  // c is nodal: no C' part
   double half_damp_solve(double r, double h) const { return r / (1 + c * h / 2); }
   double implicit_solve(double r, double h) const { return r / (1 + h * c + h * h * lambda); }
 };
@@ -77,12 +80,15 @@ struct ScalarOps {
 struct VectorOps {
   const SparseMatrix* K;
   const Eigen::VectorXd* rate;
+  const SparseMatrix* Cp;  ///< SPEC 10's damping besides the nodal one, mass-weighted; or null
   SparseMatrix S;  ///< I + h C + h^2 A; the solver keeps a reference to it, so it lives here
   std::unique_ptr<Eigen::ConjugateGradient<SparseMatrix, Eigen::Lower | Eigen::Upper>> cg;
-  VectorOps(Integrator integrator, const SparseMatrix& Kw, const Eigen::VectorXd& c, double h)
-      : K(&Kw), rate(&c) {
+  VectorOps(Integrator integrator, const SparseMatrix& Kw, const Eigen::VectorXd& c, double h,
+            const SparseMatrix* damping = nullptr)
+      : K(&Kw), rate(&c), Cp(damping) {
     if (!integrator_traits(integrator).implicit) return;
     S = (h * h) * Kw;
+    if (Cp) S += h * *Cp;  // integrate.cpp: implicit Euler takes C' into its matrix
     for (Eigen::Index i = 0; i < S.rows(); ++i) S.coeffRef(i, i) += 1 + h * c(i);
     cg = std::make_unique<Eigen::ConjugateGradient<SparseMatrix, Eigen::Lower | Eigen::Upper>>();
     cg->setTolerance(1e-13);
@@ -91,7 +97,14 @@ struct VectorOps {
   VectorOps(const VectorOps&) = delete;
   VectorOps& operator=(const VectorOps&) = delete;
   Eigen::VectorXd A(const Eigen::VectorXd& y) const { return *K * y; }
-  Eigen::VectorXd C(const Eigen::VectorXd& w) const { return rate->cwiseProduct(w); }
+  Eigen::VectorXd C(const Eigen::VectorXd& w) const {
+    if (!Cp) return rate->cwiseProduct(w);
+    return rate->cwiseProduct(w) + *Cp * w;
+  }
+  /// Verlet's second half kick: r -= scale C' w (C' explicit there; the nodal part implicit).
+  void explicit_damping(Eigen::VectorXd& r, const Eigen::VectorXd& w, double scale) const {
+    if (Cp) r -= scale * (*Cp * w);
+  }
   Eigen::VectorXd half_damp_solve(const Eigen::VectorXd& r, double h) const {
     return r.cwiseQuotient((1 + (h / 2) * rate->array()).matrix());
   }
@@ -108,12 +121,16 @@ struct AmplificationOp {
   int power = 1;  ///< steps per product: G^power spreads clustered magnitudes apart
   Eigen::Index rows() const { return 2 * n; }
   Eigen::Index cols() const { return 2 * n; }
+  /// Acts on (y, h w): the step's matrix in those coordinates is similar to the one on (y, w)
+  /// (diag(I, h I)), so it has the same eigenvalues, and its blocks are all of the order of
+  /// h^2 A and h C rather than spread over h^-1 .. h (badly scaled at extreme magnitudes, a
+  /// dense eigensolver or Arnoldi loses the digits that decide |z| <= 1).
   void apply(const double* in, double* out) const {
     Eigen::VectorXd y = Eigen::Map<const Eigen::VectorXd>(in, n);
-    Eigen::VectorXd w = Eigen::Map<const Eigen::VectorXd>(in + n, n);
+    Eigen::VectorXd w = Eigen::Map<const Eigen::VectorXd>(in + n, n) / h;
     for (int k = 0; k < power; ++k) linear_step(integrator, *ops, h, y, w);
     Eigen::Map<Eigen::VectorXd>(out, n) = y;
-    Eigen::Map<Eigen::VectorXd>(out + n, n) = w;
+    Eigen::Map<Eigen::VectorXd>(out + n, n) = h * w;
   }
   void perform_op(const double* in, double* out) const { apply(in, out); }
 };
@@ -361,14 +378,15 @@ Eigen::VectorXd damping_rates(const Model& model, const std::vector<double>& gam
 
 SpectralRadius amplification_spectral_radius(Integrator integrator,
                                              const SparseMatrix& K_weighted,
-                                             const Eigen::VectorXd& rate, double h) {
+                                             const Eigen::VectorXd& rate, double h,
+                                             const SparseMatrix* damping) {
   const Eigen::Index n = K_weighted.rows();
   if (n == 0) return {0, true};
   if (2 * n <= 24) {  // tiny: the dense matrix is exact and cheap
-    const Eigen::MatrixXd G = amplification_matrix_dense(integrator, K_weighted, rate, h);
+    const Eigen::MatrixXd G = amplification_matrix_dense(integrator, K_weighted, rate, h, damping);
     return {G.eigenvalues().cwiseAbs().maxCoeff(), true};
   }
-  const VectorOps ops(integrator, K_weighted, rate, h);
+  const VectorOps ops(integrator, K_weighted, rate, h, damping);
   // Arnoldi on G^4: |z|^4 spreads the magnitudes of lightly damped modes, which all sit near
   // the circle |z| = sqrt(1 - c h), four times further apart, for the price of cheap products.
   // Spectra 1.0.1 can report success with Ritz pairs that are no eigenpairs at all (residual
@@ -386,9 +404,10 @@ SpectralRadius amplification_spectral_radius(Integrator integrator,
 }
 
 Eigen::MatrixXd amplification_matrix_dense(Integrator integrator, const SparseMatrix& K_weighted,
-                                           const Eigen::VectorXd& rate, double h) {
+                                           const Eigen::VectorXd& rate, double h,
+                                           const SparseMatrix* damping) {
   const Eigen::Index n = K_weighted.rows();
-  const VectorOps ops(integrator, K_weighted, rate, h);
+  const VectorOps ops(integrator, K_weighted, rate, h, damping);
   const AmplificationOp op{integrator, &ops, h, n};
   Eigen::MatrixXd G(2 * n, 2 * n);
   Eigen::VectorXd e = Eigen::VectorXd::Zero(2 * n), col(2 * n);

@@ -106,13 +106,21 @@ struct SpectralRadius {
   double rho = 0;
   bool converged = true;
 };
+/// `damping` (optional): SPEC 10's damping besides the nodal one, mass-weighted
+/// (M^-1/2 C' M^-1/2 over the free dofs, weighted_damping with zero gamma), applied where
+/// integrate.cpp applies it: explicit in every explicit step and in both of Verlet's half
+/// kicks, inside implicit Euler's matrix.
 SpectralRadius amplification_spectral_radius(Integrator integrator,
                                              const SparseMatrix& K_weighted,
-                                             const Eigen::VectorXd& rate, double h);
+                                             const Eigen::VectorXd& rate, double h,
+                                             const SparseMatrix* damping = nullptr);
 
-/// The same operator as a dense matrix, for tests on small meshes only.
+/// The same operator as a dense matrix, for tests on small meshes only. Both act on
+/// (y, h y'), which is similar to the step on (y, y') (same eigenvalues) and keeps every
+/// block of the order of h^2 A and h C.
 Eigen::MatrixXd amplification_matrix_dense(Integrator integrator, const SparseMatrix& K_weighted,
-                                           const Eigen::VectorXd& rate, double h);
+                                           const Eigen::VectorXd& rate, double h,
+                                           const SparseMatrix* damping = nullptr);
 
 /// c_i = gamma_i / m_i repeated for the 3 dofs of each free node.
 Eigen::VectorXd damping_rates(const Model& model, const std::vector<double>& gamma);

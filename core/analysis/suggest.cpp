@@ -122,8 +122,7 @@ DampingSuggestion suggest_damping(const SceneSpec& scene, const Params& params_i
 
   // Eq. 5 at every free node: gamma * gamma_scale_i >= 2 sqrt(m_i kappa_i) (SPEC 3).
   double eq5 = 0, unit_rate_max = 0;
-  std::vector<double> R;  // SPEC 9 at rest
-  safe_row_sums(model, model.spec().rest, R);
+  const NodeSafeBounds rows(model, model.spec().rest);  // SPEC 9 (10 with C') at rest
   s.safe_max = kInf;
   std::map<std::tuple<double, double, double>, NodeClass> classes;
   for (size_t i = 0; i < model.spec().rest.size(); ++i) {
@@ -132,8 +131,8 @@ DampingSuggestion suggest_damping(const SceneSpec& scene, const Params& params_i
     eq5 = std::max(eq5, sc > 0 ? lo / sc : (lo > 0 ? kInf : 0.0));
     unit_rate_max = std::max(unit_rate_max, sc / model.mass[i]);
     NodeClass& c = classes[{model.mass[i], model.node_kappa[i], sc}];
-    const double safe = safe_gamma(model.mass[i], params.dt, R[i]);
-    const double dt_safe = safe_dt(model.mass[i], lo, R[i]);
+    const double safe = rows.gamma_safe(static_cast<int>(i), params.dt);
+    const double dt_safe = rows.dt_safe(static_cast<int>(i), lo);
     s.safe_max = std::min(s.safe_max, safe_user_gamma(safe, sc));
     if (c.count == 0 || safe < c.safe_max) c.safe_max = safe;
     if (c.count == 0 || dt_safe < c.dt_safe) c.dt_safe = dt_safe;
@@ -303,12 +302,11 @@ StepSuggestion suggest_step(const SceneSpec& scene, const Params& params_in, con
   }
   s.dt_all = s.dt_exact;
   {  // SPEC 9 at rest: the smallest dt_safe_i at the user's gamma_i
-    std::vector<double> R;
-    safe_row_sums(model, model.spec().rest, R);
+    const NodeSafeBounds safe(model, model.spec().rest);
     s.dt_safe = kInf;
-    for (size_t i = 0; i < R.size(); ++i) {
+    for (size_t i = 0; i < model.mass.size(); ++i) {
       if (model.spec().fixed[i]) continue;
-      const double h = safe_dt(model.mass[i], model.gamma[i], R[i]);
+      const double h = safe.dt_safe(static_cast<int>(i), model.gamma[i]);
       if (h < s.dt_safe) s.dt_safe = h, s.dt_safe_node = static_cast<int>(i);
     }
   }

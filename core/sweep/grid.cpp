@@ -319,7 +319,7 @@ TrialClasses find_classes(const SweepGrid& grid, const std::optional<std::string
   TrialClasses tc;
   const std::uint64_t n = grid.trials();
   tc.reason = !s.allow_similarity ? "turned off (--no-similarity)" : scene_reason.value_or("");
-  const bool uses_gamma = s.policy == DampingPolicy::fixed || s.policy == DampingPolicy::clamp;
+  const bool uses_gamma = uses_user_gamma(s.policy);
   const bool absolute = s.gamma_mode == GammaMode::absolute && uses_gamma;
   int scale = 0;
   const bool kd = !s.kd.values.empty();

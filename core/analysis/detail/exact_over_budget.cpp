@@ -111,6 +111,38 @@ IndexProof index_proof(const Model& model, const Params& params, const std::vect
   return p;
 }
 
+/// Over the budget, the paper's step with SPEC 10's dashpot or Rayleigh damping and K >= 0:
+/// Gershgorin on the whole index matrix S = h^2 A + 2 h (Gamma + C')^ (SPEC 10's safe rows,
+/// NodeSafeBounds). Row r of node i is at most 4 - margin_r, and the rows' gamma_safe_i =
+/// m_i / (2h) min_r (margin_r without the nodal term) make that 4 - 2h (gamma_safe_i -
+/// gamma_i) / m_i; every gamma below min_i gamma_safe_i / scale_i and every dt below
+/// min_i dt_safe_i keeps each row inside. The splitting and the nodal rows ignore C' and
+/// prove nothing here.
+void damped_step_ceilings(const Model& model, const std::vector<Vec3>& x, const Params& params,
+                          ExactStability& e) {
+  ExactStability::Unfactored& b = e.unfactored;
+  constexpr double kIn = 1 - 1e-12;
+  const double h = params.dt;
+  const NodeSafeBounds rows(model, x);
+  double top = 0, gamma_hi = kInf, dt_hi = kInf;
+  for (size_t i = 0; i < model.mass.size(); ++i) {
+    if (model.spec().fixed[i]) continue;
+    const int node = static_cast<int>(i);
+    const double m = model.mass[i], scale = model.spec().gamma_scale[i];
+    const double gamma_i = params.gamma * scale, g = rows.gamma_safe(node, h);
+    top = std::max(top, 4 - 2 * h * (g - gamma_i) / m);
+    gamma_hi = std::min(gamma_hi, safe_user_gamma(g, scale));
+    dt_hi = std::min(dt_hi, rows.dt_safe(node, gamma_i));
+  }
+  b.index_gershgorin = b.index_at_most = top * (1 + 1e-12);
+  if (gamma_hi > 0) {
+    b.gamma_stable_lo = 0;
+    b.gamma_stable_hi = std::isinf(gamma_hi) ? gamma_hi : gamma_hi * kIn;
+  }
+  b.dt_stable_up_to = std::isinf(dt_hi) ? dt_hi : dt_hi * kIn;
+  e.stable = b.index_at_most < 4;
+}
+
 /// Over the budget, the paper's step with K >= 0 (SPEC 9's floor), from two per-node bounds on
 /// the index matrix S = h^2 A + 2 h C, each a proof: SPEC 9's safe bound (core/safe_bound.hpp),
 /// Gershgorin node by node (R_i, safe_row_sums), and the splitting of K into node blocks
@@ -122,6 +154,10 @@ void paper_step_ceilings(const Model& model, const std::vector<Vec3>& x,
                          ExactStability& e) {
   ExactStability::Unfactored& b = e.unfactored;
   constexpr double kIn = 1 - 1e-12;
+  if (model.spring_damping) {
+    damped_step_ceilings(model, x, params, e);
+    return;
+  }
   std::vector<double> R;
   safe_row_sums(model, x, R);
   const IndexProof g = index_proof(model, params, R), s = index_proof(model, params, ceiling);
@@ -311,7 +347,8 @@ ExactStability over_budget(const Model& model, const std::vector<Vec3>& x, const
     b.unconditional = true;
     e.stable = true;
   }
-  if (!paper_step && in.r_max - in.r_min <= 1e-12 * in.r_max)
+  // The per-mode proofs know the nodal rate only: with SPEC 10's damping they prove nothing.
+  if (!paper_step && !model.spring_damping && in.r_max - in.r_min <= 1e-12 * in.r_max)
     per_mode_proofs(in.r_max, bracket, floor, params, e);
   if (!paper_step) return e;
   // index(gamma', h') >= u^T (h'^2 A + 2 h' gamma' diag(R)) u / u^T u
@@ -336,8 +373,9 @@ ExactStability over_budget(const Model& model, const std::vector<Vec3>& x, const
   };
   unstable_from(top.lo, weighted_mean_below(u, in.R), true);
   if (floor && *floor >= 0) paper_step_ceilings(model, x, ceiling, params, e);
-  patch_proofs(model, x, in, ceiling, params, floor && *floor >= 0, options.max_factor_flops,
-               unstable_from, e);
+  // The patch's upper bound sees the nodal damping only; its lower bound holds with C' >= 0.
+  patch_proofs(model, x, in, ceiling, params, floor && *floor >= 0 && !model.spring_damping,
+               options.max_factor_flops, unstable_from, e);
   return e;
 }
 

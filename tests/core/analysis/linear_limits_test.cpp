@@ -132,3 +132,59 @@ TEST(LinearLimits, ADampingMatrixGivesTheScenesGeneralLimits) {
 
 }  // namespace
 }  // namespace dampbound
+
+namespace dampbound {
+namespace {
+
+/// A 2-node, 6-dof model: K = k on x of node 0 and on the x difference, C as given.
+SparseMatrix diagonal(const std::vector<double>& d) {
+  SparseMatrix X(Eigen::Index(d.size()), Eigen::Index(d.size()));
+  for (size_t i = 0; i < d.size(); ++i) X.insert(Eigen::Index(i), Eigen::Index(i)) = d[i];
+  X.makeCompressed();
+  return X;
+}
+
+// linear_limits said stable False and dt_max 0 beside a finite safe dt on a K that is not
+// positive semi-definite: no damping bound helps a mode that grows (SPEC 9).
+TEST(LinearLimits, AnIndefiniteKGuaranteesNothing) {
+  const SparseMatrix K = diagonal({1, 1, 1, 1, 1, -0.5});
+  MatrixModel mm;
+  mm.K = &K;
+  mm.mass = {1, 1};
+  mm.gamma = {0.1};
+  mm.dt = 0.1;
+  const MatrixLimits r = linear_limits(mm);
+  EXPECT_FALSE(r.stable);
+  EXPECT_EQ(r.dt_max, 0);
+  EXPECT_FALSE(r.reason.empty());
+  for (double dt : r.dt_safe) EXPECT_EQ(dt, 0) << "no dt is safe";
+  for (double g : r.gamma_safe) EXPECT_FALSE(g > 0) << "no gamma is safe";
+  const SparseMatrix C = diagonal({0.1, 0.1, 0.1, 0.1, 0.1, 0.1});
+  mm.C = &C;
+  const MatrixLimits d = linear_limits(mm);
+  EXPECT_FALSE(d.stable);
+  EXPECT_EQ(d.dt_max, 0);
+  for (double dt : d.dt_safe) EXPECT_EQ(dt, 0);
+}
+
+// The same with a C that is not positive semi-definite: the index does not decide, so no
+// limit and no safe bound is given (NaN), and the verdict is not "stable".
+TEST(LinearLimits, AnIndefiniteCDecidesNothing) {
+  const SparseMatrix K = diagonal({1, 1, 1, 1, 1, 1});
+  const SparseMatrix C = diagonal({0.1, 0.1, 0.1, 0.1, 0.1, -0.05});
+  MatrixModel mm;
+  mm.K = &K;
+  mm.C = &C;
+  mm.mass = {1, 1};
+  mm.gamma = {0};
+  mm.dt = 0.1;
+  const MatrixLimits r = linear_limits(mm);
+  EXPECT_FALSE(r.stable);
+  EXPECT_TRUE(std::isnan(r.dt_max));
+  EXPECT_TRUE(std::isnan(r.gamma_max));
+  EXPECT_NE(r.reason.find("C is not positive semi-definite"), std::string::npos) << r.reason;
+  for (double dt : r.dt_safe) EXPECT_TRUE(std::isnan(dt));
+}
+
+}  // namespace
+}  // namespace dampbound

@@ -127,6 +127,19 @@ TEST(SweepClasses, AbsoluteGammaUsesTheReducedTriple) {
   EXPECT_EQ(c.count(), 7u);  // 8 trials, one pair merged
 }
 
+TEST(SweepClasses, EveryPolicyThatReadsGammaKeepsItInTheKey) {
+  // The reproducer: --m 0.001 --kappa 0.001 --gamma 0.0005,0.004,0.03 --policy safe put
+  // the three trials in one class (the key held gamma for fixed and clamp only), and the sweep
+  // reported all three settled where run --policy safe --gamma 0.03 does not settle.
+  for (DampingPolicy policy : kPolicies) {
+    SweepSpec spec = small_spec("0.001", "0.001", GammaMode::absolute, "0.0005,0.004,0.03");
+    spec.policy = policy;
+    const TrialClasses c = find_classes(SweepGrid(spec), std::nullopt);
+    ASSERT_TRUE(c.similarity) << c.reason;
+    EXPECT_EQ(c.count(), uses_user_gamma(policy) ? 3u : 1u) << to_string(policy);
+  }
+}
+
 TEST(SweepClasses, FallsBackWhenTheSceneIsNotUniform) {
   SceneSpec s = shipped("paper-plane");
   EXPECT_EQ(similarity_unavailable(s), std::nullopt);
