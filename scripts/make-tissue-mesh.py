@@ -163,7 +163,7 @@ def vtk(nodes, tets, base, probe):
 
 
 def slivers(nx, ny, nz, h, moved):
-    """The block with a few top-face nodes moved 2/3 of the way towards their +x neighbour:
+    """The block with a few top-face nodes moved 97/100 of the way towards their +x neighbour:
     the tetrahedra around each become slivers (short edges, little volume), which hold the
     whole mesh's step (scenes/tissue-slivers.toml, SPEC 11's mass scaling). A node moves along
     the face inside its star, which is convex, so every tetrahedron keeps a positive volume."""
@@ -171,7 +171,7 @@ def slivers(nx, ny, nz, h, moved):
     idx = lambda i, j, k: (i * ny + j) * nz + k
     for i, k in moved:
         x, y, z = nodes[idx(i, ny - 1, k)]
-        nodes[idx(i, ny - 1, k)] = (x + 2 * h / 3, y, z)
+        nodes[idx(i, ny - 1, k)] = (x + 0.97 * h, y, z)
     for t in tets:
         a, b, d, e = (nodes[p] for p in t)
         u, v, w = ([q[r] - a[r] for r in range(3)] for q in (b, d, e))

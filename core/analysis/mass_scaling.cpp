@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 #include "core/analysis/detail/shifted_cholesky.hpp"
+#include "core/analysis/linear_stability_cholesky.hpp"
 #include "core/analysis/suggest.hpp"
 #include "core/error.hpp"
 
@@ -15,6 +17,10 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 
 /// The margin SPEC 11 adds to a scaled node: m'_i = m_req_i (1 + 1e-6).
 constexpr double kLocalMargin = 1e-6;
+
+/// Lanczos steps at most for the top mode that places a dt limit's first bracket (it stops
+/// once its Ritz value settles to 1e-6).
+constexpr int kLanczosSteps = 300;
 
 }  // namespace
 
@@ -37,13 +43,41 @@ struct IndexCertifier::Impl {
   std::unique_ptr<detail::ShiftedCholesky> chol;
 
   explicit Impl(const MassScalingProblem& p) : alpha(p.alpha) {
-    const SparseMatrix K = p.K + 0.0 * p.C, C = 0.0 * p.K + p.C;
+    SparseMatrix K = p.K + 0.0 * p.C, C = 0.0 * p.K + p.C;
+    K.makeCompressed();
+    C.makeCompressed();
+    // Both sums run over the union of the two patterns in the same order (no entry pruned).
+    if (K.nonZeros() != C.nonZeros() ||
+        !std::equal(K.innerIndexPtr(), K.innerIndexPtr() + K.nonZeros(), C.innerIndexPtr()) ||
+        !std::equal(K.outerIndexPtr(), K.outerIndexPtr() + K.outerSize() + 1, C.outerIndexPtr()))
+      throw std::logic_error("IndexCertifier: K and C' on different patterns");
     pattern = K;
-    pattern.makeCompressed();
     k.assign(K.valuePtr(), K.valuePtr() + K.nonZeros());
     c.assign(C.valuePtr(), C.valuePtr() + C.nonZeros());
     for (Eigen::Index j = 0; j < pattern.outerSize(); ++j)
       for (SparseMatrix::InnerIterator it(pattern, j); it; ++it) row.push_back(it.row());
+  }
+
+  /// The h at which Lanczos's top Ritz vector y of M^-1/2 N(hint) M^-1/2 meets the index's
+  /// bound: h^2 a + 2 h (c + alpha) = 4, a = y^T A y, c = y^T M^-1/2 C' M^-1/2 y (0: none).
+  double mode_limit(const std::vector<double>& mass, double hint) {
+    if (pattern.rows() == 0) return 0;
+    fill(mass, hint);
+    Eigen::VectorXd y;
+    unfactored_largest_eigenvalue(pattern, &y, 1, kLanczosSteps);
+    if (y.size() != pattern.rows() || !y.allFinite()) return 0;
+    double a = 0, cy = 0;
+    size_t e = 0;
+    for (Eigen::Index j = 0; j < pattern.outerSize(); ++j)
+      for (int q = pattern.outerIndexPtr()[j]; q < pattern.outerIndexPtr()[j + 1]; ++q, ++e) {
+        const size_t r = static_cast<size_t>(row[e]);
+        const double yy = y(row[e]) * y(j) / std::sqrt(mass[r / 3] * mass[static_cast<size_t>(j) / 3]);
+        a += yy * k[e];
+        cy += yy * c[e];
+      }
+    const double b = cy + alpha;
+    if (a > 0) return (std::sqrt(b * b + 4 * a) - b) / a;
+    return b > 0 ? 2 / b : 0;
   }
 
   /// pattern := M^-1/2 N(h) M^-1/2.
@@ -91,6 +125,15 @@ bool IndexCertifier::stable(const std::vector<double>& mass, double h) {
 }
 
 double IndexCertifier::dt_limit(const std::vector<double>& mass, double hint, double relative) {
+  // First the top mode's own limit: Lanczos's top Ritz vector y of the index matrix at `hint`
+  // gives a = y^T A y and c = y^T C^ y, and h^2 a + 2 h c = 4 at h_y. A vector's quotient is at
+  // most the largest eigenvalue, so h_y is at or above the limit, and at it where that mode
+  // stays on top: two factorisations around it then bracket the limit. Else bisection.
+  const double guess = impl_->mode_limit(mass, hint);
+  if (guess > 0 && std::isfinite(guess)) {
+    const double lo = guess / (1 + relative / 2), hi = guess * (1 + relative / 2);
+    if (stable(mass, lo) && !stable(mass, hi)) return lo;
+  }
   double lo = hint, hi = hint;
   if (stable(mass, hint)) {
     hi = hint * 1.01;
@@ -206,8 +249,8 @@ MassScalingResult mass_scaling(const MassScalingProblem& p, double dt_target,
     return r;
   }
   stage("the exact dt limit as given");
-  r.dt_limit_before = index.dt_limit(p.mass, h);  // its first factorisation is at h itself
-  if (r.dt_limit_before >= h) {
+  r.dt_limit_before = index.dt_limit(p.mass, h);
+  if (index.stable(p.mass, h)) {
     r.kind = MassScalingCase::nothing_to_add;
     r.factorizations = index.factorizations();
     return r;
@@ -220,7 +263,8 @@ MassScalingResult mass_scaling(const MassScalingProblem& p, double dt_target,
   r.added = 0;
   for (size_t i = 0; i < p.mass.size(); ++i) r.added += r.mass[i] - p.mass[i];
   stage("the exact dt limit of the scaled model");
-  r.dt_limit = index.dt_limit(r.mass, h);
+  // Certified at dt_g by the bisection's last point, so the limit is at least dt_g.
+  r.dt_limit = std::max(index.dt_limit(r.mass, h), h);
   r.over_cap = r.added > o.max_added * r.free_mass;
   if (r.over_cap && r.dt_limit_before > 0) {
     // The largest dt* within the cap: at dt* the cap's mass along the local rule's direction,

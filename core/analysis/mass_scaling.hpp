@@ -82,9 +82,10 @@ class IndexCertifier {
   /// True when lambda_max(h^2 A + 2 h C^) < 4 is certified at masses `mass` (per free node).
   bool stable(const std::vector<double>& mass, double h);
   /// The largest h certified stable at `mass` to `relative` (the exact limit lies in
-  /// [result, result (1 + relative))); `hint` a dt to start the bracket from; inf where none
-  /// up to 2^60 hint is unstable (no stiffness), 0 where none down to 2^-60 hint is stable.
-  double dt_limit(const std::vector<double>& mass, double hint, double relative = 1e-6);
+  /// [result, result (1 + relative))): two factorisations around the limit of Lanczos's top
+  /// mode at `hint` where they bracket it, else bisection from `hint`; inf where none up to
+  /// 2^60 hint is unstable (no stiffness), 0 where none down to 2^-60 hint is stable.
+  double dt_limit(const std::vector<double>& mass, double hint, double relative = 1e-5);
   int factorizations() const;
 
  private:

@@ -6,6 +6,7 @@
 #include <numeric>
 
 #include "core/analysis/linear_stability_cholesky.hpp"
+#include "core/analysis/substeps.hpp"
 #include "core/analysis/worst_nodes.hpp"
 #include "core/damping_ratio.hpp"
 
@@ -64,6 +65,10 @@ SceneMassScaling scene_mass_scaling(const SceneSpec& scene_in, const Params& par
   resolve_zeta(scene.model, params);  // gamma_i fixed before the masses change
   params.policy = DampingPolicy::fixed;
   params.dt = dt_target;
+  // The run covers the scene's simulated time at its own dt, as the substeps' runs do.
+  StopRules run_rules = rules;
+  run_rules.max_iterations =
+      verify_iterations(rules.max_iterations, rules.max_iterations * params_in.dt, dt_target);
   SceneMassScaling s;
   s.params = params;
   const Model model = compile_model(scene.model, params);
@@ -73,6 +78,7 @@ SceneMassScaling scene_mass_scaling(const SceneSpec& scene_in, const Params& par
   s.mass_scale = scene.model.mass_scale;
   s.scene = scene;
   s.scene.params = params;
+  s.scene.rules = run_rules;
   s.scene.runs.clear();
   s.scene.expectations.clear();
   const auto stage = [&](const char* next) {
@@ -80,7 +86,7 @@ SceneMassScaling scene_mass_scaling(const SceneSpec& scene_in, const Params& par
   };
   if (s.result.kind == MassScalingCase::nothing_to_add && options.verify) {
     stage("the run at dt* with the masses as given");
-    s.run = verify_run(s.scene, params, rules, "run at dt* with the masses as given");
+    s.run = verify_run(s.scene, params, run_rules, "run at dt* with the masses as given");
     s.ran = true;
   }
   if (s.result.kind != MassScalingCase::scaled) return s;
@@ -127,7 +133,7 @@ SceneMassScaling scene_mass_scaling(const SceneSpec& scene_in, const Params& par
   s.frequency_change = std::abs(ratio) < 1e-9 ? 0.0 : 100 * ratio;
   if (options.verify && !s.result.over_cap) {
     stage("the run at dt* with the scaled masses");
-    s.run = verify_run(scaled, params, rules, "run at dt* with the scaled masses");
+    s.run = verify_run(scaled, params, run_rules, "run at dt* with the scaled masses");
     s.ran = true;
   }
   return s;

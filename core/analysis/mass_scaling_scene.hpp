@@ -51,8 +51,9 @@ struct SceneMassScaling {
   bool ran = false;
   VerifiedRun run;                   ///< at dt* with the answer's masses
   /// The scene with the answer's masses (mass_scale), zeta resolved into gamma_scale, at dt*
-  /// with the fixed policy; its [[run]]s and [[expect]]s dropped (they were measured with the
-  /// masses as given). What --write-scene writes and the run ran.
+  /// with the fixed policy, its iteration limit covering the scene's simulated time as the
+  /// substeps' runs do (verify_iterations); its [[run]]s and [[expect]]s dropped (they were
+  /// measured with the masses as given). What --write-scene writes and the run ran.
   SceneSpec scene;
 };
 

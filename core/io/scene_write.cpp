@@ -220,6 +220,11 @@ Table expect_table(const Expectation& e) {
   if (e.unstabilisable_max) t.emplace_back("unstabilisable_max", num(*e.unstabilisable_max));
   if (e.violations_max) t.emplace_back("violations_max", num(*e.violations_max));
   if (e.violations_min) t.emplace_back("violations_min", num(*e.violations_min));
+  if (e.mass_scale_dt) t.emplace_back("mass_scale_dt", num(*e.mass_scale_dt));
+  if (e.added_mass_min)
+    t.emplace_back("added_mass_percent",
+                   "[" + num(*e.added_mass_min) + ", " + num(*e.added_mass_max) + "]");
+  range("scaled_nodes", e.scaled_nodes_min, e.scaled_nodes_max);
   return t;
 }
 
