@@ -266,15 +266,16 @@ int run(const SuggestArgs& a) {
   apply_damping_flags(a.damping_opts, a.kd, a.rayleigh_mass, a.rayleigh_stiffness, p);
   p.policy = DampingPolicy::fixed;
   const std::string name = scene.name.empty() ? a.scene : scene.name;
-  std::printf("scene        %s (%d nodes, %d springs)\n", name.c_str(), scene.model.node_count(),
+  const bool json = a.mass.json && (a.mass_opt->count() || a.substeps_opt->count());
+  if (!json) std::printf("scene        %s (%d nodes, %d springs)\n", name.c_str(), scene.model.node_count(),
               scene.model.spring_count());
-  std::printf("parameters   m=%s kappa=%s dt=%s s integrator=%s max_iterations=%d\n",
+  if (!json) std::printf("parameters   m=%s kappa=%s dt=%s s integrator=%s max_iterations=%d\n",
               format_human(p.m).c_str(), format_human(p.kappa).c_str(), format_human(p.dt).c_str(), to_string(p.integrator),
               rules.max_iterations);
   {
     const Model model = compile_model(scene.model, p);
     const NetForce n = net_force(model, model.spec().rest);
-    if (!n.balanced())  // external forces, or rest lengths other than the rest geometry's
+    if (!n.balanced() && !json)  // external forces, or rest lengths other than the rest geometry's
       std::printf("note         %s; these suggestions linearise at rest, which a run leaves; "
                   "bounds --equilibrium analyses where a damped run settles\n",
                   rest_not_in_equilibrium(n).c_str());

@@ -57,6 +57,15 @@ expect_match "$OUT" '^answer +no mass helps: .* dt\* < 2 f / alpha = 0\.18 s' "n
 expect_exit 1 "$DB" suggest "$PLANE" --mass-scale 0.3 --kd 0.001 --no-verify
 expect_match "$OUT" '^answer +over the cap: 81\.[0-9]% of the free mass > 5%; the largest dt\* within it is' "the cap"
 expect_exit 0 "$DB" suggest "$PLANE" --mass-scale 0.3 --kd 0.001 --no-verify --max-added-mass 100
+# The shipped scene: three slivers hold the block's step; six nodes take the mass, the lowest
+# frequency falls, and its [[expect]] checks of the answer pass.
+expect_exit 0 "$DB" suggest tissue-slivers --mass-scale 0.0003
+expect_match "$OUT" 'as given +exact dt limit 0\.000203[0-9]* s: unstable' "the slivers' limit"
+expect_match "$OUT" 'tightened +\+[0-9.e-]+ \(0\.531%\)' "half a percent"
+expect_match "$OUT" 'lowest frequency .*98\.92[0-9]* -> 98\.4[0-9]* 1/s \(-0\.5[0-9]*%\)' "the frequency falls"
+expect_match "$OUT" 'spring 50x stiffer than the median' "the slivers' cause"
+expect_match "$OUT" '^answer +add [0-9.e-]+ \(0\.531% of the free mass\) to 6 nodes' "six nodes"
+expect_exit 0 "$DB" check "$SRC/scenes/tissue-slivers.toml"
 # Bad input: one line, exit 2.
 for args in "--mass-scale 0.3 --safety 0" "--mass-scale 0.3 --safety 1.5" "--substeps 2" \
             "--write-scene $WORK/x.toml" "--mass-scale 0.3 --integrator rk4" "--mass-scale -1" \
