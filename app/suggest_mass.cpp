@@ -20,6 +20,9 @@ namespace {
 
 std::string percent(double fraction) { return format_digits(100 * fraction, 3) + "%"; }
 
+/// An exact dt limit, certified to 1e-5 relative (IndexCertifier::dt_limit): 5 digits.
+std::string limit(double dt) { return format_digits(dt, 5); }
+
 /// Writes the scaled scene and reads it back: the masses must come back bit for bit.
 void write_scene(const SceneMassScaling& s, const MassScaleArgs& a) {
   const std::vector<std::string> header = {
@@ -94,7 +97,7 @@ void print_report(const SceneMassScaling& s) {
               format_human(r.added).c_str(), percent(r.added_fraction()).c_str(),
               format_digits(r.s_star, 4).c_str(),
               r.local_certified ? "" : " (the local rule itself was not certified: rounding)");
-  std::printf("  scaled model exact dt limit %s s (dt_g %s s)\n", format_human(r.dt_limit).c_str(),
+  std::printf("  scaled model exact dt limit %s s (dt_g %s s)\n", limit(r.dt_limit).c_str(),
               format_human(r.dt_design).c_str());
   std::printf("  lowest frequency sqrt(lambda_min(M^-1 K)) %s -> %s 1/s (%s%%)\n",
               format_human(s.frequency_before).c_str(), format_human(s.frequency_after).c_str(),
@@ -155,7 +158,7 @@ int suggest_mass_scaling(const SceneSpec& scene, const Params& params, const Sto
     return status;
   }
   std::printf("  as given     exact dt limit %s s: %s at dt_g\n",
-              format_human(r.dt_limit_before).c_str(), scaled ? "unstable" : "stable");
+              limit(r.dt_limit_before).c_str(), scaled ? "unstable" : "stable");
   if (scaled) print_report(s);
   if (s.ran)
     std::printf("  run at dt* = %s s with the %s masses: %s%s\n", format_human(r.dt_target).c_str(),
@@ -165,10 +168,10 @@ int suggest_mass_scaling(const SceneSpec& scene, const Params& params, const Sto
   if (!a.vtk.empty()) std::printf("  wrote        %s (point array added_mass)\n", a.vtk.c_str());
   if (!scaled) {
     std::printf("answer       nothing to add: stable at dt_g = %s s as given (exact dt limit %s s)\n",
-                format_human(r.dt_design).c_str(), format_human(r.dt_limit_before).c_str());
+                format_human(r.dt_design).c_str(), limit(r.dt_limit_before).c_str());
   } else if (r.over_cap) {
     std::printf("answer       over the cap: %s of the free mass > %s; the largest dt* within it "
-                "is %s s (adds %s)\n",
+                "is %s s (adds at most %s)\n",
                 percent(r.added_fraction()).c_str(), percent(r.cap).c_str(),
                 format_human(r.dt_cap).c_str(),
                 percent(r.free_mass > 0 ? r.dt_cap_added / r.free_mass : 0).c_str());
@@ -177,7 +180,7 @@ int suggest_mass_scaling(const SceneSpec& scene, const Params& params, const Sto
                 "(exact limit %s s)%s\n",
                 format_human(r.added).c_str(), percent(r.added_fraction()).c_str(),
                 r.scaled_count, r.scaled_count == 1 ? "" : "s", format_human(r.dt_target).c_str(),
-                format_human(r.dt_limit).c_str(),
+                limit(r.dt_limit).c_str(),
                 run_ok ? "" : "; its run did not settle: do not use it as is");
   }
   return status;

@@ -59,8 +59,10 @@ struct MassScalingResult {
   double dt_limit = 0;                ///< exact dt limit with m(s*) (s), at least dt_g
   double cap = 0;                     ///< max_added as given
   bool over_cap = false;              ///< added > cap x free_mass
-  double dt_cap = std::numeric_limits<double>::quiet_NaN();  ///< over the cap: the largest
-  double dt_cap_added = std::numeric_limits<double>::quiet_NaN();  ///< dt* within it, its added
+  /// Over the cap: the largest dt* within it (to `tolerance` relative), and the added mass
+  /// certified stable there (at most the cap; the answer at dt_cap adds no more).
+  double dt_cap = std::numeric_limits<double>::quiet_NaN();
+  double dt_cap_added = std::numeric_limits<double>::quiet_NaN();
   int factorizations = 0;             ///< numeric factorisations (one pattern analysis)
   double added_fraction() const { return free_mass > 0 ? added / free_mass : 0; }
   double added_local_fraction() const { return free_mass > 0 ? added_local / free_mass : 0; }

