@@ -7,6 +7,8 @@
 
 #include "app/commands.hpp"
 #include "app/options.hpp"
+#include "app/suggest_mass.hpp"
+#include "core/error.hpp"
 #include "core/analysis/criteria_safe.hpp"
 #include "core/analysis/damping_limits.hpp"
 #include "core/analysis/equilibrium.hpp"
@@ -29,6 +31,9 @@ struct SuggestArgs {
               *zeta_opt = nullptr, *frame_dt_opt = nullptr;
   double kd = 0, rayleigh_mass = 0, rayleigh_stiffness = 0;
   CLI::Option* damping_opts[3] = {};
+  MassScaleArgs mass;  // SPEC 11: --mass-scale, or --frame-dt with --substeps
+  int substeps = 0;
+  CLI::Option *mass_opt = nullptr, *substeps_opt = nullptr, *mass_only[5] = {};
 };
 
 /// SPEC 10: the exact stable range of each damping kind at this dt, the others held, and a
@@ -265,15 +270,16 @@ int run(const SuggestArgs& a) {
   require_magnitudes(scene.model, p);
   p.policy = DampingPolicy::fixed;
   const std::string name = scene.name.empty() ? a.scene : scene.name;
-  std::printf("scene        %s (%d nodes, %d springs)\n", name.c_str(), scene.model.node_count(),
+  const bool json = a.mass.json && (a.mass_opt->count() || a.substeps_opt->count());
+  if (!json) std::printf("scene        %s (%d nodes, %d springs)\n", name.c_str(), scene.model.node_count(),
               scene.model.spring_count());
-  std::printf("parameters   m=%s kappa=%s dt=%s s integrator=%s max_iterations=%d\n",
+  if (!json) std::printf("parameters   m=%s kappa=%s dt=%s s integrator=%s max_iterations=%d\n",
               format_human(p.m).c_str(), format_human(p.kappa).c_str(), format_human(p.dt).c_str(), to_string(p.integrator),
               rules.max_iterations);
   {
     const Model model = compile_model(scene.model, p);
     const NetForce n = net_force(model, model.spec().rest);
-    if (!n.balanced())  // external forces, or rest lengths other than the rest geometry's
+    if (!n.balanced() && !json)  // external forces, or rest lengths other than the rest geometry's
       std::printf("note         %s; these suggestions linearise at rest, which a run leaves; "
                   "bounds --equilibrium analyses where a damped run settles\n",
                   rest_not_in_equilibrium(n).c_str());
@@ -283,6 +289,16 @@ int run(const SuggestArgs& a) {
   options.threads = 0;  // a big mesh's Lanczos products on every CPU (the same bits)
   options.trials = a.trials;
   options.max_factor_flops = a.factor_budget * 1e9;
+  if (a.mass_opt->count() || a.substeps_opt->count()) {
+    MassScaleArgs m = a.mass;
+    m.scene_arg = a.scene;
+    m.verify = !a.no_verify;
+    if (a.substeps_opt->count()) m.dt_target = a.frame_dt / a.substeps;
+    return suggest_mass_scaling(scene, p, rules, m);
+  }
+  for (const CLI::Option* o : a.mass_only)
+    if (o->count())
+      throw InputError(o->get_name() + " goes with --mass-scale DT or --frame-dt F --substeps N");
   if (a.frame_dt_opt->count())
     return print_substeps(a.scene, suggest_substeps(scene, p, rules, a.frame_dt, options));
   if (a.gamma_opt->count() || a.zeta_opt->count()) return print_step(scene, p, suggest_step(scene, p, rules, options));
@@ -328,6 +344,33 @@ std::function<int()> setup(CLI::App& root) {
   cmd->add_option("--trials", a->trials, "trial runs for the best damping of a non-uniform model")
       ->check(CLI::Range(2, 1000));
   add_damping_flags(cmd, a->kd, a->rayleigh_mass, a->rayleigh_stiffness, a->damping_opts);
+  // SPEC 11 (docs/criteria.md, "Mass scaling"): the least added mass for a target step.
+  a->mass_opt = cmd->add_option("--mass-scale", a->mass.dt_target,
+                                "target time step dt* (s): the least mass to add to the nodes "
+                                "that limit the step so that dt* is stable (SPEC 11), checked "
+                                "by a run. Exit 1 over the cap")
+                    ->check(finite_positive());
+  a->mass_opt->excludes(a->dt_opt)->excludes(a->frame_dt_opt);
+  a->substeps_opt = cmd->add_option("--substeps", a->substeps,
+                                    "with --frame-dt: mass scaling for dt* = frame / substeps")
+                        ->check(CLI::Range(1, 1000000))
+                        ->needs(a->frame_dt_opt);
+  a->mass_only[0] = cmd->add_option("--safety", a->mass.safety,
+                                    "with --mass-scale: design for dt* / safety (default 0.9)")
+                        ->check(CLI::Range(0.0, 1.0))->check(finite_positive());
+  a->mass_only[1] =
+      cmd->add_option("--max-added-mass", a->mass.max_added,
+                      "with --mass-scale: the cap on the added mass, % of the free mass "
+                      "(default 5)")
+          ->check(finite_non_negative());
+  a->mass_only[2] = cmd->add_option("--write-scene", a->mass.write_scene,
+                                    "with --mass-scale: write the scene with the scaled masses "
+                                    "(TOML, at dt*; run, bounds and check read it)");
+  a->mass_only[3] = cmd->add_option("--vtk", a->mass.vtk,
+                                    "with --mass-scale: write the scaled model at rest as one "
+                                    ".vtu with the point array added_mass");
+  a->mass_only[4] = cmd->add_flag("--json", a->mass.json,
+                                  "with --mass-scale: the answer as one JSON object");
   cmd->add_flag("--no-verify", a->no_verify, "do not run the suggestions");
   add_factor_budget_option(cmd, a->factor_budget);
   return [a] { return run(*a); };

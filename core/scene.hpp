@@ -51,6 +51,12 @@ struct Expectation {
   std::optional<long long> unstabilisable_max;   ///< unstabilisable node-steps <= this
   std::optional<long long> violations_max;       ///< violating node-steps <= this
   std::optional<long long> violations_min;       ///< violating node-steps >= this
+  /// SPEC 11: with mass_scale_dt the expectation judges mass scaling for that target step
+  /// (the run's parameters, safety 0.9): the keys above judge the run at dt* with the scaled
+  /// masses (settled rule), these the answer.
+  std::optional<double> mass_scale_dt;
+  std::optional<double> added_mass_min, added_mass_max;  ///< tightened, % of the free mass
+  std::optional<int> scaled_nodes_min, scaled_nodes_max; ///< nodes given mass
 };
 
 /// A generated grid in the xz-plane (SPEC 5): node (a, b) at (a h, 0, b h), index a*nz + b.

@@ -10,9 +10,9 @@
 
 #include "core/error.hpp"
 #include "python/arrays.hpp"
+#include "python/matrices.hpp"
 
 namespace dampbound::python {
-namespace {
 
 /// A scipy.sparse matrix (or anything scipy.sparse.coo_matrix takes) as an Eigen matrix.
 SparseMatrix sparse_of(const py::object& M, const char* name) {
@@ -46,6 +46,8 @@ std::vector<double> vector_of(const py::object& v, const char* name) {
   for (py::ssize_t k = 0; k < a.size(); ++k) out[size_t(k)] = a.data()[k];
   return out;
 }
+
+namespace {
 
 py::array_t<double> array_of(const std::vector<double>& v) {
   return py::array_t<double>(py::ssize_t(v.size()), v.data());

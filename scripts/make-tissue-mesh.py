@@ -2,7 +2,8 @@
 """Writes the shipped tetrahedral tissue block and the quad cloth, and the small meshes the
 tests and fuzz corpora use, reproducibly (no randomness, no third-party module).
 
-  scripts/make-tissue-mesh.py            # scenes/meshes/tissue-block.msh, quad-cloth.obj
+  scripts/make-tissue-mesh.py            # scenes/meshes/tissue-block.msh, quad-cloth.obj,
+                                         # tissue-slivers.msh
   scripts/make-tissue-mesh.py --small D  # one small block in every format under D/ (the
                                          # fuzz seeds: D = tests/fuzz/corpus; block.tetgen
                                          # joins .node, .ele, .face with lines "@@")
@@ -161,6 +162,25 @@ def vtk(nodes, tets, base, probe):
     return out
 
 
+def slivers(nx, ny, nz, h, moved):
+    """The block with a few top-face nodes moved 97/100 of the way towards their +x neighbour:
+    the tetrahedra around each become slivers (short edges, little volume), which hold the
+    whole mesh's step (scenes/tissue-slivers.toml, SPEC 11's mass scaling). A node moves along
+    the face inside its star, which is convex, so every tetrahedron keeps a positive volume."""
+    nodes, tets, base, probe = block(nx, ny, nz, h, 1)
+    idx = lambda i, j, k: (i * ny + j) * nz + k
+    for i, k in moved:
+        x, y, z = nodes[idx(i, ny - 1, k)]
+        nodes[idx(i, ny - 1, k)] = (x + 0.97 * h, y, z)
+    for t in tets:
+        a, b, d, e = (nodes[p] for p in t)
+        u, v, w = ([q[r] - a[r] for r in range(3)] for q in (b, d, e))
+        det = (u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0])
+               + u[2] * (v[0] * w[1] - v[1] * w[0]))
+        assert det > 0, "a sliver turned inside out"
+    return nodes, tets, base, probe
+
+
 def quad_cloth(n, h):
     out = "# a %d x %d quad cloth in the xz-plane, spacing %g cm\n" % (n, n, h)
     out += "".join("v %g 0 %g\n" % (a * h, b * h) for a in range(n) for b in range(n))
@@ -240,6 +260,9 @@ def main():
     write(os.path.join(root, "scenes", "meshes", "tissue-block.msh"),
           msh41(*block(27, 11, 21, 0.3, 1)))
     write(os.path.join(root, "scenes", "meshes", "quad-cloth.obj"), quad_cloth(20, 0.5))
+    # 15 x 7 x 11 nodes, 0.3 cm apart, three top-face nodes moved (scenes/tissue-slivers.toml).
+    write(os.path.join(root, "scenes", "meshes", "tissue-slivers.msh"),
+          msh41(*slivers(15, 7, 11, 0.3, [(3, 2), (9, 7), (11, 3)])))
 
 
 if __name__ == "__main__":

@@ -175,6 +175,8 @@ class GuiApp {
   void suggest_values();
   /// The Suggest tab's substeps per frame: the frame time, the two counts, apply buttons.
   void substeps_section();
+  /// Its SPEC 11 alternative: the mass that makes one step per frame stable, apply, colour.
+  void mass_scaling_section(const SubstepsResult& r);
   void save_panel();
   void worst_panel();
   void map_panel();

@@ -256,6 +256,7 @@ void GuiApp::substeps_section() {
     ImGui::Text("use %d substep%s per frame (dt = %s s)", use->n, use->n == 1 ? "" : "s",
                 fmt(use->dt).c_str());
   if (!s.note.empty()) wrapped_colored(gui_amber(), s.note.c_str());
+  mass_scaling_section(r);
   const Params& now = t.params();
   if (r.params.gamma != now.gamma || r.params.m != now.m || r.params.kappa != now.kappa ||
       s.frame_dt != frame_dt_)

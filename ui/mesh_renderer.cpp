@@ -194,7 +194,10 @@ void MeshRenderer::upload(const MeshDrawData& d) {
     const NodeStatus s = i < d.status->size() ? (*d.status)[i] : NodeStatus::within;
     const bool unguaranteed = d.safe_bound && i < d.safe_bound->size() &&
                               m.lower_bound[i] > (*d.safe_bound)[i];
-    set_color(&col_[4 * i], ok ? node_color(s, unguaranteed) : IM_COL32(0, 0, 0, 0));
+    const bool shaded = d.shade && d.shade->size() == n;
+    set_color(&col_[4 * i], !ok     ? IM_COL32(0, 0, 0, 0)
+                            : shaded ? shade_color((*d.shade)[i])
+                                     : node_color(s, unguaranteed));
   }
   node_count_ = static_cast<int>(n);
   glBindBuffer(GL_ARRAY_BUFFER, vbo_pos_);

@@ -21,6 +21,9 @@ struct MeshDrawData {
   /// gamma_safe_i per node (SPEC 9; null or empty: not shown): nodes with gamma_lo_i above it
   /// are drawn with node_color(status, true).
   const std::vector<double>* safe_bound = nullptr;
+  /// Per node 0..1 (null, or not one per node: not shown): nodes coloured by shade_color
+  /// instead of their state (the Suggest tab's added mass, SPEC 11).
+  const std::vector<float>* shade = nullptr;
   std::uint64_t topology = 0;                       ///< changes whenever model->springs changes
   Mat4f view_proj = Mat4f::Identity();
   float point_size = 6.0f;  ///< node diameter (pixels)

@@ -20,6 +20,19 @@ ImU32 status_color(NodeStatus status) {
   return IM_COL32(200, 200, 200, 255);
 }
 
+ImU32 shade_color(float t) {
+  if (!(t > 0)) return IM_COL32(90, 95, 105, 255);
+  t = std::min(t, 1.0f);
+  // Two straight pieces: (80, 60, 160) -> (220, 70, 160) -> (255, 220, 60).
+  const auto mix = [](float a, float b, float u) { return static_cast<int>(a + (b - a) * u + 0.5f); };
+  if (t < 0.5f) {
+    const float u = 2 * t;
+    return IM_COL32(mix(80, 220, u), mix(60, 70, u), 160, 255);
+  }
+  const float u = 2 * t - 1;
+  return IM_COL32(mix(220, 255, u), mix(70, 220, u), mix(160, 60, u), 255);
+}
+
 const char* status_label(NodeStatus status) {
   switch (status) {
     case NodeStatus::within:

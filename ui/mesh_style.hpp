@@ -28,6 +28,11 @@ const char* unguaranteed_help();
 /// The node's colour: status_color, or unguaranteed_color as above.
 ImU32 node_color(NodeStatus status, bool unguaranteed);
 
+/// A node coloured by a value t in [0, 1] instead of its state (SPEC 11's added mass over the
+/// largest): dark slate at 0, through violet, to a warm yellow at 1; 0 exactly (no mass added)
+/// stays dim grey so that the scaled nodes stand out.
+ImU32 shade_color(float t);
+
 /// A mesh with more springs than this is big: while it plays, its image is made cheaper
 /// (mesh_samples, springs_drawn), what a software rasteriser (llvmpipe) pays on every frame.
 constexpr size_t kBigMeshSprings = 20000;

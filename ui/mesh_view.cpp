@@ -269,6 +269,7 @@ void MeshView::draw(Tuner& tuner) {
   d.status = &s.workspace().status;
   d.safe_bound = &s.workspace().safe_bound;
   d.topology = tuner.topology();
+  if (!shade.empty()) d.shade = &shade;
   d.view_proj = camera_.view_projection(vp.aspect());
   const float spacing = spring_spacing_px(s.model(), s.state().x, d.view_proj, vp);
   // Dense meshes: lines a few pixels apart alias into moire, and points wider than the spacing
@@ -288,7 +289,7 @@ void MeshView::draw(Tuner& tuner) {
   const int fb_w = static_cast<int>(size.x * io.DisplayFramebufferScale.x);
   const int fb_h = static_cast<int>(size.y * io.DisplayFramebufferScale.y);
   const ImageKey key{tuner.state_version(), d.topology, d.view_proj, fb_w, fb_h,
-                     d.point_size,          d.springs,  d.anchors};
+                     d.point_size,          d.springs,  d.anchors,  shade_version};
   if (texture_ == 0 || !(key == drawn_)) {  // paused and still: the last image is kept
     texture_ = renderer_.render(d, fb_w, fb_h);
     drawn_ = key;

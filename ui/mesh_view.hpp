@@ -28,6 +28,10 @@ class MeshView {
  public:
   MeshViewOptions options;
   bool cut_tool = false;  ///< left drag draws a cut line instead of orbiting
+  /// Per node 0..1: colour the nodes by it (shade_color) instead of their state; empty: by
+  /// state. Whoever sets it bumps shade_version (the image is drawn again).
+  std::vector<float> shade;
+  std::uint64_t shade_version = 0;
 
   /// Draws the toolbar, the view filling the rest of the current window, and the legend, and
   /// applies the mouse to the camera and the tuner. Needs the GL context current.
@@ -67,8 +71,10 @@ class MeshView {
     int width = 0, height = 0;
     float point_size = 0;
     bool springs = false, anchors = false;
+    std::uint64_t shade = 0;
     bool operator==(const ImageKey& o) const {
-      return state == o.state && topology == o.topology && view_proj == o.view_proj &&
+      return state == o.state && topology == o.topology && shade == o.shade &&
+             view_proj == o.view_proj &&
              width == o.width && height == o.height && point_size == o.point_size &&
              springs == o.springs && anchors == o.anchors;
     }

@@ -2,7 +2,10 @@
 
 #include <utility>
 
+#include <algorithm>
+
 #include "core/analysis/suggest.hpp"
+#include "core/integrate.hpp"
 
 namespace dampbound::ui {
 
@@ -33,8 +36,26 @@ void TunerSubsteps::launch(std::shared_ptr<const SceneSpec> shared,
       return control.report("substeps: " + next);
     };
     r.substeps = suggest_substeps(scene, params, rules, frame_dt, options);
+    if (r.substeps.exact.n != 1 && integrator_traits(params.integrator).paper_step) {
+      SceneMassScalingOptions o;
+      o.progress = [&control](const std::string& next) {
+        return control.report("mass scaling: " + next);
+      };
+      r.mass = scene_mass_scaling(scene, params, rules, frame_dt, o);
+    }
     return r;
   });
+}
+
+std::vector<float> added_mass_shade(const SceneMassScaling& m) {
+  double top = 0;
+  for (size_t i = 0; i < m.mass_after.size(); ++i)
+    top = std::max(top, m.mass_after[i] - m.mass_before[i]);
+  std::vector<float> shade;
+  if (!(top > 0)) return shade;
+  for (size_t i = 0; i < m.mass_after.size(); ++i)
+    shade.push_back(static_cast<float>((m.mass_after[i] - m.mass_before[i]) / top));
+  return shade;
 }
 
 Params with_substeps(const Params& current, const SubstepCount& count) {

@@ -3,11 +3,13 @@
 // frame time F the fewest n with dt = F/n stable by the exact limit and the n the safe bound
 // (SPEC 9) guarantees, each run from the mesh as it is now (and, where the exact count
 // diverges, the fewest count that holds, found by running), with progress and Cancel as
-// Suggest has.
+// Suggest has. Where one step per frame is not stable, also SPEC 11's alternative: the least
+// mass to add so that dt = F is (core/analysis/mass_scaling_scene.hpp), with its run.
 #include <memory>
 #include <optional>
 #include <string>
 
+#include "core/analysis/mass_scaling_scene.hpp"
 #include "core/analysis/substeps.hpp"
 #include "core/session.hpp"
 #include "ui/background_job.hpp"
@@ -19,7 +21,14 @@ struct SubstepsResult {
   Params params;                ///< the parameters asked for (dt aside)
   SubstepSuggestion substeps;   ///< both counts and their verifying runs
   int springs_cut = 0;          ///< springs cut away before (by hand or by the scene)
+  /// SPEC 11 at dt* = F (one step per frame), where the exact count is not 1: the answer,
+  /// its run and the scene with the scaled masses (what "apply mass" switches to).
+  std::optional<SceneMassScaling> mass;
 };
+
+/// Per node, the added mass of `m` over the largest (0..1; empty when none was added): what
+/// the mesh view colours by.
+std::vector<float> added_mass_shade(const SceneMassScaling& m);
 
 /// The default frame time: 1/60 s.
 inline constexpr double kDefaultFrameDt = 1.0 / 60.0;

@@ -180,4 +180,27 @@ MatrixLimits linear_limits(const MatrixModel& model, const ExactOptions& options
   return out;
 }
 
+MassScalingProblem mass_scaling_problem(const MatrixModel& model, double alpha) {
+  check(model);
+  if (!(std::isfinite(alpha) && alpha >= 0))
+    throw InputError("rayleigh_mass: must be finite and >= 0");
+  const size_t n = model.mass.size();
+  MassScalingProblem p;
+  p.K = *model.K;
+  p.mass = model.mass;
+  p.alpha = alpha;
+  SparseMatrix G(Eigen::Index(3 * n), Eigen::Index(3 * n));
+  std::vector<Eigen::Triplet<double>> t;
+  for (size_t i = 0; i < n; ++i) {
+    const double g = model.gamma.size() == 1 ? model.gamma[0] : model.gamma[i];
+    for (size_t r = 0; r < 3; ++r)
+      if (g != 0) t.emplace_back(Eigen::Index(3 * i + r), Eigen::Index(3 * i + r), g);
+  }
+  G.setFromTriplets(t.begin(), t.end());
+  p.C = model.C ? SparseMatrix(*model.C + G) : G;
+  p.K.makeCompressed();
+  p.C.makeCompressed();
+  return p;
+}
+
 }  // namespace dampbound

@@ -12,6 +12,7 @@
 
 #include "core/analysis/damping_limits.hpp"
 #include "core/analysis/linear_stability_exact.hpp"
+#include "core/analysis/mass_scaling.hpp"
 
 namespace dampbound {
 
@@ -64,5 +65,10 @@ struct MatrixLimits {
 /// entry, finite entries, positive masses and dt, non-negative gamma) and runs the analysis.
 /// `options` as for exact_stability (a factorisation over its budget throws).
 MatrixLimits linear_limits(const MatrixModel& model, const ExactOptions& options = {});
+
+/// SPEC 11's problem on the matrices (mass_scaling.hpp), checked as linear_limits checks them:
+/// K, the masses, C' = C + diag(gamma_i) (C: the damping that does not scale with the masses)
+/// and Rayleigh's mass-proportional `alpha` (1/s, >= 0), which does. model.dt is the target.
+MassScalingProblem mass_scaling_problem(const MatrixModel& model, double alpha);
 
 }  // namespace dampbound

@@ -24,30 +24,34 @@ std::string times(const char* what, double r, const char* how) {
   return buf;
 }
 
-}  // namespace
-
-WorstNodes worst_nodes(const Model& model, const std::vector<Vec3>& x, double dt, int count) {
-  WorstNodes w;
-  std::vector<double> dts, gammas;
-  safe_bounds_per_node(model, x, dt, dts, gammas);
+/// The medians the causes are told against, and each node described against them.
+struct Describer {
+  const Model& model;
+  std::vector<double> dts, gammas, edges;
   std::vector<int> free;
-  std::vector<double> masses, edges;
-  for (int i = 0; i < model.spec().node_count(); ++i)
-    if (!model.spec().fixed[static_cast<size_t>(i)]) {
-      free.push_back(i);
-      masses.push_back(model.mass[static_cast<size_t>(i)]);
-    }
-  for (const Spring& s : model.spec().springs)
-    edges.push_back((model.spec().rest[static_cast<size_t>(s.j)] - model.spec().rest[static_cast<size_t>(s.i)]).norm());
-  w.median_mass = median(masses);
-  w.median_kappa = median(model.spring_kappa);
-  w.median_edge = median(edges);
-  std::vector<double> degrees;
-  for (int i : free)
-    degrees.push_back(model.incident_offset[static_cast<size_t>(i) + 1] -
-                      model.incident_offset[static_cast<size_t>(i)]);
-  const double median_degree = median(degrees);
-  auto describe = [&](int i) {
+  double median_mass = 0, median_kappa = 0, median_edge = 0, median_degree = 0;
+
+  Describer(const Model& m, const std::vector<Vec3>& x, double dt) : model(m) {
+    safe_bounds_per_node(model, x, dt, dts, gammas);
+    std::vector<double> masses;
+    for (int i = 0; i < model.spec().node_count(); ++i)
+      if (!model.spec().fixed[static_cast<size_t>(i)]) {
+        free.push_back(i);
+        masses.push_back(model.mass[static_cast<size_t>(i)]);
+      }
+    for (const Spring& s : model.spec().springs)
+      edges.push_back((model.spec().rest[static_cast<size_t>(s.j)] - model.spec().rest[static_cast<size_t>(s.i)]).norm());
+    median_mass = median(masses);
+    median_kappa = median(model.spring_kappa);
+    median_edge = median(edges);
+    std::vector<double> degrees;
+    for (int i : free)
+      degrees.push_back(model.incident_offset[static_cast<size_t>(i) + 1] -
+                        model.incident_offset[static_cast<size_t>(i)]);
+    median_degree = median(degrees);
+  }
+
+  WorstNode operator()(int i) const {
     const size_t u = static_cast<size_t>(i);
     WorstNode d;
     d.node = i;
@@ -62,9 +66,9 @@ WorstNodes worst_nodes(const Model& model, const std::vector<Vec3>& x, double dt
       ++d.degree;
     }
     // The cause: the largest of the three ratios against the medians (1 = typical).
-    const double r_edge = d.shortest_edge > 0 ? w.median_edge / d.shortest_edge : 0;
-    const double r_mass = d.mass > 0 ? w.median_mass / d.mass : 0;
-    const double r_kappa = w.median_kappa > 0 ? d.stiffest / w.median_kappa : 0;
+    const double r_edge = d.shortest_edge > 0 ? median_edge / d.shortest_edge : 0;
+    const double r_mass = d.mass > 0 ? median_mass / d.mass : 0;
+    const double r_kappa = median_kappa > 0 ? d.stiffest / median_kappa : 0;
     const double r_degree = median_degree > 0 ? d.degree / median_degree : 0;
     const double top = std::max({r_edge, r_mass, r_kappa, r_degree});
     if (top < 1.5)
@@ -78,10 +82,20 @@ WorstNodes worst_nodes(const Model& model, const std::vector<Vec3>& x, double dt
     else
       d.cause = times("spring", r_kappa, "stiffer than");
     return d;
-  };
+  }
+};
+
+}  // namespace
+
+WorstNodes worst_nodes(const Model& model, const std::vector<Vec3>& x, double dt, int count) {
+  WorstNodes w;
+  const Describer describe(model, x, dt);
+  w.median_mass = describe.median_mass;
+  w.median_kappa = describe.median_kappa;
+  w.median_edge = describe.median_edge;
   auto pick = [&](const std::vector<double>& key, std::vector<WorstNode>& out) {
-    std::vector<int> order = free;
-    const size_t k = std::min(free.size(), static_cast<size_t>(std::max(count, 0)));
+    std::vector<int> order = describe.free;
+    const size_t k = std::min(order.size(), static_cast<size_t>(std::max(count, 0)));
     std::partial_sort(order.begin(), order.begin() + static_cast<long>(k), order.end(),
                       [&](int a, int b) {
                         const double ka = key[static_cast<size_t>(a)], kb = key[static_cast<size_t>(b)];
@@ -89,9 +103,17 @@ WorstNodes worst_nodes(const Model& model, const std::vector<Vec3>& x, double dt
                       });
     for (size_t j = 0; j < k; ++j) out.push_back(describe(order[j]));
   };
-  pick(dts, w.by_dt);
-  pick(gammas, w.by_gamma);
+  pick(describe.dts, w.by_dt);
+  pick(describe.gammas, w.by_gamma);
   return w;
+}
+
+std::vector<WorstNode> describe_nodes(const Model& model, const std::vector<Vec3>& x, double dt,
+                                      const std::vector<int>& nodes) {
+  const Describer describe(model, x, dt);
+  std::vector<WorstNode> out;
+  for (int i : nodes) out.push_back(describe(i));
+  return out;
 }
 
 }  // namespace dampbound

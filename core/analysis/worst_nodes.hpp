@@ -31,4 +31,9 @@ struct WorstNodes {
 /// positions x and step dt.
 WorstNodes worst_nodes(const Model& model, const std::vector<Vec3>& x, double dt, int count);
 
+/// The given free nodes described as worst_nodes() describes its own (the same medians and
+/// causes): what mass scaling (SPEC 11) reports for the nodes it adds the most mass to.
+std::vector<WorstNode> describe_nodes(const Model& model, const std::vector<Vec3>& x, double dt,
+                                      const std::vector<int>& nodes);
+
 }  // namespace dampbound

@@ -158,6 +158,13 @@ std::vector<SceneKey> make_keys() {
       {"[[expect]]", "unstabilisable_max", "number", "none", "at most this many node-steps"},
       {"[[expect]]", "violations_max", "number", "none", "at most this many bound violations"},
       {"[[expect]]", "violations_min", "number", "none", "at least this many bound violations"},
+      {"[[expect]]", "mass_scale_dt", "number", "none",
+       "SPEC 11: judge mass scaling for this target step (s); the keys above then judge the run "
+       "at it with the scaled masses"},
+      {"[[expect]]", "added_mass_percent", "[min, max]", "none",
+       "with mass_scale_dt: the added mass, % of the free mass"},
+      {"[[expect]]", "scaled_nodes", "[min, max]", "none",
+       "with mass_scale_dt: the nodes given mass"},
   };
 }
 

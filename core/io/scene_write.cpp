@@ -92,6 +92,10 @@ void put_params(Table& t, const Params& p) {
   t.emplace_back("policy", str(to_string(p.policy)));
   t.emplace_back("factor", num(p.factor));
   t.emplace_back("integrator", str(to_string(p.integrator)));
+  // SPEC 10's damping, where the scene has it (a file without them reads back as 0).
+  if (p.kd != 0) t.emplace_back("kd", num(p.kd));
+  if (p.rayleigh_mass != 0) t.emplace_back("rayleigh_mass", num(p.rayleigh_mass));
+  if (p.rayleigh_stiffness != 0) t.emplace_back("rayleigh_stiffness", num(p.rayleigh_stiffness));
 }
 
 void table_section(std::ostream& out, const char* name, const Table& t) {
@@ -167,8 +171,17 @@ void explicit_geometry(std::ostream& out, const ModelSpec& m) {
     Table t{{"nodes", "[" + num(sp.i) + ", " + num(sp.j) + "]"},
             {"rest_length", num(sp.rest_length)}};
     if (sp.kappa_scale != 1) t.emplace_back("kappa_scale", num(sp.kappa_scale));
+    if (sp.kd_scale != 1) t.emplace_back("kd_scale", num(sp.kd_scale));
     array_section(out, "spring", t);
   }
+  // An anchor's own dashpot scale has no [[node]] key: a [[region]] around the node alone
+  // sets it (and the kd_scale of a spring between two nodes at that very point, which the
+  // [[spring]] above gives the same way).
+  for (size_t k = 0; k < m.anchor_kd_scale.size(); ++k)
+    if (m.anchor_kd_scale[k] != 1)
+      array_section(out, "region",
+                    {{"min", vec3(m.rest[k])}, {"max", vec3(m.rest[k])},
+                     {"kd_scale", num(m.anchor_kd_scale[k])}});
 }
 
 void write_geometry(std::ostream& out, const SceneSpec& s, const std::string& dest_path) {
@@ -207,6 +220,11 @@ Table expect_table(const Expectation& e) {
   if (e.unstabilisable_max) t.emplace_back("unstabilisable_max", num(*e.unstabilisable_max));
   if (e.violations_max) t.emplace_back("violations_max", num(*e.violations_max));
   if (e.violations_min) t.emplace_back("violations_min", num(*e.violations_min));
+  if (e.mass_scale_dt) t.emplace_back("mass_scale_dt", num(*e.mass_scale_dt));
+  if (e.added_mass_min)
+    t.emplace_back("added_mass_percent",
+                   "[" + num(*e.added_mass_min) + ", " + num(*e.added_mass_max) + "]");
+  range("scaled_nodes", e.scaled_nodes_min, e.scaled_nodes_max);
   return t;
 }
 

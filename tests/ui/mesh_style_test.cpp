@@ -47,5 +47,14 @@ TEST(MeshStyle, NotGuaranteedNodesGetTheirOwnColourUnlessThePaperRaisesItsAlarm)
   EXPECT_STRNE(unguaranteed_help(), "");
 }
 
+TEST(MeshStyle, ShadeRunsFromGreyThroughVioletToYellow) {
+  EXPECT_EQ(shade_color(0.0f), IM_COL32(90, 95, 105, 255));  // nothing added
+  EXPECT_EQ(shade_color(-1.0f), shade_color(0.0f));
+  EXPECT_EQ(shade_color(1.0f), IM_COL32(255, 220, 60, 255));
+  EXPECT_EQ(shade_color(2.0f), shade_color(1.0f));
+  EXPECT_EQ(shade_color(0.5f), IM_COL32(220, 70, 160, 255));
+  EXPECT_NE(shade_color(1e-6f), shade_color(0.0f));  // any added mass stands out
+}
+
 }  // namespace
 }  // namespace dampbound::ui

@@ -4,7 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "core/scene.hpp"
+#include "ui/tuner.hpp"
 
 namespace dampbound::ui {
 namespace {
@@ -54,6 +57,36 @@ TEST(TunerSubsteps, CancelDropsTheComputation) {
   s.job().wait();
   EXPECT_FALSE(s.job().result().has_value());
   EXPECT_TRUE(s.job().error().empty());
+}
+
+// Where one step per frame is not stable, SPEC 11's alternative comes with the counts: core's
+// answer for dt* = F, and the scaled scene the apply button switches the live model to.
+TEST(TunerSubsteps, OffersTheMassThatMakesOneStepPerFrameStable) {
+  SceneSpec scene = small_plane();
+  for (int a : {3, 4})
+    for (int b : {3, 4}) scene.model.mass_scale[static_cast<size_t>(a * 8 + b)] = 0.1;
+  const double frame = 0.3;  // SPEC 11's plane (no corner fixed here)
+  TunerSubsteps s;
+  s.start(scene, scene.params, scene.rules, frame);
+  s.job().wait();
+  ASSERT_TRUE(s.job().result().has_value()) << s.job().error();
+  const SubstepsResult& r = *s.job().result();
+  ASSERT_GT(r.substeps.exact.n, 1);
+  ASSERT_TRUE(r.mass.has_value());
+  const SceneMassScaling want = scene_mass_scaling(scene, scene.params, scene.rules, frame);
+  EXPECT_EQ(r.mass->result.kind, MassScalingCase::scaled);
+  EXPECT_EQ(r.mass->result.scaled_count, want.result.scaled_count);
+  EXPECT_EQ(r.mass->mass_after, want.mass_after);
+  EXPECT_TRUE(r.mass->run.verified());
+  const std::vector<float> shade = added_mass_shade(*r.mass);
+  ASSERT_EQ(shade.size(), scene.model.rest.size());
+  EXPECT_EQ(*std::max_element(shade.begin(), shade.end()), 1.0f);
+  EXPECT_EQ(shade[0], 0.0f);
+  // Apply: the live model takes the scaled masses and dt = F.
+  Tuner t(scene);
+  t.set_scene(r.mass->scene);
+  EXPECT_EQ(t.session().model().mass, want.mass_after);
+  EXPECT_EQ(t.params().dt, frame);
 }
 
 // A count that does not exist (limit unknown or over kMaxSubsteps) leaves dt as it is.

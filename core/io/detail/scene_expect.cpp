@@ -20,6 +20,16 @@ void read_range(const Reader& r, const toml::node& n, const std::string& key,
   if (*lo > *hi) r.fail(n, key + " range is inverted");
 }
 
+/// An inclusive [min, max] range of numbers.
+void read_number_range(const Reader& r, const toml::node& n, const std::string& key,
+                       std::optional<double>& lo, std::optional<double>& hi) {
+  const toml::array* a = n.as_array();
+  if (!a || a->size() != 2) r.fail(n, key + " must be [min, max]");
+  lo = r.non_negative(*a->get(0), key);
+  hi = r.non_negative(*a->get(1), key);
+  if (*lo > *hi) r.fail(n, key + " range is inverted");
+}
+
 }  // namespace
 
 void read_expectations(const Reader& r, const toml::table& root, SceneSpec& s) {
@@ -81,13 +91,29 @@ void read_expectations(const Reader& r, const toml::table& root, SceneSpec& s) {
       x.unstabilisable_max = count(*n, "unstabilisable_max");
     if (auto* n = t.get("violations_max")) x.violations_max = count(*n, "violations_max");
     if (auto* n = t.get("violations_min")) x.violations_min = count(*n, "violations_min");
+    if (auto* n = t.get("mass_scale_dt")) {
+      if (!settled) r.fail(*n, "mass_scale_dt needs rule = \"settled\" (SPEC 11 checks the "
+                               "scaled masses by a run under the settled rule)");
+      x.mass_scale_dt = r.positive(*n, "mass_scale_dt");
+    }
+    const auto with_dt = [&](const toml::node& n, const char* key) {
+      if (!x.mass_scale_dt) r.fail(n, std::string(key) + " needs mass_scale_dt (the target step)");
+    };
+    if (auto* n = t.get("added_mass_percent")) {
+      with_dt(*n, "added_mass_percent");
+      read_number_range(r, *n, "added_mass_percent", x.added_mass_min, x.added_mass_max);
+    }
+    if (auto* n = t.get("scaled_nodes")) {
+      with_dt(*n, "scaled_nodes");
+      read_range(r, *n, "scaled_nodes", x.scaled_nodes_min, x.scaled_nodes_max);
+    }
     if (!x.outcome && !x.iterations_min && !x.first_entry_min && !x.left && !x.left_at_min &&
         !x.settled_at_min && !x.max_displacement_below && !x.unstabilisable_max &&
-        !x.violations_max && !x.violations_min)
+        !x.violations_max && !x.violations_min && !x.added_mass_min && !x.scaled_nodes_min)
       r.fail(t,
              "[[expect]] asserts nothing: give outcome, iterations, first_entry, left, left_at, "
-             "settled_at, max_displacement_below, unstabilisable_max, violations_max or "
-             "violations_min");
+             "settled_at, max_displacement_below, unstabilisable_max, violations_max, "
+             "violations_min, added_mass_percent or scaled_nodes");
     s.expectations.push_back(x);
   }
 }

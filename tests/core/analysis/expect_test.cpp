@@ -98,3 +98,66 @@ TEST(Expect, EachFieldIsJudged) {
 
 }  // namespace
 }  // namespace dampbound
+
+namespace dampbound {
+namespace {
+
+/// SPEC 11's plane as a scene file, with mass scaling expectations for dt* = 0.3 s.
+const char* kMassScaled = R"(
+[grid]
+nx = 8
+nz = 8
+spacing = 0.57
+[[region]]
+min = [1.7, -1.0, 1.7]
+max = [2.3, 1.0, 2.3]
+mass_scale = 0.1
+[[region]]
+min = [0.0, 0.0, 0.0]
+max = [0.0, 0.0, 0.0]
+fixed = true
+[params]
+m = 0.001
+kappa = 0.001
+gamma = 0.002
+dt = 0.05
+[[perturb]]
+node = [4, 4]
+displacement = [0.0, 5.0, 0.0]
+[[expect]]
+mass_scale_dt = 0.3
+added_mass_percent = [2.7, 2.85]
+scaled_nodes = [4, 4]
+outcome = "settled"
+[[expect]]
+mass_scale_dt = 0.3
+added_mass_percent = [3.0, 3.5]
+)";
+
+TEST(Expect, MassScaleExpectationsJudgeTheAnswerAndTheRunWithTheScaledMasses) {
+  const SceneSpec s = parse_scene(kMassScaled, "mass.toml");
+  ASSERT_EQ(s.expectations.size(), 2u);
+  EXPECT_EQ(*s.expectations[0].mass_scale_dt, 0.3);
+  const std::vector<ExpectationResult> out = check_expectations(s);
+  ASSERT_EQ(out.size(), 4u);
+  for (size_t k = 0; k < 3; ++k) EXPECT_TRUE(out[k].pass) << out[k].what << ": " << out[k].measured;
+  EXPECT_FALSE(out[3].pass) << out[3].measured;  // 2.77 %, not in [3, 3.5]
+  EXPECT_NE(out[0].what.find("mass scaled for dt* = 0.3"), std::string::npos) << out[0].what;
+}
+
+TEST(Expect, MassScaleKeysNeedTheirTargetAndTheSettledRule) {
+  const std::string base = std::string(kMassScaled).substr(0, std::string(kMassScaled).find("[[expect]]"));
+  EXPECT_NE(test::input_error([&] {
+              parse_scene(base + "[[expect]]\nadded_mass_percent = [1.0, 2.0]\n", "m.toml");
+            }).find("needs mass_scale_dt"),
+            std::string::npos);
+  EXPECT_NE(test::input_error([&] {
+              parse_scene(base + "[[expect]]\nrule = \"first-entry\"\nmass_scale_dt = 0.3\n"
+                                 "scaled_nodes = [1, 2]\n",
+                          "m.toml");
+            }).find("settled"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace dampbound
