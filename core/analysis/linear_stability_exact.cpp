@@ -28,12 +28,14 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-/// lambda_max(h^2 A + 2 h gamma diag(R)), certified (its upper end).
+/// lambda_max(h^2 A + 2 h gamma diag(R)), certified (its upper end); on `factors`, which
+/// keeps their pattern analysis between calls (every such matrix has one pattern).
 double symmetric_index(const SparseMatrix& A, const Eigen::VectorXd& R, double gamma, double h,
-                       int threads, double budget) {
+                       int threads, double budget,
+                       std::unique_ptr<detail::ShiftedCholesky>& factors) {
   SparseMatrix S = (h * h) * A;
   for (Eigen::Index i = 0; i < S.rows(); ++i) S.coeffRef(i, i) += 2 * h * gamma * R(i);
-  return certified_largest_eigenvalue(S, nullptr, threads, budget).hi;
+  return certified_largest_eigenvalue(S, factors, threads, budget).hi;
 }
 
 /// Per free dof, gamma_scale_i / m_i: the damping rate c_i per unit of the user's gamma.
@@ -240,28 +242,23 @@ void per_mode(const ExactInputs& in, const Params& params, ExactStability& e) {
 /// once), without its factorisations; in between, or where A's interval is wider, that index
 /// is computed as before.
 bool undamped_index_reaches_4(const SparseMatrix& A, const Eigen::VectorXd& R, double h,
-                              const ExactStability& e, int threads, double budget) {
+                              const ExactStability& e, int threads, double budget,
+                              std::unique_ptr<detail::ShiftedCholesky>& factors) {
   const double lo = h * h * e.lambda_max_lo, hi = h * h * e.spectrum.lambda_max;
   const bool narrow = hi - lo <= 1e-9 * hi;
   if (narrow && lo > 4 * (1 + 1e-12)) return true;
   if (narrow && hi < 4 * (1 - 1e-8)) return false;
-  return symmetric_index(A, R, 0, h, threads, budget) >= 4;
+  return symmetric_index(A, R, 0, h, threads, budget, factors) >= 4;
 }
 
-/// The paper's step with non-uniform rates: the exact definiteness index (SPEC 7) and its
-/// roots in gamma and in dt, each proved stable within 1e-10 relative of a value not proved so.
-void symmetric_index_limits(const ExactInputs& in, const Params& params,
-                            const ExactOptions& options, ExactStability& e) {
+/// The gamma and dt limits of symmetric_index_limits.
+void limit_searches(const ExactInputs& in, const Params& params, const ExactOptions& options,
+                    ExactStability& e, std::unique_ptr<detail::ShiftedCholesky>& factors) {
   const int threads = options.threads;
   const double budget = options.max_factor_flops;
   const double h = params.dt, gamma = params.gamma;
   const SparseMatrix& A = in.A;
   const Eigen::VectorXd& R = in.R;
-  e.method = ExactMethod::symmetric_index;
-  e.index = symmetric_index(A, R, gamma, h, threads, budget);
-  e.stable = e.index < 4 && in.r_min > 0;
-  e.gamma_lo = 0;
-  if (e.indefinite) return;  // the index decides only where K >= 0: indefinite_limits()
   // Each limit is the largest value at which 4 I - S is proved positive definite, S the
   // index matrix (detail/definite_root.hpp: a few factorisations on one pattern analysis).
   SparseMatrix Rd(A.rows(), A.cols());
@@ -271,9 +268,7 @@ void symmetric_index_limits(const ExactInputs& in, const Params& params,
     Rd.setFromTriplets(diagonal.begin(), diagonal.end());
   }
   // gamma: S(t) = h^2 A + 2 h t diag(R), linear in t; 0 where t = 0 is already unstable.
-  // Both searches on the pattern of A and its diagonal: one pattern analysis.
-  std::unique_ptr<detail::ShiftedCholesky> factors;
-  if (undamped_index_reaches_4(A, R, h, e, threads, budget)) {
+  if (undamped_index_reaches_4(A, R, h, e, threads, budget, factors)) {
     e.gamma_hi = 0;
   } else {
     const SparseMatrix base = (h * h) * A, step = (2 * h) * Rd;
@@ -295,6 +290,25 @@ void symmetric_index_limits(const ExactInputs& in, const Params& params,
     family.Q = A;
     e.dt_max = detail::definite_root(family, h, &factors).stable;
   }
+}
+
+/// The paper's step with non-uniform rates: the exact definiteness index (SPEC 7) and its
+/// roots in gamma and in dt, each proved stable within 1e-10 relative of a value not proved so.
+void symmetric_index_limits(const ExactInputs& in, const Params& params,
+                            const ExactOptions& options, ExactStability& e) {
+  const int threads = options.threads;
+  const double budget = options.max_factor_flops;
+  const double h = params.dt, gamma = params.gamma;
+  const SparseMatrix& A = in.A;
+  const Eigen::VectorXd& R = in.R;
+  e.method = ExactMethod::symmetric_index;
+  e.gamma_lo = 0;
+  // Every matrix below has the pattern of A and its diagonal: one pattern analysis, the
+  // searches' (CHOLMOD's choice of ordering), for them and for the index at the scene.
+  std::unique_ptr<detail::ShiftedCholesky> factors;
+  if (!e.indefinite) limit_searches(in, params, options, e, factors);
+  e.index = symmetric_index(A, R, gamma, h, threads, budget, factors);
+  e.stable = e.index < 4 && in.r_min > 0;
 }
 
 /// Forward Euler, Verlet, RK4 (and implicit Euler at an indefinite K) with non-uniform
