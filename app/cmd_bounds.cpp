@@ -41,11 +41,14 @@ struct BoundsArgs {
 
 /// SPEC 10's lines where the model has dashpot or Rayleigh damping: the damping ratios, the
 /// exact index lambda_max(dt^2 A + 2 dt C^) with the gamma and dt limits, and whether C^
-/// leaves modes undamped. Nothing otherwise (the output stays as it was).
-void print_damping_lines(const Model& model, const State& state, const Params& p) {
+/// leaves modes undamped. Nothing otherwise (the output stays as it was). What `exact` computed
+/// (its spectrum, SPEC 10's limits) is taken from it, not computed again.
+void print_damping_lines(const Model& model, const State& state, const Params& p,
+                         const ExactStability& exact) {
   if (!model.spring_damping) return;
   auto g5 = [](double x) { return format_human(x); };
-  const DampingRatios r = damping_ratios(model, state.x);
+  const DampingRatios r = exact.computed() ? damping_ratios(model, state.x, exact.spectrum)
+                                           : damping_ratios(model, state.x);
   std::printf("\ndamping               kd=%s rayleigh_mass=%s 1/s rayleigh_stiffness=%s s\n",
               format_number(p.kd).c_str(), format_number(p.rayleigh_mass).c_str(),
               format_number(p.rayleigh_stiffness).c_str());
@@ -60,7 +63,7 @@ void print_damping_lines(const Model& model, const State& state, const Params& p
                 to_string(p.integrator));
     return;
   }
-  const GeneralLimits g = general_limits(model, state.x, p);
+  const GeneralLimits g = exact.spec10 ? exact.general : general_limits(model, state.x, p);
   std::printf("exact index           lambda_max(dt^2 A + 2 dt C^) = %s: %s (stable below 4)\n",
               g5(g.index).c_str(), g.index < 4 ? "stable" : "UNSTABLE");
   std::printf("exact limits          gamma < %s, dt < %s s at gamma = %s (%s)\n",
@@ -201,7 +204,7 @@ int run_parameters(const BoundsArgs& a) {
   const State rest = rest_state(model);
   const ExactStability exact = exact_stability(model, rest.x, p);
   print_safe_lines(model, rest, p, exact);
-  print_damping_lines(model, rest, p);
+  print_damping_lines(model, rest, p, exact);
   print_criteria(all_criteria(model, rest, p, exact));
   return 0;
 }
@@ -319,7 +322,7 @@ int run_scene(const BoundsArgs& a) {
                     ? "; the safe bound below still holds"
                     : "");
   print_safe_lines(model, state, p, exact);
-  print_damping_lines(model, state, p);
+  print_damping_lines(model, state, p, exact);
   if (a.worst > 0) print_worst(model, state, p, a.worst, false);
   print_criteria(all_criteria(model, state, p, exact));
   return 0;

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "core/analysis/detail/definite_root.hpp"
+#include "core/analysis/detail/shifted_cholesky.hpp"
 #include "core/stiffness.hpp"
 #include "core/analysis/linear_stability.hpp"
 #include "core/analysis/linear_stability_modes.hpp"
@@ -11,6 +13,11 @@
 namespace dampbound {
 
 DampingRatios damping_ratios(const Model& model, const std::vector<Vec3>& x) {
+  return damping_ratios(model, x, stiffness_spectrum(model, x));
+}
+
+DampingRatios damping_ratios(const Model& model, const std::vector<Vec3>&,
+                             const StiffnessSpectrum& sp) {
   DampingRatios r;
   constexpr double kInf = std::numeric_limits<double>::infinity();
   r.nodal_min = r.dashpot_min = kInf;
@@ -42,7 +49,6 @@ DampingRatios damping_ratios(const Model& model, const std::vector<Vec3>& x) {
   }
   if (r.dashpots == 0) r.dashpot_min = 0;
   if (!std::isfinite(r.nodal_min)) r.nodal_min = 0;
-  const StiffnessSpectrum sp = stiffness_spectrum(model, x);
   r.lambda_min = sp.lambda_min;
   r.lambda_max = sp.lambda_max;
   auto zeta = [&](double lambda) {
@@ -55,74 +61,37 @@ DampingRatios damping_ratios(const Model& model, const std::vector<Vec3>& x) {
   return r;
 }
 
-namespace {
-
-/// The largest stable x with f(x) = lambda_max(S(x)) - 4 < 0, where S(x) is positive
-/// semi-definite, increasing and convex in x (so is f), bracketed by lo (stable) and hi
-/// (unstable). Each round takes Newton's step from the unstable end (a convex f's tangent
-/// meets 0 on the unstable side) and the chord's root (on the stable side), every point
-/// placed by the sign of its certified eigenvalue, halving where neither shrinks the bracket
-/// enough: to 1e-10 relative in a handful of eigensolves where bisection takes about 35.
-template <class Matrix, class Slope>
-double index_root(Matrix&& S, Slope&& dS, double lo, double hi) {
-  struct Point {
-    double x, f, slope;
-  };
-  const auto eval = [&](double x) {
-    Eigen::VectorXd v;
-    const double lambda = largest_eigenpair(S(x), v);
-    const double norm = v.squaredNorm();
-    return Point{x, lambda - 4, norm > 0 ? v.dot(dS(x) * v) / norm : 0.0};
-  };
-  Point a = eval(lo), b = eval(hi);
-  const auto place = [&](double x) {
-    if (!(x > a.x && x < b.x)) return;
-    const Point p = eval(x);
-    (p.f < 0 ? a : b) = p;
-  };
-  for (int k = 0; k < 100 && b.x - a.x > 1e-10 * b.x; ++k) {
-    const double width = b.x - a.x;
-    if (b.slope > 0) place(b.x - b.f / b.slope);
-    if (b.f > a.f) place(a.x - a.f * (b.x - a.x) / (b.f - a.f));
-    if (b.x - a.x > 0.5 * width) place(0.5 * (a.x + b.x));
-  }
-  return a.x;
-}
-
-}  // namespace
-
 GeneralLimits general_limits(const SparseMatrix& A, const SparseMatrix& Cp, const SparseMatrix& G,
                              double gamma, double dt) {
   GeneralLimits g;
-  const auto index = [&](double gm, double h) {
-    const SparseMatrix S = (h * h) * A + (2 * h) * (Cp + gm * G);
-    return largest_eigenvalue(S);
-  };
-  g.index = index(gamma, dt);
-  g.damping_min = smallest_eigenvalue(Cp + gamma * G);
-  g.gamma_max = largest_stable_coefficient(A, Cp, G, dt);
-  // The index grows with dt (A, C^ positive semi-definite) and is convex in it.
-  double hi = dt;
-  for (int k = 0; k < 200 && index(gamma, hi) < 4; ++k) hi *= 2;
-  double lo = hi;
-  for (int k = 0; k < 200 && !(index(gamma, lo) < 4); ++k) lo /= 2;
-  if (!(lo < hi)) hi = 2 * lo;
   const SparseMatrix C = Cp + gamma * G;
-  g.dt_max = index_root([&](double h) -> SparseMatrix { return (h * h) * A + (2 * h) * C; },
-                        [&](double h) -> SparseMatrix { return (2 * h) * A + 2.0 * C; }, lo, hi);
+  g.index = largest_eigenvalue((dt * dt) * A + (2 * dt) * C);
+  g.damping_min = smallest_eigenvalue(C);
+  // Both searches on the pattern of A + Cp + G: one pattern analysis.
+  std::unique_ptr<detail::ShiftedCholesky> factors;
+  {
+    const SparseMatrix base = (dt * dt) * A + (2 * dt) * Cp, step = (2 * dt) * G;
+    detail::IndexFamily family;
+    family.S = [&](double v) -> SparseMatrix { return base + v * step; };
+    family.D = [&](double) -> SparseMatrix { return step; };
+    g.gamma_max = detail::definite_root(family, 0, &factors).stable;
+  }
+  // The index in h: S(a + t) = S(a) + t (2 a A + 2 C) + t^2 A, from the scene's dt.
+  detail::IndexFamily family;
+  family.S = [&](double h) -> SparseMatrix { return (h * h) * A + (2 * h) * C; };
+  family.D = [&](double h) -> SparseMatrix { return (2 * h) * A + 2.0 * C; };
+  family.Q = A;
+  g.dt_max = detail::definite_root(family, dt, &factors).stable;
   return g;
 }
 
 double largest_stable_coefficient(const SparseMatrix& A, const SparseMatrix& C,
                                   const SparseMatrix& U, double dt) {
   const SparseMatrix base = (dt * dt) * A + (2 * dt) * C, step = (2 * dt) * U;
-  const auto stable = [&](double v) { return largest_eigenvalue(base + v * step) < 4; };
-  if (!stable(0)) return 0;
-  double lo = 0, hi = 1;
-  for (int k = 0; k < 200 && stable(hi); ++k) lo = hi, hi *= 2;
-  if (stable(hi)) return std::numeric_limits<double>::infinity();
-  return index_root([&](double v) -> SparseMatrix { return base + v * step; },
-                    [&](double) -> const SparseMatrix& { return step; }, lo, hi);
+  detail::IndexFamily family;
+  family.S = [&](double v) -> SparseMatrix { return base + v * step; };
+  family.D = [&](double) -> SparseMatrix { return step; };
+  return detail::definite_root(family, 0).stable;
 }
 
 const char* to_string(DampingKind kind) {
@@ -162,44 +131,85 @@ double damping_kind_max(const ModelSpec& spec, const std::vector<Vec3>& x, const
   return largest_stable_coefficient(A, C, U, params.dt);
 }
 
-GeneralLimits general_limits(const Model& model, const std::vector<Vec3>& x, const Params& params) {
-  const double dt = params.dt;
-  const SparseMatrix A = mass_weighted(model, tangent_stiffness(model, x));
-  SparseMatrix Cp = weighted_damping(model, x, std::vector<double>(model.spec().rest.size(), 0.0));
-  // The nodal part per unit user gamma: gamma_scale_i / m_i on node i's rows, built as the
-  // diagonal it is: weighted_damping(scales) - C' would keep only the digits of
+namespace {
+
+/// The matrices of SPEC 10 at x: A = M^-1/2 K M^-1/2, Cp the damping besides the nodal one,
+/// G the nodal damping per unit user gamma (gamma_scale_i / m_i on node i's rows); and whether
+/// C^ = Cp + gamma G commutes with A: no dashpot, and gamma = 0 (C^ = alpha I + beta A) or
+/// gamma_i / m_i the same at every free node (`rate`, then > 0).
+struct Spec10Parts {
+  SparseMatrix A, Cp, G;
+  bool uniform = false;
+  double rate = -1;
+  bool commutes = false;
+};
+
+Spec10Parts spec10_parts(const Model& model, const std::vector<Vec3>& x, const Params& params) {
+  Spec10Parts s;
+  s.A = mass_weighted(model, tangent_stiffness(model, x));
+  s.Cp = weighted_damping(model, x, std::vector<double>(model.spec().rest.size(), 0.0));
+  // G built as the diagonal it is: weighted_damping(scales) - C' would keep only the digits of
   // gamma_scale_i / m_i above C''s last bit, and a large gamma multiplies the loss.
   std::vector<double> unit(model.spec().rest.size());
   for (size_t i = 0; i < unit.size(); ++i) unit[i] = model.spec().gamma_scale[i];
   const Eigen::VectorXd rates = damping_rates(model, unit);
-  SparseMatrix G(rates.size(), rates.size());
-  G.reserve(Eigen::VectorXi::Constant(rates.size(), 1));
-  for (Eigen::Index r = 0; r < rates.size(); ++r) G.insert(r, r) = rates(r);
-  G.makeCompressed();
-  // Commuting: no dashpot, and gamma_i / m_i the same at every free node.
+  s.G = SparseMatrix(rates.size(), rates.size());
+  s.G.reserve(Eigen::VectorXi::Constant(rates.size(), 1));
+  for (Eigen::Index r = 0; r < rates.size(); ++r) s.G.insert(r, r) = rates(r);
+  s.G.makeCompressed();
   bool dashpot = false;
   for (double kd : model.spring_kd) dashpot = dashpot || kd != 0;
   for (double kd : model.anchor_kd) dashpot = dashpot || kd != 0;
-  double rate = -1;
   bool uniform = true;
   for (size_t i = 0; i < model.spec().rest.size(); ++i) {
     if (model.spec().fixed[i]) continue;
     const double c = model.spec().gamma_scale[i] / model.mass[i];
-    if (rate < 0) rate = c;
-    uniform = uniform && c == rate;
+    if (s.rate < 0) s.rate = c;
+    uniform = uniform && c == s.rate;
   }
-  if (!(!dashpot && uniform && rate > 0)) return general_limits(A, Cp, G, params.gamma, dt);
-  GeneralLimits g;
-  g.commuting = true;
-  g.index = largest_eigenvalue((dt * dt) * A + (2 * dt) * (Cp + params.gamma * G));
-  g.damping_min = smallest_eigenvalue(Cp + params.gamma * G);
-  // c(lambda) = gamma/m + alpha + beta lambda; the binding mode is lambda_max.
-  const double lmax = largest_eigenvalue(A);
-  const double m = 1.0 / rate;  // m_i / gamma_scale_i
+  s.uniform = !dashpot && uniform && s.rate > 0;
+  s.commutes = !dashpot && (s.uniform || params.gamma == 0);
+  return s;
+}
+
+/// SPEC 10's closed forms where C^ commutes with A (general_limits' second overload).
+GeneralLimits closed_forms(const Model& model, const Params& params, const Spec10Parts& s,
+                           const StiffnessSpectrum& spectrum) {
+  const double dt = params.dt;
+  // Every mode of A (eigenvalue lambda) has the rate c(lambda) = c0 + beta lambda (SPEC 10).
   const double alpha = model.rayleigh_mass, beta = model.rayleigh_stiffness;
-  g.gamma_max = 2 * m / dt - m * lmax * dt / 2 - m * alpha - m * beta * lmax;
-  g.dt_max = semi_implicit_dt_max(lmax, params.gamma * rate + alpha + beta * lmax);
+  const double lmax = spectrum.lambda_max, lmin = spectrum.lambda_min;
+  const double c0 = (params.gamma == 0 ? 0.0 : params.gamma * s.rate) + alpha;
+  GeneralLimits g;
+  g.commuting = s.uniform;
+  // The certified upper end of lambda_max makes f(lambda_max) an upper end of the index,
+  // rounded up past the few roundings of f.
+  const double index = dt * dt * lmax + 2 * dt * (c0 + beta * lmax);
+  g.index = index * (1 + 8 * std::numeric_limits<double>::epsilon());
+  g.damping_min = c0 + beta * lmin;
+  g.dt_max = semi_implicit_dt_max(lmax, c0 + beta * lmax);
+  if (s.uniform) {
+    const double m = 1.0 / s.rate;  // m_i / gamma_scale_i
+    g.gamma_max = 2 * m / dt - m * lmax * dt / 2 - m * alpha - m * beta * lmax;
+  } else {  // gamma = 0: gamma G does not commute with A once gamma > 0
+    g.gamma_max = g.index < 4 ? largest_stable_coefficient(s.A, s.Cp, s.G, dt) : 0;
+  }
   return g;
+}
+
+}  // namespace
+
+GeneralLimits general_limits(const Model& model, const std::vector<Vec3>& x, const Params& params) {
+  const Spec10Parts s = spec10_parts(model, x, params);
+  if (!s.commutes) return general_limits(s.A, s.Cp, s.G, params.gamma, params.dt);
+  return closed_forms(model, params, s, stiffness_spectrum(model, x));
+}
+
+GeneralLimits general_limits(const Model& model, const std::vector<Vec3>& x, const Params& params,
+                             const StiffnessSpectrum& spectrum) {
+  const Spec10Parts s = spec10_parts(model, x, params);
+  if (!s.commutes) return general_limits(s.A, s.Cp, s.G, params.gamma, params.dt);
+  return closed_forms(model, params, s, spectrum);
 }
 
 }  // namespace dampbound

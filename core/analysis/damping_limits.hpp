@@ -19,6 +19,9 @@ struct DampingRatios {
   double rayleigh_low = 0, rayleigh_high = 0;  ///< (alpha + beta lambda) / (2 sqrt(lambda)) there
 };
 DampingRatios damping_ratios(const Model& model, const std::vector<Vec3>& x);
+/// The same with the certified spectrum of M^-1 K at x already known (exact_stability's).
+DampingRatios damping_ratios(const Model& model, const std::vector<Vec3>& x,
+                             const StiffnessSpectrum& spectrum);
 
 /// The exact limits of the paper's step with the model's damping (SPEC 10).
 struct GeneralLimits {
@@ -29,10 +32,20 @@ struct GeneralLimits {
   double damping_min = 0; ///< lambda_min(C^) (1/s): <= 0 leaves modes undamped (marginal)
 };
 
-/// Limits at positions x for step params.dt; gamma_i = gamma * gamma_scale_i. Dense or
-/// certified sparse eigenvalues (linear_stability.hpp); the general case bisects the index in
-/// gamma and in dt (each step one eigenvalue), to 1e-10 relative.
+/// Limits at positions x for step params.dt; gamma_i = gamma * gamma_scale_i. The index and
+/// lambda_min(C^) are certified eigenvalues (linear_stability.hpp); the general case finds the
+/// gamma and dt limits as the largest values at which 4 I - (dt^2 A + 2 dt C^) is proved
+/// positive definite (detail/definite_root.hpp: a few factorisations on one pattern analysis),
+/// each within 1e-10 relative of a value not proved so.
 GeneralLimits general_limits(const Model& model, const std::vector<Vec3>& x, const Params& params);
+/// The same with the certified spectrum of A at x already known (exact_stability's). Where C^
+/// commutes with A (no dashpot, and gamma = 0 or gamma_i / m_i uniform) the index, dt_max and
+/// lambda_min(C^) are SPEC 10's closed forms in its ends (no eigenvalue computed): the index
+/// f(lambda_max), f(lambda) = dt^2 lambda + 2 dt (c0 + beta lambda) increasing in lambda, and
+/// lambda_min(C^) = c0 + beta lambda_min, c0 = gamma_i / m_i + alpha. At gamma = 0 with
+/// non-uniform gamma_scale_i / m_i, gamma_max still needs the search (`commuting` false).
+GeneralLimits general_limits(const Model& model, const std::vector<Vec3>& x, const Params& params,
+                             const StiffnessSpectrum& spectrum);
 
 /// The general case on matrices (what the model's overload runs when C^ does not commute with
 /// A, and linear_limits on a user's C): A = M^-1/2 K M^-1/2, Cp = M^-1/2 C' M^-1/2 (the damping
@@ -41,9 +54,10 @@ GeneralLimits general_limits(const Model& model, const std::vector<Vec3>& x, con
 GeneralLimits general_limits(const SparseMatrix& A, const SparseMatrix& Cp, const SparseMatrix& G,
                              double gamma, double dt);
 
-/// The largest coefficient x with lambda_max(dt^2 A + 2 dt (C + x U)) < 4 (A, C, U positive
-/// semi-definite, so the index grows with x), to 1e-10 relative: 0 when x = 0 is already
-/// unstable, +inf when no x up to 2^200 makes it unstable.
+/// The largest coefficient x with lambda_max(dt^2 A + 2 dt (C + x U)) < 4 proved (A, C, U
+/// positive semi-definite, so the index grows with x), within 1e-10 relative of one not
+/// proved so (detail/definite_root.hpp): 0 when x = 0 is not proved stable, +inf when U has no
+/// direction that raises the index.
 double largest_stable_coefficient(const SparseMatrix& A, const SparseMatrix& C,
                                   const SparseMatrix& U, double dt);
 

@@ -325,6 +325,12 @@ EigenInterval certified_largest_eigenvalue(const SparseMatrix& A, Eigen::VectorX
   return largest(A, factors, vector, threads, max_factor_flops);
 }
 
+EigenInterval certified_largest_eigenvalue(const SparseMatrix& A,
+                                           std::unique_ptr<ShiftedCholesky>& factors, int threads,
+                                           double max_factor_flops) {
+  return largest(A, factors, nullptr, threads, max_factor_flops);
+}
+
 EigenInterval unfactored_largest_eigenvalue(const SparseMatrix& A, Eigen::VectorXd* vector,
                                             int threads, int max_steps, double scale,
                                             const Eigen::VectorXd* d) {

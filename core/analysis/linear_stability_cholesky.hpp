@@ -9,6 +9,7 @@
 // the algorithm and its costs.
 #include <Eigen/Core>
 #include <functional>
+#include <memory>
 #include <optional>
 
 #include "core/analysis/linear_stability.hpp"
@@ -70,6 +71,17 @@ struct EigenInterval {
 /// analysis says so (the estimate stops there) and before any factorisation.
 EigenInterval certified_largest_eigenvalue(const SparseMatrix& A,
                                            Eigen::VectorXd* vector = nullptr, int threads = 1,
+                                           double max_factor_flops = kNoFactorBudget);
+namespace detail {
+class ShiftedCholesky;
+}
+/// The same with its factorisations in `factors`: made for A when empty, else given A's values,
+/// which keeps their pattern analysis where A has the pattern analysed before (the limit
+/// searches' of detail/definite_root.hpp, whose index matrices have the pattern of the
+/// index at the scene's gamma and dt).
+EigenInterval certified_largest_eigenvalue(const SparseMatrix& A,
+                                           std::unique_ptr<detail::ShiftedCholesky>& factors,
+                                           int threads = 1,
                                            double max_factor_flops = kNoFactorBudget);
 
 /// Without a factorisation (for a matrix over the budget): lambda_max(A) in [lo, hi], with

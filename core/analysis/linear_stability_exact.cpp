@@ -13,15 +13,14 @@
 #include <optional>
 
 #include "core/analysis/detail/beside.hpp"
+#include "core/analysis/detail/definite_root.hpp"
+#include "core/analysis/detail/shifted_cholesky.hpp"
 #include "core/analysis/detail/exact_over_budget.hpp"
-#include "core/analysis/detail/newton.hpp"
 #include "core/analysis/linear_stability_cholesky.hpp"
 #include "core/integrate.hpp"
 
 namespace dampbound {
 using detail::ExactInputs;
-using detail::newton_from_right;
-using detail::newton_step;
 using detail::over_budget;
 using detail::uniform_rates;
 namespace {
@@ -29,19 +28,14 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-/// lambda_max(h^2 A + 2 h gamma diag(R)) and its slopes in gamma and in h (Hellmann-Feynman:
-/// d lambda = u^T dS u for the unit top eigenvector u).
-struct Index {
-  double value, slope_gamma, slope_h;
-};
-Index symmetric_index(const SparseMatrix& A, const Eigen::VectorXd& R, double gamma, double h,
-                      int threads, double budget) {
+/// lambda_max(h^2 A + 2 h gamma diag(R)), certified (its upper end); on `factors`, which
+/// keeps their pattern analysis between calls (every such matrix has one pattern).
+double symmetric_index(const SparseMatrix& A, const Eigen::VectorXd& R, double gamma, double h,
+                       int threads, double budget,
+                       std::unique_ptr<detail::ShiftedCholesky>& factors) {
   SparseMatrix S = (h * h) * A;
   for (Eigen::Index i = 0; i < S.rows(); ++i) S.coeffRef(i, i) += 2 * h * gamma * R(i);
-  Eigen::VectorXd u;
-  const double value = largest_eigenpair(S, u, threads, budget);
-  const double uRu = u.dot(R.cwiseProduct(u)), uAu = u.dot(A * u);
-  return {value, 2 * h * uRu, 2 * h * uAu + 2 * gamma * uRu};
+  return certified_largest_eigenvalue(S, factors, threads, budget).hi;
 }
 
 /// Per free dof, gamma_scale_i / m_i: the damping rate c_i per unit of the user's gamma.
@@ -254,16 +248,58 @@ void per_mode(const ExactInputs& in, const Params& params, ExactStability& e) {
 /// once), without its factorisations; in between, or where A's interval is wider, that index
 /// is computed as before.
 bool undamped_index_reaches_4(const SparseMatrix& A, const Eigen::VectorXd& R, double h,
-                              const ExactStability& e, int threads, double budget) {
+                              const ExactStability& e, int threads, double budget,
+                              std::unique_ptr<detail::ShiftedCholesky>& factors) {
   const double lo = h * h * e.lambda_max_lo, hi = h * h * e.spectrum.lambda_max;
   const bool narrow = hi - lo <= 1e-9 * hi;
   if (narrow && lo > 4 * (1 + 1e-12)) return true;
   if (narrow && hi < 4 * (1 - 1e-8)) return false;
-  return symmetric_index(A, R, 0, h, threads, budget).value >= 4;
+  return symmetric_index(A, R, 0, h, threads, budget, factors) >= 4;
+}
+
+/// The gamma and dt limits of symmetric_index_limits.
+void limit_searches(const ExactInputs& in, const Params& params, const ExactOptions& options,
+                    ExactStability& e, std::unique_ptr<detail::ShiftedCholesky>& factors) {
+  const int threads = options.threads;
+  const double budget = options.max_factor_flops;
+  const double h = params.dt, gamma = params.gamma;
+  const SparseMatrix& A = in.A;
+  const Eigen::VectorXd& R = in.R;
+  // Each limit is the largest value at which 4 I - S is proved positive definite, S the
+  // index matrix (detail/definite_root.hpp: a few factorisations on one pattern analysis).
+  SparseMatrix Rd(A.rows(), A.cols());
+  {
+    std::vector<Eigen::Triplet<double>> diagonal;
+    for (Eigen::Index i = 0; i < R.size(); ++i) diagonal.emplace_back(i, i, R(i));
+    Rd.setFromTriplets(diagonal.begin(), diagonal.end());
+  }
+  // gamma: S(t) = h^2 A + 2 h t diag(R), linear in t; 0 where t = 0 is already unstable.
+  if (undamped_index_reaches_4(A, R, h, e, threads, budget, factors)) {
+    e.gamma_hi = 0;
+  } else {
+    const SparseMatrix base = (h * h) * A, step = (2 * h) * Rd;
+    detail::IndexFamily family;
+    family.S = [&](double t) -> SparseMatrix { return base + t * step; };
+    family.D = [&](double) -> SparseMatrix { return step; };
+    e.gamma_hi = detail::definite_root(family, 0, &factors).stable;
+  }
+  // dt: S(t) = t^2 A + 2 t gamma diag(R), from the scene's dt.
+  double cap = spec7_dt_max_undamped(e.spectrum.lambda_max);
+  if (gamma * in.r_max > 0) cap = std::min(cap, 2 / (gamma * in.r_max));
+  if (std::isinf(cap)) {
+    e.dt_max = kInf;
+  } else {
+    const SparseMatrix C = gamma * Rd;
+    detail::IndexFamily family;
+    family.S = [&](double t) -> SparseMatrix { return (t * t) * A + (2 * t) * C; };
+    family.D = [&](double t) -> SparseMatrix { return (2 * t) * A + 2.0 * C; };
+    family.Q = A;
+    e.dt_max = detail::definite_root(family, h, &factors).stable;
+  }
 }
 
 /// The paper's step with non-uniform rates: the exact definiteness index (SPEC 7) and its
-/// roots in gamma and in dt.
+/// roots in gamma and in dt, each proved stable within 1e-10 relative of a value not proved so.
 void symmetric_index_limits(const ExactInputs& in, const Params& params,
                             const ExactOptions& options, ExactStability& e) {
   const int threads = options.threads;
@@ -272,37 +308,13 @@ void symmetric_index_limits(const ExactInputs& in, const Params& params,
   const SparseMatrix& A = in.A;
   const Eigen::VectorXd& R = in.R;
   e.method = ExactMethod::symmetric_index;
-  const Index at_scene = symmetric_index(A, R, gamma, h, threads, budget);
-  e.index = at_scene.value;
-  e.stable = e.index < 4 && in.r_min > 0;
   e.gamma_lo = 0;
-  if (e.indefinite) return;  // the index decides only where K >= 0: indefinite_limits()
-  // Each search starts from a point right of its root: the cap, or nearer, the Newton step
-  // from the scene's own gamma and dt, whose index and slopes are already computed.
-  const auto start = [](double cap, double step) { return step > 0 ? std::min(cap, step) : cap; };
-  // gamma: g(t) = index(t, h) - 4, convex and increasing in t; g(2/(h r_max)) >= 0.
-  if (undamped_index_reaches_4(A, R, h, e, threads, budget)) {
-    e.gamma_hi = 0;
-  } else {
-    e.gamma_hi = newton_from_right(
-        [&](double t) {
-          const Index i = symmetric_index(A, R, t, h, threads, budget);
-          return std::make_pair(i.value - 4, i.slope_gamma);
-        },
-        start(2 / (h * in.r_max), newton_step(gamma, at_scene.value - 4, at_scene.slope_gamma)),
-        std::make_pair(gamma, at_scene.slope_gamma));
-  }
-  // dt: g(t) = index(gamma, t) - 4, convex and increasing in t when K >= 0.
-  double cap = spec7_dt_max_undamped(e.spectrum.lambda_max);
-  if (gamma * in.r_max > 0) cap = std::min(cap, 2 / (gamma * in.r_max));
-  e.dt_max = std::isinf(cap) ? kInf
-                             : newton_from_right(
-                                   [&](double t) {
-                                     const Index i = symmetric_index(A, R, gamma, t, threads, budget);
-                                     return std::make_pair(i.value - 4, i.slope_h);
-                                   },
-                                   start(cap, newton_step(h, at_scene.value - 4, at_scene.slope_h)),
-                                   std::make_pair(h, at_scene.slope_h));
+  // Every matrix below has the pattern of A and its diagonal: one pattern analysis, the
+  // searches' (CHOLMOD's choice of ordering), for them and for the index at the scene.
+  std::unique_ptr<detail::ShiftedCholesky> factors;
+  if (!e.indefinite) limit_searches(in, params, options, e, factors);
+  e.index = symmetric_index(A, R, gamma, h, threads, budget, factors);
+  e.stable = e.index < 4 && in.r_min > 0;
 }
 
 /// Forward Euler, Verlet, RK4 (and implicit Euler at an indefinite K) with non-uniform
@@ -326,8 +338,9 @@ void frozen_estimate(const ExactInputs& in, const Params& params, ExactStability
 /// inner bracket no longer describe the step and are dropped (NaN).
 void with_spec10_damping(const Model& model, const std::vector<Vec3>& x, const Params& params,
                          ExactStability& e) {
-  const GeneralLimits g = general_limits(model, x, params);
+  const GeneralLimits g = general_limits(model, x, params, e.spectrum);
   e.spec10 = true;
+  e.general = g;
   e.method = g.commuting ? ExactMethod::per_mode : ExactMethod::symmetric_index;
   e.index = g.index;
   e.gamma_lo = 0;
@@ -367,8 +380,11 @@ void with_spec10_radius(const Model& model, const std::vector<Vec3>& x, const Ex
   e.stable = r.converged && r.rho <= 1 + 1e-9;
 }
 
+/// `spec10`: SPEC 10's limits replace the nodal ones where K is not indefinite
+/// (with_spec10_damping), so only the spectrum is computed then: no radius, no nodal limits.
 ExactStability exact_stability_within_budget(const ExactInputs& in, std::optional<double> floor,
-                                             const Params& params, const ExactOptions& options) {
+                                             const Params& params, const ExactOptions& options,
+                                             bool spec10 = false) {
   ExactStability e;
   // The radius beside the factorisations: the symmetric index's (semi-implicit Euler), else,
   // for forward Euler, Verlet and RK4, the spectrum's, once their analysis clears the budget.
@@ -378,6 +394,7 @@ ExactStability exact_stability_within_budget(const ExactInputs& in, std::optiona
   const bool frozen = !t.paper_step && !t.implicit;
   spectrum_and_rates(in, floor, params, options, e,
                      frozen ? std::function<void()>([&] { radius.start(); }) : nullptr);
+  if (spec10 && !e.indefinite) return e;
   const double tiny = 1e-12 * std::max(1.0, std::abs(e.spectrum.lambda_max));
   if (integrator_traits(e.integrator).implicit && e.spectrum.lambda_min >= -tiny) {
     unconditional(e);
@@ -407,9 +424,11 @@ ExactStability exact_stability(const Model& model, const std::vector<Vec3>& x,
                                const Params& params, const ExactOptions& options) {
   const ExactInputs in = assemble(model, x, options.threads);
   try {
-    ExactStability e = exact_stability_within_budget(in, psd_floor(model, x), params, options);
+    const bool spec10 = model.spring_damping && integrator_traits(params.integrator).paper_step;
+    ExactStability e =
+        exact_stability_within_budget(in, psd_floor(model, x), params, options, spec10);
     if (model.spring_damping && !e.indefinite) {
-      if (integrator_traits(e.integrator).paper_step)
+      if (spec10)
         with_spec10_damping(model, x, params, e);
       else
         with_spec10_radius(model, x, in, params, e);

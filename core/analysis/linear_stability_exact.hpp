@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/analysis/damping_limits.hpp"
 #include "core/analysis/linear_stability.hpp"
 #include "core/analysis/linear_stability_modes.hpp"
 
@@ -60,6 +61,9 @@ struct ExactStability {
   /// limits, index and verdict are the generalised index's (general_limits), the nodal
   /// spectral radius is not computed (NaN).
   bool spec10 = false;
+  /// spec10 only: general_limits' result as computed (its gamma_max not clamped at 0), for
+  /// callers that print SPEC 10's lines without computing it again.
+  GeneralLimits general;
   bool stable = false;        ///< rho <= 1 (bounded; rho = 1 is marginal: no decay); over
                               ///< the budget only where proved without one (Unfactored)
   double gamma_lo = 0;        ///< the user's gamma (gamma_i = gamma * gamma_scale_i) is stable

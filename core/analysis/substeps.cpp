@@ -125,7 +125,9 @@ SubstepSuggestion suggest_substeps(const SceneSpec& scene, const Params& params,
   runner.stage("the exact limit and the safe bound");
   const Model model = compile_model(scene.model, p);
   const State rest = rest_state(model);
-  const ExactStability exact = exact_stability(model, rest.x, p);
+  ExactOptions only_limits;  // the count needs dt_max alone: no spectral radius
+  only_limits.with_radius = false;
+  const ExactStability exact = exact_stability(model, rest.x, p, only_limits);
   s.exact.limit = exact.computed() ? exact.dt_max : 0;
   if (!exact.computed()) s.note = "exact limit not computed: " + exact.over_budget_reason();
   s.safe.limit = safe_bound_summary(model, rest.x, p.dt).dt_safe;

@@ -45,9 +45,9 @@ std::mutex& cholmod_turn() {
 struct Prediction {
   double flops = 0, entries = 0;
 };
-Prediction amd_prediction(const SparseMatrix& B) {
+Prediction amd_prediction(const SparseMatrix& B, bool threes) {
   const Eigen::Index n = B.rows();
-  if (n % 3 != 0) {
+  if (n % 3 != 0 || !threes) {
     Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> amd;
     amd.cholmod().print = 0;
     amd.cholmod().nmethods = 1;
@@ -137,23 +137,74 @@ SparseMatrix negated_lower(const SparseMatrix& A) {
 
 }  // namespace
 
-ShiftedCholesky::ShiftedCholesky(const SparseMatrix& A) : n_(A.rows()) {
+bool ShiftedCholesky::split(const SparseMatrix& A, SparseMatrix& B) {
+  const Eigen::Index n = A.rows();
+  std::vector<int> factored, lone;
+  std::vector<double> lone_diagonal;
+  for (Eigen::Index k = 0; k < n; ++k) {
+    double diagonal = 0;
+    bool alone = true;
+    for (SparseMatrix::InnerIterator it(A, k); it; ++it) {
+      if (it.row() == k)
+        diagonal = it.value();
+      else
+        alone = false;
+    }
+    if (alone) {
+      lone.push_back(static_cast<int>(k));
+      lone_diagonal.push_back(diagonal);
+    } else {
+      factored.push_back(static_cast<int>(k));
+    }
+  }
+  if (lone.empty()) {
+    B = negated_lower(A);
+    factored.clear();
+  } else {
+    // A's rows and columns of `factored` (symmetric: a lone row has no entry in them).
+    std::vector<int> position(static_cast<size_t>(n), -1);
+    for (size_t r = 0; r < factored.size(); ++r) position[static_cast<size_t>(factored[r])] = static_cast<int>(r);
+    std::vector<Eigen::Triplet<double>> entries;
+    entries.reserve(static_cast<size_t>(A.nonZeros()));
+    for (const int k : factored)
+      for (SparseMatrix::InnerIterator it(A, k); it; ++it)
+        entries.emplace_back(position[static_cast<size_t>(it.row())], position[static_cast<size_t>(k)],
+                             it.value());
+    const auto m = static_cast<Eigen::Index>(factored.size());
+    SparseMatrix core(m, m);
+    core.setFromTriplets(entries.begin(), entries.end());
+    B = negated_lower(core);
+  }
+  const bool same = n == n_ && factored == factored_ && lone == lone_;
+  factored_ = std::move(factored);
+  lone_ = std::move(lone);
+  lone_diagonal_ = std::move(lone_diagonal);
+  return same;
+}
+
+ShiftedCholesky::ShiftedCholesky(const SparseMatrix& A, bool cholmod_ordering) : n_(A.rows()) {
   solve_threads_.set_grain(1);  // the two bins of a split solve, one a thread
-  B_ = negated_lower(A);
-  llt_.cholmod().print = 0;                // a failed factorisation is an answer, not news
-  if (n_ < kNestedDissectionRows) {         // small: AMD alone; CHOLMOD's trial of nested
-    llt_.cholmod().nmethods = 1;            // dissection costs more than it saves there
+  split(A, B_);
+  llt_.cholmod().print = 0;  // a failed factorisation is an answer, not news
+  // Small: AMD alone; CHOLMOD's trial of nested dissection costs more than it saves there.
+  if (B_.rows() < kNestedDissectionRows && !cholmod_ordering) {
+    llt_.cholmod().nmethods = 1;
     llt_.cholmod().method[0].ordering = CHOLMOD_AMD;
   }
 }
 
 void ShiftedCholesky::analyse(double budget) {
   if (analysed_) return;
+  if (B_.rows() == 0) {  // every row alone: nothing to factor
+    analysed_ = true;
+    return;
+  }
   {
     const std::lock_guard<std::mutex> turn(cholmod_turn());
     const SerialOpenMp serial;
-    if (budget < kNoFactorBudget && n_ > kQuickCheckRows) {
-      const Prediction amd = amd_prediction(B_);
+    if (budget < kNoFactorBudget && B_.rows() > kQuickCheckRows) {
+      // (rows in threes are a node's only while no row was left out)
+      const Prediction amd = amd_prediction(B_, lone_.empty());
       if (amd.flops > kAmdSlack * budget)
         throw FactorisationOverBudget(amd.flops, 8 * amd.entries, budget, true);
     }
@@ -180,8 +231,9 @@ void ShiftedCholesky::allocate_values() {
 }
 
 void ShiftedCholesky::assign(const SparseMatrix& A) {
-  SparseMatrix B = negated_lower(A);
-  const bool same = B.rows() == B_.rows() && B.nonZeros() == B_.nonZeros() &&
+  SparseMatrix B;
+  const bool same_split = split(A, B);
+  const bool same = same_split && B.rows() == B_.rows() && B.nonZeros() == B_.nonZeros() &&
                     std::equal(B.outerIndexPtr(), B.outerIndexPtr() + B.outerSize() + 1,
                                B_.outerIndexPtr()) &&
                     std::equal(B.innerIndexPtr(), B.innerIndexPtr() + B.nonZeros(),
@@ -189,7 +241,7 @@ void ShiftedCholesky::assign(const SparseMatrix& A) {
   B_ = std::move(B);
   ok_ = false;
   if (!same) {  // another pattern: analysed anew at the next factor()
-    n_ = B_.rows();
+    n_ = A.rows();
     analysed_ = false;
     split_ = {};
     split_ready_ = false;
@@ -198,6 +250,12 @@ void ShiftedCholesky::assign(const SparseMatrix& A) {
 
 bool ShiftedCholesky::factor(double sigma) {
   analyse(kNoFactorBudget);
+  ++factorizations;
+  sigma_ = sigma;
+  // A lone row's pivot is sigma + (-d), positive exactly when sigma > d.
+  ok_ = std::all_of(lone_diagonal_.begin(), lone_diagonal_.end(),
+                    [&](double d) { return sigma + -d > 0; });
+  if (!ok_ || B_.rows() == 0) return ok_;
   const std::lock_guard<std::mutex> turn(cholmod_turn());
   const SerialOpenMp serial;
   llt_.setShift(sigma);
@@ -215,15 +273,14 @@ bool ShiftedCholesky::factor(double sigma) {
     }
   });
   split_ready_ = true;
-  ++factorizations;
   ok_ = llt_.info() == Eigen::Success;
-  sigma_ = sigma;
   return ok_;
 }
 
 double ShiftedCholesky::proved_above() const {
+  if (B_.rows() == 0) return std::nextafter(sigma_, std::numeric_limits<double>::infinity());
   double diagonal = 0;  // as CHOLMOD formed it: sigma + (-A_kk), the first entry of column k
-  for (Eigen::Index k = 0; k < n_; ++k)
+  for (Eigen::Index k = 0; k < B_.rows(); ++k)
     diagonal = std::max(diagonal, std::abs(sigma_ + B_.valuePtr()[B_.outerIndexPtr()[k]]));
   const double delta = cholesky_rounding_bound(llt_.factor(), diagonal);
   return std::nextafter(sigma_ + delta, std::numeric_limits<double>::infinity());
@@ -231,6 +288,20 @@ double ShiftedCholesky::proved_above() const {
 
 void ShiftedCholesky::solve(const double* in, double* out) {
   ++solves;
+  if (lone_.empty()) return solve_factored(in, out);
+  for (size_t r = 0; r < lone_.size(); ++r) {
+    const auto k = static_cast<size_t>(lone_[r]);
+    out[k] = in[k] / (sigma_ + -lone_diagonal_[r]);
+  }
+  if (factored_.empty()) return;
+  gathered_in_.resize(factored_.size());
+  gathered_out_.resize(factored_.size());
+  for (size_t r = 0; r < factored_.size(); ++r) gathered_in_[r] = in[factored_[r]];
+  solve_factored(gathered_in_.data(), gathered_out_.data());
+  for (size_t r = 0; r < factored_.size(); ++r) out[factored_[r]] = gathered_out_[r];
+}
+
+void ShiftedCholesky::solve_factored(const double* in, double* out) {
   const std::lock_guard<std::mutex> turn(cholmod_turn());
   const SerialOpenMp serial;
   if (split_.empty())

@@ -13,6 +13,7 @@
 #include <cmath>
 
 #include "tests/core/analysis/detail/factor_matrices.hpp"
+#include "core/analysis/linear_stability.hpp"
 
 namespace dampbound::detail {
 namespace {
@@ -98,6 +99,52 @@ TEST(ShiftedCholesky, AssignTakesNewValuesOfTheSamePatternOrAnotherPattern) {
   EXPECT_FALSE(f.factor(0.99 * dense_top(B)));
   ASSERT_TRUE(f.factor(1.01 * dense_top(B)));
   EXPECT_GT(f.proved_above(), dense_top(B));
+}
+
+TEST(ShiftedCholesky, RowsAloneStayOutOfTheFactorisationAndKeepEveryAnswer) {
+  // A flat plane at rest: its out-of-plane rows hold the anchors' diagonal entries alone.
+  const Model m = compile_model(make_grid(GridSpec{9, 9, 0.57, true, true}), Params{});
+  const SparseMatrix A = mass_weighted(m, tangent_stiffness(m, m.spec().rest));
+  const double top = dense_top(A);
+  // The rows with no entry off the diagonal: one of each node's three, out of the plane.
+  double lone_top = 0;
+  Eigen::Index lone = 0;
+  for (Eigen::Index k = 0; k < A.rows(); ++k) {
+    int off = 0;
+    for (SparseMatrix::InnerIterator it(A, k); it; ++it) off += it.row() != k;
+    if (off == 0) lone_top = std::max(lone_top, A.coeff(k, k)), ++lone;
+  }
+  ASSERT_EQ(lone, A.rows() / 3);
+  ShiftedCholesky f(A);
+  EXPECT_EQ(f.size(), A.rows());
+  EXPECT_EQ(f.factored_rows(), A.rows() - lone);
+  EXPECT_FALSE(f.factor(top * (1 - 1e-6)));
+  const double sigma = top * (1 + 1e-6);
+  ASSERT_TRUE(f.factor(sigma));
+  EXPECT_GT(f.proved_above(), top);
+  EXPECT_LT(f.proved_above() - sigma, 1e-9 * top);
+  // Below the lone rows' largest entry: they fail it (exactly there: sigma = that entry).
+  ASSERT_LT(lone_top, top);
+  ASSERT_GT(lone_top, 0);
+  EXPECT_FALSE(f.factor(lone_top));
+  // Solves match the dense inverse on every row, in place too.
+  ASSERT_TRUE(f.factor(sigma));
+  const Eigen::Index n = A.rows();
+  const Eigen::MatrixXd S = sigma * Eigen::MatrixXd::Identity(n, n) - Eigen::MatrixXd(A);
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(n, -1, 2).array().cos();
+  const Eigen::VectorXd expected = S.ldlt().solve(b);
+  Eigen::VectorXd x(n), in_place = b;
+  f.solve(b.data(), x.data());
+  f.solve(in_place.data(), in_place.data());
+  EXPECT_LT((x - expected).norm(), 1e-10 * expected.norm());
+  EXPECT_EQ(x, in_place);
+  // A diagonal matrix: every row alone, nothing for CHOLMOD.
+  const SparseMatrix D = (Eigen::VectorXd::LinSpaced(30, 1, 3)).asDiagonal().toDenseMatrix().sparseView();
+  ShiftedCholesky g(D);
+  EXPECT_EQ(g.factored_rows(), 0);
+  EXPECT_FALSE(g.factor(3));
+  ASSERT_TRUE(g.factor(std::nextafter(3.0, 4.0)));
+  EXPECT_GT(g.proved_above(), 3);
 }
 
 }  // namespace
