@@ -333,6 +333,7 @@ void bind_session(py::module_& m) {
 
 void bind_linear_limits(py::module_& m);  // python/linear_limits.cpp
 void bind_meshes(py::module_& m);         // python/meshes.cpp
+void bind_knobs(py::module_& m);          // python/knobs.cpp
 
 }  // namespace dampbound::python
 
@@ -358,4 +359,5 @@ PYBIND11_MODULE(dampbound, m) {
   bind_analysis(m);
   bind_linear_limits(m);
   bind_meshes(m);
+  bind_knobs(m);
 }

@@ -158,6 +158,11 @@ std::vector<SceneKey> make_keys() {
       {"[[expect]]", "unstabilisable_max", "number", "none", "at most this many node-steps"},
       {"[[expect]]", "violations_max", "number", "none", "at most this many bound violations"},
       {"[[expect]]", "violations_min", "number", "none", "at least this many bound violations"},
+      {"[[expect]]", "dt_limit_min", "number", "none",
+       "the exact dt limit at rest (at the run's damping) is at least this (s)"},
+      {"[[expect]]", "substeps_max", "integer", "none",
+       "frame_dt / n is below the exact dt limit for some n <= this"},
+      {"[[expect]]", "frame_dt", "number", "the run's dt", "the frame time substeps_max divides (s)"},
   };
 }
 

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <limits>
 #include <ostream>
+#include <stdexcept>
 
 #include "core/damping_ratio.hpp"
 #include "core/error.hpp"
@@ -62,7 +63,7 @@ int state_code(NodeStatus s) {
 }
 
 void write_vtu(std::ostream& out, const Model& model, const State& state, const StepWorkspace& ws,
-               double dt, const std::vector<BodyCell>& body) {
+               double dt, const std::vector<BodyCell>& body, const std::vector<PointField>& extra) {
   const size_t n = model.spec().rest.size(), ns = model.spec().springs.size();
   const bool stepped = ws.status.size() == n;  // else iteration 0: no step has run yet
   std::vector<Vec3> disp(n);
@@ -123,6 +124,10 @@ void write_vtu(std::ostream& out, const Model& model, const State& state, const 
     data_array(out, "Float64", "dt_safe", 1, dt_safe);
     data_array(out, "Float64", "gamma_safe", 1, gamma_safe);
     data_array(out, "Float64", "zeta", 1, damping_ratio(model));
+  }
+  for (const PointField& f : extra) {
+    if (f.second.size() != n) throw std::invalid_argument("write_vtu: " + f.first + " needs one value per node");
+    data_array(out, "Float64", f.first.c_str(), 1, f.second);
   }
   out << "      </PointData>\n      <CellData>\n";
   data_array(out, "Float64", "stiffness", 1, kappa);

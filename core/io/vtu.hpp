@@ -31,8 +31,12 @@ int state_code(NodeStatus s);
 /// the per-node arrays colour them; their stiffness and strain are NaN (springs only). Cell
 /// array "spring": the spring's index, -1 for a body cell (ParaView: Threshold on it, or
 /// Extract Cells By Type, shows either part alone).
+/// `extra`: more Float64 point arrays (name, one value per node), written after the others
+/// (suggest --kappa-max's contact_stiffness_max).
+using PointField = std::pair<std::string, std::vector<double>>;
 void write_vtu(std::ostream& out, const Model& model, const State& state, const StepWorkspace& ws,
-               double dt, const std::vector<BodyCell>& body = {});
+               double dt, const std::vector<BodyCell>& body = {},
+               const std::vector<PointField>& extra = {});
 
 /// A series in one folder: DIR/step_NNNNNN.vtu (the iteration) and DIR/series.pvd.
 class VtuSeries {

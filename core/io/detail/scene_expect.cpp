@@ -81,13 +81,23 @@ void read_expectations(const Reader& r, const toml::table& root, SceneSpec& s) {
       x.unstabilisable_max = count(*n, "unstabilisable_max");
     if (auto* n = t.get("violations_max")) x.violations_max = count(*n, "violations_max");
     if (auto* n = t.get("violations_min")) x.violations_min = count(*n, "violations_min");
+    if (auto* n = t.get("dt_limit_min")) x.dt_limit_min = r.positive(*n, "dt_limit_min");
+    if (auto* n = t.get("substeps_max")) {
+      const long long v = r.integer(*n, "substeps_max");
+      if (v < 1 || v > 100000000) r.fail(*n, "substeps_max must lie in 1..100000000");
+      x.substeps_max = static_cast<int>(v);
+    }
+    if (auto* n = t.get("frame_dt")) {
+      if (!x.substeps_max) r.fail(*n, "frame_dt goes with substeps_max");
+      x.frame_dt = r.positive(*n, "frame_dt");
+    }
     if (!x.outcome && !x.iterations_min && !x.first_entry_min && !x.left && !x.left_at_min &&
         !x.settled_at_min && !x.max_displacement_below && !x.unstabilisable_max &&
-        !x.violations_max && !x.violations_min)
+        !x.violations_max && !x.violations_min && !x.dt_limit_min && !x.substeps_max)
       r.fail(t,
              "[[expect]] asserts nothing: give outcome, iterations, first_entry, left, left_at, "
-             "settled_at, max_displacement_below, unstabilisable_max, violations_max or "
-             "violations_min");
+             "settled_at, max_displacement_below, unstabilisable_max, violations_max, "
+             "violations_min, dt_limit_min or substeps_max");
     s.expectations.push_back(x);
   }
 }
