@@ -40,7 +40,8 @@ void print_ceiling(const StiffnessCeiling& c) {
   std::printf("factor < %s (index %s at factor 1)\n", format_human(c.factor).c_str(),
               format_human(c.index).c_str());
   if (c.ran)
-    std::printf("  %-28s run at 0.98x: %s; at 1.02x: %s\n", "", run_text(c.below).c_str(),
+    std::printf("  %-28s runs (perturbation x%s, the linear regime): at 0.98x %s; at 1.02x %s\n",
+                "", format_digits(c.run_scale, 3).c_str(), run_text(c.below).c_str(),
                 run_text(c.above).c_str());
 }
 

@@ -47,8 +47,11 @@ struct StiffnessCeiling {
   double factor = 0;
   double index = 0;  ///< SPEC 10's index lambda_max(dt^2 A + 2 dt C^) at factor 1
   /// Runs of the scene with the selection at 0.98 and 1.02 times `factor` (settled rule,
-  /// SPEC 8); `ran` false with no runs (or factor 0 or +inf).
+  /// SPEC 8), in the linear regime the ceiling is about: the perturbation and the band's
+  /// reference times `run_scale` = min(1, 1e-3 shortest rest length / reference); `ran` false
+  /// with no runs (or factor 0 or +inf).
   bool ran = false;
+  double run_scale = 1;
   VerifiedRun below, above;
 };
 

@@ -40,6 +40,7 @@ SceneSpec small_scene(std::mt19937& rng) {
   s.params.dt = 0.3;
   s.perturbations.push_back({5, Vec3(0, 0.05, 0), Vec3::Zero()});
   s.rules.max_iterations = 4000;
+  s.rules.reference = 0.05;
   s.regions.push_back({"corner", {0, 1, 4, 5}});
   return s;
 }
@@ -63,7 +64,8 @@ TEST(StiffnessCeiling, FactorMatchesTheDenseAmplificationMatrix) {
   std::mt19937 rng(7);
   struct Case {
     double kd, alpha, beta;
-  } cases[] = {{0, 0, 0}, {0.0005, 0, 0}, {0, 0.1, 0.02}, {0.0003, 0.05, 0.01}};
+  } cases[] = {{0, 0, 0}, {0.0001, 0, 0}, {0, 0.1, 0.02}, {0.00005, 0.05, 0.01}};
+  int positive = 0;
   for (const Case& c : cases) {
     const SceneSpec scene = small_scene(rng);
     Params p = scene.params;
@@ -73,11 +75,17 @@ TEST(StiffnessCeiling, FactorMatchesTheDenseAmplificationMatrix) {
     for (const StiffnessSelection& sel :
          {whole_selection(scene.model), region_selection(scene.model, scene.regions[0])}) {
       const StiffnessCeiling got = stiffness_ceiling(scene, p, sel, scene.rules, false);
-      ASSERT_TRUE(got.factor > 0 && std::isfinite(got.factor)) << sel.label;
+      ASSERT_TRUE(std::isfinite(got.factor)) << sel.label;
+      if (got.factor == 0) {  // unstable even without the selection: so says the dense step
+        EXPECT_GT(test::dense_step_radius(compile_model(scaled_stiffness(scene.model, sel, 0), p), p.dt), 1);
+        continue;
+      }
+      ++positive;
       const double want = dense_factor(scene, p, sel, 0.5 * got.factor, 1.5 * got.factor);
       EXPECT_NEAR(got.factor, want, 1e-7 * want) << sel.label << " kd " << c.kd;
     }
   }
+  EXPECT_GE(positive, 6);
 }
 
 TEST(StiffnessCeiling, RunsAtTheEndsSettleBelowAndNotAbove) {

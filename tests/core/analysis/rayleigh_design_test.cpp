@@ -84,23 +84,26 @@ TEST(RayleighDesign, VerdictMatchesTheDenseAmplificationMatrix) {
   std::mt19937 rng(4);
   struct Case {
     bool random;
-    double kd, zeta2;
-  } cases[] = {{false, 0, 0.05}, {false, 0, 2.0}, {true, 0, 0.3}, {true, 0.0004, 0.2},
-               {true, 0.0004, 3.0}};
+    double kd, zeta1, zeta2;
+  } cases[] = {{false, 0, 0.05, 0.05}, {false, 0, 2.5, 2.5}, {true, 0, 0.1, 0.15},
+               {true, 0.0004, 0.05, 0.07}, {true, 0.0004, 3.0, 3.0}};
   int stable = 0, unstable = 0;
   for (const Case& c : cases) {
     SceneSpec s = plane(rng, c.random);
     s.params.kd = c.kd;
-    const RayleighDesign d = rayleigh_from_spectrum(s, s.params, {0.05, c.zeta2});
-    ASSERT_TRUE(d.feasible);
+    const RayleighDesign d = rayleigh_from_spectrum(s, s.params, {c.zeta1, c.zeta2});
+    ASSERT_TRUE(d.feasible) << c.zeta1 << " " << c.zeta2;
     Params q = s.params;
     q.rayleigh_mass = d.alpha;
     q.rayleigh_stiffness = d.beta;
     EXPECT_EQ(d.stable, dense_radius(s, q) < 1) << c.zeta2;
     (d.stable ? stable : unstable) += 1;
-    // beta_max is the edge: stable just below, unstable just above.
+    // beta_max is the edge: stable just below, unstable just above (0: alpha, gamma and kd
+    // are already unstable).
     q.rayleigh_stiffness = d.beta_max * (1 - 1e-6);
-    EXPECT_LT(dense_radius(s, q), 1);
+    if (d.beta_max > 0) {
+      EXPECT_LT(dense_radius(s, q), 1);
+    }
     q.rayleigh_stiffness = d.beta_max * (1 + 1e-6);
     EXPECT_GT(dense_radius(s, q), 1);
     // SPEC 10's closed form where C^ commutes with A (uniform masses, no dashpot).
