@@ -121,7 +121,7 @@ int run(const DiffArgs& a) {
   if (!n.mode_nodes.empty()) {
     std::printf("NEW's limiting mode (the index's top eigenvector at its dt limit) sits at");
     for (size_t k = 0; k < n.mode_nodes.size(); ++k)
-      std::printf(" %d (%s%%)", n.mode_nodes[k], format_digits(100 * n.mode_share[k], 2).c_str());
+      std::printf(" %d (%s%%)", n.mode_nodes[k], format_digits(100 * n.mode_share[k], 3).c_str());
     std::printf("\n");
   }
   if (!d.changes.empty()) {
@@ -129,7 +129,7 @@ int run(const DiffArgs& a) {
                 "falls; NEW's node numbers):\n");
     for (const LimitChange& c : d.changes)
       std::printf("  %s%s\n", c.what.c_str(),
-                  c.weight > 0 ? (" [" + format_digits(100 * c.weight, 2) + "% of the mode]").c_str() : "");
+                  c.weight > 0 ? (" [" + format_digits(100 * c.weight, 3) + "% of the mode]").c_str() : "");
   } else {
     std::printf("no node or spring changed at the nodes that limit NEW\n");
   }

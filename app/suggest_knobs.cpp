@@ -170,10 +170,17 @@ int print_rayleigh(const SceneSpec& scene, const Params& p, const std::string& r
                 format_human(d.zeta_highest_at_beta_max).c_str(), format_human(d.dt_max).c_str());
   }
   std::printf("  zeta(f)    f (Hz)       zeta\n");
-  for (size_t k = 0; k < d.curve_f.size(); k += 5)
-    std::printf("             %-12s %s%s\n", format_human(d.curve_f[k]).c_str(),
+  for (size_t k = 0; k < d.curve_f.size(); k += 5) {
+    const double f = d.curve_f[k];
+    std::printf("             %-12s %-12s %s\n", format_human(f).c_str(),
                 format_human(d.curve_zeta[k]).c_str(),
-                k == 0 ? "  (lowest end)" : k + 5 >= d.curve_f.size() ? "  (highest end)" : "");
+                f < d.f_lowest ? "below the lowest mode" : f > d.f_highest ? "above the highest mode" : "");
+  }
+  std::printf("             %-12s %-12s lowest mode\n             %-12s %-12s highest mode\n",
+              format_human(d.f_lowest).c_str(),
+              format_human(rayleigh_zeta(d.alpha, d.beta, d.f_lowest)).c_str(),
+              format_human(d.f_highest).c_str(),
+              format_human(rayleigh_zeta(d.alpha, d.beta, d.f_highest)).c_str());
   if (d.forced_nodes > 0)
     std::printf("  load       %d nodes carry external forces: the mass term alone lets node %d "
                 "fall no faster than |f|/(alpha m) = %s cm/s (%s cm/s with its gamma_i too)\n",

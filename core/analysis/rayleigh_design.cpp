@@ -76,7 +76,8 @@ RayleighDesign rayleigh_from_spectrum(const SceneSpec& scene, const Params& para
   d.zeta2 = request.zeta2;
   std::tie(d.alpha, d.beta) = rayleigh_pair(d.f1, d.zeta1, d.f2, d.zeta2);
   d.feasible = d.alpha >= 0 && d.beta >= 0;
-  const double lo = std::min(d.f_lowest, d.f1), hi = std::max(d.f_highest, d.f2);
+  // The spectrum and the asked band, and an octave either side to show the rise outside.
+  const double lo = 0.5 * std::min(d.f_lowest, d.f1), hi = 2 * std::max(d.f_highest, d.f2);
   for (int k = 0; k <= 40; ++k) {
     const double f = lo * std::pow(hi / lo, k / 40.0);
     d.curve_f.push_back(f);

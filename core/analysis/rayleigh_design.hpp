@@ -52,7 +52,7 @@ struct RayleighDesign {
   int forced_nodes = 0;
   int terminal_node = -1;
   double terminal_velocity = 0, terminal_velocity_with_gamma = 0;
-  /// zeta(f) at 41 frequencies log-spaced over [min(f_lowest, f1), max(f_highest, f2)].
+  /// zeta(f) at 41 frequencies log-spaced over [min(f_lowest, f1) / 2, 2 max(f_highest, f2)].
   std::vector<double> curve_f, curve_zeta;
 };
 
