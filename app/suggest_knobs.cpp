@@ -156,10 +156,15 @@ int print_rayleigh(const SceneSpec& scene, const Params& p, const std::string& r
               "(exact index)",
               format_human(d.beta_max).c_str());
   if (!std::isnan(d.beta_max_closed))
-    std::printf("; SPEC 10's closed form %s s", format_human(d.beta_max_closed).c_str());
+    std::printf("; SPEC 10's closed form %s s%s", format_human(d.beta_max_closed).c_str(),
+                d.beta_max_closed <= 0 ? " (none)" : "");
   std::printf("\n");
   if (d.stable) {
     std::printf("  verdict    stable at dt = %s s; the exact dt limit with the pair is %s s\n",
+                format_human(p.dt).c_str(), format_human(d.dt_max).c_str());
+  } else if (!(d.beta_max > 0)) {
+    std::printf("  verdict    NOT stable: no beta >= 0 is, with this alpha and the scene's gamma and "
+                "kd at dt = %s s; the exact dt limit with the pair is %s s\n",
                 format_human(p.dt).c_str(), format_human(d.dt_max).c_str());
   } else {
     std::printf("  verdict    NOT stable: beta = %s s is above what the step allows; the largest "

@@ -73,7 +73,7 @@ expect_exit 0 "$DB" suggest two-node --kappa-max --no-verify
 expect_match "$OUT" 'all springs and anchors +1 springs +0 anchors +factor < 1520 ' "closed form"
 expect_match "$OUT" 'min 1\.519, median 1\.519' "contact closed form"
 expect_exit 0 "$DB" suggest stiff-region --kappa-max --no-verify --vtu "$WORK/c.vtu"
-expect_match "$OUT" 'region 1 \(line 19\) +312 springs +169 anchors +factor < ' "per region"
+expect_match "$OUT" 'region 1 \(line 20\) +456 springs +169 anchors +factor < 72\.66' "per region"
 expect_exit 0 /usr/bin/python3 -c "
 import meshio, numpy as np
 k = np.ravel(meshio.read('$WORK/c.vtu').point_data['contact_stiffness_max'])
@@ -84,8 +84,10 @@ expect_exit 0 "$DB" suggest paper-plane --rayleigh 0.05 --plot "$WORK/z.png"
 expect_match "$OUT" 'rayleigh_stiffness \(beta\) = 0\.0263501 s' "the pair"
 expect_match "$OUT" 'stable for beta < 4\.82968 s \(exact index\); SPEC 10.s closed form 4\.82968 s' "closed form"
 [ -s "$WORK/z.png" ] && ok || bad "no figure"
+expect_exit 1 "$DB" suggest paper-plane --rayleigh 20
+expect_match "$OUT" 'NOT stable: beta = 10\.5[0-9]* s is above .* the largest stable beta is 1\.0[0-9]* s, which reaches zeta' "beta above the step"
 expect_exit 1 "$DB" suggest paper-plane --rayleigh 0.05,40
-expect_match "$OUT" 'NOT stable: beta = .* the largest stable beta is 4\.8' "beta above the step"
+expect_match "$OUT" 'no Rayleigh pair gives these ratios: alpha would be negative' "no pair"
 for bad_args in "--rayleigh abc" "--rayleigh 0.05 --band 2:1" "--band 1:2" "--vtu x.vtu" \
                 "--kappa-max --rayleigh 0.1"; do
   # shellcheck disable=SC2086
