@@ -93,18 +93,24 @@ def test_contact_ceiling_is_the_closed_form_of_the_rows(tmp_path):
 
 def test_rayleigh_pair_reproduces_the_ratios_on_the_dense_spectrum(tmp_path):
     scene = dampbound.load_scene(scene_file(tmp_path))
-    r = dampbound.rayleigh_from_spectrum(scene, 0.02, 0.1)
-    K, minv, _ = dense()
+    K, minv, C0 = dense()
     lam = np.linalg.eigvalsh(np.sqrt(minv)[:, None] * K * np.sqrt(minv)[None, :])
-    assert r["lambda_min"] == pytest.approx(lam.min(), rel=1e-9)
-    assert r["lambda_max"] == pytest.approx(lam.max(), rel=1e-9)
-    for f, z in ((r["f1"], 0.02), (r["f2"], 0.1)):
-        w = 2 * math.pi * f
-        assert r["alpha"] / (2 * w) + r["beta"] * w / 2 == pytest.approx(z, rel=1e-9)
-    # The verdict against the dense step with the pair.
-    K, minv, C = dense()
-    C = C + r["alpha"] * np.diag(1 / minv) + r["beta"] * K
-    assert r["stable"] == (radius(K, minv, C, DT) < 1)
+    verdicts = []
+    for z1, z2 in ((0.05, 0.08), (3.0, 3.0)):
+        r = dampbound.rayleigh_from_spectrum(scene, z1, z2)
+        assert r["lambda_min"] == pytest.approx(lam.min(), rel=1e-9)
+        assert r["lambda_max"] == pytest.approx(lam.max(), rel=1e-9)
+        assert r["feasible"]
+        for f, z in ((r["f1"], z1), (r["f2"], z2)):
+            w = 2 * math.pi * f
+            assert r["alpha"] / (2 * w) + r["beta"] * w / 2 == pytest.approx(z, rel=1e-9)
+        # The verdict against the dense step with the pair.
+        C = C0 + r["alpha"] * np.diag(1 / minv) + r["beta"] * K
+        assert r["stable"] == (radius(K, minv, C, DT) < 1)
+        verdicts.append(r["stable"])
+    assert verdicts == [True, False]
+    # 0.02 at f1 and 0.1 at f2 need alpha < 0 on this narrow spectrum: no pair.
+    assert not dampbound.rayleigh_from_spectrum(scene, 0.02, 0.1)["feasible"]
     band = dampbound.rayleigh_from_spectrum(scene, 0.05, band=(0.01, 0.1))
     assert (band["f1"], band["f2"]) == (0.01, 0.1)
     with pytest.raises(ValueError):
