@@ -133,6 +133,9 @@ int run(const DiffArgs& a) {
   } else {
     std::printf("no node or spring changed at the nodes that limit NEW\n");
   }
+  std::printf("changed over the whole scene: %d nodes (mass, anchor or fixed), %d new nodes, %d "
+              "removed, %d springs (new, removed, stiffness or rest length)\n",
+              d.changed_nodes, d.new_nodes, d.removed_nodes, d.changed_springs);
   for (const LimitsDiff::Fall& f : d.falls)
     std::printf("  node %d: dt_safe_i %s -> %s\n", f.node, seconds(f.old_dt).c_str(),
                 seconds(f.new_dt).c_str());

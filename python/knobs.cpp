@@ -173,6 +173,8 @@ void bind_knobs(py::module_& m) {
         r["failed"] = !(d.drop * 100 <= max_drop);
         r["matched_nodes"] = d.matched_nodes;
         r["renumbered"] = d.renumbered;
+        r["changed_nodes"] = d.changed_nodes;
+        r["changed_springs"] = d.changed_springs;
         r["parameters"] = d.parameters;
         py::list changes;
         for (const LimitChange& c : d.changes) changes.append(py::make_tuple(c.what, c.weight));

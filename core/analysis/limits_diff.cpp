@@ -196,6 +196,8 @@ LimitsDiff diff_limits(const LimitsSnapshot& o, const LimitsSnapshot& n) {
       add(weight(int(i)), name + ": new (mass " + format_digits(n.mass[i], 4) + ")");
       continue;
     }
+    d.changed_nodes += o.mass[size_t(m)] != n.mass[i] || o.anchor[size_t(m)] != n.anchor[i] ||
+                       o.fixed[size_t(m)] != n.fixed[i];
     if (o.mass[size_t(m)] != n.mass[i])
       add(weight(int(i)), name + ": mass " + ratio_text(o.mass[size_t(m)], n.mass[i]));
     if (o.anchor[size_t(m)] != n.anchor[i])
@@ -214,6 +216,9 @@ LimitsDiff diff_limits(const LimitsSnapshot& o, const LimitsSnapshot& n) {
     const auto it = a < 0 || b < 0 ? old_springs.end()
                                    : old_springs.find({std::min(a, b), std::max(a, b)});
     if (it != old_springs.end()) seen.insert(it->second);
+    d.changed_springs += it == old_springs.end() ||
+                         o.spring_kappa[it->second] != n.spring_kappa[k] ||
+                         o.spring_rest_length[it->second] != n.spring_rest_length[k];
     const double w = std::max(weight(i), weight(j));
     if (w < 0) continue;
     const double length = (n.rest[size_t(j)] - n.rest[size_t(i)]).norm();
@@ -232,6 +237,7 @@ LimitsDiff diff_limits(const LimitsSnapshot& o, const LimitsSnapshot& n) {
   }
   for (const auto& [ends, k] : old_springs) {
     if (seen.count(k)) continue;
+    ++d.changed_springs;
     const int a = old_to_new[size_t(ends.first)], b = old_to_new[size_t(ends.second)];
     const double w = std::max(a < 0 ? -1.0 : weight(a), b < 0 ? -1.0 : weight(b));
     add(w, "spring between old nodes " + std::to_string(ends.first) + "-" +

@@ -77,6 +77,9 @@ struct LimitsDiff {
   };
   std::vector<Fall> falls;
   double drop = 0;  ///< 1 - new dt_limit / old dt_limit (> 0: the limit fell)
+  /// Over the whole scene: matched nodes with another mass, anchor or fixed flag, and springs
+  /// new, removed or with another stiffness or rest length (new nodes: new_nodes).
+  int changed_nodes = 0, changed_springs = 0;
 };
 
 /// Compares two snapshots (nodes matched by rest position within 1e-9 of the scene's size).

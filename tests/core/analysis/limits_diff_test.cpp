@@ -101,6 +101,8 @@ TEST(LimitsDiff, OneStiffSpringIsNamedInTheRenumberedScene) {
   ASSERT_FALSE(d.falls.empty());
   EXPECT_TRUE(d.falls[0].node == 12 || d.falls[0].node == 11);
   EXPECT_TRUE(d.parameters.empty());
+  EXPECT_EQ(d.changed_springs, 1);
+  EXPECT_EQ(d.changed_nodes, 0);
 }
 
 }  // namespace
