@@ -21,9 +21,13 @@ RayleighPlotter& rayleigh_plotter() {
 
 namespace {
 
+/// The verdict, and the largest displacement at the end against the band's reference (the
+/// pull): below 1 the run did not grow, whether or not it settled (zero modes, which no spring
+/// resists at rest, keep a linear-regime run from settling).
 std::string run_text(const VerifiedRun& r) {
   return std::string(r.verified() ? "settles" : "does not settle") + " (" +
-         verdict_text(r.result, r.rules) + ")";
+         verdict_text(r.result, r.rules) + "; max |x-X| at the end " +
+         format_digits(r.result.max_displacement / r.rules.reference, 3) + "x the pull)";
 }
 
 void print_ceiling(const StiffnessCeiling& c) {
@@ -86,12 +90,17 @@ int print_kappa_max(const SceneSpec& scene, const Params& p, const StopRules& ru
   for (const SceneRegion& r : scene.regions) selections.push_back(region_selection(scene.model, r));
   if (scene.regions.empty()) std::printf("  (the scene has no [[region]] or [[mesh_region]])\n");
   int status = 0;
+  const Model model = compile_model(scene.model, p);
+  bool damped = model.spring_damping;
+  for (size_t i = 0; i < model.gamma.size(); ++i) damped = damped || model.gamma[i] > 0;
+  if (!damped)
+    std::printf("  (no damping: below the factor the step is marginally stable, no growth and no "
+                "decay, so no run settles)\n");
   for (const StiffnessSelection& s : selections) {
     const StiffnessCeiling c = stiffness_ceiling(scene, p, s, rules, verify);
     print_ceiling(c);
     if (c.ran && !c.below.verified()) status = 1;
   }
-  const Model model = compile_model(scene.model, p);
   const ContactCeilings k = contact_ceilings(model, model.spec().rest, p.dt, p.kd, 5);
   std::printf("contact ceiling per node: one zero-length spring to a fixed point (dashpot kd = %s) "
               "keeping the node's SPEC 9/10 rows dominant, k < 2 (gamma_safe_i - gamma_i - kd) / "
