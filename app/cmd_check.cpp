@@ -47,20 +47,6 @@ std::vector<std::string> scene_files(const std::vector<std::string>& paths) {
   return out;
 }
 
-std::string xml_escape(const std::string& s) {
-  std::string o;
-  for (char c : s) {
-    switch (c) {
-      case '&': o += "&amp;"; break;
-      case '<': o += "&lt;"; break;
-      case '>': o += "&gt;"; break;
-      case '"': o += "&quot;"; break;
-      default: o += c;
-    }
-  }
-  return o;
-}
-
 struct SceneReport {
   std::string file, error;
   std::vector<ExpectationResult> results;

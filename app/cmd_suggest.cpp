@@ -9,6 +9,7 @@
 #include "app/options.hpp"
 #include "app/suggest_mass.hpp"
 #include "core/error.hpp"
+#include "app/suggest_knobs.hpp"
 #include "core/analysis/criteria_safe.hpp"
 #include "core/analysis/damping_limits.hpp"
 #include "core/analysis/equilibrium.hpp"
@@ -34,6 +35,8 @@ struct SuggestArgs {
   MassScaleArgs mass;  // SPEC 11: --mass-scale, or --frame-dt with --substeps
   int substeps = 0;
   CLI::Option *mass_opt = nullptr, *substeps_opt = nullptr, *mass_only[5] = {};
+  bool kappa_max = false;                    // --kappa-max [--vtu FILE] (suggest_knobs.hpp)
+  std::string vtu, rayleigh, band, plot;     // --rayleigh Z[,Z2] [--band F1:F2] [--plot FILE]
 };
 
 /// SPEC 10: the exact stable range of each damping kind at this dt, the others held, and a
@@ -284,6 +287,8 @@ int run(const SuggestArgs& a) {
                   "bounds --equilibrium analyses where a damped run settles\n",
                   rest_not_in_equilibrium(n).c_str());
   }
+  if (a.kappa_max) return print_kappa_max(scene, p, rules, !a.no_verify, a.vtu);
+  if (!a.rayleigh.empty()) return print_rayleigh(scene, p, a.rayleigh, a.band, a.plot);
   SuggestOptions options;
   options.verify = !a.no_verify;
   options.threads = 0;  // a big mesh's Lanczos products on every CPU (the same bits)
@@ -373,6 +378,22 @@ std::function<int()> setup(CLI::App& root) {
                                   "with --mass-scale: the answer as one JSON object");
   cmd->add_flag("--no-verify", a->no_verify, "do not run the suggestions");
   add_factor_budget_option(cmd, a->factor_budget);
+  CLI::Option* kappa_max = cmd->add_flag(
+      "--kappa-max", a->kappa_max,
+      "the largest factor on every stiffness (and per region) stable at the scene's dt and "
+      "damping, run at 0.98x and 1.02x, and each node's contact stiffness ceiling");
+  cmd->add_option("--vtu", a->vtu, "with --kappa-max: write the rest state with the point array "
+                                   "contact_stiffness_max to this .vtu")
+      ->needs(kappa_max);
+  CLI::Option* rayleigh = cmd->add_option(
+      "--rayleigh", a->rayleigh,
+      "Z or Z1,Z2: Rayleigh alpha and beta giving these damping ratios at two frequencies of "
+      "the model's spectrum, checked at the scene's dt");
+  cmd->add_option("--band", a->band, "with --rayleigh: F1:F2 in Hz (default: the lowest mode "
+                                     "and the highest the step resolves)")
+      ->needs(rayleigh);
+  cmd->add_option("--plot", a->plot, "with --rayleigh: draw zeta(f) to this PNG")->needs(rayleigh);
+  kappa_max->excludes(rayleigh);
   return [a] { return run(*a); };
 }
 

@@ -57,6 +57,11 @@ struct Expectation {
   std::optional<double> mass_scale_dt;
   std::optional<double> added_mass_min, added_mass_max;  ///< tightened, % of the free mass
   std::optional<int> scaled_nodes_min, scaled_nodes_max; ///< nodes given mass
+  /// Limits at rest by the exact analysis (no run): dt_limit >= dt_limit_min (s), and the
+  /// fewest substeps n with frame_dt / n < dt_limit at most substeps_max.
+  std::optional<double> dt_limit_min;
+  std::optional<int> substeps_max;
+  std::optional<double> frame_dt;  ///< unset: the run's dt
 };
 
 /// A generated grid in the xz-plane (SPEC 5): node (a, b) at (a h, 0, b h), index a*nz + b.
@@ -75,6 +80,14 @@ struct BodyCell {
   std::vector<int> corners;
 };
 
+/// The nodes a [[region]] box or a [[mesh_region]] of the scene file names, kept for the
+/// questions asked per region (suggest --kappa-max scales the springs with both ends in it and
+/// its nodes' anchors, as the file's kappa_scale and anchor_scale do).
+struct SceneRegion {
+  std::string label;       ///< "region 1 (line 12)", or the mesh region's name or "tag 3"
+  std::vector<int> nodes;  ///< ascending
+};
+
 /// A scene: its mesh and everything a run of it needs. A new field must also be copied by
 /// scene_as_run() (core/session.cpp), which copies every field but the mesh by name.
 struct SceneSpec {
@@ -91,6 +104,7 @@ struct SceneSpec {
   std::vector<RunSpec> runs;
   std::vector<Expectation> expectations;
   std::vector<BodyCell> body;     ///< the mesh file's body cells (empty without a [mesh])
+  std::vector<SceneRegion> regions;  ///< in file order, [[region]] after [[mesh_region]]
 };
 
 /// Builds the grid's nodes, springs (a,b)-(a+1,b), (a,b)-(a,b+1), one diagonal

@@ -110,6 +110,7 @@ SceneSpec scene_as_run(const SceneSpec& scene, const ModelSpec& model, int itera
   s.runs = scene.runs;
   s.expectations = scene.expectations;
   s.body = scene.body;
+  s.regions = scene.regions;
   // step_once applies a cut due at iteration k before the step that leaves iteration k.
   for (const CutEvent& c : scene.cuts)
     if (c.iteration >= iteration) s.cuts.push_back(c);

@@ -334,6 +334,7 @@ void bind_session(py::module_& m) {
 void bind_linear_limits(py::module_& m);  // python/linear_limits.cpp
 void bind_meshes(py::module_& m);         // python/meshes.cpp
 void bind_mass_scaling(py::module_& m);   // python/mass_scaling.cpp
+void bind_knobs(py::module_& m);          // python/knobs.cpp
 
 }  // namespace dampbound::python
 
@@ -360,4 +361,5 @@ PYBIND11_MODULE(dampbound, m) {
   bind_linear_limits(m);
   bind_meshes(m);
   bind_mass_scaling(m);
+  bind_knobs(m);
 }

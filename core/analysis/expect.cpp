@@ -1,9 +1,12 @@
 #include "core/analysis/expect.hpp"
 
+#include <cmath>
 #include <map>
 #include <utility>
 
 #include "core/analysis/mass_scaling_scene.hpp"
+#include "core/analysis/limits_diff.hpp"
+#include "core/analysis/linear_stability_exact.hpp"
 #include "core/io/format.hpp"
 #include "core/io/report.hpp"
 #include "core/session.hpp"
@@ -29,6 +32,40 @@ SceneMassScaling mass_scaling_of(const SceneSpec& scene, const std::string& labe
   for (const RunSpec& r : scene.runs)
     if (r.label == label) params = r.params, rules = r.rules;
   return scene_mass_scaling(scene, params, rules, dt);
+bool asserts_a_run(const Expectation& e) {
+  return e.outcome || e.iterations_min || e.first_entry_min || e.left || e.left_at_min ||
+         e.settled_at_min || e.max_displacement_below || e.unstabilisable_max ||
+         e.violations_max || e.violations_min;
+}
+
+/// dt_limit_min and substeps_max: the exact limits at rest at the run's parameters (no run).
+void judge_limits(const SceneSpec& scene, const Expectation& e,
+                  std::vector<ExpectationResult>& out) {
+  Params params = scene.params;
+  for (const RunSpec& r : scene.runs)
+    if (r.label == e.run) params = r.params;
+  params.policy = DampingPolicy::fixed;
+  ExactOptions options;
+  options.max_factor_flops = kDefaultFactorBudget;
+  options.with_radius = false;
+  const Model model = compile_model(scene.model, params);
+  const ExactStability x = exact_stability(model, model.spec().rest, params, options);
+  const double dt_limit = x.computed() ? x.dt_max : std::nan("");
+  const std::string limit = x.computed() ? format_number(dt_limit) + " s"
+                                         : "not computed (" + x.over_budget_reason() + ")";
+  if (e.dt_limit_min)
+    out.push_back({scene.path, e.line, e.run,
+                   "[exact] dt_limit >= " + format_number(*e.dt_limit_min) + " s", limit,
+                   dt_limit >= *e.dt_limit_min});
+  if (e.substeps_max) {
+    const double frame = e.frame_dt ? *e.frame_dt : params.dt;
+    const int n = limit_substeps(frame, dt_limit);
+    out.push_back({scene.path, e.line, e.run,
+                   "[exact] substeps of " + format_number(frame) + " s <= " +
+                       std::to_string(*e.substeps_max),
+                   n > 0 ? std::to_string(n) + " (dt limit " + limit + ")" : "none (dt limit " + limit + ")",
+                   n > 0 && n <= *e.substeps_max});
+  }
 }
 
 }  // namespace
@@ -38,6 +75,8 @@ std::vector<ExpectationResult> check_expectations(const SceneSpec& scene) {
   std::map<std::pair<std::string, double>, SceneMassScaling> scalings;
   std::vector<ExpectationResult> out;
   for (const Expectation& e : scene.expectations) {
+    if (e.dt_limit_min || e.substeps_max) judge_limits(scene, e, out);
+    if (!asserts_a_run(e) && !e.mass_scale_dt) continue;
     const SceneMassScaling* scaling = nullptr;
     const RunResult* run = nullptr;
     if (e.mass_scale_dt) {

@@ -94,6 +94,20 @@ std::string format_human_range(double lo, double hi) {
 
 std::string json_number(double x) { return std::isfinite(x) ? format_number(x) : "null"; }
 
+std::string xml_escape(const std::string& s) {
+  std::string o;
+  for (char c : s) {
+    switch (c) {
+      case '&': o += "&amp;"; break;
+      case '<': o += "&lt;"; break;
+      case '>': o += "&gt;"; break;
+      case '"': o += "&quot;"; break;
+      default: o += c;
+    }
+  }
+  return o;
+}
+
 std::string json_string(const std::string& s) {
   std::ostringstream os;
   os << '"';

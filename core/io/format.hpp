@@ -34,6 +34,9 @@ std::string format_human_range(double lo, double hi);
 /// JSON number, or null when not finite (JSON has no inf or NaN).
 std::string json_number(double x);
 
+/// TEXT with &, <, > and " as XML entities (JUnit files).
+std::string xml_escape(const std::string& s);
+
 /// JSON string literal with escapes.
 std::string json_string(const std::string& s);
 

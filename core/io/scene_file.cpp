@@ -160,9 +160,13 @@ void read_regions(const Reader& r, const toml::table& root, SceneSpec& s) {
       return (p.array() >= lo.array()).all() && (p.array() <= hi.array()).all();
     };
     int count = 0;
+    SceneRegion region;
+    region.label = "region " + std::to_string(s.regions.size() + 1) + " (line " +
+                   std::to_string(t.source().begin.line) + ")";
     for (int i = 0; i < s.model.node_count(); ++i) {
       if (!inside(i)) continue;
       ++count;
+      region.nodes.push_back(i);
       const auto k = static_cast<size_t>(i);
       if (auto* n = t.get("mass_scale")) s.model.mass_scale[k] = r.positive(*n, "mass_scale");
       if (auto* n = t.get("gamma_scale"))
@@ -173,6 +177,7 @@ void read_regions(const Reader& r, const toml::table& root, SceneSpec& s) {
       if (auto* n = t.get("force")) s.model.external_force[k] = r.vec3(*n, "force");
     }
     if (count == 0) r.fail(t, "[[region]] contains no node");
+    s.regions.push_back(std::move(region));
     if (auto* n = t.get("kappa_scale")) {
       const double ks = r.positive(*n, "kappa_scale");
       for (Spring& sp : s.model.springs)

@@ -165,6 +165,11 @@ std::vector<SceneKey> make_keys() {
        "with mass_scale_dt: the added mass, % of the free mass"},
       {"[[expect]]", "scaled_nodes", "[min, max]", "none",
        "with mass_scale_dt: the nodes given mass"},
+      {"[[expect]]", "dt_limit_min", "number", "none",
+       "the exact dt limit at rest (at the run's damping) is at least this (s)"},
+      {"[[expect]]", "substeps_max", "integer", "none",
+       "frame_dt / n is below the exact dt limit for some n <= this"},
+      {"[[expect]]", "frame_dt", "number", "the run's dt", "the frame time substeps_max divides (s)"},
   };
 }
 

@@ -33,6 +33,7 @@ int state_code(NodeStatus s);
 /// Extract Cells By Type, shows either part alone).
 /// `extra`: more per-node arrays (Float64, one value a node), e.g. SPEC 11's added_mass.
 using PointArrays = std::vector<std::pair<std::string, std::vector<double>>>;
+using PointField = PointArrays::value_type;  ///< one array: (name, one value per node)
 void write_vtu(std::ostream& out, const Model& model, const State& state, const StepWorkspace& ws,
                double dt, const std::vector<BodyCell>& body = {},
                const PointArrays& extra = {});

@@ -107,13 +107,24 @@ void read_expectations(const Reader& r, const toml::table& root, SceneSpec& s) {
       with_dt(*n, "scaled_nodes");
       read_range(r, *n, "scaled_nodes", x.scaled_nodes_min, x.scaled_nodes_max);
     }
+    if (auto* n = t.get("dt_limit_min")) x.dt_limit_min = r.positive(*n, "dt_limit_min");
+    if (auto* n = t.get("substeps_max")) {
+      const long long v = r.integer(*n, "substeps_max");
+      if (v < 1 || v > 100000000) r.fail(*n, "substeps_max must lie in 1..100000000");
+      x.substeps_max = static_cast<int>(v);
+    }
+    if (auto* n = t.get("frame_dt")) {
+      if (!x.substeps_max) r.fail(*n, "frame_dt goes with substeps_max");
+      x.frame_dt = r.positive(*n, "frame_dt");
+    }
     if (!x.outcome && !x.iterations_min && !x.first_entry_min && !x.left && !x.left_at_min &&
         !x.settled_at_min && !x.max_displacement_below && !x.unstabilisable_max &&
-        !x.violations_max && !x.violations_min && !x.added_mass_min && !x.scaled_nodes_min)
+        !x.violations_max && !x.violations_min && !x.added_mass_min && !x.scaled_nodes_min &&
+        !x.dt_limit_min && !x.substeps_max)
       r.fail(t,
              "[[expect]] asserts nothing: give outcome, iterations, first_entry, left, left_at, "
              "settled_at, max_displacement_below, unstabilisable_max, violations_max, "
-             "violations_min, added_mass_percent or scaled_nodes");
+             "violations_min, added_mass_percent, scaled_nodes, dt_limit_min or substeps_max");
     s.expectations.push_back(x);
   }
 }

@@ -56,6 +56,14 @@ void read_mesh_regions(const Reader& r, const toml::table& root, const CellMesh&
   for (const toml::table& t : r.tables(root, "mesh_region")) {
     const std::vector<int>& nodes = region_of(r, t, mesh, regions);
     ModelSpec& m = s.model;
+    {
+      SceneRegion named;
+      if (auto* n = t.get("name")) named.label = r.string(*n, "name");
+      else named.label = "tag " + std::to_string(r.integer(*t.get("tag"), "tag"));
+      named.nodes = nodes;
+      std::sort(named.nodes.begin(), named.nodes.end());
+      s.regions.push_back(std::move(named));
+    }
     for (int i : nodes) {
       const auto k = static_cast<size_t>(i);
       if (auto* n = t.get("fixed")) m.fixed[k] = r.boolean(*n, "fixed");

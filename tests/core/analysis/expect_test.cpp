@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "core/io/scene_file.hpp"
 #include "core/session.hpp"
 #include "tests/core/test_util.hpp"
@@ -94,6 +96,31 @@ TEST(Expect, EachFieldIsJudged) {
   EXPECT_EQ(out[10].what, "[first-entry] settled_at in [1, 1000]");
   EXPECT_EQ(out[10].measured, "none");  // 0 is outside every range
   EXPECT_EQ(out[11].what, "[first-entry] violating node-steps >= 1");
+}
+
+
+// dt_limit_min and substeps_max against the two-node system's closed form: one free node on one
+// spring, lambda = kappa/m = 1/s^2, c = gamma/m = 2/s, stable for dt^2 + 4 dt - 4 < 0 (SPEC 7),
+// dt < 2 sqrt(2) - 2 = 0.8284 s, so a frame of 1 s needs 2 substeps. No run is made.
+TEST(Expect, LimitsAreJudgedByTheExactAnalysis) {
+  SceneSpec s = two_node();
+  const double limit = 2 * std::sqrt(2.0) - 2;
+  Expectation pass, fail;
+  pass.dt_limit_min = limit * (1 - 1e-6);
+  pass.substeps_max = 2;
+  pass.frame_dt = 1.0;
+  fail.dt_limit_min = limit * (1 + 1e-6);
+  fail.substeps_max = 1;
+  fail.frame_dt = 1.0;
+  s.expectations = {pass, fail};
+  const std::vector<ExpectationResult> r = check_expectations(s);
+  ASSERT_EQ(r.size(), 4u);
+  EXPECT_TRUE(r[0].pass) << r[0].what << " " << r[0].measured;
+  EXPECT_TRUE(r[1].pass) << r[1].what << " " << r[1].measured;
+  EXPECT_FALSE(r[2].pass);
+  EXPECT_FALSE(r[3].pass);
+  EXPECT_EQ(r[1].measured.substr(0, 2), "2 ");
+  EXPECT_NE(r[0].measured.find("0.82842712"), std::string::npos) << r[0].measured;
 }
 
 }  // namespace

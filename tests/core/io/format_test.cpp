@@ -94,5 +94,9 @@ TEST(FormatHumanRange, OneNumberWhereBothEndsReadAlike) {
   EXPECT_EQ(format_human_range(0, 0), "0");
 }
 
+TEST(Format, XmlEscapeReplacesAmpersandAnglesAndQuotes) {
+  EXPECT_EQ(xml_escape("a<b & \"c\">d'"), "a&lt;b &amp; &quot;c&quot;&gt;d'");
+}
+
 }  // namespace
 }  // namespace dampbound

@@ -148,6 +148,22 @@ TEST(Vtu, StateCodesFollowNodeStatus) {
   EXPECT_EQ(state_code(NodeStatus::fixed), 4);
 }
 
+TEST(Vtu, ExtraPointArraysFollowTheOthers) {
+  TwoNodes t;
+  StepWorkspace ws;
+  std::ostringstream out;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  write_vtu(out, t.model, t.state, ws, t.params.dt, {}, {{"contact_stiffness_max", {nan, 1.5}}});
+  const std::vector<double> k = array_of<double>(out.str(), "contact_stiffness_max", "Float64", 1);
+  ASSERT_EQ(k.size(), 2u);
+  EXPECT_TRUE(std::isnan(k[0]));
+  EXPECT_EQ(k[1], 1.5);
+  EXPECT_LT(out.str().find("Name=\"zeta\""), out.str().find("Name=\"contact_stiffness_max\""));
+  std::ostringstream bad;
+  EXPECT_THROW(write_vtu(bad, t.model, t.state, ws, t.params.dt, {}, {{"short", {1.0}}}),
+               std::invalid_argument);
+}
+
 TEST(Vtu, SeriesFilesAndCollection) {
   const std::string dir = ::testing::TempDir() + "vtu_series_test/sub";
   std::filesystem::remove_all(dir);

@@ -101,8 +101,12 @@ TEST(SceneExpect, RangesAndCounts) {
 TEST(SceneExpect, AnExpectationMustAssertSomething) {
   EXPECT_EQ(error_of("[[expect]]\nrun = \"soft\"\n"),
             "e.toml:8: [[expect]] asserts nothing: give outcome, iterations, first_entry, left, "
-            "left_at, settled_at, max_displacement_below, unstabilisable_max, violations_max or "
-            "violations_min");
+            "left_at, settled_at, max_displacement_below, unstabilisable_max, violations_max, "
+            "violations_min, dt_limit_min or substeps_max");
+  EXPECT_NE(error_of("[[expect]]\nframe_dt = 0.1\ndt_limit_min = 0.1\n").find("frame_dt goes with substeps_max"),
+            std::string::npos);
+  EXPECT_NE(error_of("[[expect]]\nsubsteps_max = 0\n").find("e.toml:9: substeps_max must lie in"),
+            std::string::npos);
   EXPECT_EQ(error_of("[[expect]]\nrun = \"hard\"\noutcome = \"restored\"\n"),
             "e.toml:9: expect refers to run 'hard', which is not declared");
   EXPECT_EQ(error_of("[[expect]]\noutcome = \"settled\"\ncolour = 1\n"),

@@ -26,6 +26,21 @@ TEST(SceneMesh, TissueBlockScene) {
   // Geometric masses: not uniform (a corner holds fewer tetrahedra than an inner node).
   const auto [lo, hi] = std::minmax_element(s.model.mass_scale.begin(), s.model.mass_scale.end());
   EXPECT_GT(*hi / *lo, 5.0);
+  // Its [[mesh_region]] tables are kept by name with their nodes (suggest --kappa-max).
+  ASSERT_EQ(s.regions.size(), 2u);
+  EXPECT_EQ(s.regions[0].label, "base");
+  EXPECT_EQ(s.regions[0].nodes.size(), 27u * 21u);
+  EXPECT_EQ(s.regions[1].label, "probe");
+  EXPECT_EQ(s.regions[1].nodes.size(), 9u);
+  EXPECT_TRUE(std::is_sorted(s.regions[0].nodes.begin(), s.regions[0].nodes.end()));
+}
+
+TEST(SceneMesh, BoxRegionsAreKeptWithTheirLine) {
+  const SceneSpec s = load_scene(test::source_path("scenes/stiff-region.toml"));
+  ASSERT_EQ(s.regions.size(), 1u);
+  EXPECT_EQ(s.regions[0].label, "region 1 (line 20)");
+  EXPECT_EQ(s.regions[0].nodes.size(), 13u * 13u);
+  for (int i : s.regions[0].nodes) EXPECT_EQ(s.model.mass_scale[static_cast<size_t>(i)], 4.0);
 }
 
 TEST(SceneMesh, MeshRegionErrorsNameTheSceneLine) {

@@ -1,0 +1,27 @@
+#pragma once
+// suggest --kappa-max and suggest --rayleigh: the stiffness ceilings and the Rayleigh pair from
+// the spectrum (core/analysis/kappa_ceiling.hpp, rayleigh_design.hpp), printed for people.
+#include <string>
+
+#include "core/analysis/rayleigh_design.hpp"
+#include "core/scene.hpp"
+
+namespace dampbound::app {
+
+/// --kappa-max: the factor ceiling of every stiffness and of each region, each run at 0.98x and
+/// 1.02x (unless !verify), and the contact ceilings (into `vtu` as contact_stiffness_max when
+/// given). Exit 1 when a run at 0.98x does not settle.
+int print_kappa_max(const SceneSpec& scene, const Params& params, const StopRules& rules,
+                    bool verify, const std::string& vtu);
+
+/// --rayleigh Z[,Z2] [--band F1:F2] [--plot FILE.png]: exit 1 when no non-negative pair gives
+/// the ratios or the pair is unstable at the scene's dt.
+int print_rayleigh(const SceneSpec& scene, const Params& params, const std::string& ratios,
+                   const std::string& band, const std::string& plot);
+
+/// Renders zeta(f) to a PNG; set where the headless EGL host is built (cmd_ui_rayleigh_plot.cpp),
+/// null otherwise. Returns the renderer's name.
+using RayleighPlotter = std::string (*)(const RayleighDesign& design, const std::string& path);
+RayleighPlotter& rayleigh_plotter();
+
+}  // namespace dampbound::app
