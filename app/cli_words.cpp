@@ -111,7 +111,7 @@ CLI::Validator whole_range(long long lo, long long hi) {
           return "'" + printable(s) + "' is outside the accepted values " + range;
         return {};
       },
-      "INT " + std::to_string(lo) + ".." + std::to_string(hi));
+      std::to_string(lo) + ".." + std::to_string(hi));
 }
 
 CLI::Validator number_range(double lo, double hi) {
@@ -125,7 +125,7 @@ CLI::Validator number_range(double lo, double hi) {
         if (v < lo || v > hi) return "'" + printable(s) + "' is outside the accepted values " + range;
         return {};
       },
-      "NUMBER " + format_human(lo) + ".." + format_human(hi));
+      format_human(lo) + ".." + format_human(hi));
 }
 
 }  // namespace dampbound::app

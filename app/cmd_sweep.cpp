@@ -199,16 +199,21 @@ int run(const SweepArgs& a) {
   rq.cancel = &g_interrupted;
   const bool terminal = a.progress == "bar" || (a.progress == "auto" && ::isatty(2));
   auto printer = std::make_shared<ProgressPrinter>(stderr, terminal, a.progress_interval);
-  if (a.progress != "none") rq.progress = [printer](const SweepProgress& p) { printer->update(p); };
+  // SPEC 8: once the sweep runs (its inputs accepted), which rule, and the other's cost.
+  const std::string intro = rule_intro(rq.spec.rules.rule, rq.spec.rules.max_iterations);
+  auto said = std::make_shared<bool>(false);
+  if (a.progress != "none")
+    rq.progress = [printer, intro, said](const SweepProgress& p) {
+      if (!*said) std::fprintf(stderr, "dampbound: sweep: %s\n", intro.c_str());
+      *said = true;
+      printer->update(p);
+    };
 
   struct sigaction sa {};
   sa.sa_handler = on_interrupt;
   ::sigaction(SIGINT, &sa, nullptr);
   ::sigaction(SIGTERM, &sa, nullptr);
   const OutputLock lock(a.output);
-  if (a.progress != "none")  // SPEC 8: say which rule runs, and the other's cost
-    std::fprintf(stderr, "dampbound: sweep: %s\n",
-                 rule_intro(rq.spec.rules.rule, rq.spec.rules.max_iterations).c_str());
   const SweepReport rep = run_sweep(rq);
   ::signal(SIGINT, SIG_DFL);
   ::signal(SIGTERM, SIG_DFL);

@@ -26,7 +26,13 @@ std::string gamma_range(double lo, double hi) {
 
 /// " at gamma = 0.002, dt = 0.05 s", or "" without parameters.
 std::string at_params(const Params* p) {
-  return p ? " at gamma = " + num(p->gamma) + ", dt = " + num(p->dt) + " s" : std::string();
+  if (!p) return std::string();
+  std::string out = " at gamma = " + num(p->gamma);
+  // SPEC 10's damping shaped the verdict too: said where there is some.
+  if (p->kd != 0) out += ", kd = " + num(p->kd);
+  if (p->rayleigh_mass != 0) out += ", rayleigh_mass = " + num(p->rayleigh_mass);
+  if (p->rayleigh_stiffness != 0) out += ", rayleigh_stiffness = " + num(p->rayleigh_stiffness);
+  return out + ", dt = " + num(p->dt) + " s";
 }
 
 /// The over-budget analysis: what plain Lanczos and Gershgorin proved.

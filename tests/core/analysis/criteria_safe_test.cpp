@@ -63,7 +63,7 @@ TEST(CriteriaSafe, BeyondTheBounds) {
   t.set(p);
   auto rows = safe_criteria(t.model, t.state, t.params);
   EXPECT_EQ(rows[0].verdict, CriterionVerdict::beyond);
-  EXPECT_EQ(rows[0].test.substr(0, 12), "1 of 1 nodes");
+  EXPECT_EQ(rows[0].test.substr(0, 12), "1 of 1 node ");
   EXPECT_NEAR(rows[1].value, std::sqrt(2504.0) - 50, 1e-12);
   EXPECT_EQ(rows[1].verdict, CriterionVerdict::beyond);
   EXPECT_EQ(rows[1].test.substr(0, 23), "dt = 0.05 >= dt_safe = ");

@@ -33,6 +33,7 @@ void write_sweep(const std::string& path, int shard = 1, int shards = 1) {
   SweepSpec s = test::small_sweep(scene);
   s.kappa = parse_axis("--kappa", "0.001,0.002", AxisDomain::positive);
   s.gamma = parse_axis("--zeta", "1", AxisDomain::non_negative);
+  s.rules.rule = StopRule::first_entry;
   const SweepGrid grid(s);
   const TrialClasses classes = find_classes(grid, similarity_unavailable(scene));
   std::vector<TrialParams> reps;
@@ -46,6 +47,7 @@ void write_sweep(const std::string& path, int shard = 1, int shards = 1) {
   h.classes = classes.count();
   h.similarity = "on";
   h.shard = shard, h.shards = shards;
+  h.rule = s.rules.rule;
   std::FILE* f = std::fopen(path.c_str(), "wb");
   write_sweep_header(f, h);
   write_sweep_rows(f, grid, classes, results, shard, shards);
