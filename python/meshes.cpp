@@ -2,27 +2,39 @@
 // as a scene, through the readers' checks and builder (core/io/mesh_scene.hpp).
 #include <pybind11/stl.h>
 
+#include <cmath>
 #include <string>
 #include <vector>
 
+#include "core/io/format.hpp"
 #include "core/io/mesh_scene.hpp"
 #include "python/arrays.hpp"
 
 namespace dampbound::python {
 namespace {
 
-/// Integers as the CLI's readers take them: an integer array (a float, bool, complex or text
-/// one is a TypeError naming `what`: no truncation), each value within int32 (a ValueError
-/// naming the first that is not: no wrap, 2**32 + 3 is not 3).
+/// Integers as the CLI's readers take them: an integer array, or a float one whose values are
+/// all whole (meshio reads some formats' tags as float64; 2.7 is a ValueError naming `what`:
+/// no truncation), each value within int32 (a ValueError naming the first that is not: no
+/// wrap, 2**32 + 3 is not 3); a bool, complex or text array is a TypeError.
 std::vector<int> ints_of(const py::handle& h, const std::string& what, py::ssize_t* rows = nullptr,
                          py::ssize_t* cols = nullptr) {
   py::array a = py::array::ensure(h);
   if (!a) throw py::type_error(what + ": expected an array of integers");
   const char kind = a.dtype().kind();
   const bool empty_list = a.size() == 0 && !py::isinstance<py::array>(h);
-  if (kind != 'i' && kind != 'u' && !empty_list)
+  if (kind != 'i' && kind != 'u' && kind != 'f' && !empty_list)
     throw py::type_error(what + ": expected an array of integers, got dtype " +
                          std::string(py::str(a.dtype())));
+  if (kind == 'f') {  // whole numbers only, each as an int64 can hold it
+    const auto d = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(a);
+    for (py::ssize_t k = 0; k < d.size(); ++k) {
+      const double v = d.data()[k];
+      if (!(std::isfinite(v) && v == std::floor(v) && std::fabs(v) < 9.2e18))
+        throw py::value_error(what + ": " + format_number(v) + " at entry " + std::to_string(k) +
+                              " is not a whole number");
+    }
+  }
   if (rows) *rows = a.ndim() ? a.shape(0) : 0;
   if (cols) *cols = a.ndim() == 2 ? a.shape(1) : 1;
   const bool unsigned_ = kind == 'u';
