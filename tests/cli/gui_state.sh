@@ -28,7 +28,7 @@ frames=$(( 30 * 6000 / (ms > 1 ? ms : 1) ))
 pid=$!
 xdotool search --sync --onlyvisible --name . >/dev/null 2>&1
 sleep 1.5
-xdotool mousemove 700 400 key space
+xdotool mousemove 700 400 sleep 0.2 keydown space keyup space
 wait "$pid"
 STATS=$(grep '^{' "$WORK/out" | tail -1)
 its=$(json_field "$STATS" iterations)
