@@ -4,6 +4,7 @@
 
 #include "app/answer_lines.hpp"
 #include "app/commands.hpp"
+#include "app/wait_note.hpp"
 #include "app/options.hpp"
 #include "core/analysis/answer.hpp"
 #include "core/io/files.hpp"
@@ -36,6 +37,11 @@ int run(const RunArgs& a) {
   Session session(std::move(scene), params, rules);
   session.set_keep_trace(!a.trace.empty());  // without --trace, memory stays flat
   session.set_threads(a.threads);
+  // A run over 2 s says its iteration on stderr (Ctrl-C ends it with one line).
+  WaitNote note("run", a.vtk.empty() ? "nothing was written"
+                                     : "the .vtu files saved so far are kept, without series.pvd");
+  const int limit = rules.max_iterations;
+  note.stage("stepping", 0, limit);
   std::unique_ptr<VtuSeries> vtk;
   StepObserver save;
   if (!a.vtk.empty()) {
@@ -48,7 +54,11 @@ int run(const RunArgs& a) {
         vtk->add(session.model(), session.state(), session.workspace(), session.params().dt);
     };
   }
-  const RunResult& r = session.run_to_end(save);
+  const RunResult& r = session.run_to_end([&](const StepSample& st) {
+    if (st.iteration % 64 == 0) note.stage("stepping", st.iteration, limit);
+    if (save) save(st);
+  });
+  note.stage("writing the outputs");
   if (vtk) vtk->write_collection();
   if (!a.trace.empty())
     write_file_atomic(a.trace, [&](std::ostream& out) { write_trace_csv(out, session.trace()); });

@@ -24,7 +24,8 @@ void WaitNote::set_delays(double first_s, double every_s) {
   g_every.store(every_s);
 }
 
-WaitNote::WaitNote(std::string command) : command_(std::move(command)) {
+WaitNote::WaitNote(std::string command, std::string left)
+    : command_(std::move(command)), left_(std::move(left)) {
   start_ = std::chrono::steady_clock::now();
   // DAMPBOUND_PROGRESS_AFTER: the first delay in seconds (tests make it short).
   if (const char* after = std::getenv("DAMPBOUND_PROGRESS_AFTER")) {
@@ -77,8 +78,8 @@ void WaitNote::loop() {
     if (stop_) break;
     const auto now = std::chrono::steady_clock::now();
     if (g_interrupted.load()) {
-      std::fprintf(stderr, "%sdampbound: %s: interrupted during %s; nothing was written\n",
-                   tty ? "\r\033[K" : "", command_.c_str(), what_.c_str());
+      std::fprintf(stderr, "%sdampbound: %s: interrupted during %s; %s\n",
+                   tty ? "\r\033[K" : "", command_.c_str(), what_.c_str(), left_.c_str());
       std::fflush(stdout);
       std::_Exit(130);
     }

@@ -14,8 +14,9 @@ namespace dampbound::app {
 
 class WaitNote {
  public:
-  /// `command`: the subcommand's name, the prefix of every line ("dampbound: bounds: ...").
-  explicit WaitNote(std::string command);
+  /// `command`: the subcommand's name, the prefix of every line ("dampbound: bounds: ...");
+  /// `left`: what an interrupt leaves behind, said in its line.
+  explicit WaitNote(std::string command, std::string left = "nothing was written");
   ~WaitNote();
   WaitNote(const WaitNote&) = delete;
   WaitNote& operator=(const WaitNote&) = delete;
@@ -30,7 +31,7 @@ class WaitNote {
   void loop();
   std::string line_locked(double seconds) const;
 
-  std::string command_, what_;
+  std::string command_, left_, what_;
   int done_ = 0, total_ = 0;
   std::chrono::steady_clock::time_point start_;
   bool said_ = false, stop_ = false;

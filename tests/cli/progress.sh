@@ -9,6 +9,8 @@ expect_match "$ERR" "^dampbound: bounds: (reading the scene|building the model|e
 expect_match "$ERR" "^dampbound: bounds: done in [0-9]+ s$" "bounds says when it is done"
 expect_exit 0 "$DB" suggest paper-plane --brief
 expect_match "$ERR" "^dampbound: suggest: .*\(([0-9]+) of ([0-9]+) done\)" "suggest counts its stages"
+expect_exit 0 "$DB" run paper-plane --max-iter 3000
+expect_match "$ERR" "^dampbound: run: stepping \(([0-9]+) of 3000 done\)" "run counts its iterations"
 unset DAMPBOUND_PROGRESS_AFTER
 # Under 2 s nothing is said.
 expect_exit 0 "$DB" bounds two-node --brief
