@@ -9,8 +9,11 @@
 #include <stdexcept>
 #include <string>
 
+#include "app/answer_lines.hpp"
 #include "app/commands.hpp"
+#include "app/wait_note.hpp"
 #include "app/options.hpp"
+#include "core/analysis/answer.hpp"
 #include "core/analysis/criteria.hpp"
 #include "core/analysis/criteria_safe.hpp"
 #include "core/analysis/damping_limits.hpp"
@@ -31,7 +34,7 @@ struct BoundsArgs {
   std::string scene, v, force, integrator, system = "two-node";
   double m = 0, kappa = 0, dt = 0, gamma = 0, zeta = 0, factor_budget = 0;
   int after = 0, worst = 0;
-  bool json = false;
+  bool json = false, brief = false;
   bool equilibrium = false;
   CLI::Option *m_opt = nullptr, *kappa_opt = nullptr, *dt_opt = nullptr, *gamma_opt = nullptr,
               *integrator_opt = nullptr, *zeta_opt = nullptr;
@@ -50,8 +53,8 @@ void print_damping_lines(const Model& model, const State& state, const Params& p
   const DampingRatios r = exact.computed() ? damping_ratios(model, state.x, exact.spectrum)
                                            : damping_ratios(model, state.x);
   std::printf("\ndamping               kd=%s rayleigh_mass=%s 1/s rayleigh_stiffness=%s s\n",
-              format_number(p.kd).c_str(), format_number(p.rayleigh_mass).c_str(),
-              format_number(p.rayleigh_stiffness).c_str());
+              format_human(p.kd).c_str(), format_human(p.rayleigh_mass).c_str(),
+              format_human(p.rayleigh_stiffness).c_str());
   std::printf("damping ratios        nodal zeta %s; dashpots (%d) zeta_ij %s; Rayleigh "
               "zeta %s at lambda_min = %s, %s at lambda_max = %s 1/s^2\n",
               format_human_range(r.nodal_min, r.nodal_max).c_str(), r.dashpots,
@@ -67,7 +70,7 @@ void print_damping_lines(const Model& model, const State& state, const Params& p
   std::printf("exact index           lambda_max(dt^2 A + 2 dt C^) = %s: %s (stable below 4)\n",
               g5(g.index).c_str(), g.index < 4 ? "stable" : "UNSTABLE");
   std::printf("exact limits          gamma < %s, dt < %s s at gamma = %s (%s)\n",
-              g5(g.gamma_max).c_str(), g5(g.dt_max).c_str(), format_number(p.gamma).c_str(),
+              g5(g.gamma_max).c_str(), g5(g.dt_max).c_str(), format_human(p.gamma).c_str(),
               g.commuting ? "Rayleigh closed forms: C^ commutes with A"
                           : "C^ not diagonal: bisection on the index");
   if (!(g.damping_min > 0))
@@ -109,20 +112,20 @@ void print_criteria(const std::vector<CriterionResult>& criteria) {
 /// The paper's own lines for --m --kappa --dt [--v --force --gamma] (the command's first job).
 void print_paper_lines(const BoundsArgs& a) {
   const double lo = lower_bound(a.m, a.kappa);
-  std::printf("lower bound (eq. 5)   gamma_lo = 2*sqrt(m*kappa) = %s\n", format_number(lo).c_str());
+  std::printf("lower bound (eq. 5)   gamma_lo = 2*sqrt(m*kappa) = %s\n", format_human(lo).c_str());
   if (a.v.empty() != a.force.empty()) throw InputError("--v and --force go together");
   if (a.v.empty()) return;
   const Vec3 v = parse_vec3(a.v, "--v"), f = parse_vec3(a.force, "--force");
   const double hi = upper_bound(v, f, a.m, a.dt);
   std::printf("upper bound (eq. 6)   gamma_hi = |v*m/dt + F|/|v| = %s%s\n",
-              format_number(hi).c_str(), v.norm() == 0 ? " (v = 0: damping has no effect)" : "");
+              format_human(hi).c_str(), v.norm() == 0 ? " (v = 0: damping has no effect)" : "");
   const bool stabilisable = !(lo > hi);
   std::printf("check (sec. 5)        %s\n",
               stabilisable ? "stabilisable: gamma_lo <= gamma_hi"
                            : "UNSTABILISABLE: gamma_lo > gamma_hi, no damping satisfies both");
   if (a.gamma_opt->count()) {
     const bool inside = a.gamma >= lo && a.gamma <= hi;
-    std::printf("gamma = %s          %s\n", format_number(a.gamma).c_str(),
+    std::printf("gamma = %s          %s\n", format_human(a.gamma).c_str(),
                 inside ? "within the bounds" : "outside the bounds");
   }
 }
@@ -148,7 +151,7 @@ void print_safe_lines(const Model& model, const State& state, const Params& p,
               s.gamma_node, g5(s.row_sum).c_str(), ratio(s.gamma_safe, exact.gamma_hi).c_str());
   std::printf("safe step (%s)%sdt_safe = %s at gamma = %s, node %d%s\n", spec,
               model.spring_damping ? "   " : "    ", g5(s.dt_safe).c_str(),
-              (format_number(p.gamma) + " (zeta " + zeta_text(damping_ratio_range(model)) + ")").c_str(),
+              (format_human(p.gamma) + " (zeta " + zeta_text(damping_ratio_range(model)) + ")").c_str(),
               s.dt_node,
               ratio(s.dt_safe, exact.dt_max).c_str());
   if (s.infeasible.empty()) {
@@ -163,20 +166,29 @@ void print_safe_lines(const Model& model, const State& state, const Params& p,
     std::printf("%s\n", s.infeasible.size() > 8 ? " ..." : "");
   }
   if (s.compressed_springs > 0)
-    std::printf("                      %d compressed springs: K may not be positive "
+    std::printf("                      %s in compression: K may not be positive "
                 "semi-definite; the safe bound guarantees nothing here\n",
-                s.compressed_springs);
+                plural(s.compressed_springs, "spring").c_str());
   if (!paper_step)
     std::printf("                      (%s)\n", safe_bound_scope(exact.integrator).c_str());
+}
+
+/// The answer first (core/analysis/answer.hpp): the exact verdict at the parameters, its
+/// limits, and the safe bound where it applies to the integrator.
+void print_answer_of(const Model& model, const State& state, const Params& p,
+                     const ExactStability& exact, const std::string& where) {
+  const SafeBoundSummary safe = safe_bound_summary(model, state.x, p.dt);
+  const bool safe_applies = safe_bound_scope(p.integrator).empty();
+  print_answer(exact_answer(exact, &p, safe_applies ? &safe : nullptr, where));
 }
 
 int run_parameters(const BoundsArgs& a) {
   if (!a.m_opt->count() || !a.kappa_opt->count() || !a.dt_opt->count())
     throw InputError("--m, --kappa and --dt are required without a scene");
-  print_paper_lines(a);
   // Asked about one node's state (--v, --force): that answer, and no table of the system at
   // rest, whose eq. 6 (v = 0: inf) would contradict it.
-  if (!a.v.empty()) {
+  if (!a.v.empty() || !a.force.empty()) {
+    print_paper_lines(a);
     std::printf("(the system's criteria at rest: the same command without --v and --force)\n");
     return 0;
   }
@@ -191,18 +203,21 @@ int run_parameters(const BoundsArgs& a) {
   const bool two = a.system == "two-node";
   const Model model = two ? two_node_system(p) : single_node_system(p);
   if (const auto why = magnitude_problem(model, p.dt)) throw InputError(*why);
+  const State rest = rest_state(model);
+  const ExactStability exact = exact_stability(model, rest.x, p);
+  print_answer_of(model, rest, p, exact, "at rest");
+  if (a.brief) return 0;
+  print_paper_lines(a);
   std::printf("\nsystem       %s\n",
               two ? "two-node (paper sec. 2): node 0 fixed, node 1 on one spring of rest length "
                     "1 cm, no anchor; at rest"
                   : "single node on a zero-rest-length anchor (the linear oscillator); at rest");
   std::printf("parameters   m=%s kappa=%s gamma=%s%s (zeta=%s) dt=%s s integrator=%s\n",
-              format_number(p.m).c_str(), format_number(p.kappa).c_str(),
-              format_number(p.gamma).c_str(),
+              format_human(p.m).c_str(), format_human(p.kappa).c_str(),
+              format_human(p.gamma).c_str(),
               a.gamma_opt->count() || a.zeta_opt->count() ? "" : " (= gamma_lo)",
               zeta_text(damping_ratio_range(model)).c_str(),
-              format_number(p.dt).c_str(), to_string(p.integrator));
-  const State rest = rest_state(model);
-  const ExactStability exact = exact_stability(model, rest.x, p);
+              format_human(p.dt).c_str(), to_string(p.integrator));
   print_safe_lines(model, rest, p, exact);
   print_damping_lines(model, rest, p, exact);
   print_criteria(all_criteria(model, rest, p, exact));
@@ -225,8 +240,8 @@ void print_worst(const Model& model, const State& state, const Params& p, int co
         char buf[512];
         std::snprintf(buf, sizeof buf, "  %7d %-12s %-12s %-10s %-10s %-10s %6d  %s\n", n.node,
                       format_human(n.dt_safe).c_str(), format_human(n.gamma_safe).c_str(),
-                      format_digits(n.mass, 4).c_str(), format_digits(n.stiffest, 4).c_str(),
-                      format_digits(n.shortest_edge, 4).c_str(), n.degree, n.cause.c_str());
+                      format_human(n.mass).c_str(), format_human(n.stiffest).c_str(),
+                      format_human(n.shortest_edge).c_str(), n.degree, n.cause.c_str());
         out += buf;
       }
     }
@@ -240,16 +255,26 @@ void print_worst(const Model& model, const State& state, const Params& p, int co
     return;
   }
   std::printf("\nmedians      mass %s, spring stiffness %s, edge %s cm\n",
-              format_digits(w.median_mass, 4).c_str(), format_digits(w.median_kappa, 4).c_str(),
-              format_digits(w.median_edge, 4).c_str());
+              format_human(w.median_mass).c_str(), format_human(w.median_kappa).c_str(),
+              format_human(w.median_edge).c_str());
   const char* head = "     node dt_safe      gamma_safe   mass       stiffest   shortest   degree  cause\n";
-  std::printf("worst %d by dt_safe_i (at gamma_i):\n%s%s", count, head, rows(w.by_dt).c_str());
-  std::printf("worst %d by gamma_safe_i (at dt = %s s):\n%s%s", count,
+  // Fewer free nodes than asked: say how many are shown, not the count asked for.
+  auto shown = [&](size_t n) {
+    return n < static_cast<size_t>(count)
+               ? "the " + plural(static_cast<long long>(n), "free node") + " (" +
+                     std::to_string(count) + " asked)"
+               : "worst " + std::to_string(count);
+  };
+  std::printf("%s by dt_safe_i (at gamma_i):\n%s%s", shown(w.by_dt.size()).c_str(), head,
+              rows(w.by_dt).c_str());
+  std::printf("%s by gamma_safe_i (at dt = %s s):\n%s%s", shown(w.by_gamma.size()).c_str(),
               format_human(p.dt).c_str(), head, rows(w.by_gamma).c_str());
 }
 
 int run_scene(const BoundsArgs& a) {
   if (!a.v.empty() || !a.force.empty()) throw InputError("--v and --force need no scene");
+  WaitNote note("bounds");  // a wait over 2 s is said on stderr, stage by stage
+  note.stage("reading the scene");
   SceneSpec scene = load_scene_arg(a.scene);
   Params p = scene.params;
   if (a.m_opt->count()) p.m = a.m;
@@ -266,14 +291,19 @@ int run_scene(const BoundsArgs& a) {
   require_magnitudes(scene.model, p);
   p.policy = DampingPolicy::fixed;  // the user's gamma is what is judged
   const std::string name = scene.name.empty() ? a.scene : scene.name;
+  note.stage("building the model (" + scene_counts(scene.model) + ")");
   Session session(std::move(scene), p, StopRules{});
-  for (int k = 0; k < a.after && session.running(); ++k) session.step_once();
+  for (int k = 0; k < a.after && session.running(); ++k) {
+    if (k % 64 == 0) note.stage("stepping to --after", k, a.after);
+    session.step_once();
+  }
   const Model& model = session.model();
   State state = a.after > 0 ? session.state() : rest_state(model);
   Equilibrium held;
   if (a.equilibrium) {
     EquilibriumOptions eo;
     eo.max_factor_flops = a.factor_budget * 1e9;
+    note.stage("static equilibrium (Newton's method)");
     try {
       held = static_equilibrium(model, eo);
     } catch (const FactorisationOverBudget& over) {
@@ -287,17 +317,27 @@ int run_scene(const BoundsArgs& a) {
     print_worst(model, state, p, a.worst, true);
     return 0;
   }
-  std::printf("scene        %s (%d nodes, %d springs, %d anchors)\n", name.c_str(),
-              model.spec().node_count(), model.spec().spring_count(), model.spec().anchor_count());
+  ExactOptions options;
+  options.threads = 0;  // a big mesh's Lanczos products on every CPU (the same bits)
+  options.max_factor_flops = a.factor_budget * 1e9;
+  note.stage("exact linear analysis (" + scene_counts(model.spec(), false) +
+             "; --factor-budget " + format_human(a.factor_budget) + " GFlop per factorisation)");
+  const ExactStability exact = exact_stability(model, state.x, p, options);
+  print_answer_of(model, state, p, exact,
+                  a.after > 0        ? "after " + plural(state.iteration, "step")
+                  : a.equilibrium ? "at the static equilibrium"
+                                  : "at rest");
+  if (a.brief) return 0;
+  std::printf("scene        %s (%s)\n", name.c_str(), scene_counts(model.spec()).c_str());
   std::printf("parameters   m=%s kappa=%s gamma=%s (zeta=%s) dt=%s s integrator=%s (gamma_i = "
               "gamma * gamma_scale_i, m_i = m * mass_scale_i)\n",
-              format_number(p.m).c_str(), format_number(p.kappa).c_str(),
-              format_number(p.gamma).c_str(), zeta_text(damping_ratio_range(model)).c_str(),
-              format_number(p.dt).c_str(),
+              format_human(p.m).c_str(), format_human(p.kappa).c_str(),
+              format_human(p.gamma).c_str(), zeta_text(damping_ratio_range(model)).c_str(),
+              format_human(p.dt).c_str(),
               to_string(p.integrator));
   if (a.after > 0) {
-    std::printf("state        after %d steps of the scene's perturbed run (policy fixed)\n",
-                state.iteration);
+    std::printf("state        after %s of the scene's perturbed run (policy fixed)\n",
+                plural(state.iteration, "step").c_str());
   } else if (a.equilibrium) {
     std::printf(
         "state        static equilibrium under the scene's forces and rest lengths (v = "
@@ -311,10 +351,6 @@ int run_scene(const BoundsArgs& a) {
                   "run settles\n",
                   rest_not_in_equilibrium(n).c_str());
   }
-  ExactOptions options;
-  options.threads = 0;  // a big mesh's Lanczos products on every CPU (the same bits)
-  options.max_factor_flops = a.factor_budget * 1e9;
-  const ExactStability exact = exact_stability(model, state.x, p, options);
   std::printf("exact method %s\n", to_string(exact.method));
   if (!exact.computed())
     std::printf("             %s (--factor-budget)%s\n", exact.over_budget_reason().c_str(),
@@ -323,6 +359,7 @@ int run_scene(const BoundsArgs& a) {
                     : "");
   print_safe_lines(model, state, p, exact);
   print_damping_lines(model, state, p, exact);
+  note.stage("the other criteria");
   if (a.worst > 0) print_worst(model, state, p, a.worst, false);
   print_criteria(all_criteria(model, state, p, exact));
   return 0;
@@ -364,7 +401,7 @@ std::function<int()> setup(CLI::App& root) {
   cmd->add_option("--after", a->after,
                   "with a scene: analyse the state after this many steps of its perturbed run "
                   "(default 0: the rest state)")
-      ->check(CLI::Range(0, 100000000));
+      ->check(whole_range(0, 100000000));
   cmd->add_flag("--equilibrium", a->equilibrium,
                 "with a scene: analyse at its static equilibrium under its external forces and "
                 "rest lengths (Newton's method; where a damped run settles) instead of at rest")
@@ -373,8 +410,9 @@ std::function<int()> setup(CLI::App& root) {
                   "with a scene: the N nodes with the smallest dt_safe_i and the N with the "
                   "smallest gamma_safe_i, each with its mass, stiffest spring, shortest "
                   "edge, degree and the cause in words")
-      ->check(CLI::Range(1, 1000000));
+      ->check(whole_range(1, 1000000));
   cmd->add_flag("--json", a->json, "with --worst: the worst nodes as one JSON object only");
+  add_brief_flag(cmd, a->brief);
   add_damping_flags(cmd, a->kd, a->rayleigh_mass, a->rayleigh_stiffness, a->damping_opts);
   add_factor_budget_option(cmd, a->factor_budget);
   return [a] { return run(*a); };

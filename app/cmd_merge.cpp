@@ -4,6 +4,7 @@
 
 #include "app/commands.hpp"
 #include "core/error.hpp"
+#include "core/io/format.hpp"
 #include "core/sweep/csv.hpp"
 
 namespace dampbound::app::cmd_merge {
@@ -17,8 +18,10 @@ struct MergeArgs {
 int run(const MergeArgs& a) {
   merge_sweep_parts(a.parts, a.output);
   const SweepTable t = read_sweep_csv(a.output);
-  std::printf("merged       %zu parts of sweep %s: %zu trials -> %s\n", a.parts.size(),
-              t.header.sweep_id.c_str(), t.rows.size(), a.output.c_str());
+  std::printf("merged       %s of sweep %s: %s -> %s\n",
+              plural(static_cast<long long>(a.parts.size()), "part").c_str(),
+              t.header.sweep_id.c_str(), plural(static_cast<long long>(t.rows.size()), "trial").c_str(),
+              a.output.c_str());
   return 0;
 }
 

@@ -2,8 +2,11 @@
 #include <cstdio>
 #include <memory>
 
+#include "app/answer_lines.hpp"
 #include "app/commands.hpp"
+#include "app/wait_note.hpp"
 #include "app/options.hpp"
+#include "core/analysis/answer.hpp"
 #include "core/io/files.hpp"
 #include "core/io/format.hpp"
 #include "core/io/report.hpp"
@@ -18,7 +21,7 @@ struct RunArgs {
   std::string rule = "settled";  // SPEC 8: a user's question is whether it stays stable
   std::string vtk;               // ParaView series folder (core/io/vtu.hpp)
   int every = 1;
-  bool json = false, verbose = false;
+  bool json = false, verbose = false, brief = false;
   int threads = 1;
   ParamFlags flags;
 };
@@ -35,18 +38,28 @@ int run(const RunArgs& a) {
   Session session(std::move(scene), params, rules);
   session.set_keep_trace(!a.trace.empty());  // without --trace, memory stays flat
   session.set_threads(a.threads);
+  // A run over 2 s says its iteration on stderr (Ctrl-C ends it with one line).
+  WaitNote note("run", a.vtk.empty() ? "nothing was written"
+                                     : "the .vtu files saved so far are kept, without series.pvd");
+  const int limit = rules.max_iterations;
+  note.stage("stepping", 0, limit);
   std::unique_ptr<VtuSeries> vtk;
   StepObserver save;
   if (!a.vtk.empty()) {
     // Iteration 0, every N-th step and the last one; the .pvd lists them with their times.
     vtk = std::make_unique<VtuSeries>(a.vtk, session.scene().body);
+    vtk->set_parameters(session.params());
     vtk->add(session.model(), session.state(), session.workspace(), session.params().dt);
     save = [&](const StepSample& st) {
       if (st.iteration % a.every == 0 || !session.running())
         vtk->add(session.model(), session.state(), session.workspace(), session.params().dt);
     };
   }
-  const RunResult& r = session.run_to_end(save);
+  const RunResult& r = session.run_to_end([&](const StepSample& st) {
+    if (st.iteration % 64 == 0) note.stage("stepping", st.iteration, limit);
+    if (save) save(st);
+  });
+  note.stage("writing the outputs");
   if (vtk) vtk->write_collection();
   if (!a.trace.empty())
     write_file_atomic(a.trace, [&](std::ostream& out) { write_trace_csv(out, session.trace()); });
@@ -56,9 +69,9 @@ int run(const RunArgs& a) {
     std::printf("%s\n", result_json(name, params, rules, session.watched(), r, &zeta).c_str());
     return 0;
   }
-  std::printf("scene        %s (%d nodes, %d springs, %d anchors)\n", name.c_str(),
-              session.model().spec().node_count(), session.model().spec().spring_count(),
-              session.model().spec().anchor_count());
+  print_answer(run_answer(r, rules, params));  // the verdict and what to try, first
+  if (a.brief) return 0;
+  std::printf("scene        %s (%s)\n", name.c_str(), scene_counts(session.model().spec()).c_str());
   std::printf("parameters   m=%s kappa=%s gamma=%s (zeta=%s) dt=%s s policy=%s integrator=%s\n",
               format_human(params.m).c_str(), format_human(params.kappa).c_str(),
               format_human(params.gamma).c_str(), zeta_text(zeta).c_str(),
@@ -68,10 +81,6 @@ int run(const RunArgs& a) {
     std::printf("damping      kd=%s rayleigh_mass=%s 1/s rayleigh_stiffness=%s s\n",
                 format_human(params.kd).c_str(), format_human(params.rayleigh_mass).c_str(),
                 format_human(params.rayleigh_stiffness).c_str());
-  // One verdict; its time from the step count (k dt), not the accumulated clock.
-  const int at = r.outcome == Outcome::settled ? r.settled_at : r.iterations;
-  std::printf("verdict      %s; t = %s s\n", verdict_text(r, rules).c_str(),
-              format_human(at * params.dt).c_str());
   std::printf("max |x-X|    %s cm at the end (the band: below %s cm; diverged: above %s cm)\n",
               format_human(r.max_displacement).c_str(),
               format_human(rules.restore_fraction * rules.reference).c_str(),
@@ -116,6 +125,7 @@ std::function<int()> setup(CLI::App& root) {
                   "write one CSV row per iteration (watched node's displacement in cm, bounds "
                   "and damping in mass unit/s, max displacement)");
   cmd->add_flag("--json", a->json, "print one JSON object instead of text");
+  add_brief_flag(cmd, a->brief);
   cmd->add_flag("--verbose", a->verbose,
                 "also print the paper's per-step counts (violations of eq. 5 and 6, "
                 "unstabilisable and clamped node-steps, the safe bound's)");
@@ -124,11 +134,11 @@ std::function<int()> setup(CLI::App& root) {
                   "displacement, velocity, bounds, damping, state; springs with stiffness, "
                   "strain) and series.pvd");
   cmd->add_option("--every", a->every, "with --vtk: save every N-th step (and the last)")
-      ->check(CLI::Range(1, 100000000));
+      ->check(whole_range(1, 100000000));
   cmd->add_option("--threads", a->threads,
                   "threads for each step's node loops (0 = one per hardware thread); the "
                   "results are the same bits on any count")
-      ->check(CLI::Range(0, 1024));
+      ->check(whole_range(0, 1024));
   return [a] { return run(*a); };
 }
 

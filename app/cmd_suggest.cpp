@@ -5,11 +5,14 @@
 #include <cstdio>
 #include <memory>
 
+#include "app/answer_lines.hpp"
 #include "app/commands.hpp"
+#include "app/wait_note.hpp"
 #include "app/options.hpp"
 #include "app/suggest_mass.hpp"
 #include "core/error.hpp"
 #include "app/suggest_knobs.hpp"
+#include "core/analysis/answer.hpp"
 #include "core/analysis/criteria_safe.hpp"
 #include "core/analysis/damping_limits.hpp"
 #include "core/analysis/equilibrium.hpp"
@@ -26,7 +29,7 @@ struct SuggestArgs {
   std::string scene, integrator;
   double m = 0, kappa = 0, dt = 0, gamma = 0, zeta = 0, factor_budget = 0, frame_dt = 0;
   int max_iter = 0, trials = 16;
-  bool no_verify = false;
+  bool no_verify = false, brief = false;
   CLI::Option *m_opt = nullptr, *kappa_opt = nullptr, *dt_opt = nullptr, *gamma_opt = nullptr,
               *integrator_opt = nullptr, *max_iter_opt = nullptr,
               *zeta_opt = nullptr, *frame_dt_opt = nullptr;
@@ -91,6 +94,13 @@ void print_runs(const SceneSpec& scene, const std::vector<VerifiedRun>& runs,
   }
 }
 
+/// The run labelled `label` did not settle.
+bool unverified(const std::vector<VerifiedRun>& runs, const std::string& label) {
+  for (const VerifiedRun& r : runs)
+    if (r.label == label && !r.verified()) return true;
+  return false;
+}
+
 /// Exit 1 when the value suggested for use (the run labelled `label`) did not settle: a CI job
 /// must not take it. The other runs probe the range's ends and only inform.
 int recommendation_status(const std::vector<VerifiedRun>& runs, const std::string& label) {
@@ -134,8 +144,8 @@ int print_damping(const SceneSpec& scene, const DampingSuggestion& s) {
                 scope.c_str());
   std::printf("  per node class (m_i, kappa_i = max incident stiffness, gamma_scale_i):\n");
   for (const NodeClass& c : s.classes) {
-    std::printf("    %5d nodes like %-5d m_i=%-10s kappa_i=%-10s scale=%-6s eq.5 %-12s gamma_i in [%s, %s%c\n",
-                c.count, c.example, format_human(c.mass).c_str(), format_human(c.kappa).c_str(),
+    std::printf("    %11s like %-5d m_i=%-10s kappa_i=%-10s scale=%-6s eq.5 %-12s gamma_i in [%s, %s%c\n",
+                plural(c.count, "node").c_str(), c.example, format_human(c.mass).c_str(), format_human(c.kappa).c_str(),
                 format_human(c.gamma_scale).c_str(), format_human(c.lower_bound).c_str(), format_human(c.gamma_min).c_str(),
                 format_human(c.gamma_max).c_str(), s.proved_only ? ']' : ')');
     if (c.lower_bound > 0)
@@ -206,7 +216,18 @@ int print_step(const SceneSpec& scene, const Params& p, const StepSuggestion& s)
   // that is the exact limit itself, the run at 99% of it (suggest_step makes only that one).
   const std::string checked = s.runs.empty() ? std::string() : s.runs.back().label;
   print_runs(scene, s.runs, checked);
+  if (!(s.dt_all > 0)) return 1;  // no dt to suggest (said first: step_answer)
   return recommendation_status(s.runs, checked);
+}
+
+/// 1000000 as "1,000,000".
+std::string grouped(long long n) {
+  std::string digits = std::to_string(n), out;
+  for (size_t k = 0; k < digits.size(); ++k) {
+    if (k > 0 && (digits.size() - k) % 3 == 0) out += ',';
+    out += digits[k];
+  }
+  return out;
 }
 
 int print_substeps(const std::string& scene_arg, const SubstepSuggestion& s) {
@@ -215,7 +236,15 @@ int print_substeps(const std::string& scene_arg, const SubstepSuggestion& s) {
               format_human(s.frame_dt).c_str());
   auto line = [&](const SubstepCount& c, const char* what) {
     if (c.n == 0) {
-      std::printf("  %-12s no count (dt limit %s s)\n", what, format_human(c.limit).c_str());
+      // The limit unknown, or a count over the cap: say which, with the cap's dt.
+      if (c.limit > 0 && std::isfinite(c.limit))
+        std::printf("  %-12s no count: dt < %s s needs more than the cap of %s substeps "
+                    "(frame / %s = %s s); shorten --frame-dt\n",
+                    what, format_human(c.limit).c_str(), grouped(kMaxSubsteps).c_str(),
+                    grouped(kMaxSubsteps).c_str(),
+                    format_human(s.frame_dt / kMaxSubsteps).c_str());
+      else
+        std::printf("  %-12s no count (dt limit %s s)\n", what, format_human(c.limit).c_str());
       return;
     }
     std::printf("  %-12s %s: dt = %s s", what, substeps_text(c.n).c_str(),
@@ -235,26 +264,23 @@ int print_substeps(const std::string& scene_arg, const SubstepSuggestion& s) {
                   substeps_text(s.by_running.n).c_str(), substeps_text(s.failed_at_most).c_str(),
                   s.failed_at_most + 1 == s.by_running.n ? "" : " (not every count between was run)");
     } else if (s.search_runs > 0) {
-      std::printf("  %-12s no count up to %s settled (%d runs)\n", "by running",
-                  substeps_text(s.failed_at_most).c_str(), s.search_runs);
+      std::printf("  %-12s no count up to %s settled (%s)\n", "by running",
+                  substeps_text(s.failed_at_most).c_str(), plural(s.search_runs, "run").c_str());
     }
   }
   if (!s.note.empty()) std::printf("  %s\n", s.note.c_str());
   if (!s.exact.ran && !s.safe.ran) return s.exact.n > 0 ? 0 : 1;  // --no-verify
-  if (const SubstepCount* use = s.answer()) {
-    std::printf("answer       %s per frame (dt = %s s)\n", substeps_text(use->n).c_str(),
-                format_human(use->dt).c_str());
-    return 0;
-  }
-  std::printf("answer       none verified: no count's run settled; where none diverged, the "
-              "damping does not let it settle in the scene's time "
-              "(dampbound suggest %s --dt %s gives the damping range)\n",
+  if (s.answer()) return 0;  // said first (substeps_answer)
+  std::printf("next         where no run diverged, the damping does not let it settle in the "
+              "scene's time: dampbound suggest %s --dt %s gives the damping range\n",
               scene_arg.c_str(),
               format_human(s.exact.n > 0 ? s.exact.dt : s.frame_dt).c_str());
   return 1;
 }
 
 int run(const SuggestArgs& a) {
+  WaitNote note("suggest");  // a wait over 2 s is said on stderr, stage by stage
+  note.stage("reading the scene");
   SceneSpec scene = load_scene_arg(a.scene);
   Params p = scene.params;
   StopRules rules = scene.rules;
@@ -274,27 +300,40 @@ int run(const SuggestArgs& a) {
   p.policy = DampingPolicy::fixed;
   const std::string name = scene.name.empty() ? a.scene : scene.name;
   const bool json = a.mass.json && (a.mass_opt->count() || a.substeps_opt->count());
-  if (!json) std::printf("scene        %s (%d nodes, %d springs)\n", name.c_str(), scene.model.node_count(),
-              scene.model.spring_count());
-  if (!json) std::printf("parameters   m=%s kappa=%s dt=%s s integrator=%s max_iterations=%d\n",
-              format_human(p.m).c_str(), format_human(p.kappa).c_str(), format_human(p.dt).c_str(), to_string(p.integrator),
-              rules.max_iterations);
-  {
+  // The evidence's head, after the answer (core/analysis/answer.hpp).
+  auto head = [&] {
+    if (json) return;
+    std::printf("scene        %s (%s)\n", name.c_str(), scene_counts(scene.model, false).c_str());
+    std::printf("parameters   m=%s kappa=%s dt=%s s integrator=%s max_iterations=%d\n",
+                format_human(p.m).c_str(), format_human(p.kappa).c_str(),
+                format_human(p.dt).c_str(), to_string(p.integrator), rules.max_iterations);
     const Model model = compile_model(scene.model, p);
     const NetForce n = net_force(model, model.spec().rest);
     if (!n.balanced() && !json)  // external forces, or rest lengths other than the rest geometry's
       std::printf("note         %s; these suggestions linearise at rest, which a run leaves; "
                   "bounds --equilibrium analyses where a damped run settles\n",
                   rest_not_in_equilibrium(n).c_str());
-  }
-  if (a.kappa_max) return print_kappa_max(scene, p, rules, !a.no_verify, a.vtu);
-  if (!a.rayleigh.empty()) return print_rayleigh(scene, p, a.rayleigh, a.band, a.plot);
+  };
   SuggestOptions options;
   options.verify = !a.no_verify;
   options.threads = 0;  // a big mesh's Lanczos products on every CPU (the same bits)
   options.trials = a.trials;
   options.max_factor_flops = a.factor_budget * 1e9;
+  options.progress = [&note](int done, int total, const std::string& next) {
+    note.stage(next, done, total);
+    return true;
+  };
+  note.stage("exact linear analysis (" + scene_counts(scene.model, false) + ")");
+  if (a.kappa_max) {
+    head();
+    return print_kappa_max(scene, p, rules, !a.no_verify, a.vtu);
+  }
+  if (!a.rayleigh.empty()) {
+    head();
+    return print_rayleigh(scene, p, a.rayleigh, a.band, a.plot);
+  }
   if (a.mass_opt->count() || a.substeps_opt->count()) {
+    head();
     MassScaleArgs m = a.mass;
     m.scene_arg = a.scene;
     m.verify = !a.no_verify;
@@ -304,14 +343,32 @@ int run(const SuggestArgs& a) {
   for (const CLI::Option* o : a.mass_only)
     if (o->count())
       throw InputError(o->get_name() + " goes with --mass-scale DT or --frame-dt F --substeps N");
-  if (a.frame_dt_opt->count())
-    return print_substeps(a.scene, suggest_substeps(scene, p, rules, a.frame_dt, options));
-  if (a.gamma_opt->count() || a.zeta_opt->count()) return print_step(scene, p, suggest_step(scene, p, rules, options));
-  const int status = print_damping(scene, suggest_damping(scene, p, rules, options));
+  if (a.frame_dt_opt->count()) {
+    const SubstepSuggestion s = suggest_substeps(scene, p, rules, a.frame_dt, options);
+    print_answer(substeps_answer(s));
+    if (a.brief) return s.answer() || (!s.exact.ran && !s.safe.ran && s.exact.n > 0) ? 0 : 1;
+    head();
+    return print_substeps(a.scene, s);
+  }
+  if (a.gamma_opt->count() || a.zeta_opt->count()) {
+    const StepSuggestion s = suggest_step(scene, p, rules, options);
+    print_answer(step_answer(s));
+    if (a.brief)
+      return !(s.dt_all > 0) || unverified(s.runs, s.runs.empty() ? std::string() : s.runs.back().label) ? 1 : 0;
+    head();
+    return print_step(scene, p, s);
+  }
+  const DampingSuggestion d = suggest_damping(scene, p, rules, options);
+  print_answer(damping_answer(d));
+  if (a.brief) return d.empty || unverified(d.runs, "fastest-settling gamma") ? 1 : 0;
+  head();
+  const int status = print_damping(scene, d);
   // SPEC 10: with dashpot or Rayleigh damping in play, the range of each kind.
   const bool spec10 = p.kd != 0 || p.rayleigh_mass != 0 || p.rayleigh_stiffness != 0;
-  if (spec10 && integrator_traits(p.integrator).paper_step)
+  if (spec10 && integrator_traits(p.integrator).paper_step) {
+    note.stage("the stable range of each damping kind");
     print_damping_kinds(scene, p, rules, !a.no_verify);
+  }
   return status;
 }
 
@@ -345,9 +402,9 @@ std::function<int()> setup(CLI::App& root) {
       cmd->add_option("--integrator", a->integrator, "integrator (default: the scene's)")
           ->check(CLI::IsMember(integrator_names()));
   a->max_iter_opt = cmd->add_option("--max-iter", a->max_iter, "iteration limit of the verification runs")
-                        ->check(CLI::Range(1, 100000000));
+                        ->check(whole_range(1, 100000000));
   cmd->add_option("--trials", a->trials, "trial runs for the best damping of a non-uniform model")
-      ->check(CLI::Range(2, 1000));
+      ->check(whole_range(2, 1000));
   add_damping_flags(cmd, a->kd, a->rayleigh_mass, a->rayleigh_stiffness, a->damping_opts);
   // SPEC 11 (docs/criteria.md, "Mass scaling"): the least added mass for a target step.
   a->mass_opt = cmd->add_option("--mass-scale", a->mass.dt_target,
@@ -377,6 +434,7 @@ std::function<int()> setup(CLI::App& root) {
   a->mass_only[4] = cmd->add_flag("--json", a->mass.json,
                                   "with --mass-scale: the answer as one JSON object");
   cmd->add_flag("--no-verify", a->no_verify, "do not run the suggestions");
+  add_brief_flag(cmd, a->brief);
   add_factor_budget_option(cmd, a->factor_budget);
   CLI::Option* kappa_max = cmd->add_flag(
       "--kappa-max", a->kappa_max,

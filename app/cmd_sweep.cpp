@@ -16,6 +16,7 @@
 
 #include "app/commands.hpp"
 #include "app/options.hpp"
+#include "app/sweep_rule.hpp"
 #include "core/damping_ratio.hpp"
 #include "core/error.hpp"
 #include "core/integrate.hpp"
@@ -198,7 +199,15 @@ int run(const SweepArgs& a) {
   rq.cancel = &g_interrupted;
   const bool terminal = a.progress == "bar" || (a.progress == "auto" && ::isatty(2));
   auto printer = std::make_shared<ProgressPrinter>(stderr, terminal, a.progress_interval);
-  if (a.progress != "none") rq.progress = [printer](const SweepProgress& p) { printer->update(p); };
+  // SPEC 8: once the sweep runs (its inputs accepted), which rule, and the other's cost.
+  const std::string intro = rule_intro(rq.spec.rules.rule, rq.spec.rules.max_iterations);
+  auto said = std::make_shared<bool>(false);
+  if (a.progress != "none")
+    rq.progress = [printer, intro, said](const SweepProgress& p) {
+      if (!*said) std::fprintf(stderr, "dampbound: sweep: %s\n", intro.c_str());
+      *said = true;
+      printer->update(p);
+    };
 
   struct sigaction sa {};
   sa.sa_handler = on_interrupt;
@@ -253,6 +262,9 @@ int run(const SweepArgs& a) {
             static_cast<unsigned long long>(rep.untimed_classes));
     }
   }
+  if (!rep.already_complete)
+    if (const auto cost = rule_cost_line(rep.rows, rq.spec.rules.rule, rep.seconds))
+      std::printf("%s\n", cost->c_str());
   std::printf("output       %s\n", a.output.c_str());
   double lambda_unit = NAN;
   try {
@@ -318,11 +330,11 @@ std::function<int()> setup(CLI::App& root) {
   a->policy_opt = cmd->add_option("--policy", a->policy, "damping policy: fixed, clamp, upper, lower (the paper's), safe (the safe bound)")
                       ->check(CLI::IsMember(policy_names()));
   a->max_iter_opt = cmd->add_option("--max-iter", a->max_iter, "iteration limit of the protocol")
-                        ->check(CLI::Range(1, 100000000));
+                        ->check(whole_range(1, 100000000));
   cmd->add_option("-o,--output", a->output, "the results CSV (written atomically at the end)")
       ->required();
   cmd->add_option("--threads", a->threads, "worker threads (default: one per CPU)")
-      ->check(CLI::Range(1, 1024));
+      ->check(whole_range(1, 1024));
   cmd->add_flag("--resume", a->resume, "finish an interrupted sweep from OUTPUT.journal");
   cmd->add_option("--shard", a->shard, "run part K of N (classes c with c % N == K-1)");
   cmd->add_option("--map", a->map, "also draw the stability map into this PNG");
@@ -335,10 +347,10 @@ std::function<int()> setup(CLI::App& root) {
       ->check(CLI::IsMember({"auto", "bar", "lines", "none"}));
   cmd->add_option("--progress-interval", a->progress_interval,
                   "seconds between progress lines when not on a terminal (default 10)")
-      ->check(CLI::Range(0.0, 86400.0));
+      ->check(number_range(0.0, 86400.0));
   cmd->add_option("--sync-interval", a->sync_interval,
                   "seconds between fsyncs of the journal of finished classes (default 1)")
-      ->check(CLI::Range(0.0, 3600.0));
+      ->check(number_range(0.0, 3600.0));
   return [a] { return run(*a); };
 }
 

@@ -8,9 +8,11 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <thread>
 
 #include "app/commands.hpp"
 #include "app/options.hpp"
+#include "app/wait_note.hpp"
 #include "core/damping_ratio.hpp"
 #include "core/error.hpp"
 #include "core/io/files.hpp"
@@ -85,6 +87,22 @@ bool have_display() {
 }
 
 /// Frame-time percentiles after the first frame (startup), in milliseconds (ui/frame_times.hpp).
+/// The scripted last frame of `--tab map`: waits for every pass of the map, saying on stderr
+/// which pass is done and how many cells the next one has once the wait passes 2 s.
+void wait_for_map(ui::TunerMap& map) {
+  WaitNote note("gui");
+  while (map.busy()) {
+    const auto r = map.result();
+    const size_t cells = r ? r->cells.size() : 0;
+    note.stage(r ? "stability map: pass " + std::to_string(r->pass) + " done (" +
+                       plural(static_cast<long long>(cells), "cell") + " in " +
+                       format_human(r->seconds) + " s), the next finer pass running"
+                 : std::string("stability map: its first, coarsest pass"));
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  map.wait();
+}
+
 std::string frame_time_json(const ui::WindowRun& run) {
   const ui::FrameTimeSummary f = ui::summarize_frame_times(run.frame_ms, 1);
   return "\"frame_ms_after_first\":{\"frames\":" + std::to_string(f.frames) +
@@ -275,7 +293,7 @@ int run(GuiArgs& a) {
       app.start_suggest();
       app.start_substeps();
     }
-    if (map_wait && last) app.map().wait();
+    if (map_wait && last) wait_for_map(app.map());
     if (suggest_scripted && last) app.suggestions().wait(), app.substeps().wait();
     app.frame(info);
     if (!a.export_dir.empty() && last)
@@ -335,11 +353,11 @@ std::function<int()> setup(CLI::App& root) {
   cmd->add_option("scene", a->scene,
                   "scene file or name (default: the last one, else paper-plane)");
   cmd->add_option("--frames", a->frames, "play N frames, then exit")
-      ->check(CLI::Range(1, 10000000));
+      ->check(whole_range(1, 10000000));
   cmd->add_option("--screenshot", a->screenshot, "save the window after the last frame (PNG)");
   cmd->add_option("--size", a->size, "window size WxH in pixels (default 1600x1000)");
   cmd->add_option("--steps-per-frame", a->steps_per_frame, "steps per frame while playing")
-      ->check(CLI::Range(1, 10000));
+      ->check(whole_range(1, 10000));
   cmd->add_flag("--stats", a->stats,
                 "print one JSON line: frames, iterations, mean frame time, steps per second");
   cmd->add_option("--config-dir", a->config_dir,
@@ -367,11 +385,11 @@ std::function<int()> setup(CLI::App& root) {
                   "as [[run]]/[[expect]] tables (dampbound check FILE replays them)");
   cmd->add_option("--expect-iterations", a->expect_iterations,
                   "--save-scene: the verdict's iteration may move +- this many iterations")
-      ->check(CLI::Range(0, 100000000))
+      ->check(whole_range(0, 100000000))
       ->capture_default_str();
   cmd->add_option("--expect-displacement", a->expect_displacement,
                   "--save-scene: max_displacement_below = this x the measured one (1: none)")
-      ->check(CLI::Range(1.0, 1e6))
+      ->check(number_range(1.0, 1e6))
       ->capture_default_str();
   cmd->add_option("--export", a->export_dir,
                   "with --frames: at the last frame, export the plots (PNG) and data (CSV) to "
@@ -392,7 +410,7 @@ std::function<int()> setup(CLI::App& root) {
   cmd->add_option("--monkey-scenes", a->monkey_scenes, "--self-test: the monkey's scenes")
       ->capture_default_str();
   cmd->add_option("--monkey-events", a->monkey_events, "--self-test: input events per scene")
-      ->check(CLI::Range(0, 100000000))
+      ->check(whole_range(0, 100000000))
       ->capture_default_str();
   cmd->add_option("--monkey-seed", a->monkey_seed, "--self-test: the monkey's seed")
       ->capture_default_str();

@@ -90,7 +90,7 @@ int run(const MapArgs& a) {
   render_map(map, a.output, width, height);
   std::printf("map          %s -> %s (%zu panels, lambda_max = %s * kappa/m 1/s^2)\n",
               a.csv.c_str(), a.output.c_str(), map.panels.size(),
-              format_number(lambda_unit).c_str());
+              format_human(lambda_unit).c_str());
   for (const std::string& line : map.summary) std::printf("%s\n", line.c_str());
   return 0;
 }

@@ -257,10 +257,10 @@ std::function<int()> setup(CLI::App& root) {
   cmd->add_option("-o,--output", a->dir, "output folder (created if missing)")->required();
   cmd->add_option("--grid", a->grid,
                   "points per axis of the reduced sweeps' (m, kappa) grid over 0.0001..0.1")
-      ->check(CLI::Range(2, 1000))
+      ->check(whole_range(2, 1000))
       ->capture_default_str();
   cmd->add_option("--threads", a->threads, "sweep threads (default: one per CPU)")
-      ->check(CLI::Range(1, 1024));
+      ->check(whole_range(1, 1024));
   cmd->add_option("--scene", a->scene, "the mesh (default: the paper's)")->capture_default_str();
   cmd->add_flag("--skip-sweeps", a->skip_sweeps, "only the figures (seconds instead of a minute)");
   return [a] { return run(*a); };

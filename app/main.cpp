@@ -4,6 +4,7 @@
 #include <exception>
 #include <map>
 
+#include "app/cli_words.hpp"
 #include "app/commands.hpp"
 #include "core/error.hpp"
 #include "core/io/format.hpp"
@@ -56,7 +57,7 @@ int main(int argc, char** argv) {
   root.add_option("--digits", digits,
                   "significant digits of the numbers printed for people (files keep full "
                   "precision)")
-      ->check(CLI::Range(1, 17));
+      ->check(whole_range(1, 17));
   root.fallthrough();  // the flag may also follow the subcommand
   // Registration order depends on how the files were linked: list the subcommands by name.
   auto& table = command_table();
@@ -88,6 +89,11 @@ int main(int argc, char** argv) {
     return root.exit(e);
   } catch (const CLI::CallForVersion& e) {
     return root.exit(e);
+  } catch (const CLI::ExtrasError& e) {
+    // CLI11 says "arguments were not expected": name the flag and the nearest known one.
+    const auto said = unknown_flag_message(root, std::vector<std::string>(argv + 1, argv + argc));
+    print_error(said ? said->c_str() : e.what());
+    return 2;
   } catch (const CLI::ParseError& e) {
     // One line naming the flag; CLI11's own text already does.
     print_error(e.what());
@@ -97,6 +103,7 @@ int main(int argc, char** argv) {
   dampbound::set_human_digits(digits);
   try {
     for (auto* sub : root.get_subcommands()) {
+      refuse_empty_values(*sub);  // `--trace ""` is no trace: say so instead of dropping it
       auto it = runners.find(sub->get_name());
       if (it != runners.end()) return it->second();
     }

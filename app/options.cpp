@@ -98,7 +98,7 @@ void ParamFlags::add_to(CLI::App* cmd, bool with_rules) {
   kd_opt = damping[0], rayleigh_mass_opt = damping[1], rayleigh_stiffness_opt = damping[2];
   if (with_rules)
     max_iter_opt = cmd->add_option("--max-iter", max_iter, "iteration limit of the protocol")
-                       ->check(CLI::Range(1, 100000000));
+                       ->check(whole_range(1, 100000000));
 }
 
 void ParamFlags::apply(Params& p, StopRules& rules) const {

@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "app/cli_words.hpp"
 #include "core/scene.hpp"
 
 namespace dampbound::app {

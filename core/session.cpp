@@ -81,6 +81,10 @@ void Session::reset() {
   trace_.clear();
   result_ = RunResult{};
   springs_cut_ = 0;
+  // The last step's per-node results go with it: at iteration 0 no step has run, as in a new
+  // session (the tuner's colours and status, a .vtu of iteration 0, read them as none yet).
+  for (auto* v : {&ws_.upper_bound, &ws_.gamma_eff, &ws_.safe_row_sum, &ws_.safe_bound}) v->clear();
+  ws_.status.clear();
 }
 
 void Session::perturb() {

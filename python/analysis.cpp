@@ -8,6 +8,7 @@
 
 #include "core/analysis/equilibrium.hpp"
 #include "core/analysis/linear_stability_exact.hpp"
+#include "core/analysis/answer.hpp"
 #include "core/analysis/suggest.hpp"
 #include "core/error.hpp"
 #include "core/session.hpp"
@@ -95,6 +96,13 @@ void bind_analysis(py::module_& m) {
       .def_readonly("spectral_radius", &ExactStability::spectral_radius,
                     "of one step at the user's gamma and dt (NaN: not computed)")
       .def_readonly("stable", &ExactStability::stable, "the step does not grow")
+      .def("__repr__",
+           [](const ExactStability& e) {  // the CLI's answer lines (core/analysis/answer.hpp)
+             std::string text;
+             for (const std::string& line : exact_answer(e, nullptr, nullptr, "at the state"))
+               text += (text.empty() ? "" : "; ") + line;
+             return "ExactStability(" + text + ")";
+           })
       .def_readonly(
           "gamma_lo", &ExactStability::gamma_lo,
           "the user's gamma is stable at dt for gamma_lo <= gamma < gamma_hi (mass unit/s)")

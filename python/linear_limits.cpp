@@ -26,7 +26,8 @@ SparseMatrix sparse_of(const py::object& M, const char* name) {
   const auto shape = coo.attr("shape").cast<std::pair<py::ssize_t, py::ssize_t>>();
   const auto rows = py::array_t<long long, py::array::forcecast>::ensure(coo.attr("row"));
   const auto cols = py::array_t<long long, py::array::forcecast>::ensure(coo.attr("col"));
-  const auto vals = py::array_t<double, py::array::forcecast>::ensure(coo.attr("data"));
+  // Real numbers only: a complex, bool or text matrix is a TypeError naming it (as_float64).
+  const auto vals = as_float64(coo.attr("data"), name);
   if (!rows || !cols || !vals)
     throw py::type_error(std::string(name) + ": entries must be numbers");
   std::vector<Eigen::Triplet<double>> t;
@@ -39,8 +40,8 @@ SparseMatrix sparse_of(const py::object& M, const char* name) {
 }
 
 std::vector<double> vector_of(const py::object& v, const char* name) {
-  const auto a = py::array_t<double, py::array::forcecast>::ensure(v);
-  if (!a || a.ndim() > 1)
+  const auto a = as_float64(v, name);
+  if (a.ndim() > 1)
     throw py::value_error(std::string(name) + ": expected a number or a 1-D array");
   std::vector<double> out(size_t(a.size()));
   for (py::ssize_t k = 0; k < a.size(); ++k) out[size_t(k)] = a.data()[k];

@@ -2,25 +2,62 @@
 // as a scene, through the readers' checks and builder (core/io/mesh_scene.hpp).
 #include <pybind11/stl.h>
 
+#include <cmath>
 #include <string>
 #include <vector>
 
+#include "core/io/format.hpp"
 #include "core/io/mesh_scene.hpp"
 #include "python/arrays.hpp"
 
 namespace dampbound::python {
 namespace {
 
+/// Integers as the CLI's readers take them: an integer array, or a float one whose values are
+/// all whole (meshio reads some formats' tags as float64; 2.7 is a ValueError naming `what`:
+/// no truncation), each value within int32 (a ValueError naming the first that is not: no
+/// wrap, 2**32 + 3 is not 3); a bool, complex or text array is a TypeError.
 std::vector<int> ints_of(const py::handle& h, const std::string& what, py::ssize_t* rows = nullptr,
                          py::ssize_t* cols = nullptr) {
-  const auto a = py::array_t<long long, py::array::forcecast>::ensure(h);
-  if (!a) throw py::value_error(what + ": expected an array of integers");
+  py::array a = py::array::ensure(h);
+  if (!a) throw py::type_error(what + ": expected an array of integers");
+  const char kind = a.dtype().kind();
+  const bool empty_list = a.size() == 0 && !py::isinstance<py::array>(h);
+  if (kind != 'i' && kind != 'u' && kind != 'f' && !empty_list)
+    throw py::type_error(what + ": expected an array of integers, got dtype " +
+                         std::string(py::str(a.dtype())));
+  if (kind == 'f') {  // whole numbers only, each as an int64 can hold it
+    const auto d = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(a);
+    for (py::ssize_t k = 0; k < d.size(); ++k) {
+      const double v = d.data()[k];
+      if (!(std::isfinite(v) && v == std::floor(v) && std::fabs(v) < 9.2e18))
+        throw py::value_error(what + ": " + format_number(v) + " at entry " + std::to_string(k) +
+                              " is not a whole number");
+    }
+  }
   if (rows) *rows = a.ndim() ? a.shape(0) : 0;
   if (cols) *cols = a.ndim() == 2 ? a.shape(1) : 1;
+  const bool unsigned_ = kind == 'u';
+  const auto c = py::array_t<long long, py::array::c_style | py::array::forcecast>::ensure(
+      unsigned_ ? a.attr("astype")("uint64") : a.attr("astype")("int64"));
   std::vector<int> out(size_t(a.size()));
-  const auto c = py::array_t<long long, py::array::c_style | py::array::forcecast>::ensure(a);
-  for (py::ssize_t k = 0; k < c.size(); ++k) out[size_t(k)] = int(c.data()[k]);
+  for (py::ssize_t k = 0; k < c.size(); ++k) {
+    const long long v = c.data()[k];
+    const bool over = unsigned_ ? static_cast<unsigned long long>(v) > 2147483647ull
+                                : v < -2147483648ll || v > 2147483647ll;
+    if (over)
+      throw py::value_error(what + ": " +
+                            (unsigned_ ? std::to_string(static_cast<unsigned long long>(v))
+                                       : std::to_string(v)) +
+                            " at entry " + std::to_string(k) + " is outside the int32 range");
+    out[size_t(k)] = int(v);
+  }
   return out;
+}
+
+/// A geometry number as the scene files take it: finite, and > 0 (or >= 0 when `zero_ok`).
+void require_number(double x, const char* name, bool zero_ok) {
+  if (const auto why = number_problem(x, zero_ok)) throw py::value_error(std::string(name) + " " + *why);
 }
 
 /// (type, data) pairs from a dict {type: array}, a list of pairs, or meshio CellBlocks.
@@ -32,13 +69,24 @@ std::vector<std::pair<std::string, py::object>> blocks_of(const py::object& cell
                        py::reinterpret_borrow<py::object>(kv.second));
     return out;
   }
+  const char* shapes =
+      "cells: give a dict {type: (n, k) array} or a list of (type, array) pairs (types vertex, "
+      "line, triangle, quad, tetra), e.g. {'triangle': [[0, 1, 2]]}";
+  if (!py::isinstance<py::iterable>(cells) || py::isinstance<py::str>(cells))
+    throw py::type_error(shapes);
   for (auto b : cells) {
-    if (py::hasattr(b, "type") && py::hasattr(b, "data"))
-      out.emplace_back(b.attr("type").cast<std::string>(), b.attr("data"));
-    else {
-      const auto t = b.cast<py::tuple>();
-      out.emplace_back(t[0].cast<std::string>(), py::reinterpret_borrow<py::object>(t[1]));
+    if (py::hasattr(b, "type") && py::hasattr(b, "data")) {
+      out.emplace_back(py::str(b.attr("type")).cast<std::string>(), b.attr("data"));
+      continue;
     }
+    // A pair (type, array); a plain row of indices ([0, 1, 2]) names no type.
+    const bool pair = (py::isinstance<py::tuple>(b) || py::isinstance<py::list>(b)) &&
+                      py::len(b) == 2 && py::isinstance<py::str>(b[py::int_(0)]);
+    if (!pair)
+      throw py::type_error(std::string(shapes) + "; got a list whose item is " +
+                           std::string(py::str(py::repr(b))).substr(0, 40) + " (no cell type)");
+    out.emplace_back(b[py::int_(0)].cast<std::string>(),
+                     py::reinterpret_borrow<py::object>(b[py::int_(1)]));
   }
   return out;
 }
@@ -47,6 +95,9 @@ SceneSpec from_arrays(const py::object& points, const py::object& cells, const p
                       double scale, bool bend, bool anchors, double density, double young,
                       const std::vector<int>& fixed, const py::object& perturb,
                       const std::vector<double>& displacement, const std::string& name) {
+  require_number(scale, "scale", false);
+  require_number(density, "density", true);
+  require_number(young, "young", true);
   py::array_t<double> keep;
   const NodeVectors p = node_vectors_of(points, "points", keep);
   std::vector<Vec3> pts(size_t(p.rows()));
@@ -86,7 +137,10 @@ SceneSpec from_arrays(const py::object& points, const py::object& cells, const p
   o.springs.density = density;
   o.springs.young = young;
   o.fixed_regions = fixed;
-  if (!perturb.is_none()) o.perturb_node = perturb.cast<int>();
+  if (!perturb.is_none()) {
+    const std::vector<int> node = ints_of(py::make_tuple(perturb), "perturb");
+    o.perturb_node = node[0];
+  }
   if (displacement.size() != 3) throw py::value_error("displacement: give 3 numbers");
   o.displacement = Vec3(displacement[0], displacement[1], displacement[2]);
   o.name = name;

@@ -10,6 +10,7 @@
 #include "core/error.hpp"
 #include "core/io/format.hpp"
 #include "core/session.hpp"
+#include "core/io/report.hpp"
 #include "core/io/scene_file.hpp"
 #include "dampbound/version.hpp"
 #include "python/arrays.hpp"
@@ -148,7 +149,11 @@ void bind_results(py::module_& m) {
       .def_readonly("clamped", &RunResult::clamped, "node-steps whose gamma the policy changed")
       .def_readonly("zero_length_springs", &RunResult::zero_length_springs,
                     "spring-steps skipped for having no direction")
-      .def_readonly("time", &RunResult::time, "simulated time (s)");
+      .def_readonly("time", &RunResult::time, "simulated time (s)")
+      .def("__repr__", [](const RunResult& r) {
+        return "RunResult(" + verdict_short(r) + "; max |x-X| = " +
+               format_human(r.max_displacement) + " cm at t = " + format_human(r.time) + " s)";
+      });
 
   py::class_<NodeSample>(m, "NodeSample", "What the watched node showed in one step.")
       .def_readonly("displacement", &NodeSample::displacement, "|x_c - X_c| (cm)")

@@ -92,6 +92,14 @@ class BackgroundJob {
     dropped_.push_back(std::move(pending_));
     cancelled_ = true;
   }
+  /// Another scene: the running computation is cancelled and the last result and error
+  /// dropped, so that nothing of the old scene stays on show (or applies).
+  void clear() {
+    cancel();
+    cancelled_ = false;
+    result_.reset();
+    error_.clear();
+  }
   /// Seconds since the running computation started.
   double seconds() const {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();

@@ -6,7 +6,9 @@
 #include <GL/gl.h>
 #include <GLFW/glfw3.h>
 
+#include <algorithm>
 #include <chrono>
+#include <vector>
 #include <mutex>
 #include <stdexcept>
 
@@ -39,6 +41,39 @@ void acquire_glfw() {
 void release_glfw() {
   std::lock_guard<std::mutex> lock(g_glfw_mutex);
   if (--g_glfw_users == 0) glfwTerminate();
+}
+
+/// Key taps shorter than a frame: ImGui 1.86 reads the keys' state once per frame, so a key
+/// pressed and released between two frames (xdotool's `key`, a quick tap on a slow frame)
+/// never reads as down and the tap is lost. A release that arrives in the same frame as its
+/// press is held back to the next frame: the key then reads as pressed for exactly one frame.
+struct KeyTaps {
+  GLFWwindow* window = nullptr;
+  GLFWkeyfun imgui = nullptr;  ///< ImGui's callback, which this one chains to
+  std::vector<int> pressed;    ///< keys pressed since the last frame began
+  struct Held {
+    int key, scancode, mods;
+  };
+  std::vector<Held> held;  ///< releases held back to the next frame
+};
+KeyTaps g_taps;  // the main thread's window (one at a time)
+
+void on_key(GLFWwindow* window, int key, int scancode, int action, int mods) {
+  if (action == GLFW_RELEASE &&
+      std::find(g_taps.pressed.begin(), g_taps.pressed.end(), key) != g_taps.pressed.end()) {
+    g_taps.held.push_back({key, scancode, mods});
+    return;
+  }
+  if (action == GLFW_PRESS) g_taps.pressed.push_back(key);
+  if (g_taps.imgui != nullptr) g_taps.imgui(window, key, scancode, action, mods);
+}
+
+/// Before a frame's events: the releases held back in the last frame, then a new frame.
+void release_held_keys() {
+  for (const KeyTaps::Held& h : g_taps.held)
+    if (g_taps.imgui != nullptr) g_taps.imgui(g_taps.window, h.key, h.scancode, GLFW_RELEASE, h.mods);
+  g_taps.held.clear();
+  g_taps.pressed.clear();
 }
 
 }  // namespace
@@ -77,13 +112,22 @@ GlfwHost::GlfwHost(const WindowOptions& options) : impl_(std::make_unique<Impl>(
     throw;
   }
   impl_->platform_backend = ImGui_ImplGlfw_InitForOpenGL(impl_->window, true);
+  if (impl_->platform_backend) {
+    g_taps = KeyTaps{};
+    g_taps.window = impl_->window;
+    g_taps.imgui = glfwSetKeyCallback(impl_->window, on_key);
+  }
   impl_->renderer_name = gl_string(GL_RENDERER);
 }
 
 GlfwHost::~GlfwHost() {
   glfwMakeContextCurrent(impl_->window);
   ImGui::SetCurrentContext(impl_->renderer->context());
-  if (impl_->platform_backend) ImGui_ImplGlfw_Shutdown();
+  if (impl_->platform_backend) {
+    glfwSetKeyCallback(impl_->window, g_taps.imgui);  // ImGui's own, for its shutdown
+    g_taps = KeyTaps{};
+    ImGui_ImplGlfw_Shutdown();
+  }
   impl_->renderer.reset();
   glfwDestroyWindow(impl_->window);
   release_glfw();
@@ -99,6 +143,7 @@ WindowRun GlfwHost::run(const FrameFn& fn) {
   FrameInfo info;
   while (glfwWindowShouldClose(win) == GLFW_FALSE) {
     const auto frame_start = Clock::now();
+    if (g_taps.window == win) release_held_keys();
     glfwPollEvents();
     // Another host (e.g. an EGL export) may have taken the thread's context meanwhile.
     glfwMakeContextCurrent(win);

@@ -49,6 +49,7 @@ GuiApp::GuiApp(GuiOptions options) : options_(std::move(options)) {
   std::string warning;
   if (!options_.config_dir.empty()) settings_ = load_gui_settings(settings_path(), &warning);
   if (!warning.empty()) warn(warnings_, warning);
+  keep_settings_file_ = !warning.empty();
   std::error_code ec;
   if (!options_.scenes_dir.empty()) {
     for (const auto& e : std::filesystem::directory_iterator(options_.scenes_dir, ec))
@@ -76,6 +77,7 @@ GuiApp::GuiApp(GuiOptions options) : options_(std::move(options)) {
   }
   scene_.path = scene_.typed = scene->path;
   tuner_ = std::make_unique<Tuner>(std::move(*scene));
+  shown_scene_version_ = tuner_->scene_version();
   Params p = tuner_->params();
   StopRules r = tuner_->session().rules();
   if (remembered && settings_.params) p = *settings_.params;
@@ -184,7 +186,7 @@ void GuiApp::save_layout_if_needed(bool force) {
 void GuiApp::save() {
   if (options_.config_dir.empty()) return;
   try {
-    save_gui_settings(current_settings(), settings_path());
+    if (!keep_settings_file_) save_gui_settings(current_settings(), settings_path());
   } catch (const std::exception& e) {
     std::fprintf(stderr, "dampbound: warning: cannot save settings: %s\n", e.what());
   }
@@ -233,6 +235,13 @@ void GuiApp::frame(FrameInfo& info) {
   const int fixed = ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse;
   if (layout_.begin("Parameters", 0)) parameters_panel();
   ImGui::End();
+  if (tuner_->scene_version() != shown_scene_version_) {
+    // Another scene (or the same one resolved anew): no answer of the last one stays on show
+    // or applies (Suggest's buttons, the substeps); the criteria forget theirs in the tuner.
+    shown_scene_version_ = tuner_->scene_version();
+    suggest_.clear();
+    substeps_.job().clear();
+  }
   suggest_.poll();
   substeps_.job().poll();
   // Below kCompactLayoutHeight the status tabs join the runs' tabs, under short titles (the part

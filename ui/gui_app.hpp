@@ -191,9 +191,13 @@ class GuiApp {
 
   GuiOptions options_;
   GuiSettings settings_;  ///< as loaded; the window size follows the frames
+  /// The settings file could not be read or parsed: it is left as it is (not overwritten
+  /// with defaults on close), so the user can mend the line the warning names.
+  bool keep_settings_file_ = false;
   std::unique_ptr<Tuner> tuner_;
   MeshView mesh_;
   TunerSuggest suggest_;
+  std::uint64_t shown_scene_version_ = 0;  ///< the scene the derived panels were made for
   TunerSubsteps substeps_;
   double frame_dt_ = kDefaultFrameDt;
   TunerMap map_;

@@ -137,12 +137,11 @@ void GuiApp::criteria_panel() {
     }
     const std::string test = shown_test(r, over_budget);
     if (ImGui::IsItemHovered())
-      ImGui::SetTooltip("%s\n%s\n%s\nvalue: %s %s", wide ? r.name.c_str() : test.c_str(),
-                        r.formula.c_str(), r.source.c_str(), fmt(r.value).c_str(),
-                        r.unit.c_str());
+      wrapped_tooltip((wide ? r.name : test) + "\n" + r.formula + "\n" + r.source +
+                      "\nvalue: " + fmt(r.value) + " " + r.unit);
     ImGui::TableNextColumn();
     ImGui::TextColored(verdict_color(r.verdict), "%s", to_string(r.verdict));
-    if (!wide && ImGui::IsItemHovered()) ImGui::SetTooltip("%s", test.c_str());
+    if (!wide && ImGui::IsItemHovered()) wrapped_tooltip(test);
     if (wide) {
       ImGui::TableNextColumn();
       text_wrapped(test);
@@ -281,7 +280,7 @@ void GuiApp::suggest_values() {
   const Suggestion& s = *suggest_.result();
   const DampingSuggestion& d = s.damping;
   if (s.springs_cut > 0)
-    ImGui::TextDisabled("for the mesh as cut: %d springs, %d cut away", s.springs, s.springs_cut);
+    ImGui::TextDisabled("for the mesh as cut: %s, %d cut away", plural(s.springs, "spring").c_str(), s.springs_cut);
   section_header(("Damping at dt = " + fmt(d.dt) + " s").c_str());
   if (d.empty) {
     wrapped_colored(gui_amber(), ("No damping satisfies every criterion at this dt (" + d.min_by +

@@ -222,7 +222,7 @@ void GuiApp::parameters_panel() {
     wrapped_colored(gui_green(), (u8"\u03B3 at the lower bound: critical damping" + worst).c_str());
   } else if (lb.below > 0) {
     const std::string where = lb.uniform ? "" : " at " + std::to_string(lb.below) + " of " +
-                                                    std::to_string(lb.nodes) + " nodes";
+                                                    plural(lb.nodes, "node");
     wrapped_colored(gui_amber(), (u8"\u03B3 below the lower bound" + where +
                                   (lb.uniform ? " (" + fmt(lb.ratio) + " x)" : worst) +
                                   ": underdamped").c_str());

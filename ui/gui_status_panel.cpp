@@ -40,8 +40,7 @@ void GuiApp::status_panel() {
     ImGui::TableSetupColumn("k", ImGuiTableColumnFlags_WidthFixed);
     ImGui::TableSetupColumn("v", ImGuiTableColumnFlags_WidthStretch);
     row("scene", shorten(s.scene().name, kShownName));
-    row("mesh", std::to_string(m.spec().node_count()) + " nodes, " + std::to_string(m.spec().spring_count()) +
-                    " springs" +
+    row("mesh", plural(m.spec().node_count(), "node") + ", " + plural(m.spec().spring_count(), "spring") +
                     (s.springs_cut() > 0 ? " (" + std::to_string(s.springs_cut()) + " cut)" : ""));
     row("iteration",
         std::to_string(s.state().iteration) + "   (t = " + fmt(s.state().time) + " s)");
@@ -90,6 +89,14 @@ void GuiApp::status_panel() {
     row("frame", fmt(st.frame_ms) + " ms (" + fmt(st.frame_ms > 0 ? 1000.0 / st.frame_ms : 0.0) +
                      " fps)");
     row("speed", tuner_->playing() ? fmt(st.steps_per_second) + " steps/s" : std::string("paused"));
+    const Tuner::BudgetCut cut = tuner_->budget_cut();
+    if (cut.asked > 0) {  // the frame budget binds: fewer steps than the slider asks
+      const ImVec4 binds = gui_amber();
+      row("  budget", std::to_string(cut.taken) + " of " + std::to_string(cut.asked) +
+                          " steps per frame (each frame steps at most " +
+                          fmt(tuner_->playback().frame_budget_seconds * 1e3) + " ms)",
+          &binds);
+    }
     ImGui::EndTable();
   }
   if (!tuner_->notice().empty()) {

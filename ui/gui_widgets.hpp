@@ -67,6 +67,27 @@ inline void text_wrapped(std::string_view text) {
   ImGui::TextUnformatted(lines.data(), lines.data() + lines.size());
 }
 
+/// A tooltip whose lines are wrapped at blanks to at most half the window's width (and 40
+/// em), so that ImGui can keep it on screen: a formula or a long test no longer runs off it.
+inline void wrapped_tooltip(std::string_view text) {
+  const ImGuiIO& io = ImGui::GetIO();
+  const float width = std::max(std::min(40.0f * ImGui::GetFontSize(), 0.5f * io.DisplaySize.x),
+                               8.0f * ImGui::GetFontSize());
+  std::string lines;
+  size_t start = 0;
+  while (start <= text.size()) {  // each given line wrapped on its own
+    const size_t end = std::min(text.find('\n', start), text.size());
+    if (!lines.empty()) lines += '\n';
+    lines += wrap_at_blanks(text.substr(start, end - start), width, [](std::string_view s) {
+      return ImGui::CalcTextSize(s.data(), s.data() + s.size()).x;
+    });
+    start = end + 1;
+  }
+  ImGui::BeginTooltip();
+  ImGui::TextUnformatted(lines.data(), lines.data() + lines.size());
+  ImGui::EndTooltip();
+}
+
 /// Wrapped text in `color`.
 inline void wrapped_colored(const ImVec4& color, std::string_view text) {
   const ScopedStyleColor coloured(ImGuiCol_Text, color);

@@ -44,10 +44,10 @@ void GuiApp::worst_panel() {
     const std::string label = "#" + std::to_string(n.node);
     if (item::selectable(label.c_str(), n.node == watched)) t.watch(n.node);
     if (ImGui::IsItemHovered())
-      ImGui::SetTooltip("node #%d: mass %s, stiffest spring %s, shortest edge %s cm, %d springs\n"
+      ImGui::SetTooltip("node #%d: mass %s, stiffest spring %s, shortest edge %s cm, %s\n"
                         "click: watch it (the plots and the status follow it)",
                         n.node, fmt(n.mass).c_str(), fmt(n.stiffest).c_str(),
-                        fmt(n.shortest_edge).c_str(), n.degree);
+                        fmt(n.shortest_edge).c_str(), plural(n.degree, "spring").c_str());
     ImGui::TableNextColumn();
     ImGui::TextUnformatted(fmt(n.dt_safe).c_str());
     ImGui::TableNextColumn();

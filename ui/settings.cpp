@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include "core/io/files.hpp"
@@ -198,6 +199,7 @@ std::optional<GuiSettings> parse_settings(const std::string& text, std::string* 
   GuiSettings s;
   Params p = default_params();
   bool any_param = false;
+  std::map<std::string, int> param_line;  // the line of each parameter, for validate()'s word
   std::istringstream in(text);
   std::string raw;
   int n = 0;
@@ -218,12 +220,17 @@ std::optional<GuiSettings> parse_settings(const std::string& text, std::string* 
         std::find_if(rows.begin(), rows.end(), [&](const SettingRow& r) { return key == r.key; });
     if (row == rows.end()) continue;
     any_param |= is_param(*row);
+    if (is_param(*row)) param_line[row->key] = n;
     if (!read_value(*row, value, s, p))
       return fail(n, "bad value for " + shorten(key, 60) + ": '" + shorten(value, 60) + "'");
   }
   if (n == 0) return fail(1, "empty file");
   if (any_param) {
-    if (const auto why = validate(p)) return fail(n, *why);
+    // validate() names the parameter first ("dt must be > 0"): point at its line.
+    if (const auto why = validate(p)) {
+      const auto at = param_line.find(why->substr(0, why->find(' ')));
+      return fail(at != param_line.end() ? at->second : n, *why);
+    }
     s.params = p;
   }
   return s;
@@ -249,7 +256,8 @@ GuiSettings load_gui_settings(const std::string& path, std::string* warning) {
   const auto s = parse_settings(text, &why);
   if (!s) {
     if (warning != nullptr)
-      *warning = "ignoring corrupt settings file " + path + " (" + why + "); using defaults";
+      *warning = "ignoring corrupt settings file " + path + " (" + why +
+                 "); using defaults and leaving the file as it is";
     return default_gui_settings();
   }
   return *s;

@@ -94,6 +94,7 @@ Tuner::Tuner(SceneSpec scene) { new_session(std::move(scene)); }
 void Tuner::new_session(SceneSpec scene) {
   const bool given_zeta = scene.params.zeta.has_value();
   session_ = std::make_unique<Session>(as_tuned(std::move(scene)));
+  criteria_.forget();  // nothing of the last scene's analysis stays on show
   session_->set_threads(0);  // the same bits on any count; big meshes step faster
   zeta_resolved_ = given_zeta || uniform_ratio_per_gamma(session_->scene().model);
   zeta_mode_ = given_zeta;
@@ -238,9 +239,13 @@ int Tuner::step(int n, double budget_seconds) {
 }
 
 int Tuner::advance() {
+  budget_cut_ = {};
   if (!playing_) return 0;
-  return step(playback_.steps_per_frame < 1 ? 1 : playback_.steps_per_frame,
-              playback_.frame_budget_seconds);
+  const int asked = playback_.steps_per_frame < 1 ? 1 : playback_.steps_per_frame;
+  const int taken = step(asked, playback_.frame_budget_seconds);
+  // Short of the count while still playing and able to step: the time budget ended it.
+  if (taken < asked && playing_ && can_step()) budget_cut_ = {taken, asked};
+  return taken;
 }
 
 void Tuner::reset() {
@@ -272,7 +277,7 @@ int Tuner::cut(const std::vector<int>& springs) {
   const int removed = session_->cut(springs);
   if (removed > 0) replayable_ = false;
   if (removed > 0) ++topology_, ++state_version_;
-  notice_ = "cut " + std::to_string(removed) + " springs at iteration " +
+  notice_ = "cut " + plural(removed, "spring") + " at iteration " +
             std::to_string(session_->state().iteration);
   return removed;
 }

@@ -127,6 +127,13 @@ class Tuner {
   /// than frame_budget_seconds), none when paused. Returns the number of steps taken. Playback stops when the run diverges (it cannot go on), when the
   /// trace is full, and at the verdict when pause_at_verdict is set.
   int advance();
+  /// The last advance() that the frame budget cut short: the steps it took and the
+  /// steps_per_frame asked (the status says so while it binds); {0, 0} when the last one
+  /// took every step asked (or playback stopped it at a verdict).
+  struct BudgetCut {
+    int taken = 0, asked = 0;
+  };
+  BudgetCut budget_cut() const { return budget_cut_; }
   /// Up to n steps now, playing or not (single step). Returns the steps taken.
   int step(int n = 1) { return step(n, -1); }
   /// As step(n), stopping after budget_seconds (at least one step; a negative budget: none).
@@ -220,6 +227,7 @@ class Tuner {
   std::uint64_t state_version_ = 1;
   std::string notice_;
   bool replayable_ = true;
+  BudgetCut budget_cut_;
   long long total_steps_ = 0;
   double step_seconds_ = 0;
   TunerCriteria criteria_;

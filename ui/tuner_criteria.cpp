@@ -138,6 +138,19 @@ void TunerCriteria::set_factor_budget(double flops) {
   last_seconds_ = 0;
 }
 
+void TunerCriteria::forget() {
+  if (job_.valid()) retired_.push_back(std::move(job_));  // joined later, never by a frame
+  results_.clear();
+  exact_.reset();
+  rest_net_.reset();
+  equilibrium_.reset();
+  equilibrium_failure_.clear();
+  have_key_ = false;
+  rows_valid_ = false;
+  exact_iteration_ = rows_iteration_ = 0;
+  ++exact_version_;
+}
+
 void TunerCriteria::wait() {
   if (job_.valid()) job_.wait();
   collect();

@@ -120,6 +120,9 @@ class TunerCriteria {
   int rows_iteration() const { return rows_iteration_; }
   /// How many times the exact analysis ran (tests: the cache works).
   int exact_runs() const { return exact_runs_; }
+  /// Another scene: the rows and the analysis on show are dropped (a running analysis is
+  /// retired), so that the next call analyses the new scene and shows nothing of the old one.
+  void forget();
 
  private:
   struct Finished {
@@ -214,6 +217,8 @@ class TunerSuggest {
   void set_factor_budget(double flops) { factor_budget_ = flops; }
   /// The worker (the tab's Cancel, progress and error line read it).
   BackgroundJob<Suggestion>& job() { return job_; }
+  /// Another scene: nothing of the last one on show (BackgroundJob::clear).
+  void clear() { job_.clear(); }
 
  private:
   void launch(std::shared_ptr<const SceneSpec> scene, std::shared_ptr<const Model> model,

@@ -94,7 +94,7 @@ void export_csv(const Tuner& tuner, const ExportPaths& paths, bool current) {
   write_file_atomic(paths.runs_csv, [&](std::ostream& out) { write_runs_summary_csv(out, tuner, current); });
   const Session& s = tuner.session();
   write_file_atomic(paths.step_vtu, [&](std::ostream& out) {
-    write_vtu(out, s.model(), s.state(), s.workspace(), s.params().dt);
+    write_vtu(out, s.model(), s.state(), s.workspace(), s.params().dt, {}, &s.params());
   });
 }
 

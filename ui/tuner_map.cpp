@@ -132,6 +132,7 @@ void TunerMap::follow(std::shared_ptr<const SceneSpec> scene, std::uint64_t scen
   if (scene_key != scene_key_) {
     std::lock_guard<std::mutex> lock(mutex_);
     bounds_.reset();
+    result_.reset();  // the last scene's map is not this one's, not even until the first pass
   }
   scene_key_ = scene_key;
   start(std::move(scene), params, rules, view);

@@ -44,7 +44,7 @@ PlotSpec tuner_displacement_plot(Tuner& tuner, const TunerPlotOptions& options) 
   if (options.show_pins) {
     std::vector<TraceView> views;
     for (const Pin& pin : tuner.pins())
-      if (pin.visible)
+      if (pin.visible && pin.scene == tuner.scene().name)  // another scene's pin: its own nodes
         views.push_back({pin.name + " (" + verdict_short(pin.result) + ")",
                          options.full_traces ? &pin.trace : &pin.reduced, pin.color});
     PlotSpec pins = displacement_plot(views, options.log_y, 0, false);
@@ -203,7 +203,7 @@ PlotSpec tuner_envelope_plot(Tuner& tuner, const TunerPlotOptions& options) {
   }
   if (options.show_pins) {
     for (const Pin& pin : tuner.pins()) {
-      if (!pin.visible) continue;
+      if (!pin.visible || pin.scene != tuner.scene().name) continue;
       PlotSeries s;
       s.label = pin.name + " (effective)";
       s.color = pin.color;

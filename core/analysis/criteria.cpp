@@ -102,7 +102,7 @@ std::vector<CriterionResult> classic_criteria(const Model& model, const Params& 
     c.value = n ? delingette_critical_stiffness(m_total, n, dt) : kInf;
     c.verdict = verdict_of(kappa_max < c.value);
     c.test = "kappa_max = " + format_human(kappa_max) + (kappa_max < c.value ? " < " : " >= ") +
-             "k_c = " + format_human(c.value) + " (n = " + std::to_string(n) + " free nodes)";
+             "k_c = " + format_human(c.value) + " (n = " + plural(n, "free node") + ")";
     out.push_back(c);
   }
   const std::vector<double> K = combined_stiffness(model);

@@ -62,8 +62,8 @@ std::vector<CriterionResult> safe_criteria(const Model& model, const State& stat
   g.node = s.gamma_node;
   const int over = s.gamma_over;
   g.verdict = no_guarantee ? unknown : verdict_of(over == 0);
-  g.test = std::to_string(over) + " of " + std::to_string(s.free_nodes) +
-           " nodes with gamma_i >= gamma_safe_i; smallest gamma_safe " +
+  g.test = std::to_string(over) + " of " + plural(s.free_nodes, "node") +
+           " with gamma_i >= gamma_safe_i; smallest gamma_safe " +
            format_human(s.gamma_safe) +
            (s.gamma_scaled ? " (the user's gamma, gamma_i = gamma * gamma_scale_i)" : "") +
            " at node " + std::to_string(s.gamma_node) + " (R = " + format_human(s.row_sum) +
@@ -96,8 +96,8 @@ std::vector<CriterionResult> safe_criteria(const Model& model, const State& stat
     c.node = s.infeasible.front();
     double dt_min = s.infeasible_dt.front();
     for (double h : s.infeasible_dt) dt_min = std::min(dt_min, h);
-    c.test = std::to_string(s.infeasible.size()) + " of " + std::to_string(s.free_nodes) +
-             " nodes with gamma_lo > gamma_safe (first: node " + std::to_string(c.node) +
+    c.test = std::to_string(s.infeasible.size()) + " of " + plural(s.free_nodes, "node") +
+             " with gamma_lo > gamma_safe (first: node " + std::to_string(c.node) +
              ", feasible at dt < " + format_human(s.infeasible_dt.front()) + "); all at dt < " +
              format_human(dt_min);
   }

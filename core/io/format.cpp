@@ -92,6 +92,16 @@ std::string format_human_range(double lo, double hi) {
   return a == b ? a : a + ".." + b;
 }
 
+std::string plural(long long n, std::string_view noun) {
+  std::string out = std::to_string(n) + " " + std::string(noun);
+  if (n == 1 || noun.empty()) return out;
+  const char last = noun.back();
+  const bool sibilant = last == 's' || last == 'x' ||
+                        (noun.size() > 1 && noun.substr(noun.size() - 2) == "sh") ||
+                        (noun.size() > 1 && noun.substr(noun.size() - 2) == "ch");
+  return out + (sibilant ? "es" : "s");
+}
+
 std::string json_number(double x) { return std::isfinite(x) ? format_number(x) : "null"; }
 
 std::string xml_escape(const std::string& s) {

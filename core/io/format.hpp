@@ -31,6 +31,9 @@ std::string format_human(double x, std::string_view not_a_number = "n/a");
 /// "lo..hi" in format_human's digits, or one number where both ends read alike.
 std::string format_human_range(double lo, double hi);
 
+/// "1 spring", "3 springs", "2 classes": a count and its noun, plural unless the count is 1.
+std::string plural(long long n, std::string_view noun);
+
 /// JSON number, or null when not finite (JSON has no inf or NaN).
 std::string json_number(double x);
 

@@ -115,6 +115,12 @@ std::string result_json(const std::string& scene, const Params& p, const StopRul
   os     << ",\"dt\":" << json_number(p.dt) << ",\"policy\":" << json_string(to_string(p.policy))
      << ",\"factor\":" << json_number(p.factor)
      << ",\"integrator\":" << json_string(to_string(p.integrator))
+     // SPEC 10's damping and the band: every parameter that shaped the run.
+     << ",\"kd\":" << json_number(p.kd) << ",\"rayleigh_mass\":" << json_number(p.rayleigh_mass)
+     << ",\"rayleigh_stiffness\":" << json_number(p.rayleigh_stiffness)
+     << ",\"reference\":" << json_number(rules.reference)
+     << ",\"restore_fraction\":" << json_number(rules.restore_fraction)
+     << ",\"diverge_factor\":" << json_number(rules.diverge_factor)
      << ",\"max_iterations\":" << rules.max_iterations << ",\"watched\":" << watched
      << ",\"outcome\":" << json_string(to_string(r.outcome)) << ",\"iterations\":" << r.iterations
      << band_json(rules, r)

@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <limits>
 #include <ostream>
 #include <stdexcept>
@@ -57,14 +59,48 @@ std::vector<double> flatten(const std::vector<Vec3>& v) {
   return out;
 }
 
+/// The run's parameters as FieldData, one tuple each; the names in a comment beside them.
+void write_parameters(std::ostream& out, const Params& p) {
+  out << "    <!-- dampbound parameters: policy=" << to_string(p.policy)
+      << " integrator=" << to_string(p.integrator) << " -->\n    <FieldData>\n";
+  const std::pair<const char*, double> values[] = {
+      {"m", p.m},   {"kappa", p.kappa},   {"gamma", p.gamma},
+      {"dt", p.dt}, {"factor", p.factor}, {"kd", p.kd},
+      {"rayleigh_mass", p.rayleigh_mass}, {"rayleigh_stiffness", p.rayleigh_stiffness}};
+  for (const auto& [name, value] : values)
+    out << "      <DataArray type=\"Float64\" Name=\"" << name
+        << "\" NumberOfTuples=\"1\" format=\"ascii\">" << format_number(value)
+        << "</DataArray>\n";
+  out << "    </FieldData>\n";
+}
+
 }  // namespace
+
+std::vector<std::string> pvd_step_files(const std::string& text) {
+  std::vector<std::string> out;
+  const std::string key = "file=\"";
+  for (size_t at = text.find(key); at != std::string::npos; at = text.find(key, at + 1)) {
+    const size_t start = at + key.size(), end = text.find('"', start);
+    if (end == std::string::npos) break;
+    const std::string name = text.substr(start, end - start);
+    // Only a name this class writes: step_, digits, .vtu; no folder, nothing else.
+    const size_t digits = name.size() >= 10 ? name.size() - 9 : 0;
+    bool ours = digits > 0 && name.rfind("step_", 0) == 0 &&
+                name.compare(name.size() - 4, 4, ".vtu") == 0;
+    for (size_t k = 5; ours && k < 5 + digits; ++k)
+      ours = name[k] >= '0' && name[k] <= '9';
+    if (ours) out.push_back(name);
+  }
+  return out;
+}
 
 int state_code(NodeStatus s) {
   return static_cast<int>(s);
 }
 
 void write_vtu(std::ostream& out, const Model& model, const State& state, const StepWorkspace& ws,
-               double dt, const std::vector<BodyCell>& body, const PointArrays& extra) {
+               double dt, const std::vector<BodyCell>& body, const PointArrays& extra,
+               const Params* params) {
   const size_t n = model.spec().rest.size(), ns = model.spec().springs.size();
   const bool stepped = ws.status.size() == n;  // else iteration 0: no step has run yet
   std::vector<Vec3> disp(n);
@@ -109,8 +145,9 @@ void write_vtu(std::ostream& out, const Model& model, const State& state, const 
   const size_t cells = types.size();
   out << "<?xml version=\"1.0\"?>\n"
          "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
-         "header_type=\"UInt64\">\n  <UnstructuredGrid>\n"
-      << "    <Piece NumberOfPoints=\"" << n << "\" NumberOfCells=\"" << cells << "\">\n"
+         "header_type=\"UInt64\">\n  <UnstructuredGrid>\n";
+  if (params != nullptr) write_parameters(out, *params);
+  out << "    <Piece NumberOfPoints=\"" << n << "\" NumberOfCells=\"" << cells << "\">\n"
       << "      <PointData>\n";
   data_array(out, "Float64", "displacement", 3, flatten(disp));
   data_array(out, "Float64", "velocity", 3, flatten(state.v));
@@ -150,13 +187,21 @@ VtuSeries::VtuSeries(std::string dir, std::vector<BodyCell> body)
   if (ec || !std::filesystem::is_directory(dir_))
     throw InputError(dir_ + ": cannot create the output folder");
   check_writable(dir_ + "/series.pvd");
+  std::ifstream old(dir_ + "/series.pvd", std::ios::binary);
+  if (old) {
+    std::ostringstream text;
+    text << old.rdbuf();
+    older_ = pvd_step_files(text.str());
+  }
 }
 
 void VtuSeries::add(const Model& model, const State& state, const StepWorkspace& ws, double dt) {
   char name[32];
   std::snprintf(name, sizeof name, "step_%06d.vtu", state.iteration);
   write_file_atomic(dir_ + "/" + name,
-                    [&](std::ostream& out) { write_vtu(out, model, state, ws, dt, body_); });
+                    [&](std::ostream& out) {
+                      write_vtu(out, model, state, ws, dt, body_, has_params_ ? &params_ : nullptr);
+                    });
   files_.emplace_back(state.time, name);
 }
 
@@ -168,6 +213,14 @@ void VtuSeries::write_collection() const {
       out << "    <DataSet timestep=\"" << format_number(t) << "\" file=\"" << file << "\"/>\n";
     out << "  </Collection>\n</VTKFile>\n";
   });
+  // The older series' step files that this one did not write again go: the folder then
+  // holds one series, the one series.pvd lists.
+  for (const std::string& name : older_) {
+    bool kept = false;
+    for (const auto& f : files_) kept = kept || f.second == name;
+    std::error_code ec;
+    if (!kept) std::filesystem::remove(dir_ + "/" + name, ec);
+  }
 }
 
 }  // namespace dampbound

@@ -31,19 +31,31 @@ int state_code(NodeStatus s);
 /// the per-node arrays colour them; their stiffness and strain are NaN (springs only). Cell
 /// array "spring": the spring's index, -1 for a body cell (ParaView: Threshold on it, or
 /// Extract Cells By Type, shows either part alone).
-/// `extra`: more per-node arrays (Float64, one value a node), e.g. SPEC 11's added_mass.
+/// `extra`: more per-node arrays (Float64, one value a node), written after the others, e.g.
+/// SPEC 11's added_mass or suggest --kappa-max's contact_stiffness_max. `params` (optional):
+/// the parameters that shaped the run, written as FieldData (one value each: m, kappa, gamma,
+/// dt, factor, kd, rayleigh_mass, rayleigh_stiffness) with the policy and integrator in a comment.
 using PointArrays = std::vector<std::pair<std::string, std::vector<double>>>;
 using PointField = PointArrays::value_type;  ///< one array: (name, one value per node)
 void write_vtu(std::ostream& out, const Model& model, const State& state, const StepWorkspace& ws,
-               double dt, const std::vector<BodyCell>& body = {},
-               const PointArrays& extra = {});
+               double dt, const std::vector<BodyCell>& body, const PointArrays& extra,
+               const Params* params = nullptr);
+inline void write_vtu(std::ostream& out, const Model& model, const State& state,
+                      const StepWorkspace& ws, double dt, const std::vector<BodyCell>& body = {},
+                      const Params* params = nullptr) {
+  write_vtu(out, model, state, ws, dt, body, PointArrays{}, params);
+}
 
 /// A series in one folder: DIR/step_NNNNNN.vtu (the iteration) and DIR/series.pvd.
 class VtuSeries {
  public:
   /// Creates `dir` when missing. Throws InputError naming it when it cannot be written.
-  /// `body`: the source mesh's cells, written in every file (write_vtu).
+  /// `body`: the source mesh's cells, written in every file (write_vtu). The step files an
+  /// older DIR/series.pvd lists are removed by write_collection() unless this series wrote
+  /// them again: a rerun leaves one consistent series.
   explicit VtuSeries(std::string dir, std::vector<BodyCell> body = {});
+  /// The parameters every file then carries (write_vtu's FieldData).
+  void set_parameters(const Params& p) { params_ = p, has_params_ = true; }
   /// Writes the state as DIR/step_<iteration>.vtu and remembers its time for the .pvd.
   void add(const Model& model, const State& state, const StepWorkspace& ws, double dt);
   /// Writes DIR/series.pvd listing every file added so far (rewritten on each call).
@@ -56,6 +68,12 @@ class VtuSeries {
   std::string dir_;
   std::vector<BodyCell> body_;
   std::vector<std::pair<double, std::string>> files_;
+  std::vector<std::string> older_;  ///< the step files the folder's older series.pvd listed
+  Params params_;
+  bool has_params_ = false;
 };
+
+/// The step file names (step_<digits>.vtu, nothing else) a .pvd's text lists.
+std::vector<std::string> pvd_step_files(const std::string& pvd_text);
 
 }  // namespace dampbound

@@ -13,6 +13,7 @@
 #include "core/error.hpp"
 #include "core/io/files.hpp"
 #include "core/io/format.hpp"
+#include "core/sweep/csv_rows.hpp"
 #include "core/sweep/journal.hpp"
 #include "core/sweep/summary.hpp"
 
@@ -309,7 +310,10 @@ void merge_sweep_parts(const std::vector<std::string>& parts, const std::string&
   if (parts.empty()) throw InputError("merge: no parts given");
   check_writable(out);
   std::vector<SweepTable> tables;
-  for (const std::string& p : parts) tables.push_back(read_sweep_csv(p, true));
+  for (const std::string& p : parts) {
+    tables.push_back(read_sweep_csv(p, true));
+    check_sweep_rows(tables.back(), p);  // rows, not only headers
+  }
   const SweepHeader& first = tables.front().header;
   // Nothing is allocated by the headers' counts (a forged part may claim 2^31 shards).
   std::map<int, size_t> part_of;

@@ -15,7 +15,7 @@ expect_match "$OUT" '"outcome":"restored","iterations":12,.*"rule":"first-entry"
 
 # The text says what happened, in words.
 expect_exit 0 "$DB" run paper-plane --dt 0.51 --gamma 0.002
-expect_match "$OUT" "verdict +(not settled, checked to 1000|diverged at [0-9]+) \(entered the 1% band at 12, left it at $left\)" \
+expect_match "$OUT" "answer +(not settled, checked to 1000|diverged at [0-9]+) \(entered the 1% band at 12, left it at $left\)" \
   "text verdict in words"
 
 # Fig. 1 below the lower bound: first entry, exit and settled, settled after the exit.

@@ -111,5 +111,25 @@ TEST(Session, TheSceneAsRunKeepsEveryFieldButTheCutsPassed) {
   EXPECT_EQ(now.name, scene.name);
 }
 
+TEST(Session, AResetLeavesNoStepResultsBehind) {
+  // A run that diverges, then Reset: the workspace holds no step's status, bounds or damping,
+  // exactly as a new session's (the tuner colours every node "within" again).
+  const SceneSpec scene = load_scene(test::source_path("scenes/two-node.toml"));
+  Params p = scene.params;
+  p.dt = 5;
+  Session s(scene, p, scene.rules);
+  const Session fresh(scene, p, scene.rules);
+  for (int k = 0; k < 20 && s.running(); ++k) s.step_once();
+  ASSERT_FALSE(s.workspace().status.empty());
+  s.reset();
+  EXPECT_EQ(s.state().iteration, 0);
+  EXPECT_EQ(s.workspace().status.size(), fresh.workspace().status.size());
+  EXPECT_EQ(s.workspace().upper_bound.size(), fresh.workspace().upper_bound.size());
+  EXPECT_EQ(s.workspace().gamma_eff.size(), fresh.workspace().gamma_eff.size());
+  EXPECT_EQ(s.workspace().safe_bound.size(), fresh.workspace().safe_bound.size());
+  s.step_once();  // and it steps again as a new one does
+  EXPECT_EQ(s.workspace().status.size(), static_cast<size_t>(s.model().spec().node_count()));
+}
+
 }  // namespace
 }  // namespace dampbound

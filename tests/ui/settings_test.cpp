@@ -210,6 +210,16 @@ TEST(Settings, CorruptTextIsRejectedWithTheLine) {
   }
 }
 
+TEST(Settings, AValueRefusedByTheParametersCheckIsReportedAtItsOwnLine) {
+  // The check of the parameters together runs after the last line: it names the line of the
+  // parameter it refuses, not the file's last line.
+  const std::string text =
+      "dampbound-gui-settings 1\nm = 1\ngamma = -1\ndt = 0.1\nlog_y = true\nshow_max = true\n";
+  std::string err;
+  EXPECT_FALSE(parse_settings(text, &err));
+  EXPECT_EQ(err.rfind("line 3: gamma must be >= 0", 0), 0u) << err;
+}
+
 TEST(Settings, UnknownKeysAndCommentsAreSkipped) {
   const auto s = parse_settings(
       "dampbound-gui-settings 1\n# a comment\nfuture_key = 7\n\nsteps_per_frame = 3\n", nullptr);

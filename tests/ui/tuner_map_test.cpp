@@ -55,8 +55,13 @@ TEST(TunerMap, WorkerPassesCoarseToFineAndFollowsTheCentre) {
   p.m *= 1.01;  // off the axes: every cell changes
   map.follow(shared, 1, p, scene.rules, view);
   EXPECT_EQ(map.starts(), 3);
-  map.follow(shared, 2, p, scene.rules, view);  // another scene
+  map.wait();
+  ASSERT_TRUE(map.result());
+  Params q = p;  // another scene (key 2), centred elsewhere: nothing of the last one shows
+  q.m *= 1.5;
+  map.follow(shared, 2, q, scene.rules, view);
   EXPECT_EQ(map.starts(), 4);
+  EXPECT_TRUE(!map.result() || map.result()->base.m == q.m) << "the last scene's map is on show";
   map.stop();
 }
 

@@ -76,6 +76,24 @@ TEST(TunerPlots, PinsAreOverlaidUntilHiddenOrRemoved) {
   EXPECT_TRUE(tuner_displacement_plot(t, o).y.log);
 }
 
+// A pin of another scene watched another mesh's node: after a scene switch it stays in the
+// list but is not drawn over the new scene's plots; back on its scene it is drawn again.
+TEST(TunerPlots, PinsOfAnotherSceneAreNotOverlaid) {
+  Tuner t(tiny());
+  t.step(30);
+  t.pin("tiny's run");
+  SceneSpec other = tiny();
+  other.name = "other";
+  t.set_scene(other);
+  t.step(5);
+  TunerPlotOptions o;
+  ASSERT_EQ(t.pins().size(), 1u);
+  EXPECT_FALSE(has_series(tuner_displacement_plot(t, o), "tiny's run"));
+  EXPECT_FALSE(has_series(tuner_envelope_plot(t, o), "tiny's run"));
+  t.set_scene(tiny());
+  EXPECT_TRUE(has_series(tuner_displacement_plot(t, o), "tiny's run"));
+}
+
 // The envelope's curves are the watched node's gamma_i; the exact limit is of the user's gamma,
 // so on a node damped 3x it is drawn 3x higher, labelled so (it sat 3x too low beside the
 // node's own safe bound, which the same limit approaches).

@@ -184,11 +184,14 @@ TEST(Tuner, AFrameStopsSteppingAtItsTimeBudget) {
   t.playback().frame_budget_seconds = 0;
   ASSERT_TRUE(t.set_playing(true));
   EXPECT_EQ(t.advance(), 1);
+  EXPECT_EQ(t.budget_cut().taken, 1);  // said, not silent: 1 of 10000 steps this frame
+  EXPECT_EQ(t.budget_cut().asked, 10000);
   EXPECT_EQ(t.advance(), 1);
   EXPECT_EQ(t.session().state().iteration, 2);
   EXPECT_EQ(t.step(5), 5);  // single steps (the Step buttons) keep their count
   t.playback().frame_budget_seconds = 1e9;
   EXPECT_EQ(t.advance(), 10000);
+  EXPECT_EQ(t.budget_cut().asked, 0);  // every step asked: the budget did not bind
 }
 
 TEST(Tuner, DivergenceStopsPlaybackCleanlyUntilReset) {
@@ -208,9 +211,13 @@ TEST(Tuner, DivergenceStopsPlaybackCleanlyUntilReset) {
   EXPECT_FALSE(t.can_step());
   EXPECT_FALSE(t.set_playing(true));
   EXPECT_EQ(t.step(5), 0);
+  ASSERT_FALSE(t.session().workspace().status.empty());
   t.reset();  // same parameters: it can step again (and diverges again, at once)
   EXPECT_TRUE(t.can_step());
   EXPECT_EQ(t.session().state().iteration, 0);
+  // Nothing of the diverged step stays: no node is coloured, no status read, from it.
+  EXPECT_TRUE(t.session().workspace().status.empty());
+  EXPECT_TRUE(t.session().workspace().upper_bound.empty());
   ASSERT_TRUE(t.set_params(default_params()));
   t.reset();
   EXPECT_EQ(t.step(20), 20);
@@ -383,6 +390,20 @@ TEST(Tuner, OpenSceneFailureKeepsTheCurrentScene) {
   EXPECT_EQ(t.scene().name, "small-plane");
   EXPECT_TRUE(t.open_scene(DAMPBOUND_SOURCE_DIR "/scenes/two-node.toml", &err)) << err;
   EXPECT_NE(t.scene().name, "small-plane");
+}
+
+TEST(Tuner, ASceneSwitchDropsTheLastScenesAnalysis) {
+  // The criteria's exact analysis on show is the new scene's, never the old one's while the
+  // new one is computed.
+  Tuner t(small_plane());
+  ASSERT_NE(t.exact(), nullptr);
+  const double old_lambda = t.exact()->spectrum.lambda_max;
+  ASSERT_NE(t.criteria_state().shown(), nullptr);
+  std::string err;
+  ASSERT_TRUE(t.open_scene(DAMPBOUND_SOURCE_DIR "/scenes/two-node.toml", &err)) << err;
+  EXPECT_EQ(t.criteria_state().shown(), nullptr);
+  ASSERT_NE(t.exact(), nullptr);
+  EXPECT_NE(t.exact()->spectrum.lambda_max, old_lambda);
 }
 
 TEST(TunerText, NeverNaN) {

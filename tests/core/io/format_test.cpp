@@ -98,5 +98,15 @@ TEST(Format, XmlEscapeReplacesAmpersandAnglesAndQuotes) {
   EXPECT_EQ(xml_escape("a<b & \"c\">d'"), "a&lt;b &amp; &quot;c&quot;&gt;d'");
 }
 
+TEST(Plural, OneIsSingularEveryOtherCountPlural) {
+  EXPECT_EQ(plural(1, "spring"), "1 spring");
+  EXPECT_EQ(plural(0, "spring"), "0 springs");
+  EXPECT_EQ(plural(2, "node"), "2 nodes");
+  EXPECT_EQ(plural(-1, "node"), "-1 nodes");
+  EXPECT_EQ(plural(3, "class"), "3 classes");
+  EXPECT_EQ(plural(1, "class"), "1 class");
+  EXPECT_EQ(plural(12, "patch"), "12 patches");
+}
+
 }  // namespace
 }  // namespace dampbound

@@ -113,6 +113,10 @@ TEST(Report, ResultJson) {
   const std::string head = "{\"scene\":\"two-node\",\"m\":0.001,\"kappa\":0.001,\"gamma\":0.002,";
   EXPECT_EQ(j.substr(0, head.size()), head);
   EXPECT_NE(j.find(",\"policy\":\"fixed\","), std::string::npos);
+  // Every parameter that shaped the run, SPEC 10's damping and the band included.
+  for (const char* key : {"\"kd\":0,", "\"rayleigh_mass\":0,", "\"rayleigh_stiffness\":0,",
+                          "\"reference\":", "\"restore_fraction\":", "\"diverge_factor\":"})
+    EXPECT_NE(j.find(key), std::string::npos) << key << " in " << j;
   EXPECT_NE(j.find(",\"max_iterations\":1000,\"watched\":1,\"outcome\":\"restored\","
                    "\"iterations\":34,\"rule\":\"first-entry\",\"first_entry\":34,"
                    "\"left_at\":null,\"settled_at\":null,\"time\":1.7,"

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <limits>
 #include <sstream>
 
@@ -183,6 +184,56 @@ TEST(Vtu, SeriesFilesAndCollection) {
             "    <DataSet timestep=\"0\" file=\"step_000000.vtu\"/>\n"
             "    <DataSet timestep=\"0.6\" file=\"step_000012.vtu\"/>\n"
             "  </Collection>\n</VTKFile>\n");
+}
+
+TEST(Vtu, ARerunIntoTheFolderLeavesOneSeries) {
+  // A first run saves steps 0, 5 and 10; a second, shorter one steps 0 and 3: the folder then
+  // holds the second series only, and a file the series never wrote stays.
+  const std::string dir = ::testing::TempDir() + "vtu_rerun_test";
+  std::filesystem::remove_all(dir);
+  TwoNodes t;
+  {
+    VtuSeries first(dir);
+    for (int it : {0, 5, 10}) {
+      t.state.iteration = it;
+      first.add(t.model, t.state, StepWorkspace{}, t.params.dt);
+    }
+    first.write_collection();
+  }
+  std::filesystem::create_directories(dir);
+  { std::ofstream(dir + "/notes.vtu") << "mine"; }
+  VtuSeries second(dir);
+  for (int it : {0, 3}) {
+    t.state.iteration = it;
+    second.add(t.model, t.state, StepWorkspace{}, t.params.dt);
+  }
+  second.write_collection();
+  EXPECT_TRUE(std::filesystem::exists(dir + "/step_000000.vtu"));
+  EXPECT_TRUE(std::filesystem::exists(dir + "/step_000003.vtu"));
+  EXPECT_FALSE(std::filesystem::exists(dir + "/step_000005.vtu"));
+  EXPECT_FALSE(std::filesystem::exists(dir + "/step_000010.vtu"));
+  EXPECT_TRUE(std::filesystem::exists(dir + "/notes.vtu"));
+}
+
+TEST(Vtu, PvdStepFilesAreOnlyTheSeriesOwnNames) {
+  EXPECT_EQ(pvd_step_files("<DataSet file=\"step_000001.vtu\"/><DataSet file=\"../x.vtu\"/>"
+                           "<DataSet file=\"step_1/../../a.vtu\"/><DataSet file=\"step_12.vtu\"/>"),
+            (std::vector<std::string>{"step_000001.vtu", "step_12.vtu"}));
+}
+
+TEST(Vtu, TheParametersOfTheRunAreFieldData) {
+  TwoNodes t;
+  Params p = t.params;
+  p.kd = 0.25, p.rayleigh_mass = 0.5, p.rayleigh_stiffness = 0.125;
+  std::ostringstream os;
+  write_vtu(os, t.model, t.state, StepWorkspace{}, p.dt, {}, &p);
+  const std::string x = os.str();
+  for (const char* s : {"Name=\"kd\" NumberOfTuples=\"1\" format=\"ascii\">0.25<",
+                        "Name=\"rayleigh_mass\" NumberOfTuples=\"1\" format=\"ascii\">0.5<",
+                        "Name=\"rayleigh_stiffness\" NumberOfTuples=\"1\" format=\"ascii\">0.125<",
+                        "Name=\"dt\"", "Name=\"gamma\"", "policy=", "integrator="})
+    EXPECT_NE(x.find(s), std::string::npos) << s;
+  EXPECT_LT(x.find("<FieldData>"), x.find("<Piece"));
 }
 
 }  // namespace

@@ -1,0 +1,91 @@
+// The tuner window's state is the model's: after a scene switch no panel shows (or applies)
+// the last scene's answers; a settings file that cannot be read is left as it is.
+#if defined(DAMPBOUND_HAVE_EGL)
+#include "ui/gui_app.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "core/io/scene_file.hpp"
+#include "ui/egl_host.hpp"
+
+namespace dampbound::ui {
+namespace {
+
+namespace fs = std::filesystem;
+
+GuiOptions options(const fs::path& config) {
+  GuiOptions o;
+  o.config_dir = config.string();
+  o.scenes_dir = DAMPBOUND_SOURCE_DIR "/scenes";
+  o.scene = load_scene(DAMPBOUND_SOURCE_DIR "/scenes/two-node.toml");
+  o.play = false;
+  o.demo = false;
+  o.scripted = true;
+  return o;
+}
+
+EglOptions headless() {
+  EglOptions eo;
+  eo.render = gui_render_options();
+  return eo;
+}
+
+std::string text_of(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+TEST(GuiApp, ASceneSwitchDropsTheLastScenesSuggestions) {
+  GuiOptions o = options(fs::path());
+  o.config_dir.clear();
+  EglHost host(headless());
+  GuiApp app(o);
+  bool had = false, after = true;
+  host.render_frames(
+      1024, 640,
+      [&](FrameInfo& info) {
+        if (info.layout_pass) return app.frame(info);
+        if (info.index == 0) {
+          app.start_suggest();
+          app.suggestions().wait();
+          app.start_substeps();
+          app.substeps().wait();
+        }
+        app.frame(info);
+        if (info.index == 0) {
+          had = app.suggestions().result().has_value() && app.substeps().result().has_value();
+          app.open_scene(DAMPBOUND_SOURCE_DIR "/scenes/paper-plane.toml");
+        }
+        if (info.index == 1)
+          after = app.suggestions().result().has_value() || app.substeps().result().has_value();
+      },
+      2);
+  EXPECT_TRUE(had);
+  EXPECT_FALSE(after) << "the last scene's suggestions are still on show";
+  EXPECT_EQ(app.tuner().scene().name, "paper-plane");
+  app.release_gl();
+}
+
+TEST(GuiApp, ACorruptSettingsFileIsLeftAsItIs) {
+  const fs::path config = fs::temp_directory_path() / "dampbound_gui_app_corrupt_settings";
+  fs::remove_all(config);
+  fs::create_directories(config);
+  const std::string bad = "dampbound-gui-settings 1\nm = 0.001\ngamma = -1\nlog_y = true\n";
+  std::ofstream(config / "settings.txt", std::ios::binary) << bad;
+  {
+    GuiApp app(options(config));
+    app.save();
+  }
+  EXPECT_EQ(text_of(config / "settings.txt"), bad);
+}
+
+}  // namespace
+}  // namespace dampbound::ui
+#endif
