@@ -162,7 +162,9 @@ TEST(TrialBody, SmallScenesEveryPolicyMatchTheBatchedKernel) {
         add(seen, expect_body_matches(*s, p, rules, random_trials(60, 5, 600, 0.02), batched));
     }
     expect_every_verdict(seen, rule);
-    if (rule == StopRule::settled) EXPECT_GT(seen[kLeft], 0);
+    if (rule == StopRule::settled) {
+      EXPECT_GT(seen[kLeft], 0);
+    }
   }
 }
 
