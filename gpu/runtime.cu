@@ -51,9 +51,12 @@ bool compiled() { return true; }
 Probe probe() {
   int count = 0;
   const cudaError_t e = cudaGetDeviceCount(&count);
+  if (e == cudaErrorInsufficientDriver)
+    return {false, "no NVIDIA driver, or one older than this build's CUDA " +
+                       std::to_string(CUDART_VERSION / 1000) + " runtime"};
+  if (e == cudaErrorNoDevice || (e == cudaSuccess && count == 0)) return {false, "no CUDA device"};
   if (e != cudaSuccess)
     return {false, std::string("no usable CUDA device (") + cudaGetErrorString(e) + ")"};
-  if (count == 0) return {false, "no CUDA device"};
   cudaDeviceProp p{};
   if (cudaGetDeviceProperties(&p, 0) != cudaSuccess) return {false, "CUDA device 0 unreadable"};
   // A kernel image for this device: the build holds sm_90 code and compute_80 PTX.

@@ -60,7 +60,7 @@ mkdir -p "$WORK"
 # The GPU as dampbound sees it: `--device gpu` on one trial says why not in one line.
 if ! "$DB" sweep --m 0.001 --kappa 0.001 --zeta 1 --max-iter 2 --progress none --device gpu \
     -o "$WORK/probe.csv" >/dev/null 2>"$WORK/probe.err"; then
-  echo "gpu-check: no GPU sweep here: $(tail -n 1 "$WORK/probe.err" | sed 's/^dampbound: --device gpu: //')"
+  echo "gpu-check: no GPU sweep here: $(tail -n 1 "$WORK/probe.err" | sed -E 's/^dampbound: (error: )?--device gpu: //')"
   exit 3
 fi
 device=$(sed -n 's/^sweep: device gpu: //p' "$WORK/probe.err")

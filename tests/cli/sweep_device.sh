@@ -17,7 +17,7 @@ if [ "$code" -eq 2 ]; then
   # No GPU here (or a build without CUDA): one line naming the flag, no output.
   ERR=$(cat "$WORK/err")
   expect_one_line "$ERR" "--device gpu without a GPU"
-  expect_match "$ERR" '^dampbound: --device gpu: .*(CUDA|GPU)' "--device gpu says why"
+  expect_match "$ERR" '^dampbound: (error: )?--device gpu: .*(CUDA|GPU)' "--device gpu says why"
   [ ! -e "$WORK/gpu.csv" ] && [ ! -e "$WORK/gpu.csv.journal" ] && ok ||
     bad "--device gpu without a GPU left a file"
   [ ! -s "$WORK/out" ] && ok || bad "--device gpu without a GPU printed to stdout"

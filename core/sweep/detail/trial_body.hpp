@@ -220,7 +220,7 @@ DAMPBOUND_HD inline bool trial_step(const FlatModel& M, TrialSlot& slot, const T
   r.clamped += t.clamped;
   r.zero_length_springs += t.zero_length;
   ++r.iterations;
-  // protocol.cpp judge_band(), with step.cpp's max displacement (inf when not finite).
+  // judge_band() (core/verdict.hpp), with step.cpp's max displacement (inf when not finite).
   const bool finite = !t.bad;
   const double d = finite ? sqrt(t.max_sq) : __builtin_huge_val();
   r.max_displacement = d;
