@@ -22,8 +22,7 @@ constexpr double kLaunchSeconds = 0.25;
 
 class GpuSweep final : public TrialDevice {
  public:
-  GpuSweep(const SceneSpec& scene, DampingPolicy policy, const StopRules& rules,
-           std::string name)
+  GpuSweep(const SceneSpec& scene, DampingPolicy policy, const StopRules& rules, std::string name)
       : flat_(scene, policy, rules), runtime_(flat_.view(), kMaxSlots), name_(std::move(name)) {}
 
   std::string name() const override { return name_; }

@@ -33,7 +33,10 @@ __global__ void advance_trials(FlatModel model, TrialSlot* slots, const unsigned
   if (t >= count || mode[t] == kIdle) return;
   const std::size_t stride = static_cast<std::size_t>(count);
   const std::size_t n3 = 3 * static_cast<std::size_t>(model.nodes) * stride;
-  const TrialView view{state + t, state + n3 + t, state + 2 * n3 + t, state + 3 * n3 + t,
+  const TrialView view{state + t,
+                       state + n3 + t,
+                       state + 2 * n3 + t,
+                       state + 3 * n3 + t,
                        model.policy == DampingPolicy::safe ? state + 4 * n3 + t : nullptr,
                        stride};
   TrialSlot slot = slots[t];
@@ -45,8 +48,6 @@ __global__ void advance_trials(FlatModel model, TrialSlot* slots, const unsigned
 constexpr int kThreadsPerBlock = 128;
 
 }  // namespace
-
-bool compiled() { return true; }
 
 Probe probe() {
   int count = 0;
@@ -140,7 +141,9 @@ Runtime::Runtime(const FlatModel& host, int max_slots) : impl_(new Impl) {
 
 Runtime::~Runtime() = default;
 
-int Runtime::slots() const { return impl_->count; }
+int Runtime::slots() const {
+  return impl_->count;
+}
 
 void Runtime::advance(TrialSlot* slots, const unsigned char* mode, int max_steps) {
   Impl& d = *impl_;

@@ -10,9 +10,6 @@
 
 namespace dampbound::gpu {
 
-/// Whether this build holds the CUDA code (DAMPBOUND_CUDA found nvcc at configure time).
-bool compiled();
-
 /// The first CUDA device that can run the sweep (ok, `what` its name and memory), or why
 /// there is none (`what` the reason: no CUDA in this build, no driver, no device, ...).
 struct Probe {

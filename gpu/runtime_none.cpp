@@ -6,9 +6,9 @@
 
 namespace dampbound::gpu {
 
-bool compiled() { return false; }
-
-Probe probe() { return {false, "this dampbound was built without CUDA (no nvcc at configure time)"}; }
+Probe probe() {
+  return {false, "this dampbound was built without CUDA (no nvcc at configure time)"};
+}
 
 struct Runtime::Impl {};
 
@@ -18,7 +18,9 @@ Runtime::Runtime(const trial_body::FlatModel&, int) {
 
 Runtime::~Runtime() = default;
 
-int Runtime::slots() const { return 0; }
+int Runtime::slots() const {
+  return 0;
+}
 
 void Runtime::advance(trial_body::TrialSlot*, const unsigned char*, int) {}
 

@@ -70,8 +70,8 @@ FlatScene::FlatScene(const SceneSpec& scene, DampingPolicy policy, const StopRul
   shape_.springs = static_cast<int>(mo.springs.size());
   shape_.policy = policy;
   shape_.semi_implicit = scene.params.integrator == Integrator::semi_implicit_euler;
-  shape_.uniform = n > 0 && all_equal(mass_scale_) && all_equal(gamma_scale_) &&
-                   all_equal(kappa_max_scale_);
+  shape_.uniform =
+      n > 0 && all_equal(mass_scale_) && all_equal(gamma_scale_) && all_equal(kappa_max_scale_);
   shape_.rules = rules;
 }
 
@@ -132,8 +132,9 @@ std::vector<TrialResult> run_trial_body(const FlatScene& scene,
   const FlatModel m = scene.view();
   const size_t n = static_cast<size_t>(scene.nodes());
   std::vector<double> state(scene.state_doubles());
-  const trial_body::TrialView view{state.data(), state.data() + 3 * n, state.data() + 6 * n,
-                                   state.data() + 9 * n, state.data() + 12 * n, 1};
+  const trial_body::TrialView view{state.data(),          state.data() + 3 * n,
+                                   state.data() + 6 * n,  state.data() + 9 * n,
+                                   state.data() + 12 * n, 1};
   std::vector<TrialResult> out;
   out.reserve(trials.size());
   for (const TrialParams& t : trials) {

@@ -36,8 +36,7 @@ class FlatScene {
   // Every array of FlatModel, for the GPU sweep's copies.
   std::vector<int> spring_i_, spring_j_, incident_offset_, incident_;
   std::vector<double> rest_length_, kappa_scale_, kd_scale_, rest_, x0_, v0_, ext_;
-  std::vector<double> anchor_scale_, anchor_kd_scale_, mass_scale_, gamma_scale_,
-      kappa_max_scale_;
+  std::vector<double> anchor_scale_, anchor_kd_scale_, mass_scale_, gamma_scale_, kappa_max_scale_;
   std::vector<unsigned char> fixed_;
 
  private:

@@ -54,7 +54,8 @@ struct TrialSlot {
 };
 
 /// forces.cpp's anchor term -kappa_a,i (x_i - X_i) of every node: F at the start of a step.
-DAMPBOUND_HD inline void anchor_forces(const FlatModel& M, const TrialConsts& P, const TrialView& s) {
+DAMPBOUND_HD inline void anchor_forces(const FlatModel& M, const TrialConsts& P,
+                                       const TrialView& s) {
   const std::size_t w = s.stride;
   for (int i = 0; i < M.nodes; ++i) {
     const double nak = -(P.kappa * M.anchor_scale[i]);

@@ -27,8 +27,7 @@ DAMPBOUND_HD inline void damping_forces(const FlatModel& M, const TrialConsts& P
     const double mass = P.m * M.mass_scale[i];
     const double anchor_kd = M.anchor_scale[i] > 0 ? P.kd * M.anchor_kd_scale[i] : 0.0;
     const double coef = P.alpha * mass + anchor_kd + P.beta * (P.kappa * M.anchor_scale[i]);
-    for (int c = 0; c < 3; ++c)
-      D[(3 * i + c) * w] = M.fixed[i] ? 0.0 : coef * v[(3 * i + c) * w];
+    for (int c = 0; c < 3; ++c) D[(3 * i + c) * w] = M.fixed[i] ? 0.0 : coef * v[(3 * i + c) * w];
   }
   for (int k = 0; k < M.springs; ++k) {
     const int i = M.spring_i[k], j = M.spring_j[k];

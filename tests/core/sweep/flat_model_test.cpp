@@ -19,9 +19,11 @@
 namespace dampbound {
 namespace {
 
-bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+bool same_bits(double a, double b) {
+  return std::memcmp(&a, &b, sizeof a) == 0;
+}
 
-constexpr size_t kLeft = 6;                 // Seen's extra slot: entered the band and left
+constexpr size_t kLeft = 6;                // Seen's extra slot: entered the band and left
 using Seen = std::array<long, kLeft + 1>;  // per Outcome, and kLeft
 
 /// Trials compared so far in this test binary.
@@ -49,10 +51,10 @@ Seen expect_body_matches(const SceneSpec& scene, DampingPolicy policy, const Sto
   for (size_t k = 0; k < trials.size() && k < ref.size(); ++k) {
     const TrialResult& got = body[k];
     const TrialResult& want = ref[k];
-    SCOPED_TRACE(scene.name + " " + to_string(policy) + " " + to_string(rules.rule) + " m=" +
-                 std::to_string(trials[k].m) + " kappa=" + std::to_string(trials[k].kappa) +
-                 " gamma=" + std::to_string(trials[k].gamma) + " dt=" +
-                 std::to_string(trials[k].dt));
+    SCOPED_TRACE(scene.name + " " + to_string(policy) + " " + to_string(rules.rule) +
+                 " m=" + std::to_string(trials[k].m) + " kappa=" + std::to_string(trials[k].kappa) +
+                 " gamma=" + std::to_string(trials[k].gamma) +
+                 " dt=" + std::to_string(trials[k].dt));
     EXPECT_EQ(std::string(to_string(got.outcome)), to_string(want.outcome));
     EXPECT_EQ(got.iterations, want.iterations);
     EXPECT_TRUE(same_bits(got.max_displacement, want.max_displacement))
