@@ -66,9 +66,8 @@ DAMPBOUND_HD inline Outcome judge_band(const StopRules& rules, BandHistory& band
   return below ? Outcome::settled : Outcome::not_settled;
 }
 
-/// What every runner reports about a run, the Session, the batched sweep kernel and the GPU
-/// sweep alike: the verdict, its band history (SPEC 8) and the counts. A sweep's CSV row is
-/// made of it.
+/// What every runner reports about a run, the Session, the batched sweep kernel and the GPU sweep alike:
+/// the verdict, its band history (SPEC 8) and the counts. A sweep's CSV row is made of it.
 struct TrialResult {
   Outcome outcome = Outcome::running;
   int iterations = 0;              ///< the iteration at which the outcome was reached

@@ -3,7 +3,7 @@
 #   1. builds dampbound with its CUDA code in build-gpu/ (or takes --dampbound PATH);
 #   2. runs the same trials on the GPU and on the CPU and compares the CSVs byte for byte:
 #      4000 trials of the paper's mesh with every trial run (fixed policy, settled rule),
-#      2000 of the paper-upper preset (its 1/1000 part), 216 with dashpot and Rayleigh damping;
+#      3429 of the paper-upper preset (its 1/1000 part), 216 with dashpot and Rayleigh damping;
 #   3. times both on the paper-upper part (spring evaluations per second, as `sweep` prints);
 #   4. runs larger parts of `--preset paper-upper` on the GPU, 1/100 and then 1/10, while ten
 #      times the last part fits before the 7th minute, and projects the whole preset's time
