@@ -27,6 +27,7 @@
 #include "core/sweep/progress.hpp"
 #include "core/sweep/runner.hpp"
 #include "core/sweep/summary.hpp"
+#include "gpu/gpu_sweep.hpp"
 
 namespace dampbound::app::cmd_sweep {
 namespace {
@@ -75,6 +76,7 @@ struct SweepArgs {
   std::string preset, m, kappa, zeta, gamma, dt, factor, policy, output, shard = "1/1", map;
   std::string kd, rayleigh_mass, rayleigh_stiffness;  // SPEC 10 axes
   std::string progress = "auto";
+  std::string device = "cpu";  // --device: cpu, gpu, auto (gpu/gpu_sweep.hpp)
   double progress_interval = 10, sync_interval = 1;
   int max_iter = 0, threads = 0;
   std::string rule;  // empty: first-entry for a paper preset, else the default (settled)
@@ -213,6 +215,10 @@ int run(const SweepArgs& a) {
   sa.sa_handler = on_interrupt;
   ::sigaction(SIGINT, &sa, nullptr);
   ::sigaction(SIGTERM, &sa, nullptr);
+  const std::unique_ptr<TrialDevice> device =
+      choose_sweep_device(*parse_sweep_device(a.device), rq.scene, rq.spec.policy, rq.spec.rules,
+                          a.plain, stderr);
+  rq.device = device.get();
   const OutputLock lock(a.output);
   const SweepReport rep = run_sweep(rq);
   ::signal(SIGINT, SIG_DFL);
@@ -248,7 +254,9 @@ int run(const SweepArgs& a) {
         static_cast<double>(rep.lane_steps) / s,
         static_cast<double>(rep.lane_steps) * static_cast<double>(rep.spring_evaluations_per_step) /
             s,
-        rep.batched ? "batched kernel" : ("Session per trial: " + rep.plain_reason).c_str());
+        !rep.device.empty() ? ("GPU " + rep.device).c_str()
+        : rep.batched       ? "batched kernel"
+                            : ("Session per trial: " + rep.plain_reason).c_str());
     if (rep.classes_resumed > 0) {
       if (rep.untimed_classes == 0)
         std::printf("in all       %.1f s (%.1f s of CPU) over %d runs\n",
@@ -342,6 +350,10 @@ std::function<int()> setup(CLI::App& root) {
                   "default: settled; first-entry, the paper's, with --preset paper-lower/upper");
   cmd->add_flag("--no-similarity", a->no_similarity, "run every trial, even equivalent ones");
   cmd->add_flag("--plain", a->plain, "step each trial with Session (the plain step()), no SIMD");
+  cmd->add_option("--device", a->device,
+                  "cpu (default), gpu (exit 2 without a usable GPU), auto (the GPU when one can "
+                  "run the sweep, else the CPU; says which on stderr)")
+      ->check(CLI::IsMember({"cpu", "gpu", "auto"}));
   cmd->add_option("--progress", a->progress,
                   "auto (bar on a terminal, else lines), bar, lines, none")
       ->check(CLI::IsMember({"auto", "bar", "lines", "none"}));

@@ -36,28 +36,6 @@ Outcome judge(const StopRules& rules, const StepStats& stats) {
   return judge_band(paper, band, stats.iteration, stats.max_displacement, stats.finite);
 }
 
-Outcome judge_band(const StopRules& rules, BandHistory& band, int iteration,
-                   double max_displacement, bool finite) {
-  // The comparisons are written so that a NaN falls to diverged, never below the threshold.
-  if (!finite || !(max_displacement <= rules.diverge_factor * rules.reference))
-    return Outcome::diverged;
-  const bool below = max_displacement < rules.restore_fraction * rules.reference;
-  if (below) {
-    if (band.first_entry == 0) band.first_entry = iteration;
-    if (band.below_since == 0) band.below_since = iteration;
-  } else {
-    if (band.first_entry != 0 && band.left_at == 0) band.left_at = iteration;
-    band.below_since = 0;
-  }
-  if (rules.rule == StopRule::first_entry) {
-    if (below) return Outcome::restored;
-    return iteration >= rules.max_iterations ? Outcome::not_restored : Outcome::running;
-  }
-  // SPEC 8: no proof that a run below the threshold stays there, so it steps to the limit.
-  if (iteration < rules.max_iterations) return Outcome::running;
-  return below ? Outcome::settled : Outcome::not_settled;
-}
-
 void accumulate(RunResult& r, const StepStats& st, const StopRules& rules) {
   r.violations += st.violating;
   r.unstabilisable += st.unstabilisable;

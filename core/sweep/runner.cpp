@@ -78,18 +78,21 @@ std::uint64_t run_classes(const SweepRequest& rq, const SweepGrid& grid,
   };
   auto worker = [&] {
     try {
-      if (batched) {
+      const TrialSource source = [&](std::size_t& id, TrialParams& p) {
+        std::uint32_t cls = 0;
+        if (!take(cls)) return false;
+        id = cls;
+        p = grid.params(classes.representative[cls]);
+        return true;
+      };
+      const TrialSink sink = [&](std::size_t id, const TrialResult& r) {
+        give(static_cast<std::uint32_t>(id), r);
+      };
+      if (rq.device) {
+        lane_steps += rq.device->run(source, sink, &halt);
+      } else if (batched) {
         BatchKernel kernel(rq.scene, rq.spec.policy, rq.spec.rules);
-        lane_steps += kernel.run(
-            [&](std::size_t& id, TrialParams& p) {
-              std::uint32_t cls = 0;
-              if (!take(cls)) return false;
-              id = cls;
-              p = grid.params(classes.representative[cls]);
-              return true;
-            },
-            [&](std::size_t id, const TrialResult& r) { give(static_cast<std::uint32_t>(id), r); },
-            &halt);
+        lane_steps += kernel.run(source, sink, &halt);
       } else {
         std::uint32_t cls = 0;
         while (take(cls)) {
@@ -302,6 +305,10 @@ SweepReport run_sweep(const SweepRequest& rq) {
                          ? batch_kernel_unsupported(rq.scene, damping_extremes(rq.scene.params, rq.spec))
                                .value_or("")
                          : std::string("--plain");
+  if (rq.device) {
+    rep.device = rq.device->name();
+    rep.plain_reason.clear();
+  }
   rep.batched = rep.plain_reason.empty();
   ShardState state(rq, classes);
   SweepProgress& pr = state.progress;
@@ -334,7 +341,7 @@ SweepReport run_sweep(const SweepRequest& rq) {
   const std::vector<std::uint32_t> todo = state.todo();
   Clock::time_point last_sync = Clock::now();
   rep.lane_steps = run_classes(
-      rq, grid, classes, todo, rep.batched, sweep_threads(rq, todo.size()),
+      rq, grid, classes, todo, rep.batched, rq.device ? 1 : sweep_threads(rq, todo.size()),
       [&](std::uint32_t c, const TrialResult& r) {
         state.finish(c, r);
         journal->add({c, r});

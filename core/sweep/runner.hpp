@@ -10,6 +10,7 @@
 #include "core/sweep/setup.hpp"
 #include "core/scene.hpp"
 #include "core/sweep/csv.hpp"
+#include "core/sweep/device.hpp"
 #include "core/sweep/grid.hpp"
 
 namespace dampbound {
@@ -35,6 +36,9 @@ struct SweepRequest {
   int shard = 1, shards = 1;
   int threads = 0;               ///< 0: one per hardware thread
   bool use_kernel = true;        ///< false: every trial through Session (the plain step())
+  /// Runs the trials instead of the CPU's threads when set (the GPU sweep); `threads` and
+  /// `use_kernel` then do not apply.
+  TrialDevice* device = nullptr;
   double sync_interval_s = 1.0;  ///< how often finished classes are fsynced to the journal
   std::function<void(const SweepProgress&)> progress;  ///< ~5 times a second and at the end
   const std::atomic<bool>* cancel = nullptr;           ///< set by a signal handler
@@ -59,6 +63,7 @@ struct SweepReport {
   bool already_complete = false;  ///< --resume found the finished CSV and nothing to do
   bool batched = true;            ///< the batched kernel ran (else Session per trial)
   std::string plain_reason;       ///< why not, when not
+  std::string device;             ///< the TrialDevice's name when one ran the trials
   std::vector<SweepRow> rows;     ///< this shard's rows (for the summary and the map)
 };
 

@@ -338,7 +338,7 @@ struct Kernel final : BatchKernel::Impl {
         r.clamped += sc.clamped[l];
         r.zero_length_springs += sc.zero_length[l];
         ++r.iterations;
-        // protocol.cpp judge_band(), with step.cpp's max displacement (inf when not finite).
+        // judge_band() (core/verdict.hpp), with step.cpp's max displacement (inf when not finite).
         const bool finite = sc.bad[l] == 0;
         const double d = finite ? max_d[l] : HUGE_VAL;
         r.max_displacement = d;
