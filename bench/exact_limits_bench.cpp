@@ -17,11 +17,11 @@
 #include <cstdlib>
 #include <cstring>
 #include <ctime>
-#include <fstream>
 #include <string>
 #include <vector>
 
 #include "bench/bench_meshes.hpp"
+#include "bench/matrix_file.hpp"
 #include "core/analysis/linear_stability_cholesky.hpp"
 #include "core/analysis/linear_stability_exact.hpp"
 
@@ -33,25 +33,6 @@ using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 /// Processor time of this process (s): on a machine shared with other jobs, the fair measure.
 double cpu_now() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
-
-/// The full symmetric matrix in compressed columns: int64 n, int64 nnz, int64 outer[n + 1],
-/// int32 inner[nnz], float64 values[nnz] (little-endian, what numpy.fromfile reads).
-void write_matrix(const SparseMatrix& A, const std::string& path) {
-  std::ofstream out(path, std::ios::binary);
-  const long long n = A.rows(), nnz = A.nonZeros();
-  out.write(reinterpret_cast<const char*>(&n), sizeof n);
-  out.write(reinterpret_cast<const char*>(&nnz), sizeof nnz);
-  for (long long k = 0; k <= n; ++k) {
-    const long long o = A.outerIndexPtr()[k];
-    out.write(reinterpret_cast<const char*>(&o), sizeof o);
-  }
-  out.write(reinterpret_cast<const char*>(A.innerIndexPtr()), static_cast<std::streamsize>(nnz * 4));
-  out.write(reinterpret_cast<const char*>(A.valuePtr()), static_cast<std::streamsize>(nnz * 8));
-  if (!out) {
-    std::fprintf(stderr, "exact_limits_bench: cannot write %s\n", path.c_str());
-    std::exit(2);
-  }
-}
 
 }  // namespace
 
@@ -146,6 +127,6 @@ int main(int argc, char** argv) {
       static_cast<long long>(A.rows()), static_cast<long long>(A.nonZeros()), t_assemble, top.lo,
       top.hi, t_lambda, c_lambda, top.lanczos_steps, top.factorizations, top.solves,
       e.spectrum.lambda_min, e.gamma_hi, e.dt_max, t_all, c_all, repeats, best, median, worst);
-  if (!matrix_path.empty()) write_matrix(A, matrix_path);
+  if (!matrix_path.empty()) bench::write_matrix(A, matrix_path);
   return 0;
 }
