@@ -263,8 +263,6 @@ int run(const SuggestArgs& a) {
   if (a.max_iter_opt->count()) rules.max_iterations = a.max_iter;
   apply_damping_flags(a.damping_opts, a.kd, a.rayleigh_mass, a.rayleigh_stiffness, p);
   p.policy = DampingPolicy::fixed;
-  if (a.kappa_max) return print_kappa_max(scene, p, rules, !a.no_verify, a.vtu);
-  if (!a.rayleigh.empty()) return print_rayleigh(scene, p, a.rayleigh, a.band, a.plot);
   const std::string name = scene.name.empty() ? a.scene : scene.name;
   std::printf("scene        %s (%d nodes, %d springs)\n", name.c_str(), scene.model.node_count(),
               scene.model.spring_count());
@@ -279,6 +277,8 @@ int run(const SuggestArgs& a) {
                   "bounds --equilibrium analyses where a damped run settles\n",
                   rest_not_in_equilibrium(n).c_str());
   }
+  if (a.kappa_max) return print_kappa_max(scene, p, rules, !a.no_verify, a.vtu);
+  if (!a.rayleigh.empty()) return print_rayleigh(scene, p, a.rayleigh, a.band, a.plot);
   SuggestOptions options;
   options.verify = !a.no_verify;
   options.threads = 0;  // a big mesh's Lanczos products on every CPU (the same bits)
