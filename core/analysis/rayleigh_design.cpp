@@ -9,6 +9,7 @@
 #include "core/analysis/linear_stability.hpp"
 #include "core/analysis/linear_stability_exact.hpp"
 #include "core/error.hpp"
+#include "core/io/format.hpp"
 #include "core/integrate.hpp"
 #include "core/stiffness.hpp"
 
@@ -69,6 +70,9 @@ RayleighDesign rayleigh_from_spectrum(const SceneSpec& scene, const Params& para
   d.f_nyquist = 1 / (2 * p.dt);
   d.f1 = std::isnan(request.f1) ? d.f_lowest : request.f1;
   d.f2 = std::isnan(request.f2) ? std::min(d.f_highest, d.f_nyquist) : request.f2;
+  if (std::isnan(request.f1) && std::isnan(request.f2) && !(d.f2 > d.f1))
+    throw InputError("--rayleigh: the model's modes have one frequency (" +
+                     format_digits(d.f1, 6) + " Hz); give two with --band F1:F2");
   if (!(d.f1 > 0) || !(d.f2 > d.f1) || !std::isfinite(d.f2))
     throw InputError("--band: needs 0 < F1 < F2 (got " + std::to_string(d.f1) + ":" +
                      std::to_string(d.f2) + " Hz)");

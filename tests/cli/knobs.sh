@@ -88,6 +88,9 @@ expect_exit 1 "$DB" suggest paper-plane --rayleigh 20
 expect_match "$OUT" 'NOT stable: beta = 10\.5[0-9]* s is above .* the largest stable beta is 1\.0[0-9]* s, which reaches zeta' "beta above the step"
 expect_exit 1 "$DB" suggest paper-plane --rayleigh 0.05,40
 expect_match "$OUT" 'no Rayleigh pair gives these ratios: alpha would be negative' "no pair"
+expect_exit 2 "$DB" suggest two-node --rayleigh 0.05
+expect_match "$ERR" 'one frequency \(0\.159155 Hz\); give two with --band' "one mode"
+expect_exit 0 "$DB" suggest two-node --rayleigh 0.05 --band 0.1:0.2
 for bad_args in "--rayleigh abc" "--rayleigh 0.05 --band 2:1" "--band 1:2" "--vtu x.vtu" \
                 "--kappa-max --rayleigh 0.1"; do
   # shellcheck disable=SC2086
