@@ -66,7 +66,7 @@ DAMPBOUND_HD inline Outcome judge_band(const StopRules& rules, BandHistory& band
   return below ? Outcome::settled : Outcome::not_settled;
 }
 
-/// What every runner reports about a run, the Session, the batched sweep kernel and the GPU sweep alike:
+/// What every runner reports about a run (Session, the batched kernel, the GPU sweep alike):
 /// the verdict, its band history (SPEC 8) and the counts. A sweep's CSV row is made of it.
 struct TrialResult {
   Outcome outcome = Outcome::running;
