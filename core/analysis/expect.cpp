@@ -32,6 +32,8 @@ SceneMassScaling mass_scaling_of(const SceneSpec& scene, const std::string& labe
   for (const RunSpec& r : scene.runs)
     if (r.label == label) params = r.params, rules = r.rules;
   return scene_mass_scaling(scene, params, rules, dt);
+}
+
 bool asserts_a_run(const Expectation& e) {
   return e.outcome || e.iterations_min || e.first_entry_min || e.left || e.left_at_min ||
          e.settled_at_min || e.max_displacement_below || e.unstabilisable_max ||
