@@ -61,7 +61,7 @@ expect_match "$ERR" 'gui: suggest: gamma in \[[0-9.e-]+, [0-9.e-]+\), fastest se
 expect_match "$ERR" 'gui: substeps at frame 0.0166667 s: exact limit 1 substep \(settled at [0-9]+\), safe bound 1 substep \(settled' "--tab suggest gives the substeps"
 expect_exit 0 "${XV[@]}" "$DB" gui "$SRC/scenes/paper-plane.toml" --frames 2 --tab suggest \
   --frame-dt 2 --size 1024x640 --config-dir "$CFG"
-want=$("$DB" suggest "$SRC/scenes/paper-plane.toml" --frame-dt 2 --no-verify 2>&1 | grep -Eo '[0-9]+ substeps' | head -2 | tr '\n' ' ')
+want=$("$DB" suggest "$SRC/scenes/paper-plane.toml" --frame-dt 2 --no-verify 2>&1 | grep -E "^  (exact limit|safe bound)" | grep -Eo '[0-9]+ substeps' | head -2 | tr '\n' ' ')
 got=$(printf '%s\n' "$ERR" | grep -Eo '(exact limit|safe bound) [0-9]+ substeps' | grep -Eo '[0-9]+ substeps' | tr '\n' ' ')
 [ -n "$want" ] && [ "$want" = "$got" ] && ok || bad "gui --frame-dt 2 substeps '$got', suggest --frame-dt 2 '$want'"
 expect_exit 2 "$DB" gui "$SRC/scenes/paper-plane.toml" --frame-dt 0

@@ -58,9 +58,9 @@ TEST_P(DampedIntegrator, TheVerdictCountsTheDampingAndTheRunAgrees) {
   EXPECT_TRUE(std::isnan(e.dt_max)) << "not computed for this damping, never a nodal number";
   EXPECT_TRUE(std::isnan(e.gamma_hi));
   EXPECT_EQ(run(scene, p).outcome, Outcome::diverged);
-  // A tenth of the damping is stable, and the run settles or stays bounded.
-  p.kd /= 10;
-  p.rayleigh_mass /= 10;
+  // A hundredth of the damping is stable, and the run settles or stays bounded.
+  p.kd /= 100;
+  p.rayleigh_mass /= 100;
   const ExactStability light = exact_of(scene, p);
   EXPECT_TRUE(light.stable) << "rho " << light.spectral_radius;
   EXPECT_LE(light.spectral_radius, 1);
@@ -97,7 +97,7 @@ TEST(DampedSafeBound, NeverAboveTheExactLimitWhenTheStiffnessIsTiny) {
   const SafeBoundSummary s = safe_bound_summary(model, scene.model.rest, p.dt);
   ASSERT_TRUE(std::isfinite(e.dt_max));
   EXPECT_NEAR(e.dt_max, 0.5, 1e-6);  // 2 dt (gamma + kd) / m = 4 at gamma = kd = 0.002
-  EXPECT_LE(s.dt_safe, e.dt_max * (1 + 1e-12));
+  EXPECT_LE(s.dt_safe, e.dt_max * (1 + 1e-9));  // the exact limit is certified to 1e-10
   EXPECT_GT(s.dt_safe, 0.99 * e.dt_max);  // the dashpot dominates: Gershgorin is tight here
   EXPECT_FALSE(e.stable);                 // dt 0.6 > 0.5
 }

@@ -12,7 +12,10 @@
 #include <sstream>
 #include <string>
 
+#include "core/bounds.hpp"
 #include "core/error.hpp"
+#include "core/io/format.hpp"
+#include "core/sweep/grid.hpp"
 #include "core/sweep/csv.hpp"
 
 namespace dampbound {
@@ -210,7 +213,8 @@ std::string write_part(const std::string& name, const std::string& id, int shard
   SweepHeader h;
   h.sweep_id = id;
   h.scene_name = "test";
-  h.definition = "m=1 policy=fixed max-iter=10";
+  h.definition = "m=0.001 kappa=0.001:" + format_number(0.001 * static_cast<double>(total)) +
+                 ":0.001 gamma=0.002 dt=0.05 policy=fixed factor=1 max-iter=100";
   h.trials = total;
   h.classes = total;
   h.similarity = "on";
@@ -218,9 +222,14 @@ std::string write_part(const std::string& name, const std::string& id, int shard
   h.shards = shards;
   write_durably(path, [&](std::FILE* f) {
     write_sweep_header(f, h);
-    for (std::uint64_t t : trials)
-      std::fprintf(f, "%llu,0.001,0.001,0.002,1,0.05,fixed,1,%llu,1,restored,34,0.04,0,0,0,0\n",
-                   static_cast<unsigned long long>(t), static_cast<unsigned long long>(t));
+    // A grid the merge's row check accepts: kappa = 0.001 (t + 1), every trial its own class.
+    for (std::uint64_t t : trials) {
+      const double kappa = parse_decimal(std::to_string(t + 1) + "e-3", "--kappa").value();
+      std::fprintf(f, "%llu,0.001,%s,0.002,%.17g,0.05,fixed,1,%llu,1,restored,34,0.04,0,0,0,0\n",
+                   static_cast<unsigned long long>(t), format_number(kappa).c_str(),
+                   0.002 / lower_bound(0.001, kappa),
+                   static_cast<unsigned long long>(t));
+    }
   });
   return path;
 }

@@ -102,7 +102,7 @@ TEST(SceneExpect, AnExpectationMustAssertSomething) {
   EXPECT_EQ(error_of("[[expect]]\nrun = \"soft\"\n"),
             "e.toml:8: [[expect]] asserts nothing: give outcome, iterations, first_entry, left, "
             "left_at, settled_at, max_displacement_below, unstabilisable_max, violations_max, "
-            "violations_min, dt_limit_min or substeps_max");
+            "violations_min, added_mass_percent, scaled_nodes, dt_limit_min or substeps_max");
   EXPECT_NE(error_of("[[expect]]\nframe_dt = 0.1\ndt_limit_min = 0.1\n").find("frame_dt goes with substeps_max"),
             std::string::npos);
   EXPECT_NE(error_of("[[expect]]\nsubsteps_max = 0\n").find("e.toml:9: substeps_max must lie in"),
