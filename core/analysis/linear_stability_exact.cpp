@@ -356,12 +356,9 @@ void with_spec10_damping(const Model& model, const std::vector<Vec3>& x, const P
   e.inner.stable = e.stable;
 }
 
-/// SPEC 10's damping under the other integrators. Implicit Euler stays unconditional (C' is
-/// positive semi-definite and joins its matrix, integrate.cpp); its radius is left out (NaN)
-/// rather than quoted without C'. Forward Euler, Verlet and RK4: no closed form or index
-/// covers them with a general C, so their gamma interval and dt limit are not computed (NaN)
-/// and the verdict is the spectral radius of the step with the whole damping (dense below 25
-/// rows, else Arnoldi); a radius that did not converge decides nothing (not stable).
+/// SPEC 10's damping under the other integrators (docs/criteria.md, "The other integrators"):
+/// implicit Euler stays unconditional, its radius not quoted without C'; the explicit ones get
+/// no limits (NaN) and the verdict of the radius with the whole damping, if it converged.
 void with_spec10_radius(const Model& model, const std::vector<Vec3>& x, const ExactInputs& in,
                         const Params& params, ExactStability& e) {
   e.spec10 = true;
