@@ -407,32 +407,11 @@ std::function<int()> setup(CLI::App& root) {
       ->check(whole_range(2, 1000));
   add_damping_flags(cmd, a->kd, a->rayleigh_mass, a->rayleigh_stiffness, a->damping_opts);
   // SPEC 11 (docs/criteria.md, "Mass scaling"): the least added mass for a target step.
-  a->mass_opt = cmd->add_option("--mass-scale", a->mass.dt_target,
-                                "target time step dt* (s): the least mass to add to the nodes "
-                                "that limit the step so that dt* is stable (SPEC 11), checked "
-                                "by a run. Exit 1 over the cap")
-                    ->check(finite_positive());
-  a->mass_opt->excludes(a->dt_opt)->excludes(a->frame_dt_opt);
-  a->substeps_opt = cmd->add_option("--substeps", a->substeps,
-                                    "with --frame-dt: mass scaling for dt* = frame / substeps")
-                        ->check(CLI::Range(1, 1000000))
-                        ->needs(a->frame_dt_opt);
-  a->mass_only[0] = cmd->add_option("--safety", a->mass.safety,
-                                    "with --mass-scale: design for dt* / safety (default 0.9)")
-                        ->check(CLI::Range(0.0, 1.0))->check(finite_positive());
-  a->mass_only[1] =
-      cmd->add_option("--max-added-mass", a->mass.max_added,
-                      "with --mass-scale: the cap on the added mass, % of the free mass "
-                      "(default 5)")
-          ->check(finite_non_negative());
-  a->mass_only[2] = cmd->add_option("--write-scene", a->mass.write_scene,
-                                    "with --mass-scale: write the scene with the scaled masses "
-                                    "(TOML, at dt*; run, bounds and check read it)");
-  a->mass_only[3] = cmd->add_option("--vtk", a->mass.vtk,
-                                    "with --mass-scale: write the scaled model at rest as one "
-                                    ".vtu with the point array added_mass");
-  a->mass_only[4] = cmd->add_flag("--json", a->mass.json,
-                                  "with --mass-scale: the answer as one JSON object");
+  const MassScaleFlags mass = add_mass_scale_flags(cmd, a->mass, a->substeps, a->dt_opt,
+                                                   a->frame_dt_opt);
+  a->mass_opt = mass.target;
+  a->substeps_opt = mass.substeps;
+  for (int k = 0; k < 5; ++k) a->mass_only[k] = mass.only[k];
   cmd->add_flag("--no-verify", a->no_verify, "do not run the suggestions");
   add_brief_flag(cmd, a->brief);
   add_factor_budget_option(cmd, a->factor_budget);

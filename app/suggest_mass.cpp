@@ -1,6 +1,8 @@
 // suggest --mass-scale: SPEC 11's answer as text, JSON, a scaled scene and a .vtu.
 #include "app/suggest_mass.hpp"
 
+#include "app/options.hpp"
+
 #include <chrono>
 #include <cstdio>
 #include <stdexcept>
@@ -184,6 +186,38 @@ int suggest_mass_scaling(const SceneSpec& scene, const Params& params, const Sto
                 run_ok ? "" : "; its run did not settle: do not use it as is");
   }
   return status;
+}
+
+MassScaleFlags add_mass_scale_flags(CLI::App* cmd, MassScaleArgs& mass, int& substeps,
+                                    CLI::Option* dt_opt, CLI::Option* frame_dt_opt) {
+  MassScaleFlags f;
+  f.target = cmd->add_option("--mass-scale", mass.dt_target,
+                                "target time step dt* (s): the least mass to add to the nodes "
+                                "that limit the step so that dt* is stable (SPEC 11), checked "
+                                "by a run. Exit 1 over the cap")
+                    ->check(finite_positive());
+  f.target->excludes(dt_opt)->excludes(frame_dt_opt);
+  f.substeps = cmd->add_option("--substeps", substeps,
+                                    "with --frame-dt: mass scaling for dt* = frame / substeps")
+                        ->check(CLI::Range(1, 1000000))
+                        ->needs(frame_dt_opt);
+  f.only[0] = cmd->add_option("--safety", mass.safety,
+                                    "with --mass-scale: design for dt* / safety (default 0.9)")
+                        ->check(CLI::Range(0.0, 1.0))->check(finite_positive());
+  f.only[1] =
+      cmd->add_option("--max-added-mass", mass.max_added,
+                      "with --mass-scale: the cap on the added mass, % of the free mass "
+                      "(default 5)")
+          ->check(finite_non_negative());
+  f.only[2] = cmd->add_option("--write-scene", mass.write_scene,
+                                    "with --mass-scale: write the scene with the scaled masses "
+                                    "(TOML, at dt*; run, bounds and check read it)");
+  f.only[3] = cmd->add_option("--vtk", mass.vtk,
+                                    "with --mass-scale: write the scaled model at rest as one "
+                                    ".vtu with the point array added_mass");
+  f.only[4] = cmd->add_flag("--json", mass.json,
+                                  "with --mass-scale: the answer as one JSON object");
+  return f;
 }
 
 }  // namespace dampbound::app

@@ -1,6 +1,7 @@
 #pragma once
 // dampbound suggest SCENE --mass-scale DT (or --frame-dt F --substeps N): SPEC 11's added
 // mass for a target step, printed, as JSON, as a scaled scene and as a ParaView file.
+#include <CLI/CLI.hpp>
 #include <string>
 
 #include "core/scene.hpp"
@@ -17,6 +18,15 @@ struct MassScaleArgs {
   bool json = false;
   bool verify = true;
 };
+
+/// The flags of SPEC 11 on `cmd` (suggest): --mass-scale (excludes --dt and --frame-dt alone),
+/// --substeps (needs --frame-dt), and the ones that go with either (--safety,
+/// --max-added-mass, --write-scene, --vtk, --json).
+struct MassScaleFlags {
+  CLI::Option *target = nullptr, *substeps = nullptr, *only[5] = {};
+};
+MassScaleFlags add_mass_scale_flags(CLI::App* cmd, MassScaleArgs& mass, int& substeps,
+                                    CLI::Option* dt_opt, CLI::Option* frame_dt_opt);
 
 /// Exit 0 for nothing to add and for an answer whose run settled; 1 over the cap, where no
 /// mass helps, or where the run did not settle.
