@@ -6,8 +6,8 @@
 #include <cmath>
 #include <cstdlib>
 
-#include "core/error.hpp"
 #include "core/io/format.hpp"
+#include "dampbound/physics/error.hpp"
 
 namespace dampbound::app {
 

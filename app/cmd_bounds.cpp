@@ -4,6 +4,7 @@
 // integrator, on the two-node system (or a single node) or on a scene.
 #include <cmath>
 #include <cstdio>
+#include <iostream>
 #include <memory>
 #include <sstream>
 #include <stdexcept>
@@ -11,35 +12,33 @@
 
 #include "app/answer_lines.hpp"
 #include "app/commands.hpp"
-#include "app/wait_note.hpp"
 #include "app/options.hpp"
+#include "app/wait_note.hpp"
 #include "core/analysis/answer.hpp"
 #include "core/analysis/criteria.hpp"
 #include "core/analysis/criteria_safe.hpp"
 #include "core/analysis/damping_limits.hpp"
 #include "core/analysis/equilibrium.hpp"
+#include "core/analysis/limits_diff.hpp"
 #include "core/analysis/worst_nodes.hpp"
-#include "core/bounds.hpp"
-#include "core/error.hpp"
-#include "core/integrate.hpp"
 #include "core/io/format.hpp"
 #include "core/io/report.hpp"
-#include "core/safe_bound.hpp"
-#include "core/session.hpp"
+#include "core/physics/integrate.hpp"
+#include "core/physics/safe_bound.hpp"
+#include "dampbound/physics/bounds.hpp"
+#include "dampbound/physics/error.hpp"
+#include "dampbound/run/session.hpp"
 
 namespace dampbound::app::cmd_bounds {
 namespace {
 
 struct BoundsArgs {
-  std::string scene, v, force, integrator, system = "two-node";
-  double m = 0, kappa = 0, dt = 0, gamma = 0, zeta = 0, factor_budget = 0;
+  std::string scene, v, force, system = "two-node";
+  double factor_budget = 0;
   int after = 0, worst = 0;
   bool json = false, brief = false;
   bool equilibrium = false;
-  CLI::Option *m_opt = nullptr, *kappa_opt = nullptr, *dt_opt = nullptr, *gamma_opt = nullptr,
-              *integrator_opt = nullptr, *zeta_opt = nullptr;
-  double kd = 0, rayleigh_mass = 0, rayleigh_stiffness = 0;
-  CLI::Option* damping_opts[3] = {};
+  ParamFlags f;  // --m --kappa --dt --gamma --zeta --integrator --kd --rayleigh-*
 };
 
 /// SPEC 10's lines where the model has dashpot or Rayleigh damping: the damping ratios, the
@@ -111,21 +110,21 @@ void print_criteria(const std::vector<CriterionResult>& criteria) {
 
 /// The paper's own lines for --m --kappa --dt [--v --force --gamma] (the command's first job).
 void print_paper_lines(const BoundsArgs& a) {
-  const double lo = lower_bound(a.m, a.kappa);
+  const double lo = lower_bound(a.f.m, a.f.kappa);
   std::printf("lower bound (eq. 5)   gamma_lo = 2*sqrt(m*kappa) = %s\n", format_human(lo).c_str());
   if (a.v.empty() != a.force.empty()) throw InputError("--v and --force go together");
   if (a.v.empty()) return;
   const Vec3 v = parse_vec3(a.v, "--v"), f = parse_vec3(a.force, "--force");
-  const double hi = upper_bound(v, f, a.m, a.dt);
+  const double hi = upper_bound(v, f, a.f.m, a.f.dt);
   std::printf("upper bound (eq. 6)   gamma_hi = |v*m/dt + F|/|v| = %s%s\n",
               format_human(hi).c_str(), v.norm() == 0 ? " (v = 0: damping has no effect)" : "");
   const bool stabilisable = !(lo > hi);
   std::printf("check (sec. 5)        %s\n",
               stabilisable ? "stabilisable: gamma_lo <= gamma_hi"
                            : "UNSTABILISABLE: gamma_lo > gamma_hi, no damping satisfies both");
-  if (a.gamma_opt->count()) {
-    const bool inside = a.gamma >= lo && a.gamma <= hi;
-    std::printf("gamma = %s          %s\n", format_human(a.gamma).c_str(),
+  if (a.f.gamma_opt->count()) {
+    const bool inside = a.f.gamma >= lo && a.f.gamma <= hi;
+    std::printf("gamma = %s          %s\n", format_human(a.f.gamma).c_str(),
                 inside ? "within the bounds" : "outside the bounds");
   }
 }
@@ -183,7 +182,7 @@ void print_answer_of(const Model& model, const State& state, const Params& p,
 }
 
 int run_parameters(const BoundsArgs& a) {
-  if (!a.m_opt->count() || !a.kappa_opt->count() || !a.dt_opt->count())
+  if (!a.f.m_opt->count() || !a.f.kappa_opt->count() || !a.f.dt_opt->count())
     throw InputError("--m, --kappa and --dt are required without a scene");
   // Asked about one node's state (--v, --force): that answer, and no table of the system at
   // rest, whose eq. 6 (v = 0: inf) would contradict it.
@@ -193,13 +192,13 @@ int run_parameters(const BoundsArgs& a) {
     return 0;
   }
   Params p;
-  p.m = a.m;
-  p.kappa = a.kappa;
-  p.dt = a.dt;
-  p.gamma = a.gamma_opt->count() ? a.gamma : lower_bound(a.m, a.kappa);
-  if (a.zeta_opt->count()) p.gamma = gamma_of_zeta(a.zeta, p);  // every scale is 1 here
-  if (a.integrator_opt->count()) p.integrator = *parse_integrator(a.integrator);
-  apply_damping_flags(a.damping_opts, a.kd, a.rayleigh_mass, a.rayleigh_stiffness, p);
+  p.m = a.f.m;
+  p.kappa = a.f.kappa;
+  p.dt = a.f.dt;
+  p.gamma = a.f.gamma_opt->count() ? a.f.gamma : lower_bound(a.f.m, a.f.kappa);
+  if (a.f.zeta_opt->count()) p.gamma = gamma_of_zeta(a.f.zeta, p);  // every scale is 1 here
+  if (a.f.integrator_opt->count()) p.integrator = *parse_integrator(a.f.integrator);
+  a.f.apply_damping(p);
   const bool two = a.system == "two-node";
   const Model model = two ? two_node_system(p) : single_node_system(p);
   if (const auto why = magnitude_problem(model, p.dt)) throw InputError(*why);
@@ -215,7 +214,7 @@ int run_parameters(const BoundsArgs& a) {
   std::printf("parameters   m=%s kappa=%s gamma=%s%s (zeta=%s) dt=%s s integrator=%s\n",
               format_human(p.m).c_str(), format_human(p.kappa).c_str(),
               format_human(p.gamma).c_str(),
-              a.gamma_opt->count() || a.zeta_opt->count() ? "" : " (= gamma_lo)",
+              a.f.gamma_opt->count() || a.f.zeta_opt->count() ? "" : " (= gamma_lo)",
               zeta_text(damping_ratio_range(model)).c_str(),
               format_human(p.dt).c_str(), to_string(p.integrator));
   print_safe_lines(model, rest, p, exact);
@@ -277,20 +276,26 @@ int run_scene(const BoundsArgs& a) {
   note.stage("reading the scene");
   SceneSpec scene = load_scene_arg(a.scene);
   Params p = scene.params;
-  if (a.m_opt->count()) p.m = a.m;
-  if (a.kappa_opt->count()) p.kappa = a.kappa;
-  if (a.dt_opt->count()) p.dt = a.dt;
-  if (a.gamma_opt->count()) {
-    p.gamma = a.gamma;
-    p.zeta.reset();
-  }
-  if (a.zeta_opt->count()) p.zeta = a.zeta;
+  StopRules unused_rules;
+  a.f.apply(p, unused_rules);
   resolve_zeta(scene.model, p);
-  if (a.integrator_opt->count()) p.integrator = *parse_integrator(a.integrator);
-  apply_damping_flags(a.damping_opts, a.kd, a.rayleigh_mass, a.rayleigh_stiffness, p);
   require_magnitudes(scene.model, p);
   p.policy = DampingPolicy::fixed;  // the user's gamma is what is judged
   const std::string name = scene.name.empty() ? a.scene : scene.name;
+  if (a.json && a.worst == 0) {  // the baseline `diff` reads: the limits at rest, as JSON
+    if (a.after > 0 || a.equilibrium)
+      throw InputError("--json writes the limits at rest (the baseline diff reads): drop " +
+                       std::string(a.after > 0 ? "--after" : "--equilibrium"));
+    ExactOptions options;
+    options.threads = 0;
+    options.max_factor_flops = a.factor_budget * 1e9;
+    note.stage("the limits at rest (" + scene_counts(scene.model) + ")");
+    LimitsSnapshot s = limits_snapshot(scene, p, options);
+    if (s.scene.empty()) s.scene = name;
+    write_limits_json(std::cout, s);
+    std::cout.flush();
+    return 0;
+  }
   note.stage("building the model (" + scene_counts(scene.model) + ")");
   Session session(std::move(scene), p, StopRules{});
   for (int k = 0; k < a.after && session.running(); ++k) {
@@ -367,7 +372,7 @@ int run_scene(const BoundsArgs& a) {
 
 int run(const BoundsArgs& a) {
   if (a.scene.empty() && a.worst > 0) throw InputError("--worst needs a SCENE");
-  if (a.json && a.worst == 0) throw InputError("--json goes with --worst N");
+  if (a.json && a.scene.empty()) throw InputError("--json needs a SCENE");
   return a.scene.empty() ? run_parameters(a) : run_scene(a);
 }
 
@@ -382,19 +387,19 @@ std::function<int()> setup(CLI::App& root) {
   cmd->add_option("scene", a->scene,
                   "scene file (.toml) or shipped scene name; without it --m --kappa --dt are "
                   "required and the two-node system (or --system single-node) is analysed");
-  a->m_opt = cmd->add_option("--m", a->m, "node mass (mass unit)")->check(finite_positive());
-  a->kappa_opt = cmd->add_option("--kappa", a->kappa, "stiffness (mass unit/s^2)")
+  a->f.m_opt = cmd->add_option("--m", a->f.m, "node mass (mass unit)")->check(finite_positive());
+  a->f.kappa_opt = cmd->add_option("--kappa", a->f.kappa, "stiffness (mass unit/s^2)")
                      ->check(finite_positive());
-  a->dt_opt = cmd->add_option("--dt", a->dt, "time step (s)")->check(finite_positive());
+  a->f.dt_opt = cmd->add_option("--dt", a->f.dt, "time step (s)")->check(finite_positive());
   cmd->add_option("--v", a->v, "node velocity x,y,z (cm/s)");
   cmd->add_option("--force", a->force, "internal (spring) force on the node x,y,z (mass unit cm/s^2)");
-  a->gamma_opt = cmd->add_option("--gamma", a->gamma,
+  a->f.gamma_opt = cmd->add_option("--gamma", a->f.gamma,
                                  "a damping to test against the bounds (mass unit/s); default "
                                  "the scene's, or gamma_lo without a scene")
                      ->check(finite_non_negative());
-  a->zeta_opt = add_zeta_option(cmd, a->zeta, a->gamma_opt);
-  a->integrator_opt =
-      cmd->add_option("--integrator", a->integrator, "integrator whose exact limits are shown")
+  a->f.zeta_opt = add_zeta_option(cmd, a->f.zeta, a->f.gamma_opt);
+  a->f.integrator_opt =
+      cmd->add_option("--integrator", a->f.integrator, "integrator whose exact limits are shown")
           ->check(CLI::IsMember(integrator_names()));
   cmd->add_option("--system", a->system, "without a scene: two-node (default) or single-node")
       ->check(CLI::IsMember({"two-node", "single-node"}));
@@ -411,9 +416,11 @@ std::function<int()> setup(CLI::App& root) {
                   "smallest gamma_safe_i, each with its mass, stiffest spring, shortest "
                   "edge, degree and the cause in words")
       ->check(whole_range(1, 1000000));
-  cmd->add_flag("--json", a->json, "with --worst: the worst nodes as one JSON object only");
+  cmd->add_flag("--json", a->json,
+                "with a scene: its limits at rest as JSON only, the baseline `diff` reads (what "
+                "diff --save writes); with --worst: the worst nodes as one JSON object only");
   add_brief_flag(cmd, a->brief);
-  add_damping_flags(cmd, a->kd, a->rayleigh_mass, a->rayleigh_stiffness, a->damping_opts);
+  a->f.add_damping_to(cmd);
   add_factor_budget_option(cmd, a->factor_budget);
   return [a] { return run(*a); };
 }

@@ -9,12 +9,12 @@
 
 #include "app/commands.hpp"
 #include "app/options.hpp"
-#include "core/damping_ratio.hpp"
-#include "core/error.hpp"
 #include "core/analysis/expect.hpp"
 #include "core/io/files.hpp"
 #include "core/io/format.hpp"
 #include "core/io/scene_file.hpp"
+#include "core/physics/damping_ratio.hpp"
+#include "dampbound/physics/error.hpp"
 
 namespace dampbound::app::cmd_check {
 namespace {

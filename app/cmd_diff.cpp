@@ -9,10 +9,10 @@
 #include "app/commands.hpp"
 #include "app/options.hpp"
 #include "core/analysis/limits_diff.hpp"
-#include "core/damping_ratio.hpp"
-#include "core/error.hpp"
 #include "core/io/files.hpp"
 #include "core/io/format.hpp"
+#include "core/physics/damping_ratio.hpp"
+#include "dampbound/physics/error.hpp"
 
 namespace dampbound::app::cmd_diff {
 namespace {

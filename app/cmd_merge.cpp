@@ -3,9 +3,9 @@
 #include <memory>
 
 #include "app/commands.hpp"
-#include "core/error.hpp"
 #include "core/io/format.hpp"
 #include "core/sweep/csv.hpp"
+#include "dampbound/physics/error.hpp"
 
 namespace dampbound::app::cmd_merge {
 namespace {

@@ -4,14 +4,14 @@
 
 #include "app/answer_lines.hpp"
 #include "app/commands.hpp"
-#include "app/wait_note.hpp"
 #include "app/options.hpp"
+#include "app/wait_note.hpp"
 #include "core/analysis/answer.hpp"
 #include "core/io/files.hpp"
 #include "core/io/format.hpp"
 #include "core/io/report.hpp"
-#include "core/session.hpp"
 #include "core/io/vtu.hpp"
+#include "dampbound/run/session.hpp"
 
 namespace dampbound::app::cmd_run {
 namespace {

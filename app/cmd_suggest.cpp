@@ -7,34 +7,31 @@
 
 #include "app/answer_lines.hpp"
 #include "app/commands.hpp"
-#include "app/wait_note.hpp"
 #include "app/options.hpp"
-#include "app/suggest_mass.hpp"
-#include "core/error.hpp"
 #include "app/suggest_knobs.hpp"
+#include "app/suggest_mass.hpp"
+#include "app/wait_note.hpp"
 #include "core/analysis/answer.hpp"
 #include "core/analysis/criteria_safe.hpp"
 #include "core/analysis/damping_limits.hpp"
 #include "core/analysis/equilibrium.hpp"
 #include "core/analysis/substeps.hpp"
 #include "core/analysis/suggest.hpp"
-#include "core/integrate.hpp"
 #include "core/io/format.hpp"
 #include "core/io/report.hpp"
+#include "core/physics/integrate.hpp"
+#include "dampbound/physics/error.hpp"
 
 namespace dampbound::app::cmd_suggest {
 namespace {
 
 struct SuggestArgs {
-  std::string scene, integrator;
-  double m = 0, kappa = 0, dt = 0, gamma = 0, zeta = 0, factor_budget = 0, frame_dt = 0;
-  int max_iter = 0, trials = 16;
+  std::string scene;
+  double factor_budget = 0, frame_dt = 0;
+  int trials = 16;
   bool no_verify = false, brief = false;
-  CLI::Option *m_opt = nullptr, *kappa_opt = nullptr, *dt_opt = nullptr, *gamma_opt = nullptr,
-              *integrator_opt = nullptr, *max_iter_opt = nullptr,
-              *zeta_opt = nullptr, *frame_dt_opt = nullptr;
-  double kd = 0, rayleigh_mass = 0, rayleigh_stiffness = 0;
-  CLI::Option* damping_opts[3] = {};
+  CLI::Option* frame_dt_opt = nullptr;
+  ParamFlags f;  // --m --kappa --dt --gamma --zeta --integrator --max-iter --kd --rayleigh-*
   MassScaleArgs mass;  // SPEC 11: --mass-scale, or --frame-dt with --substeps
   int substeps = 0;
   CLI::Option *mass_opt = nullptr, *substeps_opt = nullptr, *mass_only[5] = {};
@@ -284,18 +281,8 @@ int run(const SuggestArgs& a) {
   SceneSpec scene = load_scene_arg(a.scene);
   Params p = scene.params;
   StopRules rules = scene.rules;
-  if (a.m_opt->count()) p.m = a.m;
-  if (a.kappa_opt->count()) p.kappa = a.kappa;
-  if (a.dt_opt->count()) p.dt = a.dt;
-  if (a.gamma_opt->count()) {
-    p.gamma = a.gamma;
-    p.zeta.reset();
-  }
-  if (a.zeta_opt->count()) p.zeta = a.zeta;
+  a.f.apply(p, rules);
   resolve_zeta(scene.model, p);
-  if (a.integrator_opt->count()) p.integrator = *parse_integrator(a.integrator);
-  if (a.max_iter_opt->count()) rules.max_iterations = a.max_iter;
-  apply_damping_flags(a.damping_opts, a.kd, a.rayleigh_mass, a.rayleigh_stiffness, p);
   require_magnitudes(scene.model, p);
   p.policy = DampingPolicy::fixed;
   const std::string name = scene.name.empty() ? a.scene : scene.name;
@@ -350,7 +337,7 @@ int run(const SuggestArgs& a) {
     head();
     return print_substeps(a.scene, s);
   }
-  if (a.gamma_opt->count() || a.zeta_opt->count()) {
+  if (a.f.gamma_opt->count() || a.f.zeta_opt->count()) {
     const StepSuggestion s = suggest_step(scene, p, rules, options);
     print_answer(step_answer(s));
     if (a.brief)
@@ -381,13 +368,13 @@ std::function<int()> setup(CLI::App& root) {
       "the largest stable dt. Each suggestion is verified by running it. Exit 1 when no "
       "damping satisfies every criterion.");
   cmd->add_option("scene", a->scene, "scene file (.toml) or the name of a shipped scene")->required();
-  a->m_opt = cmd->add_option("--m", a->m, "node mass (mass unit)")->check(finite_positive());
-  a->kappa_opt = cmd->add_option("--kappa", a->kappa, "stiffness (mass unit/s^2)")->check(finite_positive());
-  a->dt_opt = cmd->add_option("--dt", a->dt, "time step (s): suggest the damping")->check(finite_positive());
-  a->gamma_opt = cmd->add_option("--gamma", a->gamma, "damping (mass unit/s): suggest the time step")
+  a->f.m_opt = cmd->add_option("--m", a->f.m, "node mass (mass unit)")->check(finite_positive());
+  a->f.kappa_opt = cmd->add_option("--kappa", a->f.kappa, "stiffness (mass unit/s^2)")->check(finite_positive());
+  a->f.dt_opt = cmd->add_option("--dt", a->f.dt, "time step (s): suggest the damping")->check(finite_positive());
+  a->f.gamma_opt = cmd->add_option("--gamma", a->f.gamma, "damping (mass unit/s): suggest the time step")
                      ->check(finite_non_negative());
-  a->zeta_opt = add_zeta_option(cmd, a->zeta, a->gamma_opt);
-  a->zeta_opt->description(a->zeta_opt->get_description() + ": suggest the time step");
+  a->f.zeta_opt = add_zeta_option(cmd, a->f.zeta, a->f.gamma_opt);
+  a->f.zeta_opt->description(a->f.zeta_opt->get_description() + ": suggest the time step");
   a->frame_dt_opt = cmd->add_option("--frame-dt", a->frame_dt,
                                     "frame time (s): the fewest substeps n with dt = frame/n "
                                     "stable by the exact limit and the n the safe bound "
@@ -395,19 +382,19 @@ std::function<int()> setup(CLI::App& root) {
                                     "scene's start; where the exact count does not settle, the fewest count "
                                     "that does, found by running. Exit 1 when no count is verified")
                         ->check(finite_positive());
-  a->frame_dt_opt->excludes(a->dt_opt);
-  a->dt_opt->excludes(a->gamma_opt);
-  a->dt_opt->excludes(a->zeta_opt);
-  a->integrator_opt =
-      cmd->add_option("--integrator", a->integrator, "integrator (default: the scene's)")
+  a->frame_dt_opt->excludes(a->f.dt_opt);
+  a->f.dt_opt->excludes(a->f.gamma_opt);
+  a->f.dt_opt->excludes(a->f.zeta_opt);
+  a->f.integrator_opt =
+      cmd->add_option("--integrator", a->f.integrator, "integrator (default: the scene's)")
           ->check(CLI::IsMember(integrator_names()));
-  a->max_iter_opt = cmd->add_option("--max-iter", a->max_iter, "iteration limit of the verification runs")
+  a->f.max_iter_opt = cmd->add_option("--max-iter", a->f.max_iter, "iteration limit of the verification runs")
                         ->check(whole_range(1, 100000000));
   cmd->add_option("--trials", a->trials, "trial runs for the best damping of a non-uniform model")
       ->check(whole_range(2, 1000));
-  add_damping_flags(cmd, a->kd, a->rayleigh_mass, a->rayleigh_stiffness, a->damping_opts);
+  a->f.add_damping_to(cmd);
   // SPEC 11 (docs/criteria.md, "Mass scaling"): the least added mass for a target step.
-  const MassScaleFlags mass = add_mass_scale_flags(cmd, a->mass, a->substeps, a->dt_opt,
+  const MassScaleFlags mass = add_mass_scale_flags(cmd, a->mass, a->substeps, a->f.dt_opt,
                                                    a->frame_dt_opt);
   a->mass_opt = mass.target;
   a->substeps_opt = mass.substeps;

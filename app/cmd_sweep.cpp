@@ -15,18 +15,19 @@
 #include <sstream>
 
 #include "app/commands.hpp"
+#include "app/map_png.hpp"
 #include "app/options.hpp"
 #include "app/sweep_rule.hpp"
-#include "core/damping_ratio.hpp"
-#include "core/error.hpp"
-#include "core/integrate.hpp"
 #include "core/io/files.hpp"
 #include "core/io/format.hpp"
-#include "core/sweep/safe_edge.hpp"
+#include "core/physics/damping_ratio.hpp"
+#include "core/physics/integrate.hpp"
 #include "core/sweep/map.hpp"
 #include "core/sweep/progress.hpp"
 #include "core/sweep/runner.hpp"
+#include "core/sweep/safe_edge.hpp"
 #include "core/sweep/summary.hpp"
+#include "dampbound/physics/error.hpp"
 #include "gpu/gpu_sweep.hpp"
 
 namespace dampbound::app::cmd_sweep {
@@ -188,7 +189,7 @@ int run(const SweepArgs& a) {
   };
   writable("-o", a.output);
   if (!a.map.empty()) {
-    if (!map_renderer())
+    if (!map_png_available())
       throw InputError("--map: this build has no headless EGL host (DAMPBOUND_EGL=OFF)");
     writable("--map", a.map);
   }
@@ -298,7 +299,7 @@ int run(const SweepArgs& a) {
     SweepTable table;
     table.header = h;
     table.rows = rep.rows;
-    map_renderer()(build_stability_map(table, lambda_unit), a.map);
+    render_map_png(build_stability_map(table, lambda_unit), a.map);
     std::printf("map          %s\n", a.map.c_str());
   }
   return 0;

@@ -5,11 +5,11 @@
 
 #include "app/commands.hpp"
 #include "app/options.hpp"
-#include "core/damping_ratio.hpp"
-#include "core/error.hpp"
 #include "core/analysis/figures.hpp"
 #include "core/io/files.hpp"
 #include "core/io/report.hpp"
+#include "core/physics/damping_ratio.hpp"
+#include "dampbound/physics/error.hpp"
 #include "ui/render_png.hpp"
 #include "ui/trace_plots.hpp"
 

@@ -13,12 +13,12 @@
 #include "app/commands.hpp"
 #include "app/options.hpp"
 #include "app/wait_note.hpp"
-#include "core/damping_ratio.hpp"
-#include "core/error.hpp"
 #include "core/io/files.hpp"
 #include "core/io/format.hpp"
 #include "core/io/report.hpp"
 #include "core/io/scene_write.hpp"
+#include "core/physics/damping_ratio.hpp"
+#include "dampbound/physics/error.hpp"
 
 #if defined(DAMPBOUND_HAVE_GLFW)
 #include "ui/close_guard.hpp"

@@ -1,56 +1,24 @@
 // dampbound map RESULTS.csv -o FILE.png: the stability map of a sweep (core/sweep/map.hpp)
-// drawn with the plot widget through the headless EGL host. Also the renderer behind
-// `sweep --map`, which this file registers at start-up.
+// drawn with the plot widget through the headless EGL host (app/map_png.hpp).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <memory>
 
 #include "app/commands.hpp"
+#include "app/map_png.hpp"
 #include "app/options.hpp"
-#include "core/error.hpp"
 #include "core/io/files.hpp"
 #include "core/io/format.hpp"
 #include "core/sweep/map.hpp"
 #include "core/sweep/summary.hpp"
+#include "dampbound/physics/error.hpp"
 #include "ui/egl_host.hpp"
 #include "ui/map_plot.hpp"
 #include "ui/plot.hpp"
 
 namespace dampbound::app::cmd_ui_map {
 namespace {
-
-/// The paper's layout: the kappa/m panel across the top (its legend beside it), the (m, kappa)
-/// panels side by side below. With --axes (map.side_by_side) every panel in one row. Either
-/// way every part of the image holds a plot.
-void render_map(const StabilityMap& map, const std::string& png, int width, int height) {
-  std::vector<ui::PlotSpec> plots;
-  for (size_t k = 0; k < map.panels.size(); ++k)
-    plots.push_back(ui::map_panel_plot(map.panels[k], map.max_iterations, k == 0, map.rule));
-  const int n = static_cast<int>(plots.size());
-  const bool row = map.side_by_side;
-  if (!row) plots.front().title = map.title + " - " + plots.front().title;
-  const int below = row ? 0 : n - 1;  // panels under the top one
-  if (width <= 0) width = row ? std::min(2400, 900 * n) : below >= 3 ? 2100 : 1800;
-  if (height <= 0) height = below > 0 ? 1400 : 800;
-  const ui::PlotStyle style = ui::plot_style_light();
-  ui::EglHost host;
-  const ui::Image img = host.render_frames(width, height, [&](ui::FrameInfo& info) {
-    ImDrawList* dl = ImGui::GetBackgroundDrawList();
-    const float w = static_cast<float>(info.width), h = static_cast<float>(info.height);
-    dl->AddRectFilled(ImVec2(0, 0), ImVec2(w, h), style.background);
-    // The row of side-by-side panels: all of them in --axes mode, else those below the top.
-    const int first = row ? 0 : 1, count = row ? n : below;
-    const float top = row || below == 0 ? 0.0f : std::floor(0.45f * h);
-    if (!row) ui::draw_plot(dl, ImVec2(0, 0), ImVec2(w, below > 0 ? top : h), plots.front(), style);
-    for (int k = 0; k < count; ++k) {
-      const float cw = std::floor(w / static_cast<float>(count));
-      ui::draw_plot(dl, ImVec2(cw * static_cast<float>(k), top), ImVec2(cw, h - top),
-                    plots[static_cast<size_t>(first + k)], style);
-    }
-  });
-  ui::write_png_atomic(img, png);
-}
 
 struct MapArgs {
   std::string csv, output, scene, size;
@@ -87,7 +55,7 @@ int run(const MapArgs& a) {
   }
   if (a.dt_opt->count()) opt.dt = a.dt;
   const StabilityMap map = build_stability_map(table, lambda_unit, opt);
-  render_map(map, a.output, width, height);
+  render_map_png(map, a.output, width, height);
   std::printf("map          %s -> %s (%zu panels, lambda_max = %s * kappa/m 1/s^2)\n",
               a.csv.c_str(), a.output.c_str(), map.panels.size(),
               format_human(lambda_unit).c_str());
@@ -119,12 +87,6 @@ std::function<int()> setup(CLI::App& root) {
 }
 
 const bool registered = register_command("map", setup);
-const bool hooked = [] {
-  map_renderer() = [](const StabilityMap& map, const std::string& png) {
-    render_map(map, png, 0, 0);
-  };
-  return true;
-}();
 
 }  // namespace
 }  // namespace dampbound::app::cmd_ui_map

@@ -14,16 +14,17 @@
 #include <thread>
 
 #include "app/commands.hpp"
+#include "app/map_png.hpp"
 #include "app/options.hpp"
 #include "core/analysis/claims.hpp"
-#include "core/sweep/sweep_claims.hpp"
-#include "core/error.hpp"
 #include "core/io/files.hpp"
 #include "core/io/format.hpp"
-#include "core/sweep/safe_edge.hpp"
 #include "core/sweep/map.hpp"
 #include "core/sweep/progress.hpp"
 #include "core/sweep/runner.hpp"
+#include "core/sweep/safe_edge.hpp"
+#include "core/sweep/sweep_claims.hpp"
+#include "dampbound/physics/error.hpp"
 #include "ui/render_png.hpp"
 #include "ui/trace_plots.hpp"
 
@@ -111,7 +112,7 @@ SweepOutcome reduced_sweep(const ReproduceArgs& a, const SceneSpec& scene, bool 
   SweepTable table;
   table.header = o.report.header;
   table.rows = o.report.rows;
-  map_renderer()(build_stability_map(table, lambda_unit), o.map);
+  render_map_png(build_stability_map(table, lambda_unit), o.map);
   return o;
 }
 
@@ -201,7 +202,7 @@ int run(const ReproduceArgs& a) {
   if (::mkdir(a.dir.c_str(), 0777) != 0 && errno != EEXIST)
     throw InputError("-o " + a.dir + ": cannot create the folder");
   check_writable(a.dir + "/report.md");
-  if (!a.skip_sweeps && !map_renderer())
+  if (!a.skip_sweeps && !map_png_available())
     throw InputError("reproduce: this build has no headless EGL host for the maps");
   const SceneSpec plane = load_scene_arg(a.scene);
   std::vector<Claim> claims;

@@ -6,11 +6,11 @@
 
 #include "app/cli_words.hpp"
 #include "app/commands.hpp"
-#include "core/error.hpp"
 #include "core/io/format.hpp"
 #include "core/io/scene_text.hpp"
-#include "core/step_isa.hpp"
 #include "core/sweep/kernel.hpp"
+#include "dampbound/physics/error.hpp"
+#include "dampbound/physics/step_isa.hpp"
 #include "dampbound/version.hpp"
 
 namespace dampbound::app {

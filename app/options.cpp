@@ -11,9 +11,9 @@
 #include <filesystem>
 
 #include "core/analysis/linear_stability_exact.hpp"
-#include "core/error.hpp"
 #include "core/io/format.hpp"
 #include "core/io/scene_file.hpp"
+#include "dampbound/physics/error.hpp"
 
 #ifndef DAMPBOUND_SOURCE_DIR
 #define DAMPBOUND_SOURCE_DIR "."
@@ -93,12 +93,21 @@ void ParamFlags::add_to(CLI::App* cmd, bool with_rules) {
   integrator_opt =
       cmd->add_option("--integrator", integrator, "time integrator (default: the paper's)")
           ->check(CLI::IsMember(integrator_names()));
-  CLI::Option* damping[3] = {};
-  add_damping_flags(cmd, kd, rayleigh_mass, rayleigh_stiffness, damping);
-  kd_opt = damping[0], rayleigh_mass_opt = damping[1], rayleigh_stiffness_opt = damping[2];
+  add_damping_to(cmd);
   if (with_rules)
     max_iter_opt = cmd->add_option("--max-iter", max_iter, "iteration limit of the protocol")
                        ->check(whole_range(1, 100000000));
+}
+
+void ParamFlags::add_damping_to(CLI::App* cmd) {
+  CLI::Option* damping[3] = {};
+  add_damping_flags(cmd, kd, rayleigh_mass, rayleigh_stiffness, damping);
+  kd_opt = damping[0], rayleigh_mass_opt = damping[1], rayleigh_stiffness_opt = damping[2];
+}
+
+void ParamFlags::apply_damping(Params& p) const {
+  CLI::Option* const damping[3] = {kd_opt, rayleigh_mass_opt, rayleigh_stiffness_opt};
+  apply_damping_flags(damping, kd, rayleigh_mass, rayleigh_stiffness, p);
 }
 
 void ParamFlags::apply(Params& p, StopRules& rules) const {
@@ -113,8 +122,7 @@ void ParamFlags::apply(Params& p, StopRules& rules) const {
   if (factor_opt && factor_opt->count()) p.factor = factor;
   if (policy_opt && policy_opt->count()) p.policy = *parse_policy(policy);
   if (integrator_opt && integrator_opt->count()) p.integrator = *parse_integrator(integrator);
-  CLI::Option* const damping[3] = {kd_opt, rayleigh_mass_opt, rayleigh_stiffness_opt};
-  apply_damping_flags(damping, kd, rayleigh_mass, rayleigh_stiffness, p);
+  apply_damping(p);
   if (max_iter_opt && max_iter_opt->count()) rules.max_iterations = max_iter;
 }
 

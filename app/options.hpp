@@ -5,7 +5,7 @@
 #include <string>
 
 #include "app/cli_words.hpp"
-#include "core/scene.hpp"
+#include "dampbound/run/scene.hpp"
 
 namespace dampbound::app {
 
@@ -33,11 +33,16 @@ struct ParamFlags {
               *factor_opt = nullptr, *policy_opt = nullptr, *integrator_opt = nullptr,
               *max_iter_opt = nullptr, *zeta_opt = nullptr;
 
-  /// Adds the flags to `cmd`. `with_rules` adds --max-iter.
+  /// Adds the flags to `cmd`. `with_rules` adds --max-iter. A command that words its flags
+  /// its own way (bounds, suggest) adds them itself into these fields and options instead.
   void add_to(CLI::App* cmd, bool with_rules = true);
+  /// Adds --kd, --rayleigh-mass and --rayleigh-stiffness (SPEC 10) alone.
+  void add_damping_to(CLI::App* cmd);
   /// Overrides what was given on the command line (--gamma clears a zeta, --zeta sets one:
-  /// resolve_zeta() turns it into gamma once the scene is known).
+  /// resolve_zeta() turns it into gamma once the scene is known). Flags never added are skipped.
   void apply(Params& params, StopRules& rules) const;
+  /// The SPEC 10 damping flags alone.
+  void apply_damping(Params& params) const;
 };
 
 /// Adds `--zeta Z` (the nodal damping ratio, SPEC 10) to `cmd`, excluding `gamma` when given.
@@ -66,7 +71,7 @@ std::string shipped_scenes_dir();
 SceneSpec load_scene_arg(const std::string& arg);
 
 /// InputError with magnitude_problem's line when the scene's numbers at `params` would
-/// overflow an intermediate of the step or the analysis (core/model.hpp): no verdict is
+/// overflow an intermediate of the step or the analysis (include/dampbound/physics/model.hpp): no verdict is
 /// printed beside an inf or a NaN.
 void require_magnitudes(const ModelSpec& spec, const Params& params);
 

@@ -5,12 +5,12 @@
 #include <cstdlib>
 
 #include "core/analysis/kappa_ceiling.hpp"
-#include "core/error.hpp"
 #include "core/io/files.hpp"
 #include "core/io/format.hpp"
 #include "core/io/report.hpp"
 #include "core/io/vtu.hpp"
-#include "core/step.hpp"
+#include "dampbound/physics/error.hpp"
+#include "dampbound/physics/step.hpp"
 
 namespace dampbound::app {
 

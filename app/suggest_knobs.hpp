@@ -4,7 +4,7 @@
 #include <string>
 
 #include "core/analysis/rayleigh_design.hpp"
-#include "core/scene.hpp"
+#include "dampbound/run/scene.hpp"
 
 namespace dampbound::app {
 

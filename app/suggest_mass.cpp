@@ -8,14 +8,14 @@
 #include <stdexcept>
 
 #include "core/analysis/mass_scaling_scene.hpp"
-#include "core/error.hpp"
-#include "core/integrate.hpp"
 #include "core/io/files.hpp"
 #include "core/io/format.hpp"
 #include "core/io/report.hpp"
 #include "core/io/scene_file.hpp"
 #include "core/io/scene_write.hpp"
 #include "core/io/vtu.hpp"
+#include "core/physics/integrate.hpp"
+#include "dampbound/physics/error.hpp"
 
 namespace dampbound::app::suggest_mass {
 namespace {

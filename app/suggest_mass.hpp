@@ -4,7 +4,7 @@
 #include <CLI/CLI.hpp>
 #include <string>
 
-#include "core/scene.hpp"
+#include "dampbound/run/scene.hpp"
 
 namespace dampbound::app {
 

@@ -1,7 +1,7 @@
 #pragma once
 // Big meshes for the benchmarks, built in code: the paper's plane at any size (SPEC 5's
 // geometry, anchors at every node) and a structured tetrahedral block.
-#include "core/scene.hpp"
+#include "dampbound/run/scene.hpp"
 
 namespace dampbound::bench {
 

@@ -19,7 +19,7 @@
 #include "bench/matrix_file.hpp"
 #include "core/analysis/damping_limits.hpp"
 #include "core/io/scene_file.hpp"
-#include "core/stiffness.hpp"
+#include "dampbound/physics/stiffness.hpp"
 
 namespace {
 

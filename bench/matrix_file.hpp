@@ -7,7 +7,7 @@
 #include <fstream>
 #include <string>
 
-#include "core/stiffness.hpp"
+#include "dampbound/physics/stiffness.hpp"
 
 namespace dampbound::bench {
 

@@ -1,7 +1,7 @@
 // What a step() on the paper's plane spends on the spring pass: the internal forces alone
 // (SPEC 1), SPEC 9's row sums alone, both in one pass (what step() runs every step), and the
 // whole step, in ms per call on 1 thread, with each copy of the spring batch this CPU runs
-// (core/step_isa.hpp: generic, avx2). The plane's free nodes are moved by a small
+// (include/dampbound/physics/step_isa.hpp: generic, avx2). The plane's free nodes are moved by a small
 // pseudo-random vector first (all springs busy); the fastest of 5 windows of 20 calls is
 // printed (the least disturbed on a shared machine).
 //
@@ -13,9 +13,9 @@
 #include <string>
 
 #include "bench/bench_meshes.hpp"
-#include "core/detail/spring_pass.hpp"
-#include "core/step.hpp"
-#include "core/step_isa.hpp"
+#include "core/physics/detail/spring_pass.hpp"
+#include "dampbound/physics/step.hpp"
+#include "dampbound/physics/step_isa.hpp"
 
 namespace {
 
@@ -47,7 +47,7 @@ int main(int argc, char** argv) {
   bench::shake(model, s);
   std::printf("plane %dx%d (%zu nodes, %zu springs), 1 thread, ms per call:\n", n, n, s.x.size(),
               model.spec().springs.size());
-  // Each copy of the spring batch the CPU runs (core/step_isa.hpp), measured in turn.
+  // Each copy of the spring batch the CPU runs (include/dampbound/physics/step_isa.hpp), measured in turn.
   double first_step = 0;
   for (StepIsa isa : {StepIsa::generic, StepIsa::avx2}) {
     if (!step_isa_supported(isa)) {

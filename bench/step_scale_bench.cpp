@@ -7,7 +7,7 @@
 //                    [--what step|monitor]   (defaults 1100000, 2, 5, all, step)
 //
 // --what monitor times, instead of a step, what a user's own simulator asks the Monitor for
-// each step (core/monitor.hpp: the internal forces, then check() with the positions under
+// each step (include/dampbound/monitor.hpp: the internal forces, then check() with the positions under
 // policy safe) on the same meshes and states, in ns per node-call.
 //
 // Each mesh starts with every free node moved by a small pseudo-random vector (all springs
@@ -17,7 +17,7 @@
 // shared machine falls on both. Printed per thread count: the fastest window (the least
 // disturbed) and the median; the speed-up of the fastest windows, and the range of the R
 // ratios of each 1-thread window to the T-thread window after it. The trajectories are the
-// same bits on any thread count (tests/core/step_test.cpp).
+// same bits on any thread count (tests/core/physics/step_test.cpp).
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -27,8 +27,8 @@
 #include <vector>
 
 #include "bench/bench_meshes.hpp"
-#include "core/monitor.hpp"
-#include "core/step.hpp"
+#include "dampbound/monitor.hpp"
+#include "dampbound/physics/step.hpp"
 
 namespace {
 

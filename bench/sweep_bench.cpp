@@ -14,11 +14,11 @@
 #include <thread>
 #include <vector>
 
-#include "core/bounds.hpp"
-#include "core/scene.hpp"
-#include "core/step.hpp"
-#include "core/sweep/kernel.hpp"
 #include "core/io/scene_file.hpp"
+#include "core/sweep/kernel.hpp"
+#include "dampbound/physics/bounds.hpp"
+#include "dampbound/physics/step.hpp"
+#include "dampbound/run/scene.hpp"
 
 namespace {
 

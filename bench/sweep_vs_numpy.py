@@ -34,7 +34,7 @@ PAPER_LOWER_TRIAL_STEPS = 3.42e8  # docs/sweeps.md: --preset paper-lower, simila
 
 
 def paper_plane(n=36, spacing=0.57):
-    """core/scene.cpp make_grid + paper_plane_scene: rest positions, springs, perturbed node."""
+    """core/run/scene.cpp make_grid + paper_plane_scene: rest positions, springs, perturbed node."""
     rest = np.array([[a * spacing, 0.0, b * spacing] for a in range(n) for b in range(n)])
     springs = []
     for a in range(n):

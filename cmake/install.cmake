@@ -14,16 +14,13 @@ set_target_properties(dampbound_core_shared PROPERTIES EXPORT_NAME core)
 install(EXPORT dampboundTargets NAMESPACE dampbound::
         DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/dampbound)
 
-# Public headers: include/dampbound/monitor.hpp and version.hpp at the top, and the core
-# headers they (and a Session) need under include/dampbound/core/, where their own
-# `#include "core/..."` lines find each other.
-install(FILES core/monitor.hpp ${PROJECT_BINARY_DIR}/include/dampbound/version.hpp
+# Public headers: include/dampbound/ as it is in the source tree (the umbrella dampbound.hpp,
+# monitor.hpp, physics/, run/, analysis/), and the generated version.hpp beside them. Their own
+# `#include "dampbound/..."` lines find each other under the prefix's include/.
+install(DIRECTORY include/dampbound DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
+        FILES_MATCHING PATTERN "*.hpp")
+install(FILES ${PROJECT_BINARY_DIR}/include/dampbound/version.hpp
         DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/dampbound)
-foreach(header ${DAMPBOUND_PUBLIC_HEADERS})
-  get_filename_component(folder ${header} DIRECTORY)
-  install(FILES ${PROJECT_SOURCE_DIR}/core/${header}
-          DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/dampbound/core/${folder})
-endforeach()
 
 install(DIRECTORY scenes/ DESTINATION ${DAMPBOUND_INSTALL_SCENESDIR})
 install(FILES docs/dampbound.1 DESTINATION ${CMAKE_INSTALL_MANDIR}/man1)

@@ -6,8 +6,8 @@
 #include <stdexcept>
 #include <vector>
 
-#include "core/error.hpp"
 #include "core/sweep/flat_model.hpp"
+#include "dampbound/physics/error.hpp"
 #include "gpu/runtime.hpp"
 
 namespace dampbound {

@@ -5,8 +5,8 @@
 #include <memory>
 #include <string>
 
-#include "core/scene.hpp"
 #include "core/sweep/device.hpp"
+#include "dampbound/run/scene.hpp"
 
 namespace dampbound {
 

@@ -6,12 +6,12 @@
 #include <string>
 #include <vector>
 
+#include "core/analysis/answer.hpp"
 #include "core/analysis/equilibrium.hpp"
 #include "core/analysis/linear_stability_exact.hpp"
-#include "core/analysis/answer.hpp"
 #include "core/analysis/suggest.hpp"
-#include "core/error.hpp"
-#include "core/session.hpp"
+#include "dampbound/physics/error.hpp"
+#include "dampbound/run/session.hpp"
 #include "python/arrays.hpp"
 
 namespace dampbound::python {

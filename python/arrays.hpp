@@ -11,10 +11,10 @@
 #include <string>
 #include <vector>
 
-#include "core/damping_ratio.hpp"
-#include "core/model.hpp"
-#include "core/monitor.hpp"
-#include "core/scene.hpp"
+#include "core/physics/damping_ratio.hpp"
+#include "dampbound/monitor.hpp"
+#include "dampbound/physics/model.hpp"
+#include "dampbound/run/scene.hpp"
 
 namespace dampbound::python {
 
@@ -118,7 +118,7 @@ inline void require_valid(const Params& p) {
 
 /// The scene and parameters a call uses: `params` (default the scene's) validated, and a
 /// damping ratio given as Params.zeta resolved as the CLI resolves --zeta (gamma_i = zeta * 2
-/// sqrt(m_i kappa_i) at each node, core/damping_ratio.hpp) on a copy of the scene, which is
+/// sqrt(m_i kappa_i) at each node, core/physics/damping_ratio.hpp) on a copy of the scene, which is
 /// made only then.
 class ResolvedScene {
  public:

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "core/error.hpp"
+#include "dampbound/physics/error.hpp"
 #include "python/arrays.hpp"
 #include "python/matrices.hpp"
 

@@ -8,8 +8,8 @@
 
 #include "core/analysis/linear_limits.hpp"
 #include "core/analysis/mass_scaling_scene.hpp"
-#include "core/error.hpp"
 #include "core/io/report.hpp"
+#include "dampbound/physics/error.hpp"
 #include "python/arrays.hpp"
 #include "python/matrices.hpp"
 

@@ -3,7 +3,7 @@
 // linear_limits and mass_scaling take.
 #include <vector>
 
-#include "core/stiffness.hpp"
+#include "dampbound/physics/stiffness.hpp"
 #include "python/arrays.hpp"
 
 namespace dampbound::python {

@@ -7,11 +7,11 @@
 #include <stdexcept>
 #include <unordered_set>
 
-#include "core/error.hpp"
 #include "core/io/format.hpp"
-#include "core/session.hpp"
 #include "core/io/report.hpp"
 #include "core/io/scene_file.hpp"
+#include "dampbound/physics/error.hpp"
+#include "dampbound/run/session.hpp"
 #include "dampbound/version.hpp"
 #include "python/arrays.hpp"
 
@@ -54,8 +54,16 @@ DampingPolicy policy_of(const std::string& s) {
 
 Integrator integrator_of(const std::string& s) {
   const auto i = parse_integrator(s);
-  if (!i) throw py::value_error("unknown integrator '" + s + "'");
+  if (!i)
+    throw py::value_error("unknown integrator '" + s + "': use " + one_of(integrator_names()));
   return *i;
+}
+
+// The names come from the one table (params.hpp's kIntegratorTable); the first is the paper's.
+const std::string& integrator_doc() {
+  static const std::string doc =
+      "one of " + one_of(integrator_names()) + "; the first, the paper's, is the default";
+  return doc;
 }
 
 void bind_params(py::module_& m) {
@@ -85,8 +93,7 @@ void bind_params(py::module_& m) {
       .def_property(
           "integrator", [](const Params& p) { return std::string(to_string(p.integrator)); },
           [](Params& p, const std::string& s) { p.integrator = integrator_of(s); },
-          "'semi-implicit-euler' (the paper's, default), 'forward-euler', 'verlet', 'rk4', "
-          "'implicit-euler'")
+          integrator_doc().c_str())
       .def("__repr__", [](const Params& p) {
         // format_number: the exact value in the "C" locale (%f showed 1e-9 as 0.000000).
         return "Params(m=" + format_number(p.m) + ", kappa=" + format_number(p.kappa) +

@@ -1,4 +1,4 @@
-// The monitor over the user's own NumPy arrays (core/monitor.hpp), read in place.
+// The monitor over the user's own NumPy arrays (include/dampbound/monitor.hpp), read in place.
 #include <pybind11/stl.h>
 
 #include <cmath>

@@ -1,6 +1,6 @@
 #pragma once
 // Small scenes shared by the core and ui tests.
-#include "core/model.hpp"
+#include "dampbound/physics/model.hpp"
 
 namespace dampbound::test {
 

@@ -12,9 +12,9 @@
 #include <filesystem>
 #include <utility>
 
-#include "core/bounds.hpp"
 #include "core/io/files.hpp"
 #include "core/io/scene_file.hpp"
+#include "dampbound/physics/bounds.hpp"
 #include "ui/gui_items.hpp"
 
 namespace dampbound::ui {

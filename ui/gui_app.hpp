@@ -12,7 +12,7 @@
 #include <utility>
 #include <vector>
 
-#include "core/scene.hpp"
+#include "dampbound/run/scene.hpp"
 #include "ui/frame_renderer.hpp"
 #include "ui/gui_layout.hpp"
 #include "ui/gui_stats.hpp"

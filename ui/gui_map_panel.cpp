@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "core/io/report.hpp"
-#include "ui/gui_items.hpp"
 #include "ui/gui_app.hpp"
+#include "ui/gui_items.hpp"
 #include "ui/gui_widgets.hpp"
 #include "ui/map_plot.hpp"
 #include "ui/plot.hpp"

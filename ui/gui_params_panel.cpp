@@ -8,11 +8,11 @@
 #include <optional>
 #include <string>
 
-#include "core/bounds.hpp"
-#include "core/damping_ratio.hpp"
 #include "core/io/scene_file.hpp"
-#include "ui/gui_items.hpp"
+#include "core/physics/damping_ratio.hpp"
+#include "dampbound/physics/bounds.hpp"
 #include "ui/gui_app.hpp"
+#include "ui/gui_items.hpp"
 #include "ui/gui_widgets.hpp"
 
 namespace dampbound::ui {

@@ -7,8 +7,8 @@
 #include <filesystem>
 #include <string>
 
-#include "ui/gui_items.hpp"
 #include "ui/gui_app.hpp"
+#include "ui/gui_items.hpp"
 #include "ui/gui_widgets.hpp"
 
 namespace dampbound::ui {

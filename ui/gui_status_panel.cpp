@@ -4,15 +4,15 @@
 
 #include <string>
 
-#include "core/damping_ratio.hpp"
 #include "core/io/report.hpp"
-#include "ui/gui_items.hpp"
+#include "core/physics/damping_ratio.hpp"
 #include "ui/gui_app.hpp"
 #include "ui/gui_export.hpp"
-#include "ui/tuner_export.hpp"
+#include "ui/gui_items.hpp"
 #include "ui/gui_widgets.hpp"
 #include "ui/mesh_style.hpp"
 #include "ui/plot.hpp"
+#include "ui/tuner_export.hpp"
 
 namespace dampbound::ui {
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <string_view>
 
-#include "core/protocol.hpp"
+#include "dampbound/run/protocol.hpp"
 #include "ui/gui_items.hpp"
 #include "ui/plot.hpp"
 #include "ui/text_wrap.hpp"

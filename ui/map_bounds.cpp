@@ -5,9 +5,9 @@
 #include <limits>
 #include <string>
 
-#include "core/integrate.hpp"
-#include "core/scene.hpp"
+#include "core/physics/integrate.hpp"
 #include "core/sweep/summary.hpp"
+#include "dampbound/run/scene.hpp"
 
 namespace dampbound::ui {
 

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "core/scene.hpp"
 #include "core/sweep/kernel.hpp"
+#include "dampbound/run/scene.hpp"
 
 namespace dampbound::ui {
 

@@ -3,7 +3,7 @@
 // and the cut tool's segment test. Pure maths, no GL (tests/ui/mesh_pick_test.cpp).
 #include <vector>
 
-#include "core/model.hpp"
+#include "dampbound/physics/model.hpp"
 #include "ui/camera.hpp"
 
 namespace dampbound::ui {

@@ -7,8 +7,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/bounds.hpp"
-#include "core/model.hpp"
+#include "dampbound/physics/bounds.hpp"
+#include "dampbound/physics/model.hpp"
 #include "ui/camera.hpp"
 
 namespace dampbound::ui {

@@ -1,11 +1,11 @@
 #pragma once
-// Colours of the mesh view: one per node state of the last step (core/bounds.hpp NodeStatus),
+// Colours of the mesh view: one per node state of the last step (include/dampbound/physics/bounds.hpp NodeStatus),
 // shared by the GL renderer, the legend and the tests. No GL.
 #include <imgui.h>
 
 #include <cstddef>
 
-#include "core/bounds.hpp"
+#include "dampbound/physics/bounds.hpp"
 
 namespace dampbound::ui {
 

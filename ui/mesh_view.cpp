@@ -8,13 +8,13 @@
 #include <cstdint>
 #include <string>
 
-#include "core/damping_ratio.hpp"
-#include "core/scene.hpp"
+#include "core/physics/damping_ratio.hpp"
+#include "dampbound/run/scene.hpp"
+#include "ui/gui_items.hpp"
 #include "ui/gui_widgets.hpp"
 #include "ui/mesh_pick.hpp"
 #include "ui/mesh_style.hpp"
 #include "ui/mesh_style.hpp"
-#include "ui/gui_items.hpp"
 
 namespace dampbound::ui {
 

@@ -1,8 +1,8 @@
 #include "ui/plot.hpp"
 
 #include "ui/fonts.hpp"
-#include "ui/plot_draw.hpp"
 #include "ui/gui_items.hpp"
+#include "ui/plot_draw.hpp"
 #include "ui/text_wrap.hpp"
 
 #include <algorithm>

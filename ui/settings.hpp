@@ -12,7 +12,7 @@
 #include <variant>
 #include <vector>
 
-#include "core/params.hpp"
+#include "dampbound/physics/params.hpp"
 
 namespace dampbound::ui {
 

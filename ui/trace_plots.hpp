@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "core/analysis/figures.hpp"
-#include "core/step.hpp"
+#include "dampbound/physics/step.hpp"
 #include "ui/plot_spec.hpp"
 
 namespace dampbound::ui {

@@ -8,10 +8,10 @@
 #include <limits>
 #include <stdexcept>
 
-#include "core/bounds.hpp"
-#include "core/damping_ratio.hpp"
 #include "core/io/report.hpp"
 #include "core/io/scene_file.hpp"
+#include "core/physics/damping_ratio.hpp"
+#include "dampbound/physics/bounds.hpp"
 
 namespace dampbound::ui {
 

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "core/io/format.hpp"
-#include "core/session.hpp"
+#include "dampbound/run/session.hpp"
 #include "ui/plot_spec.hpp"
 #include "ui/tuner_criteria.hpp"
 #include "ui/tuner_trace.hpp"

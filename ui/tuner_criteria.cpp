@@ -1,7 +1,7 @@
-#include "ui/tuner_criteria.hpp"
-#include "core/integrate.hpp"
 #include "core/analysis/criteria_safe.hpp"
 #include "core/analysis/damping_limits.hpp"
+#include "core/physics/integrate.hpp"
+#include "ui/tuner_criteria.hpp"
 
 #include <algorithm>
 #include <chrono>

@@ -15,9 +15,9 @@
 #include "core/analysis/criteria.hpp"
 #include "core/analysis/equilibrium.hpp"
 #include "core/analysis/linear_stability_exact.hpp"
-#include "core/session.hpp"
-#include "ui/background_job.hpp"
 #include "core/analysis/suggest.hpp"
+#include "dampbound/run/session.hpp"
+#include "ui/background_job.hpp"
 
 namespace dampbound::ui {
 

@@ -3,11 +3,11 @@
 #include <filesystem>
 #include <ostream>
 
-#include "core/error.hpp"
 #include "core/io/files.hpp"
 #include "core/io/format.hpp"
 #include "core/io/report.hpp"
 #include "core/io/vtu.hpp"
+#include "dampbound/physics/error.hpp"
 
 namespace dampbound::ui {
 

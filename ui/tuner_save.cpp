@@ -6,9 +6,9 @@
 #include <sstream>
 
 #include "core/analysis/expect.hpp"
-#include "core/error.hpp"
 #include "core/io/files.hpp"
 #include "core/io/report.hpp"
+#include "dampbound/physics/error.hpp"
 
 namespace dampbound::ui {
 

@@ -5,7 +5,7 @@
 #include <algorithm>
 
 #include "core/analysis/suggest.hpp"
-#include "core/integrate.hpp"
+#include "core/physics/integrate.hpp"
 
 namespace dampbound::ui {
 

@@ -11,7 +11,7 @@
 
 #include "core/analysis/mass_scaling_scene.hpp"
 #include "core/analysis/substeps.hpp"
-#include "core/session.hpp"
+#include "dampbound/run/session.hpp"
 #include "ui/background_job.hpp"
 
 namespace dampbound::ui {

@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/step.hpp"
+#include "dampbound/physics/step.hpp"
 
 namespace dampbound::ui {
 

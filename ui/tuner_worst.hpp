@@ -5,7 +5,7 @@
 #include <cstdint>
 
 #include "core/analysis/worst_nodes.hpp"
-#include "core/session.hpp"
+#include "dampbound/run/session.hpp"
 
 namespace dampbound::ui {
 

@@ -10,8 +10,8 @@
 #include "core/analysis/linear_stability_exact.hpp"
 #include "core/analysis/substeps.hpp"
 #include "core/analysis/suggest.hpp"
-#include "core/protocol.hpp"
-#include "core/safe_bound.hpp"
+#include "core/physics/safe_bound.hpp"
+#include "dampbound/run/protocol.hpp"
 
 namespace dampbound {
 

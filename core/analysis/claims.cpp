@@ -6,7 +6,7 @@
 
 #include "core/io/format.hpp"
 #include "core/io/report.hpp"
-#include "core/session.hpp"
+#include "dampbound/run/session.hpp"
 
 namespace dampbound {
 

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "core/analysis/figures.hpp"
-#include "core/protocol.hpp"
+#include "dampbound/run/protocol.hpp"
 
 namespace dampbound {
 

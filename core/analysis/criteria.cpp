@@ -1,5 +1,5 @@
 // clang-format off
-#include "core/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
+#include "core/physics/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
 // clang-format on
 #include "core/analysis/criteria.hpp"
 
@@ -12,10 +12,10 @@
 
 #include "core/analysis/criteria_safe.hpp"
 #include "core/analysis/criteria_unfactored.hpp"
-#include "core/bounds.hpp"
-#include "core/forces.hpp"
 #include "core/io/format.hpp"
-#include "core/integrate.hpp"
+#include "core/physics/integrate.hpp"
+#include "dampbound/physics/bounds.hpp"
+#include "dampbound/physics/forces.hpp"
 
 namespace dampbound {
 namespace {

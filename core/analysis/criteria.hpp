@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "core/analysis/linear_stability_exact.hpp"
-#include "core/model.hpp"
+#include "dampbound/physics/model.hpp"
 
 namespace dampbound {
 

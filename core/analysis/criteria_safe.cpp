@@ -1,14 +1,14 @@
 #include "core/analysis/criteria_safe.hpp"
-#include "core/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
+#include "core/physics/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
 // The per-node safe bound of SPEC 9 as criteria rows, beside the paper's and the exact ones.
 #include <algorithm>
 #include <cmath>
 #include <string>
 
 #include "core/analysis/criteria.hpp"
-#include "core/safe_bound.hpp"
 #include "core/io/format.hpp"
-#include "core/integrate.hpp"
+#include "core/physics/integrate.hpp"
+#include "core/physics/safe_bound.hpp"
 
 namespace dampbound {
 namespace {

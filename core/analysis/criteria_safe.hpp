@@ -11,7 +11,7 @@ namespace dampbound {
 /// that says its numbers guarantee nothing there (every row and line that shows them adds it).
 std::string safe_bound_scope(Integrator integrator);
 
-/// The safe bound of SPEC 9 at the state (core/safe_bound.hpp): gamma_safe (worst node, the
+/// The safe bound of SPEC 9 at the state (core/physics/safe_bound.hpp): gamma_safe (worst node, the
 /// user's gamma_i judged), dt_safe at the user's gamma, and the nodes where critical damping
 /// cannot be guaranteed (gamma_lo_i > gamma_safe_i). With `exact` (the paper's step) each
 /// gives its ratio to the exact limit. Where a spring is compressed K may be indefinite, and

@@ -6,9 +6,9 @@
 
 #include "core/analysis/detail/definite_root.hpp"
 #include "core/analysis/detail/shifted_cholesky.hpp"
-#include "core/stiffness.hpp"
-#include "core/analysis/linear_stability.hpp"
 #include "core/analysis/linear_stability_modes.hpp"
+#include "dampbound/analysis/linear_stability.hpp"
+#include "dampbound/physics/stiffness.hpp"
 
 namespace dampbound {
 

@@ -5,8 +5,8 @@
 // commutes with A (no dashpot, uniform gamma_i / m_i).
 #include <vector>
 
-#include "core/analysis/linear_stability.hpp"
-#include "core/model.hpp"
+#include "dampbound/analysis/linear_stability.hpp"
+#include "dampbound/physics/model.hpp"
 
 namespace dampbound {
 

@@ -1,5 +1,6 @@
-#include "core/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
+#include "core/physics/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
 #include "core/analysis/equilibrium.hpp"
+#include "core/physics/detail/spring_block.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,9 +9,9 @@
 #include <string>
 
 #include "core/analysis/detail/shifted_cholesky.hpp"
-#include "core/analysis/linear_stability.hpp"
-#include "core/forces.hpp"
 #include "core/io/format.hpp"
+#include "dampbound/analysis/linear_stability.hpp"
+#include "dampbound/physics/forces.hpp"
 
 namespace dampbound {
 namespace {
@@ -45,7 +46,9 @@ long double energy(const Model& model, const std::vector<Vec3>& x) {
   long double e = 0;
   for (size_t k = 0; k < model.spec().springs.size(); ++k) {
     const Spring& s = model.spec().springs[k];
-    const double stretch = (x[static_cast<size_t>(s.j)] - x[static_cast<size_t>(s.i)]).norm() -
+    const double stretch = spring_geometry(x[static_cast<size_t>(s.i)].data(),
+                                           x[static_cast<size_t>(s.j)].data(), s.rest_length)
+                               .length -
                            s.rest_length;
     e += 0.5L * model.spring_kappa[k] * stretch * stretch;
   }

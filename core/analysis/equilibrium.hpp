@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "core/analysis/linear_stability_cholesky.hpp"  // FactorisationOverBudget
-#include "core/model.hpp"
+#include "dampbound/physics/model.hpp"
 
 namespace dampbound {
 

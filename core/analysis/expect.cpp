@@ -4,12 +4,12 @@
 #include <map>
 #include <utility>
 
-#include "core/analysis/mass_scaling_scene.hpp"
 #include "core/analysis/limits_diff.hpp"
 #include "core/analysis/linear_stability_exact.hpp"
+#include "core/analysis/mass_scaling_scene.hpp"
 #include "core/io/format.hpp"
 #include "core/io/report.hpp"
-#include "core/session.hpp"
+#include "dampbound/run/session.hpp"
 
 namespace dampbound {
 

@@ -3,7 +3,7 @@
 #include <string>
 #include <vector>
 
-#include "core/scene.hpp"
+#include "dampbound/run/scene.hpp"
 
 namespace dampbound {
 

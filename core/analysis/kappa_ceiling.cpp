@@ -7,11 +7,11 @@
 #include <stdexcept>
 
 #include "core/analysis/damping_limits.hpp"
-#include "core/analysis/linear_stability.hpp"
-#include "core/error.hpp"
-#include "core/integrate.hpp"
-#include "core/safe_bound.hpp"
-#include "core/stiffness.hpp"
+#include "core/physics/integrate.hpp"
+#include "core/physics/safe_bound.hpp"
+#include "dampbound/analysis/linear_stability.hpp"
+#include "dampbound/physics/error.hpp"
+#include "dampbound/physics/stiffness.hpp"
 
 namespace dampbound {
 

@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "core/analysis/suggest.hpp"
-#include "core/scene.hpp"
+#include "dampbound/run/scene.hpp"
 
 namespace dampbound {
 

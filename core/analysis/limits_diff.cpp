@@ -9,15 +9,15 @@
 #include <set>
 #include <type_traits>
 
-#include "core/analysis/linear_stability.hpp"
 #include "core/analysis/substeps.hpp"
 #include "core/analysis/worst_nodes.hpp"
-#include "core/integrate.hpp"
-#include "core/error.hpp"
 #include "core/io/format.hpp"
 #include "core/io/json_read.hpp"
-#include "core/safe_bound_nodes.hpp"
-#include "core/stiffness.hpp"
+#include "core/physics/integrate.hpp"
+#include "core/physics/safe_bound_nodes.hpp"
+#include "dampbound/analysis/linear_stability.hpp"
+#include "dampbound/physics/error.hpp"
+#include "dampbound/physics/stiffness.hpp"
 
 namespace dampbound {
 

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "core/analysis/linear_stability_exact.hpp"
-#include "core/scene.hpp"
+#include "dampbound/run/scene.hpp"
 
 namespace dampbound {
 

@@ -7,8 +7,8 @@
 #include <sstream>
 #include <string>
 
-#include "core/error.hpp"
-#include "core/safe_bound.hpp"
+#include "core/physics/safe_bound.hpp"
+#include "dampbound/physics/error.hpp"
 
 namespace dampbound {
 namespace {

@@ -1,7 +1,7 @@
 // clang-format off
-#include "core/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
+#include "core/physics/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
 // clang-format on
-#include "core/analysis/linear_stability.hpp"
+#include "dampbound/analysis/linear_stability.hpp"
 
 #include <Spectra/MatOp/SparseSymMatProd.h>
 #include <Spectra/SymEigsSolver.h>
@@ -13,8 +13,8 @@
 #include <limits>
 
 #include "core/analysis/linear_stability_cholesky.hpp"
-#include "core/detail/spring_block.hpp"
-#include "core/node_threads.hpp"
+#include "core/physics/detail/spring_block.hpp"
+#include "dampbound/physics/node_threads.hpp"
 
 namespace dampbound {
 
@@ -34,9 +34,10 @@ std::optional<double> psd_floor(const Model& model, const std::vector<Vec3>& x,
   std::vector<double> deficit(model.spec().rest.size(), 0.0);
   for (size_t k = 0; k < model.spec().springs.size(); ++k) {
     const Spring& s = model.spec().springs[k];
-    const double l = (x[static_cast<size_t>(s.j)] - x[static_cast<size_t>(s.i)]).norm();
-    if (!(l > 0)) continue;  // skipped by tangent_stiffness too
-    const double tension = 1.0 - s.rest_length / l;
+    const SpringGeometry g = spring_geometry(x[static_cast<size_t>(s.i)].data(),
+                                                     x[static_cast<size_t>(s.j)].data(), s.rest_length);
+    if (!(g.length > 0)) continue;  // skipped by tangent_stiffness too
+    const double tension = g.tension;
     if (clamp_compression || tension >= 0) continue;
     if (tension < -1e-12) return std::nullopt;  // truly compressed: B may be indefinite
     deficit[static_cast<size_t>(s.i)] += model.spring_kappa[k] * -tension;
@@ -50,11 +51,10 @@ bool positive_spring_block(const Model& model, const std::vector<Vec3>& x, size_
                            Eigen::Matrix3d& B) {
   const Spring& s = model.spec().springs[k];
   const size_t i = static_cast<size_t>(s.i), j = static_cast<size_t>(s.j);
-  const Vec3 e = x[j] - x[i];
-  const double l = e.norm();
-  if (!(l > 0) || i == j) return false;  // no direction (SPEC 1), or no part in K
-  const double d[3] = {e.x() / l, e.y() / l, e.z() / l};
-  const double ratio = s.rest_length / l, tension = 1.0 - ratio;
+  const SpringGeometry g = spring_geometry(x[i].data(), x[j].data(), s.rest_length);
+  if (!(g.length > 0) || i == j) return false;  // no direction (SPEC 1), or no part in K
+  const double* d = g.d;
+  const double ratio = g.ratio, tension = g.tension;
   // B+ = B where B >= 0; compressed (tension < 0), its part along d alone: kappa d d^T.
   double b[6];
   spring_tangent_block(model.spring_kappa[k], std::max(tension, 0.0), tension >= 0 ? ratio : 1.0,

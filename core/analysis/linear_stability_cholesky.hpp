@@ -12,7 +12,7 @@
 #include <memory>
 #include <optional>
 
-#include "core/analysis/linear_stability.hpp"
+#include "dampbound/analysis/linear_stability.hpp"
 
 namespace dampbound {
 

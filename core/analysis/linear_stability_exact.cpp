@@ -1,5 +1,5 @@
 // clang-format off
-#include "core/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
+#include "core/physics/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
 // clang-format on
 #include "core/analysis/linear_stability_exact.hpp"
 
@@ -14,10 +14,10 @@
 
 #include "core/analysis/detail/beside.hpp"
 #include "core/analysis/detail/definite_root.hpp"
-#include "core/analysis/detail/shifted_cholesky.hpp"
 #include "core/analysis/detail/exact_over_budget.hpp"
+#include "core/analysis/detail/shifted_cholesky.hpp"
 #include "core/analysis/linear_stability_cholesky.hpp"
-#include "core/integrate.hpp"
+#include "core/physics/integrate.hpp"
 
 namespace dampbound {
 using detail::ExactInputs;

@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "core/analysis/damping_limits.hpp"
-#include "core/analysis/linear_stability.hpp"
 #include "core/analysis/linear_stability_modes.hpp"
+#include "dampbound/analysis/linear_stability.hpp"
 
 namespace dampbound {
 

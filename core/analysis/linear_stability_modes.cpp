@@ -1,4 +1,4 @@
-#include "core/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
+#include "core/physics/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
 #include "core/analysis/linear_stability_modes.hpp"
 
 #include <Eigen/Dense>
@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "core/analysis/detail/rk4_proofs.hpp"
-#include "core/integrate.hpp"
+#include "core/physics/integrate.hpp"
 
 namespace dampbound {
 namespace {

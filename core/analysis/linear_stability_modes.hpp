@@ -7,8 +7,8 @@
 #include <limits>
 #include <vector>
 
-#include "core/analysis/linear_stability.hpp"
-#include "core/params.hpp"
+#include "dampbound/analysis/linear_stability.hpp"
+#include "dampbound/physics/params.hpp"
 
 namespace dampbound {
 

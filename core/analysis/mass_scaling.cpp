@@ -8,7 +8,7 @@
 #include "core/analysis/detail/shifted_cholesky.hpp"
 #include "core/analysis/linear_stability_cholesky.hpp"
 #include "core/analysis/suggest.hpp"
-#include "core/error.hpp"
+#include "dampbound/physics/error.hpp"
 
 namespace dampbound {
 namespace {

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "core/stiffness.hpp"
+#include "dampbound/physics/stiffness.hpp"
 
 namespace dampbound {
 

@@ -8,7 +8,7 @@
 #include "core/analysis/linear_stability_cholesky.hpp"
 #include "core/analysis/substeps.hpp"
 #include "core/analysis/worst_nodes.hpp"
-#include "core/damping_ratio.hpp"
+#include "core/physics/damping_ratio.hpp"
 
 namespace dampbound {
 namespace {

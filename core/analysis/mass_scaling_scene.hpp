@@ -10,7 +10,7 @@
 
 #include "core/analysis/mass_scaling.hpp"
 #include "core/analysis/suggest.hpp"
-#include "core/scene.hpp"
+#include "dampbound/run/scene.hpp"
 
 namespace dampbound {
 

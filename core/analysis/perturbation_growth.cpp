@@ -5,7 +5,7 @@
 #include <limits>
 #include <stdexcept>
 
-#include "core/step.hpp"
+#include "dampbound/physics/step.hpp"
 
 namespace dampbound {
 

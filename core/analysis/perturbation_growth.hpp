@@ -4,8 +4,8 @@
 // set against every verdict and limit.
 #include <vector>
 
-#include "core/model.hpp"
-#include "core/params.hpp"
+#include "dampbound/physics/model.hpp"
+#include "dampbound/physics/params.hpp"
 
 namespace dampbound {
 

@@ -6,12 +6,12 @@
 #include <tuple>
 
 #include "core/analysis/damping_limits.hpp"
-#include "core/analysis/linear_stability.hpp"
 #include "core/analysis/linear_stability_exact.hpp"
-#include "core/error.hpp"
 #include "core/io/format.hpp"
-#include "core/integrate.hpp"
-#include "core/stiffness.hpp"
+#include "core/physics/integrate.hpp"
+#include "dampbound/analysis/linear_stability.hpp"
+#include "dampbound/physics/error.hpp"
+#include "dampbound/physics/stiffness.hpp"
 
 namespace dampbound {
 

@@ -12,7 +12,7 @@
 #include <utility>
 #include <vector>
 
-#include "core/scene.hpp"
+#include "dampbound/run/scene.hpp"
 
 namespace dampbound {
 

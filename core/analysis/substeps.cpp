@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "core/analysis/linear_stability_exact.hpp"
-#include "core/safe_bound.hpp"
+#include "core/physics/safe_bound.hpp"
 
 namespace dampbound {
 

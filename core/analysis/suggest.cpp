@@ -9,9 +9,9 @@
 #include <tuple>
 
 #include "core/io/format.hpp"
-#include "core/safe_bound.hpp"
-#include "core/session.hpp"
-#include "core/integrate.hpp"
+#include "core/physics/integrate.hpp"
+#include "core/physics/safe_bound.hpp"
+#include "dampbound/run/session.hpp"
 
 namespace dampbound {
 namespace {

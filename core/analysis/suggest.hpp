@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "core/analysis/criteria.hpp"
-#include "core/protocol.hpp"
-#include "core/scene.hpp"
+#include "dampbound/run/protocol.hpp"
+#include "dampbound/run/scene.hpp"
 
 namespace dampbound {
 

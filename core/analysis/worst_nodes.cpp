@@ -6,7 +6,7 @@
 #include <limits>
 #include <numeric>
 
-#include "core/safe_bound_nodes.hpp"
+#include "core/physics/safe_bound_nodes.hpp"
 
 namespace dampbound {
 namespace {

@@ -4,8 +4,8 @@
 #include <string>
 #include <vector>
 
-#include "core/model.hpp"
-#include "core/safe_bound_nodes.hpp"
+#include "core/physics/safe_bound_nodes.hpp"
+#include "dampbound/physics/model.hpp"
 
 namespace dampbound {
 

@@ -15,7 +15,7 @@
 #include <streambuf>
 #include <vector>
 
-#include "core/error.hpp"
+#include "dampbound/physics/error.hpp"
 
 namespace dampbound {
 

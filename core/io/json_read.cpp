@@ -4,8 +4,8 @@
 #include <cstdlib>
 #include <limits>
 
-#include "core/error.hpp"
 #include "core/io/format.hpp"
+#include "dampbound/physics/error.hpp"
 
 namespace dampbound {
 

@@ -6,8 +6,8 @@
 #include <set>
 #include <utility>
 
-#include "core/error.hpp"
 #include "core/io/format.hpp"
+#include "dampbound/physics/error.hpp"
 
 namespace dampbound {
 namespace {

@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "core/model.hpp"
-#include "core/scene.hpp"
+#include "dampbound/physics/model.hpp"
+#include "dampbound/run/scene.hpp"
 
 namespace dampbound {
 

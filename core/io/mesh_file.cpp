@@ -2,14 +2,14 @@
 #include <cctype>
 #include <fstream>
 
-#include "core/io/scene_text.hpp"
-#include "core/error.hpp"
 #include "core/io/files.hpp"
 #include "core/io/mesh_file.hpp"
 #include "core/io/mesh_msh.hpp"
+#include "core/io/mesh_obj.hpp"
 #include "core/io/mesh_tetgen.hpp"
 #include "core/io/mesh_vtk.hpp"
-#include "core/io/mesh_obj.hpp"
+#include "core/io/scene_text.hpp"
+#include "dampbound/physics/error.hpp"
 
 namespace dampbound {
 namespace {

@@ -8,9 +8,9 @@
 #include <sstream>
 #include <utility>
 
-#include "core/error.hpp"
 #include "core/io/detail/mesh_scan.hpp"
 #include "core/io/format.hpp"
+#include "dampbound/physics/error.hpp"
 
 namespace dampbound {
 

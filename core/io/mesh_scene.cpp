@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "core/error.hpp"
+#include "dampbound/physics/error.hpp"
 
 namespace dampbound {
 

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "core/io/mesh.hpp"
-#include "core/scene.hpp"
+#include "dampbound/run/scene.hpp"
 
 namespace dampbound {
 

@@ -4,8 +4,8 @@
 #include <string>
 #include <vector>
 
-#include "core/damping_ratio.hpp"
-#include "core/protocol.hpp"
+#include "core/physics/damping_ratio.hpp"
+#include "dampbound/run/protocol.hpp"
 
 namespace dampbound {
 

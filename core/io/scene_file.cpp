@@ -9,14 +9,14 @@
 #include <string_view>
 #include <utility>
 
-#include "core/io/detail/scene_mesh.hpp"
 #include "core/io/detail/scene_expect.hpp"
-#include "core/io/scene_file.hpp"
-#include "core/error.hpp"
-#include "core/io/files.hpp"
-#include "core/scene.hpp"
+#include "core/io/detail/scene_mesh.hpp"
 #include "core/io/detail/scene_reader.hpp"
+#include "core/io/files.hpp"
+#include "core/io/scene_file.hpp"
 #include "core/io/scene_text.hpp"
+#include "dampbound/physics/error.hpp"
+#include "dampbound/run/scene.hpp"
 
 namespace dampbound {
 namespace {
@@ -45,15 +45,13 @@ void read_params(const Reader& r, const toml::table& t, const std::string& table
     p.rayleigh_stiffness = r.non_negative(*n, "rayleigh_stiffness");
   if (auto* n = t.get("policy")) {
     auto pol = parse_policy(r.string(*n, "policy"));
-    if (!pol) r.fail(*n, "policy must be one of fixed, clamp, upper, lower, safe");
+    if (!pol) r.fail(*n, "policy must be one of " + one_of(policy_names()));
     p.policy = *pol;
   }
   if (auto* n = t.get("integrator")) {
     auto in = parse_integrator(r.string(*n, "integrator"));
     if (!in)
-      r.fail(*n,
-             "integrator must be one of semi-implicit-euler, forward-euler, verlet, rk4, "
-             "implicit-euler");
+      r.fail(*n, "integrator must be one of " + one_of(integrator_names()));
     p.integrator = *in;
   }
 }

@@ -3,7 +3,7 @@
 // and the line.
 #include <string>
 
-#include "core/scene.hpp"
+#include "dampbound/run/scene.hpp"
 
 namespace dampbound {
 

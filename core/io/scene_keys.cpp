@@ -6,9 +6,9 @@
 #include <sstream>
 
 #include "core/io/mesh.hpp"
-#include "core/params.hpp"
-#include "core/protocol.hpp"
-#include "core/scene.hpp"
+#include "dampbound/physics/params.hpp"
+#include "dampbound/run/protocol.hpp"
+#include "dampbound/run/scene.hpp"
 
 namespace dampbound {
 namespace {
@@ -111,10 +111,10 @@ std::vector<SceneKey> make_keys() {
        "damping ratio: gamma = zeta 2 sqrt(m_i kappa_i); excludes gamma"},
       {"[params]", "dt", "number", num(p.dt), "time step (s)"},
       {"[params]", "policy", "string", quoted(to_string(p.policy)),
-       "damping policy: fixed, clamp, upper, lower or safe"},
+       "damping policy: " + one_of(policy_names())},
       {"[params]", "factor", "number", num(p.factor), "multiplier of gamma_hi for policy upper"},
       {"[params]", "integrator", "string", quoted(to_string(p.integrator)),
-       "semi-implicit-euler, forward-euler, verlet, rk4 or implicit-euler"},
+       one_of(integrator_names())},
       {"[params]", "kd", "number", num(p.kd),
        "dashpot along every spring and anchor (mass unit / s)"},
       {"[params]", "rayleigh_mass", "number", num(p.rayleigh_mass),

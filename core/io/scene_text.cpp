@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <atomic>
 
-#include "core/error.hpp"
+#include "dampbound/physics/error.hpp"
 
 namespace dampbound {
 

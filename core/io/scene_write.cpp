@@ -1,6 +1,6 @@
 // Scenes written back as TOML (docs/scene-format.md). Keys in the order of the annotated scene
 // in docs/guide.md, numbers in their shortest form that reads back to the same double
-// (std::to_chars), strings quoted by toml++'s own writer; the reader is core/scene_file.cpp.
+// (std::to_chars), strings quoted by toml++'s own writer; the reader is core/io/scene_file.cpp.
 #include "core/io/scene_write.hpp"
 
 #include <toml++/toml.h>

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "core/protocol.hpp"
-#include "core/scene.hpp"
+#include "dampbound/run/protocol.hpp"
+#include "dampbound/run/scene.hpp"
 
 namespace dampbound {
 

@@ -1,6 +1,6 @@
 #include "core/io/vtu.hpp"
 
-#include "core/safe_bound.hpp"
+#include "core/physics/safe_bound.hpp"
 
 #include <cstdint>
 #include <cstdio>
@@ -13,12 +13,12 @@
 #include <stdexcept>
 #include <string>
 
-#include "core/damping_ratio.hpp"
-#include "core/error.hpp"
-#include "core/safe_bound_nodes.hpp"
 #include "core/io/files.hpp"
 #include "core/io/format.hpp"
-#include "core/safe_bound.hpp"
+#include "core/physics/damping_ratio.hpp"
+#include "core/physics/safe_bound.hpp"
+#include "core/physics/safe_bound_nodes.hpp"
+#include "dampbound/physics/error.hpp"
 
 namespace dampbound {
 namespace {

@@ -9,8 +9,8 @@
 #include <utility>
 #include <vector>
 
-#include "core/scene.hpp"
-#include "core/step.hpp"
+#include "dampbound/physics/step.hpp"
+#include "dampbound/run/scene.hpp"
 
 namespace dampbound {
 

@@ -9,13 +9,13 @@
 #include <limits>
 #include <map>
 
-#include "core/bounds.hpp"
-#include "core/error.hpp"
 #include "core/io/files.hpp"
 #include "core/io/format.hpp"
 #include "core/sweep/csv_rows.hpp"
 #include "core/sweep/journal.hpp"
 #include "core/sweep/summary.hpp"
+#include "dampbound/physics/bounds.hpp"
+#include "dampbound/physics/error.hpp"
 
 namespace dampbound {
 

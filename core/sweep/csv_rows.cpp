@@ -5,10 +5,10 @@
 #include <map>
 #include <vector>
 
-#include "core/bounds.hpp"
-#include "core/error.hpp"
 #include "core/io/format.hpp"
 #include "core/sweep/summary.hpp"
+#include "dampbound/physics/bounds.hpp"
+#include "dampbound/physics/error.hpp"
 
 namespace dampbound {
 

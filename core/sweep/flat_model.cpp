@@ -7,9 +7,9 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "core/integrate.hpp"
-#include "core/model.hpp"
+#include "core/physics/integrate.hpp"
 #include "core/sweep/detail/trial_body.hpp"
+#include "dampbound/physics/model.hpp"
 
 namespace dampbound {
 

@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "core/scene.hpp"
 #include "core/sweep/detail/trial_data.hpp"
 #include "core/sweep/kernel.hpp"
+#include "dampbound/run/scene.hpp"
 
 namespace dampbound {
 

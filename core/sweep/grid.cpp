@@ -6,9 +6,9 @@
 #include <numeric>
 #include <unordered_map>
 
-#include "core/bounds.hpp"
-#include "core/error.hpp"
 #include "core/io/format.hpp"
+#include "dampbound/physics/bounds.hpp"
+#include "dampbound/physics/error.hpp"
 
 namespace dampbound {
 

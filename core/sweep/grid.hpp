@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "core/protocol.hpp"
-#include "core/scene.hpp"
 #include "core/sweep/kernel.hpp"
+#include "dampbound/run/protocol.hpp"
+#include "dampbound/run/scene.hpp"
 
 namespace dampbound {
 

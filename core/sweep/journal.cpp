@@ -14,8 +14,8 @@
 #include <map>
 #include <unordered_set>
 
-#include "core/error.hpp"
 #include "core/io/format.hpp"
+#include "dampbound/physics/error.hpp"
 
 namespace dampbound {
 

@@ -3,11 +3,11 @@
 #include <cstdlib>
 #include <stdexcept>
 
-#include "core/detail/cpu_features.hpp"
-#include "core/sweep/detail/kernel_avx512.hpp"
+#include "core/physics/detail/cpu_features.hpp"
 #include "core/sweep/detail/kernel_avx2.hpp"
-#include "core/sweep/kernel.hpp"
+#include "core/sweep/detail/kernel_avx512.hpp"
 #include "core/sweep/detail/kernel_body.hpp"
+#include "core/sweep/kernel.hpp"
 
 namespace dampbound {
 

@@ -1,7 +1,7 @@
 #pragma once
 // The batched sweep kernel: many trials of one scene stepped together, one trial per SIMD
 // lane (structure of arrays), each with its own m, kappa, gamma, dt and factor. It mirrors
-// step() (core/step.cpp) operation by operation in the same order, so on the same trial it
+// step() (core/physics/step.cpp) operation by operation in the same order, so on the same trial it
 // gives the same trajectory bit for bit (the build has -ffp-contract=off), and the same
 // outcome, iteration and counts as Session::run_to_end, under either stop rule (SPEC 5, 8):
 // both judge through judge_band(). A lane whose trial is over is refilled with the next
@@ -15,8 +15,8 @@
 #include <string>
 #include <vector>
 
-#include "core/protocol.hpp"
-#include "core/scene.hpp"
+#include "dampbound/run/protocol.hpp"
+#include "dampbound/run/scene.hpp"
 
 namespace dampbound {
 

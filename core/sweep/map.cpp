@@ -6,18 +6,13 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "core/analysis/linear_stability.hpp"
-#include "core/bounds.hpp"
-#include "core/error.hpp"
 #include "core/io/format.hpp"
 #include "core/sweep/summary.hpp"
+#include "dampbound/analysis/linear_stability.hpp"
+#include "dampbound/physics/bounds.hpp"
+#include "dampbound/physics/error.hpp"
 
 namespace dampbound {
-
-MapRenderer& map_renderer() {
-  static MapRenderer renderer;
-  return renderer;
-}
 
 namespace {
 

@@ -1,9 +1,8 @@
 #pragma once
 // The stability map of a sweep as plain data: outcome cells over (kappa/m, zeta) or
 // (kappa/m, factor) and over (m, kappa) per slice, with the paper's predicted boundary and the
-// exact linear one (SPEC 7) as lines. Drawing it is the UI's job (app/cmd_ui_map.cpp), which
-// registers itself as the map renderer when the build has the headless EGL host.
-#include <functional>
+// exact linear one (SPEC 7) as lines. Drawing it is the app's job (app/map_png.hpp), with the UI's
+// plot widget.
 #include <optional>
 #include <string>
 #include <vector>
@@ -72,9 +71,5 @@ StabilityMap build_stability_map(const SweepTable& table, double lambda_unit,
 /// The columns a map panel can take as an axis: m, kappa, kappa/m, gamma, zeta, dt, factor,
 /// kd, rayleigh_mass, rayleigh_stiffness.
 const std::vector<std::string>& map_axis_names();
-
-/// Draws a map into a PNG (throws on failure). Empty when the build has no EGL host.
-using MapRenderer = std::function<void(const StabilityMap& map, const std::string& png)>;
-MapRenderer& map_renderer();
 
 }  // namespace dampbound

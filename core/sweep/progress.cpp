@@ -1,5 +1,5 @@
-#include "core/sweep/progress.hpp"
 #include "core/io/format.hpp"
+#include "core/sweep/progress.hpp"
 
 #include <algorithm>
 #include <cinttypes>

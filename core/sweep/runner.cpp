@@ -15,10 +15,10 @@
 #include <random>
 #include <thread>
 
-#include "core/error.hpp"
 #include "core/io/files.hpp"
 #include "core/sweep/journal.hpp"
 #include "core/sweep/trials.hpp"
+#include "dampbound/physics/error.hpp"
 
 namespace dampbound {
 

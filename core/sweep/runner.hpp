@@ -7,11 +7,11 @@
 #include <string>
 #include <vector>
 
-#include "core/sweep/setup.hpp"
-#include "core/scene.hpp"
 #include "core/sweep/csv.hpp"
 #include "core/sweep/device.hpp"
 #include "core/sweep/grid.hpp"
+#include "core/sweep/setup.hpp"
+#include "dampbound/run/scene.hpp"
 
 namespace dampbound {
 

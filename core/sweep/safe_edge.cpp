@@ -6,10 +6,10 @@
 #include <cstdio>
 #include <limits>
 
-#include "core/bounds.hpp"
 #include "core/io/format.hpp"
-#include "core/safe_bound.hpp"
+#include "core/physics/safe_bound.hpp"
 #include "core/sweep/summary.hpp"
+#include "dampbound/physics/bounds.hpp"
 
 namespace dampbound {
 

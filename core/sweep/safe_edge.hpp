@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "core/scene.hpp"
 #include "core/sweep/csv.hpp"
+#include "dampbound/run/scene.hpp"
 
 namespace dampbound {
 

@@ -5,10 +5,10 @@
 #include <fstream>
 #include <string>
 
-#include "core/sweep/setup.hpp"
-#include "core/error.hpp"
 #include "core/io/format.hpp"
 #include "core/sweep/runner.hpp"
+#include "core/sweep/setup.hpp"
+#include "dampbound/physics/error.hpp"
 
 namespace dampbound {
 

@@ -4,10 +4,10 @@
 #include <string>
 #include <vector>
 
-#include "core/scene.hpp"
 #include "core/sweep/csv.hpp"
 #include "core/sweep/grid.hpp"
 #include "core/sweep/kernel.hpp"
+#include "dampbound/run/scene.hpp"
 
 namespace dampbound {
 

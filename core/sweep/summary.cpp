@@ -6,8 +6,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include "core/analysis/linear_stability.hpp"
 #include "core/io/format.hpp"
+#include "dampbound/analysis/linear_stability.hpp"
 
 namespace dampbound {
 

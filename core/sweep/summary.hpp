@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "core/scene.hpp"
 #include "core/sweep/csv.hpp"
+#include "dampbound/run/scene.hpp"
 
 namespace dampbound {
 

@@ -3,10 +3,10 @@
 #include <set>
 #include <stdexcept>
 
-#include "core/sweep/trials.hpp"
-#include "core/session.hpp"
+#include "core/physics/integrate.hpp"
 #include "core/sweep/kernel.hpp"
-#include "core/integrate.hpp"
+#include "core/sweep/trials.hpp"
+#include "dampbound/run/session.hpp"
 
 namespace dampbound {
 
@@ -40,7 +40,7 @@ std::optional<std::string> batch_kernel_unsupported(const SceneSpec& scene, cons
 }
 
 // Greedy list scheduling: among the springs whose nodes have no earlier spring pending, take
-// the first one that shares no node with the last kWindow applied (see sweep_kernel.hpp).
+// the first one that shares no node with the last kWindow applied (see spring_schedule in trials.hpp).
 std::vector<int> spring_schedule(const ModelSpec& model) {
   const std::vector<Spring>& list = model.springs;
   const size_t nodes = model.rest.size();

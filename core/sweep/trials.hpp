@@ -4,8 +4,8 @@
 #include <atomic>
 #include <vector>
 
-#include "core/session.hpp"
 #include "core/sweep/kernel.hpp"
+#include "dampbound/run/session.hpp"
 
 namespace dampbound {
 

@@ -18,14 +18,14 @@ for tool in aarch64-linux-gnu-g++ qemu-aarch64-static g++; do
 done
 # The check and the part of core it reaches: the physics layer (implicit Euler solves with
 # core/stiffness) and the kernel.
-common=(scripts/ci/aarch64_bits.cpp core/bounds.cpp core/detail/spring_pass.cpp
-  core/detail/spring_batch.cpp core/step_isa.cpp core/forces.cpp
-  core/integrate.cpp core/model.cpp core/node_threads.cpp core/params.cpp core/protocol.cpp
-  core/safe_bound.cpp core/safe_bound_damped.cpp core/safe_bound_nodes.cpp core/scene.cpp
-  core/session.cpp core/step.cpp core/sweep/kernel.cpp core/sweep/detail/kernel_body.cpp
-  core/sweep/trials.cpp core/stiffness.cpp core/closed_forms.cpp)
+common=(scripts/ci/aarch64_bits.cpp core/physics/bounds.cpp core/physics/detail/spring_pass.cpp
+  core/physics/detail/spring_batch.cpp core/physics/step_isa.cpp core/physics/forces.cpp
+  core/physics/integrate.cpp core/physics/model.cpp core/physics/node_threads.cpp core/physics/params.cpp core/run/protocol.cpp
+  core/physics/safe_bound.cpp core/physics/safe_bound_damped.cpp core/physics/safe_bound_nodes.cpp core/run/scene.cpp
+  core/run/session.cpp core/physics/step.cpp core/sweep/kernel.cpp core/sweep/detail/kernel_body.cpp
+  core/sweep/trials.cpp core/physics/stiffness.cpp core/physics/closed_forms.cpp)
 x86_only=(core/sweep/detail/kernel_avx2.cpp core/sweep/detail/kernel_avx512.cpp
-  core/detail/spring_batch_avx2.cpp)
+  core/physics/detail/spring_batch_avx2.cpp)
 # The project's rounding flags: no FMA contraction (CMakeLists.txt). -O1 compiles faster and
 # rounds the same (IEEE operations, no contraction, no fast-math). Sections let the static
 # link drop the analysis code that needs CHOLMOD (only implicit Euler's matrices are reached).

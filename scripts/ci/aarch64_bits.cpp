@@ -10,9 +10,9 @@
 #include <cstring>
 #include <vector>
 
-#include "core/bounds.hpp"
-#include "core/scene.hpp"
 #include "core/sweep/trials.hpp"
+#include "dampbound/physics/bounds.hpp"
+#include "dampbound/run/scene.hpp"
 
 using namespace dampbound;
 

@@ -29,7 +29,7 @@ step "installed into a fresh prefix"
 
 # The layout the issue asks for.
 for f in bin/dampbound include/dampbound/monitor.hpp include/dampbound/version.hpp \
-         include/dampbound/core/model.hpp lib/libdampbound_core.a lib/pkgconfig/dampbound.pc \
+         include/dampbound/physics/model.hpp include/dampbound/dampbound.hpp lib/libdampbound_core.a lib/pkgconfig/dampbound.pc \
          lib/cmake/dampbound/dampboundConfig.cmake share/dampbound/scenes/paper-plane.toml \
          share/man/man1/dampbound.1; do
   [ -e "$P/$f" ] || fail "missing $f"

@@ -10,7 +10,7 @@ count=$(grep -c . <<<"$symbols")
 echo "exported_symbols: $count defined dynamic symbols in $(basename "$lib")"
 status=0
 if [ "$count" -gt 400 ]; then
-  echo "exported_symbols: FAILED: $count symbols, at most 400 (core/export.hpp)" >&2
+  echo "exported_symbols: FAILED: $count symbols, at most 400 (include/dampbound/physics/export.hpp)" >&2
   status=1
 fi
 # Names that mean an internal leaked (templates over them included) or another library's

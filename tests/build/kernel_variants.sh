@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The per-instruction-set copies of the sweep kernel (core/sweep/detail/kernel_avx2.cpp, _avx512.cpp)
-# and of step()'s spring batch (core/detail/spring_batch_avx2.cpp) must keep everything they
+# and of step()'s spring batch (core/physics/detail/spring_batch_avx2.cpp) must keep everything they
 # share with the rest of the library portable: a template or inline
 # function they emit (weak symbol) may be the copy the linker keeps for the whole program, so
 # it must contain no AVX instruction. And each copy must really use its instruction set.

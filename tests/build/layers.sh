@@ -3,10 +3,12 @@
 # each layer compiles against a view of the headers of the layers below it. This compiles a
 # one-line file against each view and checks that the includes a layer may make compile and
 # those it may not fail, so a view that grew too wide (or a header that moved) is caught.
-# Usage: layers.sh CXX VIEWS_DIR INCLUDE_DIR...
+# Then every public header (include/dampbound/) must include only public headers and compile
+# alone against that folder: what a program that installed dampbound sees.
+# Usage: layers.sh CXX SOURCE_DIR VIEWS_DIR INCLUDE_DIR...
 set -euo pipefail
-cxx=$1 views=$2
-shift 2
+cxx=$1 src=$2 views=$3
+shift 3
 extra=()
 for d in "$@"; do extra+=(-I "$d"); done
 work=$(mktemp -d)
@@ -31,22 +33,44 @@ probe() {  # probe LAYER HEADER yes|no
     echo "ok: $layer $([ "$want" = yes ] && echo may || echo may not) include $header"
   fi
 }
-probe physics core/step.hpp yes
-probe physics core/stiffness.hpp yes
-probe physics core/analysis/linear_stability.hpp no
+probe physics dampbound/physics/step.hpp yes
+probe physics core/physics/integrate.hpp yes
+probe physics dampbound/run/scene.hpp no
+probe physics dampbound/analysis/linear_stability.hpp no
 probe physics core/io/scene_file.hpp no
 probe physics core/sweep/summary.hpp no
-probe physics core/monitor.hpp no
+probe physics dampbound/monitor.hpp no
+probe run dampbound/run/session.hpp yes
+probe run core/physics/safe_bound.hpp yes
+probe run core/io/scene_file.hpp no
 probe io core/io/scene_file.hpp yes
+probe io dampbound/run/scene.hpp yes
 probe io core/analysis/criteria.hpp no
-probe analysis core/analysis/linear_stability.hpp yes
+probe analysis dampbound/analysis/linear_stability.hpp yes
+probe analysis core/analysis/linear_stability_exact.hpp yes
 probe analysis core/io/format.hpp yes
 probe analysis core/sweep/summary.hpp no
 probe sweep core/sweep/summary.hpp yes
 probe sweep core/analysis/claims.hpp yes
-probe sweep core/monitor.hpp no
-probe monitor core/monitor.hpp yes
-probe monitor core/analysis/linear_stability_exact.hpp yes
-probe monitor core/sweep/runner.hpp no
+probe sweep dampbound/monitor.hpp no
+probe embed dampbound/monitor.hpp yes
+probe embed core/analysis/linear_stability_exact.hpp yes
+probe embed core/sweep/runner.hpp no
+# The public folder: every header in include/dampbound/ includes only public headers (what is
+# installed) and compiles on its own against that folder alone.
+for h in $(cd "$src/include" && find dampbound -name '*.hpp' | sort); do
+  if grep -n '#include "core/' "$src/include/$h"; then
+    echo "FAIL: public header $h includes a private header"
+    fails=$((fails + 1))
+  fi
+  printf '#include "%s"\n' "$h" >"$work/probe.cpp"
+  if ! "$cxx" -std=c++17 -fsyntax-only -I "$src/include" "${extra[@]}" "$work/probe.cpp" \
+      >"$work/log" 2>&1; then
+    echo "FAIL: public header $h does not compile against include/ alone"
+    head -5 "$work/log"
+    fails=$((fails + 1))
+  fi
+done
+echo "ok: the $(cd "$src/include" && find dampbound -name '*.hpp' | wc -l) public headers include only public headers and compile alone"
 [ "$fails" -eq 0 ] || { echo "layers: $fails probe(s) wrong"; exit 1; }
 echo "layers: every layer sees the layers below it and none above"

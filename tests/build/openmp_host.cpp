@@ -11,7 +11,7 @@
 #include <thread>
 #include <vector>
 
-#include "core/monitor.hpp"
+#include "dampbound/monitor.hpp"
 
 namespace {
 

@@ -51,6 +51,14 @@ expect_exit 0 "$DB" diff "$WORK/old.toml" --save "$WORK/base.json"
 expect_exit 1 "$DB" diff "$WORK/base.json" "$WORK/new.toml"
 expect_match "$OUT" 'exact dt limit +0\.61457 s' "baseline's limit"
 expect_exit 0 "$DB" diff "$WORK/base.json" "$WORK/old.toml"
+# bounds --json writes the same baseline (stdout only, byte for byte what diff --save wrote).
+expect_exit 0 "$DB" bounds "$WORK/old.toml" --json
+printf '%s\n' "$OUT" >"$WORK/bounds.json"
+cmp -s "$WORK/bounds.json" "$WORK/base.json" && ok || bad "bounds --json differs from diff --save"
+expect_exit 1 "$DB" diff "$WORK/bounds.json" "$WORK/new.toml"
+expect_match "$OUT" 'exact dt limit +0\.61457 s' "bounds --json baseline's limit"
+expect_exit 2 "$DB" bounds "$WORK/old.toml" --json --after 3
+expect_one_line "$ERR" "bounds --json --after"
 printf '{"format": "dampbound-limits", "version": 1' >"$WORK/cut.json"
 expect_exit 2 "$DB" diff "$WORK/cut.json" "$WORK/old.toml"
 expect_one_line "$ERR" "truncated baseline"

@@ -6,7 +6,11 @@ expect_match "$OUT" 'worst 2 by dt_safe_i' "text table"
 expect_match "$OUT" 'typical node' "uniform plane: typical"
 expect_exit 0 "$DB" bounds "$SRC/scenes/tissue-cap.toml" --worst 1 --json
 expect_match "$OUT" '^\{"median_mass":.*"by_dt_safe":\[\{"node":0,.*"cause":"degree [0-9.]+x above the median"' "JSON, cause in words"
-expect_exit 2 "$DB" bounds paper-plane --json
+# --json without --worst: the limits baseline diff reads (tests/cli/knobs.sh); none without a scene.
+expect_exit 0 "$DB" bounds paper-plane --json
+expect_match "$OUT" '^\{"format": *"dampbound-limits"' "bounds --json: the baseline"
+expect_exit 2 "$DB" bounds --m 1 --kappa 1 --dt 0.1 --json
+expect_one_line "$ERR" "bounds --json without a scene"
 
 # The VTU files carry dt_safe, gamma_safe and zeta per point (read back with meshio).
 expect_exit 0 "$DB" run "$SRC/scenes/tissue-cap.toml" --max-iter 2 --vtk "$WORK/vtk"

@@ -4,7 +4,7 @@
 // C = diag(gamma_i) + alpha M + beta K + dashpots (SPEC 10), over the free nodes.
 #include <Eigen/Dense>
 
-#include "core/stiffness.hpp"
+#include "dampbound/physics/stiffness.hpp"
 
 namespace dampbound::test {
 

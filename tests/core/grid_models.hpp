@@ -2,7 +2,7 @@
 // Small models shared by the tests of the tangent stiffness and of the analyses over it.
 #include <vector>
 
-#include "core/scene.hpp"
+#include "dampbound/run/scene.hpp"
 #include "tests/core/test_util.hpp"
 
 namespace dampbound::test {

@@ -5,10 +5,10 @@
 #include <utility>
 #include <vector>
 
-#include "core/error.hpp"
+#include "dampbound/physics/error.hpp"
 
-#include "core/model.hpp"
-#include "core/scene.hpp"
+#include "dampbound/physics/model.hpp"
+#include "dampbound/run/scene.hpp"
 
 namespace dampbound::test {
 

@@ -5,8 +5,8 @@
 #include <cstdint>
 #include <string>
 
-#include "core/error.hpp"
 #include "core/io/mesh.hpp"
+#include "dampbound/physics/error.hpp"
 
 namespace dampbound::fuzz {
 

@@ -7,8 +7,8 @@
 #include <cstdlib>
 #include <string>
 
-#include "core/error.hpp"
 #include "core/sweep/journal.hpp"
+#include "dampbound/physics/error.hpp"
 #include "tests/fuzz/memory_file.hpp"
 
 namespace {

@@ -6,10 +6,10 @@
 #include <cstdint>
 #include <string>
 
-#include "core/error.hpp"
-#include "core/scene.hpp"
-#include "core/io/scene_text.hpp"
 #include "core/io/scene_file.hpp"
+#include "core/io/scene_text.hpp"
+#include "dampbound/physics/error.hpp"
+#include "dampbound/run/scene.hpp"
 
 namespace {
 

@@ -4,8 +4,8 @@
 #include <cstdint>
 #include <string>
 
-#include "core/error.hpp"
 #include "core/sweep/csv.hpp"
+#include "dampbound/physics/error.hpp"
 #include "tests/fuzz/memory_file.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

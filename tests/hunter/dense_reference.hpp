@@ -6,8 +6,8 @@
 #include <cmath>
 #include <vector>
 
-#include "core/model.hpp"
-#include "core/params.hpp"
+#include "dampbound/physics/model.hpp"
+#include "dampbound/physics/params.hpp"
 
 namespace dampbound::hunt {
 

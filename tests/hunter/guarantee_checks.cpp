@@ -10,11 +10,11 @@
 #include "core/analysis/linear_stability_exact.hpp"
 #include "core/analysis/substeps.hpp"
 #include "core/analysis/suggest.hpp"
-#include "core/integrate.hpp"
-#include "core/safe_bound.hpp"
-#include "core/scene.hpp"
-#include "core/step.hpp"
+#include "core/physics/integrate.hpp"
+#include "core/physics/safe_bound.hpp"
 #include "core/sweep/runner.hpp"
+#include "dampbound/physics/step.hpp"
+#include "dampbound/run/scene.hpp"
 #include "dense_reference.hpp"
 
 namespace dampbound::hunt {

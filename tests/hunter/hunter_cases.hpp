@@ -8,8 +8,8 @@
 #include <sstream>
 #include <string>
 
-#include "core/model.hpp"
-#include "core/params.hpp"
+#include "dampbound/physics/model.hpp"
+#include "dampbound/physics/params.hpp"
 
 namespace dampbound::hunt {
 

@@ -13,12 +13,12 @@
 #include <vector>
 
 #include "core/analysis/figures.hpp"
+#include "core/io/scene_file.hpp"
 #include "ui/egl_host.hpp"
 #include "ui/image.hpp"
 #include "ui/plot.hpp"
 #include "ui/render_png.hpp"
 #include "ui/trace_plots.hpp"
-#include "core/io/scene_file.hpp"
 
 namespace dampbound::ui {
 namespace {

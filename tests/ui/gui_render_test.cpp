@@ -15,7 +15,7 @@
 
 #include "core/analysis/expect.hpp"
 #include "core/io/scene_file.hpp"
-#include "core/scene.hpp"
+#include "dampbound/run/scene.hpp"
 #include "tests/test_scenes.hpp"
 #include "ui/egl_host.hpp"
 #include "ui/gui_app.hpp"

@@ -14,7 +14,7 @@
 
 #include "core/analysis/figures.hpp"
 #include "core/io/scene_file.hpp"
-#include "core/bounds.hpp"
+#include "dampbound/physics/bounds.hpp"
 #include "ui/egl_host.hpp"
 #include "ui/gui_layout.hpp"
 #include "ui/gui_widgets.hpp"

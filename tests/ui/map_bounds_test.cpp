@@ -7,9 +7,9 @@
 #include <cmath>
 #include <string>
 
-#include "core/bounds.hpp"
 #include "core/io/scene_file.hpp"
 #include "core/sweep/summary.hpp"
+#include "dampbound/physics/bounds.hpp"
 
 namespace dampbound::ui {
 namespace {

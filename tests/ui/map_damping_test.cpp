@@ -3,8 +3,8 @@
 // exact and safe lines left out where that damping is in the window.
 #include <gtest/gtest.h>
 
-#include "core/scene.hpp"
-#include "core/session.hpp"
+#include "dampbound/run/scene.hpp"
+#include "dampbound/run/session.hpp"
 #include "ui/map_grid.hpp"
 #include "ui/tuner_map.hpp"
 

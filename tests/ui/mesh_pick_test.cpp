@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <limits>
 
-#include "core/scene.hpp"
+#include "dampbound/run/scene.hpp"
 
 namespace dampbound::ui {
 namespace {

@@ -9,8 +9,8 @@
 #include <thread>
 
 #include "core/analysis/damping_limits.hpp"
-#include "core/bounds.hpp"
-#include "core/scene.hpp"
+#include "dampbound/physics/bounds.hpp"
+#include "dampbound/run/scene.hpp"
 #include "tests/test_scenes.hpp"
 #include "ui/tuner.hpp"
 

@@ -7,8 +7,8 @@
 #include <cmath>
 #include <memory>
 
-#include "core/bounds.hpp"
 #include "core/io/scene_file.hpp"
+#include "dampbound/physics/bounds.hpp"
 #include "ui/tuner.hpp"
 
 namespace dampbound::ui {

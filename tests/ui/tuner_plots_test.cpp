@@ -10,12 +10,12 @@
 #include <limits>
 #include <sstream>
 
-#include "core/error.hpp"
 #include "core/io/files.hpp"
-#include "core/scene.hpp"
-#include "ui/tuner_export.hpp"
-#include "ui/gui_export.hpp"
 #include "core/io/scene_file.hpp"
+#include "dampbound/physics/error.hpp"
+#include "dampbound/run/scene.hpp"
+#include "ui/gui_export.hpp"
+#include "ui/tuner_export.hpp"
 
 namespace dampbound::ui {
 namespace {

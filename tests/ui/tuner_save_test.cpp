@@ -8,10 +8,10 @@
 #include <filesystem>
 #include <fstream>
 
-#include "core/error.hpp"
 #include "core/analysis/expect.hpp"
 #include "core/io/files.hpp"
 #include "core/io/scene_file.hpp"
+#include "dampbound/physics/error.hpp"
 
 namespace dampbound::ui {
 namespace {

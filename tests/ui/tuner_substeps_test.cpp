@@ -6,7 +6,7 @@
 
 #include <algorithm>
 
-#include "core/scene.hpp"
+#include "dampbound/run/scene.hpp"
 #include "ui/tuner.hpp"
 
 namespace dampbound::ui {

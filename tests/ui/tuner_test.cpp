@@ -9,10 +9,10 @@
 #include <fstream>
 #include <limits>
 
-#include "core/bounds.hpp"
 #include "core/io/report.hpp"
 #include "core/io/scene_file.hpp"
-#include "core/scene.hpp"
+#include "dampbound/physics/bounds.hpp"
+#include "dampbound/run/scene.hpp"
 #include "ui/mesh_pick.hpp"
 
 namespace dampbound::ui {

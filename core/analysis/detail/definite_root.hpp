@@ -19,7 +19,7 @@
 #include <functional>
 #include <memory>
 
-#include "core/stiffness.hpp"
+#include "dampbound/physics/stiffness.hpp"
 
 namespace dampbound::detail {
 

@@ -1,5 +1,5 @@
 // clang-format off
-#include "core/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
+#include "core/physics/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
 // clang-format on
 #include "core/analysis/detail/exact_over_budget.hpp"
 
@@ -11,8 +11,8 @@
 
 #include "core/analysis/detail/index_patch.hpp"
 #include "core/analysis/linear_stability_modes.hpp"
-#include "core/safe_bound.hpp"
-#include "core/integrate.hpp"
+#include "core/physics/integrate.hpp"
+#include "core/physics/safe_bound.hpp"
 
 namespace dampbound::detail {
 namespace {
@@ -144,7 +144,7 @@ void damped_step_ceilings(const Model& model, const std::vector<Vec3>& x, const 
 }
 
 /// Over the budget, the paper's step with K >= 0 (SPEC 9's floor), from two per-node bounds on
-/// the index matrix S = h^2 A + 2 h C, each a proof: SPEC 9's safe bound (core/safe_bound.hpp),
+/// the index matrix S = h^2 A + 2 h C, each a proof: SPEC 9's safe bound (core/physics/safe_bound.hpp),
 /// Gershgorin node by node (R_i, safe_row_sums), and the splitting of K into node blocks
 /// (splitting_ceilings). An index below 4 is stability (SPEC 7, 9), so the exact rows prove
 /// what the safe rows judge, or more where the splitting is tighter: the user's point, and

@@ -5,9 +5,9 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "core/analysis/linear_stability.hpp"
 #include "core/analysis/linear_stability_cholesky.hpp"
 #include "core/analysis/linear_stability_exact.hpp"
+#include "dampbound/analysis/linear_stability.hpp"
 
 namespace dampbound::detail {
 

@@ -19,7 +19,7 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "core/analysis/linear_stability.hpp"
+#include "dampbound/analysis/linear_stability.hpp"
 
 namespace dampbound::detail {
 

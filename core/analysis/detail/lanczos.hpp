@@ -7,8 +7,8 @@
 #include <functional>
 #include <vector>
 
-#include "core/analysis/linear_stability.hpp"
-#include "core/node_threads.hpp"
+#include "dampbound/analysis/linear_stability.hpp"
+#include "dampbound/physics/node_threads.hpp"
 
 namespace dampbound::detail {
 

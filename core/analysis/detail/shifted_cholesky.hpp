@@ -7,7 +7,7 @@
 #include <Eigen/CholmodSupport>
 #include <vector>
 
-#include "core/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
+#include "core/physics/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
 #include "core/analysis/detail/supernodal_solve.hpp"
 #include "core/analysis/linear_stability_cholesky.hpp"
 

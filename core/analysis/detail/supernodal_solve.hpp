@@ -12,7 +12,7 @@
 #include <utility>
 #include <vector>
 
-#include "core/node_threads.hpp"
+#include "dampbound/physics/node_threads.hpp"
 
 struct cholmod_factor_struct;
 

@@ -9,8 +9,8 @@
 #include <cstddef>
 #include <vector>
 
-#include "core/analysis/linear_stability.hpp"
-#include "core/node_threads.hpp"
+#include "dampbound/analysis/linear_stability.hpp"
+#include "dampbound/physics/node_threads.hpp"
 
 namespace dampbound::detail {
 

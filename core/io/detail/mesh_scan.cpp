@@ -7,8 +7,8 @@
 #include <cstdlib>
 #include <utility>
 
-#include "core/error.hpp"
 #include "core/io/format.hpp"
+#include "dampbound/physics/error.hpp"
 
 namespace dampbound {
 

@@ -8,10 +8,10 @@
 #include <set>
 
 #include "core/io/detail/scene_mesh.hpp"
-#include "core/io/files.hpp"
-#include "core/io/scene_text.hpp"
 #include "core/io/detail/scene_reader.hpp"
+#include "core/io/files.hpp"
 #include "core/io/mesh_file.hpp"
+#include "core/io/scene_text.hpp"
 
 namespace dampbound::scene_file {
 namespace {

@@ -11,9 +11,9 @@
 #include <utility>
 #include <vector>
 
-#include "core/error.hpp"
 #include "core/io/scene_keys.hpp"
-#include "core/scene.hpp"
+#include "dampbound/physics/error.hpp"
+#include "dampbound/run/scene.hpp"
 
 namespace dampbound::scene_file {
 

@@ -13,16 +13,16 @@
 #include <stdexcept>
 
 #include "core/sweep/detail/kernel_avx512.hpp"
-#include "core/session.hpp"
-#include "core/sweep/kernel.hpp"
 #include "core/sweep/detail/kernel_body.hpp"
+#include "core/sweep/kernel.hpp"
+#include "dampbound/run/session.hpp"
 
 #define DAMPBOUND_KERNEL_VARIANT kernel_avx512
 #define DAMPBOUND_SIMD_AVX512 1
-#include "core/detail/target_push.hpp"
+#include "core/physics/detail/target_push.hpp"
 
 #include "core/sweep/detail/kernel_body.cpp"
 #include "core/sweep/trials.hpp"
 
-#include "core/detail/target_pop.hpp"
+#include "core/physics/detail/target_pop.hpp"
 #endif  // __x86_64__

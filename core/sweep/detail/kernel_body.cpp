@@ -1,4 +1,4 @@
-// The batched sweep kernel. Every formula below is step()'s (core/step.cpp, forces.cpp,
+// The batched sweep kernel. Every formula below is step()'s (core/physics/step.cpp, forces.cpp,
 // bounds.cpp, integrate.cpp), written lane-wise with the operands in the same order, so each
 // lane rounds exactly as step() does on that lane's trial.
 //
@@ -12,11 +12,12 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "core/session.hpp"
+#include "core/physics/detail/simd.hpp"
+#include "core/physics/detail/spring_block.hpp"
 #include "core/sweep/detail/kernel_body.hpp"
 #include "core/sweep/detail/lanes.hpp"
-#include "core/detail/simd.hpp"
 #include "core/sweep/trials.hpp"
+#include "dampbound/run/session.hpp"
 
 #ifndef DAMPBOUND_KERNEL_VARIANT
 #define DAMPBOUND_KERNEL_VARIANT kernel_generic
@@ -172,13 +173,11 @@ struct Kernel final : BatchKernel::Impl {
     for (const SpringData& s : springs) {
       NodeBlock& bi = bl[s.i];
       NodeBlock& bj = bl[s.j];
-      const vd d0 = bj.x[0] - bi.x[0];
-      const vd d1 = bj.x[1] - bi.x[1];
-      const vd d2 = bj.x[2] - bi.x[2];
-      const vd length = simd::sqrt((d0 * d0 + d1 * d1) + d2 * d2);
+      vd e[3];
+      const vd length = spring_vector(bi.x, bj.x, e, simd::Sqrt{});
       const vl ok = length > 0;
       const vd scale = ((kappa * s.kappa_scale) * (length - s.rest_length)) / length;
-      const vd f0 = scale * d0, f1 = scale * d1, f2 = scale * d2;
+      const vd f0 = scale * e[0], f1 = scale * e[1], f2 = scale * e[2];
       bi.f[0] = ok ? bi.f[0] + f0 : bi.f[0];
       bi.f[1] = ok ? bi.f[1] + f1 : bi.f[1];
       bi.f[2] = ok ? bi.f[2] + f2 : bi.f[2];
@@ -338,7 +337,7 @@ struct Kernel final : BatchKernel::Impl {
         r.clamped += sc.clamped[l];
         r.zero_length_springs += sc.zero_length[l];
         ++r.iterations;
-        // judge_band() (core/verdict.hpp), with step.cpp's max displacement (inf when not finite).
+        // judge_band() (include/dampbound/run/verdict.hpp), with step.cpp's max displacement (inf when not finite).
         const bool finite = sc.bad[l] == 0;
         const double d = finite ? max_d[l] : HUGE_VAL;
         r.max_displacement = d;

@@ -1,12 +1,12 @@
 #pragma once
 // The batched kernel's per-node lane data (core/sweep/detail/kernel_body.cpp includes this, nothing
-// else) and its mirror of the safe bound of SPEC 9 (core/safe_bound.cpp, core/bounds.cpp):
+// else) and its mirror of the safe bound of SPEC 9 (core/physics/safe_bound.cpp, core/physics/bounds.cpp):
 // the same operations in the same order, lane by lane, so each lane rounds as step() does.
 #include <cstdint>
 #include <vector>
 
-#include "core/detail/spring_block.hpp"
-#include "core/detail/simd.hpp"
+#include "core/physics/detail/simd.hpp"
+#include "core/physics/detail/spring_block.hpp"
 
 namespace dampbound::sweep_lanes {
 // Internal linkage, as in simd.hpp: each compiled variant of the kernel (generic,

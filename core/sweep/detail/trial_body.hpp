@@ -1,7 +1,7 @@
 #pragma once
 // One sweep trial's step as one function for the host and the GPU (DAMPBOUND_HD,
-// core/host_device.hpp): the batched kernel's arithmetic (core/sweep/detail/kernel_body.cpp),
-// which is step()'s (core/step.cpp, forces.cpp, bounds.cpp, integrate.cpp) operation by
+// include/dampbound/physics/host_device.hpp): the batched kernel's arithmetic (core/sweep/detail/kernel_body.cpp),
+// which is step()'s (core/physics/step.cpp, forces.cpp, bounds.cpp, integrate.cpp) operation by
 // operation, written for one trial in plain doubles, plus what the batched kernel leaves to
 // step(): SPEC 10's dashpot and Rayleigh damping (trial_terms.hpp). The GPU sweep (gpu/) runs
 // one trial per device thread through it; core/sweep/flat_model.cpp builds its inputs and runs
@@ -15,11 +15,11 @@
 #include <cmath>
 #include <cstddef>
 
-#include "core/detail/spring_block.hpp"
-#include "core/host_device.hpp"
-#include "core/params.hpp"
+#include "core/physics/detail/spring_block.hpp"
 #include "core/sweep/detail/trial_terms.hpp"
-#include "core/verdict.hpp"
+#include "dampbound/physics/host_device.hpp"
+#include "dampbound/physics/params.hpp"
+#include "dampbound/run/verdict.hpp"
 
 namespace dampbound::trial_body {
 
@@ -86,16 +86,16 @@ DAMPBOUND_HD inline long long spring_forces(const FlatModel& M, const TrialConst
   long long zero_length = 0;
   for (int k = 0; k < M.springs; ++k) {
     const int i = M.spring_i[k], j = M.spring_j[k];
-    const double d0 = s.x[(3 * j) * w] - s.x[(3 * i) * w];
-    const double d1 = s.x[(3 * j + 1) * w] - s.x[(3 * i + 1) * w];
-    const double d2 = s.x[(3 * j + 2) * w] - s.x[(3 * i + 2) * w];
-    const double length = sqrt((d0 * d0 + d1 * d1) + d2 * d2);
+    const double xi[3] = {s.x[(3 * i) * w], s.x[(3 * i + 1) * w], s.x[(3 * i + 2) * w]};
+    const double xj[3] = {s.x[(3 * j) * w], s.x[(3 * j + 1) * w], s.x[(3 * j + 2) * w]};
+    double e[3];
+    const double length = spring_vector(xi, xj, e);
     if (!(length > 0)) {
       ++zero_length;
       continue;
     }
     const double scale = ((P.kappa * M.kappa_scale[k]) * (length - M.rest_length[k])) / length;
-    const double f[3] = {scale * d0, scale * d1, scale * d2};
+    const double f[3] = {scale * e[0], scale * e[1], scale * e[2]};
     for (int c = 0; c < 3; ++c) {
       s.f[(3 * i + c) * w] = s.f[(3 * i + c) * w] + f[c];
       s.f[(3 * j + c) * w] = s.f[(3 * j + c) * w] - f[c];
@@ -221,7 +221,7 @@ DAMPBOUND_HD inline bool trial_step(const FlatModel& M, TrialSlot& slot, const T
   r.clamped += t.clamped;
   r.zero_length_springs += t.zero_length;
   ++r.iterations;
-  // judge_band() (core/verdict.hpp), with step.cpp's max displacement (inf when not finite).
+  // judge_band() (include/dampbound/run/verdict.hpp), with step.cpp's max displacement (inf when not finite).
   const bool finite = !t.bad;
   const double d = finite ? sqrt(t.max_sq) : __builtin_huge_val();
   r.max_displacement = d;

@@ -2,8 +2,8 @@
 // What the trial body (core/sweep/detail/trial_body.hpp) reads: the scene as flat arrays and a
 // trial's constants, plain data that the GPU sweep copies to the device as it is.
 // core/sweep/flat_model.cpp fills both from a SceneSpec and a TrialParams.
-#include "core/params.hpp"
-#include "core/verdict.hpp"
+#include "dampbound/physics/params.hpp"
+#include "dampbound/run/verdict.hpp"
 
 namespace dampbound::trial_body {
 

@@ -8,9 +8,9 @@
 #include <cmath>
 #include <cstddef>
 
-#include "core/detail/spring_block.hpp"
-#include "core/host_device.hpp"
+#include "core/physics/detail/spring_block.hpp"
 #include "core/sweep/detail/trial_data.hpp"
+#include "dampbound/physics/host_device.hpp"
 
 namespace dampbound::trial_body {
 

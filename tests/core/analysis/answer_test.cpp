@@ -5,9 +5,9 @@
 
 #include "core/analysis/criteria.hpp"
 #include "core/io/format.hpp"
-#include "core/session.hpp"
 #include "core/io/report.hpp"
 #include "core/io/scene_file.hpp"
+#include "dampbound/run/session.hpp"
 #include "tests/core/test_util.hpp"
 
 namespace dampbound {

@@ -9,10 +9,10 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/bounds.hpp"
-#include "core/forces.hpp"
-#include "core/scene.hpp"
 #include "core/io/scene_file.hpp"
+#include "dampbound/physics/bounds.hpp"
+#include "dampbound/physics/forces.hpp"
+#include "dampbound/run/scene.hpp"
 
 namespace dampbound {
 namespace {

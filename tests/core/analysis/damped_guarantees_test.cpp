@@ -3,7 +3,7 @@
 // bound against the exact limit, and the safe bound suggest quotes where dashpots act. Each
 // verdict is checked against a run of the scene.
 // clang-format off
-#include "core/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
+#include "core/physics/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
 // clang-format on
 #include <gtest/gtest.h>
 
@@ -13,8 +13,8 @@
 #include "core/analysis/linear_stability_exact.hpp"
 #include "core/analysis/suggest.hpp"
 #include "core/io/scene_file.hpp"
-#include "core/safe_bound.hpp"
-#include "core/session.hpp"
+#include "core/physics/safe_bound.hpp"
+#include "dampbound/run/session.hpp"
 
 namespace dampbound {
 namespace {

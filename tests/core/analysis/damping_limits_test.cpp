@@ -7,9 +7,9 @@
 #include <Eigen/Dense>
 #include <random>
 
-#include "core/stiffness.hpp"
-#include "core/analysis/linear_stability.hpp"
-#include "core/safe_bound.hpp"
+#include "core/physics/safe_bound.hpp"
+#include "dampbound/analysis/linear_stability.hpp"
+#include "dampbound/physics/stiffness.hpp"
 
 namespace dampbound {
 namespace {

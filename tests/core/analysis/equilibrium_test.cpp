@@ -10,7 +10,7 @@
 
 #include "core/analysis/linear_stability_cholesky.hpp"
 #include "core/analysis/linear_stability_exact.hpp"
-#include "core/step.hpp"
+#include "dampbound/physics/step.hpp"
 #include "tests/test_scenes.hpp"
 
 namespace dampbound {

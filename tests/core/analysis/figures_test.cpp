@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "core/io/scene_file.hpp"
-#include "core/session.hpp"
+#include "dampbound/run/session.hpp"
 #include "tests/core/test_util.hpp"
 
 namespace dampbound {

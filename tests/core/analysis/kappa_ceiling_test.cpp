@@ -8,8 +8,8 @@
 
 #include <random>
 
-#include "core/error.hpp"
-#include "core/stiffness.hpp"
+#include "dampbound/physics/error.hpp"
+#include "dampbound/physics/stiffness.hpp"
 #include "tests/core/dense_step.hpp"
 
 namespace dampbound {

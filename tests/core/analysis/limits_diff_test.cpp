@@ -8,7 +8,7 @@
 #include <algorithm>
 #include <sstream>
 
-#include "core/error.hpp"
+#include "dampbound/physics/error.hpp"
 #include "tests/core/dense_step.hpp"
 
 namespace dampbound {

@@ -7,11 +7,11 @@
 #include <cmath>
 
 #include "core/analysis/damping_limits.hpp"
-#include "core/stiffness.hpp"
-#include "core/analysis/linear_stability.hpp"
 #include "core/io/scene_file.hpp"
-#include "core/safe_bound.hpp"
-#include "core/scene.hpp"
+#include "core/physics/safe_bound.hpp"
+#include "dampbound/analysis/linear_stability.hpp"
+#include "dampbound/physics/stiffness.hpp"
+#include "dampbound/run/scene.hpp"
 #include "tests/core/test_util.hpp"
 
 namespace dampbound {

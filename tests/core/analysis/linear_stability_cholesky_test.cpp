@@ -1,4 +1,4 @@
-#include "core/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
+#include "core/physics/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
 // Tests of core/linear_stability_cholesky: Gershgorin's bounds (SPEC 9's R_i on the paper
 // plane), certified intervals that enclose the dense eigenvalues (meshes at rest and deformed,
 // a clustered top, a matrix with negative eigenvalues), and their width; a proved floor that
@@ -15,9 +15,9 @@
 #include <vector>
 
 #include "bench/bench_meshes.hpp"
-#include "core/analysis/linear_stability.hpp"
 #include "core/analysis/linear_stability_cholesky.hpp"
-#include "core/scene.hpp"
+#include "dampbound/analysis/linear_stability.hpp"
+#include "dampbound/run/scene.hpp"
 #include "tests/core/test_util.hpp"
 
 namespace dampbound {

@@ -2,7 +2,7 @@
 // system every number has a closed form; a chain with unequal masses takes the symmetric
 // index; the simulation check agrees with the limits.
 // clang-format off
-#include "core/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
+#include "core/physics/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
 // clang-format on
 #include "core/analysis/linear_stability_exact.hpp"
 
@@ -13,12 +13,12 @@
 #include <limits>
 #include <string>
 
-#include "core/analysis/linear_stability.hpp"
 #include "core/analysis/linear_stability_modes.hpp"
 #include "core/analysis/perturbation_growth.hpp"
 #include "core/io/scene_file.hpp"
-#include "core/safe_bound.hpp"
-#include "core/scene.hpp"
+#include "core/physics/safe_bound.hpp"
+#include "dampbound/analysis/linear_stability.hpp"
+#include "dampbound/run/scene.hpp"
 #include "tests/core/test_util.hpp"
 
 namespace dampbound {

@@ -1,7 +1,7 @@
 // Linear stability of every integrator (core/analysis/linear_stability_modes.hpp): the 2x2
 // mode matrices against their formulas, and the two-node system's known eigenvalues.
 // clang-format off
-#include "core/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
+#include "core/physics/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
 // clang-format on
 #include "core/analysis/linear_stability_modes.hpp"
 

@@ -1,4 +1,4 @@
-#include "core/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
+#include "core/physics/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
 // Tests of core/linear_stability*: the tangent stiffness against finite differences, Lanczos
 // against a dense solver, the closed forms of SPEC 7, the non-uniform symmetric criterion
 // against the dense amplification matrix, and runs just inside / outside the predicted limits.
@@ -10,15 +10,15 @@
 #include <cstring>
 
 #include "core/analysis/criteria.hpp"
-#include "core/analysis/linear_stability.hpp"
 #include "core/analysis/linear_stability_cholesky.hpp"
 #include "core/analysis/linear_stability_exact.hpp"
 #include "core/analysis/linear_stability_modes.hpp"
 #include "core/analysis/perturbation_growth.hpp"
-#include "core/detail/spring_block.hpp"
-#include "core/forces.hpp"
 #include "core/io/scene_file.hpp"
-#include "core/scene.hpp"
+#include "core/physics/detail/spring_block.hpp"
+#include "dampbound/analysis/linear_stability.hpp"
+#include "dampbound/physics/forces.hpp"
+#include "dampbound/run/scene.hpp"
 #include "tests/core/grid_models.hpp"
 #include "tests/core/test_util.hpp"
 

@@ -7,8 +7,8 @@
 #include <cmath>
 
 #include "core/io/scene_file.hpp"
-#include "core/damping_ratio.hpp"
 #include "core/io/scene_write.hpp"
+#include "core/physics/damping_ratio.hpp"
 #include "tests/core/test_util.hpp"
 
 namespace dampbound {

@@ -9,8 +9,8 @@
 #include <cmath>
 #include <random>
 
-#include "core/error.hpp"
-#include "core/stiffness.hpp"
+#include "dampbound/physics/error.hpp"
+#include "dampbound/physics/stiffness.hpp"
 #include "tests/core/dense_step.hpp"
 
 namespace dampbound {

@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include "core/scene.hpp"
+#include "dampbound/run/scene.hpp"
 
 namespace dampbound {
 namespace {

@@ -1,8 +1,8 @@
 // Tests of core/suggest: the damping range and its ends, the fastest-settling damping, the
 // largest stable dt, the empty case, and the non-uniform (per node class) case, each checked
 // against the exact analysis and by the verification runs.
-#include "core/analysis/suggest.hpp"
 #include "core/analysis/linear_stability_exact.hpp"
+#include "core/analysis/suggest.hpp"
 #include "core/io/scene_file.hpp"
 
 #include <gtest/gtest.h>

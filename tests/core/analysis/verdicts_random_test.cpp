@@ -34,10 +34,10 @@
 #include "core/analysis/equilibrium.hpp"
 #include "core/analysis/linear_stability_exact.hpp"
 #include "core/analysis/perturbation_growth.hpp"
-#include "core/forces.hpp"
-#include "core/model.hpp"
-#include "core/params.hpp"
-#include "core/safe_bound.hpp"
+#include "core/physics/safe_bound.hpp"
+#include "dampbound/physics/forces.hpp"
+#include "dampbound/physics/model.hpp"
+#include "dampbound/physics/params.hpp"
 
 namespace dampbound {
 namespace {

@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-#include "core/scene.hpp"
+#include "dampbound/run/scene.hpp"
 
 namespace dampbound {
 namespace {

@@ -11,7 +11,7 @@
 #include <limits>
 #include <sstream>
 
-#include "core/error.hpp"
+#include "dampbound/physics/error.hpp"
 
 namespace dampbound {
 namespace {

@@ -6,7 +6,7 @@
 #include <clocale>
 #include <cmath>
 
-#include "core/error.hpp"
+#include "dampbound/physics/error.hpp"
 
 namespace dampbound {
 namespace {

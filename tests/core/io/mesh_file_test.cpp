@@ -7,7 +7,7 @@
 #include <algorithm>
 #include <set>
 
-#include "core/error.hpp"
+#include "dampbound/physics/error.hpp"
 #include "tests/core/test_util.hpp"
 
 namespace dampbound {

@@ -7,8 +7,8 @@
 #include <functional>
 #include <string>
 
-#include "core/error.hpp"
 #include "core/io/files.hpp"
+#include "dampbound/physics/error.hpp"
 #include "tests/core/test_util.hpp"
 
 namespace dampbound {

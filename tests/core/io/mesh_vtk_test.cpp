@@ -6,7 +6,7 @@
 
 #include <string>
 
-#include "core/error.hpp"
+#include "dampbound/physics/error.hpp"
 #include "tests/core/test_util.hpp"
 
 namespace dampbound {

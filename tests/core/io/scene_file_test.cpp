@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-#include "core/error.hpp"
+#include "dampbound/physics/error.hpp"
 #include "tests/core/test_util.hpp"
 
 namespace dampbound {
@@ -108,7 +108,7 @@ TEST(BadScene, OutOfGridReferences) {
 
 TEST(BadScene, WrongTypesAndPolicy) {
   EXPECT_EQ(error_of(std::string(kGrid) + "[params]\npolicy = \"max\"\n"),
-            "bad.toml:6: policy must be one of fixed, clamp, upper, lower, safe");
+            "bad.toml:6: policy must be one of fixed, clamp, upper, lower or safe");
   EXPECT_EQ(error_of(std::string(kGrid) + "[params]\ndt = \"fast\"\n"),
             "bad.toml:6: dt must be a number");
   EXPECT_EQ(error_of(std::string(kGrid) + "[protocol]\nmax_iterations = 0\n"),

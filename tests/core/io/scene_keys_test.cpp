@@ -8,8 +8,8 @@
 #include <string>
 #include <utility>
 
-#include "core/error.hpp"
 #include "core/io/scene_file.hpp"
+#include "dampbound/physics/error.hpp"
 
 namespace dampbound {
 namespace {

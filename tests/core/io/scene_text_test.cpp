@@ -6,9 +6,9 @@
 
 #include <string>
 
-#include "core/error.hpp"
-#include "core/scene.hpp"
 #include "core/io/scene_file.hpp"
+#include "dampbound/physics/error.hpp"
+#include "dampbound/run/scene.hpp"
 #include "tests/core/test_util.hpp"
 
 namespace dampbound {

@@ -14,7 +14,7 @@
 #include <sstream>
 
 #include "core/io/files.hpp"
-#include "core/safe_bound.hpp"
+#include "core/physics/safe_bound.hpp"
 
 namespace dampbound {
 namespace {

@@ -7,9 +7,9 @@
 #include <fstream>
 #include <string>
 
-#include "core/error.hpp"
 #include "core/sweep/setup.hpp"
 #include "core/sweep/trials.hpp"
+#include "dampbound/physics/error.hpp"
 #include "tests/core/sweep/sweep_test_util.hpp"
 
 namespace dampbound {

@@ -8,12 +8,12 @@
 #include <string>
 
 #include "core/analysis/damping_limits.hpp"
-#include "core/bounds.hpp"
-#include "core/error.hpp"
 #include "core/sweep/csv.hpp"
 #include "core/sweep/map.hpp"
 #include "core/sweep/summary.hpp"
 #include "core/sweep/trials.hpp"
+#include "dampbound/physics/bounds.hpp"
+#include "dampbound/physics/error.hpp"
 #include "sweep_test_util.hpp"
 
 namespace dampbound {

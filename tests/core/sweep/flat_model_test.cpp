@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "core/bounds.hpp"
 #include "core/sweep/trials.hpp"
+#include "dampbound/physics/bounds.hpp"
 #include "tests/core/sweep/sweep_test_util.hpp"
 
 namespace dampbound {

@@ -7,9 +7,9 @@
 #include <set>
 #include <string>
 
-#include "core/bounds.hpp"
-#include "core/error.hpp"
 #include "core/io/scene_file.hpp"
+#include "dampbound/physics/bounds.hpp"
+#include "dampbound/physics/error.hpp"
 
 namespace dampbound {
 namespace {

@@ -12,11 +12,11 @@
 #include <sstream>
 #include <string>
 
-#include "core/bounds.hpp"
-#include "core/error.hpp"
 #include "core/io/format.hpp"
-#include "core/sweep/grid.hpp"
 #include "core/sweep/csv.hpp"
+#include "core/sweep/grid.hpp"
+#include "dampbound/physics/bounds.hpp"
+#include "dampbound/physics/error.hpp"
 
 namespace dampbound {
 namespace {

@@ -9,10 +9,10 @@
 #include <map>
 #include <string>
 
-#include "core/bounds.hpp"
-#include "core/scene.hpp"
 #include "core/sweep/kernel.hpp"
 #include "core/sweep/trials.hpp"
+#include "dampbound/physics/bounds.hpp"
+#include "dampbound/run/scene.hpp"
 #include "tests/core/sweep/sweep_test_util.hpp"
 
 namespace dampbound {

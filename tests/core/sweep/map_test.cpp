@@ -5,10 +5,10 @@
 
 #include <cmath>
 
-#include "core/error.hpp"
 #include "core/sweep/setup.hpp"
 #include "core/sweep/summary.hpp"
 #include "core/sweep/trials.hpp"
+#include "dampbound/physics/error.hpp"
 #include "tests/core/sweep/sweep_test_util.hpp"
 
 namespace dampbound {

@@ -9,7 +9,7 @@
 #include <fstream>
 #include <iterator>
 
-#include "core/error.hpp"
+#include "dampbound/physics/error.hpp"
 #include "tests/core/sweep/sweep_test_util.hpp"
 
 namespace dampbound {

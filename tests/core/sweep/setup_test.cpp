@@ -6,8 +6,8 @@
 
 #include <set>
 
-#include "core/error.hpp"
 #include "core/sweep/trials.hpp"
+#include "dampbound/physics/error.hpp"
 #include "tests/core/sweep/sweep_test_util.hpp"
 
 namespace dampbound {

@@ -13,8 +13,8 @@
 #include <map>
 #include <string>
 
-#include "core/sweep/grid.hpp"
 #include "core/io/scene_file.hpp"
+#include "core/sweep/grid.hpp"
 #include "core/sweep/trials.hpp"
 
 namespace dampbound {

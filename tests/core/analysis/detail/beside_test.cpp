@@ -3,7 +3,7 @@
 // joining), and the Lanczos estimate beside it giving the bits of one thread and stopping
 // when asked.
 // clang-format off
-#include "core/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
+#include "core/physics/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
 // clang-format on
 #include "core/analysis/detail/beside.hpp"
 

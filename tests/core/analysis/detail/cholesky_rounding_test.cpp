@@ -1,4 +1,4 @@
-#include "core/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
+#include "core/physics/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
 // Tests of core/analysis/detail/cholesky_rounding: on factors of mesh matrices (a deformed
 // plane, a tetrahedral block, one shifted to within 1e-9 of singular), the bound covers the
 // factorisation's actual error ||L L^T - P B~ P^T||_2 plus the diagonal's rounding, and equals
@@ -15,8 +15,8 @@
 #include <vector>
 
 #include "core/analysis/detail/cholesky_rounding.hpp"
-#include "core/analysis/linear_stability.hpp"
-#include "core/scene.hpp"
+#include "dampbound/analysis/linear_stability.hpp"
+#include "dampbound/run/scene.hpp"
 #include "tests/core/analysis/detail/factor_matrices.hpp"
 
 namespace dampbound::detail {

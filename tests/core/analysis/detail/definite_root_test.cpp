@@ -4,7 +4,7 @@
 // damping; the bracket's width, the few factorisations, and the ends (never stable, never
 // unstable).
 // clang-format off
-#include "core/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
+#include "core/physics/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
 // clang-format on
 #include "core/analysis/detail/definite_root.hpp"
 

@@ -5,7 +5,7 @@
 // threshold against the factorised route's exact numbers, for the paper's step (the index)
 // and the per-mode integrators, at rest (K >= 0) and shaken.
 // clang-format off
-#include "core/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
+#include "core/physics/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
 // clang-format on
 #include "core/analysis/detail/exact_over_budget.hpp"
 
@@ -15,7 +15,7 @@
 #include <cmath>
 #include <string>
 
-#include "core/scene.hpp"
+#include "dampbound/run/scene.hpp"
 #include "tests/core/test_util.hpp"
 
 namespace dampbound {

@@ -5,8 +5,8 @@
 #include <vector>
 
 #include "bench/bench_meshes.hpp"
-#include "core/analysis/linear_stability.hpp"
-#include "core/scene.hpp"
+#include "dampbound/analysis/linear_stability.hpp"
+#include "dampbound/run/scene.hpp"
 #include "tests/core/test_util.hpp"
 
 namespace dampbound::test {

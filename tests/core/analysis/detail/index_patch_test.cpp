@@ -16,7 +16,7 @@
 #include "core/analysis/linear_stability_exact.hpp"
 #include "core/analysis/linear_stability_modes.hpp"
 #include "core/io/mesh.hpp"
-#include "core/scene.hpp"
+#include "dampbound/run/scene.hpp"
 
 namespace dampbound {
 namespace {

@@ -3,7 +3,7 @@
 // Spectra's; its Rayleigh quotient in A reaches lambda_max to the certificate's width.
 // Against Eigen's dense solver.
 // clang-format off
-#include "core/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
+#include "core/physics/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
 // clang-format on
 #include "core/analysis/detail/inverse_lanczos.hpp"
 

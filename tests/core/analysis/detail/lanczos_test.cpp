@@ -3,7 +3,7 @@
 // count; an invariant subspace stops it), the single-precision recurrence's matrix_error, and
 // the estimate's residual, error and step count. Against Eigen's dense solver.
 // clang-format off
-#include "core/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
+#include "core/physics/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
 // clang-format on
 #include "core/analysis/detail/lanczos.hpp"
 

@@ -3,7 +3,7 @@
 // just above the shift, solves match the dense inverse, the budget stops the analysis, and
 // assign() keeps or renews the pattern; against Eigen's dense solvers.
 // clang-format off
-#include "core/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
+#include "core/physics/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
 // clang-format on
 #include "core/analysis/detail/shifted_cholesky.hpp"
 
@@ -12,8 +12,8 @@
 #include <Eigen/Dense>
 #include <cmath>
 
+#include "dampbound/analysis/linear_stability.hpp"
 #include "tests/core/analysis/detail/factor_matrices.hpp"
-#include "core/analysis/linear_stability.hpp"
 
 namespace dampbound::detail {
 namespace {

@@ -1,4 +1,4 @@
-#include "core/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
+#include "core/physics/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
 // Tests of core/analysis/detail/supernodal_solve: on supernodal factors of mesh matrices (a
 // small plane, all of whose supernodes are under the BLAS threshold; a deformed plane, mostly
 // single columns, and a tetrahedral block, both with top separators past it), the solve agrees with
@@ -15,8 +15,8 @@
 #include "core/analysis/detail/serial_openmp.hpp"
 #include "core/analysis/detail/shifted_cholesky.hpp"
 #include "core/analysis/detail/supernodal_solve.hpp"
-#include "core/analysis/linear_stability.hpp"
-#include "core/scene.hpp"
+#include "dampbound/analysis/linear_stability.hpp"
+#include "dampbound/run/scene.hpp"
 #include "tests/core/analysis/detail/factor_matrices.hpp"
 
 namespace dampbound::detail {

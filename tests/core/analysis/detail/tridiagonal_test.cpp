@@ -3,7 +3,7 @@
 // Wilkinson's W21+ (pairs of eigenvalues equal to 14 digits), on a T that splits into blocks,
 // on the smallest sizes and on entries that are not finite.
 // clang-format off
-#include "core/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
+#include "core/physics/detail/gcc_warnings.hpp"  // first: silences GCC 12 false positives
 // clang-format on
 #include "core/analysis/detail/tridiagonal.hpp"
 

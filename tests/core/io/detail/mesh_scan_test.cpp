@@ -9,7 +9,7 @@
 #include <functional>
 #include <string>
 
-#include "core/error.hpp"
+#include "dampbound/physics/error.hpp"
 #include "tests/core/test_util.hpp"
 
 namespace dampbound {

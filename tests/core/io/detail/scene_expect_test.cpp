@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include "core/error.hpp"
+#include "dampbound/physics/error.hpp"
 #include "tests/core/test_util.hpp"
 
 namespace dampbound {

@@ -9,9 +9,9 @@
 #include <fstream>
 #include <functional>
 
-#include "core/error.hpp"
 #include "core/io/mesh_file.hpp"
 #include "core/io/scene_text.hpp"
+#include "dampbound/physics/error.hpp"
 #include "tests/core/test_util.hpp"
 
 namespace dampbound {

@@ -13,10 +13,10 @@
 #include <string>
 #include <vector>
 
-#include "core/bounds.hpp"
-#include "core/scene.hpp"
 #include "core/io/scene_file.hpp"
 #include "core/sweep/trials.hpp"
+#include "dampbound/physics/bounds.hpp"
+#include "dampbound/run/scene.hpp"
 #include "tests/core/sweep/sweep_test_util.hpp"
 
 namespace dampbound {

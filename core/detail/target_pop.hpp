@@ -1,6 +1,0 @@
-// Ends the target pushed by core/detail/target_push.hpp. No include guard: one pop per push.
-#if defined(__clang__)
-#pragma clang attribute pop
-#else
-#pragma GCC pop_options
-#endif
