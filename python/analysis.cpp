@@ -18,6 +18,12 @@ namespace dampbound::python {
 
 namespace {
 
+std::string joined(const std::vector<std::string>& lines) {
+  std::string text;
+  for (const std::string& line : lines) text += (text.empty() ? "" : "; ") + line;
+  return text;
+}
+
 py::dict runs_dict(const std::vector<VerifiedRun>& runs) {
   py::dict d;
   for (const VerifiedRun& r : runs) d[py::str(r.label)] = py::make_tuple(r.params, r.result);
@@ -246,6 +252,7 @@ void bind_analysis(py::module_& m) {
           d["proved_only"] = s.proved_only;
           d["gamma_unstable_from"] = s.gamma_unstable_from;
           d["runs"] = runs_dict(s.runs);
+          d["answer"] = joined(damping_answer(s));
         } else if (what == "dt") {
           StepSuggestion s;
           {
@@ -259,10 +266,11 @@ void bind_analysis(py::module_& m) {
           d["proved_only"] = s.proved_only;
           d["dt_unstable_from"] = s.dt_unstable_from;
           d["runs"] = runs_dict(s.runs);
+          d["answer"] = joined(step_answer(s));
         } else {
           throw py::value_error("what must be 'gamma' or 'dt', got '" + what + "'");
         }
-        return d;
+        return answer_dict("Suggestion", d);
       },
       py::arg("scene"), py::arg("params") = nullptr, py::arg("rules") = nullptr,
       py::arg("what") = "gamma", py::arg("verify") = true,
@@ -274,7 +282,8 @@ void bind_analysis(py::module_& m) {
       "runs each suggestion through a Session: runs maps a label to (Params, RunResult). "
       "Over factor_budget_gflop (default: none) proved_only is True: the range [gamma_min, "
       "gamma_max] and dt_exact are what is proved stable without a factorisation, the exact "
-      "limits below gamma_unstable_from / dt_unstable_from.");
+      "limits below gamma_unstable_from / dt_unstable_from. answer: the CLI's answer lines, "
+      "which the result's repr shows.");
 }
 
 }  // namespace dampbound::python

@@ -213,6 +213,12 @@ class SessionInUse {
   const void* session_;
 };
 
+/// `d` as an instance of the module's dict subclass `kind` (Answer, Suggestion: bind_answers):
+/// the same keys, with a repr that is the answer line(s) in d["answer"], the CLI's first lines.
+inline py::object answer_dict(const char* kind, const py::dict& d) {
+  return py::module_::import("dampbound").attr(kind)(d);
+}
+void bind_answers(py::module_& m);
 void bind_monitor(py::module_& m);
 void bind_analysis(py::module_& m);
 

@@ -2,6 +2,7 @@
 // protocol's result, the per-node bounds (eq. 5, eq. 6), and (monitor.cpp, analysis.cpp) the
 // monitor over the user's own arrays, the exact limits and suggest. Units: cm, s and any
 // consistent mass unit, as everywhere in dampbound.
+#include <pybind11/eval.h>
 #include <pybind11/stl.h>
 
 #include <stdexcept>
@@ -343,6 +344,27 @@ void bind_session(py::module_& m) {
 
 }  // namespace
 
+// Results that are dicts of numbers (suggest, ...) read first as the CLI's answer: a dict
+// subclass whose repr is d["answer"].
+void bind_answers(py::module_& m) {
+  py::exec(R"py(
+class Answer(dict):
+    """A result as a dict of its numbers; its repr is the answer (key 'answer') the CLI opens with."""
+    __slots__ = ()
+    def __repr__(self):
+        if "answer" not in self:
+            return dict.__repr__(self)
+        return "%s(%s)" % (type(self).__name__, self["answer"])
+
+class Suggestion(Answer):
+    """suggest()'s result: the numbers, the verifying runs and the answer line(s)."""
+    __slots__ = ()
+)py",
+           m.attr("__dict__"));
+  m.attr("Answer").attr("__module__") = "dampbound";
+  m.attr("Suggestion").attr("__module__") = "dampbound";
+}
+
 void bind_linear_limits(py::module_& m);  // python/linear_limits.cpp
 void bind_meshes(py::module_& m);         // python/meshes.cpp
 void bind_mass_scaling(py::module_& m);   // python/mass_scaling.cpp
@@ -364,6 +386,7 @@ PYBIND11_MODULE(dampbound, m) {
       PyErr_SetString(PyExc_ValueError, e.what());
     }
   });
+  bind_answers(m);
   bind_params(m);
   bind_results(m);
   bind_scene(m);

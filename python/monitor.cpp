@@ -6,6 +6,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "core/io/format.hpp"
 #include "python/arrays.hpp"
 
 namespace dampbound::python {
@@ -56,7 +57,21 @@ void bind_monitor(py::module_& m) {
                     "nodes with gamma_lo > gamma_safe (SPEC 9; counted when x is given)")
       .def_readonly("compressed_springs", &MonitorReport::compressed_springs,
                     "springs shorter than their rest length at x: SPEC 9 guarantees nothing")
-      .def_property_readonly("ok", &MonitorReport::ok, "no node violating or unstabilisable");
+      .def_property_readonly("ok", &MonitorReport::ok, "no node violating or unstabilisable")
+      .def("__repr__", [](const MonitorReport& r) {  // the verdict first, as the CLI says it
+        auto nodes = [](int n) { return std::to_string(n) + (n == 1 ? " node" : " nodes"); };
+        std::string text = r.ok() ? "ok: every node's damping within [gamma_lo, gamma_hi]"
+                                  : "NOT ok: ";
+        if (r.violating > 0)
+          text += nodes(r.violating) + " outside [gamma_lo, gamma_hi] (first " +
+                  std::to_string(r.first_violating) + ")";
+        if (r.unstabilisable > 0)
+          text += std::string(r.violating > 0 ? "; " : "") + nodes(r.unstabilisable) +
+                  " with gamma_lo > gamma_hi (first " + std::to_string(r.first_unstabilisable) + ")";
+        if (r.clamped > 0) text += "; the policy changed " + nodes(r.clamped);
+        if (r.unguaranteed > 0) text += "; " + nodes(r.unguaranteed) + " with gamma_lo > gamma_safe";
+        return "MonitorReport(" + text + ")";
+      });
 
   py::class_<MonitorLimits>(m, "MonitorLimits", "SPEC 7's exact limits at a state.")
       .def_readonly("lambda_max", &MonitorLimits::lambda_max,
@@ -90,7 +105,18 @@ void bind_monitor(py::module_& m) {
                     "every s in [0, this] (Gershgorin, SPEC 9; NaN otherwise)")
       .def_readonly("dt_stable_up_to", &MonitorLimits::dt_stable_up_to,
                     "not computed, no spring compressed: every dt <= this is proved stable "
-                    "with these gamma_i (NaN otherwise)");
+                    "with these gamma_i (NaN otherwise)")
+      .def("__repr__", [](const MonitorLimits& l) {  // the answer first, as the CLI says it
+        if (l.not_computed) return "MonitorLimits(not computed: " + *l.not_computed + ")";
+        if (l.indefinite)
+          return std::string("MonitorLimits(NOT stable: K is indefinite at x, a mode grows "
+                             "whatever the damping and dt)");
+        return "MonitorLimits(" + std::string(l.stable ? "stable" : "NOT stable") +
+               " at these gamma_i and dt; dt < " + format_human(l.dt_max) +
+               " s; s * gamma_i stable for s in [" + format_human(l.scale_lo) + ", " +
+               format_human(l.scale_hi) + "); lambda_max " + format_human(l.lambda_max) +
+               " 1/s^2)";
+      });
 
   py::class_<Monitor>(m, "Monitor",
                       "The paper's bounds over your own mass-spring arrays. Topology is copied "

@@ -5,6 +5,7 @@
 #include <limits>
 #include <string>
 
+#include "core/physics/detail/numbers.hpp"
 #include "core/physics/integrate.hpp"
 #include "core/sweep/summary.hpp"
 #include "dampbound/run/scene.hpp"
@@ -13,7 +14,6 @@ namespace dampbound::ui {
 
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 /// Solves a boundary equation for `var` with the other parameters from `p`; NaN when `var`
 /// does not appear or has no positive solution.

@@ -13,6 +13,7 @@
 #include "core/analysis/criteria_safe.hpp"
 #include "core/analysis/criteria_unfactored.hpp"
 #include "core/io/format.hpp"
+#include "core/physics/detail/numbers.hpp"
 #include "core/physics/integrate.hpp"
 #include "dampbound/physics/bounds.hpp"
 #include "dampbound/physics/forces.hpp"
@@ -21,7 +22,6 @@ namespace dampbound {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-constexpr double kInf = std::numeric_limits<double>::infinity();
 
 CriterionResult criterion(std::string name, std::string source, std::string formula) {
   CriterionResult c;
@@ -30,8 +30,6 @@ CriterionResult criterion(std::string name, std::string source, std::string form
   c.formula = std::move(formula);
   return c;
 }
-
-CriterionVerdict verdict_of(bool ok) { return ok ? CriterionVerdict::within : CriterionVerdict::beyond; }
 
 /// Per mode, a number taken over the spectrum's certified outer ends and the same over its
 /// inner ends (ExactStability::Inner): whether the printed digits tell them apart, so that the

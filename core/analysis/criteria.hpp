@@ -18,6 +18,10 @@ enum class CriterionVerdict {
 };
 
 const char* to_string(CriterionVerdict v);
+/// within when `ok`, else beyond: a criterion that always speaks to the case.
+inline CriterionVerdict verdict_of(bool ok) {
+  return ok ? CriterionVerdict::within : CriterionVerdict::beyond;
+}
 
 /// One criterion evaluated: its quantity, what it is compared with, and the verdict.
 struct CriterionResult {

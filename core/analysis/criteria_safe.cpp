@@ -13,10 +13,6 @@
 namespace dampbound {
 namespace {
 
-CriterionVerdict verdict_of(bool ok) {
-  return ok ? CriterionVerdict::within : CriterionVerdict::beyond;
-}
-
 /// "; ratio to the exact limit r" when the exact analysis is the paper's step's.
 std::string ratio_text(double safe, double exact, const ExactStability* e) {
   if (!e || !integrator_traits(e->integrator).paper_step || !std::isfinite(exact) ||

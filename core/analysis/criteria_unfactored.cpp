@@ -6,11 +6,10 @@
 #include <string>
 
 #include "core/io/format.hpp"
+#include "core/physics/detail/numbers.hpp"
 
 namespace dampbound {
 namespace {
-constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 }  // namespace
 
 std::string over_budget_test(const ExactStability& exact) {

@@ -7,6 +7,7 @@
 #include "core/analysis/detail/definite_root.hpp"
 #include "core/analysis/detail/shifted_cholesky.hpp"
 #include "core/analysis/linear_stability_modes.hpp"
+#include "core/physics/detail/numbers.hpp"
 #include "dampbound/analysis/linear_stability.hpp"
 #include "dampbound/physics/stiffness.hpp"
 
@@ -19,7 +20,6 @@ DampingRatios damping_ratios(const Model& model, const std::vector<Vec3>& x) {
 DampingRatios damping_ratios(const Model& model, const std::vector<Vec3>&,
                              const StiffnessSpectrum& sp) {
   DampingRatios r;
-  constexpr double kInf = std::numeric_limits<double>::infinity();
   r.nodal_min = r.dashpot_min = kInf;
   r.nodal_max = r.dashpot_max = 0;
   for (size_t i = 0; i < model.spec().rest.size(); ++i) {

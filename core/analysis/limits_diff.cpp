@@ -13,6 +13,7 @@
 #include "core/analysis/worst_nodes.hpp"
 #include "core/io/format.hpp"
 #include "core/io/json_read.hpp"
+#include "core/physics/detail/numbers.hpp"
 #include "core/physics/integrate.hpp"
 #include "core/physics/safe_bound_nodes.hpp"
 #include "dampbound/analysis/linear_stability.hpp"
@@ -106,7 +107,6 @@ LimitsSnapshot limits_snapshot(const SceneSpec& scene, const Params& params,
   o.with_radius = false;
   const ExactStability e = exact_stability(model, x, s.params, o);
   s.method = to_string(e.method);
-  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
   s.dt_limit = e.computed() ? e.dt_max : kNaN;
   s.gamma_lo = e.computed() ? e.gamma_lo : kNaN;
   s.gamma_hi = e.computed() ? e.gamma_hi : kNaN;

@@ -17,6 +17,7 @@
 #include "core/analysis/detail/exact_over_budget.hpp"
 #include "core/analysis/detail/shifted_cholesky.hpp"
 #include "core/analysis/linear_stability_cholesky.hpp"
+#include "core/physics/detail/numbers.hpp"
 #include "core/physics/integrate.hpp"
 
 namespace dampbound {
@@ -25,8 +26,6 @@ using detail::over_budget;
 using detail::uniform_rates;
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 /// lambda_max(h^2 A + 2 h gamma diag(R)), certified (its upper end); on `factors`, which
 /// keeps their pattern analysis between calls (every such matrix has one pattern).

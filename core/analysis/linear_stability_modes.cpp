@@ -15,12 +15,12 @@
 #include <vector>
 
 #include "core/analysis/detail/rk4_proofs.hpp"
+#include "core/physics/detail/numbers.hpp"
 #include "core/physics/integrate.hpp"
 
 namespace dampbound {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
 /// "Bounded" (stable) means rho <= 1 + kMarginal: an undamped symplectic step (rho = 1
 /// exactly) counts as stable, as in SPEC 7's dt < 2/sqrt(lambda_max) at gamma = 0.
 constexpr double kMarginal = 1e-12;

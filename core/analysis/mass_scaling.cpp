@@ -8,12 +8,12 @@
 #include "core/analysis/detail/shifted_cholesky.hpp"
 #include "core/analysis/linear_stability_cholesky.hpp"
 #include "core/analysis/suggest.hpp"
+#include "core/physics/detail/numbers.hpp"
 #include "dampbound/physics/error.hpp"
 
 namespace dampbound {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
 
 /// The margin SPEC 11 adds to a scaled node: m'_i = m_req_i (1 + 1e-6).
 constexpr double kLocalMargin = 1e-6;

@@ -9,11 +9,11 @@
 #include "core/analysis/substeps.hpp"
 #include "core/analysis/worst_nodes.hpp"
 #include "core/physics/damping_ratio.hpp"
+#include "core/physics/detail/numbers.hpp"
 
 namespace dampbound {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 /// sqrt(lambda_min(M^-1 K)) at rest (1/s), NaN where lambda_min <= 0 (a zero mode).
 double lowest_frequency(const Model& model) {

@@ -5,11 +5,11 @@
 #include <limits>
 #include <stdexcept>
 
+#include "core/physics/detail/numbers.hpp"
 #include "dampbound/physics/step.hpp"
 
 namespace dampbound {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
 
 double perturbation_growth(const Model& model, const Params& params, int steps,
                            double amplitude, unsigned seed) {

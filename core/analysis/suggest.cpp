@@ -9,6 +9,7 @@
 #include <tuple>
 
 #include "core/io/format.hpp"
+#include "core/physics/detail/numbers.hpp"
 #include "core/physics/integrate.hpp"
 #include "core/physics/safe_bound.hpp"
 #include "dampbound/run/session.hpp"
@@ -16,8 +17,6 @@
 namespace dampbound {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kPi = 3.14159265358979323846;
 
 /// The score of a trial run (settled rule): settled runs by their settled iteration, then the

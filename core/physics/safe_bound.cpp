@@ -3,6 +3,7 @@
 #include <limits>
 #include <optional>
 
+#include "core/physics/detail/numbers.hpp"
 #include "core/physics/detail/spring_pass.hpp"
 #include "dampbound/physics/closed_forms.hpp"
 
@@ -37,7 +38,6 @@ SafeBoundSummary safe_bound_summary(const Model& model, const std::vector<Vec3>&
   SafeBoundSummary s;
   const NodeSafeBounds rows(model, x);
   s.compressed_springs = rows.compressed_springs();
-  constexpr double kInf = std::numeric_limits<double>::infinity();
   s.gamma_safe = s.dt_safe = kInf;
   for (size_t i = 0; i < model.mass.size(); ++i) {
     if (model.spec().fixed[i]) continue;

@@ -230,3 +230,34 @@ def test_monitor_threads_give_the_same_bits():
     assert r1.violating > 0
     with pytest.raises(ValueError, match="threads"):
         mon.threads = -1
+
+
+def test_results_read_first_as_their_answer():
+    # Each repr says the verdict first, in the words the CLI uses, and agrees with the fields.
+    m, kappa = 0.5, 2.0
+    mon = dampbound.Monitor(np.full(2, m), np.array([[0, 1]]), np.array([kappa]), np.ones(1))
+    x = np.array([[0.0, 0, 0], [1.0, 0, 0]])
+    stable = mon.exact_limits(x, np.full(2, 0.1), 0.1)
+    assert stable.stable and repr(stable).startswith("MonitorLimits(stable at these gamma_i")
+    unstable = mon.exact_limits(x, np.full(2, 0.1), 3.0)  # dt above 2/sqrt(lambda) = 1
+    assert not unstable.stable and repr(unstable).startswith("MonitorLimits(NOT stable")
+    over = mon.exact_limits(x, np.full(2, 0.1), 0.1, factor_budget_gflop=1e-12)
+    if not over.computed:
+        assert repr(over) == "MonitorLimits(not computed: " + over.reason + ")"
+    v = np.array([[0.0, 0, 0], [1.0, 0, 0]])
+    f = mon.internal_forces(x)
+    report, _ = mon.check(v, f, np.zeros(2), 0.1)  # undamped: below gamma_lo at both nodes
+    assert not report.ok and repr(report).startswith("MonitorReport(NOT ok: 2 nodes outside")
+    report, _ = mon.check(v, f, mon.lower_bounds(), 0.1)
+    assert report.ok and repr(report).startswith("MonitorReport(ok:")
+
+
+def test_suggest_reads_first_as_the_clis_answer(scenes_dir):
+    scene = dampbound.load_scene(str(scenes_dir / "two-node.toml"))
+    s = dampbound.suggest(scene, verify=False)
+    assert isinstance(s, dict) and isinstance(s, dampbound.Suggestion)
+    assert repr(s) == "Suggestion(" + s["answer"] + ")"
+    assert s["answer"] and "gamma" in s["answer"]
+    t = dampbound.suggest(scene, what="dt", verify=False)
+    assert repr(t) == "Suggestion(" + t["answer"] + ")" and "dt" in t["answer"]
+    assert dict(t)["dt_exact"] == t["dt_exact"]  # still a plain dict of the numbers

@@ -1,5 +1,6 @@
 // Pure pixel geometry (ui/plot_geometry.hpp): clipping, polylines with gaps, min/max
 // decimation of series and bands, dashes. No GL, no ImGui context.
+#include "core/physics/detail/numbers.hpp"
 #include "ui/plot_geometry.hpp"
 
 #include <gtest/gtest.h>
@@ -11,7 +12,6 @@
 namespace dampbound::ui {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 TEST(ClipSegment, LiangBarsky) {
   const PixelRect r{0, 0, 10, 10};

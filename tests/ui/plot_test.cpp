@@ -1,5 +1,6 @@
 // Pure plot axis maths (ui/plot_math.hpp): ranges, ticks, labels, the data<->pixel map.
 // No GL, no ImGui context.
+#include "core/physics/detail/numbers.hpp"
 #include "ui/plot_math.hpp"
 
 #include <gtest/gtest.h>
@@ -11,8 +12,6 @@
 namespace dampbound::ui {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr double kInf = std::numeric_limits<double>::infinity();
 
 std::vector<double> values(const std::vector<Tick>& ticks, bool major_only = true) {
   std::vector<double> v;

@@ -8,11 +8,11 @@
 
 #include "core/analysis/detail/lanczos.hpp"
 #include "core/analysis/detail/shifted_cholesky.hpp"
+#include "core/physics/detail/numbers.hpp"
 
 namespace dampbound::detail {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
 /// The interval's relative width, as the bisection on certified eigenvalues had it.
 constexpr double kWidth = 1e-10;
 /// Lanczos steps per run (full reorthogonalisation), and its tolerance on the top Ritz value.

@@ -11,14 +11,13 @@
 
 #include "core/analysis/detail/index_patch.hpp"
 #include "core/analysis/linear_stability_modes.hpp"
+#include "core/physics/detail/numbers.hpp"
 #include "core/physics/integrate.hpp"
 #include "core/physics/safe_bound.hpp"
 
 namespace dampbound::detail {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 /// The long double sum of n non-negative terms u_i^2 R_i over u^T u, less a bound on its
 /// rounding (gamma_{n+1} of itself, twice, and the conversion): a lower bound on the true

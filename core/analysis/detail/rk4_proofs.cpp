@@ -2,6 +2,7 @@
 // budget"): from which lambda every mode is unstable, and the steps and rates at which every
 // mode in [0, lambda_hi] is stable. Long double sums, each with an allowance for its rounding.
 #include "core/analysis/detail/rk4_proofs.hpp"
+#include "core/physics/detail/numbers.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -12,7 +13,6 @@
 namespace dampbound::detail {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
 
 /// RK4 (SPEC 7's classic step), underdamped modes: the step's eigenvalues are R(z), z = h mu,
 /// mu = -c/2 +- i w the roots of mu^2 + c mu + lambda, R(z) = sum_{k<=4} z^k/k!. With

@@ -4,6 +4,7 @@
 // paper's step's index, the per-mode thresholds, RK4's stable side, implicit Euler's
 // unconditional stability), with no verdict between the proofs.
 #include "core/analysis/criteria_unfactored.hpp"
+#include "core/physics/detail/numbers.hpp"
 
 #include <gtest/gtest.h>
 
@@ -14,8 +15,6 @@
 namespace dampbound {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 ExactStability not_computed(Integrator integ) {
   ExactStability e;
@@ -37,7 +36,7 @@ Params params(Integrator integ, double gamma, double dt) {
   return p;
 }
 
-bool has(const CriterionResult& c, const std::string& text) {
+bool mentions(const CriterionResult& c, const std::string& text) {
   return c.test.find(text) != std::string::npos;
 }
 
@@ -59,9 +58,9 @@ TEST(CriteriaUnfactored, NothingTriedGivesFourRowsWithTheReasonAndNoVerdict) {
 TEST(CriteriaUnfactored, TheLambdaRowGivesTheBracketAndWhichBoundClosesIt) {
   const ExactStability e = not_computed(Integrator::semi_implicit_euler);
   const auto rows = unfactored_criteria(e, params(Integrator::semi_implicit_euler, 0.1, 0.05));
-  EXPECT_TRUE(has(rows[0], "Lanczos, 40 steps")) << rows[0].test;
-  EXPECT_TRUE(has(rows[0], "lambda_max in [90, 110]")) << rows[0].test;
-  EXPECT_TRUE(has(rows[0], "the node-block splitting's bound; Gershgorin's: 120")) << rows[0].test;
+  EXPECT_TRUE(mentions(rows[0], "Lanczos, 40 steps")) << rows[0].test;
+  EXPECT_TRUE(mentions(rows[0], "lambda_max in [90, 110]")) << rows[0].test;
+  EXPECT_TRUE(mentions(rows[0], "the node-block splitting's bound; Gershgorin's: 120")) << rows[0].test;
   EXPECT_TRUE(std::isnan(rows[0].value));
 }
 
@@ -73,18 +72,18 @@ TEST(CriteriaUnfactored, ThePaperStepsIndexProvesInstabilityAtFourAndItsThreshol
   b.dt_unstable_from = 0.04;
   const auto rows = unfactored_criteria(e, params(Integrator::semi_implicit_euler, 0.1, 0.05));
   EXPECT_EQ(rows[1].verdict, CriterionVerdict::beyond);
-  EXPECT_TRUE(has(rows[1], ">= 4: unstable (proved)")) << rows[1].test;
+  EXPECT_TRUE(mentions(rows[1], ">= 4: unstable (proved)")) << rows[1].test;
   EXPECT_EQ(rows[2].verdict, CriterionVerdict::beyond);
-  EXPECT_TRUE(has(rows[2], "every gamma >= 0.08 is unstable at this dt")) << rows[2].test;
+  EXPECT_TRUE(mentions(rows[2], "every gamma >= 0.08 is unstable at this dt")) << rows[2].test;
   EXPECT_EQ(rows[3].verdict, CriterionVerdict::beyond);
-  EXPECT_TRUE(has(rows[3], "every dt >= 0.04 is unstable at this gamma")) << rows[3].test;
+  EXPECT_TRUE(mentions(rows[3], "every dt >= 0.04 is unstable at this gamma")) << rows[3].test;
   // Below both thresholds and with nothing proved stable: no verdict.
   b.index_at_least = 3;
   const auto open = unfactored_criteria(e, params(Integrator::semi_implicit_euler, 0.05, 0.03));
   for (size_t k = 1; k < 4; ++k)
     EXPECT_EQ(open[k].verdict, CriterionVerdict::not_applicable) << open[k].test;
-  EXPECT_TRUE(has(open[1], "(< 4 proves nothing)")) << open[1].test;
-  EXPECT_TRUE(has(open[2], "gamma = 0.05 is not proved either way")) << open[2].test;
+  EXPECT_TRUE(mentions(open[1], "(< 4 proves nothing)")) << open[1].test;
+  EXPECT_TRUE(mentions(open[2], "gamma = 0.05 is not proved either way")) << open[2].test;
   // The user's point exactly at a threshold counts as unstable.
   const auto at = unfactored_criteria(e, params(Integrator::semi_implicit_euler, 0.08, 0.04));
   EXPECT_EQ(at[2].verdict, CriterionVerdict::beyond);
@@ -105,9 +104,9 @@ TEST(CriteriaUnfactored, ThePaperStepsUpperBoundBelowFourProvesStability) {
   e.stable = true;
   const auto rows = unfactored_criteria(e, params(Integrator::semi_implicit_euler, 0.1, 0.05));
   for (size_t k = 1; k < 4; ++k) EXPECT_EQ(rows[k].verdict, CriterionVerdict::within) << k;
-  EXPECT_TRUE(has(rows[1], "< 4: stable (proved)")) << rows[1].test;
-  EXPECT_TRUE(has(rows[2], "every gamma <= 0.3 is stable; gamma = 0.1 is stable")) << rows[2].test;
-  EXPECT_TRUE(has(rows[3], "every dt <= 0.1 is stable; dt = 0.05 is stable")) << rows[3].test;
+  EXPECT_TRUE(mentions(rows[1], "< 4: stable (proved)")) << rows[1].test;
+  EXPECT_TRUE(mentions(rows[2], "every gamma <= 0.3 is stable; gamma = 0.1 is stable")) << rows[2].test;
+  EXPECT_TRUE(mentions(rows[3], "every dt <= 0.1 is stable; dt = 0.05 is stable")) << rows[3].test;
   // Outside the stable ranges but below the unstable thresholds: no verdict.
   const auto between = unfactored_criteria(e, params(Integrator::semi_implicit_euler, 0.4, 0.15));
   EXPECT_EQ(between[2].verdict, CriterionVerdict::not_applicable) << between[2].test;
@@ -122,9 +121,9 @@ TEST(CriteriaUnfactored, PerModeThresholdsProveInstabilityBelowAGammaAndAboveADt
   b.dt_unstable_from = 0.04;
   const auto rows = unfactored_criteria(e, params(Integrator::forward_euler, 0.2, 0.05));
   EXPECT_EQ(rows[1].verdict, CriterionVerdict::beyond);
-  EXPECT_TRUE(has(rows[1], "every mode with lambda >= 80")) << rows[1].test;
+  EXPECT_TRUE(mentions(rows[1], "every mode with lambda >= 80")) << rows[1].test;
   EXPECT_EQ(rows[2].verdict, CriterionVerdict::beyond);
-  EXPECT_TRUE(has(rows[2], "every gamma <= 0.3 is unstable at this dt")) << rows[2].test;
+  EXPECT_TRUE(mentions(rows[2], "every gamma <= 0.3 is unstable at this dt")) << rows[2].test;
   EXPECT_EQ(rows[3].verdict, CriterionVerdict::beyond);
   // A gamma above the threshold is not proved unstable.
   b.mode_unstable_from = 100;
@@ -136,7 +135,7 @@ TEST(CriteriaUnfactored, PerModeThresholdsProveInstabilityBelowAGammaAndAboveADt
   b.gamma_unstable_below = kInf;
   const auto undamped = unfactored_criteria(e, params(Integrator::forward_euler, 0.35, 0.03));
   EXPECT_EQ(undamped[2].verdict, CriterionVerdict::beyond);
-  EXPECT_TRUE(has(undamped[2], "every gamma is unstable at this dt")) << undamped[2].test;
+  EXPECT_TRUE(mentions(undamped[2], "every gamma is unstable at this dt")) << undamped[2].test;
 }
 
 TEST(CriteriaUnfactored, Rk4GivesItsStableSideAroundTheUsersPointAndNoThresholds) {
@@ -152,15 +151,15 @@ TEST(CriteriaUnfactored, Rk4GivesItsStableSideAroundTheUsersPointAndNoThresholds
   e.stable = true;
   const auto rows = unfactored_criteria(e, params(Integrator::rk4, 0.1, 0.05));
   for (size_t k = 1; k < 4; ++k) EXPECT_EQ(rows[k].verdict, CriterionVerdict::within) << k;
-  EXPECT_TRUE(has(rows[2], "every gamma in [0.05, 0.5] is stable")) << rows[2].test;
-  EXPECT_TRUE(has(rows[3], "every dt <= 0.08 is stable")) << rows[3].test;
-  EXPECT_FALSE(has(rows[2], "unstable")) << rows[2].test;
+  EXPECT_TRUE(mentions(rows[2], "every gamma in [0.05, 0.5] is stable")) << rows[2].test;
+  EXPECT_TRUE(mentions(rows[3], "every dt <= 0.08 is stable")) << rows[3].test;
+  EXPECT_FALSE(mentions(rows[2], "unstable")) << rows[2].test;
   // Proved unstable at the user's point: the two limit rows follow the radius row.
   b.mode_unstable_from = 85;
   e.stable = false;
   const auto beyond = unfactored_criteria(e, params(Integrator::rk4, 0.1, 0.05));
   for (size_t k = 1; k < 4; ++k) EXPECT_EQ(beyond[k].verdict, CriterionVerdict::beyond) << k;
-  EXPECT_TRUE(has(beyond[3], "unstable at this gamma and dt (proved")) << beyond[3].test;
+  EXPECT_TRUE(mentions(beyond[3], "unstable at this gamma and dt (proved")) << beyond[3].test;
 }
 
 TEST(CriteriaUnfactored, ImplicitEulerWithKPositiveSemidefiniteIsStableForEveryDtAndGamma) {
@@ -173,7 +172,7 @@ TEST(CriteriaUnfactored, ImplicitEulerWithKPositiveSemidefiniteIsStableForEveryD
   for (size_t k = 1; k < 4; ++k) EXPECT_EQ(rows[k].verdict, CriterionVerdict::within) << k;
   EXPECT_EQ(rows[2].value, kInf);
   EXPECT_EQ(rows[3].value, kInf);
-  EXPECT_TRUE(has(rows[3], "dt = 10 <= dt_max = inf")) << rows[3].test;
+  EXPECT_TRUE(mentions(rows[3], "dt = 10 <= dt_max = inf")) << rows[3].test;
 }
 
 }  // namespace

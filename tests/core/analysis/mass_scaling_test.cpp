@@ -123,15 +123,15 @@ Eigen::VectorXd vec(const std::vector<double>& v) {
   return Eigen::Map<const Eigen::VectorXd>(v.data(), long(v.size()));
 }
 
-struct Case {
+struct ScalingCase {
   const char* name;
   ModelSpec spec;
   Params params;
   double dt;
 };
 
-std::vector<Case> cases() {
-  std::vector<Case> out;
+std::vector<ScalingCase> cases() {
+  std::vector<ScalingCase> out;
   out.push_back({"SPEC 11's plane", spec_plane(), spec_params(), 0.3});
   Params p = spec_params(0.0004);
   p.rayleigh_mass = 0.5;
@@ -148,7 +148,7 @@ std::vector<Case> cases() {
 }
 
 TEST(MassScaling, LocalRuleMatchesTheDenseRowSumsAndMakesEveryRowDominant) {
-  for (const Case& c : cases()) {
+  for (const ScalingCase& c : cases()) {
     SCOPED_TRACE(c.name);
     const Model model = compile_model(c.spec, c.params);
     const Dense d = dense(model);
@@ -181,7 +181,7 @@ TEST(MassScaling, LocalRuleMatchesTheDenseRowSumsAndMakesEveryRowDominant) {
 }
 
 TEST(MassScaling, TightenedPointIsTheDenseEigenvalueBisectionsAndStableAtTheTarget) {
-  for (const Case& c : cases()) {
+  for (const ScalingCase& c : cases()) {
     SCOPED_TRACE(c.name);
     const Model model = compile_model(c.spec, c.params);
     const Dense d = dense(model);

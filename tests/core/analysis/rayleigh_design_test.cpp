@@ -42,7 +42,7 @@ SceneSpec plane(std::mt19937& rng, bool random) {
 }
 
 /// Spectral radius of the paper's step at rest with q's damping (tests/core/dense_step.hpp).
-double dense_radius(const SceneSpec& scene, const Params& q) {
+double dense_radius_of(const SceneSpec& scene, const Params& q) {
   return test::dense_step_radius(compile_model(scene.model, q), q.dt);
 }
 
@@ -96,16 +96,16 @@ TEST(RayleighDesign, VerdictMatchesTheDenseAmplificationMatrix) {
     Params q = s.params;
     q.rayleigh_mass = d.alpha;
     q.rayleigh_stiffness = d.beta;
-    EXPECT_EQ(d.stable, dense_radius(s, q) < 1) << c.zeta2;
+    EXPECT_EQ(d.stable, dense_radius_of(s, q) < 1) << c.zeta2;
     (d.stable ? stable : unstable) += 1;
     // beta_max is the edge: stable just below, unstable just above (0: alpha, gamma and kd
     // are already unstable).
     q.rayleigh_stiffness = d.beta_max * (1 - 1e-6);
     if (d.beta_max > 0) {
-      EXPECT_LT(dense_radius(s, q), 1);
+      EXPECT_LT(dense_radius_of(s, q), 1);
     }
     q.rayleigh_stiffness = d.beta_max * (1 + 1e-6);
-    EXPECT_GT(dense_radius(s, q), 1);
+    EXPECT_GT(dense_radius_of(s, q), 1);
     // SPEC 10's closed form where C^ commutes with A (uniform masses, no dashpot).
     if (!c.random && c.kd == 0) {
       ASSERT_FALSE(std::isnan(d.beta_max_closed));

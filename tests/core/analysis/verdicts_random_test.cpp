@@ -124,14 +124,14 @@ double run_growth(const ModelSpec& spec, const std::vector<Vec3>& x, const Param
 
 /// A mesh and the positions where its verdicts are taken: an equilibrium (F_i + f_i = 0 at
 /// every free node), where the analysis linearises and the runs start.
-struct Case {
+struct RandomCase {
   ModelSpec spec;
   std::vector<Vec3> x;
   std::string what;
   int compressed = 0;  ///< springs shorter than their rest length at x
 };
 
-Case at_rest(const RandomMesh& mesh) {
+RandomCase at_rest(const RandomMesh& mesh) {
   return {mesh.spec, mesh.spec.rest, mesh.what, 0};
 }
 
@@ -143,8 +143,8 @@ Case at_rest(const RandomMesh& mesh) {
 enum class Held { pre_stretched, nudged, displaced, loaded };
 
 /// The mesh held at x by external forces f_i = -F_i(x).
-Case held_deformed(const RandomMesh& mesh, unsigned seed, Held how) {
-  Case c{mesh.spec, mesh.spec.rest, mesh.what, 0};
+RandomCase held_deformed(const RandomMesh& mesh, unsigned seed, Held how) {
+  RandomCase c{mesh.spec, mesh.spec.rest, mesh.what, 0};
   Lcg r{seed * 15485863u + static_cast<unsigned>(how)};
   double mean = 0;
   for (const Spring& s : c.spec.springs) mean += s.rest_length / c.spec.spring_count();
@@ -196,7 +196,7 @@ struct Checked {
 };
 
 /// The exact analysis at q, its verdict checked by a run where rho is 2e-3 or more from 1.
-ExactStability exact_at(const Case& c, const Params& q, const std::string& where,
+ExactStability exact_at(const RandomCase& c, const Params& q, const std::string& where,
                         Checked& checked) {
   const Model m = compile_model(c.spec, q);
   const ExactStability e = exact_stability(m, c.x, q);
@@ -215,7 +215,7 @@ ExactStability exact_at(const Case& c, const Params& q, const std::string& where
 }
 
 /// Every verdict at one case, for every integrator at a random gamma and dt (drawn from r).
-void check_case(const Case& c, Lcg& r, Checked& checked) {
+void check_case(const RandomCase& c, Lcg& r, Checked& checked) {
   for (Integrator in : {Integrator::semi_implicit_euler, Integrator::forward_euler,
                         Integrator::verlet, Integrator::rk4, Integrator::implicit_euler}) {
     Params p;
@@ -366,7 +366,7 @@ TEST(VerdictsOnRandomMeshes, AtDeformedEquilibriaTheAnalysisAgreesWithTheRuns) {
   for (unsigned seed = 1; seed <= seeds; ++seed) {
     const RandomMesh mesh = random_mesh(seed);
     for (Held how : {Held::pre_stretched, Held::nudged, Held::displaced, Held::loaded}) {
-      const Case c = held_deformed(mesh, seed, how);
+      const RandomCase c = held_deformed(mesh, seed, how);
       if (how == Held::pre_stretched) {
         EXPECT_EQ(c.compressed, 0) << c.what;
       }

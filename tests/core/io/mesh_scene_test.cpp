@@ -23,7 +23,7 @@ CellBlock two_triangles() {
   return b;
 }
 
-std::string error_of(const std::vector<Vec3>& points, const std::vector<CellBlock>& blocks,
+std::string mesh_error_of(const std::vector<Vec3>& points, const std::vector<CellBlock>& blocks,
                      const MeshSceneOptions& o = {}) {
   try {
     scene_from_arrays(points, blocks, o);
@@ -56,24 +56,24 @@ TEST(MeshScene, TwoTrianglesGiveTheirEdgesFixedRegionsAndThePerturbation) {
 
 TEST(MeshScene, BadArraysNameWhatToFix) {
   CellBlock b = two_triangles();
-  EXPECT_EQ(error_of({}, {b}), "points: the mesh has no point");
+  EXPECT_EQ(mesh_error_of({}, {b}), "points: the mesh has no point");
   std::vector<Vec3> p = square();
   p[2].x() = std::nan("");
-  EXPECT_EQ(error_of(p, {b}), "points: row 2 is not finite");
+  EXPECT_EQ(mesh_error_of(p, {b}), "points: row 2 is not finite");
   b.corners.pop_back();
-  EXPECT_EQ(error_of(square(), {b}), "triangle cells: 5 indices are not rows of 3");
+  EXPECT_EQ(mesh_error_of(square(), {b}), "triangle cells: 5 indices are not rows of 3");
   b = two_triangles();
   b.regions = {1};
-  EXPECT_EQ(error_of(square(), {b}), "triangle cells: 1 region tags for 2 cells");
+  EXPECT_EQ(mesh_error_of(square(), {b}), "triangle cells: 1 region tags for 2 cells");
   b = two_triangles();
   b.corners[4] = 0;  // triangle 1 becomes (0, 0, 3)
-  EXPECT_EQ(error_of(square(), {b}).rfind("triangle cell 1: ", 0), 0u);
+  EXPECT_EQ(mesh_error_of(square(), {b}).rfind("triangle cell 1: ", 0), 0u);
   MeshSceneOptions o;
   o.fixed_regions = {7};
-  EXPECT_EQ(error_of(square(), {two_triangles()}, o), "fixed: no cell has region tag 7");
+  EXPECT_EQ(mesh_error_of(square(), {two_triangles()}, o), "fixed: no cell has region tag 7");
   o = {};
   o.perturb_node = 9;
-  EXPECT_EQ(error_of(square(), {two_triangles()}, o),
+  EXPECT_EQ(mesh_error_of(square(), {two_triangles()}, o),
             "perturb: node 9 does not exist (4 nodes)");
 }
 

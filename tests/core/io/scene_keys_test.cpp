@@ -14,7 +14,7 @@
 namespace dampbound {
 namespace {
 
-const char* kGrid = "[grid]\nnx = 3\nnz = 3\nspacing = 1.0\n[[perturb]]\nnode = 4\n";
+const char* kGridKeys = "[grid]\nnx = 3\nnz = 3\nspacing = 1.0\n[[perturb]]\nnode = 4\n";
 
 TEST(SceneKeys, EveryKeyIsOnceInADeclaredSection) {
   std::set<std::string> sections;
@@ -45,11 +45,11 @@ TEST(SceneKeys, TheReaderAcceptsATableKeyAndRefusesAnyOther) {
   for (const SceneKey& k : scene_keys()) {
     if (k.section != "[params]") continue;
     const std::string value = k.type == "string" ? k.default_value : "0.5";
-    const std::string text = std::string(kGrid) + "[params]\n" + k.key + " = " + value + "\n";
+    const std::string text = std::string(kGridKeys) + "[params]\n" + k.key + " = " + value + "\n";
     EXPECT_NO_THROW(parse_scene(text, "s.toml")) << k.key;
   }
   try {
-    parse_scene(std::string(kGrid) + "[params]\nmass = 1\n", "s.toml");
+    parse_scene(std::string(kGridKeys) + "[params]\nmass = 1\n", "s.toml");
     FAIL() << "an unknown key was read";
   } catch (const InputError& e) {
     EXPECT_STREQ(e.what(), "s.toml:8: unknown key 'mass' in [params]");

@@ -1,4 +1,5 @@
 // The bounds (eqs. 5, 6) against hand-computed values, and each damping policy (SPEC 4).
+#include "core/physics/detail/numbers.hpp"
 #include "dampbound/physics/bounds.hpp"
 
 #include <gtest/gtest.h>
@@ -9,7 +10,6 @@
 namespace dampbound {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
 
 TEST(LowerBound, TwoSqrtMKappa) {
   EXPECT_DOUBLE_EQ(lower_bound(0.001, 0.001), 0.002);

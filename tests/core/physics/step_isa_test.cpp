@@ -38,7 +38,7 @@ TEST(StepIsa, BestIsACopyThisCpuRuns) {
 }
 
 template <class T>
-bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
+bool same_vector_bits(const std::vector<T>& a, const std::vector<T>& b) {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
 }
 
@@ -80,13 +80,13 @@ TEST(StepIsa, EveryCopyGivesStepsSameBits) {
           ASSERT_EQ(sa.compressed_springs, sb.compressed_springs);
           ASSERT_EQ(sa.zero_length_springs, sb.zero_length_springs);
           compressed += sa.compressed_springs;
-          ASSERT_TRUE(same_bits(a.x, b.x)) << "step " << k;
-          ASSERT_TRUE(same_bits(a.v, b.v)) << "step " << k;
-          ASSERT_TRUE(same_bits(wa.force, wb.force));
-          ASSERT_TRUE(same_bits(wa.safe_row_sum, wb.safe_row_sum));
-          ASSERT_TRUE(same_bits(wa.upper_bound, wb.upper_bound));
-          ASSERT_TRUE(same_bits(wa.safe_bound, wb.safe_bound));
-          ASSERT_TRUE(same_bits(wa.gamma_eff, wb.gamma_eff));
+          ASSERT_TRUE(same_vector_bits(a.x, b.x)) << "step " << k;
+          ASSERT_TRUE(same_vector_bits(a.v, b.v)) << "step " << k;
+          ASSERT_TRUE(same_vector_bits(wa.force, wb.force));
+          ASSERT_TRUE(same_vector_bits(wa.safe_row_sum, wb.safe_row_sum));
+          ASSERT_TRUE(same_vector_bits(wa.upper_bound, wb.upper_bound));
+          ASSERT_TRUE(same_vector_bits(wa.safe_bound, wb.safe_bound));
+          ASSERT_TRUE(same_vector_bits(wa.gamma_eff, wb.gamma_eff));
         }
         EXPECT_GT(compressed, 0);
       }

@@ -13,7 +13,7 @@
 namespace dampbound {
 namespace {
 
-SceneSpec shipped(const std::string& name) {
+SceneSpec shipped_scene(const std::string& name) {
   return load_scene(test::source_path("scenes/" + name + ".toml"));
 }
 
@@ -71,7 +71,7 @@ TEST(JudgeBand, FirstEntryRuleIsThePapers) {
 // Past the exact limit (SPEC 7: dt < 0.504 s at these values) the paper plane dips below the
 // threshold at iteration 12, which the paper's rule calls restored; it leaves the band again.
 TEST(ProtocolSettled, PaperPlanePastTheExactLimitIsNotSettled) {
-  const SceneSpec s = shipped("paper-plane");
+  const SceneSpec s = shipped_scene("paper-plane");
   Params p = s.params;
   p.dt = 0.51;
   p.gamma = 0.002;
@@ -88,7 +88,7 @@ TEST(ProtocolSettled, PaperPlanePastTheExactLimitIsNotSettled) {
 
 // Fig. 1 below the lower bound: the first entry, an exit, and a later settled iteration.
 TEST(ProtocolSettled, Fig1BelowTheLowerBoundSettlesAfterItsExit) {
-  const SceneSpec s = shipped("paper-plane");
+  const SceneSpec s = shipped_scene("paper-plane");
   Params p = s.params;
   p.gamma = 0.0005;
   const RunResult r = run_with(s, p, StopRule::settled);
@@ -100,7 +100,7 @@ TEST(ProtocolSettled, Fig1BelowTheLowerBoundSettlesAfterItsExit) {
 }
 
 TEST(ProtocolSettled, UndampedTwoNodeEntersAt31AndNeverSettles) {
-  const SceneSpec s = shipped("two-node");
+  const SceneSpec s = shipped_scene("two-node");
   Params p = s.params;
   p.gamma = 0;
   const RunResult r = run_with(s, p, StopRule::settled);
@@ -113,7 +113,7 @@ TEST(ProtocolSettled, UndampedTwoNodeEntersAt31AndNeverSettles) {
 
 TEST(ProtocolSettled, DivergenceAfterAnEntryIsDiverged) {
   // The stiff-region scene past its limit (dt 0.13): an entry early on, divergence later.
-  const SceneSpec s = shipped("stiff-region");
+  const SceneSpec s = shipped_scene("stiff-region");
   Params p = s.params;
   p.dt = 0.13;
   const RunResult r = run_with(s, p, StopRule::settled);
@@ -125,7 +125,7 @@ TEST(ProtocolSettled, DivergenceAfterAnEntryIsDiverged) {
 }
 
 TEST(ProtocolSettled, SameRunTwiceSameBits) {
-  const SceneSpec s = shipped("paper-plane");
+  const SceneSpec s = shipped_scene("paper-plane");
   Params p = s.params;
   p.gamma = 0.0005;
   const RunResult a = run_with(s, p, StopRule::settled);

@@ -18,7 +18,7 @@
 namespace dampbound {
 namespace {
 
-std::string temp_path(const std::string& name) {
+std::string rows_temp_path(const std::string& name) {
   return ::testing::TempDir() + "dampbound_csv_rows_test_" + name;
 }
 
@@ -69,7 +69,7 @@ std::string edited(const std::string& path, int trial,
   edit(f);
   std::string line;
   for (const std::string& x : f) line += (line.empty() ? "" : ",") + x;
-  const std::string out = temp_path("edited.csv");
+  const std::string out = rows_temp_path("edited.csv");
   std::ofstream(out, std::ios::binary) << text.substr(0, start) + line + text.substr(end);
   return out;
 }
@@ -84,7 +84,7 @@ std::string refusal(const std::string& path) {
 }
 
 TEST(SweepCsvRows, TheRowsARunWroteAreAccepted) {
-  const std::string path = temp_path("whole.csv");
+  const std::string path = rows_temp_path("whole.csv");
   write_sweep(path);
   const SweepTable t = read_sweep_csv(path, true);
   ASSERT_EQ(t.rows.size(), 4u);
@@ -94,7 +94,7 @@ TEST(SweepCsvRows, TheRowsARunWroteAreAccepted) {
 }
 
 TEST(SweepCsvRows, AValueEditedUnderAnIntactHeaderIsRefusedNamingTrialAndColumn) {
-  const std::string path = temp_path("values.csv");
+  const std::string path = rows_temp_path("values.csv");
   write_sweep(path);
   EXPECT_NE(refusal(edited(path, 1, [](auto& f) { f[1] = "0.003"; })).find("trial 1: m is 0.003"),
             std::string::npos);
@@ -105,7 +105,7 @@ TEST(SweepCsvRows, AValueEditedUnderAnIntactHeaderIsRefusedNamingTrialAndColumn)
 }
 
 TEST(SweepCsvRows, AResultEditedInOneTrialOfAClassIsRefused) {
-  const std::string path = temp_path("class.csv");
+  const std::string path = rows_temp_path("class.csv");
   write_sweep(path);
   // Trial 3 took trial 0's result (same class): its iterations edited.
   const std::string why =
@@ -116,7 +116,7 @@ TEST(SweepCsvRows, AResultEditedInOneTrialOfAClassIsRefused) {
 }
 
 TEST(SweepCsvRows, AnOutcomeThatContradictsTheBandIsRefused) {
-  const std::string path = temp_path("outcome.csv");
+  const std::string path = rows_temp_path("outcome.csv");
   write_sweep(path);
   const SweepTable t = read_sweep_csv(path, true);
   ASSERT_EQ(t.rows[1].outcome, Outcome::restored);
@@ -129,8 +129,8 @@ TEST(SweepCsvRows, AnOutcomeThatContradictsTheBandIsRefused) {
 }
 
 TEST(SweepCsvRows, MergeChecksTheRowsOfEveryPart) {
-  const std::string p1 = temp_path("p1.csv"), p2 = temp_path("p2.csv"),
-                    merged = temp_path("merged.csv");
+  const std::string p1 = rows_temp_path("p1.csv"), p2 = rows_temp_path("p2.csv"),
+                    merged = rows_temp_path("merged.csv");
   write_sweep(p1, 1, 2);
   write_sweep(p2, 2, 2);
   EXPECT_NO_THROW(merge_sweep_parts({p1, p2}, merged));

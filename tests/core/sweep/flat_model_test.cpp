@@ -19,12 +19,12 @@
 namespace dampbound {
 namespace {
 
-bool same_bits(double a, double b) {
+bool same_double_bits(double a, double b) {
   return std::memcmp(&a, &b, sizeof a) == 0;
 }
 
-constexpr size_t kLeft = 6;                // Seen's extra slot: entered the band and left
-using Seen = std::array<long, kLeft + 1>;  // per Outcome, and kLeft
+constexpr size_t kLeftSlot = 6;                // FlatSeen's extra slot: entered the band and left
+using FlatSeen = std::array<long, kLeftSlot + 1>;  // per Outcome, and kLeftSlot
 
 /// Trials compared so far in this test binary.
 long g_compared = 0;
@@ -41,12 +41,12 @@ struct CountTrials {
 
 /// Compares the trial body with `reference` on every trial; returns the outcomes seen.
 template <class Reference>
-Seen expect_body_matches(const SceneSpec& scene, DampingPolicy policy, const StopRules& rules,
+FlatSeen expect_body_matches(const SceneSpec& scene, DampingPolicy policy, const StopRules& rules,
                          const std::vector<TrialParams>& trials, Reference reference) {
   const FlatScene flat(scene, policy, rules);
   const std::vector<TrialResult> body = run_trial_body(flat, trials);
   const std::vector<TrialResult> ref = reference(scene, policy, rules, trials);
-  Seen seen{};
+  FlatSeen seen{};
   EXPECT_EQ(body.size(), ref.size());
   for (size_t k = 0; k < trials.size() && k < ref.size(); ++k) {
     const TrialResult& got = body[k];
@@ -57,7 +57,7 @@ Seen expect_body_matches(const SceneSpec& scene, DampingPolicy policy, const Sto
                  " dt=" + std::to_string(trials[k].dt));
     EXPECT_EQ(std::string(to_string(got.outcome)), to_string(want.outcome));
     EXPECT_EQ(got.iterations, want.iterations);
-    EXPECT_TRUE(same_bits(got.max_displacement, want.max_displacement))
+    EXPECT_TRUE(same_double_bits(got.max_displacement, want.max_displacement))
         << got.max_displacement << " vs " << want.max_displacement;
     EXPECT_EQ(got.violations, want.violations);
     EXPECT_EQ(got.unstabilisable, want.unstabilisable);
@@ -67,7 +67,7 @@ Seen expect_body_matches(const SceneSpec& scene, DampingPolicy policy, const Sto
     EXPECT_EQ(got.left_at, want.left_at);
     EXPECT_EQ(got.settled_at, want.settled_at);
     ++seen[static_cast<size_t>(want.outcome)];
-    seen[kLeft] += want.left_at > 0;
+    seen[kLeftSlot] += want.left_at > 0;
   }
   g_compared += static_cast<long>(trials.size());
   return seen;
@@ -85,12 +85,12 @@ std::vector<TrialResult> stepped(const SceneSpec& scene, DampingPolicy policy,
   return out;
 }
 
-void add(Seen& total, const Seen& s) {
+void add(FlatSeen& total, const FlatSeen& s) {
   for (size_t k = 0; k < total.size(); ++k) total[k] += s[k];
 }
 
 /// Every verdict of `rule` seen, and (settled rule) a run that entered the band and left.
-void expect_every_verdict(const Seen& seen, StopRule rule) {
+void expect_every_verdict(const FlatSeen& seen, StopRule rule) {
   const bool settled = rule == StopRule::settled;
   EXPECT_GT(seen[static_cast<size_t>(settled ? Outcome::settled : Outcome::restored)], 0);
   EXPECT_GT(seen[static_cast<size_t>(Outcome::diverged)], 0);
@@ -99,7 +99,7 @@ void expect_every_verdict(const Seen& seen, StopRule rule) {
 
 /// The batched kernel test's irregular scene: non-uniform scales, partial anchors, an
 /// external force, a fixed node, two coincident nodes joined by a spring of zero length.
-SceneSpec irregular_scene() {
+SceneSpec irregular_flat_scene() {
   SceneSpec s;
   s.name = "irregular";
   ModelSpec& m = s.model;
@@ -147,12 +147,12 @@ std::vector<TrialParams> random_trials(int count, unsigned seed, double ratio_ma
 TEST(TrialBody, SmallScenesEveryPolicyMatchTheBatchedKernel) {
   const CountTrials count;
   SceneSpec two = test::shipped_scene("two-node");
-  SceneSpec irregular = irregular_scene();
-  SceneSpec euler = irregular_scene();
+  SceneSpec irregular = irregular_flat_scene();
+  SceneSpec euler = irregular_flat_scene();
   euler.name = "irregular-forward-euler";
   euler.params.integrator = Integrator::forward_euler;
   for (StopRule rule : {StopRule::first_entry, StopRule::settled}) {
-    Seen seen{};
+    FlatSeen seen{};
     for (DampingPolicy p : kPolicies) {
       StopRules rules;
       rules.rule = rule;
@@ -165,7 +165,7 @@ TEST(TrialBody, SmallScenesEveryPolicyMatchTheBatchedKernel) {
     }
     expect_every_verdict(seen, rule);
     if (rule == StopRule::settled) {
-      EXPECT_GT(seen[kLeft], 0);
+      EXPECT_GT(seen[kLeftSlot], 0);
     }
   }
 }
@@ -195,7 +195,7 @@ TEST(TrialBody, PaperMeshBorderlineTrialsMatchTheBatchedKernel) {
     StopRules rules = full.rules;
     rules.rule = rule;
     rules.max_iterations = 60;
-    Seen seen = expect_body_matches(full, DampingPolicy::fixed, rules, edge, batched);
+    FlatSeen seen = expect_body_matches(full, DampingPolicy::fixed, rules, edge, batched);
     for (DampingPolicy p : kPolicies) {
       rules.max_iterations = 150;
       add(seen, expect_body_matches(small, p, rules, random_trials(150, 9, 1000, 0.05), batched));
@@ -208,7 +208,7 @@ TEST(TrialBody, PaperMeshBorderlineTrialsMatchTheBatchedKernel) {
 /// only): the body must match Session bit for bit, the damped safe bound included.
 TEST(TrialBody, DashpotAndRayleighTrialsMatchStep) {
   const CountTrials count;
-  SceneSpec irregular = irregular_scene();
+  SceneSpec irregular = irregular_flat_scene();
   SceneSpec plane = paper_plane_scene(6);
   std::mt19937 rng(13);
   std::uniform_real_distribution<double> u(0.0, 1.0);
@@ -222,7 +222,7 @@ TEST(TrialBody, DashpotAndRayleighTrialsMatchStep) {
     if (k % 9 == 0) t.kd = t.rayleigh_mass = t.rayleigh_stiffness = 0.0;  // undamped in the mix
   }
   for (StopRule rule : {StopRule::first_entry, StopRule::settled}) {
-    Seen seen{};
+    FlatSeen seen{};
     for (DampingPolicy p : kPolicies) {
       StopRules rules;
       rules.rule = rule;

@@ -14,7 +14,7 @@
 namespace dampbound {
 namespace {
 
-SceneSpec shipped(const std::string& name) {
+SceneSpec grid_shipped(const std::string& name) {
   return load_scene(std::string(DAMPBOUND_SOURCE_DIR) + "/scenes/" + name + ".toml");
 }
 
@@ -92,7 +92,7 @@ TEST(SweepClasses, ReducedFractionsOnTheIntegerGrid) {
   // m = a q, kappa = b q with q = 0.001, a, b = 1..12: classes are the distinct b/a per zeta.
   const SweepGrid g(
       small_spec("0.001:0.012:0.001", "0.001:0.012:0.001", GammaMode::zeta, "0.25,0.5"));
-  const TrialClasses c = find_classes(g, similarity_unavailable(shipped("paper-plane")));
+  const TrialClasses c = find_classes(g, similarity_unavailable(grid_shipped("paper-plane")));
   ASSERT_TRUE(c.similarity) << c.reason;
   std::set<std::pair<int, int>> fractions;
   for (int a = 1; a <= 12; ++a)
@@ -141,11 +141,11 @@ TEST(SweepClasses, EveryPolicyThatReadsGammaKeepsItInTheKey) {
 }
 
 TEST(SweepClasses, FallsBackWhenTheSceneIsNotUniform) {
-  SceneSpec s = shipped("paper-plane");
+  SceneSpec s = grid_shipped("paper-plane");
   EXPECT_EQ(similarity_unavailable(s), std::nullopt);
   s.model.external_force[3] = Vec3(0, -1, 0);
   EXPECT_TRUE(similarity_unavailable(s));
-  SceneSpec t = shipped("paper-plane");
+  SceneSpec t = grid_shipped("paper-plane");
   t.model.mass_scale[10] = 2;
   EXPECT_TRUE(similarity_unavailable(t));
   const SweepGrid g(small_spec("0.001:0.004:0.001", "0.001:0.004:0.001", GammaMode::zeta, "1"));

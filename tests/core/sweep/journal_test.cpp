@@ -21,7 +21,7 @@
 namespace dampbound {
 namespace {
 
-std::string temp_path(const std::string& name) {
+std::string journal_temp_path(const std::string& name) {
   return ::testing::TempDir() + "dampbound_" + std::to_string(::getpid()) + "_" + name;
 }
 
@@ -107,7 +107,7 @@ TEST(SweepJournal, SettledRuleLinesKeepTheBandFields) {
 }
 
 TEST(SweepJournal, ResumeDropsTornTailAndDuplicates) {
-  const std::string path = temp_path("journal");
+  const std::string path = journal_temp_path("journal");
   const std::string header = "dampbound-journal v1 sweep=abc 1/1 classes=10";
   {
     Journal j(path, header);
@@ -143,7 +143,7 @@ TEST(SweepJournal, ResumeDropsTornTailAndDuplicates) {
 }
 
 TEST(SweepJournal, TimeRecordsAddUpOverRuns) {
-  const std::string path = temp_path("journal_time");
+  const std::string path = journal_temp_path("journal_time");
   const std::string header = "dampbound-journal v1 sweep=abc 1/1 classes=10";
   JournalTime t;
   t.run = 2;
@@ -197,7 +197,7 @@ TEST(SweepJournal, TimeRecordsAddUpOverRuns) {
 }
 
 TEST(SweepJournal, DurableWriteReplacesWhole) {
-  const std::string path = temp_path("durable.txt");
+  const std::string path = journal_temp_path("durable.txt");
   write_durably(path, [](std::FILE* f) { std::fputs("one\n", f); });
   EXPECT_EQ(slurp(path), "one\n");
   EXPECT_THROW(write_durably(path, [](std::FILE*) { throw InputError("stop"); }), InputError);
@@ -209,7 +209,7 @@ TEST(SweepJournal, DurableWriteReplacesWhole) {
 /// A two-part sweep CSV written by hand with the real writer.
 std::string write_part(const std::string& name, const std::string& id, int shard, int shards,
                        const std::vector<std::uint64_t>& trials, std::uint64_t total) {
-  const std::string path = temp_path(name);
+  const std::string path = journal_temp_path(name);
   SweepHeader h;
   h.sweep_id = id;
   h.scene_name = "test";
@@ -238,7 +238,7 @@ TEST(SweepMerge, JoinsPartsAndRefusesBadSets) {
   const std::string a = write_part("p1.csv", "id1", 1, 2, {0, 2, 4}, 5);
   const std::string b = write_part("p2.csv", "id1", 2, 2, {1, 3}, 5);
   const std::string whole = write_part("whole.csv", "id1", 1, 1, {0, 1, 2, 3, 4}, 5);
-  const std::string out = temp_path("merged.csv");
+  const std::string out = journal_temp_path("merged.csv");
   merge_sweep_parts({b, a}, out);
   EXPECT_EQ(slurp(out), slurp(whole));
   const SweepTable t = read_sweep_csv(out);
@@ -260,7 +260,7 @@ TEST(SweepMerge, JoinsPartsAndRefusesBadSets) {
 TEST(SweepJournal, EmptyOrTornHeaderStartsAfresh) {
   // Killed between creating the journal and writing its header: nothing was done, and the
   // journal must neither block --resume nor be taken for another sweep's.
-  const std::string path = temp_path("torn_header.journal");
+  const std::string path = journal_temp_path("torn_header.journal");
   const std::string header = "dampbound-journal v1 sweep=abc 1/1 classes=10";
   for (const std::string& text : {std::string(), header.substr(0, 17)}) {
     std::ofstream(path, std::ios::binary | std::ios::trunc) << text;
@@ -273,7 +273,7 @@ TEST(SweepJournal, EmptyOrTornHeaderStartsAfresh) {
   std::ofstream(path, std::ios::binary | std::ios::trunc) << "dampbound-journal v1 sweep=abd";
   EXPECT_THROW(read_journal(path, header, 10), InputError);  // another sweep's, torn
   std::remove(path.c_str());
-  const std::string dir = temp_path("dir.journal");
+  const std::string dir = journal_temp_path("dir.journal");
   ::mkdir(dir.c_str(), 0700);
   try {
     read_journal(dir, header, 10);
@@ -304,7 +304,7 @@ TEST(SweepJournal, ForgedLinesWithAGoodChecksumAreRefused) {
 TEST(SweepMerge, ForgedHeadersAllocateNothing) {
   // A header claiming 2^64-1 trials or 2^31-1 shards was allocated for before being checked.
   const std::string a = write_part("f1.csv", "id1", 1, 2, {0, 2, 4}, 5);
-  const std::string out = temp_path("forged_merged.csv");
+  const std::string out = journal_temp_path("forged_merged.csv");
   std::string text = slurp(a);
   for (const char* shards : {"# shard: 1/2147483647", "# shard: 1/999999999"}) {
     std::string forged = text;

@@ -18,14 +18,14 @@
 namespace dampbound::detail {
 namespace {
 
-double dense_top(const SparseMatrix& A) {
+double dense_lambda_max(const SparseMatrix& A) {
   Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(Eigen::MatrixXd(A), Eigen::EigenvaluesOnly);
   return es.eigenvalues()(A.rows() - 1);
 }
 
 TEST(ShiftedCholesky, FactorsExactlyAboveTheTopEigenvalueAndProvesABoundJustAboveTheShift) {
   for (const SparseMatrix& A : {test::deformed_plane(8), test::block(3)}) {
-    const double top = dense_top(A);
+    const double top = dense_lambda_max(A);
     ShiftedCholesky f(A);
     EXPECT_EQ(f.size(), A.rows());
     EXPECT_FALSE(f.factor(top * (1 - 1e-6)));
@@ -47,7 +47,7 @@ TEST(ShiftedCholesky, FactorsExactlyAboveTheTopEigenvalueAndProvesABoundJustAbov
 
 TEST(ShiftedCholesky, SolvesMatchTheDenseInverseOnOneThreadAndTwo) {
   const SparseMatrix A = test::deformed_plane(10);
-  const double sigma = 1.01 * dense_top(A);
+  const double sigma = 1.01 * dense_lambda_max(A);
   const Eigen::Index n = A.rows();
   const Eigen::MatrixXd S = sigma * Eigen::MatrixXd::Identity(n, n) - Eigen::MatrixXd(A);
   const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(n, -1, 2).array().cos();
@@ -78,34 +78,34 @@ TEST(ShiftedCholesky, TheAnalysisThrowsOverTheBudgetWithCholmodsPrediction) {
   }
   ShiftedCholesky g(A);
   EXPECT_NO_THROW(g.analyse(kNoFactorBudget));
-  EXPECT_TRUE(g.factor(1.01 * dense_top(A)));
+  EXPECT_TRUE(g.factor(1.01 * dense_lambda_max(A)));
 }
 
 TEST(ShiftedCholesky, AssignTakesNewValuesOfTheSamePatternOrAnotherPattern) {
   const SparseMatrix A = test::deformed_plane(8);
   ShiftedCholesky f(A);
-  ASSERT_TRUE(f.factor(1.01 * dense_top(A)));
+  ASSERT_TRUE(f.factor(1.01 * dense_lambda_max(A)));
   // The same pattern, values doubled: the top doubles.
   const SparseMatrix twice = 2 * A;
   f.assign(twice);
   EXPECT_FALSE(f.ready());
-  EXPECT_FALSE(f.factor(1.5 * dense_top(A)));
-  ASSERT_TRUE(f.factor(2.02 * dense_top(A)));
-  EXPECT_GT(f.proved_above(), dense_top(twice));
+  EXPECT_FALSE(f.factor(1.5 * dense_lambda_max(A)));
+  ASSERT_TRUE(f.factor(2.02 * dense_lambda_max(A)));
+  EXPECT_GT(f.proved_above(), dense_lambda_max(twice));
   // Another pattern (and size).
   const SparseMatrix B = test::block(3);
   f.assign(B);
   EXPECT_EQ(f.size(), B.rows());
-  EXPECT_FALSE(f.factor(0.99 * dense_top(B)));
-  ASSERT_TRUE(f.factor(1.01 * dense_top(B)));
-  EXPECT_GT(f.proved_above(), dense_top(B));
+  EXPECT_FALSE(f.factor(0.99 * dense_lambda_max(B)));
+  ASSERT_TRUE(f.factor(1.01 * dense_lambda_max(B)));
+  EXPECT_GT(f.proved_above(), dense_lambda_max(B));
 }
 
 TEST(ShiftedCholesky, RowsAloneStayOutOfTheFactorisationAndKeepEveryAnswer) {
   // A flat plane at rest: its out-of-plane rows hold the anchors' diagonal entries alone.
   const Model m = compile_model(make_grid(GridSpec{9, 9, 0.57, true, true}), Params{});
   const SparseMatrix A = mass_weighted(m, tangent_stiffness(m, m.spec().rest));
-  const double top = dense_top(A);
+  const double top = dense_lambda_max(A);
   // The rows with no entry off the diagonal: one of each node's three, out of the plane.
   double lone_top = 0;
   Eigen::Index lone = 0;

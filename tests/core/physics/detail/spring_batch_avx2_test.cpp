@@ -12,7 +12,7 @@ namespace dampbound::detail {
 namespace {
 
 #if defined(__x86_64__)
-bool same(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+bool same_double(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
 TEST(SpringBatchAVX2, GivesThePortableCopysBits) {
   if (!step_isa_supported(StepIsa::avx2)) GTEST_SKIP() << "this CPU has no avx2";
@@ -34,12 +34,12 @@ TEST(SpringBatchAVX2, GivesThePortableCopysBits) {
           if (!want.direction[q]) continue;
           ++checked;
           if (forces) {
-            for (int c = 0; c < 3; ++c) ASSERT_TRUE(same(got.force[c][q], want.force[c][q]));
+            for (int c = 0; c < 3; ++c) ASSERT_TRUE(same_double(got.force[c][q], want.force[c][q]));
           }
           if (blocks) {
             ASSERT_EQ(got.compressed[q], want.compressed[q]);
-            for (int c = 0; c < 6; ++c) ASSERT_TRUE(same(got.block[c][q], want.block[c][q]));
-            for (int c = 0; c < 3; ++c) ASSERT_TRUE(same(got.off[c][q], want.off[c][q]));
+            for (int c = 0; c < 6; ++c) ASSERT_TRUE(same_double(got.block[c][q], want.block[c][q]));
+            for (int c = 0; c < 3; ++c) ASSERT_TRUE(same_double(got.off[c][q], want.off[c][q]));
           }
         }
       }
