@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <chrono>
 #include <thread>
 
 #include "app/commands.hpp"
@@ -47,15 +48,17 @@ struct GuiArgs {
   std::string save_scene, export_dir, export_prefix = "dampbound";
   double factor_budget = 0;  ///< GFlop (add_factor_budget_option sets the default)
   double frame_dt = 0;       ///< --frame-dt: the Suggest tab's frame time (0: its default)
+  int debug_frame_sleep_ms = 0;  ///< hidden --debug-frame-sleep: long frames for input tests
   int expect_iterations = default_expect_tolerance().iterations;
   double expect_displacement = default_expect_tolerance().displacement_factor;
   ParamFlags flags;
 };
 
 #if defined(DAMPBOUND_HAVE_GLFW)
-/// How long a close (window button, SIGINT, SIGTERM) may take, and the longest frame of a
-/// self-test before it counts as a hang (seconds).
-constexpr double kCloseGrace = 0.3;
+/// How long a close (window button, SIGINT, SIGTERM) may take before the watchdog ends the
+/// process (the process is gone within 0.3 s of the request: docs/gui.md), and the longest
+/// frame of a self-test before it counts as a hang (seconds).
+constexpr double kCloseGrace = 0.2;
 constexpr double kSelfTestHang = 60.0;
 
 /// The Suggest tab's substeps, in one line on stderr (scripted --tab suggest runs).
@@ -183,6 +186,16 @@ int run(GuiArgs& a) {
   (void)a;
   throw std::runtime_error("gui: this dampbound was built without GLFW (DAMPBOUND_GUI=OFF)");
 #else
+  // Before any thread starts (threads inherit the mask): SIGINT and SIGTERM go to the close
+  // guard's watchdog only, which starts the close at once, also while the scene loads.
+  ui::block_close_signals();
+  ui::CloseGuard guard(kCloseGrace, a.self_test ? kSelfTestHang : 0.0);
+  guard.catch_signals();
+  // Mesa's shader disk cache runs a thread at nice 19: on a busy machine a thread that low
+  // waited up to 2.5 s for the CPU it needs to die, and the process with it (measured on
+  // tissue-block while builds ran: exit 1.2 to 2.6 s after the request). llvmpipe compiles
+  // the tuner's few shaders in milliseconds; a user's own setting is kept.
+  setenv("MESA_SHADER_CACHE_DISABLE", "true", 0);
   if (!a.screenshot.empty() && a.frames <= 0)
     throw InputError("--screenshot needs --frames N (the screenshot is taken after frame N)");
   int width = 0, height = 0;
@@ -278,9 +291,9 @@ int run(GuiArgs& a) {
     w.input = [&self_test] { self_test->input(ImGui::GetIO()); };
   }
   app.set_export_unfinished(a.export_unfinished);
+  w.on_close_request = [&guard] { guard.request_close(); };
   ui::GlfwHost host(w);
-  ui::CloseGuard guard(kCloseGrace, a.self_test ? kSelfTestHang : 0.0);
-  guard.catch_signals();
+  guard.heartbeat();
   std::string export_message;
   // Scripted (--frames), the Map and Suggest tabs compute as a person would have them: the
   // Map starts when its tab is drawn, Suggest at the first frame as if its button was pressed,
@@ -288,6 +301,10 @@ int run(GuiArgs& a) {
   const bool map_wait = a.tab == "map" && a.frames > 0;
   const bool suggest_scripted = a.tab == "suggest" && a.frames > 0;
   const ui::WindowRun run = host.run([&](ui::FrameInfo& info) {
+    if (ui::CloseGuard::signalled()) {  // closing: no frame's work after the request
+      info.close = true;
+      return;
+    }
     const bool last = info.index == a.frames - 1 && !info.layout_pass;
     if (suggest_scripted && info.index == 0 && !info.layout_pass) {
       app.start_suggest();
@@ -299,6 +316,8 @@ int run(GuiArgs& a) {
     if (!a.export_dir.empty() && last)
       export_message = app.export_plots(a.export_dir, a.export_prefix);
     if (self_test && self_test->after_frame(info)) info.close = true;
+    if (a.debug_frame_sleep_ms > 0 && !info.layout_pass)
+      std::this_thread::sleep_for(std::chrono::milliseconds(a.debug_frame_sleep_ms));
     guard.heartbeat(self_test ? self_test->doing() : std::string());
     if (ui::CloseGuard::signalled()) info.close = true;
   });
@@ -363,6 +382,11 @@ std::function<int()> setup(CLI::App& root) {
   cmd->add_option("--config-dir", a->config_dir,
                   "settings folder (default $XDG_CONFIG_HOME/dampbound or ~/.config/dampbound)");
   cmd->add_flag("--play", a->play, "start playing");
+  // Hidden (no group): every frame sleeps this long, so that input lands within one frame
+  // (tests/cli/gui_state.sh's key tap).
+  cmd->add_option("--debug-frame-sleep", a->debug_frame_sleep_ms, "")
+      ->check(whole_range(0, 10000))
+      ->group("");
   cmd->add_option("--tab", a->tab,
                   "open this tab first: status, criteria, pins, suggest, worst, save, mesh or map")
       ->check(CLI::IsMember(

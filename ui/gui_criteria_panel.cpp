@@ -9,6 +9,7 @@
 #include "core/io/report.hpp"
 #include "ui/gui_app.hpp"
 #include "ui/gui_items.hpp"
+#include "ui/gui_job_status.hpp"
 #include "ui/gui_widgets.hpp"
 
 namespace dampbound::ui {
@@ -151,34 +152,10 @@ void GuiApp::criteria_panel() {
   ImGui::EndTable();
 }
 
-namespace {
-
-/// Busy: Cancel, the seconds so far and the stage; else "cancelled" after a Cancel; the error.
-/// `cancel`: the Cancel button's label ("Cancel", with an ## identity where a window has two).
-template <class T>
-void job_status(BackgroundJob<T>& job, const char* cancel = "Cancel") {
-  if (job.busy()) {
-    ImGui::SameLine();
-    if (item::small_button(cancel)) job.cancel();
-    if (ImGui::IsItemHovered())
-      ImGui::SetTooltip("Drop this computation (the last result stays)");
-    ImGui::SameLine();
-    ImGui::TextDisabled("computing and verifying... %s s", fmt(job.seconds()).c_str());
-    const std::string where = job.progress();
-    if (!where.empty())
-      wrapped_colored(ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled), where);
-  } else if (job.cancelled()) {
-    ImGui::SameLine();
-    ImGui::TextDisabled("cancelled");
-  }
-  if (!job.error().empty()) wrapped_colored(gui_red(), job.error().c_str());
-}
-
-}  // namespace
-
 void GuiApp::suggest_panel() {
   substeps_section();
   suggest_values();
+  knobs_section();
 }
 
 void GuiApp::substeps_section() {

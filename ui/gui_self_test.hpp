@@ -79,6 +79,7 @@ class SelfTest {
   bool monkey_ = false;
   int monkey_left_ = 0;
   int idle_plans_ = 0;
+  bool knobs_again_ = false;  ///< "Ceiling and pair" pressed again on this scene
   std::mt19937_64 rng_;
   void set_doing(std::string what);
   static constexpr double kSlowStepSeconds = 5;
