@@ -83,6 +83,32 @@ void print_substeps_line(const ui::BackgroundJob<ui::SubstepsResult>& job) {
   }
 }
 
+/// The Suggest tab's stiffness ceiling and Rayleigh pair, in one line each on stderr.
+void print_knobs_line(const ui::BackgroundJob<ui::KnobsResult>& job) {
+  if (job.busy() || !job.result()) {
+    std::fprintf(stderr, "gui: ceiling and pair: %s\n",
+                 job.busy() ? "did not finish by the last frame"
+                 : job.error().empty() ? "none"
+                                       : ("failed: " + job.error()).c_str());
+    return;
+  }
+  const ui::KnobsResult& r = *job.result();
+  if (!r.ceiling_error.empty())
+    std::fprintf(stderr, "gui: stiffness ceiling: %s\n", r.ceiling_error.c_str());
+  else
+    std::fprintf(stderr, "gui: stiffness ceiling: factor %s (kappa %s); apply kappa = %s\n",
+                 format_digits(r.ceiling.factor, 6).c_str(),
+                 format_digits(r.ceiling.factor * r.params.kappa, 6).c_str(),
+                 format_digits(ui::kCeilingMargin * r.ceiling.factor * r.params.kappa, 6).c_str());
+  if (!r.rayleigh)
+    std::fprintf(stderr, "gui: Rayleigh pair: %s\n", r.rayleigh_error.c_str());
+  else
+    std::fprintf(stderr, "gui: Rayleigh pair for zeta %s: alpha %s 1/s, beta %s s, %s\n",
+                 format_digits(r.zeta, 4).c_str(), format_digits(r.rayleigh->alpha, 6).c_str(),
+                 format_digits(r.rayleigh->beta, 6).c_str(),
+                 r.rayleigh->stable ? "stable at dt" : "NOT stable at dt");
+}
+
 bool have_display() {
   const char* x = std::getenv("DISPLAY");
   const char* w = std::getenv("WAYLAND_DISPLAY");
@@ -309,9 +335,11 @@ int run(GuiArgs& a) {
     if (suggest_scripted && info.index == 0 && !info.layout_pass) {
       app.start_suggest();
       app.start_substeps();
+      app.start_knobs();
     }
     if (map_wait && last) wait_for_map(app.map());
-    if (suggest_scripted && last) app.suggestions().wait(), app.substeps().wait();
+    if (suggest_scripted && last)
+      app.suggestions().wait(), app.substeps().wait(), app.knobs().wait();
     app.frame(info);
     if (!a.export_dir.empty() && last)
       export_message = app.export_plots(a.export_dir, a.export_prefix);
@@ -351,7 +379,7 @@ int run(GuiArgs& a) {
                    format_digits(sg.result()->damping.gamma_best, 4).c_str(),
                    format_digits(sg.result()->params.dt, 4).c_str());
   }
-  if (suggest_scripted) print_substeps_line(app.substeps());
+  if (suggest_scripted) print_substeps_line(app.substeps()), print_knobs_line(app.knobs());
   if (!a.save_scene.empty()) {
     std::vector<std::string> notes;
     const std::string saved = app.save_scene(a.save_scene, &notes);

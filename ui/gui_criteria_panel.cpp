@@ -154,8 +154,8 @@ void GuiApp::criteria_panel() {
 
 void GuiApp::suggest_panel() {
   substeps_section();
-  suggest_values();
   knobs_section();
+  suggest_values();
 }
 
 void GuiApp::substeps_section() {
