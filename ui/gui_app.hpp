@@ -178,6 +178,8 @@ class GuiApp {
   void status_panel();
   void runs_panel();
   void criteria_panel();
+  /// The Criteria tab's worker: its stage, seconds, estimate and Cancel.
+  void criteria_progress(TunerCriteria& c);
   void suggest_panel();
   void suggest_values();
   /// The Suggest tab's substeps per frame: the frame time, the two counts, apply buttons.
