@@ -7,6 +7,7 @@
 #include <string>
 
 #include "core/io/report.hpp"
+#include "core/physics/integrate.hpp"
 #include "ui/gui_app.hpp"
 #include "ui/gui_items.hpp"
 #include "ui/gui_job_status.hpp"
@@ -108,6 +109,18 @@ void GuiApp::knobs_section() {
   const KnobsResult& r = *job.result();
   if (r.springs_cut > 0) ImGui::TextDisabled("for the mesh as cut (%d springs cut)", r.springs_cut);
   ceiling_lines(r);
+  if (!integrator_traits(r.params.integrator).paper_step) {
+    // Both answers are the paper's step's: one click to it, and they are computed again.
+    if (item::small_button("use the paper's step##knobs")) {
+      Params p = t.params();
+      p.integrator = Integrator::semi_implicit_euler;
+      if (t.set_params(p)) start_knobs();
+    }
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("Switch the integrator to semi-implicit Euler (the paper's step) and\n"
+                        "compute the ceiling and the pair for it");
+    return;
+  }
   if (const auto p = with_kappa_ceiling(t.params(), r)) {
     const std::string label = "apply kappa = " + fmt(p->kappa) + "##ceiling";
     if (item::small_button(label.c_str())) {

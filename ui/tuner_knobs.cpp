@@ -7,6 +7,15 @@
 
 namespace dampbound::ui {
 
+namespace {
+/// core's message without the CLI flag it begins with ("--kappa-max: ", "--rayleigh: ").
+std::string without_flag(const std::string& message) {
+  if (message.rfind("--", 0) != 0) return message;
+  const size_t colon = message.find(": ");
+  return colon == std::string::npos ? message : message.substr(colon + 2);
+}
+}  // namespace
+
 void TunerKnobs::start(const Session& session, double zeta, std::uint64_t generation,
                        std::uint64_t topology) {
   if (job_.busy()) return;
@@ -49,7 +58,7 @@ void TunerKnobs::launch(std::shared_ptr<const SceneSpec> shared,
     } catch (const SuggestCancelled&) {
       throw;
     } catch (const std::exception& e) {
-      r.ceiling_error = e.what();
+      r.ceiling_error = without_flag(e.what());
     }
     try {
       RayleighRequest request;
@@ -58,7 +67,7 @@ void TunerKnobs::launch(std::shared_ptr<const SceneSpec> shared,
     } catch (const SuggestCancelled&) {
       throw;
     } catch (const std::exception& e) {
-      r.rayleigh_error = e.what();
+      r.rayleigh_error = without_flag(e.what());
     }
     return r;
   });
