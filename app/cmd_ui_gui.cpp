@@ -285,6 +285,7 @@ int run(GuiArgs& a) {
   o.demo = a.demo;
   o.scripted = a.frames > 0;
   ui::GuiApp app(std::move(o));
+  guard.on_signal([&app] { app.tuner().stop_stepping(); });
   for (const std::string& text : a.pins)
     ui::pin_run(app.tuner(), ui::parse_pin_request(text, app.tuner().params(),
                                                    app.tuner().session().rules().max_iterations));

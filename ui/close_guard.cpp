@@ -49,6 +49,12 @@ void CloseGuard::catch_signals() {
   signals_ = true;
 }
 
+void CloseGuard::on_signal(std::function<void()> fn) {
+  std::lock_guard<std::mutex> lock(mutex_);  // the watchdog reads it under the lock
+  on_signal_ = std::move(fn);
+  if (on_signal_ && g_signal.load() != 0) on_signal_();
+}
+
 bool CloseGuard::signalled() {
   return g_signal.load() != 0;
 }
@@ -79,6 +85,7 @@ void CloseGuard::watch() {
       lock.lock();
       if (sig > 0) {
         g_signal.store(sig);
+        if (on_signal_) on_signal_();
         if (!closing_) {
           closing_ = true;
           close_at_ = Clock::now();

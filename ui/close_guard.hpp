@@ -14,6 +14,7 @@
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
+#include <functional>
 #include <mutex>
 #include <string>
 #include <thread>
@@ -35,6 +36,10 @@ class CloseGuard {
   /// The watchdog takes SIGINT and SIGTERM (blocked by block_close_signals()): each requests
   /// the close. The destructor leaves them blocked and pending.
   void catch_signals();
+  /// Called on the watchdog thread when a signal requests the close (before the frame loop
+  /// sees it): the tuner stops stepping there, so the frame under way ends sooner. Called
+  /// at once when a signal came before it was set.
+  void on_signal(std::function<void()> fn);
   /// True once SIGINT or SIGTERM arrived.
   static bool signalled();
   /// Starts the grace period (idempotent; any thread).
@@ -53,6 +58,7 @@ class CloseGuard {
   std::atomic<bool> signals_{false};
   Clock::time_point close_at_, beat_at_;
   std::string doing_;
+  std::function<void()> on_signal_;
   std::thread thread_;  // last: it starts once the members above exist
 };
 
