@@ -7,8 +7,8 @@
 #include <cstdint>
 #include <filesystem>
 #include <memory>
-#include <string>
 #include <chrono>
+#include <string>
 #include <thread>
 
 #include "app/commands.hpp"
@@ -286,6 +286,10 @@ int run(GuiArgs& a) {
   o.scripted = a.frames > 0;
   ui::GuiApp app(std::move(o));
   guard.on_signal([&app] { app.tuner().stop_stepping(); });
+  struct Unhook {  // the app goes before the guard: the watchdog must not call into it then
+    ui::CloseGuard& guard;
+    ~Unhook() { guard.on_signal(nullptr); }
+  } unhook{guard};
   for (const std::string& text : a.pins)
     ui::pin_run(app.tuner(), ui::parse_pin_request(text, app.tuner().params(),
                                                    app.tuner().session().rules().max_iterations));
