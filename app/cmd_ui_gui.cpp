@@ -219,8 +219,8 @@ int run(GuiArgs& a) {
   guard.catch_signals();
   // Mesa's shader disk cache runs a thread at nice 19: on a busy machine a thread that low
   // waited up to 2.5 s for the CPU it needs to die, and the process with it (measured on
-  // tissue-block while builds ran: exit 1.2 to 2.6 s after the request). llvmpipe compiles
-  // the tuner's few shaders in milliseconds; a user's own setting is kept.
+  // tissue-block while builds ran: exit 1.2 to 2.6 s after the request). Without the cache
+  // the first frame takes about 0.2 s longer (docs/gui.md); a user's own setting is kept.
   setenv("MESA_SHADER_CACHE_DISABLE", "true", 0);
   if (!a.screenshot.empty() && a.frames <= 0)
     throw InputError("--screenshot needs --frames N (the screenshot is taken after frame N)");
