@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <chrono>
 #include <string>
 #include <thread>
 
@@ -47,15 +48,17 @@ struct GuiArgs {
   std::string save_scene, export_dir, export_prefix = "dampbound";
   double factor_budget = 0;  ///< GFlop (add_factor_budget_option sets the default)
   double frame_dt = 0;       ///< --frame-dt: the Suggest tab's frame time (0: its default)
+  int debug_frame_sleep_ms = 0;  ///< hidden --debug-frame-sleep: long frames for input tests
   int expect_iterations = default_expect_tolerance().iterations;
   double expect_displacement = default_expect_tolerance().displacement_factor;
   ParamFlags flags;
 };
 
 #if defined(DAMPBOUND_HAVE_GLFW)
-/// How long a close (window button, SIGINT, SIGTERM) may take, and the longest frame of a
-/// self-test before it counts as a hang (seconds).
-constexpr double kCloseGrace = 0.3;
+/// How long a close (window button, SIGINT, SIGTERM) may take before the watchdog ends the
+/// process (the process is gone within 0.3 s of the request: docs/gui.md), and the longest
+/// frame of a self-test before it counts as a hang (seconds).
+constexpr double kCloseGrace = 0.2;
 constexpr double kSelfTestHang = 60.0;
 
 /// The Suggest tab's substeps, in one line on stderr (scripted --tab suggest runs).
@@ -78,6 +81,32 @@ void print_substeps_line(const ui::BackgroundJob<ui::SubstepsResult>& job) {
     std::fprintf(stderr, "gui: substeps at frame %s s: %s\n", format_digits(s.frame_dt, 6).c_str(),
                  line.c_str());
   }
+}
+
+/// The Suggest tab's stiffness ceiling and Rayleigh pair, in one line each on stderr.
+void print_knobs_line(const ui::BackgroundJob<ui::KnobsResult>& job) {
+  if (job.busy() || !job.result()) {
+    std::fprintf(stderr, "gui: ceiling and pair: %s\n",
+                 job.busy() ? "did not finish by the last frame"
+                 : job.error().empty() ? "none"
+                                       : ("failed: " + job.error()).c_str());
+    return;
+  }
+  const ui::KnobsResult& r = *job.result();
+  if (!r.ceiling_error.empty())
+    std::fprintf(stderr, "gui: stiffness ceiling: %s\n", r.ceiling_error.c_str());
+  else
+    std::fprintf(stderr, "gui: stiffness ceiling: factor %s (kappa %s); apply kappa = %s\n",
+                 format_digits(r.ceiling.factor, 6).c_str(),
+                 format_digits(r.ceiling.factor * r.params.kappa, 6).c_str(),
+                 format_digits(ui::kCeilingMargin * r.ceiling.factor * r.params.kappa, 6).c_str());
+  if (!r.rayleigh)
+    std::fprintf(stderr, "gui: Rayleigh pair: %s\n", r.rayleigh_error.c_str());
+  else
+    std::fprintf(stderr, "gui: Rayleigh pair for zeta %s: alpha %s 1/s, beta %s s, %s\n",
+                 format_digits(r.zeta, 4).c_str(), format_digits(r.rayleigh->alpha, 6).c_str(),
+                 format_digits(r.rayleigh->beta, 6).c_str(),
+                 r.rayleigh->stable ? "stable at dt" : "NOT stable at dt");
 }
 
 bool have_display() {
@@ -183,6 +212,16 @@ int run(GuiArgs& a) {
   (void)a;
   throw std::runtime_error("gui: this dampbound was built without GLFW (DAMPBOUND_GUI=OFF)");
 #else
+  // Before any thread starts (threads inherit the mask): SIGINT and SIGTERM go to the close
+  // guard's watchdog only, which starts the close at once, also while the scene loads.
+  ui::block_close_signals();
+  ui::CloseGuard guard(kCloseGrace, a.self_test ? kSelfTestHang : 0.0);
+  guard.catch_signals();
+  // Mesa's shader disk cache runs a thread at nice 19: on a busy machine a thread that low
+  // waited up to 2.5 s for the CPU it needs to die, and the process with it (measured on
+  // tissue-block while builds ran: exit 1.2 to 2.6 s after the request). Without the cache
+  // the first frame takes about 0.2 s longer (docs/gui.md); a user's own setting is kept.
+  setenv("MESA_SHADER_CACHE_DISABLE", "true", 0);
   if (!a.screenshot.empty() && a.frames <= 0)
     throw InputError("--screenshot needs --frames N (the screenshot is taken after frame N)");
   int width = 0, height = 0;
@@ -246,6 +285,11 @@ int run(GuiArgs& a) {
   o.demo = a.demo;
   o.scripted = a.frames > 0;
   ui::GuiApp app(std::move(o));
+  guard.on_signal([&app] { app.tuner().stop_stepping(); });
+  struct Unhook {  // the app goes before the guard: the watchdog must not call into it then
+    ui::CloseGuard& guard;
+    ~Unhook() { guard.on_signal(nullptr); }
+  } unhook{guard};
   for (const std::string& text : a.pins)
     ui::pin_run(app.tuner(), ui::parse_pin_request(text, app.tuner().params(),
                                                    app.tuner().session().rules().max_iterations));
@@ -278,9 +322,9 @@ int run(GuiArgs& a) {
     w.input = [&self_test] { self_test->input(ImGui::GetIO()); };
   }
   app.set_export_unfinished(a.export_unfinished);
+  w.on_close_request = [&guard] { guard.request_close(); };
   ui::GlfwHost host(w);
-  ui::CloseGuard guard(kCloseGrace, a.self_test ? kSelfTestHang : 0.0);
-  guard.catch_signals();
+  guard.heartbeat();
   std::string export_message;
   // Scripted (--frames), the Map and Suggest tabs compute as a person would have them: the
   // Map starts when its tab is drawn, Suggest at the first frame as if its button was pressed,
@@ -288,17 +332,25 @@ int run(GuiArgs& a) {
   const bool map_wait = a.tab == "map" && a.frames > 0;
   const bool suggest_scripted = a.tab == "suggest" && a.frames > 0;
   const ui::WindowRun run = host.run([&](ui::FrameInfo& info) {
+    if (ui::CloseGuard::signalled()) {  // closing: no frame's work after the request
+      info.close = true;
+      return;
+    }
     const bool last = info.index == a.frames - 1 && !info.layout_pass;
     if (suggest_scripted && info.index == 0 && !info.layout_pass) {
       app.start_suggest();
       app.start_substeps();
+      app.start_knobs();
     }
     if (map_wait && last) wait_for_map(app.map());
-    if (suggest_scripted && last) app.suggestions().wait(), app.substeps().wait();
+    if (suggest_scripted && last)
+      app.suggestions().wait(), app.substeps().wait(), app.knobs().wait();
     app.frame(info);
     if (!a.export_dir.empty() && last)
       export_message = app.export_plots(a.export_dir, a.export_prefix);
     if (self_test && self_test->after_frame(info)) info.close = true;
+    if (a.debug_frame_sleep_ms > 0 && !info.layout_pass)
+      std::this_thread::sleep_for(std::chrono::milliseconds(a.debug_frame_sleep_ms));
     guard.heartbeat(self_test ? self_test->doing() : std::string());
     if (ui::CloseGuard::signalled()) info.close = true;
   });
@@ -332,7 +384,7 @@ int run(GuiArgs& a) {
                    format_digits(sg.result()->damping.gamma_best, 4).c_str(),
                    format_digits(sg.result()->params.dt, 4).c_str());
   }
-  if (suggest_scripted) print_substeps_line(app.substeps());
+  if (suggest_scripted) print_substeps_line(app.substeps()), print_knobs_line(app.knobs());
   if (!a.save_scene.empty()) {
     std::vector<std::string> notes;
     const std::string saved = app.save_scene(a.save_scene, &notes);
@@ -363,6 +415,11 @@ std::function<int()> setup(CLI::App& root) {
   cmd->add_option("--config-dir", a->config_dir,
                   "settings folder (default $XDG_CONFIG_HOME/dampbound or ~/.config/dampbound)");
   cmd->add_flag("--play", a->play, "start playing");
+  // Hidden (no group): every frame sleeps this long, so that input lands within one frame
+  // (tests/cli/gui_state.sh's key tap).
+  cmd->add_option("--debug-frame-sleep", a->debug_frame_sleep_ms, "")
+      ->check(whole_range(0, 10000))
+      ->group("");
   cmd->add_option("--tab", a->tab,
                   "open this tab first: status, criteria, pins, suggest, worst, save, mesh or map")
       ->check(CLI::IsMember(

@@ -1,19 +1,24 @@
 #include "ui/close_guard.hpp"
 
+#include <pthread.h>
+#include <signal.h>
 #include <unistd.h>
 
-#include <csignal>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 
 namespace dampbound::ui {
 
 namespace {
 std::atomic<int> g_signal{0};
-static_assert(std::atomic<int>::is_always_lock_free, "the signal handler needs a lock-free flag");
 
-extern "C" void on_close_signal(int sig) {
-  g_signal.store(sig);
+sigset_t close_signals() {
+  sigset_t set;
+  sigemptyset(&set);
+  sigaddset(&set, SIGINT);
+  sigaddset(&set, SIGTERM);
+  return set;
 }
 
 std::chrono::steady_clock::duration seconds(double s) {
@@ -21,6 +26,11 @@ std::chrono::steady_clock::duration seconds(double s) {
       std::chrono::duration<double>(s));
 }
 }  // namespace
+
+void block_close_signals() {
+  const sigset_t set = close_signals();
+  pthread_sigmask(SIG_BLOCK, &set, nullptr);
+}
 
 CloseGuard::CloseGuard(double grace_s, double hang_s)
     : grace_s_(grace_s), hang_s_(hang_s), beat_at_(Clock::now()), thread_([this] { watch(); }) {}
@@ -32,16 +42,17 @@ CloseGuard::~CloseGuard() {
   }
   wake_.notify_all();
   thread_.join();
-  if (signals_) {
-    std::signal(SIGINT, SIG_DFL);
-    std::signal(SIGTERM, SIG_DFL);
-  }
 }
 
 void CloseGuard::catch_signals() {
+  block_close_signals();  // in case the caller has not (its later threads then inherit it)
   signals_ = true;
-  std::signal(SIGINT, on_close_signal);
-  std::signal(SIGTERM, on_close_signal);
+}
+
+void CloseGuard::on_signal(std::function<void()> fn) {
+  std::lock_guard<std::mutex> lock(mutex_);  // the watchdog reads it under the lock
+  on_signal_ = std::move(fn);
+  if (on_signal_ && g_signal.load() != 0) on_signal_();
 }
 
 bool CloseGuard::signalled() {
@@ -62,16 +73,29 @@ void CloseGuard::heartbeat(const std::string& doing) {
 }
 
 void CloseGuard::watch() {
+  // This thread takes the close signals itself, so it needs them blocked like every other.
+  block_close_signals();
+  const sigset_t set = close_signals();
+  const timespec poll = {0, 5 * 1000 * 1000};  // 5 ms
   std::unique_lock<std::mutex> lock(mutex_);
   while (!stop_) {
-    // The signal handler only sets a flag: it is seen here within a poll period.
-    wake_.wait_for(lock, std::chrono::milliseconds(10));
+    if (signals_) {
+      lock.unlock();
+      const int sig = sigtimedwait(&set, nullptr, &poll);
+      lock.lock();
+      if (sig > 0) {
+        g_signal.store(sig);
+        if (on_signal_) on_signal_();
+        if (!closing_) {
+          closing_ = true;
+          close_at_ = Clock::now();
+        }
+      }
+    } else {
+      wake_.wait_for(lock, std::chrono::milliseconds(5));
+    }
     if (stop_) break;
     const Clock::time_point now = Clock::now();
-    if (!closing_ && g_signal.load() != 0) {
-      closing_ = true;
-      close_at_ = now;
-    }
     if (closing_ && now - close_at_ > seconds(grace_s_)) {
       std::fprintf(stderr, "dampbound: closing without waiting for the background work\n");
       std::fflush(nullptr);

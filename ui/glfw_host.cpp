@@ -69,6 +69,12 @@ void on_key(GLFWwindow* window, int key, int scancode, int action, int mods) {
 }
 
 /// Before a frame's events: the releases held back in the last frame, then a new frame.
+/// The window's on_close_request (one window at a time, as g_taps).
+std::function<void()> g_on_close;
+void on_close(GLFWwindow* /*window*/) {
+  if (g_on_close) g_on_close();
+}
+
 void release_held_keys() {
   for (const KeyTaps::Held& h : g_taps.held)
     if (g_taps.imgui != nullptr) g_taps.imgui(g_taps.window, h.key, h.scancode, GLFW_RELEASE, h.mods);
@@ -118,9 +124,13 @@ GlfwHost::GlfwHost(const WindowOptions& options) : impl_(std::make_unique<Impl>(
     g_taps.imgui = glfwSetKeyCallback(impl_->window, on_key);
   }
   impl_->renderer_name = gl_string(GL_RENDERER);
+  g_on_close = options.on_close_request;
+  glfwSetWindowCloseCallback(impl_->window, on_close);
 }
 
 GlfwHost::~GlfwHost() {
+  glfwSetWindowCloseCallback(impl_->window, nullptr);
+  g_on_close = nullptr;
   glfwMakeContextCurrent(impl_->window);
   ImGui::SetCurrentContext(impl_->renderer->context());
   if (impl_->platform_backend) {
@@ -145,6 +155,7 @@ WindowRun GlfwHost::run(const FrameFn& fn) {
     const auto frame_start = Clock::now();
     if (g_taps.window == win) release_held_keys();
     glfwPollEvents();
+    if (glfwWindowShouldClose(win) == GLFW_TRUE) break;  // closed now: no frame after it
     // Another host (e.g. an EGL export) may have taken the thread's context meanwhile.
     glfwMakeContextCurrent(win);
     int fb_w = 0, fb_h = 0, w = 0, h = 0;

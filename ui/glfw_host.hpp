@@ -26,6 +26,10 @@ struct WindowOptions {
   /// Called each frame after the window's input reached ImGui's io and before the frame is
   /// built: a scripted input source (gui --self-test) writes its own there.
   std::function<void()> input;
+  /// Called from the event poll the moment a close is requested (the window manager's close
+  /// button): the close guard starts its grace period there, not after the frame. The frame
+  /// loop then ends before building another frame.
+  std::function<void()> on_close_request;
 };
 
 /// Defaults: 1280x800, vsync, dark theme, runs until closed.

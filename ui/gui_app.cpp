@@ -218,6 +218,20 @@ void GuiApp::start_suggest() {
   suggest_.start(tuner_->session());
 }
 
+void GuiApp::start_knobs() {
+  knobs_.start(tuner_->session(), rayleigh_zeta_, tuner_->generation(), tuner_->topology());
+}
+
+void GuiApp::drop_stale_knobs() {
+  // The ceiling and the pair speak for the parameters and springs they were computed for: a
+  // parameter change, a Reset, a cut or another scene drops them (and a computation under way).
+  BackgroundJob<KnobsResult>& job = knobs_.job();
+  job.poll();
+  const Tuner& t = *tuner_;
+  if ((job.busy() || job.result()) && !knobs_.current(t.params(), t.generation(), t.topology()))
+    job.clear();
+}
+
 FrameFn GuiApp::frame_fn() {
   return [this](FrameInfo& info) { frame(info); };
 }
@@ -244,6 +258,7 @@ void GuiApp::frame(FrameInfo& info) {
   }
   suggest_.poll();
   substeps_.job().poll();
+  drop_stale_knobs();
   // Below kCompactLayoutHeight the status tabs join the runs' tabs, under short titles (the part
   // after ### is the tab's identity, so a selected tab stays selected across sizes).
   const bool compact = layout_.compact();

@@ -20,6 +20,7 @@
 #include "ui/mesh_view.hpp"
 #include "ui/settings.hpp"
 #include "ui/tuner.hpp"
+#include "ui/tuner_knobs.hpp"
 #include "ui/tuner_map.hpp"
 #include "ui/tuner_plots.hpp"
 #include "ui/tuner_save.hpp"
@@ -132,6 +133,12 @@ class GuiApp {
   /// Starts the substeps of the Suggest tab for frame_dt() as its button does.
   void start_substeps() { substeps_.start(tuner_->session(), frame_dt_); }
   BackgroundJob<SubstepsResult>& substeps() { return substeps_.job(); }
+  /// Starts the stiffness ceiling and the Rayleigh pair as the tab's button does.
+  void start_knobs();
+  /// Their computation (dropped at the next frame once it no longer speaks for the model).
+  BackgroundJob<KnobsResult>& knobs() { return knobs_.job(); }
+  /// The ratio the Rayleigh pair asks at both ends of the band (default 0.05).
+  void set_rayleigh_zeta(double zeta) { rayleigh_zeta_ = zeta; }
   /// The Suggest tab's frame time (s; default 1/60).
   double frame_dt() const { return frame_dt_; }
   void set_frame_dt(double seconds) { frame_dt_ = seconds; }
@@ -171,12 +178,17 @@ class GuiApp {
   void status_panel();
   void runs_panel();
   void criteria_panel();
+  /// The Criteria tab's worker: its stage, seconds, estimate and Cancel.
+  void criteria_progress(TunerCriteria& c);
   void suggest_panel();
   void suggest_values();
   /// The Suggest tab's substeps per frame: the frame time, the two counts, apply buttons.
   void substeps_section();
   /// Its SPEC 11 alternative: the mass that makes one step per frame stable, apply, colour.
   void mass_scaling_section(const SubstepsResult& r);
+  /// The stiffness ceiling and the Rayleigh pair, with their apply buttons (gui_knobs_panel.cpp).
+  void knobs_section();
+  void drop_stale_knobs();
   void save_panel();
   void worst_panel();
   void map_panel();
@@ -199,6 +211,8 @@ class GuiApp {
   TunerSuggest suggest_;
   std::uint64_t shown_scene_version_ = 0;  ///< the scene the derived panels were made for
   TunerSubsteps substeps_;
+  TunerKnobs knobs_;
+  double rayleigh_zeta_ = kDefaultRayleighZeta;
   double frame_dt_ = kDefaultFrameDt;
   TunerMap map_;
   MapView map_view_;

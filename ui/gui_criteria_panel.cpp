@@ -9,6 +9,7 @@
 #include "core/io/report.hpp"
 #include "ui/gui_app.hpp"
 #include "ui/gui_items.hpp"
+#include "ui/gui_job_status.hpp"
 #include "ui/gui_widgets.hpp"
 
 namespace dampbound::ui {
@@ -54,6 +55,25 @@ std::string unavailable(Tuner& t) {
 
 }  // namespace
 
+void GuiApp::criteria_progress(TunerCriteria& c) {
+  // The analysis on the worker thread: what it does, for how long, the last one's duration
+  // as the estimate, and Cancel (the last result stays on show).
+  if (c.computing()) {
+    if (item::small_button("Cancel##criteria")) c.cancel();
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("Drop this analysis (the last result stays); a change of the\n"
+                        "parameters, the springs or where to linearise starts a new one");
+    ImGui::SameLine();
+    std::string line = "computing " + c.computing_stage() + ": " + fmt(c.computing_seconds()) + " s";
+    if (c.last_seconds() > 0) line += " (the last one took " + fmt(c.last_seconds()) + " s)";
+    wrapped_colored(ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled), line);
+  } else if (c.cancelled()) {
+    wrapped_colored(ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled),
+                    "exact analysis cancelled: a change of the parameters, the springs or where "
+                    "to linearise starts it again");
+  }
+}
+
 void GuiApp::criteria_panel() {
   Tuner& t = *tuner_;
   const std::vector<CriterionResult>& rows = t.criteria();
@@ -98,6 +118,7 @@ void GuiApp::criteria_panel() {
                                    : unavailable(t);
   text_wrapped("at iteration " + std::to_string(rows_at) + behind + "; " + exact);
   grey.reset();
+  criteria_progress(c);
   if (const NetForce* n = c.rest_net_force(); n != nullptr && !n->balanced())
     wrapped_colored(gui_amber(),
                     (rest_not_in_equilibrium(*n) +
@@ -151,33 +172,9 @@ void GuiApp::criteria_panel() {
   ImGui::EndTable();
 }
 
-namespace {
-
-/// Busy: Cancel, the seconds so far and the stage; else "cancelled" after a Cancel; the error.
-/// `cancel`: the Cancel button's label ("Cancel", with an ## identity where a window has two).
-template <class T>
-void job_status(BackgroundJob<T>& job, const char* cancel = "Cancel") {
-  if (job.busy()) {
-    ImGui::SameLine();
-    if (item::small_button(cancel)) job.cancel();
-    if (ImGui::IsItemHovered())
-      ImGui::SetTooltip("Drop this computation (the last result stays)");
-    ImGui::SameLine();
-    ImGui::TextDisabled("computing and verifying... %s s", fmt(job.seconds()).c_str());
-    const std::string where = job.progress();
-    if (!where.empty())
-      wrapped_colored(ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled), where);
-  } else if (job.cancelled()) {
-    ImGui::SameLine();
-    ImGui::TextDisabled("cancelled");
-  }
-  if (!job.error().empty()) wrapped_colored(gui_red(), job.error().c_str());
-}
-
-}  // namespace
-
 void GuiApp::suggest_panel() {
   substeps_section();
+  knobs_section();
   suggest_values();
 }
 

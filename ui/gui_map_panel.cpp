@@ -79,9 +79,11 @@ void GuiApp::map_panel() {
   const bool busy = map_.busy();
   if (r) {
     const int n = static_cast<int>(r->x_edges.size()) - 1;
+    // The next pass has twice the cells per axis: about four times this pass's time.
     line = std::to_string(n) + " x " + std::to_string(n) + " trials, " + fmt(r->seconds) + " s" +
            (busy ? ", computing pass " + std::to_string(std::min(r->pass + 1, passes)) + " of " +
-                       std::to_string(passes) + "..."
+                       std::to_string(passes) + " (" + std::to_string(2 * n) + " x " +
+                       std::to_string(2 * n) + " trials, about " + fmt(4 * r->seconds) + " s)..."
                  : r->finest ? "" : " (cancelled before the finest pass)");
   } else {
     line = busy ? "computing pass 1 of " + std::to_string(passes) + "..." : "cancelled";

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <iterator>
 #include <utility>
 
 #include "ui/gui_app.hpp"
@@ -102,6 +103,8 @@ void SelfTest::next_scene() {
   const std::string& path = monkey_ ? options_.monkey_scenes[i - visits] : options_.scenes[i];
   seen_.clear();
   idle_plans_ = 0;
+  knobs_again_ = 0;
+  scrolls_ = 0;
   set_doing((monkey_ ? "monkey on " : "visiting the widgets of ") + stem(path));
   app_.open_scene(path);
   if (monkey_)
@@ -126,10 +129,47 @@ bool SelfTest::plan_visit() {
     return std::any_of(report_.visited.begin(), report_.visited.end(),
                        [&](const std::string& v) { return v.find(label) != std::string::npos; });
   };
+  // Either apply button of the ceiling and the pair changes a parameter, which drops the
+  // result with the other one: after one, two idle frames (the frame drops it), then the
+  // button that computes them is pressed again (at most twice a scene) for the other.
+  if (knobs_applied_) {
+    knobs_applied_ = false;
+    if (knobs_again_ < 2 && !(seen("##ceiling'") && seen("'apply alpha, beta'"))) {
+      ++knobs_again_;
+      for (auto it = seen_.begin(); it != seen_.end();)
+        it = it->size() >= 17 && it->compare(it->size() - 17, 17, "|Ceiling and pair") == 0
+                 ? seen_.erase(it)
+                 : std::next(it);
+    }
+    queue_.insert(queue_.end(), 2, SyntheticInput{last_pos_});
+    return true;
+  }
+  // The ceiling and the pair are dropped by any parameter change, which other widgets make:
+  // once asked for, they are waited for (at most 30 s, then Cancel comes as for the others)
+  // and their apply buttons go first.
+  if (app_.knobs().busy() && app_.knobs().seconds() < 30) {
+    queue_.push_back(SyntheticInput{last_pos_});
+    return true;
+  }
+  // The ceiling and the pair first, at the scene's own parameters (the sliders operated later
+  // may leave no stable step to ask about): the Suggest tab, its button, the apply buttons.
+  const bool knobs_asked = std::any_of(seen_.begin(), seen_.end(), [](const std::string& k) {
+    return k.size() >= 17 && k.compare(k.size() - 17, 17, "|Ceiling and pair") == 0;
+  });
   const auto pass_of = [&](const ItemRecord& r) {
+    if (!knobs_asked && ((r.kind == ItemKind::tab && r.label.rfind("Suggest", 0) == 0) ||
+                         (r.kind == ItemKind::button && r.label == "Ceiling and pair")))
+      return 0;
+    if (r.kind == ItemKind::button && r.label.find("##ceiling") != std::string::npos)
+      return seen("##ceiling'") ? 1 : 0;  // then "apply alpha, beta", drawn after it
+    if (r.kind == ItemKind::button &&
+        (r.label == "apply alpha, beta" || r.label == "use the paper's step##knobs"))
+      return 0;
     if (r.kind == ItemKind::button && r.label == "Cancel") return seen("'apply gamma'") ? 0 : 3;
     if (r.kind == ItemKind::button && r.label == "Cancel##substeps")
       return seen("'apply dt = F/n##exact'") ? 0 : 3;
+    if (r.kind == ItemKind::button && r.label == "Cancel##knobs")
+      return seen("##ceiling'") ? 0 : 3;
     return r.kind == ItemKind::tab ? 2 : 1;
   };
   for (int pass = 0; pass < 4 && pick == nullptr; ++pass) {
@@ -143,6 +183,31 @@ bool SelfTest::plan_visit() {
       break;
     }
   }
+  // Widgets below the fold of the runs' panel (the Suggest tab is long in a small window):
+  // the wheel over the panel brings them up, once nothing visible is left to operate or
+  // while an apply button of the ceiling and the pair waits below.
+  const auto shown = [&](const char* part) {
+    return std::any_of(items.begin(), items.end(), [&](const ItemRecord& r) {
+      return r.kind == ItemKind::button && r.label.find(part) != std::string::npos;
+    });
+  };
+  bool knob_below = false;
+  if (const auto& k = app_.knobs().result(); k && !app_.knobs().busy()) {
+    const Params& now = app_.tuner().params();
+    knob_below = (with_kappa_ceiling(now, *k) && !seen("##ceiling'") && !shown("##ceiling")) ||
+                 (with_rayleigh_pair(now, *k) && !seen("'apply alpha, beta'") &&
+                  !shown("apply alpha, beta"));
+  }
+  if ((pick == nullptr || knob_below) && scrolls_ < 12) {
+    if (const auto runs = app_.window_rect("Runs")) {
+      ++scrolls_;
+      SyntheticInput s{ImVec2(runs->x + 0.5f * runs->w, runs->y + 0.75f * runs->h)};
+      s.wheel = -3.0f;
+      queue_.push_back(s);
+      queue_.push_back(SyntheticInput{s.pos});
+      return true;
+    }
+  }
   if (pick == nullptr) {
     if (++idle_plans_ > 3) return false;
     queue_.insert(queue_.end(), 2, SyntheticInput{last_pos_});  // a popup may still open
@@ -150,6 +215,10 @@ bool SelfTest::plan_visit() {
   }
   idle_plans_ = 0;
   seen_.insert(pick->window + "|" + pick->label);
+  if (pick->kind == ItemKind::button && (pick->label.find("##ceiling") != std::string::npos ||
+                                         pick->label == "apply alpha, beta" ||
+                                         pick->label == "use the paper's step##knobs"))
+    knobs_applied_ = pick->label != "use the paper's step##knobs";
   report_.visited.insert(std::string(to_string(pick->kind)) + " '" + pick->label + "' in " +
                          pick->window);
   set_doing(std::string("operating ") + to_string(pick->kind) + " '" + pick->label + "' on " +

@@ -79,6 +79,9 @@ class SelfTest {
   bool monkey_ = false;
   int monkey_left_ = 0;
   int idle_plans_ = 0;
+  int knobs_again_ = 0;  ///< times "Ceiling and pair" was pressed again on this scene
+  bool knobs_applied_ = false;
+  int scrolls_ = 0;  ///< wheel turns over the runs' panel on this scene  ///< an apply button of the ceiling or the pair was operated
   std::mt19937_64 rng_;
   void set_doing(std::string what);
   static constexpr double kSlowStepSeconds = 5;

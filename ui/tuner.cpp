@@ -205,7 +205,9 @@ int Tuner::step(int n, double budget_seconds) {
   };
   int taken = 0;
   const int springs_before = session_->model().spec().spring_count();
-  for (; taken < n && can_step() && (taken == 0 || !over_budget()); ++taken) {
+  for (; taken < n && can_step() && (taken == 0 || !over_budget()) &&
+         !stop_.load(std::memory_order_relaxed);
+       ++taken) {
     const Outcome before = session_->result().outcome;
     session_->step_once();
     const Outcome after = session_->result().outcome;

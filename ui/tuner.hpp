@@ -3,6 +3,7 @@
 // step()), playback, parameter edits that take effect at the next step, pinned runs, and the
 // actions of the mesh view (watch, displace, cut). The window's panels only call these;
 // tests/ui/tuner_test.cpp drives them without a window.
+#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -138,6 +139,8 @@ class Tuner {
   int step(int n = 1) { return step(n, -1); }
   /// As step(n), stopping after budget_seconds (at least one step; a negative budget: none).
   int step(int n, double budget_seconds);
+  /// From any thread: no further step in this or any later call (the window is closing).
+  void stop_stepping() { stop_.store(true, std::memory_order_relaxed); }
   /// False after divergence (reset to go on) or with a full trace.
   bool can_step() const;
 
@@ -216,6 +219,7 @@ class Tuner {
   std::unique_ptr<Session> session_;
   PlaybackOptions playback_;
   bool playing_ = false;
+  std::atomic<bool> stop_{false};  ///< stop_stepping() was called
   std::vector<Pin> pins_;
   int next_color_ = 1;
   /// At most ~1000 samples per plotted trace: about one per pixel column of a plot, which

@@ -202,6 +202,10 @@ const ExactStability* TunerCriteria::exact(const Session& s, std::uint64_t topol
   const double slow = last_seconds_ > slow_threshold_ ? 4 * last_seconds_ : 0.0;
   const double interval = following ? std::max(follow_interval_, slow) : slow;
   const bool throttled = have_key_ && (exact_ || job_.valid()) && now - last_time_ < interval;
+  // Cancelled: not again for the same parameters and springs (a move of the state aside).
+  if (cancelled_ && have_key_ && topology == topology_ && same_key(key_, s.params()))
+    return exact_ ? &*exact_ : nullptr;
+  cancelled_ = false;
   if (!changed || throttled || job_.valid()) return exact_ ? &*exact_ : nullptr;
   last_time_ = now;
   have_key_ = true;
@@ -216,6 +220,15 @@ const ExactStability* TunerCriteria::exact(const Session& s, std::uint64_t topol
     // copies only the positions it follows.
     const int iteration = following ? s.state().iteration : 0;
     std::vector<Vec3> x = following ? s.state().x : std::vector<Vec3>{};
+    const std::string what = other_damping(s.params())
+                                 ? "the general damping matrix's limits (SPEC 10: a bisection, "
+                                   "one certified eigenvalue per probe)"
+                                 : "the exact linear analysis (SPEC 7)";
+    stage_ = (at_ == Linearisation::equilibrium ? "Newton's method to the static equilibrium, "
+                                                  "then " + what
+              : at_ == Linearisation::state ? what + " at iteration " + std::to_string(iteration)
+                                            : what + " at rest") +
+             " on " + std::to_string(free_node_count(s.model())) + " free nodes";
     job_ = std::async(
         std::launch::async, [model = s.shared_model(), x = std::move(x), params = s.params(),
                              iteration, at = at_, budget = factor_budget_] {
@@ -242,6 +255,17 @@ const ExactStability* TunerCriteria::exact(const Session& s, std::uint64_t topol
   exact_shown_at_ = Linearisation::rest;
   last_seconds_ = seconds_now() - now;
   return exact_ ? &*exact_ : nullptr;
+}
+
+double TunerCriteria::computing_seconds() const {
+  return job_.valid() ? seconds_now() - last_time_ : 0.0;
+}
+
+void TunerCriteria::cancel() {
+  if (!job_.valid()) return;
+  retired_.push_back(std::move(job_));  // joined later, never by a frame
+  job_ = {};
+  cancelled_ = true;
 }
 
 const std::vector<CriterionResult>& TunerCriteria::evaluate(const Session& s,

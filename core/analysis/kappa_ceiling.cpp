@@ -47,7 +47,11 @@ ModelSpec scaled_stiffness(ModelSpec spec, const StiffnessSelection& selection, 
 
 StiffnessCeiling stiffness_ceiling(const SceneSpec& scene, const Params& params,
                                    const StiffnessSelection& selection, const StopRules& rules,
-                                   bool verify) {
+                                   bool verify,
+                                   const std::function<bool(const std::string&)>& progress) {
+  const auto stage = [&](const std::string& next) {
+    if (progress && !progress(next)) throw SuggestCancelled();
+  };
   if (!integrator_traits(params.integrator).paper_step)
     throw InputError(std::string("--kappa-max: the exact index is the paper's step's "
                                  "(semi-implicit-euler), not ") + to_string(params.integrator));
@@ -57,6 +61,7 @@ StiffnessCeiling stiffness_ceiling(const SceneSpec& scene, const Params& params,
   c.label = selection.label;
   c.springs = static_cast<int>(selection.springs.size());
   c.anchors = static_cast<int>(selection.anchors.size());
+  stage("the index at factor 1 (" + std::to_string(scene.model.node_count()) + " nodes)");
   const Model model = compile_model(scene.model, p);
   const std::vector<Vec3>& x = model.spec().rest;
   if (!psd_floor(model, x))
@@ -75,6 +80,7 @@ StiffnessCeiling stiffness_ceiling(const SceneSpec& scene, const Params& params,
   }
   // dt^2 (A1 - AS) + 2 dt (C1 - beta AS + s (dt/2 + beta) AS) is the index matrix at factor s.
   const SparseMatrix A0 = A1 - AS, C0 = C1 - beta * AS, U = (dt / 2 + beta) * AS;
+  stage("bisection on the factor (a certified largest eigenvalue per probe)");
   c.factor = largest_stable_coefficient(A0, C0, U, dt);
   if (!verify || !(c.factor > 0) || std::isinf(c.factor)) return c;
   // The ceiling is a statement about the linearised step: the runs take the scene's
@@ -96,7 +102,9 @@ StiffnessCeiling stiffness_ceiling(const SceneSpec& scene, const Params& params,
     return verify_run(s, p, small, label);
   };
   c.run_scale = scale;
+  stage("verifying run 1 of 2: 0.98 x the factor");
   c.below = run_at(0.98 * c.factor, "0.98 x ceiling");
+  stage("verifying run 2 of 2: 1.02 x the factor");
   c.above = run_at(1.02 * c.factor, "1.02 x ceiling");
   c.ran = true;
   return c;

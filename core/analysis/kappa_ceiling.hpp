@@ -14,6 +14,7 @@
 //   every margin falls by (dt^2 + 2 dt beta) k / m_i + 2 dt kd / m_i, and with node i's
 //   smallest margin (2 dt / m_i)(gamma_safe_i - gamma_i) (safe_bound.hpp):
 //     k_i = 2 (gamma_safe_i - gamma_i - kd) / (dt + 2 beta),   clipped at 0.
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -59,10 +60,13 @@ struct StiffnessCeiling {
 /// each factor's damping beta K(s) following the stiffness. `verify` runs the scene at 0.98 and
 /// 1.02 times the answer with `rules`. Throws InputError when params.integrator is not the
 /// paper's step, std::runtime_error when K is not positive semi-definite at rest (a spring
-/// under compression: no factor is stable, SPEC 9).
+/// under compression: no factor is stable, SPEC 9). `progress`, when given, is called before
+/// each stage (the index bisection, each verifying run) with what runs next; returning false
+/// stops the call with SuggestCancelled (the tuner's Cancel).
 StiffnessCeiling stiffness_ceiling(const SceneSpec& scene, const Params& params,
                                    const StiffnessSelection& selection, const StopRules& rules,
-                                   bool verify);
+                                   bool verify,
+                                   const std::function<bool(const std::string&)>& progress = {});
 
 /// The contact ceiling of every node (mass unit / s^2): the closed form above at positions x,
 /// step dt, contact dashpot kd (the scene's uniform kd); NaN at fixed nodes.

@@ -7,6 +7,7 @@
 
 #include "core/analysis/damping_limits.hpp"
 #include "core/analysis/linear_stability_exact.hpp"
+#include "core/analysis/suggest.hpp"
 #include "core/io/format.hpp"
 #include "core/physics/integrate.hpp"
 #include "dampbound/analysis/linear_stability.hpp"
@@ -46,7 +47,11 @@ std::pair<double, double> rayleigh_pair(double f1, double zeta1, double f2, doub
 }
 
 RayleighDesign rayleigh_from_spectrum(const SceneSpec& scene, const Params& params,
-                                      const RayleighRequest& request) {
+                                      const RayleighRequest& request,
+                                      const std::function<bool(const std::string&)>& progress) {
+  const auto stage = [&](const std::string& next) {
+    if (progress && !progress(next)) throw SuggestCancelled();
+  };
   if (!integrator_traits(params.integrator).paper_step)
     throw InputError(std::string("--rayleigh: the exact index is the paper's step's "
                                  "(semi-implicit-euler), not ") + to_string(params.integrator));
@@ -61,6 +66,8 @@ RayleighDesign rayleigh_from_spectrum(const SceneSpec& scene, const Params& para
   const SparseMatrix A = mass_weighted(bare, tangent_stiffness(bare, x));
   RayleighDesign d;
   if (A.rows() == 0) throw InputError("--rayleigh: the scene has no free node");
+  stage("stage 1 of 3: the lowest and highest eigenvalue of M^-1 K (" +
+        std::to_string(A.rows()) + " rows)");
   d.lambda_max = largest_eigenvalue(A);
   d.lambda_min = smallest_eigenvalue_above(A, kZeroModeTolerance * d.lambda_max);
   if (!(d.lambda_max > 0) || !(d.lambda_min > 0))
@@ -103,12 +110,14 @@ RayleighDesign rayleigh_from_spectrum(const SceneSpec& scene, const Params& para
   Params q = p;
   q.rayleigh_mass = d.alpha;
   q.rayleigh_stiffness = d.beta;
+  stage("stage 2 of 3: the largest stable beta at dt (a certified eigenvalue per probe)");
   d.beta_max = damping_kind_max(scene.model, x, q, DampingKind::rayleigh_stiffness);
   double rate = 0;
   if (commuting(bare, rate))
     d.beta_max_closed = (4 - d.lambda_max * p.dt * p.dt - 2 * p.dt * (rate + d.alpha)) /
                         (2 * p.dt * d.lambda_max);
   d.stable = d.beta < d.beta_max;
+  stage("stage 3 of 3: the exact dt limit with the pair");
   const Model with_pair = compile_model(scene.model, q);
   d.dt_max = general_limits(with_pair, x, q).dt_max;
   d.zeta2_at_beta_max = rayleigh_zeta(d.alpha, d.beta_max, d.f2);

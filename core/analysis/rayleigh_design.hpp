@@ -8,7 +8,9 @@
 //   beta  = 2 (zeta_2 w_2 - zeta_1 w_1) / (w_2^2 - w_1^2).
 // The pair is then judged at the scene's dt by SPEC 10's exact index (the scene's nodal damping
 // and dashpots held), and by the closed forms where C^ commutes with A.
+#include <functional>
 #include <limits>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -59,7 +61,11 @@ struct RayleighDesign {
 /// Designs the pair on the scene's model at params (its dt, gamma and kd; its own alpha and
 /// beta are replaced), linearised at rest. Throws InputError for a bad request (ratios not
 /// positive, f1 >= f2, a model with no non-zero mode) or an integrator other than the paper's.
+/// `progress`, when given, is called before each stage (the spectrum, the largest stable beta,
+/// the dt limit) with what runs next; returning false stops the call with SuggestCancelled
+/// (suggest.hpp; the tuner's Cancel).
 RayleighDesign rayleigh_from_spectrum(const SceneSpec& scene, const Params& params,
-                                      const RayleighRequest& request);
+                                      const RayleighRequest& request,
+                                      const std::function<bool(const std::string&)>& progress = {});
 
 }  // namespace dampbound

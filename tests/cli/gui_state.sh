@@ -1,5 +1,5 @@
 # The tuner under real X events (Xvfb, xdotool): a key tap shorter than a frame still acts
-# (Space plays), and a settings file with a bad value is reported at that value's line and
+# (Space pauses), and a settings file with a bad value is reported at that value's line and
 # left as it is.
 . "$(dirname "$0")/lib.inc"
 
@@ -16,23 +16,28 @@ export DISPLAY=$disp
 
 json_field() { printf '%s' "$1" | sed -nE "s/.*\"$2\":\"?([^,\"}]*)\"?.*/\1/p"; }
 
-# 1. A tap of Space (xdotool presses and releases at once, between two frames) plays the run.
-# The frames are timed first, so that the window stays open about 6 s whatever the machine.
-t0=$(date +%s%N)
-"$DB" gui two-node --frames 30 --stats --size 1024x640 --config-dir "$WORK/c0" >"$WORK/out" 2>&1
-ms=$(( ($(date +%s%N) - t0) / 1000000 ))
-frames=$(( 30 * 6000 / (ms > 1 ? ms : 1) ))
-[ "$frames" -lt 60 ] && frames=60
-"$DB" gui two-node --frames "$frames" --stats --size 1024x640 --config-dir "$WORK/c1" \
-  >"$WORK/out" 2>"$WORK/err" &
+# 1. A tap of Space shorter than a frame acts. The frames are made long (the hidden
+# --debug-frame-sleep, 150 ms each) and xdotool presses and releases Space with no delay, so
+# both events arrive within one frame, which ImGui 1.86 alone reads as never pressed. The run
+# plays one step per frame from the start (--frames plays); the tap pauses it, so the session
+# ends with fewer iterations than frames. With the tap lost (ui/glfw_host.cpp's held release
+# reverted) it ran all 40 steps.
+frames=40
+"$DB" gui two-node --frames $frames --steps-per-frame 1 --debug-frame-sleep 150 \
+  --max-iter 100000 --stats --size 1024x640 --config-dir "$WORK/c1" >"$WORK/out" 2>"$WORK/err" &
 pid=$!
-xdotool search --sync --onlyvisible --name . >/dev/null 2>&1
-sleep 1.5
-xdotool mousemove 700 400 sleep 0.2 keydown space keyup space
+xdotool search --sync --onlyvisible --pid "$pid" >/dev/null 2>&1
+sleep 2
+xdotool mousemove 700 400 sleep 0.3 keydown --delay 0 space keyup --delay 0 space
 wait "$pid"
 STATS=$(grep '^{' "$WORK/out" | tail -1)
 its=$(json_field "$STATS" iterations)
-[ "${its:-0}" -gt 0 ] && ok || bad "a tap of Space did not play the run: $STATS $(cat "$WORK/err")"
+if [ "${its:-0}" -gt 0 ] && [ "${its:-0}" -lt $((frames - 2)) ]; then
+  ok
+  echo "a tap of Space within one frame paused the run at $its of $frames steps"
+else
+  bad "a tap of Space within one frame did not pause the run ($its of $frames steps): $STATS $(cat "$WORK/err")"
+fi
 
 # 2. A settings file whose gamma (line 3) the parameters' check refuses: the warning names
 # line 3, and the file is the same after the tuner closed.

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "core/io/scene_file.hpp"
 #include "ui/egl_host.hpp"
@@ -70,6 +71,38 @@ TEST(GuiApp, ASceneSwitchDropsTheLastScenesSuggestions) {
   EXPECT_TRUE(had);
   EXPECT_FALSE(after) << "the last scene's suggestions are still on show";
   EXPECT_EQ(app.tuner().scene().name, "paper-plane");
+  app.release_gl();
+}
+
+// The stiffness ceiling and the Rayleigh pair speak for the model they were computed for: the
+// frame after a parameter change (their own apply button's) or a Reset shows neither, and
+// their apply buttons are gone with them.
+TEST(GuiApp, AParameterChangeOrAResetDropsTheCeilingAndThePair) {
+  GuiOptions o = options(fs::path());
+  o.config_dir.clear();
+  EglHost host(headless());
+  GuiApp app(o);
+  std::vector<bool> shown;
+  host.render_frames(
+      1024, 640,
+      [&](FrameInfo& info) {
+        if (info.layout_pass) return app.frame(info);
+        if (info.index == 0 || info.index == 2) {
+          app.start_knobs();
+          app.knobs().wait();
+        }
+        app.frame(info);
+        shown.push_back(app.knobs().result().has_value());
+        if (info.index == 0) {
+          ASSERT_TRUE(app.knobs().result().has_value()) << app.knobs().error();
+          const auto p = with_kappa_ceiling(app.tuner().params(), *app.knobs().result());
+          ASSERT_TRUE(p.has_value());
+          app.tuner().set_params(*p);  // what "apply kappa" does
+        }
+        if (info.index == 2) app.tuner().reset();
+      },
+      4);
+  EXPECT_EQ(shown, (std::vector<bool>{true, false, true, false}));
   app.release_gl();
 }
 
