@@ -10,7 +10,8 @@
 # of its shards, bounds and suggest text, check --junit, bounds of a bench scene at its
 # static equilibrium). PNGs are compared as bytes:
 # stb encodes deterministically, so equal bytes mean equal pixels. The only edit made
-# before comparing: JUnit's wall-clock time="..." attributes, a sweep's speed line and the
+# before comparing: JUnit's wall-clock time="..." attributes, a sweep's speed line, the
+# progress notes of a wait (stderr) and a rule line's estimate in seconds, and the
 # folder where each binary found the default scene are dropped. Compare builds of the same
 # configuration (a -march=native build rounds implicit Euler's sparse solves differently).
 # Exit 0 when every output matches, 1 when any differs (each difference is listed).
@@ -83,6 +84,10 @@ run_all() {  # binary out_dir
     sed -i "s|$out/files|{out}|g; s|$root|{root}|g" "$d/stdout" "$d/stderr"
     # A sweep's speed line is wall-clock, not behaviour.
     [[ $line == sweep* ]] && sed -i '/^time  /d' "$d/stdout"
+    # So are the progress notes on stderr (a wait over 2 s, docs/cli.md) and the seconds a
+    # sweep's rule line estimates at its measured rate.
+    sed -i -E '/^dampbound: [a-z]+: .*(\(Ctrl-C stops\)|done in [0-9.]+ s)$/d' "$d/stderr"
+    sed -i -E 's/, about [0-9.e+-]+ s at this rate\)/)/' "$d/stdout"
   done < <(commands)
   # A sweep names its scene by the path where the binary found it (beside its own tree).
   sed -i -E 's|^# scene: .*/scenes/|# scene: {scenes}/|' "$out"/files/*.csv
