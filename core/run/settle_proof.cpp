@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <utility>
 
 namespace dampbound {
 
@@ -94,6 +95,39 @@ settle::SceneBound settle_scene_bound(const ModelSpec& mo, const std::vector<dou
     }
   }
   if (g.k_max == 0) g.l0_min = g.l0_max = 1;  // anchors only: no nonlinear remainder
+  // Step 4's spread: |R_i| <= C sum_{s at i} (a_i + a_j)^2 <= C ((1 + e) deg_i a_i^2 +
+  // (1 + 1/e) sum_j Adj_ij a_j^2) = C (M_e p)_i with p = a^2 (a_i = |u_i|), sum p = |u|^2 <=
+  // U^2; |M_e p|_2 is convex in p, so at most U^2 max_k |M_e e_k|_2, with
+  // |M_e e_k|_2^2 = ((1 + e) deg_k)^2 + (1 + 1/e)^2 sum_j Adj_jk^2 over free j.
+  std::vector<std::pair<int, int>> pairs;
+  for (const Spring& sp : mo.springs)
+    if (!mo.fixed[static_cast<size_t>(sp.i)] || !mo.fixed[static_cast<size_t>(sp.j)])
+      pairs.emplace_back(std::min(sp.i, sp.j), std::max(sp.i, sp.j));
+  std::sort(pairs.begin(), pairs.end());
+  std::vector<double> adj_sq(n, 0.0);  // sum_j Adj_jk^2 over free neighbours j of k
+  for (size_t a = 0; a < pairs.size();) {
+    size_t b = a;
+    while (b < pairs.size() && pairs[b] == pairs[a]) ++b;
+    const double mult = static_cast<double>(b - a);
+    const size_t i = static_cast<size_t>(pairs[a].first), j = static_cast<size_t>(pairs[a].second);
+    if (!mo.fixed[i] && !mo.fixed[j]) {
+      adj_sq[i] += mult * mult;
+      adj_sq[j] += mult * mult;
+    }
+    a = b;
+  }
+  g.spread = HUGE_VAL;
+  for (int k = 1; k <= 40; ++k) {
+    const double e = 0.05 * k;
+    double worst = 0;
+    for (size_t i = 0; i < n; ++i) {
+      if (mo.fixed[i]) continue;
+      const double diag = (1.0 + e) * degree[i], off = 1.0 + 1.0 / e;
+      worst = std::max(worst, std::sqrt(diag * diag + off * off * adj_sq[i]));
+    }
+    g.spread = std::min(g.spread, worst);
+  }
+  g.spread *= 1.0 + 1e-12;
   for (size_t i = 0; i < n; ++i) {
     if (mo.fixed[i]) continue;
     g.degree = std::max(g.degree, degree[i]);

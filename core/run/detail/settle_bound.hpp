@@ -34,6 +34,9 @@ struct SceneBound {
   double mu_lo = 0, mu_hi = 0;  ///< the spectrum of the stiffness scales' matrix G lies in
                                 ///< [mu_lo, mu_hi] (K = kappa G at rest)
   double degree = 0;            ///< most springs at a free node
+  /// The springs' remainder summed over the mesh: |R|_2 <= kappa k_max c(rho) spread U^2 /
+  /// l0_min (docs/settled.md, step 4).
+  double spread = 0;
   double k_max = 0, anchor_max = 0;  ///< largest spring and anchor stiffness scales
   double l0_min = 0, l0_max = 0;     ///< rest lengths of springs with a free end
   double x_max = 0;                  ///< largest |X_i,c|
@@ -121,18 +124,21 @@ DAMPBOUND_HD inline TrialBound trial_bound(const SceneBound& g, double m, double
   double nu = threshold * (1.0 - 1e-6) * root_sigma;
   const double kk = kappa * g.k_max * (1.0 + 4.0 * kUnit);
   const double ka = kappa * g.anchor_max * (1.0 + 4.0 * kUnit);
-  for (int k = 0; k < 80; ++k, nu *= 0.5) {
+  for (int k = 0; k < 100; ++k) {
     const double U = nu / root_sigma;
     const double W = nu * wide;
     // A spring's ends move by |u_i - u_j| <= |u_i| + |u_j| <= sqrt(2) |u|_2.
     const double delta = 1.4142135623730951 * (1.0 + 1e-15) * U;
     const double rho = delta / g.l0_min;
-    if (!(rho <= 0.5)) continue;
-    // Step 4: the springs' nonlinear remainder, |R| <= 2 deg kappa k_max c(rho) delta |u| / l0,
+    if (!(rho <= 0.5)) {
+      nu *= 0.5;
+      continue;
+    }
+    // Step 4: the springs' nonlinear remainder, |R| <= kappa k_max c(rho) spread U^2 / l0,
     // entering u' and w' alike, where N(s R, s R) = s |R| exactly.
     const double c_nl = (2.0 + rho) * (2.0 + rho) /
                         (6.928203230275509 * (1.0 - rho) * (1.0 - rho)) * (1.0 + 1e-9);
-    const double nonlinear = t.s * 2.0 * g.degree * kk * c_nl * delta * U / g.l0_min;
+    const double nonlinear = t.s * g.spread * kk * c_nl * U * U / g.l0_min;
     // Step 5: rounding of one step, per coordinate e_c, over every coordinate.
     const double d2 = (g.degree + 2.0) * (g.degree + 2.0);
     const double force_err = kUnit * d2 * (kk + ka) * (16.0 * g.l0_max + 64.0 * U);
@@ -147,6 +153,10 @@ DAMPBOUND_HD inline TrialBound trial_bound(const SceneBound& g, double m, double
       t.u_max_sq = t.nu_sq / (root_sigma * root_sigma);
       return t;
     }
+    // Too wide: the nonlinear term grows as nu^2, so shrink to where it would just fit (the
+    // next pass checks it), or by a tenth where that gives no smaller radius.
+    const double fit = (contraction * nu - rounding) / nonlinear;
+    nu *= fit > 0 && fit < 0.999 ? fit * (1.0 - 1e-6) : 0.9;
   }
   return t;
 }
@@ -229,8 +239,13 @@ template <class Norm>
 DAMPBOUND_HD Outcome early_verdict(const StopRules& rules, Outcome verdict, int below_since,
                                    int iteration, double max_displacement, const TrialBound& t,
                                    int& next, Norm norm) {
+  // Before the first look the largest displacement must be half the ball's radius:
+  // on the paper plane N is 4 to 9 times sqrt(sigma) max_i |u_i| once the wave has spread,
+  // so an earlier look would fail and cost a step's time for nothing.
+  const double spread = next == 0 ? 4.0 : 1.0;
   if (verdict != Outcome::running || rules.rule != StopRule::settled || below_since == 0 ||
-      !(t.nu_sq > 0) || iteration < next || !(max_displacement * max_displacement <= t.u_max_sq))
+      !(t.nu_sq > 0) || iteration < next ||
+      !(spread * max_displacement * max_displacement <= t.u_max_sq))
     return verdict;
   const double n2 = norm();
   if (n2 <= t.nu_sq) return Outcome::settled;
