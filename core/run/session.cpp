@@ -66,9 +66,14 @@ const StepSample& Session::step_once() {
   return trace_.back();
 }
 
+void Session::set_early_stop(bool on) {
+  early_stop_ = on;
+  rebuild_settle();
+}
+
 void Session::rebuild_settle() {
   settle_.reset();
-  if (!settle_proof_enabled() || params_.zeta) return;
+  if (!early_stop_ || !settle_proof_enabled() || params_.zeta) return;
   const State s0 = initial_state(*scene_);
   std::vector<double> x0, v0;
   for (size_t i = 0; i < s0.x.size(); ++i)

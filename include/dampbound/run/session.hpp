@@ -46,6 +46,9 @@ class Session {
   /// and any cuts are kept. Throws InputError naming the parameter when validate() refuses.
   void set_params(const Params& params);
   void set_rules(const StopRules& rules) { rules_ = rules; }
+  /// SPEC 8's early stop (on by default): off, a settled run steps to its limit, so that its
+  /// final displacement and counts are those at the limit (`check`'s expectations on them).
+  void set_early_stop(bool on);
   /// Threads for step()'s per-node loops (1 by default, 0 = one per hardware thread): the
   /// trajectory is the same bits on any count; meshes of 100k nodes and more gain from it.
   void set_threads(int threads) { ws_.pass.threads.set_threads(threads); }
@@ -107,6 +110,7 @@ class Session {
   /// the model; null where the proof's switch is off.
   std::shared_ptr<const SettleProof> settle_;
   int settle_next_ = 0;  ///< the proof's next look (settle::early_verdict)
+  bool early_stop_ = true;
   void rebuild_settle();
 };
 
