@@ -22,6 +22,7 @@
 #include "core/io/format.hpp"
 #include "core/physics/damping_ratio.hpp"
 #include "core/physics/integrate.hpp"
+#include "core/run/settle_proof.hpp"
 #include "core/sweep/map.hpp"
 #include "core/sweep/progress.hpp"
 #include "core/sweep/runner.hpp"
@@ -81,7 +82,7 @@ struct SweepArgs {
   double progress_interval = 10, sync_interval = 1;
   int max_iter = 0, threads = 0;
   std::string rule;  // empty: first-entry for a paper preset, else the default (settled)
-  bool resume = false, no_similarity = false, plain = false;
+  bool resume = false, no_similarity = false, plain = false, no_early_stop = false;
   CLI::Option *max_iter_opt = nullptr, *m_opt = nullptr, *kappa_opt = nullptr, *zeta_opt = nullptr,
               *gamma_opt = nullptr, *dt_opt = nullptr, *factor_opt = nullptr, *policy_opt = nullptr,
               *kd_opt = nullptr, *rayleigh_mass_opt = nullptr, *rayleigh_stiffness_opt = nullptr;
@@ -170,6 +171,7 @@ SweepSpec make_spec(const SweepArgs& a, const SceneSpec& scene) {
 }
 
 int run(const SweepArgs& a) {
+  if (a.no_early_stop) set_settle_proof_enabled(false);
   SceneSpec scene = load_scene_arg(a.scene);
   SweepRequest rq;
   rq.scene_text = sweep_identity_text(read_file_text(scene.path), scene);
@@ -350,6 +352,9 @@ std::function<int()> setup(CLI::App& root) {
   add_rule_option(cmd, a->rule,
                   "default: settled; first-entry, the paper's, with --preset paper-lower/upper");
   cmd->add_flag("--no-similarity", a->no_similarity, "run every trial, even equivalent ones");
+  cmd->add_flag("--no-early-stop", a->no_early_stop,
+                "settled rule: step every trial to its limit, without SPEC 8's proof "
+                "(docs/settled.md); to check the proof or time it");
   cmd->add_flag("--plain", a->plain, "step each trial with Session (the plain step()), no SIMD");
   cmd->add_option("--device", a->device,
                   "cpu (default), gpu (exit 2 without a usable GPU), auto (the GPU when one can "

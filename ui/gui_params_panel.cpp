@@ -105,7 +105,9 @@ void GuiApp::playback_controls() {
                       t.playback().frame_budget_seconds * 1e3);
   item::checkbox("pause at the verdict", &t.playback().pause_at_verdict);
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("Pause at the verdict: the iteration limit, or a divergence");
+    ImGui::SetTooltip(
+        "Pause at the verdict: the iteration limit, a divergence, or the settled rule's proof "
+        "(docs/settled.md)");
 }
 
 void GuiApp::damping_input(Params& p, bool& changed) {

@@ -220,8 +220,11 @@ int Tuner::step(int n, double budget_seconds) {
     if (before == Outcome::running && after != Outcome::running && playback_.pause_at_verdict) {
       ++taken;
       playing_ = false;
+      const bool proven = after == Outcome::settled &&
+                          session_->result().iterations < session_->rules().max_iterations;
       notice_ = verdict_text(session_->result(), session_->rules()) + ": paused at the verdict" +
-                (after == Outcome::settled || after == Outcome::not_settled
+                (proven ? " (SPEC 8's proof: it cannot leave the band before the limit)"
+                 : after == Outcome::settled || after == Outcome::not_settled
                      ? " (the iteration limit, where the settled rule decides)"
                      : "");
       break;

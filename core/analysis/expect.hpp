@@ -18,9 +18,10 @@ struct ExpectationResult {
 };
 
 /// The result of the scene's own parameters ("") or of the [[run]] with that label, judged by
-/// `rule` (SPEC 5 first entry or SPEC 8 settled).
+/// `rule` (SPEC 5 first entry or SPEC 8 settled); `to_the_limit`: without SPEC 8's early stop,
+/// so that a settled run's final displacement, counts and iterations are those at the limit.
 RunResult run_labelled(const SceneSpec& scene, const std::string& label,
-                       StopRule rule = StopRule::first_entry);
+                       StopRule rule = StopRule::first_entry, bool to_the_limit = false);
 
 /// Runs every run the scene's expectations refer to (each once) and judges every field of
 /// every expectation. Empty when the scene declares none.

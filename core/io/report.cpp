@@ -90,10 +90,16 @@ std::string verdict_text(const RunResult& r, const StopRules& rules) {
       return "not restored" + checked + " (the paper's rule)";
     case Outcome::diverged:
       return aside("diverged at " + std::to_string(r.iterations));
-    case Outcome::settled:
+    case Outcome::settled: {
+      // SPEC 8's early stop (docs/settled.md): a run stopped by the proof says where.
+      const std::string to = r.iterations > 0 && r.iterations < rules.max_iterations
+                                 ? ", proven at " + std::to_string(r.iterations) +
+                                       " to stay to " + std::to_string(rules.max_iterations)
+                                 : checked;
       // A run that settled at its first entry says no more; one that left first says when.
-      return r.left_at > 0 ? aside("settled at " + std::to_string(r.settled_at) + checked)
-                           : "settled at " + std::to_string(r.settled_at) + checked;
+      return r.left_at > 0 ? aside("settled at " + std::to_string(r.settled_at) + to)
+                           : "settled at " + std::to_string(r.settled_at) + to;
+    }
     case Outcome::not_settled:
       return history.empty() ? "not settled" + checked + " (never entered " + band + ")"
                              : aside("not settled" + checked);

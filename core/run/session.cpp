@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "core/run/settle_proof.hpp"
 #include "dampbound/physics/error.hpp"
 
 namespace dampbound {
@@ -46,7 +47,44 @@ const StepSample& Session::step_once() {
   else
     trace_.back() = sample;
   accumulate(result_, sample, rules_);
+  if (settle_ && result_.outcome == Outcome::running && result_.below_since > 0) {
+    // SPEC 8: stop early where the proof covers the state (core/run/detail/settle_bound.hpp).
+    const SettleProof& proof = *settle_;
+    const settle::TrialBound t =
+        proof.trial(params_.m, params_.kappa, params_.gamma, params_.dt, rules_);
+    const auto& x = state_.x;
+    const auto& v = state_.v;
+    result_.outcome = settle::early_verdict(
+        rules_, result_.outcome, result_.below_since, result_.iterations,
+        result_.max_displacement, t, settle_next_, [&] {
+          return settle::norm_bound(
+              proof.arrays(), t, [&](int i, int c) { return x[static_cast<size_t>(i)][c]; },
+              [&](int i, int c) { return v[static_cast<size_t>(i)][c]; });
+        });
+    if (result_.outcome == Outcome::settled) result_.settled_at = result_.below_since;
+  }
   return trace_.back();
+}
+
+void Session::set_early_stop(bool on) {
+  early_stop_ = on;
+  rebuild_settle();
+}
+
+void Session::rebuild_settle() {
+  settle_.reset();
+  if (!early_stop_ || !settle_proof_enabled() || params_.zeta) return;
+  const State s0 = initial_state(*scene_);
+  std::vector<double> x0, v0;
+  for (size_t i = 0; i < s0.x.size(); ++i)
+    for (int c = 0; c < 3; ++c) {
+      x0.push_back(s0.x[i][c]);
+      v0.push_back(s0.v[i][c]);
+    }
+  auto proof = std::make_shared<SettleProof>(model_->spec(), x0, v0, params_.integrator,
+                                             params_.policy, model_->spring_damping,
+                                             !scene_->cuts.empty());
+  if (!proof->why_not()) settle_ = std::move(proof);
 }
 
 const RunResult& Session::run_to_end(const StepObserver& on_step) {
@@ -68,6 +106,7 @@ void Session::set_params(const Params& params) {
   else
     std::atomic_thread_fence(std::memory_order_acquire);
   reparameterise(*model_, params_);
+  rebuild_settle();
 }
 
 void Session::set_watched(int node) {
@@ -85,6 +124,8 @@ void Session::reset() {
   // session (the tuner's colours and status, a .vtu of iteration 0, read them as none yet).
   for (auto* v : {&ws_.upper_bound, &ws_.gamma_eff, &ws_.safe_row_sum, &ws_.safe_bound}) v->clear();
   ws_.status.clear();
+  settle_next_ = 0;
+  rebuild_settle();
 }
 
 void Session::perturb() {
@@ -130,6 +171,7 @@ int Session::cut(const std::vector<int>& springs) {
   model_ = std::make_shared<Model>(compile_model(without_springs(*model_, springs), params_));
   const int removed = before - model_->spec().spring_count();
   springs_cut_ += removed;
+  rebuild_settle();
   return removed;
 }
 

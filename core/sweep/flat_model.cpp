@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "core/physics/integrate.hpp"
+#include "core/run/settle_proof.hpp"
 #include "core/sweep/detail/trial_body.hpp"
 #include "dampbound/physics/model.hpp"
 
@@ -73,6 +74,9 @@ FlatScene::FlatScene(const SceneSpec& scene, DampingPolicy policy, const StopRul
   shape_.uniform =
       n > 0 && all_equal(mass_scale_) && all_equal(gamma_scale_) && all_equal(kappa_max_scale_);
   shape_.rules = rules;
+  if (rules.rule == StopRule::settled)
+    shape_.settle = settle_scene_bound(mo, x0_, v0_, scene.params.integrator, policy, false,
+                                       !scene.cuts.empty());
 }
 
 FlatModel FlatScene::view() const {

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/io/format.hpp"
+#include "core/run/settle_proof.hpp"
 #include "core/sweep/runner.hpp"
 #include "core/sweep/setup.hpp"
 #include "dampbound/physics/error.hpp"
@@ -108,7 +109,12 @@ std::string sweep_definition(const SweepSpec& s) {
        " diverge-factor=" + format_number(s.rules.diverge_factor);
   d += s.allow_similarity ? " similarity=auto" : " similarity=off";
   // SPEC 8; said only when settled, so that a first-entry sweep keeps its id and bytes.
-  if (s.rules.rule == StopRule::settled) d += " rule=settled";
+  if (s.rules.rule == StopRule::settled) {
+    d += " rule=settled";
+    // Every settled trial stepped to its limit (sweep --no-early-stop): other iterations and
+    // counts in the CSV, so another sweep.
+    if (!settle_proof_enabled()) d += " early-stop=off";
+  }
   return d;
 }
 

@@ -20,7 +20,7 @@ expect_match "$OUT" "answer +(not settled, checked to 1000|diverged at [0-9]+) \
 
 # Fig. 1 below the lower bound: first entry, exit and settled, settled after the exit.
 expect_exit 0 "$DB" run paper-plane --gamma 0.0005 --json
-expect_match "$OUT" '"outcome":"settled","iterations":1000,' "gamma 0.0005 settles by the limit"
+expect_match "$OUT" '"outcome":"settled","iterations":[0-9]+,' "gamma 0.0005 settles by the limit (or SPEC 8's proof)"
 fe=$(printf '%s' "$OUT" | sed -E 's/.*"first_entry":([0-9]+).*/\1/')
 la=$(printf '%s' "$OUT" | sed -E 's/.*"left_at":([0-9]+).*/\1/')
 sa=$(printf '%s' "$OUT" | sed -E 's/.*"settled_at":([0-9]+).*/\1/')

@@ -14,6 +14,7 @@
 
 #include "core/physics/detail/simd.hpp"
 #include "core/physics/detail/spring_block.hpp"
+#include "core/run/settle_proof.hpp"
 #include "core/sweep/detail/kernel_body.hpp"
 #include "core/sweep/detail/lanes.hpp"
 #include "core/sweep/trials.hpp"
@@ -69,6 +70,11 @@ struct Kernel final : BatchKernel::Impl {
   std::size_t id[kLanes] = {};
   TrialResult result[kLanes];
   BandHistory band[kLanes];
+  // SPEC 8's early stop (core/run/settle_proof.hpp): the scene's proof, each lane's bound.
+  std::unique_ptr<SettleProof> proof;
+  settle::SceneArrays proof_arrays;
+  settle::TrialBound bound[kLanes];
+  int next_look[kLanes] = {};
 
   Kernel(const SceneSpec& scene, DampingPolicy pol, const StopRules& r) : policy(pol), rules(r) {
     if (const auto why = batch_kernel_unsupported(scene))
@@ -108,6 +114,14 @@ struct Kernel final : BatchKernel::Impl {
     blocks.resize(n);
     if (!uniform) node_params.resize(n);
     if (policy == DampingPolicy::safe) safe_blocks.resize(n);
+    if (rules.rule == StopRule::settled) {
+      proof = std::make_unique<SettleProof>(mo, x0, v0, scene.params.integrator, policy, false,
+                                            !scene.cuts.empty());
+      if (proof->why_not())
+        proof.reset();
+      else
+        proof_arrays = proof->arrays();
+    }
     for (int l = 0; l < kLanes; ++l) park(l);
   }
 
@@ -131,6 +145,11 @@ struct Kernel final : BatchKernel::Impl {
     id[l] = trial;
     result[l] = TrialResult{};
     band[l] = BandHistory{};
+    const bool other_damping = (p.kd && *p.kd != 0) || (p.rayleigh_mass && *p.rayleigh_mass != 0) ||
+                               (p.rayleigh_stiffness && *p.rayleigh_stiffness != 0);
+    next_look[l] = 0;
+    bound[l] = proof && !other_damping ? proof->trial(p.m, p.kappa, p.gamma, p.dt, rules)
+                                       : settle::TrialBound{};
   }
 
   void set_lane(int l, const TrialParams& p, const std::vector<double>& x) {
@@ -342,6 +361,13 @@ struct Kernel final : BatchKernel::Impl {
         const double d = finite ? max_d[l] : HUGE_VAL;
         r.max_displacement = d;
         r.outcome = judge_band(rules, band[l], r.iterations, d, finite);
+        r.outcome = settle::early_verdict(
+            rules, r.outcome, band[l].below_since, r.iterations, d, bound[l], next_look[l], [&] {
+              return settle::norm_bound(
+                  proof_arrays, bound[l],
+                  [&](int i, int c) { return blocks[static_cast<size_t>(i)].x[c][l]; },
+                  [&](int i, int c) { return blocks[static_cast<size_t>(i)].v[c][l]; });
+            });
         r.first_entry = band[l].first_entry;
         r.left_at = band[l].left_at;
         if (r.outcome == Outcome::settled) r.settled_at = band[l].below_since;

@@ -51,6 +51,8 @@ struct TrialSlot {
   TrialConsts p;
   TrialResult r;
   BandHistory band;
+  settle::TrialBound bound;  ///< SPEC 8's early stop (core/run/detail/settle_bound.hpp)
+  int next_look = 0;         ///< the proof's next look (settle::early_verdict)
 };
 
 /// forces.cpp's anchor term -kappa_a,i (x_i - X_i) of every node: F at the start of a step.
@@ -76,6 +78,11 @@ DAMPBOUND_HD inline void trial_begin(const FlatModel& M, TrialSlot& slot, const 
   anchor_forces(M, slot.p, s);
   slot.r = TrialResult{};
   slot.band = BandHistory{};
+  slot.next_look = 0;
+  const TrialConsts& P = slot.p;
+  slot.bound = P.damped ? settle::TrialBound{}
+                        : settle::trial_bound(M.settle, P.m, P.kappa, P.gamma, P.dt,
+                                              M.rules.restore_fraction * M.rules.reference);
 }
 
 /// forces.cpp: springs in list order, F_i += f, F_j -= f; a spring of zero (or NaN) length
@@ -226,6 +233,25 @@ DAMPBOUND_HD inline bool trial_step(const FlatModel& M, TrialSlot& slot, const T
   const double d = finite ? sqrt(t.max_sq) : __builtin_huge_val();
   r.max_displacement = d;
   r.outcome = judge_band(M.rules, slot.band, r.iterations, d, finite);
+  // SPEC 8's early stop, as Session and the batched kernel decide it.
+  const std::size_t w = s.stride;
+  r.outcome = settle::early_verdict(
+      M.rules, r.outcome, slot.band.below_since, r.iterations, d, slot.bound, slot.next_look,
+      [&] {
+        settle::SceneArrays g;
+        g.nodes = M.nodes;
+        g.springs = M.springs;
+        g.spring_i = M.spring_i;
+        g.spring_j = M.spring_j;
+        g.kappa_scale = M.kappa_scale;
+        g.rest = M.rest;
+        g.anchor_scale = M.anchor_scale;
+        g.fixed = M.fixed;
+        return settle::norm_bound(
+            g, slot.bound,
+            [&](int i, int c) { return s.x[static_cast<std::size_t>(3 * i + c) * w]; },
+            [&](int i, int c) { return s.v[static_cast<std::size_t>(3 * i + c) * w]; });
+      });
   r.first_entry = slot.band.first_entry;
   r.left_at = slot.band.left_at;
   if (r.outcome == Outcome::settled) r.settled_at = slot.band.below_since;

@@ -2,6 +2,7 @@
 // What the trial body (core/sweep/detail/trial_body.hpp) reads: the scene as flat arrays and a
 // trial's constants, plain data that the GPU sweep copies to the device as it is.
 // core/sweep/flat_model.cpp fills both from a SceneSpec and a TrialParams.
+#include "core/run/detail/settle_bound.hpp"
 #include "dampbound/physics/params.hpp"
 #include "dampbound/run/verdict.hpp"
 
@@ -35,6 +36,8 @@ struct FlatModel {
   bool semi_implicit = true;  ///< else forward Euler
   bool uniform = true;        ///< every node has the same mass, gamma and kappa_i scales
   StopRules rules;
+  /// SPEC 8's early stop: the scene's constants (not eligible unless the settled rule).
+  settle::SceneBound settle;
 };
 
 /// A trial's values (TrialParams, SPEC 10's resolved against the scene) and what follows from

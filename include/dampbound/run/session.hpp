@@ -12,6 +12,8 @@
 
 namespace dampbound DAMPBOUND_API {
 
+class SettleProof;
+
 /// `scene` as a run of it has it at `iteration`, with `model`'s springs (the cuts made so
 /// far): the scene's cuts not reached yet, everything else as loaded (Session::current_scene).
 SceneSpec scene_as_run(const SceneSpec& scene, const ModelSpec& model, int iteration);
@@ -33,6 +35,10 @@ class Session {
   /// non-running verdict is latched.
   const StepSample& step_once();
 
+  /// Under the settled rule a run may be judged `settled` before its limit where SPEC 8's
+  /// proof (docs/settled.md) shows that no later iteration can leave the band; its
+  /// `iterations` is then the iteration of the proof.
+  ///
   /// Steps until the verdict is no longer running; returns the result.
   const RunResult& run_to_end(const StepObserver& on_step = {});
 
@@ -40,6 +46,9 @@ class Session {
   /// and any cuts are kept. Throws InputError naming the parameter when validate() refuses.
   void set_params(const Params& params);
   void set_rules(const StopRules& rules) { rules_ = rules; }
+  /// SPEC 8's early stop (on by default): off, a settled run steps to its limit, so that its
+  /// final displacement and counts are those at the limit (`check`'s expectations on them).
+  void set_early_stop(bool on);
   /// Threads for step()'s per-node loops (1 by default, 0 = one per hardware thread): the
   /// trajectory is the same bits on any count; meshes of 100k nodes and more gain from it.
   void set_threads(int threads) { ws_.pass.threads.set_threads(threads); }
@@ -97,6 +106,12 @@ class Session {
   RunResult result_;
   int springs_cut_ = 0;
   bool keep_trace_ = true;
+  /// SPEC 8's early stop for the model as it is now (core/run/settle_proof.hpp), rebuilt with
+  /// the model; null where the proof's switch is off.
+  std::shared_ptr<const SettleProof> settle_;
+  int settle_next_ = 0;  ///< the proof's next look (settle::early_verdict)
+  bool early_stop_ = true;
+  void rebuild_settle();
 };
 
 }  // namespace dampbound

@@ -80,6 +80,8 @@ TEST(Report, VerdictsInWords) {
   r.left_at = 0, r.first_entry = r.settled_at;
   EXPECT_EQ(verdict_text(r, rules), "settled at 260, checked to 1000");
   EXPECT_EQ(verdict_short(r), "settled at 260");
+  r.iterations = 296;  // stopped by SPEC 8's proof (docs/settled.md)
+  EXPECT_EQ(verdict_text(r, rules), "settled at 260, proven at 296 to stay to 1000");
   r = RunResult{};
   r.outcome = Outcome::not_settled, r.iterations = 1000;
   EXPECT_EQ(verdict_text(r, rules), "not settled, checked to 1000 (never entered the 1% band)");
