@@ -23,14 +23,15 @@ common=(scripts/ci/aarch64_bits.cpp core/physics/bounds.cpp core/physics/detail/
   core/physics/integrate.cpp core/physics/model.cpp core/physics/node_threads.cpp core/physics/params.cpp core/run/protocol.cpp
   core/physics/safe_bound.cpp core/physics/safe_bound_damped.cpp core/physics/safe_bound_nodes.cpp core/run/scene.cpp
   core/run/session.cpp core/physics/step.cpp core/sweep/kernel.cpp core/sweep/detail/kernel_body.cpp
-  core/sweep/trials.cpp core/physics/stiffness.cpp core/physics/closed_forms.cpp)
+  core/sweep/trials.cpp core/physics/stiffness.cpp core/physics/closed_forms.cpp
+  core/run/settle_proof.cpp core/physics/damping_ratio.cpp)
 x86_only=(core/sweep/detail/kernel_avx2.cpp core/sweep/detail/kernel_avx512.cpp
   core/physics/detail/spring_batch_avx2.cpp)
 # The project's rounding flags: no FMA contraction (CMakeLists.txt). -O1 compiles faster and
 # rounds the same (IEEE operations, no contraction, no fast-math). Sections let the static
 # link drop the analysis code that needs CHOLMOD (only implicit Euler's matrices are reached).
 flags=(-std=c++17 -O1 -ffp-contract=off -pthread -Wno-psabi -ffunction-sections -fdata-sections
-  -I"$root" -I/usr/include/eigen3)
+  -I"$root" -I"$root/include" -I/usr/include/eigen3)
 build() {  # build COMPILER OUT SOURCES...
   local cxx=$1 out=$2
   shift 2
