@@ -19,6 +19,7 @@ REST=(
   libgtest-dev libbenchmark-dev
   pybind11-dev python3-dev python3-pytest   # the Python module and its tests (and numpy)
   xvfb xauth xdotool
+  libx11-dev                     # cli.gui_close builds its window-manager close request (tests/tools)
   clang libclang-rt-14-dev
   slurm-wlm munge                # scripts/ci/slurm.sh: a single-node Slurm on localhost
   python3-meshio python3-numpy   # tests read the ParaView (VTU) output back with meshio
