@@ -1,7 +1,7 @@
 # dampbound gui closes promptly on a close request whatever runs in the background: the
 # window manager's close button (a WM_DELETE_WINDOW message, tests/tools/x_close_request.c),
 # SIGTERM and SIGINT, on tissue-block playing with the stability map computing, each request
-# 4 s after the window opened, while two busy loops at nice 5 keep both cores full (another
+# 3 s after the window opened, while two busy loops at nice 5 keep both cores full (another
 # build, another tuner). The time is from the request to the process gone: at most 500 ms
 # under this load (docs/gui.md promises 0.3 s; on the shared 2-core machine, load 7 to 10
 # before the busy loops, the new tuner took 150 to 355 ms); the exit code is 0 and the
@@ -39,7 +39,7 @@ for how in close TERM INT close TERM INT; do
   DISPLAY=$disp "$DB" gui tissue-block --play --tab map --size 1024x640 \
     --config-dir "$cfg" >"$WORK/out" 2>"$WORK/err" &
   pid=$!
-  sleep 4
+  sleep 3
   if ! kill -0 "$pid" 2>/dev/null; then
     bad "$how: the tuner was gone before the request: $(cat "$WORK/err")"
     continue

@@ -7,6 +7,7 @@
 #include "ui/figure.hpp"
 #include "ui/image.hpp"
 #include "ui/plot.hpp"
+#include "tests/ui/ui_test_util.hpp"
 
 #include <gtest/gtest.h>
 #include <imgui.h>
@@ -25,12 +26,7 @@
 namespace dampbound::ui {
 namespace {
 
-std::string out_path(const std::string& name) {
-  const char* env = std::getenv("DAMPBOUND_UI_PNG_DIR");
-  const std::filesystem::path dir = env != nullptr && *env != '\0' ? env : "ui_test_output";
-  std::filesystem::create_directories(dir);
-  return (dir / name).string();
-}
+using ui_test::out_path;
 
 /// One host for the whole suite: making the context is the slow part.
 EglHost& host() {

@@ -13,9 +13,12 @@
 
 #include "core/io/scene_file.hpp"
 #include "ui/egl_host.hpp"
+#include "tests/ui/ui_test_util.hpp"
 
 namespace dampbound::ui {
 namespace {
+
+using ui_test::headless;
 
 namespace fs = std::filesystem;
 
@@ -28,12 +31,6 @@ GuiOptions options(const fs::path& config) {
   o.demo = false;
   o.scripted = true;
   return o;
-}
-
-EglOptions headless() {
-  EglOptions eo;
-  eo.render = gui_render_options();
-  return eo;
 }
 
 std::string text_of(const fs::path& p) {

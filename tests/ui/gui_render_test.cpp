@@ -25,20 +25,17 @@
 #include "ui/mesh_style.hpp"
 #include "ui/settings.hpp"
 #include "ui/tuner_plots.hpp"
+#include "tests/ui/ui_test_util.hpp"
 
 namespace dampbound::ui {
 namespace {
 
+using ui_test::out_path;
+using ui_test::headless;
+
 namespace fs = std::filesystem;
 
-std::string out_path(const std::string& name) {
-  const char* env = std::getenv("DAMPBOUND_UI_PNG_DIR");
-  const fs::path dir = env != nullptr && *env != '\0' ? env : "ui_test_output";
-  fs::create_directories(dir);
-  return (dir / name).string();
-}
-
-GuiOptions options(const fs::path& config) {
+GuiOptions demo_options(const fs::path& config) {
   GuiOptions o;
   o.config_dir = config.string();
   o.scenes_dir = DAMPBOUND_SOURCE_DIR "/scenes";
@@ -48,13 +45,6 @@ GuiOptions options(const fs::path& config) {
   o.demo = true;
   o.scripted = true;
   return o;
-}
-
-/// The EGL host with the window's render options.
-EglOptions headless() {
-  EglOptions eo;
-  eo.render = gui_render_options();
-  return eo;
 }
 
 /// Pixels of `img` inside `r` (window pixels) matching `color` to within `tolerance`.
@@ -69,9 +59,9 @@ long count_in(const Image& img, const PanelRect& r, Rgba color, int tolerance) {
   return n;
 }
 
-/// options() with nothing persisted and no demo pins.
+/// demo_options() with nothing persisted and no demo pins.
 GuiOptions bare_options() {
-  GuiOptions o = options(fs::path());
+  GuiOptions o = demo_options(fs::path());
   o.config_dir.clear();
   o.demo = false;
   return o;
@@ -94,7 +84,7 @@ TEST(GuiRender, ARememberedHostileSceneDoesNotStopTheNextStart) {
   GuiSettings remembered = default_gui_settings();
   remembered.scene_path = bomb.string();
   save_gui_settings(remembered, (config / "settings.txt").string());
-  GuiOptions o = options(config);
+  GuiOptions o = demo_options(config);
   o.scene.reset();
   o.demo = false;
   GuiApp app(o);
@@ -111,7 +101,7 @@ TEST(GuiRender, WholeWindowHeadless) {
   EglOptions eo;
   eo.render = gui_render_options();
   EglHost host(eo);
-  GuiApp app(options(config));
+  GuiApp app(demo_options(config));
   ASSERT_EQ(app.tuner().pins().size(), 2u);
   const int frames = 3;
   std::string export_summary;
@@ -179,7 +169,7 @@ TEST(GuiRender, TheFirstFrameOfALaterStartIsNotBlank) {
   // background on every start after the first.
   const fs::path config = fs::temp_directory_path() / "dampbound_gui_second_start";
   fs::remove_all(config);
-  GuiOptions o = options(config);
+  GuiOptions o = demo_options(config);
   o.demo = false;
   o.play = false;
   for (int start = 0; start < 2; ++start) {

@@ -10,19 +10,15 @@
 #include "core/io/scene_file.hpp"
 #include "core/sweep/summary.hpp"
 #include "dampbound/physics/bounds.hpp"
+#include "tests/ui/ui_test_util.hpp"
 
 namespace dampbound::ui {
 namespace {
 
-SceneSpec small_plane() {
-  SceneSpec s = paper_plane_scene(10);
-  s.name = "small-plane";
-  s.rules.max_iterations = 300;
-  return s;
-}
+using ui_test::small_plane;
 
 TEST(MapBounds, BoundLinesOfAUniformScene) {
-  const SceneSpec scene = small_plane();
+  const SceneSpec scene = small_plane(10, 300);
   const MapBoundConstants k = map_bound_constants(scene);
   EXPECT_DOUBLE_EQ(k.lower, 1.0);
   EXPECT_DOUBLE_EQ(k.rate_ratio, 1.0);

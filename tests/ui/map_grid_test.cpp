@@ -14,16 +14,12 @@
 #include <utility>
 
 #include "core/sweep/runner.hpp"
+#include "tests/ui/ui_test_util.hpp"
 
 namespace dampbound::ui {
 namespace {
 
-SceneSpec small_plane() {
-  SceneSpec s = paper_plane_scene(10);
-  s.name = "small-plane";
-  s.rules.max_iterations = 300;
-  return s;
-}
+using ui_test::small_plane;
 
 std::uint64_t bits(double x) {
   std::uint64_t b = 0;
@@ -35,7 +31,7 @@ std::uint64_t bits(double x) {
 // grid of (dt, gamma) run once through the map and once through the sweep runner (its
 // similarity classes, its kernel threads, its CSV rows).
 TEST(MapGrid, CellsEqualSweepOnTheSameGrid) {
-  const SceneSpec scene = small_plane();
+  const SceneSpec scene = small_plane(10, 300);
   const std::vector<double> dts = {0.05, 0.2, 0.5, 0.9}, gammas = {0, 0.0005, 0.002, 0.01};
   Params base = scene.params;
   base.m = base.kappa = 0.001;

@@ -15,15 +15,12 @@
 #include "core/analysis/suggest.hpp"
 #include "dampbound/run/scene.hpp"
 #include "ui/tuner.hpp"
+#include "tests/ui/ui_test_util.hpp"
 
 namespace dampbound::ui {
 namespace {
 
-SceneSpec small_plane() {
-  SceneSpec s = paper_plane_scene(8);
-  s.rules.max_iterations = 400;
-  return s;
-}
+using ui_test::small_plane;
 
 KnobsResult computed(const SceneSpec& scene, const Params& p, double zeta) {
   TunerKnobs k;
@@ -34,7 +31,7 @@ KnobsResult computed(const SceneSpec& scene, const Params& p, double zeta) {
 }
 
 TEST(TunerKnobs, GivesCoresCeilingAndPairWithTheirRuns) {
-  const SceneSpec scene = small_plane();
+  const SceneSpec scene = small_plane(8, 400);
   const KnobsResult r = computed(scene, scene.params, 0.05);
   const StiffnessCeiling want =
       stiffness_ceiling(scene, scene.params, whole_selection(scene.model), scene.rules, true);
@@ -58,7 +55,7 @@ TEST(TunerKnobs, GivesCoresCeilingAndPairWithTheirRuns) {
 // kappa is 1 / 0.98 (the index is what the factor scales), and the exact analysis of the
 // applied parameters is stable while 1.02 x the ceiling is not.
 TEST(TunerKnobs, ApplyingTheCeilingLeavesTwoPercentOfMargin) {
-  const SceneSpec scene = small_plane();
+  const SceneSpec scene = small_plane(8, 400);
   const KnobsResult r = computed(scene, scene.params, 0.05);
   const auto p = with_kappa_ceiling(scene.params, r);
   ASSERT_TRUE(p.has_value());
@@ -79,7 +76,7 @@ TEST(TunerKnobs, ApplyingTheCeilingLeavesTwoPercentOfMargin) {
 
 // Apply alpha, beta: the pair's ratios come back from the spectrum at both frequencies.
 TEST(TunerKnobs, ApplyingThePairSetsAlphaAndBeta) {
-  const SceneSpec scene = small_plane();
+  const SceneSpec scene = small_plane(8, 400);
   const KnobsResult r = computed(scene, scene.params, 0.1);
   const auto p = with_rayleigh_pair(scene.params, r);
   ASSERT_TRUE(p.has_value()) << r.rayleigh_error;
@@ -99,7 +96,7 @@ TEST(TunerKnobs, ApplyingThePairSetsAlphaAndBeta) {
 
 // The core's progress hook names each stage, and false stops the call (the tab's Cancel).
 TEST(TunerKnobs, TheCoreSaysEachStageAndStopsWhenAsked) {
-  const SceneSpec scene = small_plane();
+  const SceneSpec scene = small_plane(8, 400);
   std::vector<std::string> stages;
   const auto note = [&](const std::string& s) {
     stages.push_back(s);
@@ -122,7 +119,7 @@ TEST(TunerKnobs, TheCoreSaysEachStageAndStopsWhenAsked) {
 }
 
 TEST(TunerKnobs, CancelDropsTheComputation) {
-  const SceneSpec scene = small_plane();
+  const SceneSpec scene = small_plane(8, 400);
   TunerKnobs k;
   k.start(scene, scene.params, scene.rules, 0.05);
   EXPECT_TRUE(k.job().busy());
@@ -136,7 +133,7 @@ TEST(TunerKnobs, CancelDropsTheComputation) {
 // A result speaks for the parameters and springs it was computed for: a parameter change, a
 // reset, a cut or another scene makes it stale (the tab then drops it).
 TEST(TunerKnobs, AResultIsCurrentOnlyForItsModel) {
-  Tuner t(small_plane());
+  Tuner t(small_plane(8, 400));
   TunerKnobs k;
   const auto start = [&] {
     k.job().clear();
@@ -165,7 +162,7 @@ TEST(TunerKnobs, AResultIsCurrentOnlyForItsModel) {
   ASSERT_GT(t.cut({0, 1}), 0);
   EXPECT_FALSE(current()) << "a cut";
   start();
-  t.set_scene(small_plane());
+  t.set_scene(small_plane(8, 400));
   EXPECT_FALSE(current()) << "another scene";
 }
 

@@ -10,19 +10,15 @@
 #include "core/io/scene_file.hpp"
 #include "dampbound/physics/bounds.hpp"
 #include "ui/tuner.hpp"
+#include "tests/ui/ui_test_util.hpp"
 
 namespace dampbound::ui {
 namespace {
 
-SceneSpec small_plane() {
-  SceneSpec s = paper_plane_scene(10);
-  s.name = "small-plane";
-  s.rules.max_iterations = 300;
-  return s;
-}
+using ui_test::small_plane;
 
 TEST(TunerMap, WorkerPassesCoarseToFineAndFollowsTheCentre) {
-  const auto shared = std::make_shared<const SceneSpec>(small_plane());
+  const auto shared = std::make_shared<const SceneSpec>(small_plane(10, 300));
   const SceneSpec& scene = *shared;
   TunerMap map;
   MapView view;
@@ -66,7 +62,7 @@ TEST(TunerMap, WorkerPassesCoarseToFineAndFollowsTheCentre) {
 }
 
 TEST(TunerMap, SceneTheKernelCannotRunSaysWhy) {
-  SceneSpec scene = small_plane();
+  SceneSpec scene = small_plane(10, 300);
   scene.cuts.push_back({5, {0, 0}, {1, 1}});
   TunerMap map;
   map.follow(std::make_shared<const SceneSpec>(scene), 1, scene.params, scene.rules, MapView{});
@@ -87,7 +83,7 @@ TEST(TunerMap, LowerBoundCheckNamesTheWorstNode) {
   EXPECT_EQ(c.nodes, 1296);
   EXPECT_NEAR(c.ratio, 0.005 / (2 * std::sqrt(0.004 * 0.01)), 1e-12);
   EXPECT_TRUE(t.session().model().spec().mass_scale[static_cast<size_t>(c.worst)] == 4.0);
-  Tuner u(small_plane());
+  Tuner u(small_plane(10, 300));
   const LowerBoundCheck d = check_lower_bound(u.session().model());
   EXPECT_TRUE(d.uniform);
   EXPECT_EQ(d.below, 0);

@@ -12,17 +12,14 @@
 #include "core/io/files.hpp"
 #include "core/io/scene_file.hpp"
 #include "dampbound/physics/error.hpp"
+#include "tests/ui/ui_test_util.hpp"
 
 namespace dampbound::ui {
 namespace {
 
-namespace fs = std::filesystem;
+using ui_test::small_plane;
 
-SceneSpec small_plane() {
-  SceneSpec s = paper_plane_scene(10);
-  s.name = "small-plane";
-  return s;
-}
+namespace fs = std::filesystem;
 
 std::string temp_file(const std::string& name) {
   const fs::path d = fs::temp_directory_path() / "dampbound_tuner_save";

@@ -8,20 +8,17 @@
 
 #include "dampbound/run/scene.hpp"
 #include "ui/tuner.hpp"
+#include "tests/ui/ui_test_util.hpp"
 
 namespace dampbound::ui {
 namespace {
 
-SceneSpec small_plane() {
-  SceneSpec s = paper_plane_scene(8);
-  s.rules.max_iterations = 400;
-  return s;
-}
+using ui_test::small_plane;
 
 // A frame of 2 s on the paper plane (exact dt limit about 0.5 s at gamma 0.002) needs
 // several substeps: the worker gives core's counts and a settled run for each.
 TEST(TunerSubsteps, GivesCoresCountsEachVerifiedByARun) {
-  const SceneSpec scene = small_plane();
+  const SceneSpec scene = small_plane(8, 400);
   const double frame = 2.0;
   const SubstepSuggestion want = suggest_substeps(scene, scene.params, scene.rules, frame);
   ASSERT_GT(want.exact.n, 1);
@@ -47,7 +44,7 @@ TEST(TunerSubsteps, GivesCoresCountsEachVerifiedByARun) {
 }
 
 TEST(TunerSubsteps, CancelDropsTheComputation) {
-  const SceneSpec scene = small_plane();
+  const SceneSpec scene = small_plane(8, 400);
   TunerSubsteps s;
   s.start(scene, scene.params, scene.rules, 2.0);
   EXPECT_TRUE(s.job().busy());
@@ -62,7 +59,7 @@ TEST(TunerSubsteps, CancelDropsTheComputation) {
 // Where one step per frame is not stable, SPEC 11's alternative comes with the counts: core's
 // answer for dt* = F, and the scaled scene the apply button switches the live model to.
 TEST(TunerSubsteps, OffersTheMassThatMakesOneStepPerFrameStable) {
-  SceneSpec scene = small_plane();
+  SceneSpec scene = small_plane(8, 400);
   for (int a : {3, 4})
     for (int b : {3, 4}) scene.model.mass_scale[static_cast<size_t>(a * 8 + b)] = 0.1;
   const double frame = 0.3;  // SPEC 11's plane (no corner fixed here)

@@ -14,16 +14,12 @@
 #include "dampbound/physics/bounds.hpp"
 #include "dampbound/run/scene.hpp"
 #include "ui/mesh_pick.hpp"
+#include "tests/ui/ui_test_util.hpp"
 
 namespace dampbound::ui {
 namespace {
 
-/// A small version of the paper's plane: 10 x 10 grid, anchors, the centre node lifted 5 cm.
-SceneSpec small_plane() {
-  SceneSpec s = paper_plane_scene(10);
-  s.name = "small-plane";
-  return s;
-}
+using ui_test::small_plane;
 
 TEST(Tuner, StartsPausedAtTheScenesParameters) {
   Tuner t(small_plane());
