@@ -20,9 +20,11 @@
 #include "core/analysis/damping_limits.hpp"
 #include "core/analysis/equilibrium.hpp"
 #include "core/analysis/limits_diff.hpp"
+#include "core/analysis/linear_stability_cholesky.hpp"
 #include "core/analysis/worst_nodes.hpp"
 #include "core/io/format.hpp"
 #include "core/io/report.hpp"
+#include "core/physics/detail/numbers.hpp"
 #include "core/physics/integrate.hpp"
 #include "core/physics/safe_bound.hpp"
 #include "dampbound/physics/bounds.hpp"
@@ -44,28 +46,45 @@ struct BoundsArgs {
 /// SPEC 10's lines where the model has dashpot or Rayleigh damping: the damping ratios, the
 /// exact index lambda_max(dt^2 A + 2 dt C^) with the gamma and dt limits, and whether C^
 /// leaves modes undamped. Nothing otherwise (the output stays as it was). What `exact` computed
-/// (its spectrum, SPEC 10's limits) is taken from it, not computed again.
+/// (its spectrum, SPEC 10's limits) is taken from it, not computed again; where it was over
+/// the factorisation budget, what needs the spectrum or a factorisation says so instead.
 void print_damping_lines(const Model& model, const State& state, const Params& p,
-                         const ExactStability& exact) {
+                         const ExactStability& exact, double max_factor_flops) {
   if (!model.spring_damping) return;
   auto g5 = [](double x) { return format_human(x); };
-  const DampingRatios r = exact.computed() ? damping_ratios(model, state.x, exact.spectrum)
-                                           : damping_ratios(model, state.x);
+  const DampingRatios r = damping_ratios(
+      model, state.x, exact.computed() ? exact.spectrum : StiffnessSpectrum{kNaN, kNaN});
   std::printf("\ndamping               kd=%s rayleigh_mass=%s 1/s rayleigh_stiffness=%s s\n",
               format_human(p.kd).c_str(), format_human(p.rayleigh_mass).c_str(),
               format_human(p.rayleigh_stiffness).c_str());
-  std::printf("damping ratios        nodal zeta %s; dashpots (%d) zeta_ij %s; Rayleigh "
-              "zeta %s at lambda_min = %s, %s at lambda_max = %s 1/s^2\n",
+  std::printf("damping ratios        nodal zeta %s; dashpots (%d) zeta_ij %s; ",
               format_human_range(r.nodal_min, r.nodal_max).c_str(), r.dashpots,
-              format_human_range(r.dashpot_min, r.dashpot_max).c_str(), g5(r.rayleigh_low).c_str(),
-              g5(r.lambda_min).c_str(), g5(r.rayleigh_high).c_str(), g5(r.lambda_max).c_str());
+              format_human_range(r.dashpot_min, r.dashpot_max).c_str());
+  if (exact.computed())
+    std::printf("Rayleigh zeta %s at lambda_min = %s, %s at lambda_max = %s 1/s^2\n",
+                g5(r.rayleigh_low).c_str(), g5(r.lambda_min).c_str(), g5(r.rayleigh_high).c_str(),
+                g5(r.lambda_max).c_str());
+  else
+    std::printf("Rayleigh zeta not computed (the spectrum is over the factorisation budget)\n");
   if (!integrator_traits(p.integrator).paper_step) {
     std::printf("exact index           derived for the paper's semi-implicit step; not shown "
                 "for %s\n",
                 to_string(p.integrator));
     return;
   }
-  const GeneralLimits g = exact.spec10 ? exact.general : general_limits(model, state.x, p);
+  if (!exact.computed()) {
+    std::printf("exact index           not computed: %s (--factor-budget); the rows below say "
+                "what is proved without a factorisation\n",
+                exact.over_budget_reason().c_str());
+    return;
+  }
+  GeneralLimits g;
+  try {
+    g = exact.spec10 ? exact.general : general_limits(model, state.x, p, max_factor_flops);
+  } catch (const FactorisationOverBudget& over) {
+    std::printf("exact index           not computed: %s (--factor-budget)\n", over.what());
+    return;
+  }
   std::printf("exact index           lambda_max(dt^2 A + 2 dt C^) = %s: %s (stable below 4)\n",
               g5(g.index).c_str(), g.index < 4 ? "stable" : "UNSTABLE");
   std::printf("exact limits          gamma < %s, dt < %s s at gamma = %s (%s)\n",
@@ -218,7 +237,7 @@ int run_parameters(const BoundsArgs& a) {
               zeta_text(damping_ratio_range(model)).c_str(),
               format_human(p.dt).c_str(), to_string(p.integrator));
   print_safe_lines(model, rest, p, exact);
-  print_damping_lines(model, rest, p, exact);
+  print_damping_lines(model, rest, p, exact, kNoFactorBudget);
   print_criteria(all_criteria(model, rest, p, exact));
   return 0;
 }
@@ -363,7 +382,7 @@ int run_scene(const BoundsArgs& a) {
                     ? "; the safe bound below still holds"
                     : "");
   print_safe_lines(model, state, p, exact);
-  print_damping_lines(model, state, p, exact);
+  print_damping_lines(model, state, p, exact, options.max_factor_flops);
   note.stage("the other criteria");
   if (a.worst > 0) print_worst(model, state, p, a.worst, false);
   print_criteria(all_criteria(model, state, p, exact));

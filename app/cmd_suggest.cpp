@@ -3,7 +3,10 @@
 // model is non-uniform) and the fastest-settling damping in it. For a damping: the largest
 // stable dt. Every suggestion is run through a Session and its outcome printed.
 #include <cstdio>
+#include <functional>
 #include <memory>
+#include <stdexcept>
+#include <string>
 
 #include "app/answer_lines.hpp"
 #include "app/commands.hpp"
@@ -15,6 +18,7 @@
 #include "core/analysis/criteria_safe.hpp"
 #include "core/analysis/damping_limits.hpp"
 #include "core/analysis/equilibrium.hpp"
+#include "core/analysis/linear_stability_cholesky.hpp"
 #include "core/analysis/substeps.hpp"
 #include "core/analysis/suggest.hpp"
 #include "core/io/format.hpp"
@@ -42,7 +46,7 @@ struct SuggestArgs {
 /// SPEC 10: the exact stable range of each damping kind at this dt, the others held, and a
 /// run at the middle of each range (the settled rule judges: stable is not settled in time).
 void print_damping_kinds(const SceneSpec& scene, const Params& p, const StopRules& rules,
-                         bool verify) {
+                         bool verify, double max_factor_flops) {
   std::printf("damping kinds at dt = %s s, each with the others held (the exact limit, "
               "at rest)\n",
               format_human(p.dt).c_str());
@@ -50,7 +54,14 @@ void print_damping_kinds(const SceneSpec& scene, const Params& p, const StopRule
                            DampingKind::rayleigh_stiffness}) {
     Params q = p;
     const double value = coefficient(q, kind);
-    const double max = damping_kind_max(scene.model, scene.model.rest, p, kind);
+    double max = 0;
+    try {
+      max = damping_kind_max(scene.model, scene.model.rest, p, kind, max_factor_flops);
+    } catch (const FactorisationOverBudget& over) {
+      std::printf("  %-19s now %-10s not computed: %s (--factor-budget)\n", to_string(kind),
+                  format_human(value).c_str(), over.what());
+      continue;
+    }
     std::printf("  %-19s now %-10s stable for %s in [0, %s)", to_string(kind),
                 format_human(value).c_str(), to_string(kind),
                 std::isinf(max) ? "inf" : format_human(max).c_str());
@@ -266,7 +277,7 @@ int print_substeps(const std::string& scene_arg, const SubstepSuggestion& s) {
     }
   }
   if (!s.note.empty()) std::printf("  %s\n", s.note.c_str());
-  if (!s.exact.ran && !s.safe.ran) return s.exact.n > 0 ? 0 : 1;  // --no-verify
+  if (!s.exact.ran && !s.safe.ran) return s.exact.n > 0 || s.safe.n > 0 ? 0 : 1;  // --no-verify
   if (s.answer()) return 0;  // said first (substeps_answer)
   std::printf("next         where no run diverged, the damping does not let it settle in the "
               "scene's time: dampbound suggest %s --dt %s gives the damping range\n",
@@ -311,21 +322,35 @@ int run(const SuggestArgs& a) {
     return true;
   };
   note.stage("exact linear analysis (" + scene_counts(scene.model, false) + ")");
+  // What an answer over the budget leaves: one line naming the flag that asked and the budget.
+  const auto within_budget = [](const char* flag, const std::function<int()>& answer) {
+    try {
+      return answer();
+    } catch (const FactorisationOverBudget& over) {
+      throw std::runtime_error(std::string(flag) + ": not computed: " + over.what() +
+                               " (raise --factor-budget)");
+    }
+  };
   if (a.kappa_max) {
     head();
-    return print_kappa_max(scene, p, rules, !a.no_verify, a.vtu);
+    return within_budget("--kappa-max", [&] {
+      return print_kappa_max(scene, p, rules, !a.no_verify, a.vtu, options.max_factor_flops);
+    });
   }
   if (!a.rayleigh.empty()) {
     head();
-    return print_rayleigh(scene, p, a.rayleigh, a.band, a.plot);
+    return within_budget("--rayleigh", [&] {
+      return print_rayleigh(scene, p, a.rayleigh, a.band, a.plot, options.max_factor_flops);
+    });
   }
   if (a.mass_opt->count() || a.substeps_opt->count()) {
     head();
     MassScaleArgs m = a.mass;
     m.scene_arg = a.scene;
     m.verify = !a.no_verify;
+    m.max_factor_flops = options.max_factor_flops;
     if (a.substeps_opt->count()) m.dt_target = a.frame_dt / a.substeps;
-    return suggest_mass_scaling(scene, p, rules, m);
+    return within_budget("--mass-scale", [&] { return suggest_mass_scaling(scene, p, rules, m); });
   }
   for (const CLI::Option* o : a.mass_only)
     if (o->count())
@@ -333,7 +358,8 @@ int run(const SuggestArgs& a) {
   if (a.frame_dt_opt->count()) {
     const SubstepSuggestion s = suggest_substeps(scene, p, rules, a.frame_dt, options);
     print_answer(substeps_answer(s));
-    if (a.brief) return s.answer() || (!s.exact.ran && !s.safe.ran && s.exact.n > 0) ? 0 : 1;
+    if (a.brief)
+      return s.answer() || (!s.exact.ran && !s.safe.ran && (s.exact.n > 0 || s.safe.n > 0)) ? 0 : 1;
     head();
     return print_substeps(a.scene, s);
   }
@@ -354,7 +380,7 @@ int run(const SuggestArgs& a) {
   const bool spec10 = p.kd != 0 || p.rayleigh_mass != 0 || p.rayleigh_stiffness != 0;
   if (spec10 && integrator_traits(p.integrator).paper_step) {
     note.stage("the stable range of each damping kind");
-    print_damping_kinds(scene, p, rules, !a.no_verify);
+    print_damping_kinds(scene, p, rules, !a.no_verify, options.max_factor_flops);
   }
   return status;
 }

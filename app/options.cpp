@@ -151,7 +151,8 @@ CLI::Option* add_factor_budget_option(CLI::App* cmd, double& gflop) {
   return cmd
       ->add_option("--factor-budget", gflop,
                    "the most one sparse factorisation of the exact analysis may take, in GFlop "
-                   "(CHOLMOD's prediction, before any is done); over it the exact rows report "
+                   "(CHOLMOD's prediction, before any is done; SPEC 10's damped limits, the "
+                   "ceilings, the Rayleigh pair and mass scaling too); over it the exact rows report "
                    "only what Lanczos, Gershgorin, the node-block splitting and a patch around the "
                    "top prove without one (default 200: ~25 s per "
                    "factorisation on 2 cores)")

@@ -81,7 +81,7 @@ void parse_band(const std::string& text, RayleighRequest& r) {
 }  // namespace
 
 int print_kappa_max(const SceneSpec& scene, const Params& p, const StopRules& rules, bool verify,
-                    const std::string& vtu) {
+                    const std::string& vtu, double max_factor_flops) {
   if (!vtu.empty()) check_writable(vtu);
   std::printf("stiffness ceiling at dt = %s s with the scene's damping (SPEC 10's exact index at "
               "rest; beta K follows the stiffness; stable below the factor)\n",
@@ -97,7 +97,7 @@ int print_kappa_max(const SceneSpec& scene, const Params& p, const StopRules& ru
     std::printf("  (no damping: below the factor the step is marginally stable, no growth and no "
                 "decay, so no run settles)\n");
   for (const StiffnessSelection& s : selections) {
-    const StiffnessCeiling c = stiffness_ceiling(scene, p, s, rules, verify);
+    const StiffnessCeiling c = stiffness_ceiling(scene, p, s, rules, verify, {}, max_factor_flops);
     print_ceiling(c);
     if (c.ran && !c.below.verified()) status = 1;
   }
@@ -137,7 +137,7 @@ int print_kappa_max(const SceneSpec& scene, const Params& p, const StopRules& ru
 }
 
 int print_rayleigh(const SceneSpec& scene, const Params& p, const std::string& ratios,
-                   const std::string& band, const std::string& plot) {
+                   const std::string& band, const std::string& plot, double max_factor_flops) {
   RayleighRequest request;
   parse_ratios(ratios, request);
   if (!band.empty()) parse_band(band, request);
@@ -146,7 +146,7 @@ int print_rayleigh(const SceneSpec& scene, const Params& p, const std::string& r
       throw InputError("--plot: this dampbound is built without the headless EGL host");
     check_writable(plot);
   }
-  const RayleighDesign d = rayleigh_from_spectrum(scene, p, request);
+  const RayleighDesign d = rayleigh_from_spectrum(scene, p, request, {}, max_factor_flops);
   std::printf("Rayleigh damping from the spectrum of M^-1 K at rest: lowest mode %s Hz, highest "
               "%s Hz; a step of %s s resolves up to 1/(2 dt) = %s Hz\n",
               format_human(d.f_lowest).c_str(), format_human(d.f_highest).c_str(),

@@ -10,14 +10,15 @@ namespace dampbound::app {
 
 /// --kappa-max: the factor ceiling of every stiffness and of each region, each run at 0.98x and
 /// 1.02x (unless !verify), and the contact ceilings (into `vtu` as contact_stiffness_max when
-/// given). Exit 1 when a run at 0.98x does not settle.
+/// given). Exit 1 when a run at 0.98x does not settle. `max_factor_flops` (--factor-budget):
+/// FactorisationOverBudget before any factorisation over it.
 int print_kappa_max(const SceneSpec& scene, const Params& params, const StopRules& rules,
-                    bool verify, const std::string& vtu);
+                    bool verify, const std::string& vtu, double max_factor_flops);
 
 /// --rayleigh Z[,Z2] [--band F1:F2] [--plot FILE.png]: exit 1 when no non-negative pair gives
-/// the ratios or the pair is unstable at the scene's dt.
+/// the ratios or the pair is unstable at the scene's dt. `max_factor_flops` as above.
 int print_rayleigh(const SceneSpec& scene, const Params& params, const std::string& ratios,
-                   const std::string& band, const std::string& plot);
+                   const std::string& band, const std::string& plot, double max_factor_flops);
 
 /// Renders zeta(f) to a PNG; set where the headless EGL host is built (cmd_ui_rayleigh_plot.cpp),
 /// null otherwise. Returns the renderer's name.

@@ -130,6 +130,7 @@ int suggest_mass_scaling(const SceneSpec& scene, const Params& params, const Sto
   o.safety = a.safety;
   o.max_added = a.max_added / 100;
   o.verify = a.verify;
+  o.max_factor_flops = a.max_factor_flops;
   const auto start = std::chrono::steady_clock::now();
   o.progress = [start](const std::string& next) {  // stderr, once a call has taken 2 s
     const double t =

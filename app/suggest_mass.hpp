@@ -2,6 +2,7 @@
 // dampbound suggest SCENE --mass-scale DT (or --frame-dt F --substeps N): SPEC 11's added
 // mass for a target step, printed, as JSON, as a scaled scene and as a ParaView file.
 #include <CLI/CLI.hpp>
+#include <limits>
 #include <string>
 
 #include "dampbound/run/scene.hpp"
@@ -17,6 +18,7 @@ struct MassScaleArgs {
   std::string vtk;         ///< one .vtu of the scaled model at rest with added_mass, "" none
   bool json = false;
   bool verify = true;
+  double max_factor_flops = std::numeric_limits<double>::infinity();  ///< --factor-budget
 };
 
 /// The flags of SPEC 11 on `cmd` (suggest): --mass-scale (excludes --dt and --frame-dt alone),

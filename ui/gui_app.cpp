@@ -95,6 +95,8 @@ GuiApp::GuiApp(GuiOptions options) : options_(std::move(options)) {
   if (options_.linearise) tuner_->criteria_state().set_linearisation(*options_.linearise);
   tuner_->criteria_state().set_factor_budget(options_.factor_budget);
   suggest_.set_factor_budget(options_.factor_budget);
+  knobs_.set_factor_budget(options_.factor_budget);
+  substeps_.set_factor_budget(options_.factor_budget);
   if (options_.steps_per_frame > 0) tuner_->playback().steps_per_frame = options_.steps_per_frame;
   if (options_.demo) run_demo();
   if (options_.play) tuner_->set_playing(true);

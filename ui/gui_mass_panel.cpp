@@ -14,6 +14,7 @@
 namespace dampbound::ui {
 
 void GuiApp::mass_scaling_section(const SubstepsResult& r) {
+  if (!r.mass_error.empty()) ImGui::TextDisabled("%s", r.mass_error.c_str());
   if (!r.mass) return;
   const SceneMassScaling& m = *r.mass;
   const MassScalingResult& a = m.result;

@@ -38,7 +38,7 @@ void TunerKnobs::launch(std::shared_ptr<const SceneSpec> shared,
                         std::shared_ptr<const Model> model, int iteration, const Params& params,
                         const StopRules& rules, double zeta, int cut) {
   job_.launch([shared = std::move(shared), model = std::move(model), iteration, params, rules,
-               zeta, cut](JobControl& control) {
+               zeta, cut, budget = factor_budget_](JobControl& control) {
     std::optional<SceneSpec> as_run;  // the scene as the run has it (its cuts so far)
     if (model) as_run = scene_as_run(*shared, *model, iteration);
     const SceneSpec& scene = as_run ? *as_run : *shared;
@@ -54,7 +54,7 @@ void TunerKnobs::launch(std::shared_ptr<const SceneSpec> shared,
     };
     try {
       r.ceiling = stiffness_ceiling(scene, params, whole_selection(scene.model), rules, true,
-                                    stage("stiffness ceiling"));
+                                    stage("stiffness ceiling"), budget);
     } catch (const SuggestCancelled&) {
       throw;
     } catch (const std::exception& e) {
@@ -63,7 +63,8 @@ void TunerKnobs::launch(std::shared_ptr<const SceneSpec> shared,
     try {
       RayleighRequest request;
       request.zeta1 = request.zeta2 = zeta;
-      r.rayleigh = rayleigh_from_spectrum(scene, params, request, stage("Rayleigh pair"));
+      r.rayleigh =
+          rayleigh_from_spectrum(scene, params, request, stage("Rayleigh pair"), budget);
     } catch (const SuggestCancelled&) {
       throw;
     } catch (const std::exception& e) {

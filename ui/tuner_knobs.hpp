@@ -14,6 +14,7 @@
 #include <string>
 
 #include "core/analysis/kappa_ceiling.hpp"
+#include "core/analysis/linear_stability_exact.hpp"
 #include "core/analysis/rayleigh_design.hpp"
 #include "dampbound/run/session.hpp"
 #include "ui/background_job.hpp"
@@ -52,6 +53,9 @@ class TunerKnobs {
   void start(const SceneSpec& scene, const Params& params, const StopRules& rules, double zeta);
   BackgroundJob<KnobsResult>& job() { return job_; }
   const BackgroundJob<KnobsResult>& job() const { return job_; }
+  /// The most one factorisation of the next start() may cost (flops; --factor-budget): over
+  /// it the ceiling or the pair is the budget's one-line error.
+  void set_factor_budget(double flops) { factor_budget_ = flops; }
   /// True while the last start() (running or finished) speaks for the tuner's model: the same
   /// parameters, and no reset, cut or scene since (`generation`, `topology` as Tuner counts
   /// them). The tab drops what is not.
@@ -63,6 +67,7 @@ class TunerKnobs {
   void launch(std::shared_ptr<const SceneSpec> scene, std::shared_ptr<const Model> model,
               int iteration, const Params& params, const StopRules& rules, double zeta, int cut);
   BackgroundJob<KnobsResult> job_;
+  double factor_budget_ = kDefaultFactorBudget;
   Params params_;
   std::uint64_t generation_ = 0, topology_ = 0;
 };

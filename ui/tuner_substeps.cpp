@@ -1,9 +1,11 @@
 #include "ui/tuner_substeps.hpp"
 
+#include <string>
 #include <utility>
 
 #include <algorithm>
 
+#include "core/analysis/linear_stability_cholesky.hpp"
 #include "core/analysis/suggest.hpp"
 #include "core/physics/integrate.hpp"
 
@@ -24,7 +26,7 @@ void TunerSubsteps::launch(std::shared_ptr<const SceneSpec> shared,
                            const Params& params, const StopRules& rules, double frame_dt,
                            int cut) {
   job_.launch([shared = std::move(shared), model = std::move(model), iteration, params, rules,
-               frame_dt, cut](JobControl& control) {
+               frame_dt, cut, budget = factor_budget_](JobControl& control) {
     std::optional<SceneSpec> as_run;  // the scene as the run has it (its cuts so far)
     if (model) as_run = scene_as_run(*shared, *model, iteration);
     const SceneSpec& scene = as_run ? *as_run : *shared;
@@ -32,16 +34,22 @@ void TunerSubsteps::launch(std::shared_ptr<const SceneSpec> shared,
     r.params = params;
     r.springs_cut = cut;
     SuggestOptions options;  // Cancel stops the worker before the analysis and each run
+    options.max_factor_flops = budget;
     options.progress = [&control](int, int, const std::string& next) {
       return control.report("substeps: " + next);
     };
     r.substeps = suggest_substeps(scene, params, rules, frame_dt, options);
     if (r.substeps.exact.n != 1 && integrator_traits(params.integrator).paper_step) {
       SceneMassScalingOptions o;
+      o.max_factor_flops = budget;
       o.progress = [&control](const std::string& next) {
         return control.report("mass scaling: " + next);
       };
-      r.mass = scene_mass_scaling(scene, params, rules, frame_dt, o);
+      try {
+        r.mass = scene_mass_scaling(scene, params, rules, frame_dt, o);
+      } catch (const FactorisationOverBudget& over) {
+        r.mass_error = std::string("mass scaling not computed: ") + over.what();
+      }
     }
     return r;
   });

@@ -9,6 +9,7 @@
 #include <optional>
 #include <string>
 
+#include "core/analysis/linear_stability_exact.hpp"
 #include "core/analysis/mass_scaling_scene.hpp"
 #include "core/analysis/substeps.hpp"
 #include "dampbound/run/session.hpp"
@@ -24,6 +25,7 @@ struct SubstepsResult {
   /// SPEC 11 at dt* = F (one step per frame), where the exact count is not 1: the answer,
   /// its run and the scene with the scaled masses (what "apply mass" switches to).
   std::optional<SceneMassScaling> mass;
+  std::string mass_error;  ///< why there is no `mass` where one was asked (over the budget)
 };
 
 /// Per node, the added mass of `m` over the largest (0..1; empty when none was added): what
@@ -43,12 +45,16 @@ class TunerSubsteps {
              double frame_dt);
   BackgroundJob<SubstepsResult>& job() { return job_; }
   const BackgroundJob<SubstepsResult>& job() const { return job_; }
+  /// The most one factorisation of the next start() may cost (flops; --factor-budget):
+  /// over it the count comes from what is proved without one and mass scaling says so.
+  void set_factor_budget(double flops) { factor_budget_ = flops; }
 
  private:
   void launch(std::shared_ptr<const SceneSpec> scene, std::shared_ptr<const Model> model,
               int iteration, const Params& params, const StopRules& rules, double frame_dt,
               int cut);
   BackgroundJob<SubstepsResult> job_;
+  double factor_budget_ = kDefaultFactorBudget;
 };
 
 /// `current` with dt = F/n of one count (unchanged when the count has none).

@@ -134,9 +134,16 @@ std::vector<std::string> substeps_answer(const SubstepSuggestion& s) {
   const std::string frame = " (frame " + num(s.frame_dt) + " s)";
   if (const SubstepCount* use = s.answer())
     return {substeps_text(use->n) + " per frame (dt = " + num(use->dt) + " s; its run settled)"};
+  const bool over_budget = s.exact.n == 0 && s.note.rfind("exact limit not computed", 0) == 0;
+  if (over_budget && s.safe.n > 0 && !s.safe.ran)
+    return {substeps_text(s.safe.n) + " per frame by the safe bound (dt = " + num(s.safe.dt) +
+            " s; not run: --no-verify); the exact limit is over the factorisation budget"};
+  if (over_budget)
+    return {"no substep count" + frame +
+            ": the exact limit is over the factorisation budget and no count's run settled"};
   if (s.exact.n == 0)
     return {"no substep count" + frame + ": the exact limit needs more than " +
-            substeps_text(kMaxSubsteps) + " per frame, or is not known"};
+            substeps_text(kMaxSubsteps) + " per frame"};
   if (!s.exact.ran && !s.safe.ran)
     return {substeps_text(s.exact.n) + " per frame by the exact limit (dt = " + num(s.exact.dt) +
             " s; not run: --no-verify)"};

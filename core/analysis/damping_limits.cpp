@@ -6,6 +6,7 @@
 
 #include "core/analysis/detail/definite_root.hpp"
 #include "core/analysis/detail/shifted_cholesky.hpp"
+#include "core/analysis/linear_stability_cholesky.hpp"
 #include "core/analysis/linear_stability_modes.hpp"
 #include "core/physics/detail/numbers.hpp"
 #include "dampbound/analysis/linear_stability.hpp"
@@ -62,11 +63,12 @@ DampingRatios damping_ratios(const Model& model, const std::vector<Vec3>&,
 }
 
 GeneralLimits general_limits(const SparseMatrix& A, const SparseMatrix& Cp, const SparseMatrix& G,
-                             double gamma, double dt) {
+                             double gamma, double dt, double max_factor_flops) {
   GeneralLimits g;
   const SparseMatrix C = Cp + gamma * G;
-  g.index = largest_eigenvalue((dt * dt) * A + (2 * dt) * C);
-  g.damping_min = smallest_eigenvalue(C);
+  g.index = certified_largest_eigenvalue((dt * dt) * A + (2 * dt) * C, nullptr, 1,
+                                         max_factor_flops).hi;
+  g.damping_min = certified_smallest_eigenvalue(C, std::nullopt, 1, max_factor_flops).lo;
   // Both searches on the pattern of A + Cp + G: one pattern analysis.
   std::unique_ptr<detail::ShiftedCholesky> factors;
   {
@@ -74,24 +76,24 @@ GeneralLimits general_limits(const SparseMatrix& A, const SparseMatrix& Cp, cons
     detail::IndexFamily family;
     family.S = [&](double v) -> SparseMatrix { return base + v * step; };
     family.D = [&](double) -> SparseMatrix { return step; };
-    g.gamma_max = detail::definite_root(family, 0, &factors).stable;
+    g.gamma_max = detail::definite_root(family, 0, &factors, max_factor_flops).stable;
   }
   // The index in h: S(a + t) = S(a) + t (2 a A + 2 C) + t^2 A, from the scene's dt.
   detail::IndexFamily family;
   family.S = [&](double h) -> SparseMatrix { return (h * h) * A + (2 * h) * C; };
   family.D = [&](double h) -> SparseMatrix { return (2 * h) * A + 2.0 * C; };
   family.Q = A;
-  g.dt_max = detail::definite_root(family, dt, &factors).stable;
+  g.dt_max = detail::definite_root(family, dt, &factors, max_factor_flops).stable;
   return g;
 }
 
 double largest_stable_coefficient(const SparseMatrix& A, const SparseMatrix& C,
-                                  const SparseMatrix& U, double dt) {
+                                  const SparseMatrix& U, double dt, double max_factor_flops) {
   const SparseMatrix base = (dt * dt) * A + (2 * dt) * C, step = (2 * dt) * U;
   detail::IndexFamily family;
   family.S = [&](double v) -> SparseMatrix { return base + v * step; };
   family.D = [&](double) -> SparseMatrix { return step; };
-  return detail::definite_root(family, 0).stable;
+  return detail::definite_root(family, 0, nullptr, max_factor_flops).stable;
 }
 
 const char* to_string(DampingKind kind) {
@@ -115,7 +117,7 @@ double& coefficient(Params& params, DampingKind kind) {
 }
 
 double damping_kind_max(const ModelSpec& spec, const std::vector<Vec3>& x, const Params& params,
-                        DampingKind kind) {
+                        DampingKind kind, double max_factor_flops) {
   // C: every damping but this kind's; U: this kind per unit coefficient (the nodal part
   // through weighted_damping's gamma_i, the others through a model with only that one on).
   Params held = params, unit = params;
@@ -128,7 +130,7 @@ double damping_kind_max(const ModelSpec& spec, const std::vector<Vec3>& x, const
   const SparseMatrix A = mass_weighted(with_held, tangent_stiffness(with_held, x));
   const SparseMatrix C = weighted_damping(with_held, x, with_held.gamma);
   const SparseMatrix U = weighted_damping(only, x, only.gamma);
-  return largest_stable_coefficient(A, C, U, params.dt);
+  return largest_stable_coefficient(A, C, U, params.dt, max_factor_flops);
 }
 
 namespace {
@@ -174,7 +176,7 @@ Spec10Parts spec10_parts(const Model& model, const std::vector<Vec3>& x, const P
 
 /// SPEC 10's closed forms where C^ commutes with A (general_limits' second overload).
 GeneralLimits closed_forms(const Model& model, const Params& params, const Spec10Parts& s,
-                           const StiffnessSpectrum& spectrum) {
+                           const StiffnessSpectrum& spectrum, double max_factor_flops) {
   const double dt = params.dt;
   // Every mode of A (eigenvalue lambda) has the rate c(lambda) = c0 + beta lambda (SPEC 10).
   const double alpha = model.rayleigh_mass, beta = model.rayleigh_stiffness;
@@ -192,24 +194,29 @@ GeneralLimits closed_forms(const Model& model, const Params& params, const Spec1
     const double m = 1.0 / s.rate;  // m_i / gamma_scale_i
     g.gamma_max = 2 * m / dt - m * lmax * dt / 2 - m * alpha - m * beta * lmax;
   } else {  // gamma = 0: gamma G does not commute with A once gamma > 0
-    g.gamma_max = g.index < 4 ? largest_stable_coefficient(s.A, s.Cp, s.G, dt) : 0;
+    g.gamma_max =
+        g.index < 4 ? largest_stable_coefficient(s.A, s.Cp, s.G, dt, max_factor_flops) : 0;
   }
   return g;
 }
 
 }  // namespace
 
-GeneralLimits general_limits(const Model& model, const std::vector<Vec3>& x, const Params& params) {
+GeneralLimits general_limits(const Model& model, const std::vector<Vec3>& x, const Params& params,
+                             double max_factor_flops) {
   const Spec10Parts s = spec10_parts(model, x, params);
-  if (!s.commutes) return general_limits(s.A, s.Cp, s.G, params.gamma, params.dt);
-  return closed_forms(model, params, s, stiffness_spectrum(model, x));
+  if (!s.commutes)
+    return general_limits(s.A, s.Cp, s.G, params.gamma, params.dt, max_factor_flops);
+  const CertifiedSpectrum ends = certified_spectrum(s.A, psd_floor(model, x), 1, max_factor_flops);
+  return closed_forms(model, params, s, {ends.smallest.lo, ends.largest.hi}, max_factor_flops);
 }
 
 GeneralLimits general_limits(const Model& model, const std::vector<Vec3>& x, const Params& params,
-                             const StiffnessSpectrum& spectrum) {
+                             const StiffnessSpectrum& spectrum, double max_factor_flops) {
   const Spec10Parts s = spec10_parts(model, x, params);
-  if (!s.commutes) return general_limits(s.A, s.Cp, s.G, params.gamma, params.dt);
-  return closed_forms(model, params, s, spectrum);
+  if (!s.commutes)
+    return general_limits(s.A, s.Cp, s.G, params.gamma, params.dt, max_factor_flops);
+  return closed_forms(model, params, s, spectrum, max_factor_flops);
 }
 
 }  // namespace dampbound

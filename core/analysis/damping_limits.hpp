@@ -3,12 +3,16 @@
 // matrix C = Gamma + C' (dashpots, Rayleigh): stable iff lambda_max(dt^2 A + 2 dt C^) < 4 when
 // K is positive semi-definite and C^ positive definite; the Rayleigh closed forms where C^
 // commutes with A (no dashpot, uniform gamma_i / m_i).
+#include <limits>
 #include <vector>
 
 #include "dampbound/analysis/linear_stability.hpp"
 #include "dampbound/physics/model.hpp"
 
 namespace dampbound {
+
+/// No limit on one factorisation's cost (linear_stability_cholesky.hpp's kNoFactorBudget).
+inline constexpr double kUnboundedFactor = std::numeric_limits<double>::infinity();
 
 /// Damping ratios (SPEC 10) at positions x.
 struct DampingRatios {
@@ -36,8 +40,11 @@ struct GeneralLimits {
 /// lambda_min(C^) are certified eigenvalues (linear_stability.hpp); the general case finds the
 /// gamma and dt limits as the largest values at which 4 I - (dt^2 A + 2 dt C^) is proved
 /// positive definite (detail/definite_root.hpp: a few factorisations on one pattern analysis),
-/// each within 1e-10 relative of a value not proved so.
-GeneralLimits general_limits(const Model& model, const std::vector<Vec3>& x, const Params& params);
+/// each within 1e-10 relative of a value not proved so. `max_factor_flops` bounds every
+/// factorisation of this function and of those below: FactorisationOverBudget is thrown when
+/// CHOLMOD's pattern analysis predicts one over it, before that one is done.
+GeneralLimits general_limits(const Model& model, const std::vector<Vec3>& x, const Params& params,
+                             double max_factor_flops = kUnboundedFactor);
 /// The same with the certified spectrum of A at x already known (exact_stability's). Where C^
 /// commutes with A (no dashpot, and gamma = 0 or gamma_i / m_i uniform) the index, dt_max and
 /// lambda_min(C^) are SPEC 10's closed forms in its ends (no eigenvalue computed): the index
@@ -45,21 +52,23 @@ GeneralLimits general_limits(const Model& model, const std::vector<Vec3>& x, con
 /// lambda_min(C^) = c0 + beta lambda_min, c0 = gamma_i / m_i + alpha. At gamma = 0 with
 /// non-uniform gamma_scale_i / m_i, gamma_max still needs the search (`commuting` false).
 GeneralLimits general_limits(const Model& model, const std::vector<Vec3>& x, const Params& params,
-                             const StiffnessSpectrum& spectrum);
+                             const StiffnessSpectrum& spectrum,
+                             double max_factor_flops = kUnboundedFactor);
 
 /// The general case on matrices (what the model's overload runs when C^ does not commute with
 /// A, and linear_limits on a user's C): A = M^-1/2 K M^-1/2, Cp = M^-1/2 C' M^-1/2 (the damping
 /// besides the nodal one), G the nodal damping per unit gamma (M^-1/2 diag(scale_i) M^-1/2),
 /// for nodal damping gamma * G at step dt. `commuting` is false.
 GeneralLimits general_limits(const SparseMatrix& A, const SparseMatrix& Cp, const SparseMatrix& G,
-                             double gamma, double dt);
+                             double gamma, double dt, double max_factor_flops = kUnboundedFactor);
 
 /// The largest coefficient x with lambda_max(dt^2 A + 2 dt (C + x U)) < 4 proved (A, C, U
 /// positive semi-definite, so the index grows with x), within 1e-10 relative of one not
 /// proved so (detail/definite_root.hpp): 0 when x = 0 is not proved stable, +inf when U has no
 /// direction that raises the index.
 double largest_stable_coefficient(const SparseMatrix& A, const SparseMatrix& C,
-                                  const SparseMatrix& U, double dt);
+                                  const SparseMatrix& U, double dt,
+                                  double max_factor_flops = kUnboundedFactor);
 
 /// SPEC 10's damping kinds, each with the others held: the exact stable range [0, max) of
 /// the kind's coefficient at params.dt, linearised at x (suggest prints them).
@@ -67,6 +76,6 @@ enum class DampingKind { nodal, dashpot, rayleigh_mass, rayleigh_stiffness };
 const char* to_string(DampingKind kind);       ///< "gamma", "kd", "rayleigh_mass", ...
 double& coefficient(Params& params, DampingKind kind);  ///< gamma, kd, alpha or beta
 double damping_kind_max(const ModelSpec& spec, const std::vector<Vec3>& x, const Params& params,
-                        DampingKind kind);
+                        DampingKind kind, double max_factor_flops = kUnboundedFactor);
 
 }  // namespace dampbound

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "core/analysis/damping_limits.hpp"
+#include "core/analysis/linear_stability_cholesky.hpp"
 #include "core/physics/integrate.hpp"
 #include "core/physics/safe_bound.hpp"
 #include "dampbound/analysis/linear_stability.hpp"
@@ -48,7 +49,8 @@ ModelSpec scaled_stiffness(ModelSpec spec, const StiffnessSelection& selection, 
 StiffnessCeiling stiffness_ceiling(const SceneSpec& scene, const Params& params,
                                    const StiffnessSelection& selection, const StopRules& rules,
                                    bool verify,
-                                   const std::function<bool(const std::string&)>& progress) {
+                                   const std::function<bool(const std::string&)>& progress,
+                                   double max_factor_flops) {
   const auto stage = [&](const std::string& next) {
     if (progress && !progress(next)) throw SuggestCancelled();
   };
@@ -73,7 +75,8 @@ StiffnessCeiling stiffness_ceiling(const SceneSpec& scene, const Params& params,
   const SparseMatrix AS = mass_weighted(doubled, tangent_stiffness(doubled, x)) - A1;
   const SparseMatrix C1 = weighted_damping(model, x, model.gamma);
   const double dt = p.dt, beta = model.rayleigh_stiffness;
-  c.index = largest_eigenvalue((dt * dt) * A1 + (2 * dt) * C1);
+  c.index =
+      certified_largest_eigenvalue((dt * dt) * A1 + (2 * dt) * C1, nullptr, 1, max_factor_flops).hi;
   if (AS.norm() == 0) {
     c.factor = std::numeric_limits<double>::infinity();
     return c;
@@ -81,7 +84,7 @@ StiffnessCeiling stiffness_ceiling(const SceneSpec& scene, const Params& params,
   // dt^2 (A1 - AS) + 2 dt (C1 - beta AS + s (dt/2 + beta) AS) is the index matrix at factor s.
   const SparseMatrix A0 = A1 - AS, C0 = C1 - beta * AS, U = (dt / 2 + beta) * AS;
   stage("bisection on the factor (a certified largest eigenvalue per probe)");
-  c.factor = largest_stable_coefficient(A0, C0, U, dt);
+  c.factor = largest_stable_coefficient(A0, C0, U, dt, max_factor_flops);
   if (!verify || !(c.factor > 0) || std::isinf(c.factor)) return c;
   // The ceiling is a statement about the linearised step: the runs take the scene's
   // perturbation (and the band it is judged by) scaled to 1e-3 of the shortest spring, where

@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "core/analysis/damping_limits.hpp"
 #include "core/analysis/suggest.hpp"
 #include "dampbound/run/scene.hpp"
 
@@ -62,11 +63,13 @@ struct StiffnessCeiling {
 /// paper's step, std::runtime_error when K is not positive semi-definite at rest (a spring
 /// under compression: no factor is stable, SPEC 9). `progress`, when given, is called before
 /// each stage (the index bisection, each verifying run) with what runs next; returning false
-/// stops the call with SuggestCancelled (the tuner's Cancel).
+/// stops the call with SuggestCancelled (the tuner's Cancel). `max_factor_flops`: as
+/// general_limits (damping_limits.hpp), FactorisationOverBudget before any factorisation over it.
 StiffnessCeiling stiffness_ceiling(const SceneSpec& scene, const Params& params,
                                    const StiffnessSelection& selection, const StopRules& rules,
                                    bool verify,
-                                   const std::function<bool(const std::string&)>& progress = {});
+                                   const std::function<bool(const std::string&)>& progress = {},
+                                   double max_factor_flops = kUnboundedFactor);
 
 /// The contact ceiling of every node (mass unit / s^2): the closed form above at positions x,
 /// step dt, contact dashpot kd (the scene's uniform kd); NaN at fixed nodes.

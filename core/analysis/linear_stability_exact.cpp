@@ -336,8 +336,8 @@ void frozen_estimate(const ExactInputs& in, const Params& params, ExactStability
 /// with A, else bisection on lambda_max(dt^2 A + 2 dt C^)); the nodal spectral radius and its
 /// inner bracket no longer describe the step and are dropped (NaN).
 void with_spec10_damping(const Model& model, const std::vector<Vec3>& x, const Params& params,
-                         ExactStability& e) {
-  const GeneralLimits g = general_limits(model, x, params, e.spectrum);
+                         const ExactOptions& options, ExactStability& e) {
+  const GeneralLimits g = general_limits(model, x, params, e.spectrum, options.max_factor_flops);
   e.spec10 = true;
   e.general = g;
   e.method = g.commuting ? ExactMethod::per_mode : ExactMethod::symmetric_index;
@@ -425,7 +425,7 @@ ExactStability exact_stability(const Model& model, const std::vector<Vec3>& x,
         exact_stability_within_budget(in, psd_floor(model, x), params, options, spec10);
     if (model.spring_damping && !e.indefinite) {
       if (spec10)
-        with_spec10_damping(model, x, params, e);
+        with_spec10_damping(model, x, params, options, e);
       else
         with_spec10_radius(model, x, in, params, e);
     }

@@ -40,9 +40,11 @@ struct IndexCertifier::Impl {
   std::vector<double> k, c;         // K's and C''s values on it
   std::vector<Eigen::Index> row;    // each entry's row
   double alpha = 0;
+  double budget = 0;
   std::unique_ptr<detail::ShiftedCholesky> chol;
 
-  explicit Impl(const MassScalingProblem& p) : alpha(p.alpha) {
+  Impl(const MassScalingProblem& p, double max_factor_flops)
+      : alpha(p.alpha), budget(max_factor_flops) {
     SparseMatrix K = p.K + 0.0 * p.C, C = 0.0 * p.K + p.C;
     K.makeCompressed();
     C.makeCompressed();
@@ -93,7 +95,8 @@ struct IndexCertifier::Impl {
   }
 };
 
-IndexCertifier::IndexCertifier(const MassScalingProblem& p) : impl_(std::make_unique<Impl>(p)) {}
+IndexCertifier::IndexCertifier(const MassScalingProblem& p, double max_factor_flops)
+    : impl_(std::make_unique<Impl>(p, max_factor_flops)) {}
 IndexCertifier::~IndexCertifier() = default;
 
 int IndexCertifier::factorizations() const {
@@ -113,6 +116,7 @@ bool IndexCertifier::stable(const std::vector<double>& mass, double h) {
     d.chol = std::make_unique<detail::ShiftedCholesky>(d.pattern);
   else
     d.chol->assign(d.pattern);
+  d.chol->analyse(d.budget);  // once per pattern, before any factorisation
   double sigma = t * (1 - 1e-10);
   for (int k = 0; k < 3; ++k) {
     if (!d.chol->factor(sigma)) return false;
@@ -254,7 +258,7 @@ MassScalingResult mass_scaling(const MassScalingProblem& p, double dt_target,
   for (double m : p.mass) r.free_mass += m;
   const double h = r.dt_design;
   if (p.alpha > 0) r.dt_no_mass = 2 * o.safety / p.alpha;
-  IndexCertifier index(p);
+  IndexCertifier index(p, o.max_factor_flops);
   if (2 * h * p.alpha >= 4) {
     r.kind = MassScalingCase::no_mass_helps;
     return r;

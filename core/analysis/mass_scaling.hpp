@@ -29,6 +29,9 @@ struct MassScalingOptions {
   double safety = 0.9;     ///< f in (0, 1]: design for dt_g = dt* / f (LS-DYNA's TSSFAC)
   double max_added = 0.05; ///< the cap: added mass as a fraction of the free mass
   double tolerance = 1e-3; ///< the bisection on s (and, relative, on dt* under the cap)
+  /// The most one factorisation may cost (flops): FactorisationOverBudget
+  /// (linear_stability_cholesky.hpp) before any over it. Infinite: no limit.
+  double max_factor_flops = std::numeric_limits<double>::infinity();
   /// Called before each stage with what runs next; returning false stops the call with
   /// SuggestCancelled (suggest.hpp).
   std::function<bool(const std::string& next)> progress;
@@ -77,7 +80,9 @@ std::vector<double> required_masses(const MassScalingProblem& p, double dt_desig
 /// 4M - 2hC - h^2 K) with a bound on its rounding. Every call shares one pattern analysis.
 class IndexCertifier {
  public:
-  explicit IndexCertifier(const MassScalingProblem& p);
+  /// `max_factor_flops`: FactorisationOverBudget before the first factorisation over it.
+  explicit IndexCertifier(const MassScalingProblem& p,
+                          double max_factor_flops = std::numeric_limits<double>::infinity());
   ~IndexCertifier();
   IndexCertifier(const IndexCertifier&) = delete;
   IndexCertifier& operator=(const IndexCertifier&) = delete;

@@ -16,11 +16,12 @@ namespace {
 
 
 /// sqrt(lambda_min(M^-1 K)) at rest (1/s), NaN where lambda_min <= 0 (a zero mode).
-double lowest_frequency(const Model& model) {
+double lowest_frequency(const Model& model, double max_factor_flops) {
   const SparseMatrix A = mass_weighted(model, tangent_stiffness(model, model.spec().rest));
   if (A.rows() == 0) return kNaN;
   const double lo =
-      certified_smallest_eigenvalue(A, psd_floor(model, model.spec().rest)).lo;
+      certified_smallest_eigenvalue(A, psd_floor(model, model.spec().rest), 1, max_factor_flops)
+          .lo;
   return lo > 0 ? std::sqrt(lo) : kNaN;
 }
 
@@ -125,8 +126,8 @@ SceneMassScaling scene_mass_scaling(const SceneSpec& scene_in, const Params& par
   const SceneSpec& scaled = s.scene;
   stage("the lowest frequency before and after");
   const Model after = compile_model(scaled.model, params);
-  s.frequency_before = lowest_frequency(model);
-  s.frequency_after = lowest_frequency(after);
+  s.frequency_before = lowest_frequency(model, options.max_factor_flops);
+  s.frequency_after = lowest_frequency(after, options.max_factor_flops);
   // The certified ends are ~1e-10 relative wide: a change below that is none (the lowest
   // mode of a mesh whose scaled nodes are not in it, e.g. an anchored plane's floor).
   const double ratio = s.frequency_after / s.frequency_before - 1;

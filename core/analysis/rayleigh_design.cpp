@@ -6,6 +6,7 @@
 #include <tuple>
 
 #include "core/analysis/damping_limits.hpp"
+#include "core/analysis/linear_stability_cholesky.hpp"
 #include "core/analysis/linear_stability_exact.hpp"
 #include "core/analysis/suggest.hpp"
 #include "core/io/format.hpp"
@@ -48,7 +49,8 @@ std::pair<double, double> rayleigh_pair(double f1, double zeta1, double f2, doub
 
 RayleighDesign rayleigh_from_spectrum(const SceneSpec& scene, const Params& params,
                                       const RayleighRequest& request,
-                                      const std::function<bool(const std::string&)>& progress) {
+                                      const std::function<bool(const std::string&)>& progress,
+                                      double max_factor_flops) {
   const auto stage = [&](const std::string& next) {
     if (progress && !progress(next)) throw SuggestCancelled();
   };
@@ -68,7 +70,7 @@ RayleighDesign rayleigh_from_spectrum(const SceneSpec& scene, const Params& para
   if (A.rows() == 0) throw InputError("--rayleigh: the scene has no free node");
   stage("stage 1 of 3: the lowest and highest eigenvalue of M^-1 K (" +
         std::to_string(A.rows()) + " rows)");
-  d.lambda_max = largest_eigenvalue(A);
+  d.lambda_max = certified_largest_eigenvalue(A, nullptr, 1, max_factor_flops).hi;
   d.lambda_min = smallest_eigenvalue_above(A, kZeroModeTolerance * d.lambda_max);
   if (!(d.lambda_max > 0) || !(d.lambda_min > 0))
     throw InputError("--rayleigh: the model has no mode that a spring resists");
@@ -111,7 +113,8 @@ RayleighDesign rayleigh_from_spectrum(const SceneSpec& scene, const Params& para
   q.rayleigh_mass = d.alpha;
   q.rayleigh_stiffness = d.beta;
   stage("stage 2 of 3: the largest stable beta at dt (a certified eigenvalue per probe)");
-  d.beta_max = damping_kind_max(scene.model, x, q, DampingKind::rayleigh_stiffness);
+  d.beta_max =
+      damping_kind_max(scene.model, x, q, DampingKind::rayleigh_stiffness, max_factor_flops);
   double rate = 0;
   if (commuting(bare, rate))
     d.beta_max_closed = (4 - d.lambda_max * p.dt * p.dt - 2 * p.dt * (rate + d.alpha)) /
@@ -119,7 +122,7 @@ RayleighDesign rayleigh_from_spectrum(const SceneSpec& scene, const Params& para
   d.stable = d.beta < d.beta_max;
   stage("stage 3 of 3: the exact dt limit with the pair");
   const Model with_pair = compile_model(scene.model, q);
-  d.dt_max = general_limits(with_pair, x, q).dt_max;
+  d.dt_max = general_limits(with_pair, x, q, max_factor_flops).dt_max;
   d.zeta2_at_beta_max = rayleigh_zeta(d.alpha, d.beta_max, d.f2);
   d.zeta_highest_at_beta_max = rayleigh_zeta(d.alpha, d.beta_max, d.f_highest);
   return d;

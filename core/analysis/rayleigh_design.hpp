@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/analysis/damping_limits.hpp"
 #include "dampbound/run/scene.hpp"
 
 namespace dampbound {
@@ -63,9 +64,11 @@ struct RayleighDesign {
 /// positive, f1 >= f2, a model with no non-zero mode) or an integrator other than the paper's.
 /// `progress`, when given, is called before each stage (the spectrum, the largest stable beta,
 /// the dt limit) with what runs next; returning false stops the call with SuggestCancelled
-/// (suggest.hpp; the tuner's Cancel).
+/// (suggest.hpp; the tuner's Cancel). `max_factor_flops`: as general_limits
+/// (damping_limits.hpp), FactorisationOverBudget before any factorisation over it.
 RayleighDesign rayleigh_from_spectrum(const SceneSpec& scene, const Params& params,
                                       const RayleighRequest& request,
-                                      const std::function<bool(const std::string&)>& progress = {});
+                                      const std::function<bool(const std::string&)>& progress = {},
+                                      double max_factor_flops = kUnboundedFactor);
 
 }  // namespace dampbound

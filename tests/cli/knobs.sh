@@ -87,6 +87,19 @@ import meshio, numpy as np
 k = np.ravel(meshio.read('$WORK/c.vtu').point_data['contact_stiffness_max'])
 assert k.shape == (1296,) and np.isfinite(k).all() and (k > 0).all(), k
 "
+# Over the factorisation budget, each knob says so in one line naming its flag, exit 3 as
+# --equilibrium over the budget (before the budget reached them they factorised unbounded),
+# and the damping kinds' rows say it per kind.
+for knob in --kappa-max "--rayleigh 0.05" "--mass-scale 0.9"; do
+  expect_exit 3 "$DB" suggest paper-plane $knob --no-verify --factor-budget 1e-9
+  expect_one_line "$ERR" "$knob over the budget"
+  expect_match "$ERR" "^dampbound: error: ${knob%% *}: not computed: one factorisation would take .* over the budget of 1e-09 GFlop \\(raise --factor-budget\\)" "$knob names the budget"
+done
+expect_exit 0 "$DB" suggest paper-plane --frame-dt 2 --no-verify --factor-budget 1e-9
+expect_match "$OUT" '^answer +5 substeps per frame by the safe bound \(dt = 0\.4 s; not run: --no-verify\); the exact limit is over the factorisation budget$' "substeps: the safe count when the exact limit is over the budget"
+expect_match "$OUT" 'exact limit not computed: one factorisation would take .* over the budget of 1e-09 GFlop' "substeps: the budget reaches the exact limit"
+expect_exit 0 "$DB" suggest quad-cloth-dashpots --no-verify --factor-budget 1e-9
+expect_match "$OUT" '^  kd +now [0-9.e-]+ +not computed: one factorisation would take .*\(--factor-budget\)' "a kind's range over the budget"
 # --rayleigh: the pair, the closed form beside the exact index, the figure.
 expect_exit 0 "$DB" suggest paper-plane --rayleigh 0.05 --plot "$WORK/z.png"
 expect_match "$OUT" 'rayleigh_stiffness \(beta\) = 0\.0263501 s' "the pair"

@@ -3,6 +3,7 @@
 // computation, Cancel through the core's progress hook, and when a result stops speaking for
 // the model.
 #include "ui/tuner_knobs.hpp"
+#include "ui/tuner_substeps.hpp"
 
 #include <gtest/gtest.h>
 
@@ -132,6 +133,31 @@ TEST(TunerKnobs, CancelDropsTheComputation) {
 
 // A result speaks for the parameters and springs it was computed for: a parameter change, a
 // reset, a cut or another scene makes it stale (the tab then drops it).
+// The tuner's --factor-budget reaches the ceiling and the pair (and the substep count's mass
+// scaling): over it each part says so instead of factorising unbounded.
+TEST(TunerKnobs, TheFactorisationBudgetReachesTheCeilingAndThePair) {
+  const SceneSpec scene = small_plane(24, 400);  // 1728 rows: sparse factorisations
+  TunerKnobs k;
+  k.set_factor_budget(1e3);
+  k.start(scene, scene.params, scene.rules, 0.05);
+  k.job().wait();
+  ASSERT_TRUE(k.job().result());
+  EXPECT_NE(k.job().result()->ceiling_error.find("over the budget"), std::string::npos)
+      << k.job().result()->ceiling_error;
+  EXPECT_NE(k.job().result()->rayleigh_error.find("over the budget"), std::string::npos)
+      << k.job().result()->rayleigh_error;
+  TunerSubsteps s;
+  s.set_factor_budget(1e3);
+  s.start(scene, scene.params, scene.rules, 2.0);
+  s.job().wait();
+  ASSERT_TRUE(s.job().result()) << s.job().error();
+  EXPECT_FALSE(s.job().result()->mass);
+  EXPECT_NE(s.job().result()->mass_error.find("over the budget"), std::string::npos)
+      << s.job().result()->mass_error;
+  EXPECT_NE(s.job().result()->substeps.note.find("not computed"), std::string::npos)
+      << s.job().result()->substeps.note;
+}
+
 TEST(TunerKnobs, AResultIsCurrentOnlyForItsModel) {
   Tuner t(small_plane(8, 400));
   TunerKnobs k;

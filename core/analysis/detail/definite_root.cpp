@@ -21,8 +21,8 @@ constexpr double kRitzTolerance = 1e-12;
 
 class Search {
  public:
-  Search(const IndexFamily& family, std::unique_ptr<ShiftedCholesky>* factors)
-      : family_(family), f_(factors ? *factors : own_) {}
+  Search(const IndexFamily& family, std::unique_ptr<ShiftedCholesky>* factors, double budget)
+      : family_(family), f_(factors ? *factors : own_), budget_(budget) {}
 
   /// Whether lambda_max(S(x)) < 4 is proved: sigma I - S(x) factors and sigma plus the
   /// factorisation's rounding bound is below 4. sigma starts 4e-11 below 4 and is lowered to
@@ -34,6 +34,7 @@ class Search {
     } else {
       f_->assign(S_);
     }
+    f_->analyse(budget_);  // once per pattern: the budget is checked before any factorisation
     factored_ = std::numeric_limits<double>::quiet_NaN();
     for (int k = 0; k < 4; ++k) {
       if (!f_->factor(sigma_)) return false;
@@ -126,6 +127,7 @@ class Search {
   const IndexFamily& family_;
   std::unique_ptr<ShiftedCholesky> own_;
   std::unique_ptr<ShiftedCholesky>& f_;
+  double budget_;
   int factorizations_before_ = f_ ? f_->factorizations : 0;
   int solves_before_ = f_ ? f_->solves : 0;
   SparseMatrix S_;
@@ -138,8 +140,8 @@ class Search {
 }  // namespace
 
 DefiniteRoot definite_root(const IndexFamily& family, double from,
-                           std::unique_ptr<ShiftedCholesky>* factors) {
-  Search search(family, factors);
+                           std::unique_ptr<ShiftedCholesky>* factors, double max_factor_flops) {
+  Search search(family, factors, max_factor_flops);
   DefiniteRoot r;
   const auto done = [&](double stable, double unstable) {
     r.stable = stable;

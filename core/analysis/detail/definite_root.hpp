@@ -17,6 +17,7 @@
 // Q = 0), so a + t_u is the root from above to the Lanczos run's accuracy, and the next probe
 // is placed just below it. docs/criteria.md ("The general damping matrix") has the argument.
 #include <functional>
+#include <limits>
 #include <memory>
 
 #include "dampbound/physics/stiffness.hpp"
@@ -47,7 +48,10 @@ class ShiftedCholesky;
 /// From x = `from` (> 0: halved until proved stable, at most 200 times; 0: that point alone).
 /// `factors`, when given, holds the factorisations between searches: a second search on the
 /// same pattern (the dt limit after the gamma limit) keeps the first one's pattern analysis.
+/// `max_factor_flops`: throws FactorisationOverBudget (linear_stability_cholesky.hpp) when
+/// the pattern analysis predicts one factorisation over it, before any is done.
 DefiniteRoot definite_root(const IndexFamily& family, double from,
-                           std::unique_ptr<ShiftedCholesky>* factors = nullptr);
+                           std::unique_ptr<ShiftedCholesky>* factors = nullptr,
+                           double max_factor_flops = std::numeric_limits<double>::infinity());
 
 }  // namespace dampbound::detail

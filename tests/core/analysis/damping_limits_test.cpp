@@ -7,6 +7,10 @@
 #include <Eigen/Dense>
 #include <random>
 
+#include "core/analysis/linear_stability_cholesky.hpp"
+#include "core/analysis/linear_stability_exact.hpp"
+#include "core/analysis/mass_scaling.hpp"
+#include "core/analysis/mass_scaling_scene.hpp"
 #include "core/physics/safe_bound.hpp"
 #include "dampbound/analysis/linear_stability.hpp"
 #include "dampbound/physics/stiffness.hpp"
@@ -159,6 +163,51 @@ TEST(DampingLimits, ZeroDampingKeepsSpec9) {
                 1e-12 * model.mass[i] / p.dt);
     EXPECT_NEAR(rows.dt_safe(static_cast<int>(i), 0.002), safe_dt(model.mass[i], 0.002, R[i]), 1e-12);
   }
+}
+
+// The factorisation budget reaches SPEC 10's own factorisations (the index, lambda_min(C^),
+// both limit searches, a kind's range, mass scaling): over it they throw before any numeric
+// factorisation, the exact analysis reports "over budget" instead of throwing, and a budget
+// that holds gives the bits of no budget at all.
+TEST(DampingLimits, TheFactorisationBudgetBoundsTheDampedAnalysis) {
+  std::mt19937 rng(7);
+  const ModelSpec spec = plane(16, rng, true);  // 768 rows: sparse Cholesky, not dense
+  Params p;
+  p.m = p.kappa = 0.001;
+  p.gamma = 0.002;
+  p.kd = 0.001;
+  p.dt = 0.05;
+  const Model model = compile_model(spec, p);
+  const std::vector<Vec3>& x = spec.rest;
+  const double tiny = 1e3;  // flops: below any factorisation of these matrices
+  EXPECT_THROW(general_limits(model, x, p, tiny), FactorisationOverBudget);
+  EXPECT_THROW(damping_kind_max(spec, x, p, DampingKind::dashpot, tiny), FactorisationOverBudget);
+  Params rayleigh = p;
+  rayleigh.kd = 0;
+  rayleigh.gamma = 0;
+  rayleigh.rayleigh_mass = 0.01;
+  rayleigh.rayleigh_stiffness = 0.001;  // C^ commutes: closed forms on a certified spectrum
+  EXPECT_THROW(general_limits(compile_model(spec, rayleigh), x, rayleigh, tiny),
+               FactorisationOverBudget);
+
+  const GeneralLimits free = general_limits(model, x, p);
+  const GeneralLimits held = general_limits(model, x, p, kDefaultFactorBudget);
+  EXPECT_EQ(held.index, free.index);
+  EXPECT_EQ(held.gamma_max, free.gamma_max);
+  EXPECT_EQ(held.dt_max, free.dt_max);
+  EXPECT_GT(free.dt_max, 0);
+
+  ExactOptions over;
+  over.max_factor_flops = tiny;
+  const ExactStability e = exact_stability(model, x, p, over);
+  EXPECT_FALSE(e.computed());
+  EXPECT_FALSE(e.spec10);
+  EXPECT_NE(e.over_budget_reason().find("over the budget"), std::string::npos);
+
+  const MassScalingProblem problem = mass_scaling_problem(model);
+  MassScalingOptions o;
+  o.max_factor_flops = tiny;
+  EXPECT_THROW(mass_scaling(problem, 2 * free.dt_max, o), FactorisationOverBudget);
 }
 
 }  // namespace
