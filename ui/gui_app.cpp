@@ -94,6 +94,8 @@ GuiApp::GuiApp(GuiOptions options) : options_(std::move(options)) {
                                                                         : Linearisation::rest);
   if (options_.linearise) tuner_->criteria_state().set_linearisation(*options_.linearise);
   tuner_->criteria_state().set_factor_budget(options_.factor_budget);
+  // A person's window never holds a frame for the analysis; a scripted run shows its result.
+  if (!options_.scripted) tuner_->criteria_state().set_frame_wait(kCriteriaFrameWait);
   suggest_.set_factor_budget(options_.factor_budget);
   knobs_.set_factor_budget(options_.factor_budget);
   substeps_.set_factor_budget(options_.factor_budget);

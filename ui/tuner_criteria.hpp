@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cstdint>
 #include <future>
+#include <limits>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -40,11 +41,13 @@ std::string exact_not_computed_reason(const Model& model, const Params& params);
 /// the worker thread, with progress and Cancel: tissue-block-rayleigh's 5670 free nodes take
 /// 2.4 s of CPU, `bounds` 4.4 s wall on 2 busy cores).
 inline constexpr int kGeneralLimitsNodes = 50000;
+/// The most an interactive frame waits for the Criteria tab's analysis (s).
+inline constexpr double kCriteriaFrameWait = 0.05;
 
 /// The criteria of a session. The exact linear analysis (SPEC 7) is linearised at the rest
 /// state by default (as `dampbound bounds SCENE` does) and cached until the parameters or the
-/// springs change (on a worker thread above 5000 free nodes, the last result on show
-/// meanwhile). At the static equilibrium it is cached the same way, always on the worker
+/// springs change, computed on a worker thread (on a small mesh the frame waits for it up to
+/// set_frame_wait; otherwise the last result stays on show meanwhile). At the static equilibrium it is cached the same way, always on the worker
 /// thread (Newton's method first). At the current positions it follows the run: recomputed on a
 /// worker thread at most every follow_interval (0.2 s) or four analysis durations, whichever is
 /// longer, the last result staying on show meanwhile (no frame waits for it). The paper's criteria
@@ -100,9 +103,15 @@ class TunerCriteria {
   /// to linearise change; the last result stays on show. cancelled() says so.
   void cancel();
   bool cancelled() const { return cancelled_; }
-  /// Meshes with more free nodes than this are analysed at rest on the worker thread too
-  /// (default 5000; the analysis at the state always is).
+  /// Meshes with more free nodes than this count as large: no frame waits for their analysis,
+  /// and while only the state moves their rows are refreshed at most every follow_interval
+  /// (default 5000).
   void set_worker_nodes(int nodes) { worker_nodes_ = nodes; }
+  /// How long the frame that starts the analysis at rest of a small mesh without SPEC 10's
+  /// damping waits for it (s; it runs on the worker thread like every other): infinite by
+  /// default (tests, scripted runs: the frame shows its own parameters' analysis); the
+  /// window sets kCriteriaFrameWait.
+  void set_frame_wait(double seconds) { frame_wait_ = seconds; }
   /// The most one sparse factorisation of the exact analysis may cost (flops;
   /// ExactOptions::max_factor_flops, default kDefaultFactorBudget). Over it the exact rows say
   /// what Lanczos alone proves. A change is analysed anew at the next call.
@@ -169,6 +178,7 @@ class TunerCriteria {
   double follow_interval_ = 0.2;
   double slow_threshold_ = 0.05;
   int worker_nodes_ = 5000;
+  double frame_wait_ = std::numeric_limits<double>::infinity();
   double factor_budget_ = kDefaultFactorBudget;
   int exact_iteration_ = 0;
   Linearisation exact_shown_at_ = Linearisation::rest;
