@@ -280,7 +280,7 @@ void limit_searches(const ExactInputs& in, const Params& params, const ExactOpti
     detail::IndexFamily family;
     family.S = [&](double t) -> SparseMatrix { return base + t * step; };
     family.D = [&](double) -> SparseMatrix { return step; };
-    e.gamma_hi = detail::definite_root(family, 0, &factors).stable;
+    e.gamma_hi = detail::definite_root(family, 0, &factors, budget).stable;
   }
   // dt: S(t) = t^2 A + 2 t gamma diag(R), from the scene's dt.
   double cap = spec7_dt_max_undamped(e.spectrum.lambda_max);
@@ -293,7 +293,7 @@ void limit_searches(const ExactInputs& in, const Params& params, const ExactOpti
     family.S = [&](double t) -> SparseMatrix { return (t * t) * A + (2 * t) * C; };
     family.D = [&](double t) -> SparseMatrix { return (2 * t) * A + 2.0 * C; };
     family.Q = A;
-    e.dt_max = detail::definite_root(family, h, &factors).stable;
+    e.dt_max = detail::definite_root(family, h, &factors, budget).stable;
   }
 }
 
