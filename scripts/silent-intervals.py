@@ -2,7 +2,8 @@
 """The longest silence of each command a person runs on the shipped scenes: dampbound on a
 terminal (a pseudo-terminal, as a person's shell gives it: stdout line-buffered, stderr
 beside it), with the time of every line that reaches it. A silence is the time from the start
-to the first line, between two lines, or from the last line to the exit; dampbound promises
+to the first line, between two lines (or two rewrites of a progress line), or from the last
+line to the exit; dampbound promises
 a progress line on every wait over 2 s (docs/hardening.md), so a silence above about 2 s plus
 one stage's length is a wait nobody was told about.
 
@@ -30,7 +31,7 @@ def timed_lines(argv):
     p = subprocess.Popen(argv, stdin=subprocess.DEVNULL, stdout=slave, stderr=slave,
                          close_fds=True)
     os.close(slave)
-    lines, pending = [], b""
+    lines = []
     while True:
         ready, _, _ = select.select([master], [], [], 0.05)
         if ready:
@@ -40,11 +41,12 @@ def timed_lines(argv):
                 chunk = b""
             if not chunk:
                 break
-            pending += chunk
-            now = time.monotonic() - t0
-            while b"\n" in pending:
-                line, pending = pending.split(b"\n", 1)
-                lines.append((now, line.decode("utf-8", "replace").rstrip("\r")))
+            # What reaches the terminal is seen when it arrives, a partial line too: a progress
+            # note on a terminal rewrites its line ("\r", erase) without a newline.
+            seen = [t for t in chunk.decode("utf-8", "replace").replace("\x1b[K", "")
+                    .replace("\r", "\n").split("\n") if t.strip()]
+            if seen:
+                lines.append((time.monotonic() - t0, seen[-1].strip()))
         elif p.poll() is not None:
             break
     rc = p.wait()
