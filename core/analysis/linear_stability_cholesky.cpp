@@ -370,6 +370,15 @@ EigenInterval unfactored_largest_eigenvalue(const SparseMatrix& A, Eigen::Vector
 CertifiedSpectrum certified_spectrum(const SparseMatrix& A, std::optional<double> floor,
                                      int threads, double max_factor_flops,
                                      const std::function<void()>& within_budget) {
+  std::unique_ptr<ShiftedCholesky> factors;
+  return certified_spectrum(A, factors, floor, threads, max_factor_flops, within_budget);
+}
+
+CertifiedSpectrum certified_spectrum(const SparseMatrix& A,
+                                     std::unique_ptr<ShiftedCholesky>& factors,
+                                     std::optional<double> floor, int threads,
+                                     double max_factor_flops,
+                                     const std::function<void()>& within_budget) {
   const Eigen::Index n = A.rows();
   if (n > 0 && n <= kDenseRows) {  // one dense solve gives both ends
     if (within_budget) within_budget();
@@ -379,7 +388,6 @@ CertifiedSpectrum certified_spectrum(const SparseMatrix& A, std::optional<double
   }
   // The top first: over a budget it stops before the bottom copies -A. One pattern analysis
   // serves both ends.
-  std::unique_ptr<ShiftedCholesky> factors;
   const int cores = resolved_threads(threads);
   if (cores < 2 || pinned_by_floor(A, floor)) {
     const EigenInterval top =

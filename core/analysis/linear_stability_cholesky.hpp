@@ -121,6 +121,14 @@ CertifiedSpectrum certified_spectrum(const SparseMatrix& A,
                                      std::optional<double> floor = std::nullopt, int threads = 1,
                                      double max_factor_flops = kNoFactorBudget,
                                      const std::function<void()>& within_budget = {});
+/// The same, its factorisations left in `factors` (made here when empty): a caller that goes
+/// on to factor matrices of A's pattern (the exact limits' searches) keeps the pattern
+/// analysis and the factor's memory.
+CertifiedSpectrum certified_spectrum(const SparseMatrix& A,
+                                     std::unique_ptr<detail::ShiftedCholesky>& factors,
+                                     std::optional<double> floor, int threads,
+                                     double max_factor_flops,
+                                     const std::function<void()>& within_budget);
 
 namespace detail {
 /// The rounding of a Rayleigh quotient q = uAu / uu whose products u_r (A u)_r were summed in

@@ -91,10 +91,15 @@ ExactInputs assemble(const Model& model, const std::vector<Vec3>& x, int threads
 
 void spectrum_and_rates(const ExactInputs& in, std::optional<double> floor, const Params& params,
                         const ExactOptions& options, ExactStability& e,
-                        const std::function<void()>& within_budget) {
+                        const std::function<void()>& within_budget,
+                        std::unique_ptr<detail::ShiftedCholesky>& factors) {
   e.integrator = params.integrator;
-  const CertifiedSpectrum ends = certified_spectrum(in.A, floor, options.threads,
+  const CertifiedSpectrum ends = certified_spectrum(in.A, factors, floor, options.threads,
                                                     options.max_factor_flops, within_budget);
+  // The limit searches factor matrices of A's pattern with CHOLMOD's own ordering: where the
+  // spectrum's factors have it, they go on with its pattern analysis (and the same bits as an
+  // analysis of their own); otherwise (AMD alone, a small matrix) they make their own.
+  if (factors && !factors->cholmod_ordering()) factors.reset();
   e.spectrum = {ends.smallest.lo, ends.largest.hi};
   // A proved floor (SPEC 9's, psd_floor) is as certain as the factorisation's end and often
   // sharper: a zero mode's end at -1e-15 would make every undamped explicit step "grow" at
@@ -300,7 +305,8 @@ void limit_searches(const ExactInputs& in, const Params& params, const ExactOpti
 /// The paper's step with non-uniform rates: the exact definiteness index (SPEC 7) and its
 /// roots in gamma and in dt, each proved stable within 1e-10 relative of a value not proved so.
 void symmetric_index_limits(const ExactInputs& in, const Params& params,
-                            const ExactOptions& options, ExactStability& e) {
+                            const ExactOptions& options, ExactStability& e,
+                            std::unique_ptr<detail::ShiftedCholesky>& factors) {
   const int threads = options.threads;
   const double budget = options.max_factor_flops;
   const double h = params.dt, gamma = params.gamma;
@@ -308,9 +314,9 @@ void symmetric_index_limits(const ExactInputs& in, const Params& params,
   const Eigen::VectorXd& R = in.R;
   e.method = ExactMethod::symmetric_index;
   e.gamma_lo = 0;
-  // Every matrix below has the pattern of A and its diagonal: one pattern analysis, the
-  // searches' (CHOLMOD's choice of ordering), for them and for the index at the scene.
-  std::unique_ptr<detail::ShiftedCholesky> factors;
+  // Every matrix below has the pattern of A and its diagonal: one pattern analysis (CHOLMOD's
+  // choice of ordering; the spectrum's where it made one), for them and for the index at the
+  // scene.
   if (!e.indefinite) limit_searches(in, params, options, e, factors);
   e.index = symmetric_index(A, R, gamma, h, threads, budget, factors);
   e.stable = e.index < 4 && in.r_min > 0;
@@ -388,8 +394,9 @@ ExactStability exact_stability_within_budget(const ExactInputs& in, std::optiona
   RadiusBeside radius(in, params, options);
   const IntegratorTraits& t = integrator_traits(params.integrator);
   const bool frozen = !t.paper_step && !t.implicit;
+  std::unique_ptr<detail::ShiftedCholesky> factors;  // the spectrum's, for the limit searches
   spectrum_and_rates(in, floor, params, options, e,
-                     frozen ? std::function<void()>([&] { radius.start(); }) : nullptr);
+                     frozen ? std::function<void()>([&] { radius.start(); }) : nullptr, factors);
   if (spec10 && !e.indefinite) return e;
   const double tiny = 1e-12 * std::max(1.0, std::abs(e.spectrum.lambda_max));
   if (integrator_traits(e.integrator).implicit && e.spectrum.lambda_min >= -tiny) {
@@ -400,7 +407,7 @@ ExactStability exact_stability_within_budget(const ExactInputs& in, std::optiona
     per_mode(in, params, e);
   } else if (integrator_traits(e.integrator).paper_step) {
     radius.start();
-    symmetric_index_limits(in, params, options, e);
+    symmetric_index_limits(in, params, options, e, factors);
     radius.add_to(e);
   } else {
     frozen_estimate(in, params, e);

@@ -192,6 +192,7 @@ ShiftedCholesky::ShiftedCholesky(const SparseMatrix& A, bool cholmod_ordering) :
   llt_.cholmod().print = 0;  // a failed factorisation is an answer, not news
   // Small: AMD alone; CHOLMOD's trial of nested dissection costs more than it saves there.
   if (B_.rows() < kNestedDissectionRows && !cholmod_ordering) {
+    cholmod_ordering_ = false;
     llt_.cholmod().nmethods = 1;
     llt_.cholmod().method[0].ordering = CHOLMOD_AMD;
   }

@@ -46,6 +46,9 @@ class ShiftedCholesky {
   /// where AMD's fill is poor), for callers that factor one pattern many times; otherwise AMD
   /// alone below 20 000 rows (shifted_cholesky.cpp).
   explicit ShiftedCholesky(const SparseMatrix& A, bool cholmod_ordering = false);
+  /// Whether the ordering is CHOLMOD's own choice (asked for, or at this size anyway): the
+  /// pattern analysis a ShiftedCholesky(A, true) of the same pattern would make.
+  bool cholmod_ordering() const { return cholmod_ordering_; }
   /// The pattern analysis (once); throws FactorisationOverBudget when one numeric
   /// factorisation would take more than `budget` flops. Within the budget it also allocates
   /// the factor's values and touches their pages, which the first factorisation would
@@ -92,6 +95,7 @@ class ShiftedCholesky {
   NodeThreads solve_threads_;
   double sigma_ = 0;
   bool analysed_ = false, ok_ = false;
+  bool cholmod_ordering_ = true;
 };
 
 }  // namespace dampbound::detail
