@@ -194,10 +194,14 @@ const ExactStability* TunerCriteria::exact(const Session& s, std::uint64_t topol
   const bool changed = !have_key_ || topology != topology_ || !same_key(key_, s.params()) || moved;
   // On a large mesh the analysis takes long: while a slider is dragged (or the run goes on,
   // when it follows the state), keep the last result and recompute at most every few
-  // durations, so the window stays responsive.
+  // durations, so the window stays responsive. An analysis the frame waits for is never
+  // held back: the wait is bounded (frame_wait) and one job runs at a time, and a frame that
+  // waits must show its own parameters' analysis (under a sanitizer the 6 x 6 plane's took
+  // over 50 ms and the next change was shown the last one's limits).
   const double slow = last_seconds_ > slow_threshold_ ? 4 * last_seconds_ : 0.0;
   const double interval = following ? std::max(follow_interval_, slow) : slow;
-  const bool throttled = have_key_ && (exact_ || job_.valid()) && now - last_time_ < interval;
+  const bool throttled =
+      !waited && have_key_ && (exact_ || job_.valid()) && now - last_time_ < interval;
   // Cancelled: not again for the same parameters and springs (a move of the state aside).
   if (cancelled_ && have_key_ && topology == topology_ && same_key(key_, s.params()))
     return exact_ ? &*exact_ : nullptr;
