@@ -6,12 +6,12 @@
 # The Python module is built instrumented too, and the Python battery (python/tests/
 # test_battery_*.py) runs against it in Debian's uninstrumented interpreter with clang's ASan
 # runtime preloaded (leak detection off there: CPython keeps its objects to the end by design).
-#   FUZZ_SECONDS (default 10) per target; BUILD_DIR (default build-asan); JOBS (default nproc).
+#   FUZZ_SECONDS (default 7) per target; BUILD_DIR (default build-asan); JOBS (default nproc).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 ROOT=$PWD
 BUILD_DIR=${BUILD_DIR:-build-asan}
-FUZZ_SECONDS=${FUZZ_SECONDS:-10}
+FUZZ_SECONDS=${FUZZ_SECONDS:-7}
 JOBS=${JOBS:-$(nproc)}
 T0=$(date +%s)
 for tool in clang-14 clang++-14; do
@@ -60,9 +60,9 @@ SKIP=$(sed -e 's/#.*//' -e 's/[[:space:]]//g' -e '/^$/d' -e 's/\./\\./g' scripts
 (cd "$BUILD_DIR" && ASAN_OPTIONS="$ASAN_OPTIONS:detect_leaks=0" \
    ctest --output-on-failure -j "$JOBS" -R '^battery$')
 # The guarantee hunter (docs/hardening.md) at another seed than the plain build's ctest (which
-# runs seed 1 with 300 scenes and is skipped here), under the sanitizers: about a minute on 2
+# runs seed 1 with 300 scenes and is skipped here), under the sanitizers: about 45 s on 2
 # cores. `guarantee_hunter --seed S --scenes N` hunts longer by hand.
-"$BUILD_DIR/tests/guarantee_hunter" --seed 2 --scenes 120 --sweeps 2 \
+"$BUILD_DIR/tests/guarantee_hunter" --seed 2 --scenes 60 --sweeps 2 \
   --regressions "$ROOT/tests/hunter/found.txt"
 # The Python battery (382 cases: states, indices, flags, out arrays, parameters at every
 # door, the GIL) against the instrumented module.
