@@ -43,43 +43,6 @@ struct SuggestArgs {
   std::string vtu, rayleigh, band, plot;     // --rayleigh Z[,Z2] [--band F1:F2] [--plot FILE]
 };
 
-/// SPEC 10: the exact stable range of each damping kind at this dt, the others held, and a
-/// run at the middle of each range (the settled rule judges: stable is not settled in time).
-void print_damping_kinds(const SceneSpec& scene, const Params& p, const StopRules& rules,
-                         bool verify, double max_factor_flops) {
-  std::printf("damping kinds at dt = %s s, each with the others held (the exact limit, "
-              "at rest)\n",
-              format_human(p.dt).c_str());
-  for (DampingKind kind : {DampingKind::nodal, DampingKind::dashpot, DampingKind::rayleigh_mass,
-                           DampingKind::rayleigh_stiffness}) {
-    Params q = p;
-    const double value = coefficient(q, kind);
-    double max = 0;
-    try {
-      max = damping_kind_max(scene.model, scene.model.rest, p, kind, max_factor_flops);
-    } catch (const FactorisationOverBudget& over) {
-      std::printf("  %-19s now %-10s not computed: %s (--factor-budget)\n", to_string(kind),
-                  format_human(value).c_str(), over.what());
-      continue;
-    }
-    std::printf("  %-19s now %-10s stable for %s in [0, %s)", to_string(kind),
-                format_human(value).c_str(), to_string(kind),
-                std::isinf(max) ? "inf" : format_human(max).c_str());
-    if (max <= 0) {
-      std::printf(": no value is stable with the others held\n");
-      continue;
-    }
-    if (!verify || std::isinf(max)) {
-      std::printf("\n");
-      continue;
-    }
-    coefficient(q, kind) = max / 2;
-    const VerifiedRun mid = verify_run(scene, q, rules, "");
-    std::printf("; run at %s: %s\n", format_human(max / 2).c_str(),
-                verdict_text(mid.result, mid.rules).c_str());
-  }
-}
-
 /// The nodal damping ratio of `params` on the scene's model (SPEC 10), as zeta_text() gives it.
 std::string zeta_of(const SceneSpec& scene, const Params& params) {
   return zeta_text(damping_ratio_range(compile_model(scene.model, params)));

@@ -4,7 +4,9 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "core/analysis/damping_limits.hpp"
 #include "core/analysis/kappa_ceiling.hpp"
+#include "core/analysis/linear_stability_cholesky.hpp"
 #include "core/io/files.hpp"
 #include "core/io/format.hpp"
 #include "core/io/report.hpp"
@@ -207,6 +209,43 @@ int print_rayleigh(const SceneSpec& scene, const Params& p, const std::string& r
     std::printf("wrote %s (%s)\n", plot.c_str(), renderer.c_str());
   }
   return d.stable ? 0 : 1;
+}
+
+/// SPEC 10: the exact stable range of each damping kind at this dt, the others held, and a
+/// run at the middle of each range (the settled rule judges: stable is not settled in time).
+void print_damping_kinds(const SceneSpec& scene, const Params& p, const StopRules& rules,
+                         bool verify, double max_factor_flops) {
+  std::printf("damping kinds at dt = %s s, each with the others held (the exact limit, "
+              "at rest)\n",
+              format_human(p.dt).c_str());
+  for (DampingKind kind : {DampingKind::nodal, DampingKind::dashpot, DampingKind::rayleigh_mass,
+                           DampingKind::rayleigh_stiffness}) {
+    Params q = p;
+    const double value = coefficient(q, kind);
+    double max = 0;
+    try {
+      max = damping_kind_max(scene.model, scene.model.rest, p, kind, max_factor_flops);
+    } catch (const FactorisationOverBudget& over) {
+      std::printf("  %-19s now %-10s not computed: %s (--factor-budget)\n", to_string(kind),
+                  format_human(value).c_str(), over.what());
+      continue;
+    }
+    std::printf("  %-19s now %-10s stable for %s in [0, %s)", to_string(kind),
+                format_human(value).c_str(), to_string(kind),
+                std::isinf(max) ? "inf" : format_human(max).c_str());
+    if (max <= 0) {
+      std::printf(": no value is stable with the others held\n");
+      continue;
+    }
+    if (!verify || std::isinf(max)) {
+      std::printf("\n");
+      continue;
+    }
+    coefficient(q, kind) = max / 2;
+    const VerifiedRun mid = verify_run(scene, q, rules, "");
+    std::printf("; run at %s: %s\n", format_human(max / 2).c_str(),
+                verdict_text(mid.result, mid.rules).c_str());
+  }
 }
 
 }  // namespace dampbound::app
