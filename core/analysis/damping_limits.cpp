@@ -66,11 +66,13 @@ GeneralLimits general_limits(const SparseMatrix& A, const SparseMatrix& Cp, cons
                              double gamma, double dt, double max_factor_flops) {
   GeneralLimits g;
   const SparseMatrix C = Cp + gamma * G;
-  g.index = certified_largest_eigenvalue((dt * dt) * A + (2 * dt) * C, nullptr, 1,
-                                         max_factor_flops).hi;
-  g.damping_min = certified_smallest_eigenvalue(C, std::nullopt, 1, max_factor_flops).lo;
-  // Both searches on the pattern of A + Cp + G: one pattern analysis.
+  // The index and both searches on the pattern of A + Cp + G: one pattern analysis where it is
+  // CHOLMOD's own choice of ordering (the searches' own would be the same, to the bit).
   std::unique_ptr<detail::ShiftedCholesky> factors;
+  g.index = certified_largest_eigenvalue((dt * dt) * A + (2 * dt) * C, factors, 1,
+                                         max_factor_flops).hi;
+  if (factors && !factors->cholmod_ordering()) factors.reset();
+  g.damping_min = certified_smallest_eigenvalue(C, std::nullopt, 1, max_factor_flops).lo;
   {
     const SparseMatrix base = (dt * dt) * A + (2 * dt) * Cp, step = (2 * dt) * G;
     detail::IndexFamily family;

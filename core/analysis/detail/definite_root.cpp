@@ -16,8 +16,14 @@ namespace {
 /// The interval's relative width, as the bisection on certified eigenvalues had it.
 constexpr double kWidth = 1e-10;
 /// Lanczos steps per run (full reorthogonalisation), and its tolerance on the top Ritz value.
-constexpr int kLanczosSteps = 60;
+/// A run far from the root meets a clustered top and does not converge in 60 steps either
+/// (the damped 40k plane: each of 60 steps cost 25 ms there, half of it reorthogonalisation);
+/// close to the root the top stands apart and a run converges in 5 to 25.
+constexpr int kLanczosSteps = 30;
 constexpr double kRitzTolerance = 1e-12;
+/// After an estimate whose Lanczos run did not converge, the first probe's step back from it,
+/// as a fraction of the way back to the last stable point.
+constexpr double kFirstStepBack = 1e-5;
 
 class Search {
  public:
@@ -64,15 +70,18 @@ class Search {
       if (!(b > 0) && !(q > 0)) return kInf;
       // The positive root of c - b t - q t^2, without cancellation.
       const double next = 2 * c / (b + std::sqrt(b * b + 4 * q * c));
-      const bool settled = std::abs(next - t) <= 1e-13 * next;
+      // Settled to the digits that place a probe: a root close to a has t at the noise of
+      // u^T B u, and would not settle to 1e-13 of t in the twelve rounds.
+      const bool settled =
+          std::abs(next - t) <= std::max(1e-13 * next, 1e-3 * kWidth * (a + next));
       t = next;
       if (!quadratic || settled) break;
       // A Lanczos run that did not converge (a clustered top, far from the root: the damped
       // 40k plane's dt search from dt = 0.05 took 12 such rounds, 720 solves, to move t by
-      // 1.5e-5) gives an upper estimate all the same; past its second round, the probe just
-      // below it (1e-3 of the way back) and the estimate from there, close to the root where
-      // the top separates, cost less.
-      if (!converged_ && round >= 1) break;
+      // 1.5e-5) gives an upper estimate all the same: the probes just below it and the
+      // estimate from there, close to the root where the top separates, cost less than
+      // another round here (a second round moved the plane's t by 1.2e-5 for 60 solves).
+      if (!converged_) break;
       if (round == 11) converged_ = false;
     }
     return a + t;
@@ -177,6 +186,7 @@ DefiniteRoot definite_root(const IndexFamily& family, double from,
   // a probe goes the other way (the estimate was off by more than the width), bisection in
   // [a, b] takes over until the next stable point, whose estimate is closer.
   bool fresh = true;  // the factor in hand is a's
+  double back = 0;    // after an estimate that did not converge: the last step back from it
   for (int round = 0; round < 100 && (std::isinf(b) || b - a > kWidth * b); ++round) {
     double c;
     if (fresh) {
@@ -186,10 +196,18 @@ DefiniteRoot definite_root(const IndexFamily& family, double from,
       const double width = kWidth * target;
       // Just below a converged estimate: proved stable where the estimate is within 0.4 of
       // the width. An estimate whose Lanczos run did not converge may lie further above the
-      // root: a thousandth of the way back to a, whose estimate from there converges.
-      c = target - (search.converged() ? 0.4 * width : std::max(0.4 * width, 1e-3 * (target - a)));
+      // root: the probe steps back from it by kFirstStepBack of the way to a, then a hundred
+      // times further at each probe that fails (at most two fail before one a tenth of the
+      // way back). A probe close to the root is worth a factorisation or two: there the top
+      // of B^-1 D stands apart and the next run converges in a few steps, where one a
+      // thousandth of the way back took a whole run that did not.
+      back = search.converged() ? 0.0 : std::max(0.4 * width, kFirstStepBack * (target - a));
+      c = target - (back > 0 ? back : 0.4 * width);
       if (!(c > a)) c = a + 0.5 * (target - a);  // the estimate is within the width of a
       if (!(c > a)) return done(a, target);
+    } else if (back > 0 && !std::isinf(b)) {
+      back *= 100;
+      c = std::max(b - back, a + 0.5 * (b - a));
     } else {
       c = std::isinf(b) ? 2 * a : a + 0.5 * (b - a);
     }

@@ -83,6 +83,24 @@ TEST(DefiniteRoot, QuadraticFamilyMatchesADenseBisectionInDt) {
   }
 }
 
+TEST(DefiniteRoot, FromJustBelowTheRootItSettlesInAFewFactorisations) {
+  // Started within 1e-9 of the root, t is at the rounding noise of u^T B u: the estimate must
+  // settle to the digits that place a probe rather than run its twelve rounds and creep up
+  // by a width per factorisation.
+  const Mats m = mats();
+  const SparseMatrix C = 0.3 * m.G + 0.05 * m.A;
+  IndexFamily family;
+  family.S = [&](double h) -> SparseMatrix { return (h * h) * m.A + (2 * h) * C; };
+  family.D = [&](double h) -> SparseMatrix { return (2 * h) * m.A + 2.0 * C; };
+  family.Q = m.A;
+  const double root = definite_root(family, 0.5).stable;
+  for (const double below : {1e-9, 3e-9, 1e-8}) {
+    const DefiniteRoot r = definite_root(family, root * (1 - below));
+    EXPECT_NEAR(r.stable, root, 2e-10 * root) << below;
+    EXPECT_LE(r.factorizations, 4) << below;
+  }
+}
+
 TEST(DefiniteRoot, TheEnds) {
   const Mats m = mats();
   IndexFamily family;
