@@ -193,20 +193,28 @@ double DampedSafeRows::dt_safe(int node, double gamma) const {
 }
 
 void damped_safe_gammas(const Model& model, const std::vector<Vec3>& x, double dt,
-                        std::vector<double>& gamma_safe) {
+                        std::vector<double>& gamma_safe, NodeThreads* threads) {
   const size_t n = model.spec().rest.size();
   gamma_safe.assign(n, std::numeric_limits<double>::infinity());
-  for (size_t i = 0; i < n; ++i) {
-    if (model.spec().fixed[i]) continue;
-    // DampedSafeRows::gamma_safe's sums, in its entry order, without storing the rows.
-    double off[3] = {0, 0, 0}, margin = std::numeric_limits<double>::infinity();
-    node_rows(
-        model, x, i, [&](int r, double a, double c) { off[r] += std::abs(2 * dt * c + dt * dt * a); },
-        [&](int r, double diag_a, double diag_c) {
-          margin = std::min(margin, 4 - 2 * dt * diag_c - dt * dt * diag_a - off[r]);
-        });
-    gamma_safe[i] = model.mass[i] / (2 * dt) * margin;
-  }
+  // Each node's sums are its own: the nodes split across threads with the same bits.
+  const auto nodes = [&](int, size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) {
+      if (model.spec().fixed[i]) continue;
+      // DampedSafeRows::gamma_safe's sums, in its entry order, without storing the rows.
+      double off[3] = {0, 0, 0}, margin = std::numeric_limits<double>::infinity();
+      node_rows(
+          model, x, i,
+          [&](int r, double a, double c) { off[r] += std::abs(2 * dt * c + dt * dt * a); },
+          [&](int r, double diag_a, double diag_c) {
+            margin = std::min(margin, 4 - 2 * dt * diag_c - dt * dt * diag_a - off[r]);
+          });
+      gamma_safe[i] = model.mass[i] / (2 * dt) * margin;
+    }
+  };
+  if (threads)
+    threads->run(n, nodes);
+  else
+    nodes(0, 0, n);
 }
 
 }  // namespace dampbound

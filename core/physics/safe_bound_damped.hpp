@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "dampbound/physics/model.hpp"
+#include "dampbound/physics/node_threads.hpp"
 
 namespace dampbound {
 
@@ -45,8 +46,9 @@ class DampedSafeRows {
 };
 
 /// DampedSafeRows(model, x).gamma_safe(i, dt) for every node (+inf at fixed nodes), the same
-/// bits, in one pass that stores no row: what step() calls each step.
+/// bits, in one pass that stores no row: what step() calls each step, on its node threads
+/// (`threads`, optional: the same bits on any count).
 void damped_safe_gammas(const Model& model, const std::vector<Vec3>& x, double dt,
-                        std::vector<double>& gamma_safe);
+                        std::vector<double>& gamma_safe, NodeThreads* threads = nullptr);
 
 }  // namespace dampbound

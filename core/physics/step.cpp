@@ -44,7 +44,7 @@ StepStats step(const Model& model, const Params& params, State& state, StepWorks
     ws.damping.clear();
   const bool damped = !ws.damping.empty();
   // SPEC 10's generalised safe bound where the model has such damping, else SPEC 9's.
-  if (damped) damped_safe_gammas(model, state.x, params.dt, ws.safe_bound);
+  if (damped) damped_safe_gammas(model, state.x, params.dt, ws.safe_bound, &threads);
   ws.upper_bound.resize(n);
   ws.gamma_eff.resize(n);
   ws.status.resize(n);

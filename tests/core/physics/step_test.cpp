@@ -51,8 +51,7 @@ TEST_P(StepClosedForm, MatchesRecurrence) {
 }
 
 std::string case_name(const ::testing::TestParamInfo<OscCase>& param) {
-  static const char* const names[] = {"undamped", "underdamped", "critical", "overdamped",
-                                      "stiff"};
+  static const char* const names[] = {"undamped", "underdamped", "critical", "overdamped", "stiff"};
   return names[param.index];
 }
 
@@ -105,8 +104,8 @@ TEST(Step, ExternalForceAccelerates) {
   State s = rest_state(model);
   StepWorkspace ws;
   step(model, p, s, ws);
-  EXPECT_DOUBLE_EQ(s.v[0].y(), -1.0);   // a = -2, v = -1
-  EXPECT_DOUBLE_EQ(s.x[0].y(), -0.5);   // x = v_new dt
+  EXPECT_DOUBLE_EQ(s.v[0].y(), -1.0);  // a = -2, v = -1
+  EXPECT_DOUBLE_EQ(s.x[0].y(), -0.5);  // x = v_new dt
 }
 
 TEST(Step, ZeroLengthSpringIsCountedNotNaN) {
@@ -153,8 +152,7 @@ Model lattice(const Params& p) {
                                             m.gamma_scale.back() = 1 + (i % 5) * 0.5;
                                             m.anchor_scale.back() = i % 3 == 0 ? 2.0 : 0.0;
                                             m.fixed.back() = b == 0 && a % 4 == 0;
-                                            m.external_force.back() =
-                                                Vec3(0, -1e-4 * (i % 2), 0);
+                                            m.external_force.back() = Vec3(0, -1e-4 * (i % 2), 0);
                                           }),
                        p);
 }
@@ -177,7 +175,8 @@ TEST(Step, ForcesAreTheSerialScatterSumsBitForBit) {
   const Model m = lattice(p);
   const State s = shaken(m);
   std::vector<Vec3> want(m.spec().rest.size());
-  for (size_t i = 0; i < want.size(); ++i) want[i] = -m.anchor_kappa[i] * (s.x[i] - m.spec().rest[i]);
+  for (size_t i = 0; i < want.size(); ++i)
+    want[i] = -m.anchor_kappa[i] * (s.x[i] - m.spec().rest[i]);
   for (size_t k = 0; k < m.spec().springs.size(); ++k) {
     const Spring& sp = m.spec().springs[k];
     const Vec3 delta = s.x[size_t(sp.j)] - s.x[size_t(sp.i)];
@@ -243,39 +242,47 @@ TEST(Step, AnyThreadCountGivesTheSameBits) {
   for (Integrator in : {Integrator::semi_implicit_euler, Integrator::forward_euler,
                         Integrator::verlet, Integrator::rk4}) {
     for (DampingPolicy policy : {DampingPolicy::clamp, DampingPolicy::safe}) {
-      Params p;
-      p.integrator = in;
-      p.policy = policy;
-      p.dt = 0.02;
-      const Model m = lattice(p);
-      State one = shaken(m);
-      StepWorkspace ws1;
-      std::vector<StepStats> serial;
-      for (int k = 0; k < 15; ++k) serial.push_back(step(m, p, one, ws1));
-      for (int threads : {2, 3, 4}) {
-        SCOPED_TRACE(std::string(to_string(in)) + " " + to_string(policy) + " " +
-                     std::to_string(threads) + " threads");
-        State many = shaken(m);
-        StepWorkspace ws;
-        ws.pass.threads.set_threads(threads);
-        ws.pass.threads.set_grain(1000);  // split this 9261-node model
-        ASSERT_GE(ws.pass.threads.chunks(m.spec().rest.size()), 2);
-        for (int k = 0; k < 15; ++k) {
-          const StepStats st = step(m, p, many, ws);
-          ASSERT_EQ(std::memcmp(&st.max_displacement, &serial[size_t(k)].max_displacement,
-                                sizeof(double)),
-                    0);
-          ASSERT_EQ(st.violating, serial[size_t(k)].violating);
-          ASSERT_EQ(st.clamped, serial[size_t(k)].clamped);
-          ASSERT_EQ(st.unguaranteed, serial[size_t(k)].unguaranteed);
-          ASSERT_EQ(st.compressed_springs, serial[size_t(k)].compressed_springs);
-          ASSERT_EQ(st.finite, serial[size_t(k)].finite);
+      for (const bool spec10 : {false, true}) {  // SPEC 10's damping: its safe bound per node
+        Params p;
+        p.integrator = in;
+        p.policy = policy;
+        p.dt = 0.02;
+        if (spec10) {
+          p.kd = 0.002;
+          p.rayleigh_mass = 0.01;
+          p.rayleigh_stiffness = 0.001;
         }
-        EXPECT_TRUE(same_bits(many.x, one.x));
-        EXPECT_TRUE(same_bits(many.v, one.v));
-        EXPECT_TRUE(same_bits(ws.gamma_eff, ws1.gamma_eff));
-        EXPECT_TRUE(same_bits(ws.safe_bound, ws1.safe_bound));
-        EXPECT_GT(serial.back().compressed_springs, 0);
+        const Model m = lattice(p);
+        State one = shaken(m);
+        StepWorkspace ws1;
+        std::vector<StepStats> serial;
+        for (int k = 0; k < 15; ++k) serial.push_back(step(m, p, one, ws1));
+        for (int threads : {2, 3, 4}) {
+          SCOPED_TRACE(std::string(to_string(in)) + " " + to_string(policy) + " " +
+                       std::to_string(threads) + " threads");
+          State many = shaken(m);
+          StepWorkspace ws;
+          ws.pass.threads.set_threads(threads);
+          ws.pass.threads.set_grain(1000);  // split this 9261-node model
+          ASSERT_GE(ws.pass.threads.chunks(m.spec().rest.size()), 2);
+          for (int k = 0; k < 15; ++k) {
+            const StepStats st = step(m, p, many, ws);
+            ASSERT_EQ(std::memcmp(&st.max_displacement, &serial[size_t(k)].max_displacement,
+                                  sizeof(double)),
+                      0);
+            ASSERT_EQ(st.violating, serial[size_t(k)].violating);
+            ASSERT_EQ(st.clamped, serial[size_t(k)].clamped);
+            ASSERT_EQ(st.unguaranteed, serial[size_t(k)].unguaranteed);
+            ASSERT_EQ(st.compressed_springs, serial[size_t(k)].compressed_springs);
+            ASSERT_EQ(st.finite, serial[size_t(k)].finite);
+          }
+          EXPECT_TRUE(same_bits(many.x, one.x));
+          EXPECT_TRUE(same_bits(many.v, one.v));
+          EXPECT_TRUE(same_bits(ws.gamma_eff, ws1.gamma_eff));
+          EXPECT_TRUE(same_bits(ws.safe_bound, ws1.safe_bound));
+          EXPECT_GT(serial.back().compressed_springs, 0);
+          EXPECT_EQ(!ws.damping.empty(), spec10);
+        }
       }
     }
   }
