@@ -62,13 +62,23 @@ TEST(DefiniteRoot, LinearFamilyMatchesTheDenseGeneralisedEigenvalue) {
   EXPECT_LE(r.factorizations, 6);
 }
 
-TEST(DefiniteRoot, QuadraticFamilyMatchesADenseBisectionInDt) {
-  const Mats m = mats();
-  const SparseMatrix C = 0.3 * m.G + 0.05 * m.A;
+/// The index in dt, S(h) = h^2 A + 2 h C, with C = 0.3 G + 0.05 A.
+struct DtFamily {
+  Mats m = mats();
+  SparseMatrix C = 0.3 * m.G + 0.05 * m.A;
   IndexFamily family;
-  family.S = [&](double h) -> SparseMatrix { return (h * h) * m.A + (2 * h) * C; };
-  family.D = [&](double h) -> SparseMatrix { return (2 * h) * m.A + 2.0 * C; };
-  family.Q = m.A;
+  DtFamily() {
+    family.S = [this](double h) -> SparseMatrix { return (h * h) * m.A + (2 * h) * C; };
+    family.D = [this](double h) -> SparseMatrix { return (2 * h) * m.A + 2.0 * C; };
+    family.Q = m.A;
+  }
+  DtFamily(const DtFamily&) = delete;
+  DtFamily& operator=(const DtFamily&) = delete;
+};
+
+TEST(DefiniteRoot, QuadraticFamilyMatchesADenseBisectionInDt) {
+  const DtFamily dt;
+  const IndexFamily& family = dt.family;
   double lo = 0.5, hi = 3;  // the dense root, bisected to 1e-13
   for (int k = 0; k < 45; ++k) {
     const double mid = 0.5 * (lo + hi);
@@ -87,12 +97,8 @@ TEST(DefiniteRoot, FromJustBelowTheRootItSettlesInAFewFactorisations) {
   // Started within 1e-9 of the root, t is at the rounding noise of u^T B u: the estimate must
   // settle to the digits that place a probe rather than run its twelve rounds and creep up
   // by a width per factorisation.
-  const Mats m = mats();
-  const SparseMatrix C = 0.3 * m.G + 0.05 * m.A;
-  IndexFamily family;
-  family.S = [&](double h) -> SparseMatrix { return (h * h) * m.A + (2 * h) * C; };
-  family.D = [&](double h) -> SparseMatrix { return (2 * h) * m.A + 2.0 * C; };
-  family.Q = m.A;
+  const DtFamily dt;
+  const IndexFamily& family = dt.family;
   const double root = definite_root(family, 0.5).stable;
   for (const double below : {1e-9, 3e-9, 1e-8}) {
     const DefiniteRoot r = definite_root(family, root * (1 - below));
