@@ -63,16 +63,22 @@ DampingRatios damping_ratios(const Model& model, const std::vector<Vec3>&,
 }
 
 GeneralLimits general_limits(const SparseMatrix& A, const SparseMatrix& Cp, const SparseMatrix& G,
-                             double gamma, double dt, double max_factor_flops) {
+                             double gamma, double dt, double max_factor_flops,
+                             std::unique_ptr<detail::ShiftedCholesky>* shared,
+                             double damping_floor) {
   GeneralLimits g;
   const SparseMatrix C = Cp + gamma * G;
   // The index and both searches on the pattern of A + Cp + G: one pattern analysis where it is
-  // CHOLMOD's own choice of ordering (the searches' own would be the same, to the bit).
-  std::unique_ptr<detail::ShiftedCholesky> factors;
+  // CHOLMOD's own choice of ordering (the searches' own would be the same, to the bit), or
+  // the caller's where that has the same pattern.
+  std::unique_ptr<detail::ShiftedCholesky> own;
+  std::unique_ptr<detail::ShiftedCholesky>& factors = shared ? *shared : own;
   g.index = certified_largest_eigenvalue((dt * dt) * A + (2 * dt) * C, factors, 1,
                                          max_factor_flops).hi;
   if (factors && !factors->cholmod_ordering()) factors.reset();
-  g.damping_min = certified_smallest_eigenvalue(C, std::nullopt, 1, max_factor_flops).lo;
+  g.damping_min = damping_floor > 0
+                      ? damping_floor
+                      : certified_smallest_eigenvalue(C, std::nullopt, 1, max_factor_flops).lo;
   {
     const SparseMatrix base = (dt * dt) * A + (2 * dt) * Cp, step = (2 * dt) * G;
     detail::IndexFamily family;
@@ -87,6 +93,24 @@ GeneralLimits general_limits(const SparseMatrix& A, const SparseMatrix& Cp, cons
   family.Q = A;
   g.dt_max = detail::definite_root(family, dt, &factors, max_factor_flops).stable;
   return g;
+}
+
+double damping_floor(const Model& model, double gamma, double a_floor, const SparseMatrix& A,
+                     const SparseMatrix& C) {
+  const double alpha = model.rayleigh_mass, beta = model.rayleigh_stiffness;
+  bool signs = alpha >= 0 && beta >= 0 && std::isfinite(a_floor);
+  for (double kd : model.spring_kd) signs = signs && kd >= 0;
+  if (!signs) return kNaN;
+  double d_min = kInf;
+  for (size_t i = 0; i < model.spec().rest.size(); ++i)
+    if (!model.spec().fixed[i])
+      d_min = std::min(d_min, (gamma * model.spec().gamma_scale[i] + model.anchor_kd[i]) /
+                                  model.mass[i]);
+  if (!std::isfinite(d_min)) return kNaN;  // no free node
+  const GershgorinBounds ga = gershgorin_bounds(A), gc = gershgorin_bounds(C);
+  const double size = std::max(std::abs(gc.lo), std::abs(gc.hi)) +
+                      beta * std::max(std::abs(ga.lo), std::abs(ga.hi));
+  return alpha + beta * a_floor + d_min - 1e-10 * size;
 }
 
 double largest_stable_coefficient(const SparseMatrix& A, const SparseMatrix& C,
@@ -207,17 +231,28 @@ GeneralLimits closed_forms(const Model& model, const Params& params, const Spec1
 GeneralLimits general_limits(const Model& model, const std::vector<Vec3>& x, const Params& params,
                              double max_factor_flops) {
   const Spec10Parts s = spec10_parts(model, x, params);
-  if (!s.commutes)
-    return general_limits(s.A, s.Cp, s.G, params.gamma, params.dt, max_factor_flops);
+  if (!s.commutes) {
+    const std::optional<double> a_floor = psd_floor(model, x);
+    const double floor = a_floor ? damping_floor(model, params.gamma, *a_floor, s.A,
+                                                 s.Cp + params.gamma * s.G)
+                                 : kNaN;
+    return general_limits(s.A, s.Cp, s.G, params.gamma, params.dt, max_factor_flops, nullptr,
+                          floor);
+  }
   const CertifiedSpectrum ends = certified_spectrum(s.A, psd_floor(model, x), 1, max_factor_flops);
   return closed_forms(model, params, s, {ends.smallest.lo, ends.largest.hi}, max_factor_flops);
 }
 
 GeneralLimits general_limits(const Model& model, const std::vector<Vec3>& x, const Params& params,
-                             const StiffnessSpectrum& spectrum, double max_factor_flops) {
+                             const StiffnessSpectrum& spectrum, double max_factor_flops,
+                             std::unique_ptr<detail::ShiftedCholesky>* factors) {
   const Spec10Parts s = spec10_parts(model, x, params);
-  if (!s.commutes)
-    return general_limits(s.A, s.Cp, s.G, params.gamma, params.dt, max_factor_flops);
+  if (!s.commutes) {
+    const double floor = damping_floor(model, params.gamma, spectrum.lambda_min, s.A,
+                                       s.Cp + params.gamma * s.G);
+    return general_limits(s.A, s.Cp, s.G, params.gamma, params.dt, max_factor_flops, factors,
+                          floor);
+  }
   return closed_forms(model, params, s, spectrum, max_factor_flops);
 }
 

@@ -4,6 +4,7 @@
 // K is positive semi-definite and C^ positive definite; the Rayleigh closed forms where C^
 // commutes with A (no dashpot, uniform gamma_i / m_i).
 #include <limits>
+#include <memory>
 #include <vector>
 
 #include "dampbound/analysis/linear_stability.hpp"
@@ -33,8 +34,15 @@ struct GeneralLimits {
   bool commuting = false; ///< C^ commutes with A: the Rayleigh closed forms were used
   double gamma_max = 0;   ///< the user's gamma below which the step is stable (may be <= 0)
   double dt_max = 0;      ///< the largest stable dt at the model's damping (s)
-  double damping_min = 0; ///< lambda_min(C^) (1/s): <= 0 leaves modes undamped (marginal)
+  /// A certified lower end of lambda_min(C^) (1/s): <= 0 leaves modes undamped (marginal).
+  /// The eigenvalue's own lower end, or where the model's parts prove it positive (Weyl's
+  /// floor, damping_floor below) that floor, and nothing factorised for it.
+  double damping_min = 0;
 };
+
+namespace detail {
+class ShiftedCholesky;
+}
 
 /// Limits at positions x for step params.dt; gamma_i = gamma * gamma_scale_i. The index and
 /// lambda_min(C^) are certified eigenvalues (linear_stability.hpp); the general case finds the
@@ -45,7 +53,10 @@ struct GeneralLimits {
 /// CHOLMOD's pattern analysis predicts one over it, before that one is done.
 GeneralLimits general_limits(const Model& model, const std::vector<Vec3>& x, const Params& params,
                              double max_factor_flops = kUnboundedFactor);
-/// The same with the certified spectrum of A at x already known (exact_stability's). Where C^
+/// The same with the certified spectrum of A at x already known (exact_stability's), and
+/// optionally the factors of its computation (`factors`): where the index matrix has A's
+/// pattern (dashpots and Rayleigh damping on every spring), the index and the searches go on
+/// with their pattern analysis instead of one of their own. Where C^
 /// commutes with A (no dashpot, and gamma = 0 or gamma_i / m_i uniform) the index, dt_max and
 /// lambda_min(C^) are SPEC 10's closed forms in its ends (no eigenvalue computed): the index
 /// f(lambda_max), f(lambda) = dt^2 lambda + 2 dt (c0 + beta lambda) increasing in lambda, and
@@ -53,14 +64,30 @@ GeneralLimits general_limits(const Model& model, const std::vector<Vec3>& x, con
 /// non-uniform gamma_scale_i / m_i, gamma_max still needs the search (`commuting` false).
 GeneralLimits general_limits(const Model& model, const std::vector<Vec3>& x, const Params& params,
                              const StiffnessSpectrum& spectrum,
-                             double max_factor_flops = kUnboundedFactor);
+                             double max_factor_flops = kUnboundedFactor,
+                             std::unique_ptr<detail::ShiftedCholesky>* factors = nullptr);
 
 /// The general case on matrices (what the model's overload runs when C^ does not commute with
 /// A, and linear_limits on a user's C): A = M^-1/2 K M^-1/2, Cp = M^-1/2 C' M^-1/2 (the damping
 /// besides the nodal one), G the nodal damping per unit gamma (M^-1/2 diag(scale_i) M^-1/2),
-/// for nodal damping gamma * G at step dt. `commuting` is false.
+/// for nodal damping gamma * G at step dt. `commuting` is false. `factors`: as above (the
+/// pattern analysis of a matrix of the index's pattern, kept for the caller); `damping_floor`:
+/// a proved lower bound of lambda_min(Cp + gamma G), which stands for it where positive
+/// (NaN: none; the eigenvalue is certified).
 GeneralLimits general_limits(const SparseMatrix& A, const SparseMatrix& Cp, const SparseMatrix& G,
-                             double gamma, double dt, double max_factor_flops = kUnboundedFactor);
+                             double gamma, double dt, double max_factor_flops = kUnboundedFactor,
+                             std::unique_ptr<detail::ShiftedCholesky>* factors = nullptr,
+                             double damping_floor = std::numeric_limits<double>::quiet_NaN());
+
+/// Weyl's floor of lambda_min(C^) for the model's damping at x with user gamma `gamma`:
+/// C^ = alpha I + beta A + D + P with D diagonal ((gamma_i + kd_a,i) / m_i on node i's rows)
+/// and P the spring dashpots' part (positive semi-definite: kd d d^T on each spring's
+/// difference), so lambda_min(C^) >= alpha + beta lambda_min(A) + min_i D_ii, less a margin
+/// of 1e-10 of C^'s and beta A's Gershgorin bounds for the rounding of the assembled entries.
+/// `a_floor`: a proved lower bound of lambda_min(A). NaN where a part's sign is not known
+/// (beta, alpha or a kd negative).
+double damping_floor(const Model& model, double gamma, double a_floor, const SparseMatrix& A,
+                     const SparseMatrix& C);
 
 /// The largest coefficient x with lambda_max(dt^2 A + 2 dt (C + x U)) < 4 proved (A, C, U
 /// positive semi-definite, so the index grows with x), within 1e-10 relative of one not

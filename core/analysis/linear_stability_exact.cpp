@@ -255,8 +255,10 @@ void frozen_estimate(const ExactInputs& in, const Params& params, ExactStability
 /// with A, else bisection on lambda_max(dt^2 A + 2 dt C^)); the nodal spectral radius and its
 /// inner bracket no longer describe the step and are dropped (NaN).
 void with_spec10_damping(const Model& model, const std::vector<Vec3>& x, const Params& params,
-                         const ExactOptions& options, ExactStability& e) {
-  const GeneralLimits g = general_limits(model, x, params, e.spectrum, options.max_factor_flops);
+                         const ExactOptions& options, ExactStability& e,
+                         std::unique_ptr<detail::ShiftedCholesky>& factors) {
+  const GeneralLimits g =
+      general_limits(model, x, params, e.spectrum, options.max_factor_flops, &factors);
   e.spec10 = true;
   e.general = g;
   e.method = g.commuting ? ExactMethod::per_mode : ExactMethod::symmetric_index;
@@ -296,10 +298,12 @@ void with_spec10_radius(const Model& model, const std::vector<Vec3>& x, const Ex
 }
 
 /// `spec10`: SPEC 10's limits replace the nodal ones where K is not indefinite
-/// (with_spec10_damping), so only the spectrum is computed then: no radius, no nodal limits.
-ExactStability exact_stability_within_budget(const ExactInputs& in, std::optional<double> floor,
-                                             const Params& params, const ExactOptions& options,
-                                             bool spec10 = false) {
+/// (with_spec10_damping), so only the spectrum is computed then: no radius, no nodal limits,
+/// and the spectrum's factors go to `spec10_factors` for SPEC 10's index and searches.
+ExactStability exact_stability_within_budget(
+    const ExactInputs& in, std::optional<double> floor, const Params& params,
+    const ExactOptions& options, bool spec10 = false,
+    std::unique_ptr<detail::ShiftedCholesky>* spec10_factors = nullptr) {
   ExactStability e;
   // The radius beside the factorisations: the symmetric index's (semi-implicit Euler), else,
   // for forward Euler, Verlet and RK4, the spectrum's, once their analysis clears the budget.
@@ -310,7 +314,10 @@ ExactStability exact_stability_within_budget(const ExactInputs& in, std::optiona
   std::unique_ptr<detail::ShiftedCholesky> factors;  // the spectrum's, for the limit searches
   spectrum_and_rates(in, floor, params, options, e,
                      frozen ? std::function<void()>([&] { radius.start(); }) : nullptr, factors);
-  if (spec10 && !e.indefinite) return e;
+  if (spec10 && !e.indefinite) {
+    if (spec10_factors) *spec10_factors = std::move(factors);
+    return e;
+  }
   const double tiny = 1e-12 * std::max(1.0, std::abs(e.spectrum.lambda_max));
   if (integrator_traits(e.integrator).implicit && e.spectrum.lambda_min >= -tiny) {
     unconditional(e);
@@ -341,11 +348,12 @@ ExactStability exact_stability(const Model& model, const std::vector<Vec3>& x,
   const ExactInputs in = assemble(model, x, options.threads);
   try {
     const bool spec10 = model.spring_damping && integrator_traits(params.integrator).paper_step;
-    ExactStability e =
-        exact_stability_within_budget(in, psd_floor(model, x), params, options, spec10);
+    std::unique_ptr<detail::ShiftedCholesky> factors;
+    ExactStability e = exact_stability_within_budget(in, psd_floor(model, x), params, options,
+                                                     spec10, &factors);
     if (model.spring_damping && !e.indefinite) {
       if (spec10)
-        with_spec10_damping(model, x, params, options, e);
+        with_spec10_damping(model, x, params, options, e, factors);
       else
         with_spec10_radius(model, x, in, params, e);
     }

@@ -232,5 +232,73 @@ TEST(DampingLimits, StepsOnePassEqualsTheRows) {
   for (size_t i = 0; i < g.size(); ++i) EXPECT_EQ(g[i], rows.gamma_safe(static_cast<int>(i), p.dt));
 }
 
+TEST(DampingLimits, WeylsFloorIsBelowTheSmallestDampingRate) {
+  // damping_floor against the dense lambda_min(C^) on planes with dashpots, Rayleigh and
+  // nodal damping (random scales, stretched so that A is not the rest's): below it, and
+  // within the rest of the Weyl sum; NaN for a negative beta, whose sign it cannot use.
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(0, 1);
+  int positive = 0;
+  for (int trial = 0; trial < 12; ++trial) {
+    Params p;
+    p.kd = trial % 3 == 0 ? 0.0 : 0.004 * u(rng);
+    p.rayleigh_mass = trial % 2 == 0 ? 0.0 : 0.3 * u(rng);
+    p.rayleigh_stiffness = trial % 4 == 1 ? 0.0 : 0.05 * u(rng);
+    p.gamma = trial % 5 == 0 ? 0.0 : 0.002 * u(rng);
+    ModelSpec spec = plane(4, rng, true);
+    if (trial % 2 == 1) spec.anchor_kd_scale.assign(spec.rest.size(), 1.0);
+    const Model model = compile_model(spec, p);
+    std::vector<Vec3> x = model.spec().rest;
+    for (Vec3& q : x) q *= 1 + 0.05 * u(rng);  // stretched: every spring in tension
+    const SparseMatrix A = mass_weighted(model, tangent_stiffness(model, x));
+    const SparseMatrix C = weighted_damping(model, x, scaled(model, p.gamma));
+    const double a_min = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(Eigen::MatrixXd(A))
+                             .eigenvalues()
+                             .minCoeff();
+    const double c_min = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(Eigen::MatrixXd(C))
+                             .eigenvalues()
+                             .minCoeff();
+    const double floor = damping_floor(model, p.gamma, a_min * (1 - 1e-12), A, C);
+    ASSERT_FALSE(std::isnan(floor)) << trial;
+    EXPECT_LE(floor, c_min) << trial;
+    positive += floor > 0;
+  }
+  EXPECT_GT(positive, 4);
+  Params p;
+  p.rayleigh_stiffness = -0.01;
+  p.gamma = 0.001;
+  const Model model = compile_model(plane(3, rng, false), p);
+  const std::vector<Vec3> x = model.spec().rest;
+  const SparseMatrix A = mass_weighted(model, tangent_stiffness(model, x));
+  EXPECT_TRUE(std::isnan(damping_floor(model, p.gamma, 0.0, A,
+                                       weighted_damping(model, x, scaled(model, p.gamma)))));
+}
+
+TEST(DampingLimits, TheFloorAndTheSpectrumsFactorsLeaveTheLimitsAlone) {
+  // exact_stability hands its spectrum's factors and Weyl's floor to general_limits: the
+  // same index, gamma and dt limits, to the bit, as general_limits on its own, and a
+  // damping_min of the same sign as the certified eigenvalue's.
+  std::mt19937 rng(9);
+  Params p;
+  p.kd = 0.0005;
+  p.rayleigh_mass = 0.01;
+  p.rayleigh_stiffness = 0.01;
+  p.gamma = 0.002;
+  p.dt = 0.05;
+  const Model model = compile_model(plane(24, rng, false), p);
+  const std::vector<Vec3> x = model.spec().rest;
+  const ExactStability e = exact_stability(model, x, p);
+  ASSERT_TRUE(e.spec10);
+  const GeneralLimits alone = general_limits(model, x, p);
+  EXPECT_EQ(e.general.index, alone.index);
+  EXPECT_EQ(e.general.gamma_max, alone.gamma_max);
+  EXPECT_EQ(e.general.dt_max, alone.dt_max);
+  const SparseMatrix C = weighted_damping(model, x, scaled(model, p.gamma));
+  const double c_min = certified_smallest_eigenvalue(C).lo;
+  EXPECT_GT(c_min, 0);
+  EXPECT_GT(e.general.damping_min, 0);
+  EXPECT_LE(e.general.damping_min, c_min);
+}
+
 }  // namespace
 }  // namespace dampbound
