@@ -19,6 +19,7 @@
 #include "core/analysis/damping_limits.hpp"
 #include "core/analysis/equilibrium.hpp"
 #include "core/analysis/linear_stability_cholesky.hpp"
+#include "core/analysis/shared_analysis.hpp"
 #include "core/analysis/substeps.hpp"
 #include "core/analysis/suggest.hpp"
 #include "core/io/format.hpp"
@@ -280,6 +281,7 @@ int run(const SuggestArgs& a) {
   options.threads = 0;  // a big mesh's Lanczos products on every CPU (the same bits)
   options.trials = a.trials;
   options.max_factor_flops = a.factor_budget * 1e9;
+  options.shared = std::make_shared<SharedAnalysis>();  // one spectrum for the command's analyses
   options.progress = [&note](int done, int total, const std::string& next) {
     note.stage(next, done, total);
     return true;

@@ -2,7 +2,12 @@
 
 #include <cmath>
 #include <cstdio>
+#include <algorithm>
 #include <cstdlib>
+#include <future>
+#include <string>
+#include <thread>
+#include <vector>
 
 #include "core/analysis/damping_limits.hpp"
 #include "core/analysis/kappa_ceiling.hpp"
@@ -213,37 +218,68 @@ int print_rayleigh(const SceneSpec& scene, const Params& p, const std::string& r
 
 /// SPEC 10: the exact stable range of each damping kind at this dt, the others held, and a
 /// run at the middle of each range (the settled rule judges: stable is not settled in time).
+/// The kinds' searches share one pattern analysis where their index matrices share a pattern
+/// (SharedFactors); the runs, each its own Session, run side by side, at most one per
+/// hardware thread, and the lines come in the kinds' order once all are done.
 void print_damping_kinds(const SceneSpec& scene, const Params& p, const StopRules& rules,
                          bool verify, double max_factor_flops) {
   std::printf("damping kinds at dt = %s s, each with the others held (the exact limit, "
               "at rest)\n",
               format_human(p.dt).c_str());
-  for (DampingKind kind : {DampingKind::nodal, DampingKind::dashpot, DampingKind::rayleigh_mass,
-                           DampingKind::rayleigh_stiffness}) {
-    Params q = p;
-    const double value = coefficient(q, kind);
+  struct Kind {
+    DampingKind kind;
     double max = 0;
+    std::string over;  ///< the budget's refusal, where one factorisation is over it
+    std::future<VerifiedRun> run;
+  };
+  std::vector<Kind> kinds;
+  for (DampingKind kind : {DampingKind::nodal, DampingKind::dashpot, DampingKind::rayleigh_mass,
+                           DampingKind::rayleigh_stiffness})
+    kinds.push_back({kind, 0, {}, {}});
+  SharedFactors shared;
+  for (Kind& k : kinds) {
     try {
-      max = damping_kind_max(scene.model, scene.model.rest, p, kind, max_factor_flops);
+      k.max = damping_kind_max(scene.model, scene.model.rest, p, k.kind, max_factor_flops, &shared);
     } catch (const FactorisationOverBudget& over) {
-      std::printf("  %-19s now %-10s not computed: %s (--factor-budget)\n", to_string(kind),
-                  format_human(value).c_str(), over.what());
+      k.over = over.what();
+    }
+  }
+  // The runs: a thread each, started while fewer than the hardware's threads run.
+  const size_t lanes = std::max(1u, std::thread::hardware_concurrency());
+  std::vector<Kind*> queue;
+  for (Kind& k : kinds)
+    if (verify && k.over.empty() && k.max > 0 && !std::isinf(k.max)) queue.push_back(&k);
+  for (size_t first = 0; first < queue.size(); first += lanes) {
+    const size_t last = std::min(queue.size(), first + lanes);
+    for (size_t q = first; q < last; ++q) {
+      Params run = p;
+      coefficient(run, queue[q]->kind) = queue[q]->max / 2;
+      queue[q]->run = std::async(std::launch::async,
+                                 [&scene, run, &rules] { return verify_run(scene, run, rules, ""); });
+    }
+    for (size_t q = first; q < last; ++q) queue[q]->run.wait();
+  }
+  for (Kind& k : kinds) {
+    Params now = p;
+    const double value = coefficient(now, k.kind);
+    if (!k.over.empty()) {
+      std::printf("  %-19s now %-10s not computed: %s (--factor-budget)\n", to_string(k.kind),
+                  format_human(value).c_str(), k.over.c_str());
       continue;
     }
-    std::printf("  %-19s now %-10s stable for %s in [0, %s)", to_string(kind),
-                format_human(value).c_str(), to_string(kind),
-                std::isinf(max) ? "inf" : format_human(max).c_str());
-    if (max <= 0) {
+    std::printf("  %-19s now %-10s stable for %s in [0, %s)", to_string(k.kind),
+                format_human(value).c_str(), to_string(k.kind),
+                std::isinf(k.max) ? "inf" : format_human(k.max).c_str());
+    if (k.max <= 0) {
       std::printf(": no value is stable with the others held\n");
       continue;
     }
-    if (!verify || std::isinf(max)) {
+    if (!k.run.valid()) {
       std::printf("\n");
       continue;
     }
-    coefficient(q, kind) = max / 2;
-    const VerifiedRun mid = verify_run(scene, q, rules, "");
-    std::printf("; run at %s: %s\n", format_human(max / 2).c_str(),
+    const VerifiedRun mid = k.run.get();
+    std::printf("; run at %s: %s\n", format_human(k.max / 2).c_str(),
                 verdict_text(mid.result, mid.rules).c_str());
   }
 }

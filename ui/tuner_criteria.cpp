@@ -44,13 +44,15 @@ int free_node_count(const Model& model) {
 /// The analysis itself (SPEC 7), linearised at positions x; nullopt when x is not finite or
 /// the solver fails.
 std::optional<ExactStability> analyse(const Model& model, const std::vector<Vec3>& x,
-                                      const Params& params, double factor_budget) {
+                                      const Params& params, double factor_budget,
+                                      const std::shared_ptr<SharedAnalysis>& shared) {
   for (const Vec3& p : x)
     if (!p.allFinite()) return std::nullopt;
   try {
     ExactOptions o;
     o.with_radius = uniform_rate(model);  // Arnoldi on a non-uniform mesh can take seconds
     o.max_factor_flops = factor_budget;  // a big 3-D mesh: what Lanczos proves, not hours
+    o.shared = shared;  // a change of gamma, dt or the damping: the spectrum as it was
     if (!exact_not_computed_reason(model, params).empty()) return std::nullopt;
     ExactStability e = exact_stability(model, x, params, o);
     return e;
@@ -221,8 +223,8 @@ const ExactStability* TunerCriteria::exact(const Session& s, std::uint64_t topol
     const int iteration = following ? s.state().iteration : 0;
     std::vector<Vec3> x = following ? s.state().x : std::vector<Vec3>{};
     const std::string what = other_damping(s.params())
-                                 ? "the general damping matrix's limits (SPEC 10: a bisection, "
-                                   "one certified eigenvalue per probe)"
+                                 ? "the general damping matrix's limits (SPEC 10: a few "
+                                   "factorisations per limit)"
                                  : "the exact linear analysis (SPEC 7)";
     stage_ = (at_ == Linearisation::equilibrium ? "Newton's method to the static equilibrium, "
                                                   "then " + what
@@ -231,16 +233,17 @@ const ExactStability* TunerCriteria::exact(const Session& s, std::uint64_t topol
              " on " + std::to_string(free_node_count(s.model())) + " free nodes";
     job_ = std::async(
         std::launch::async, [model = s.shared_model(), x = std::move(x), params = s.params(),
-                             iteration, at = at_, budget = factor_budget_] {
+                             iteration, at = at_, budget = factor_budget_, shared = shared_] {
           const double t0 = seconds_now();
           Finished f;
           f.iteration = iteration;
           f.at = at;
           if (at == Linearisation::equilibrium) {
             std::vector<Vec3> held = equilibrium_positions(*model, budget, f);
-            if (!held.empty()) f.exact = analyse(*model, held, params, budget);
+            if (!held.empty()) f.exact = analyse(*model, held, params, budget, shared);
           } else {
-            f.exact = analyse(*model, at == Linearisation::state ? x : model->spec().rest, params, budget);
+            f.exact = analyse(*model, at == Linearisation::state ? x : model->spec().rest, params,
+                              budget, shared);
           }
           if (at == Linearisation::rest) f.rest_net = net_force(*model, model->spec().rest);
           f.seconds = seconds_now() - t0;

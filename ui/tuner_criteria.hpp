@@ -16,6 +16,7 @@
 #include "core/analysis/criteria.hpp"
 #include "core/analysis/equilibrium.hpp"
 #include "core/analysis/linear_stability_exact.hpp"
+#include "core/analysis/shared_analysis.hpp"
 #include "core/analysis/suggest.hpp"
 #include "dampbound/run/session.hpp"
 #include "ui/background_job.hpp"
@@ -141,6 +142,9 @@ class TunerCriteria {
   int rows_iteration() const { return rows_iteration_; }
   /// How many times the exact analysis ran (tests: the cache works).
   int exact_runs() const { return exact_runs_; }
+  /// Analyses that took the spectrum certified by one before (SharedAnalysis): a change of
+  /// gamma, dt or the damping certifies the spectrum of A no more.
+  int spectra_reused() const { return shared_->hits(); }
   /// Another scene: the rows and the analysis on show are dropped (a running analysis is
   /// retired), so that the next call analyses the new scene and shows nothing of the old one.
   void forget();
@@ -168,6 +172,8 @@ class TunerCriteria {
   std::optional<Equilibrium> equilibrium_;
   std::string equilibrium_failure_;
   std::future<Finished> job_;  ///< the analysis at the current state, when one runs
+  /// The analyses' spectrum and pattern analysis, from one to the next (their workers').
+  std::shared_ptr<SharedAnalysis> shared_ = std::make_shared<SharedAnalysis>();
   /// Jobs whose result is of no use any more (the analysis moved back into the frame while
   /// they ran): kept until they finish, so that no frame waits for one.
   std::vector<std::future<Finished>> retired_;

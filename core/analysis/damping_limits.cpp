@@ -113,13 +113,18 @@ double damping_floor(const Model& model, double gamma, double a_floor, const Spa
   return alpha + beta * a_floor + d_min - 1e-10 * size;
 }
 
+SharedFactors::SharedFactors() = default;
+SharedFactors::~SharedFactors() = default;
+
 double largest_stable_coefficient(const SparseMatrix& A, const SparseMatrix& C,
-                                  const SparseMatrix& U, double dt, double max_factor_flops) {
+                                  const SparseMatrix& U, double dt, double max_factor_flops,
+                                  SharedFactors* shared) {
   const SparseMatrix base = (dt * dt) * A + (2 * dt) * C, step = (2 * dt) * U;
   detail::IndexFamily family;
   family.S = [&](double v) -> SparseMatrix { return base + v * step; };
   family.D = [&](double) -> SparseMatrix { return step; };
-  return detail::definite_root(family, 0, nullptr, max_factor_flops).stable;
+  return detail::definite_root(family, 0, shared ? &shared->factors : nullptr, max_factor_flops)
+      .stable;
 }
 
 const char* to_string(DampingKind kind) {
@@ -143,7 +148,7 @@ double& coefficient(Params& params, DampingKind kind) {
 }
 
 double damping_kind_max(const ModelSpec& spec, const std::vector<Vec3>& x, const Params& params,
-                        DampingKind kind, double max_factor_flops) {
+                        DampingKind kind, double max_factor_flops, SharedFactors* shared) {
   // C: every damping but this kind's; U: this kind per unit coefficient (the nodal part
   // through weighted_damping's gamma_i, the others through a model with only that one on).
   Params held = params, unit = params;
@@ -156,7 +161,7 @@ double damping_kind_max(const ModelSpec& spec, const std::vector<Vec3>& x, const
   const SparseMatrix A = mass_weighted(with_held, tangent_stiffness(with_held, x));
   const SparseMatrix C = weighted_damping(with_held, x, with_held.gamma);
   const SparseMatrix U = weighted_damping(only, x, only.gamma);
-  return largest_stable_coefficient(A, C, U, params.dt, max_factor_flops);
+  return largest_stable_coefficient(A, C, U, params.dt, max_factor_flops, shared);
 }
 
 namespace {

@@ -44,6 +44,18 @@ namespace detail {
 class ShiftedCholesky;
 }
 
+/// Factorisations kept between limit searches on one model (its damping kinds, the
+/// ceilings): each search on the pattern analysed before goes on with that analysis and the
+/// factor's memory instead of analysing anew; another pattern is analysed then.
+class SharedFactors {
+ public:
+  SharedFactors();
+  ~SharedFactors();
+  SharedFactors(const SharedFactors&) = delete;
+  SharedFactors& operator=(const SharedFactors&) = delete;
+  std::unique_ptr<detail::ShiftedCholesky> factors;
+};
+
 /// Limits at positions x for step params.dt; gamma_i = gamma * gamma_scale_i. The index and
 /// lambda_min(C^) are certified eigenvalues (linear_stability.hpp); the general case finds the
 /// gamma and dt limits as the largest values at which 4 I - (dt^2 A + 2 dt C^) is proved
@@ -95,14 +107,17 @@ double damping_floor(const Model& model, double gamma, double a_floor, const Spa
 /// direction that raises the index.
 double largest_stable_coefficient(const SparseMatrix& A, const SparseMatrix& C,
                                   const SparseMatrix& U, double dt,
-                                  double max_factor_flops = kUnboundedFactor);
+                                  double max_factor_flops = kUnboundedFactor,
+                                  SharedFactors* shared = nullptr);
 
 /// SPEC 10's damping kinds, each with the others held: the exact stable range [0, max) of
 /// the kind's coefficient at params.dt, linearised at x (suggest prints them).
 enum class DampingKind { nodal, dashpot, rayleigh_mass, rayleigh_stiffness };
 const char* to_string(DampingKind kind);       ///< "gamma", "kd", "rayleigh_mass", ...
 double& coefficient(Params& params, DampingKind kind);  ///< gamma, kd, alpha or beta
+/// `shared`: the factorisations of the kinds before (SharedFactors).
 double damping_kind_max(const ModelSpec& spec, const std::vector<Vec3>& x, const Params& params,
-                        DampingKind kind, double max_factor_flops = kUnboundedFactor);
+                        DampingKind kind, double max_factor_flops = kUnboundedFactor,
+                        SharedFactors* shared = nullptr);
 
 }  // namespace dampbound

@@ -17,6 +17,7 @@
 #include "core/analysis/detail/index_limits.hpp"
 #include "core/analysis/detail/shifted_cholesky.hpp"
 #include "core/analysis/linear_stability_cholesky.hpp"
+#include "core/analysis/shared_analysis.hpp"
 #include "core/physics/detail/numbers.hpp"
 #include "core/physics/integrate.hpp"
 
@@ -84,8 +85,15 @@ void spectrum_and_rates(const ExactInputs& in, std::optional<double> floor, cons
                         const std::function<void()>& within_budget,
                         std::unique_ptr<detail::ShiftedCholesky>& factors) {
   e.integrator = params.integrator;
-  const CertifiedSpectrum ends = certified_spectrum(in.A, factors, floor, options.threads,
-                                                    options.max_factor_flops, within_budget);
+  // The spectrum as certified for this A before (ExactOptions::shared), else certified here.
+  CertifiedSpectrum ends;
+  if (options.shared && options.shared->take(in.A, floor, options.max_factor_flops, ends, factors)) {
+    if (within_budget) within_budget();
+  } else {
+    ends = certified_spectrum(in.A, factors, floor, options.threads, options.max_factor_flops,
+                              within_budget);
+    if (options.shared) options.shared->remember(in.A, floor, options.max_factor_flops, ends);
+  }
   // The limit searches factor matrices of A's pattern with CHOLMOD's own ordering: where the
   // spectrum's factors have it, they go on with its pattern analysis (and the same bits as an
   // analysis of their own); otherwise (AMD alone, a small matrix) they make their own.
@@ -298,12 +306,13 @@ void with_spec10_radius(const Model& model, const std::vector<Vec3>& x, const Ex
 }
 
 /// `spec10`: SPEC 10's limits replace the nodal ones where K is not indefinite
-/// (with_spec10_damping), so only the spectrum is computed then: no radius, no nodal limits,
-/// and the spectrum's factors go to `spec10_factors` for SPEC 10's index and searches.
-ExactStability exact_stability_within_budget(
-    const ExactInputs& in, std::optional<double> floor, const Params& params,
-    const ExactOptions& options, bool spec10 = false,
-    std::unique_ptr<detail::ShiftedCholesky>* spec10_factors = nullptr) {
+/// (with_spec10_damping), so only the spectrum is computed then: no radius, no nodal limits.
+/// `factors`: the spectrum's and the limit searches' factorisations, left for the caller
+/// (SPEC 10's index and searches, ExactOptions::shared).
+ExactStability exact_stability_within_budget(const ExactInputs& in, std::optional<double> floor,
+                                             const Params& params, const ExactOptions& options,
+                                             bool spec10,
+                                             std::unique_ptr<detail::ShiftedCholesky>& factors) {
   ExactStability e;
   // The radius beside the factorisations: the symmetric index's (semi-implicit Euler), else,
   // for forward Euler, Verlet and RK4, the spectrum's, once their analysis clears the budget.
@@ -311,13 +320,9 @@ ExactStability exact_stability_within_budget(
   RadiusBeside radius(in, params, options);
   const IntegratorTraits& t = integrator_traits(params.integrator);
   const bool frozen = !t.paper_step && !t.implicit;
-  std::unique_ptr<detail::ShiftedCholesky> factors;  // the spectrum's, for the limit searches
   spectrum_and_rates(in, floor, params, options, e,
                      frozen ? std::function<void()>([&] { radius.start(); }) : nullptr, factors);
-  if (spec10 && !e.indefinite) {
-    if (spec10_factors) *spec10_factors = std::move(factors);
-    return e;
-  }
+  if (spec10 && !e.indefinite) return e;
   const double tiny = 1e-12 * std::max(1.0, std::abs(e.spectrum.lambda_max));
   if (integrator_traits(e.integrator).implicit && e.spectrum.lambda_min >= -tiny) {
     unconditional(e);
@@ -350,13 +355,14 @@ ExactStability exact_stability(const Model& model, const std::vector<Vec3>& x,
     const bool spec10 = model.spring_damping && integrator_traits(params.integrator).paper_step;
     std::unique_ptr<detail::ShiftedCholesky> factors;
     ExactStability e = exact_stability_within_budget(in, psd_floor(model, x), params, options,
-                                                     spec10, &factors);
+                                                     spec10, factors);
     if (model.spring_damping && !e.indefinite) {
       if (spec10)
         with_spec10_damping(model, x, params, options, e, factors);
       else
         with_spec10_radius(model, x, in, params, e);
     }
+    if (options.shared) options.shared->keep(std::move(factors));
     return e;
   } catch (const FactorisationOverBudget& over) {
     return over_budget(model, x, in, params, options, over);
@@ -371,7 +377,10 @@ ExactStability exact_stability(const SparseMatrix& A, const Eigen::VectorXd& R,
   in.R = R;
   in.r_min = R.size() ? R.minCoeff() : 0;
   in.r_max = R.size() ? R.maxCoeff() : 0;
-  return exact_stability_within_budget(in, floor, params, options);
+  std::unique_ptr<detail::ShiftedCholesky> factors;
+  ExactStability e = exact_stability_within_budget(in, floor, params, options, false, factors);
+  if (options.shared) options.shared->keep(std::move(factors));
+  return e;
 }
 
 }  // namespace dampbound

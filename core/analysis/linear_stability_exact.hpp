@@ -3,6 +3,7 @@
 // (SPEC 7): lambda range of M^-1 K, the spectral radius of the step, the interval of
 // the user's gamma that keeps the step stable at dt, and the largest stable dt at gamma.
 #include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -12,6 +13,8 @@
 #include "dampbound/analysis/linear_stability.hpp"
 
 namespace dampbound {
+
+class SharedAnalysis;
 
 /// How the numbers were obtained (docs/criteria.md, "Exact linear stability").
 enum class ExactMethod {
@@ -169,6 +172,9 @@ struct ExactOptions {
   /// (ExactStability::unfactored; two runs of up to this many matrix-vector products; their
   /// cost on big meshes: docs/performance.md). 0: none.
   int unfactored_steps = 40;
+  /// The spectrum and pattern analysis shared with the calls before on the same model
+  /// (shared_analysis.hpp): the same results, without certifying the same spectrum twice.
+  std::shared_ptr<SharedAnalysis> shared = nullptr;
 };
 
 /// The command line's and the tuner's budget: 200 GFlop per factorisation. Every plane up to

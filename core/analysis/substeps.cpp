@@ -129,6 +129,7 @@ SubstepSuggestion suggest_substeps(const SceneSpec& scene, const Params& params,
   only_limits.with_radius = false;
   only_limits.max_factor_flops = options.max_factor_flops;
   only_limits.threads = options.threads;
+  only_limits.shared = options.shared;
   const ExactStability exact = exact_stability(model, rest.x, p, only_limits);
   s.exact.limit = exact.computed() ? exact.dt_max : 0;
   if (!exact.computed()) s.note = "exact limit not computed: " + exact.over_budget_reason();

@@ -66,6 +66,7 @@ ExactStability exact_limits(const Model& model, const Params& params,
   o.with_radius = false;
   o.threads = options.threads;
   o.max_factor_flops = options.max_factor_flops;
+  o.shared = options.shared;
   return exact_stability(model, model.spec().rest, params, o);
 }
 

@@ -55,6 +55,10 @@ struct SuggestOptions {
   /// run) with the stages done, the stages known so far (the total grows once the trial runs
   /// are decided) and what runs next; returning false stops the call with SuggestCancelled.
   std::function<bool(int done, int total, const std::string& next)> progress;
+  /// ExactOptions::shared: one certified spectrum and pattern analysis for the call's exact
+  /// analyses of one model (the scene's gamma and gamma_min; the substep count), and for the
+  /// caller's calls after (null: each computes its own).
+  std::shared_ptr<SharedAnalysis> shared = nullptr;
 };
 
 /// What suggest_damping and suggest_step throw when SuggestOptions::progress asks them to stop.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "core/physics/detail/spring_block.hpp"
 
@@ -41,19 +42,53 @@ double discriminant_root(double P, double Q) {
 
 namespace {
 
+/// Spring k's entries in the rows of one end, towards a free other end of masses product
+/// `mm` (m_i m_j): entry(r, a, c) for the block's nine entries, row by row, a and c its K and
+/// C' blocks weighted by 1/sqrt(m_i m_j), negated. The same at both ends (B and E are
+/// symmetric, entry by entry, and so is m_i m_j).
+template <class OnEntry>
+void neighbour_entries(const Eigen::Matrix3d& B, const Eigen::Matrix3d& E, double mm,
+                       OnEntry entry) {
+  const double w = 1.0 / std::sqrt(mm);
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) entry(r, -B(r, c) * w, -E(r, c) * w);
+}
+
+/// SPEC 10's row-sum term of one entry (a, c) at dt: |2 dt c + dt^2 a|.
+inline double entry_term(double dt, double a, double c) { return std::abs(2 * dt * c + dt * dt * a); }
+
+/// Node i's own block after its springs' (Ka = K_ii, Kc = C'_ii less alpha M): entry(r, a, c)
+/// for the entries off the diagonal, then diag(r, a_rr, c'_rr), row by row.
+template <class OnEntry, class OnDiag>
+void own_block(const Model& model, size_t i, const Eigen::Matrix3d& Ka, const Eigen::Matrix3d& Kc,
+               OnEntry entry, OnDiag diag) {
+  const double m = model.mass[i];
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c)
+      if (c != r) entry(r, Ka(r, c) / m, Kc(r, c) / m);
+    diag(r, Ka(r, r) / m, model.rayleigh_mass + Kc(r, r) / m);
+  }
+}
+
+/// The node's part of its own block before any spring: the anchor's stiffness and damping.
+void anchor_blocks(const Model& model, size_t i, Eigen::Matrix3d& Ka, Eigen::Matrix3d& Kc) {
+  Ka = model.anchor_kappa[i] * Eigen::Matrix3d::Identity();
+  Kc = (model.rayleigh_stiffness * model.anchor_kappa[i] + model.anchor_kd[i]) *
+       Eigen::Matrix3d::Identity();
+}
+
 /// Node i's three rows of A = M^-1 K and C' = M^-1 C (SPEC 10), the one walk that both the
-/// stored rows and damped_safe_gammas() read: entry(r, a, c) for each entry off the diagonal,
-/// the free neighbours' blocks in incidence order and then the node's own block, and
-/// diag(r, a_rr, c'_rr) after row r's last entry. Nothing for a fixed node.
+/// stored rows and damped_safe_gammas() follow: entry(r, a, c) for each entry off the
+/// diagonal, the free neighbours' blocks in incidence order (ascending spring index) and then
+/// the node's own block, and diag(r, a_rr, c'_rr) after row r's last entry. Nothing for a
+/// fixed node.
 template <class OnEntry, class OnDiag>
 void node_rows(const Model& model, const std::vector<Vec3>& x, size_t i, OnEntry entry,
                OnDiag diag) {
   if (model.spec().fixed[i]) return;
   const double m = model.mass[i];
-  Eigen::Matrix3d B, E;
-  Eigen::Matrix3d Ka = model.anchor_kappa[i] * Eigen::Matrix3d::Identity();
-  Eigen::Matrix3d Kc = (model.rayleigh_stiffness * model.anchor_kappa[i] + model.anchor_kd[i]) *
-                       Eigen::Matrix3d::Identity();
+  Eigen::Matrix3d B, E, Ka, Kc;
+  anchor_blocks(model, i, Ka, Kc);
   for (int e = model.incident_offset[i]; e < model.incident_offset[i + 1]; ++e) {
     const int code = model.incident[static_cast<size_t>(e)];
     const size_t k = static_cast<size_t>(code >= 0 ? code : ~code);
@@ -63,15 +98,9 @@ void node_rows(const Model& model, const std::vector<Vec3>& x, size_t i, OnEntry
     const Spring& s = model.spec().springs[k];
     const size_t j = static_cast<size_t>(code >= 0 ? s.j : s.i);
     if (model.spec().fixed[j]) continue;
-    const double w = 1.0 / std::sqrt(m * model.mass[j]);
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) entry(r, -B(r, c) * w, -E(r, c) * w);
+    neighbour_entries(B, E, m * model.mass[j], entry);
   }
-  for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c)
-      if (c != r) entry(r, Ka(r, c) / m, Kc(r, c) / m);
-    diag(r, Ka(r, r) / m, model.rayleigh_mass + Kc(r, r) / m);
-  }
+  own_block(model, i, Ka, Kc, entry, diag);
 }
 
 }  // namespace
@@ -133,7 +162,7 @@ double DampedSafeRows::gamma_safe(int node, double dt) const {
     double off = 0;
     for (int e = offset_[r]; e < offset_[r + 1]; ++e) {
       const Entry& q = entries_[static_cast<size_t>(e)];
-      off += std::abs(2 * dt * q.c + dt * dt * q.a);
+      off += entry_term(dt, q.a, q.c);
     }
     margin = std::min(margin, 4 - 2 * dt * diag_c_[r] - dt * dt * diag_a_[r] - off);
   }
@@ -192,21 +221,69 @@ double DampedSafeRows::dt_safe(int node, double gamma) const {
   return best;
 }
 
+namespace {
+
+/// One node's sums in damped_safe_gammas' pass: its own block's K and C' parts so far and the
+/// absolute sums of its rows' entries towards its neighbours.
+struct NodeSums {
+  Eigen::Matrix3d Ka, Kc;
+  double off[3];
+};
+
+}  // namespace
+
 void damped_safe_gammas(const Model& model, const std::vector<Vec3>& x, double dt,
                         std::vector<double>& gamma_safe, NodeThreads* threads) {
   const size_t n = model.spec().rest.size();
   gamma_safe.assign(n, std::numeric_limits<double>::infinity());
-  // Each node's sums are its own: the nodes split across threads with the same bits.
+  const std::vector<std::uint8_t>& fixed = model.spec().fixed;
+  const std::vector<Spring>& springs = model.spec().springs;
+  // DampedSafeRows::gamma_safe's sums, in node_rows' order, without storing the rows: each
+  // spring's blocks once for both of its ends (the springs in list order are each node's
+  // incidence order), the nodes' sums in a buffer. Each node's sums are its own: the nodes
+  // split across threads with the same bits (a spring between two threads' nodes is formed
+  // by both).
   const auto nodes = [&](int, size_t begin, size_t end) {
+    thread_local std::vector<NodeSums> sums;
+    sums.resize(end - begin);
     for (size_t i = begin; i < end; ++i) {
-      if (model.spec().fixed[i]) continue;
-      // DampedSafeRows::gamma_safe's sums, in its entry order, without storing the rows.
-      double off[3] = {0, 0, 0}, margin = std::numeric_limits<double>::infinity();
-      node_rows(
-          model, x, i,
-          [&](int r, double a, double c) { off[r] += std::abs(2 * dt * c + dt * dt * a); },
+      NodeSums& q = sums[i - begin];
+      anchor_blocks(model, i, q.Ka, q.Kc);
+      q.off[0] = q.off[1] = q.off[2] = 0;
+    }
+    Eigen::Matrix3d B, E;
+    for (size_t k = 0; k < springs.size(); ++k) {
+      const size_t i = static_cast<size_t>(springs[k].i), j = static_cast<size_t>(springs[k].j);
+      const bool at_i = i >= begin && i < end && !fixed[i];
+      const bool at_j = j != i && j >= begin && j < end && !fixed[j];
+      if (!(at_i || at_j) || !spring_blocks(model, x, k, B, E)) continue;
+      // The entries' terms, once for both ends (only where both are free).
+      double term[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+      const bool both = !fixed[i] && !fixed[j];
+      if (both) {
+        int e = 0;
+        neighbour_entries(B, E, model.mass[i] * model.mass[j],
+                          [&](int, double ea, double ec) { term[e++] = entry_term(dt, ea, ec); });
+      }
+      for (const auto& [a, here] : {std::pair{i, at_i}, std::pair{j, at_j}}) {
+        if (!here) continue;
+        NodeSums& q = sums[a - begin];
+        q.Ka += B;
+        q.Kc += E;
+        if (!both) continue;
+        for (int r = 0; r < 3; ++r)
+          for (int c = 0; c < 3; ++c) q.off[r] += term[3 * r + c];
+      }
+    }
+    for (size_t i = begin; i < end; ++i) {
+      if (fixed[i]) continue;
+      NodeSums& q = sums[i - begin];
+      double margin = std::numeric_limits<double>::infinity();
+      own_block(
+          model, i, q.Ka, q.Kc,
+          [&](int r, double a, double c) { q.off[r] += entry_term(dt, a, c); },
           [&](int r, double diag_a, double diag_c) {
-            margin = std::min(margin, 4 - 2 * dt * diag_c - dt * dt * diag_a - off[r]);
+            margin = std::min(margin, 4 - 2 * dt * diag_c - dt * dt * diag_a - q.off[r]);
           });
       gamma_safe[i] = model.mass[i] / (2 * dt) * margin;
     }

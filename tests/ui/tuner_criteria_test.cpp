@@ -56,12 +56,15 @@ TEST(TunerCriteria, LiveCriteriaWithACachedExactAnalysis) {
   Params p = t.params();
   p.gamma = 0.0005;
   ASSERT_TRUE(t.set_params(p));
+  const int reused = t.criteria_state().spectra_reused();
   const auto& below = t.criteria();
   EXPECT_EQ(t.criteria_state().exact_runs(), runs + 1);
+  EXPECT_EQ(t.criteria_state().spectra_reused(), reused + 1);  // gamma: A's spectrum as it was
   EXPECT_EQ(find(below, "paper lower bound")->verdict, CriterionVerdict::beyond);
   t.cut({0, 1, 2});
   t.criteria();
   EXPECT_EQ(t.criteria_state().exact_runs(), runs + 2);  // springs changed
+  EXPECT_EQ(t.criteria_state().spectra_reused(), reused + 1);  // another A: certified anew
 }
 
 TEST(TunerCriteria, ALargeMeshRefreshesItsRowsAtTheFollowInterval) {

@@ -199,7 +199,12 @@ ShiftedCholesky::ShiftedCholesky(const SparseMatrix& A, bool cholmod_ordering) :
 }
 
 void ShiftedCholesky::analyse(double budget) {
-  if (analysed_) return;
+  if (analysed_) {
+    // Analysed for an earlier caller (a search on a shared pattern): its budget may be lower.
+    if (predicted_flops_ > budget)
+      throw FactorisationOverBudget(predicted_flops_, predicted_bytes_, budget);
+    return;
+  }
   if (B_.rows() == 0) {  // every row alone: nothing to factor
     analysed_ = true;
     return;
@@ -215,8 +220,10 @@ void ShiftedCholesky::analyse(double budget) {
     }
     llt_.analyzePattern(B_);
     analysed_ = true;
-    if (llt_.cholmod().fl > budget)
-      throw FactorisationOverBudget(llt_.cholmod().fl, 8 * llt_.cholmod().lnz, budget);
+    predicted_flops_ = llt_.cholmod().fl;
+    predicted_bytes_ = 8 * llt_.cholmod().lnz;
+    if (predicted_flops_ > budget)
+      throw FactorisationOverBudget(predicted_flops_, predicted_bytes_, budget);
   }
   allocate_values();
 }

@@ -95,6 +95,9 @@ class ShiftedCholesky {
   NodeThreads solve_threads_;
   double sigma_ = 0;
   bool analysed_ = false, ok_ = false;
+  /// The pattern analysis's prediction for one factorisation (checked against each caller's
+  /// budget, also where the analysis was an earlier caller's).
+  double predicted_flops_ = 0, predicted_bytes_ = 0;
   bool cholmod_ordering_ = true;
 };
 

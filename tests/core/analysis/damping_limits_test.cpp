@@ -182,6 +182,16 @@ TEST(DampingLimits, TheFactorisationBudgetBoundsTheDampedAnalysis) {
   const double tiny = 1e3;  // flops: below any factorisation of these matrices
   EXPECT_THROW(general_limits(model, x, p, tiny), FactorisationOverBudget);
   EXPECT_THROW(damping_kind_max(spec, x, p, DampingKind::dashpot, tiny), FactorisationOverBudget);
+  // A pattern analysed for an earlier search without a budget does not let a later one past
+  // its own (SharedFactors: the damping kinds of suggest), and the kinds shared give the
+  // numbers of the kinds alone.
+  SharedFactors shared;
+  const double nodal = damping_kind_max(spec, x, p, DampingKind::nodal, kUnboundedFactor, &shared);
+  EXPECT_EQ(nodal, damping_kind_max(spec, x, p, DampingKind::nodal));
+  EXPECT_THROW(damping_kind_max(spec, x, p, DampingKind::dashpot, tiny, &shared),
+               FactorisationOverBudget);
+  EXPECT_EQ(damping_kind_max(spec, x, p, DampingKind::rayleigh_mass, kUnboundedFactor, &shared),
+            damping_kind_max(spec, x, p, DampingKind::rayleigh_mass));
   Params rayleigh = p;
   rayleigh.kd = 0;
   rayleigh.gamma = 0;
