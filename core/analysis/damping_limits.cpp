@@ -73,8 +73,9 @@ GeneralLimits general_limits(const SparseMatrix& A, const SparseMatrix& Cp, cons
   // the caller's where that has the same pattern.
   std::unique_ptr<detail::ShiftedCholesky> own;
   std::unique_ptr<detail::ShiftedCholesky>& factors = shared ? *shared : own;
+  Eigen::VectorXd top;  // the index's top vector: where both searches' Lanczos runs start
   g.index = certified_largest_eigenvalue((dt * dt) * A + (2 * dt) * C, factors, 1,
-                                         max_factor_flops).hi;
+                                         max_factor_flops, &top).hi;
   if (factors && !factors->cholmod_ordering()) factors.reset();
   g.damping_min = damping_floor > 0
                       ? damping_floor
@@ -84,6 +85,7 @@ GeneralLimits general_limits(const SparseMatrix& A, const SparseMatrix& Cp, cons
     detail::IndexFamily family;
     family.S = [&](double v) -> SparseMatrix { return base + v * step; };
     family.D = [&](double) -> SparseMatrix { return step; };
+    family.start = top;
     g.gamma_max = detail::definite_root(family, 0, &factors, max_factor_flops).stable;
   }
   // The index in h: S(a + t) = S(a) + t (2 a A + 2 C) + t^2 A, from the scene's dt.
@@ -91,6 +93,7 @@ GeneralLimits general_limits(const SparseMatrix& A, const SparseMatrix& Cp, cons
   family.S = [&](double h) -> SparseMatrix { return (h * h) * A + (2 * h) * C; };
   family.D = [&](double h) -> SparseMatrix { return (2 * h) * A + 2.0 * C; };
   family.Q = A;
+  family.start = top;
   g.dt_max = detail::definite_root(family, dt, &factors, max_factor_flops).stable;
   return g;
 }

@@ -327,8 +327,8 @@ EigenInterval certified_largest_eigenvalue(const SparseMatrix& A, Eigen::VectorX
 
 EigenInterval certified_largest_eigenvalue(const SparseMatrix& A,
                                            std::unique_ptr<ShiftedCholesky>& factors, int threads,
-                                           double max_factor_flops) {
-  return largest(A, factors, nullptr, threads, max_factor_flops);
+                                           double max_factor_flops, Eigen::VectorXd* vector) {
+  return largest(A, factors, vector, threads, max_factor_flops);
 }
 
 EigenInterval unfactored_largest_eigenvalue(const SparseMatrix& A, Eigen::VectorXd* vector,

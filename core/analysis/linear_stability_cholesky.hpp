@@ -82,7 +82,8 @@ class ShiftedCholesky;
 EigenInterval certified_largest_eigenvalue(const SparseMatrix& A,
                                            std::unique_ptr<detail::ShiftedCholesky>& factors,
                                            int threads = 1,
-                                           double max_factor_flops = kNoFactorBudget);
+                                           double max_factor_flops = kNoFactorBudget,
+                                           Eigen::VectorXd* vector = nullptr);
 
 /// Without a factorisation (for a matrix over the budget): lambda_max(A) in [lo, hi], with
 /// hi Gershgorin's bound and lo the Rayleigh quotient on A of a Ritz vector, less its

@@ -21,6 +21,12 @@ constexpr double kWidth = 1e-10;
 /// close to the root the top stands apart and a run converges in 5 to 25.
 constexpr int kLanczosSteps = 30;
 constexpr double kRitzTolerance = 1e-12;
+/// Or the top Ritz value has settled: it moved by at most this (relative) over the last two
+/// steps. A run that starts from a vector already at the top (the index's own top vector,
+/// IndexFamily::start) sits at the residual's rounding floor, 1e-12 to 1e-11, and would take
+/// every step (the damped 40k plane: theta the same to 15 digits over 30 steps); the probe
+/// below a converged estimate goes 0.4 of the width (4e-11) below it.
+constexpr double kRitzSettled = 1e-13;
 /// After an estimate whose Lanczos run did not converge, the first probe's step back from it,
 /// as a fraction of the way back to the last stable point.
 constexpr double kFirstStepBack = 1e-5;
@@ -97,7 +103,7 @@ class Search {
   /// sigma I - S at the factored point), from the last u_ (or Lanczos's usual start).
   void top_vector(const SparseMatrix& D, double t) {
     const Eigen::Index n = S_.rows();
-    if (u_.size() != n) u_ = lanczos_start(n);
+    if (u_.size() != n) u_ = family_.start.size() == n ? family_.start : lanczos_start(n);
     const auto B = [&](const Eigen::VectorXd& v) -> Eigen::VectorXd { return sigma_ * v - S_ * v; };
     const auto M = [&](const Eigen::VectorXd& v) -> Eigen::VectorXd {
       return t > 0 ? Eigen::VectorXd(D * v + t * (family_.Q * v)) : Eigen::VectorXd(D * v);
@@ -118,6 +124,7 @@ class Search {
     BV.col(0) = Bv / norm;
     Eigen::MatrixXd T = Eigen::MatrixXd::Zero(k, k);
     Eigen::VectorXd w(n), z(n);
+    double theta_before[2] = {0, 0};  // the top Ritz value one and two steps back
     for (int j = 0; j < k; ++j) {
       w = M(V.col(j));
       f_->solve(w.data(), z.data());  // z = B^-1 M v_j
@@ -135,7 +142,12 @@ class Search {
       const double theta = es.eigenvalues()(j);
       const Eigen::VectorXd y = es.eigenvectors().col(j);
       const bool last = j + 1 == k || !(beta > 0);
-      converged_ = beta * std::abs(y(j)) < kRitzTolerance * std::abs(theta);
+      const double settled = kRitzSettled * std::abs(theta);
+      converged_ = beta * std::abs(y(j)) < kRitzTolerance * std::abs(theta) ||
+                   (j >= 2 && std::abs(theta - theta_before[0]) <= settled &&
+                    std::abs(theta - theta_before[1]) <= settled);
+      theta_before[1] = theta_before[0];
+      theta_before[0] = theta;
       if (last || converged_) {
         u_ = basis * y;
         return;

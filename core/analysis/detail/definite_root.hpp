@@ -30,6 +30,9 @@ namespace dampbound::detail {
 struct IndexFamily {
   std::function<SparseMatrix(double)> S, D;
   SparseMatrix Q;
+  /// Where the first Lanczos run starts (empty: Lanczos's usual start): the top eigenvector
+  /// of an index matrix nearby, for example.
+  Eigen::VectorXd start;
 };
 
 /// Where the search ended: `stable` proved (a successful factorisation of sigma I - S, sigma
