@@ -62,6 +62,30 @@ TEST(DefiniteRoot, LinearFamilyMatchesTheDenseGeneralisedEigenvalue) {
   EXPECT_LE(r.factorizations, 6);
 }
 
+TEST(DefiniteRoot, AStartOnTheTopVectorSettlesInAFewSolves) {
+  // IndexFamily::start on the top vector of B^-1 D (what SPEC 10's searches get from the
+  // certified index): the first Lanczos run settles at once (its Ritz value stays put while
+  // the residual sits at its rounding floor), and the search proves the same root.
+  const Mats m = mats();
+  const double h = 1.2;
+  const SparseMatrix base = (h * h) * m.A + (2 * h * 0.1) * m.G, step = (2 * h) * m.G;
+  IndexFamily family;
+  family.S = [&](double v) -> SparseMatrix { return base + v * step; };
+  family.D = [&](double) -> SparseMatrix { return step; };
+  const DefiniteRoot plain = definite_root(family, 0);
+  const Eigen::Index n = base.rows();
+  const Eigen::MatrixXd B0 = 4 * Eigen::MatrixXd::Identity(n, n) - Eigen::MatrixXd(base);
+  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(Eigen::MatrixXd(step), B0);
+  family.start = es.eigenvectors().col(n - 1).normalized();
+  const DefiniteRoot started = definite_root(family, 0);
+  EXPECT_LE(std::abs(started.stable - plain.stable), 1e-10 * plain.unstable);
+  EXPECT_LE(started.unstable - started.stable, 1e-10 * started.unstable);
+  EXPECT_LT(dense_top(base + started.stable * step), 4);
+  EXPECT_LE(started.solves, 4) << "from Lanczos's usual start: " << plain.solves;
+  EXPECT_LT(started.solves, plain.solves);
+  EXPECT_LE(started.factorizations, 3);
+}
+
 /// The index in dt, S(h) = h^2 A + 2 h C, with C = 0.3 G + 0.05 A.
 struct DtFamily {
   Mats m = mats();
